@@ -1,0 +1,91 @@
+//! Errors a user can act on. Every variant names the file, the entity or the
+//! key path involved and, where it helps, the fix.
+
+use std::path::PathBuf;
+
+/// The crate's error type: everything that can go wrong with user input or a
+/// solve. The library never panics on user input; it returns one of these.
+#[derive(Debug, thiserror::Error)]
+pub enum Error {
+    /// A file could not be opened, read or written.
+    #[error("cannot {action} '{path}': {source}")]
+    Io {
+        action: &'static str,
+        path: PathBuf,
+        #[source]
+        source: std::io::Error,
+    },
+
+    /// A mesh file is malformed; `line` is 1-based (or the byte offset for
+    /// binary sections, stated in `message`).
+    #[error("malformed mesh '{path}' at line {line}: {message}")]
+    MeshSyntax {
+        path: PathBuf,
+        line: usize,
+        message: String,
+    },
+
+    /// A mesh that parses but cannot be used (unsupported element, a facet
+    /// that is not on the boundary of any volume element, ...).
+    #[error("invalid mesh '{path}': {message}")]
+    Mesh { path: PathBuf, message: String },
+
+    /// The case file refers to a physical group that the mesh does not have.
+    #[error("{key}: the mesh has no {kind} named '{name}'; it has: {}", available.join(", "))]
+    UnknownGroup {
+        key: String,
+        kind: &'static str,
+        name: String,
+        available: Vec<String>,
+    },
+
+    /// The case file is not valid TOML or does not match the schema.
+    #[error("case file '{path}': {message}")]
+    Case { path: PathBuf, message: String },
+
+    /// A material parameter outside its admissible range.
+    #[error("{key}: {message}")]
+    MaterialParameter { key: String, message: String },
+
+    /// An element whose Jacobian determinant is not positive.
+    #[error("element {element} (mesh id) is {what}: det J = {det_j:.3e} at quadrature point {quadrature_point}{}", if *in_reference { " in the reference configuration; check the node ordering and the geometry" } else { " in the deformed configuration" })]
+    InvertedElement {
+        element: u64,
+        quadrature_point: usize,
+        det_j: f64,
+        in_reference: bool,
+        what: &'static str,
+    },
+
+    /// The linear solver failed (singular matrix: usually missing boundary
+    /// conditions, i.e. a rigid-body mode).
+    #[error("linear solve failed: {0}")]
+    LinearSolver(String),
+
+    /// Newton did not converge even after the allowed number of step cuts.
+    /// Every step converged before this one is on disk.
+    #[error("step '{step}' did not converge at time {time:.6} after {cuts} cuts of the increment (smallest increment {increment:.3e}): {reason}. Converged steps up to time {last_converged_time:.6} are written in '{output}'")]
+    NoConvergence {
+        step: String,
+        time: f64,
+        cuts: usize,
+        increment: f64,
+        reason: String,
+        last_converged_time: f64,
+        output: PathBuf,
+    },
+}
+
+/// Result with the crate's [`Error`].
+pub type Result<T, E = Error> = std::result::Result<T, E>;
+
+impl Error {
+    /// An I/O error with the path and what was being done.
+    pub fn io(action: &'static str, path: impl Into<PathBuf>, source: std::io::Error) -> Self {
+        Error::Io {
+            action,
+            path: path.into(),
+            source,
+        }
+    }
+}

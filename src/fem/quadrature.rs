@@ -1,0 +1,83 @@
+//! Gauss quadrature rules on the reference cells: points and weights whose
+//! sum is the reference measure (tetrahedron 1/6, hexahedron 8, triangle
+//! 1/2, quadrilateral 4).
+
+/// Gauss–Legendre points and weights on [−1, 1] with `n` points (1‥3).
+pub fn gauss_legendre(n: usize) -> (Vec<f64>, Vec<f64>) {
+    match n {
+        1 => (vec![0.0], vec![2.0]),
+        2 => {
+            let a = 1.0 / 3f64.sqrt();
+            (vec![-a, a], vec![1.0, 1.0])
+        }
+        3 => {
+            let a = (3.0f64 / 5.0).sqrt();
+            (vec![-a, 0.0, a], vec![5.0 / 9.0, 8.0 / 9.0, 5.0 / 9.0])
+        }
+        _ => panic!("gauss_legendre: {n} points not tabulated (1‥3)"),
+    }
+}
+
+/// Tensor-product Gauss rule with `n` points per direction on [−1, 1]³.
+pub fn hexahedron(n: usize) -> (Vec<[f64; 3]>, Vec<f64>) {
+    let (x, w) = gauss_legendre(n);
+    let mut points = Vec::new();
+    let mut weights = Vec::new();
+    for k in 0..n {
+        for j in 0..n {
+            for i in 0..n {
+                points.push([x[i], x[j], x[k]]);
+                weights.push(w[i] * w[j] * w[k]);
+            }
+        }
+    }
+    (points, weights)
+}
+
+/// Tensor-product Gauss rule with `n` points per direction on [−1, 1]².
+pub fn quadrilateral(n: usize) -> (Vec<[f64; 2]>, Vec<f64>) {
+    let (x, w) = gauss_legendre(n);
+    let mut points = Vec::new();
+    let mut weights = Vec::new();
+    for j in 0..n {
+        for i in 0..n {
+            points.push([x[i], x[j]]);
+            weights.push(w[i] * w[j]);
+        }
+    }
+    (points, weights)
+}
+
+/// Symmetric rules on the unit tetrahedron: 1 point (degree 1) or 4 points
+/// (degree 2).
+pub fn tetrahedron(n: usize) -> (Vec<[f64; 3]>, Vec<f64>) {
+    match n {
+        1 => (vec![[0.25; 3]], vec![1.0 / 6.0]),
+        4 => {
+            let a = 0.585_410_196_624_968_5;
+            let b = 0.138_196_601_125_010_5;
+            (
+                vec![[b, b, b], [a, b, b], [b, a, b], [b, b, a]],
+                vec![1.0 / 24.0; 4],
+            )
+        }
+        _ => panic!("tetrahedron rule with {n} points not tabulated (1, 4)"),
+    }
+}
+
+/// Symmetric rules on the unit triangle: 1 point (degree 1) or 3 points
+/// (degree 2).
+pub fn triangle(n: usize) -> (Vec<[f64; 2]>, Vec<f64>) {
+    match n {
+        1 => (vec![[1.0 / 3.0; 2]], vec![0.5]),
+        3 => (
+            vec![
+                [1.0 / 6.0, 1.0 / 6.0],
+                [2.0 / 3.0, 1.0 / 6.0],
+                [1.0 / 6.0, 2.0 / 3.0],
+            ],
+            vec![1.0 / 6.0; 3],
+        ),
+        _ => panic!("triangle rule with {n} points not tabulated (1, 3)"),
+    }
+}

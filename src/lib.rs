@@ -1,0 +1,30 @@
+//! # signorini — nonlinear 3D contact mechanics by the finite-element method
+//!
+//! The crate reads like the method: [`mesh`] → [`fem`] (shape functions,
+//! quadrature) → [`material`] (hyperelastic laws) → [`assembly`] (element
+//! kernels, parallel assembly into a fixed sparsity pattern) → [`solve`]
+//! (Newton, line search, adaptive load stepping, sparse LDLᵀ) → [`output`]
+//! (VTU/PVD, `summary.json`, convergence plot). [`case`] is the TOML case
+//! file; [`run`] ties it all together.
+//!
+//! ## Conventions (fixed once, used everywhere)
+//! - Total Lagrangian: reference position `X`, displacement `u`, current
+//!   position `x = X + u`, `F = I + ∂u/∂X`, `C = FᵀF`, `E = ½(C − I)`,
+//!   `J = det F`.
+//! - `S` is the second Piola–Kirchhoff stress, `P = F S` the first,
+//!   `σ = J⁻¹ F S Fᵀ` the Cauchy stress.
+//! - Voigt order for symmetric tensors: (11, 22, 33, 12, 23, 13); strains
+//!   carry engineering shear (`2E₁₂`), stresses do not.
+//! - Residual `r(u) = f_int(u) − f_ext(u)`, tangent `K = ∂r/∂u`, Newton
+//!   solves `K δu = −r`.
+//! - Gap `g ≥ 0` is open; contact pressure `t_N ≥ 0` is compressive
+//!   (contact work, see `design` notes in the README).
+//!
+//! Units are whatever the user chooses, consistently (e.g. mm, N, MPa).
+
+pub mod error;
+pub mod fem;
+pub mod material;
+pub mod mesh;
+
+pub use error::{Error, Result};

@@ -1,0 +1,169 @@
+//! The mesh: reference node coordinates, volume elements grouped into named
+//! regions, and named boundary surface sets, as Gmsh physical groups give them.
+//!
+//! Node numbering inside an element follows Gmsh (which, for the linear
+//! elements, is also VTK's): Tet4 `0‥3`; Hex8 bottom face `0‥3`
+//! counter-clockwise seen from outside… i.e. from below, top face `4‥7`
+//! above them.
+
+pub mod boundary;
+pub mod structured;
+
+/// Volume element types. Adding a type (Tet10, Hex20) means a variant here,
+/// its shape functions and quadrature rule in [`crate::fem`], and its Gmsh/VTK
+/// type numbers.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
+pub enum ElementKind {
+    /// 4-node linear tetrahedron.
+    Tet4,
+    /// 8-node trilinear hexahedron.
+    Hex8,
+}
+
+impl ElementKind {
+    /// Number of nodes.
+    pub fn num_nodes(self) -> usize {
+        match self {
+            ElementKind::Tet4 => 4,
+            ElementKind::Hex8 => 8,
+        }
+    }
+    /// Gmsh element type number.
+    pub fn gmsh_type(self) -> i32 {
+        match self {
+            ElementKind::Tet4 => 4,
+            ElementKind::Hex8 => 5,
+        }
+    }
+    /// VTK cell type number.
+    pub fn vtk_type(self) -> u8 {
+        match self {
+            ElementKind::Tet4 => 10,
+            ElementKind::Hex8 => 12,
+        }
+    }
+    /// The element's faces as lists of local node indices, ordered so that
+    /// the right-hand rule gives the outward normal.
+    pub fn faces(self) -> &'static [&'static [usize]] {
+        match self {
+            ElementKind::Tet4 => &[&[0, 2, 1], &[0, 1, 3], &[0, 3, 2], &[1, 2, 3]],
+            ElementKind::Hex8 => &[
+                &[0, 3, 2, 1],
+                &[4, 5, 6, 7],
+                &[0, 1, 5, 4],
+                &[1, 2, 6, 5],
+                &[2, 3, 7, 6],
+                &[3, 0, 4, 7],
+            ],
+        }
+    }
+}
+
+/// Boundary facet types.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
+pub enum FacetKind {
+    /// 3-node linear triangle.
+    Tri3,
+    /// 4-node bilinear quadrangle.
+    Quad4,
+}
+
+impl FacetKind {
+    /// Number of nodes.
+    pub fn num_nodes(self) -> usize {
+        match self {
+            FacetKind::Tri3 => 3,
+            FacetKind::Quad4 => 4,
+        }
+    }
+    /// Gmsh element type number.
+    pub fn gmsh_type(self) -> i32 {
+        match self {
+            FacetKind::Tri3 => 2,
+            FacetKind::Quad4 => 3,
+        }
+    }
+}
+
+/// A volume element: its type, node indices (into [`Mesh::nodes`]) and the
+/// id the mesh file gave it (used in every message to the user).
+#[derive(Clone, Debug, PartialEq)]
+pub struct Element {
+    pub kind: ElementKind,
+    pub nodes: Vec<usize>,
+    pub id: u64,
+}
+
+/// A boundary facet. After [`Mesh::orient_surfaces`] its node order gives,
+/// by the right-hand rule, the outward normal of the body.
+#[derive(Clone, Debug, PartialEq)]
+pub struct Facet {
+    pub kind: FacetKind,
+    pub nodes: Vec<usize>,
+    pub id: u64,
+}
+
+/// A named volume region (a 3D physical group): indices into
+/// [`Mesh::elements`].
+#[derive(Clone, Debug, PartialEq)]
+pub struct Region {
+    pub name: String,
+    pub elements: Vec<usize>,
+}
+
+/// A named surface set (a 2D physical group).
+#[derive(Clone, Debug, PartialEq)]
+pub struct SurfaceSet {
+    pub name: String,
+    pub facets: Vec<Facet>,
+}
+
+/// A mesh in the reference configuration.
+#[derive(Clone, Debug, Default, PartialEq)]
+pub struct Mesh {
+    /// Reference coordinates `X` of every node.
+    pub nodes: Vec<[f64; 3]>,
+    /// The mesh file's tag of every node (same indexing as `nodes`).
+    pub node_ids: Vec<u64>,
+    /// Volume elements.
+    pub elements: Vec<Element>,
+    /// Named volume regions. Volume elements in no 3D physical group are
+    /// collected in a region named `"default"`.
+    pub regions: Vec<Region>,
+    /// Named boundary surface sets.
+    pub surfaces: Vec<SurfaceSet>,
+}
+
+impl Mesh {
+    /// Number of nodes.
+    pub fn num_nodes(&self) -> usize {
+        self.nodes.len()
+    }
+    /// The region called `name`.
+    pub fn region(&self, name: &str) -> Option<&Region> {
+        self.regions.iter().find(|r| r.name == name)
+    }
+    /// The surface set called `name`.
+    pub fn surface(&self, name: &str) -> Option<&SurfaceSet> {
+        self.surfaces.iter().find(|s| s.name == name)
+    }
+    /// Names of all regions, for error messages.
+    pub fn region_names(&self) -> Vec<String> {
+        self.regions.iter().map(|r| r.name.clone()).collect()
+    }
+    /// Names of all surface sets, for error messages.
+    pub fn surface_names(&self) -> Vec<String> {
+        self.surfaces.iter().map(|s| s.name.clone()).collect()
+    }
+    /// Sorted, deduplicated node indices of a surface set.
+    pub fn surface_nodes(&self, surface: &SurfaceSet) -> Vec<usize> {
+        let mut nodes: Vec<usize> = surface
+            .facets
+            .iter()
+            .flat_map(|f| f.nodes.iter().copied())
+            .collect();
+        nodes.sort_unstable();
+        nodes.dedup();
+        nodes
+    }
+}

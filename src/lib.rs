@@ -28,3 +28,6 @@ pub mod material;
 pub mod mesh;
 
 pub use error::{Error, Result};
+pub mod assembly;
+pub mod solve;
+pub mod problem;

@@ -1,1 +1,102 @@
-fn main() {}
+//! `signorini` command line: parse arguments, call the library, map errors
+//! to exit codes (0 success, 1 error in the input or the solve, 2 usage).
+
+use clap::{Parser, Subcommand};
+use std::path::PathBuf;
+use std::process::ExitCode;
+
+#[derive(Parser)]
+#[command(name = "signorini", version, about = "Nonlinear 3D contact mechanics by finite elements")]
+struct Cli {
+    #[command(subcommand)]
+    command: Command,
+}
+
+#[derive(Subcommand)]
+enum Command {
+    /// Solve a case: write a VTU per converged increment, a .pvd series,
+    /// summary.json and convergence.svg.
+    Run {
+        /// The TOML case file.
+        case: PathBuf,
+        /// Output folder (default: the case's [output].folder, else
+        /// `results` beside the case file).
+        #[arg(long)]
+        output: Option<PathBuf>,
+        /// Worker threads for assembly and factorisation (default: all cores).
+        #[arg(long)]
+        threads: Option<usize>,
+        /// No progress bar and no log lines.
+        #[arg(long)]
+        quiet: bool,
+    },
+    /// Validate the case and its mesh without solving; print what was read.
+    Check {
+        /// The TOML case file.
+        case: PathBuf,
+    },
+}
+
+fn main() -> ExitCode {
+    let cli = Cli::parse();
+    let result = match cli.command {
+        Command::Run {
+            case,
+            output,
+            threads,
+            quiet,
+        } => run(case, output, threads, quiet),
+        Command::Check { case } => check(case),
+    };
+    match result {
+        Ok(()) => ExitCode::SUCCESS,
+        Err(e) => {
+            eprintln!("error: {e}");
+            ExitCode::from(1)
+        }
+    }
+}
+
+fn run(case: PathBuf, output: Option<PathBuf>, threads: Option<usize>, quiet: bool) -> signorini::Result<()> {
+    if let Some(t) = threads {
+        // Only fails if a pool already exists, which cannot happen here.
+        let _ = rayon::ThreadPoolBuilder::new().num_threads(t.max(1)).build_global();
+    }
+    let options = signorini::run::RunOptions { output, quiet };
+    let outcome = signorini::run::run(&case, &options)?;
+    if !quiet {
+        let s = &outcome.summary;
+        println!(
+            "done: {} increments, {} Newton iterations in {:.2} s; results in {}",
+            s.increments.len(),
+            s.increments.iter().map(|i| i.iterations).sum::<usize>(),
+            s.wall_time,
+            outcome.output_dir.display()
+        );
+    }
+    Ok(())
+}
+
+fn check(case: PathBuf) -> signorini::Result<()> {
+    let loaded = signorini::case::load(&case)?;
+    let problem = loaded.build_problem()?;
+    let mesh = &problem.model.mesh;
+    println!("case      {}", case.display());
+    println!("nodes     {}", mesh.num_nodes());
+    println!("elements  {}", mesh.elements.len());
+    println!("dofs      {} ({} prescribed)", problem.model.num_dofs(), problem.constrained_dofs().iter().filter(|&&c| c).count());
+    println!("regions:");
+    for r in &mesh.regions {
+        println!("  {:<20} {} elements", r.name, r.elements.len());
+    }
+    println!("surface sets:");
+    for s in &mesh.surfaces {
+        println!("  {:<20} {} facets, {} nodes", s.name, s.facets.len(), mesh.surface_nodes(s).len());
+    }
+    println!("steps:");
+    for s in &problem.steps {
+        println!("  {:<20} to t = {}", s.name, s.end_time);
+    }
+    println!("ok: the case is valid");
+    Ok(())
+}

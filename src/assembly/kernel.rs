@@ -1,0 +1,184 @@
+//! Pure element kernels of the total-Lagrangian formulation.
+//!
+//! For an element with nodes `a`, reference gradients `G_a = ∂N_a/∂X`,
+//! `F = I + Σ_a u_a ⊗ G_a`, the internal force and tangent are
+//!
+//! ```text
+//! f_a   = ∫ P G_a dV₀,                         P = F S
+//! K_ab  = ∫ B_aᵀ 𝔻 B_b dV₀  +  ∫ (G_aᵀ S G_b) I dV₀
+//! ```
+//!
+//! with `B_a` the 6×3 strain–displacement operator of `δE` (Voigt, order
+//! 11, 22, 33, 12, 23, 13; engineering shear). For a small-strain material
+//! `F = I` in `B_a`, the stress is `σ = ℂ:ε` and the geometric term is absent.
+
+use crate::fem::volume_reference;
+use crate::material::{Kinematics, Mat3, Mat6, Material};
+use crate::mesh::ElementKind;
+use nalgebra::{Matrix3, Vector3};
+
+/// Why an element kernel could not be evaluated.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub enum KernelFailure {
+    /// `det J ≤ 0` in the reference configuration (bad mesh).
+    ReferenceInverted { quadrature_point: usize, det_j: f64 },
+    /// `det F ≤ 0` (or not finite): the deformed element is inverted.
+    Inverted { quadrature_point: usize, det_f: f64 },
+}
+
+/// Reference gradients `∂N_a/∂X` at one quadrature point and `det(∂X/∂ξ)·w`.
+pub struct PointGeometry {
+    pub gradients: Vec<Vector3<f64>>,
+    pub dv: f64,
+}
+
+/// Reference geometry of every quadrature point of an element: `∂N_a/∂X`
+/// and the reference volume weight `det J₀ · w_q`.
+pub fn reference_geometry(
+    kind: ElementKind,
+    reference_coords: &[[f64; 3]],
+) -> Result<Vec<PointGeometry>, KernelFailure> {
+    let r = volume_reference(kind);
+    (0..r.num_points())
+        .map(|q| {
+            // J₀ = ∂X/∂ξ = Σ_a X_a ⊗ ∂N_a/∂ξ
+            let mut j0 = Matrix3::zeros();
+            for (x, g) in reference_coords.iter().zip(&r.gradients[q]) {
+                j0 += Vector3::from(*x) * Vector3::from(*g).transpose();
+            }
+            let det = j0.determinant();
+            if !(det > 0.0) {
+                return Err(KernelFailure::ReferenceInverted {
+                    quadrature_point: q,
+                    det_j: det,
+                });
+            }
+            let inv_t = j0.try_inverse().unwrap_or_else(Matrix3::zeros).transpose();
+            Ok(PointGeometry {
+                gradients: r.gradients[q].iter().map(|g| inv_t * Vector3::from(*g)).collect(),
+                dv: det * r.weights[q],
+            })
+        })
+        .collect()
+}
+
+/// Deformation gradient `F = I + Σ_a u_a ⊗ G_a`.
+pub fn deformation_gradient(gradients: &[Vector3<f64>], displacements: &[[f64; 3]]) -> Mat3 {
+    let mut f = Mat3::identity();
+    for (g, u) in gradients.iter().zip(displacements) {
+        f += Vector3::from(*u) * g.transpose();
+    }
+    f
+}
+
+/// The 6×3 block `B_a` of `δE = Σ_a B_a δu_a` for deformation gradient `F`.
+fn strain_operator(f: &Mat3, g: &Vector3<f64>) -> nalgebra::Matrix6x3<f64> {
+    let mut b = nalgebra::Matrix6x3::zeros();
+    for i in 0..3 {
+        b[(0, i)] = f[(i, 0)] * g[0];
+        b[(1, i)] = f[(i, 1)] * g[1];
+        b[(2, i)] = f[(i, 2)] * g[2];
+        b[(3, i)] = f[(i, 0)] * g[1] + f[(i, 1)] * g[0];
+        b[(4, i)] = f[(i, 1)] * g[2] + f[(i, 2)] * g[1];
+        b[(5, i)] = f[(i, 0)] * g[2] + f[(i, 2)] * g[0];
+    }
+    b
+}
+
+/// What an element evaluation returns: internal force `f` (length `3n`,
+/// node-major) and, if asked, the tangent `K` (`3n × 3n`, row-major).
+#[derive(Clone, Debug, Default)]
+pub struct ElementOutput {
+    pub force: Vec<f64>,
+    pub stiffness: Vec<f64>,
+}
+
+/// Internal force and (if `with_tangent`) tangent stiffness of one element.
+/// `geometry` comes from [`reference_geometry`].
+pub fn internal_force_and_tangent(
+    geometry: &[PointGeometry],
+    displacements: &[[f64; 3]],
+    material: &dyn Material,
+    with_tangent: bool,
+) -> Result<ElementOutput, KernelFailure> {
+    let n = displacements.len();
+    let dofs = 3 * n;
+    let mut out = ElementOutput {
+        force: vec![0.0; dofs],
+        stiffness: if with_tangent { vec![0.0; dofs * dofs] } else { Vec::new() },
+    };
+    let small = material.kinematics() == Kinematics::SmallStrain;
+    let mut b = vec![nalgebra::Matrix6x3::zeros(); n];
+    for (q, p) in geometry.iter().enumerate() {
+        let f = deformation_gradient(&p.gradients, displacements);
+        let det_f = f.determinant();
+        if !small && !(det_f > 0.0 && det_f.is_finite()) {
+            return Err(KernelFailure::Inverted {
+                quadrature_point: q,
+                det_f,
+            });
+        }
+        let (s, d): (Mat3, Mat6) = material.stress_and_tangent(&f);
+        let kin = if small { Mat3::identity() } else { f };
+        // f_a = ∫ (F S) G_a dV₀
+        let pk1 = kin * s;
+        for a in 0..n {
+            let fa = pk1 * p.gradients[a] * p.dv;
+            for i in 0..3 {
+                out.force[3 * a + i] += fa[i];
+            }
+        }
+        if !with_tangent {
+            continue;
+        }
+        for a in 0..n {
+            b[a] = strain_operator(&kin, &p.gradients[a]);
+        }
+        for a in 0..n {
+            let db_a = (d * b[a]) * p.dv; // 6×3
+            for bb in 0..n {
+                let kab = b[bb].transpose() * db_a; // 3×3 (row: b-dof, col: a-dof)
+                let geo = if small {
+                    0.0
+                } else {
+                    (p.gradients[a].transpose() * s * p.gradients[bb])[0] * p.dv
+                };
+                for i in 0..3 {
+                    for j in 0..3 {
+                        // K[(a,i),(b,j)] = (B_aᵀ 𝔻 B_b)_{ij} + δ_ij G_aᵀ S G_b
+                        let mut v = kab[(j, i)];
+                        if i == j {
+                            v += geo;
+                        }
+                        out.stiffness[(3 * a + i) * dofs + 3 * bb + j] += v;
+                    }
+                }
+            }
+        }
+    }
+    Ok(out)
+}
+
+/// Cauchy stress `σ = J⁻¹ F S Fᵀ` averaged over the element's quadrature
+/// points (volume-weighted), for output. Small-strain materials return `σ`.
+pub fn element_cauchy_stress(
+    geometry: &[PointGeometry],
+    displacements: &[[f64; 3]],
+    material: &dyn Material,
+) -> Mat3 {
+    let small = material.kinematics() == Kinematics::SmallStrain;
+    let mut sum = Mat3::zeros();
+    let mut vol = 0.0;
+    for p in geometry {
+        let f = deformation_gradient(&p.gradients, displacements);
+        let s = material.second_piola_kirchhoff(&f);
+        let sigma = if small {
+            s
+        } else {
+            f * s * f.transpose() / f.determinant()
+        };
+        sum += sigma * p.dv;
+        vol += p.dv;
+    }
+    sum / vol
+}

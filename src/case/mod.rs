@@ -1,0 +1,368 @@
+//! The case file: parsing ([`schema`]) and validation into a [`Problem`].
+//! Every check of the user's input lives here, with the key path in the
+//! message.
+
+pub mod schema;
+
+use crate::assembly::Model;
+use crate::material::{self, Material};
+use crate::mesh::Mesh;
+use crate::problem::{
+    Amplitude, BodyForce, PressureLoad, PrescribedDisplacement, Problem, SolverSettings, Step,
+};
+use crate::{Error, Result};
+use schema::{AmplitudeRef, CaseFile, MaterialModel};
+use std::path::{Path, PathBuf};
+use std::sync::Arc;
+
+/// A parsed case file and the mesh it names.
+pub struct Case {
+    pub path: PathBuf,
+    pub spec: CaseFile,
+    pub mesh: Arc<Mesh>,
+}
+
+fn case_error(path: &Path, message: impl Into<String>) -> Error {
+    Error::Case {
+        path: path.to_path_buf(),
+        message: message.into(),
+    }
+}
+
+/// Parse a case file's text. Errors name the line and the key path.
+pub fn parse(path: &Path, text: &str) -> Result<CaseFile> {
+    let de = toml::Deserializer::new(text);
+    serde_path_to_error::deserialize(de).map_err(|e| {
+        let key = e.path().to_string();
+        let inner = e.into_inner();
+        let msg = inner.message().to_string();
+        let location = inner
+            .span()
+            .map(|s| {
+                let line = text[..s.start.min(text.len())].matches('\n').count() + 1;
+                format!("line {line}: ")
+            })
+            .unwrap_or_default();
+        let key = if key == "." { String::new() } else { format!("at key '{key}': ") };
+        case_error(path, format!("{location}{key}{msg}"))
+    })
+}
+
+/// Read the case file and its mesh.
+pub fn load(path: &Path) -> Result<Case> {
+    let text = std::fs::read_to_string(path).map_err(|e| Error::io("read case file", path, e))?;
+    let spec = parse(path, &text)?;
+    let mesh_path = path.parent().unwrap_or(Path::new(".")).join(&spec.mesh.file);
+    let mesh = crate::mesh::gmsh::read_msh(&mesh_path)?;
+    if mesh.elements.is_empty() {
+        return Err(Error::Mesh {
+            path: mesh_path,
+            message: "the mesh has no volume elements (Tet4 or Hex8); mesh the volume (gmsh -3) and save it".into(),
+        });
+    }
+    Ok(Case {
+        path: path.to_path_buf(),
+        spec,
+        mesh: Arc::new(mesh),
+    })
+}
+
+impl Case {
+    /// The folder of the case file.
+    pub fn dir(&self) -> PathBuf {
+        self.path.parent().unwrap_or(Path::new(".")).to_path_buf()
+    }
+
+    /// The output folder: `override_dir` if given, else `[output].folder`
+    /// relative to the case file, else `results` beside it.
+    pub fn output_dir(&self, override_dir: Option<&Path>) -> PathBuf {
+        match override_dir {
+            Some(d) => d.to_path_buf(),
+            None => self.dir().join(self.spec.output.folder.as_deref().unwrap_or("results")),
+        }
+    }
+
+    /// File-name stem for the VTU series.
+    pub fn output_name(&self) -> String {
+        self.spec.output.name.clone().unwrap_or_else(|| {
+            self.path
+                .file_stem()
+                .map(|s| s.to_string_lossy().into_owned())
+                .unwrap_or_else(|| "result".into())
+        })
+    }
+
+    fn err(&self, message: impl Into<String>) -> Error {
+        case_error(&self.path, message)
+    }
+
+    fn amplitude(&self, key: &str, a: &Option<AmplitudeRef>) -> Result<Amplitude> {
+        let points = match a {
+            None => {
+                let t1 = self.spec.step.first().map(|s| s.end_time).unwrap_or(1.0);
+                return Ok(Amplitude::new(vec![(0.0, 0.0), (t1, 1.0)]));
+            }
+            Some(AmplitudeRef::Named(name)) => self.spec.amplitudes.get(name).ok_or_else(|| {
+                let have: Vec<&str> = self.spec.amplitudes.keys().map(|s| s.as_str()).collect();
+                self.err(format!(
+                    "{key}: no amplitude named '{name}' in [amplitudes]; it has: {}",
+                    if have.is_empty() { "none".to_string() } else { have.join(", ") }
+                ))
+            })?,
+            Some(AmplitudeRef::Points(p)) => p,
+        };
+        if points.is_empty() {
+            return Err(self.err(format!("{key}: an amplitude needs at least one [time, value] point")));
+        }
+        for w in points.windows(2) {
+            if !(w[1][0] > w[0][0]) {
+                return Err(self.err(format!(
+                    "{key}: amplitude times must increase strictly ({} then {})",
+                    w[0][0], w[1][0]
+                )));
+            }
+        }
+        if points.iter().flatten().any(|v| !v.is_finite()) {
+            return Err(self.err(format!("{key}: amplitude values must be finite")));
+        }
+        Ok(Amplitude::new(points.iter().map(|p| (p[0], p[1])).collect()))
+    }
+
+    fn surface(&self, key: &str, name: &str) -> Result<&crate::mesh::SurfaceSet> {
+        self.mesh.surface(name).ok_or_else(|| Error::UnknownGroup {
+            key: key.to_string(),
+            kind: "surface set (2D physical group)",
+            name: name.to_string(),
+            available: self.mesh.surface_names(),
+        })
+    }
+
+    fn region(&self, key: &str, name: &str) -> Result<&crate::mesh::Region> {
+        self.mesh.region(name).ok_or_else(|| Error::UnknownGroup {
+            key: key.to_string(),
+            kind: "volume region (3D physical group)",
+            name: name.to_string(),
+            available: self.mesh.region_names(),
+        })
+    }
+
+    fn material(&self, i: usize) -> Result<Arc<dyn Material>> {
+        let m = &self.spec.material[i];
+        let key = format!("material[{i}]");
+        let need = |v: Option<f64>, name: &str| {
+            v.ok_or_else(|| self.err(format!("{key}.{name} is required for model {:?}", m.model)))
+        };
+        let forbid = |present: bool, name: &str| {
+            if present {
+                Err(self.err(format!("{key}.{name} does not apply to model {:?}; remove it", m.model)))
+            } else {
+                Ok(())
+            }
+        };
+        Ok(match m.model {
+            MaterialModel::Ogden => {
+                forbid(m.youngs_modulus.is_some(), "youngs_modulus")?;
+                forbid(m.poisson_ratio.is_some(), "poisson_ratio")?;
+                let mu = m.mu.clone().ok_or_else(|| self.err(format!("{key}.mu is required for model Ogden")))?;
+                let alpha = m.alpha.clone().ok_or_else(|| self.err(format!("{key}.alpha is required for model Ogden")))?;
+                Arc::new(material::Ogden::new(mu, alpha, need(m.bulk_modulus, "bulk_modulus")?, &key)?)
+            }
+            model => {
+                forbid(m.mu.is_some(), "mu")?;
+                forbid(m.alpha.is_some(), "alpha")?;
+                forbid(m.bulk_modulus.is_some(), "bulk_modulus")?;
+                let (e, nu) = (need(m.youngs_modulus, "youngs_modulus")?, need(m.poisson_ratio, "poisson_ratio")?);
+                match model {
+                    MaterialModel::LinearElastic => Arc::new(material::LinearElastic::new(e, nu, &key)?),
+                    MaterialModel::SaintVenantKirchhoff => {
+                        Arc::new(material::SaintVenantKirchhoff::new(e, nu, &key)?)
+                    }
+                    _ => Arc::new(material::NeoHookean::new(e, nu, &key)?),
+                }
+            }
+        })
+    }
+
+    /// Validate everything and build the problem.
+    pub fn build_problem(&self) -> Result<Problem> {
+        let spec = &self.spec;
+        let mesh = &self.mesh;
+        // materials: exactly one per element
+        let mut materials: Vec<Arc<dyn Material>> = Vec::new();
+        let mut element_material: Vec<Option<usize>> = vec![None; mesh.elements.len()];
+        for (i, m) in spec.material.iter().enumerate() {
+            let key = format!("material[{i}].region");
+            let region = self.region(&key, &m.region)?;
+            materials.push(self.material(i)?);
+            for &e in &region.elements {
+                if let Some(j) = element_material[e] {
+                    return Err(self.err(format!(
+                        "{key}: element {} of region '{}' already has the material of material[{j}] (region '{}'); give each element one material",
+                        mesh.elements[e].id, m.region, spec.material[j].region
+                    )));
+                }
+                element_material[e] = Some(i);
+            }
+        }
+        let element_material = element_material
+            .iter()
+            .enumerate()
+            .map(|(e, m)| {
+                m.ok_or_else(|| {
+                    let regions: Vec<&str> = mesh
+                        .regions
+                        .iter()
+                        .filter(|r| r.elements.contains(&e))
+                        .map(|r| r.name.as_str())
+                        .collect();
+                    self.err(format!(
+                        "element {} (region {}) has no material: add a [[material]] with region = \"{}\"",
+                        mesh.elements[e].id,
+                        regions.join(", "),
+                        regions.first().copied().unwrap_or("default")
+                    ))
+                })
+            })
+            .collect::<Result<Vec<_>>>()?;
+
+        let model = Model::new(mesh.clone(), materials, element_material).map_err(|f| {
+            let (quadrature_point, det_j) = match f.failure {
+                crate::assembly::kernel::KernelFailure::ReferenceInverted { quadrature_point, det_j } => {
+                    (quadrature_point, det_j)
+                }
+                crate::assembly::kernel::KernelFailure::Inverted { quadrature_point, det_f } => {
+                    (quadrature_point, det_f)
+                }
+            };
+            Error::InvertedElement {
+                element: mesh.elements[f.element].id,
+                quadrature_point,
+                det_j,
+                in_reference: true,
+                what: if det_j == 0.0 { "degenerate" } else { "inverted" },
+            }
+        })?;
+
+        let mut prescribed = Vec::new();
+        for (i, d) in spec.displacement.iter().enumerate() {
+            let key = format!("displacement[{i}]");
+            let surface = self.surface(&format!("{key}.surface"), &d.surface)?;
+            let components: Vec<(usize, f64)> = [d.x, d.y, d.z]
+                .iter()
+                .enumerate()
+                .filter_map(|(c, v)| v.map(|v| (c, v)))
+                .collect();
+            if components.is_empty() {
+                return Err(self.err(format!("{key}: give at least one of x, y, z")));
+            }
+            if components.iter().any(|(_, v)| !v.is_finite()) {
+                return Err(self.err(format!("{key}: displacement values must be finite")));
+            }
+            prescribed.push(PrescribedDisplacement {
+                surface: d.surface.clone(),
+                nodes: mesh.surface_nodes(surface),
+                components,
+                amplitude: self.amplitude(&format!("{key}.amplitude"), &d.amplitude)?,
+            });
+        }
+        let mut pressures = Vec::new();
+        for (i, p) in spec.pressure.iter().enumerate() {
+            let key = format!("pressure[{i}]");
+            let surface = self.surface(&format!("{key}.surface"), &p.surface)?;
+            if !p.value.is_finite() {
+                return Err(self.err(format!("{key}.value must be finite")));
+            }
+            pressures.push(PressureLoad {
+                surface: p.surface.clone(),
+                facets: surface.facets.clone(),
+                pressure: p.value,
+                follower: p.follower,
+                amplitude: self.amplitude(&format!("{key}.amplitude"), &p.amplitude)?,
+            });
+        }
+        let mut body_forces = Vec::new();
+        for (i, b) in spec.body_force.iter().enumerate() {
+            let key = format!("body_force[{i}]");
+            let elements: Vec<usize> = match &b.region {
+                Some(r) => self.region(&format!("{key}.region"), r)?.elements.clone(),
+                None => (0..mesh.elements.len()).collect(),
+            };
+            if b.value.iter().any(|v| !v.is_finite()) {
+                return Err(self.err(format!("{key}.value must be finite")));
+            }
+            body_forces.push(BodyForce {
+                region: b.region.clone().unwrap_or_else(|| "all".into()),
+                nodal_volumes: model.nodal_volumes(&elements),
+                force: b.value,
+                amplitude: self.amplitude(&format!("{key}.amplitude"), &b.amplitude)?,
+            });
+        }
+        if spec.step.is_empty() {
+            return Err(self.err("no [[step]]: add at least one step with name and end_time"));
+        }
+        let mut steps = Vec::new();
+        let mut t0 = 0.0;
+        for (i, s) in spec.step.iter().enumerate() {
+            let key = format!("step[{i}]");
+            let length = s.end_time - t0;
+            if !(length > 0.0) || !s.end_time.is_finite() {
+                return Err(self.err(format!(
+                    "{key}.end_time = {} must be greater than the previous step's end ({t0})",
+                    s.end_time
+                )));
+            }
+            let initial = s.initial_increment.unwrap_or(length);
+            let max = s.max_increment.unwrap_or(length);
+            let min = s.min_increment.unwrap_or(initial / 1024.0);
+            for (name, v) in [("initial_increment", initial), ("max_increment", max), ("min_increment", min)] {
+                if !(v > 0.0) || !v.is_finite() {
+                    return Err(self.err(format!("{key}.{name} = {v} must be positive")));
+                }
+            }
+            if min > initial {
+                return Err(self.err(format!("{key}.min_increment = {min} exceeds initial_increment = {initial}")));
+            }
+            steps.push(Step {
+                name: s.name.clone(),
+                end_time: s.end_time,
+                initial_increment: initial.min(max),
+                min_increment: min,
+                max_increment: max,
+            });
+            t0 = s.end_time;
+        }
+        let d = SolverSettings::default();
+        let sv = &spec.solver;
+        let settings = SolverSettings {
+            max_iterations: sv.max_iterations.unwrap_or(d.max_iterations),
+            residual_tolerance: sv.residual_tolerance.unwrap_or(d.residual_tolerance),
+            displacement_tolerance: sv.displacement_tolerance.unwrap_or(d.displacement_tolerance),
+            line_search: sv.line_search.unwrap_or(d.line_search),
+            max_cuts: sv.max_cuts.unwrap_or(d.max_cuts),
+            growth_factor: sv.growth_factor.unwrap_or(d.growth_factor),
+            easy_iterations: d.easy_iterations,
+        };
+        for (name, v) in [
+            ("residual_tolerance", settings.residual_tolerance),
+            ("displacement_tolerance", settings.displacement_tolerance),
+        ] {
+            if !(v > 0.0 && v < 1.0) {
+                return Err(self.err(format!("solver.{name} = {v} must be in (0, 1)")));
+            }
+        }
+        if !(settings.growth_factor >= 1.0) {
+            return Err(self.err(format!("solver.growth_factor = {} must be ≥ 1", settings.growth_factor)));
+        }
+        if settings.max_iterations == 0 {
+            return Err(self.err("solver.max_iterations must be at least 1"));
+        }
+        Ok(Problem {
+            model,
+            prescribed,
+            pressures,
+            body_forces,
+            steps,
+            settings,
+        })
+    }
+}

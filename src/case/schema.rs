@@ -1,0 +1,168 @@
+//! The case file schema (TOML). Every table rejects unknown keys, so a
+//! misspelled key is an error that names its path. Units are the user's,
+//! consistent throughout (e.g. mm, N, MPa).
+
+use serde::Deserialize;
+
+/// A whole case file.
+#[derive(Debug, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct CaseFile {
+    /// `[mesh]`: the mesh to read.
+    pub mesh: MeshSpec,
+    /// `[[material]]`: one per volume region.
+    #[serde(default)]
+    pub material: Vec<MaterialSpec>,
+    /// `[[displacement]]`: prescribed displacement components on a surface.
+    #[serde(default)]
+    pub displacement: Vec<DisplacementSpec>,
+    /// `[[pressure]]`: pressure on a surface.
+    #[serde(default)]
+    pub pressure: Vec<PressureSpec>,
+    /// `[[body_force]]`: force per unit reference volume.
+    #[serde(default)]
+    pub body_force: Vec<BodyForceSpec>,
+    /// `[amplitudes]`: named piecewise-linear functions of pseudo-time,
+    /// `name = [[t0, v0], [t1, v1], …]`.
+    #[serde(default)]
+    pub amplitudes: std::collections::BTreeMap<String, Vec<[f64; 2]>>,
+    /// `[[step]]`: load steps in sequence.
+    pub step: Vec<StepSpec>,
+    /// `[solver]`: Newton and stepping controls.
+    #[serde(default)]
+    pub solver: SolverSpec,
+    /// `[output]`: where and what to write.
+    #[serde(default)]
+    pub output: OutputSpec,
+}
+
+/// `[mesh]`
+#[derive(Debug, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct MeshSpec {
+    /// Gmsh `.msh` file (MSH 2.2 or 4.1, ASCII or binary), relative to the
+    /// case file.
+    pub file: String,
+}
+
+/// Constitutive models.
+#[derive(Clone, Copy, Debug, Deserialize, PartialEq, Eq)]
+#[serde(rename_all = "snake_case")]
+pub enum MaterialModel {
+    LinearElastic,
+    SaintVenantKirchhoff,
+    NeoHookean,
+    Ogden,
+}
+
+/// `[[material]]`
+#[derive(Debug, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct MaterialSpec {
+    /// Volume region (3D physical group) name.
+    pub region: String,
+    /// `linear_elastic`, `saint_venant_kirchhoff`, `neo_hookean` or `ogden`.
+    pub model: MaterialModel,
+    /// Young's modulus `E > 0` (all but Ogden).
+    pub youngs_modulus: Option<f64>,
+    /// Poisson's ratio `−1 < ν < 0.5` (all but Ogden).
+    pub poisson_ratio: Option<f64>,
+    /// Ogden shear moduli `μ_p` (initial shear modulus `Σ μ_p`).
+    pub mu: Option<Vec<f64>>,
+    /// Ogden exponents `α_p` (`μ_p α_p > 0`).
+    pub alpha: Option<Vec<f64>>,
+    /// Ogden bulk modulus `κ > 0`.
+    pub bulk_modulus: Option<f64>,
+}
+
+/// An amplitude: the name of one in `[amplitudes]`, or inline points.
+#[derive(Debug, Deserialize, Clone)]
+#[serde(untagged)]
+pub enum AmplitudeRef {
+    Named(String),
+    Points(Vec<[f64; 2]>),
+}
+
+/// `[[displacement]]`: any of `x`, `y`, `z` given are prescribed, the others
+/// are free.
+#[derive(Debug, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct DisplacementSpec {
+    /// Surface set (2D physical group) name.
+    pub surface: String,
+    pub x: Option<f64>,
+    pub y: Option<f64>,
+    pub z: Option<f64>,
+    /// Scales the values; default: ramp 0 → 1 over the first step.
+    pub amplitude: Option<AmplitudeRef>,
+}
+
+/// `[[pressure]]`
+#[derive(Debug, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct PressureSpec {
+    /// Surface set name.
+    pub surface: String,
+    /// Pressure, positive pushing into the body.
+    pub value: f64,
+    /// `true`: follows the deformed surface; `false` (default): dead load on
+    /// the reference normal and area.
+    #[serde(default)]
+    pub follower: bool,
+    pub amplitude: Option<AmplitudeRef>,
+}
+
+/// `[[body_force]]`
+#[derive(Debug, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct BodyForceSpec {
+    /// Volume region; all elements if omitted.
+    pub region: Option<String>,
+    /// Force per unit reference volume (e.g. `ρ g`).
+    pub value: [f64; 3],
+    pub amplitude: Option<AmplitudeRef>,
+}
+
+/// `[[step]]`
+#[derive(Debug, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct StepSpec {
+    pub name: String,
+    /// Pseudo-time at the end of the step (> the previous step's).
+    pub end_time: f64,
+    /// First increment; default: the step's length.
+    pub initial_increment: Option<f64>,
+    /// Smallest increment allowed by cut-back; default: initial / 2¹⁰.
+    pub min_increment: Option<f64>,
+    /// Largest increment allowed by growth; default: the step's length.
+    pub max_increment: Option<f64>,
+}
+
+/// `[solver]`
+#[derive(Debug, Deserialize, Default)]
+#[serde(deny_unknown_fields)]
+pub struct SolverSpec {
+    /// Newton iterations before the increment is cut (default 20).
+    pub max_iterations: Option<usize>,
+    /// Relative force residual tolerance (default 1e-8).
+    pub residual_tolerance: Option<f64>,
+    /// Relative displacement correction tolerance (default 1e-6).
+    pub displacement_tolerance: Option<f64>,
+    /// Backtracking line search (default true).
+    pub line_search: Option<bool>,
+    /// Consecutive cuts before giving up (default 8).
+    pub max_cuts: Option<usize>,
+    /// Increment growth after an easy increment (default 1.5).
+    pub growth_factor: Option<f64>,
+}
+
+/// `[output]`
+#[derive(Debug, Deserialize, Default)]
+#[serde(deny_unknown_fields)]
+pub struct OutputSpec {
+    /// Output folder relative to the case file (default `results`); the
+    /// command line's `--output` overrides it.
+    pub folder: Option<String>,
+    /// File-name stem of the VTU series (default: the case file's stem).
+    pub name: Option<String>,
+}

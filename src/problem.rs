@@ -1,0 +1,307 @@
+//! The boundary-value problem: a [`Model`] with prescribed displacements,
+//! pressures and body forces, each scaled by its own amplitude in
+//! pseudo-time, and the sequence of load steps.
+//!
+//! Everything here is already resolved against the mesh (node and facet
+//! lists); [`crate::case`] builds it from the case file.
+
+use crate::assembly::kernel::KernelFailure;
+use crate::assembly::loads::pressure_facet;
+use crate::assembly::{ElementFailure, Model};
+use crate::mesh::Facet;
+
+/// A piecewise-linear function of pseudo-time, constant beyond its first
+/// and last points.
+#[derive(Clone, Debug, PartialEq)]
+pub struct Amplitude {
+    points: Vec<(f64, f64)>,
+}
+
+impl Amplitude {
+    /// From `(time, value)` points with strictly increasing times. The
+    /// caller validates the input (see [`crate::case`]).
+    pub fn new(points: Vec<(f64, f64)>) -> Self {
+        Amplitude { points }
+    }
+    /// The default: 0 at time 0, 1 at time 1 and after.
+    pub fn ramp() -> Self {
+        Amplitude::new(vec![(0.0, 0.0), (1.0, 1.0)])
+    }
+    /// Value at time `t`.
+    pub fn value(&self, t: f64) -> f64 {
+        let p = &self.points;
+        if p.is_empty() {
+            return 1.0;
+        }
+        if t <= p[0].0 {
+            return p[0].1;
+        }
+        for w in p.windows(2) {
+            let ((t0, v0), (t1, v1)) = (w[0], w[1]);
+            if t <= t1 {
+                return v0 + (v1 - v0) * (t - t0) / (t1 - t0);
+            }
+        }
+        p[p.len() - 1].1
+    }
+}
+
+/// Prescribed displacement components on the nodes of a surface set:
+/// `u_i = value_i · amplitude(t)`.
+#[derive(Clone, Debug)]
+pub struct PrescribedDisplacement {
+    pub surface: String,
+    pub nodes: Vec<usize>,
+    /// `(component 0‥2, value)`.
+    pub components: Vec<(usize, f64)>,
+    pub amplitude: Amplitude,
+}
+
+/// A pressure (positive into the body) on a surface set.
+#[derive(Clone, Debug)]
+pub struct PressureLoad {
+    pub surface: String,
+    pub facets: Vec<Facet>,
+    pub pressure: f64,
+    /// Follows the deformed surface (follower) or stays on the reference
+    /// normal and area (dead).
+    pub follower: bool,
+    pub amplitude: Amplitude,
+}
+
+/// A body force per unit reference volume on a region.
+#[derive(Clone, Debug)]
+pub struct BodyForce {
+    pub region: String,
+    /// `∫ N_a dV₀` of every node over the region.
+    pub nodal_volumes: Vec<f64>,
+    pub force: [f64; 3],
+    pub amplitude: Amplitude,
+}
+
+/// One load step: pseudo-time runs from the end of the previous step to
+/// `end_time` in increments chosen adaptively.
+#[derive(Clone, Debug)]
+pub struct Step {
+    pub name: String,
+    pub end_time: f64,
+    pub initial_increment: f64,
+    pub min_increment: f64,
+    pub max_increment: f64,
+}
+
+/// Newton and stepping controls.
+#[derive(Clone, Debug)]
+pub struct SolverSettings {
+    /// Newton iterations before an increment is cut.
+    pub max_iterations: usize,
+    /// Converged when `‖r‖ ≤ residual_tolerance · max(‖f_ext‖, ‖f_int‖)`…
+    pub residual_tolerance: f64,
+    /// …and `‖δu‖ ≤ displacement_tolerance · ‖Δu‖` (increment of the step).
+    pub displacement_tolerance: f64,
+    /// Backtracking line search on the residual norm.
+    pub line_search: bool,
+    /// Consecutive cuts of one increment before giving up.
+    pub max_cuts: usize,
+    /// Increment growth factor after an easy increment.
+    pub growth_factor: f64,
+    /// An increment that converged in at most this many iterations is easy.
+    pub easy_iterations: usize,
+}
+
+impl Default for SolverSettings {
+    fn default() -> Self {
+        SolverSettings {
+            max_iterations: 20,
+            residual_tolerance: 1e-8,
+            displacement_tolerance: 1e-6,
+            line_search: true,
+            max_cuts: 8,
+            growth_factor: 1.5,
+            easy_iterations: 5,
+        }
+    }
+}
+
+/// The resolved problem.
+pub struct Problem {
+    pub model: Model,
+    pub prescribed: Vec<PrescribedDisplacement>,
+    pub pressures: Vec<PressureLoad>,
+    pub body_forces: Vec<BodyForce>,
+    pub steps: Vec<Step>,
+    pub settings: SolverSettings,
+}
+
+/// Residual `r = f_int − f_ext` over all dofs with the norms used to scale it.
+pub struct Residual {
+    pub r: Vec<f64>,
+    pub internal_norm: f64,
+    pub external_norm: f64,
+}
+
+impl Problem {
+    /// Which dofs are prescribed (in any step).
+    pub fn constrained_dofs(&self) -> Vec<bool> {
+        let mut mask = vec![false; self.model.num_dofs()];
+        for c in &self.prescribed {
+            for &n in &c.nodes {
+                for &(i, _) in &c.components {
+                    mask[3 * n + i] = true;
+                }
+            }
+        }
+        mask
+    }
+
+    /// Write the prescribed displacements at time `t` into `u` (later
+    /// conditions win where two prescribe the same component).
+    pub fn apply_prescribed(&self, t: f64, u: &mut [f64]) {
+        for c in &self.prescribed {
+            let a = c.amplitude.value(t);
+            for &n in &c.nodes {
+                for &(i, v) in &c.components {
+                    u[3 * n + i] = v * a;
+                }
+            }
+        }
+    }
+
+    /// External force at time `t` and displacement `u`; if `tangent` is
+    /// given, add the (symmetrised) follower-load stiffness `−∂f_ext/∂u`.
+    pub fn external_force(&self, t: f64, u: &[f64], mut tangent: Option<&mut [f64]>) -> Vec<f64> {
+        let mesh = &self.model.mesh;
+        let mut f = vec![0.0; self.model.num_dofs()];
+        for b in &self.body_forces {
+            let a = b.amplitude.value(t);
+            for (n, w) in b.nodal_volumes.iter().enumerate() {
+                for i in 0..3 {
+                    f[3 * n + i] += w * b.force[i] * a;
+                }
+            }
+        }
+        for p in &self.pressures {
+            let value = p.pressure * p.amplitude.value(t);
+            if value == 0.0 {
+                continue;
+            }
+            for facet in &p.facets {
+                let coords: Vec<[f64; 3]> = facet
+                    .nodes
+                    .iter()
+                    .map(|&n| {
+                        let x = mesh.nodes[n];
+                        if p.follower {
+                            [x[0] + u[3 * n], x[1] + u[3 * n + 1], x[2] + u[3 * n + 2]]
+                        } else {
+                            x
+                        }
+                    })
+                    .collect();
+                let with_tangent = p.follower && tangent.is_some();
+                let (fe, mut ke) = pressure_facet(facet.kind, &coords, value, with_tangent);
+                for (a, &n) in facet.nodes.iter().enumerate() {
+                    for i in 0..3 {
+                        f[3 * n + i] += fe[3 * a + i];
+                    }
+                }
+                if let (true, Some(k)) = (with_tangent, tangent.as_deref_mut()) {
+                    symmetrise(&mut ke, 3 * facet.nodes.len());
+                    crate::assembly::scatter_block_matrix(
+                        &self.model.pattern,
+                        &facet.nodes,
+                        &ke,
+                        3 * facet.nodes.len(),
+                        k,
+                    );
+                }
+            }
+        }
+        f
+    }
+
+    /// Residual at time `t` and displacement `u`, and the tangent if asked.
+    pub fn residual(
+        &self,
+        t: f64,
+        u: &[f64],
+        mut tangent: Option<&mut [f64]>,
+    ) -> Result<Residual, ElementFailure> {
+        let mut r = vec![0.0; self.model.num_dofs()];
+        self.model.assemble_internal(u, &mut r, tangent.as_deref_mut())?;
+        let internal_norm = norm(&r);
+        let f_ext = self.external_force(t, u, tangent);
+        for (ri, fi) in r.iter_mut().zip(&f_ext) {
+            *ri -= fi;
+        }
+        Ok(Residual {
+            r,
+            internal_norm,
+            external_norm: norm(&f_ext),
+        })
+    }
+
+    /// Total of `r = f_int − f_ext` over the nodes of each surface set: the
+    /// reaction force where displacements are prescribed (zero, to the
+    /// tolerance, on a free surface).
+    pub fn surface_forces(&self, r: &[f64]) -> Vec<(String, [f64; 3])> {
+        let mesh = &self.model.mesh;
+        mesh.surfaces
+            .iter()
+            .map(|s| {
+                let mut total = [0.0; 3];
+                for n in mesh.surface_nodes(s) {
+                    for i in 0..3 {
+                        total[i] += r[3 * n + i];
+                    }
+                }
+                (s.name.clone(), total)
+            })
+            .collect()
+    }
+
+    /// A message for an element failure, with the element's mesh id.
+    pub fn describe_failure(&self, f: &ElementFailure) -> String {
+        let id = self.model.mesh.elements[f.element].id;
+        match f.failure {
+            KernelFailure::Inverted {
+                quadrature_point,
+                det_f,
+            } => format!("element {id} inverted (det F = {det_f:.3e} at quadrature point {quadrature_point})"),
+            KernelFailure::ReferenceInverted {
+                quadrature_point,
+                det_j,
+            } => format!("element {id} degenerate in the reference configuration (det J = {det_j:.3e} at quadrature point {quadrature_point})"),
+        }
+    }
+}
+
+/// Euclidean norm.
+pub fn norm(v: &[f64]) -> f64 {
+    v.iter().map(|x| x * x).sum::<f64>().sqrt()
+}
+
+/// Replace a square row-major matrix by its symmetric part.
+fn symmetrise(k: &mut [f64], n: usize) {
+    for i in 0..n {
+        for j in 0..i {
+            let s = 0.5 * (k[i * n + j] + k[j * n + i]);
+            k[i * n + j] = s;
+            k[j * n + i] = s;
+        }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn amplitude_interpolates_and_holds() {
+        let a = Amplitude::new(vec![(0.0, 0.0), (1.0, 2.0), (3.0, -2.0)]);
+        assert_eq!(a.value(-1.0), 0.0);
+        assert!((a.value(0.5) - 1.0).abs() < 1e-15);
+        assert!((a.value(2.0) - 0.0).abs() < 1e-15);
+        assert_eq!(a.value(10.0), -2.0);
+    }
+}

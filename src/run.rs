@@ -1,0 +1,238 @@
+//! A whole run, reading like a table of contents: load the case → read the
+//! mesh → build the problem → for each step: Newton increments → write each
+//! converged increment → summary and plot.
+
+use crate::case::{self, Case};
+use crate::output::summary::{IncrementSummary, Summary};
+use crate::output::{plot, pvd::PvdCollection, vtu};
+use crate::problem::Problem;
+use crate::solve::linear::{Ordering, SparseLdlt};
+use crate::solve::stepping::{run_steps, IncrementRecord, StepObserver};
+use crate::{Error, Result};
+use indicatif::{ProgressBar, ProgressStyle};
+use std::path::{Path, PathBuf};
+use std::time::Instant;
+
+/// Command-line choices of a run.
+#[derive(Clone, Debug, Default)]
+pub struct RunOptions {
+    /// Output folder (overrides the case file's).
+    pub output: Option<PathBuf>,
+    /// No progress bar, no log lines.
+    pub quiet: bool,
+}
+
+/// What a finished run leaves.
+#[derive(Debug)]
+pub struct RunOutcome {
+    pub output_dir: PathBuf,
+    pub summary: Summary,
+    /// Final displacement of every dof.
+    pub displacement: Vec<f64>,
+}
+
+/// Run a case file end to end. On failure the converged increments, the
+/// `.pvd` and a `summary.json` with `status = "failed"` stay in the output
+/// folder.
+pub fn run(case_path: &Path, options: &RunOptions) -> Result<RunOutcome> {
+    let start = Instant::now();
+    let case = case::load(case_path)?;
+    let problem = case.build_problem()?;
+    let output_dir = case.output_dir(options.output.as_deref());
+    let mut writer = Writer::new(&case, &problem, &output_dir, options.quiet, start)?;
+    let mut solver = SparseLdlt::new(Ordering::Amd, 0);
+    let result = run_steps(&problem, &mut solver, &mut writer, output_dir.clone());
+    writer.progress.finish_and_clear();
+    writer.summary.symbolic_analyses = solver.timings.analyses;
+    writer.summary.factor_nnz = solver.factor_nnz();
+    writer.summary.wall_time = start.elapsed().as_secs_f64();
+    match result {
+        Ok(displacement) => {
+            writer.summary.status = "completed".into();
+            writer.finish()?;
+            Ok(RunOutcome {
+                output_dir,
+                summary: writer.summary,
+                displacement,
+            })
+        }
+        Err(e) => {
+            writer.summary.status = "failed".into();
+            writer.summary.error = Some(e.to_string());
+            // keep what converged; the original error matters more than a
+            // failure to write the failure report
+            let _ = writer.finish();
+            Err(e)
+        }
+    }
+}
+
+/// Writes every converged increment (VTU, PVD, summary) and reports progress.
+struct Writer {
+    dir: PathBuf,
+    name: String,
+    pvd: PvdCollection,
+    summary: Summary,
+    progress: ProgressBar,
+    quiet: bool,
+    last: Instant,
+    start: Instant,
+}
+
+impl Writer {
+    fn new(case: &Case, problem: &Problem, dir: &Path, quiet: bool, start: Instant) -> Result<Self> {
+        std::fs::create_dir_all(dir).map_err(|e| Error::io("create output folder", dir, e))?;
+        let name = case.output_name();
+        remove_old_series(dir, &name)?;
+        let mesh = &problem.model.mesh;
+        let end = problem.steps.last().map(|s| s.end_time).unwrap_or(1.0);
+        let progress = if quiet {
+            ProgressBar::hidden()
+        } else {
+            let bar = ProgressBar::new(1000);
+            bar.set_style(
+                ProgressStyle::with_template("{spinner} [{elapsed_precise}] {bar:40} t = {msg}")
+                    .expect("valid template"),
+            );
+            bar
+        };
+        let _ = end;
+        let summary = Summary {
+            case: case.path.display().to_string(),
+            status: "running".into(),
+            error: None,
+            nodes: mesh.num_nodes(),
+            elements: mesh.elements.len(),
+            dofs: problem.model.num_dofs(),
+            constrained_dofs: problem.constrained_dofs().iter().filter(|&&c| c).count(),
+            threads: rayon::current_num_threads(),
+            wall_time: 0.0,
+            symbolic_analyses: 0,
+            matrix_nnz: problem.model.pattern.nnz(),
+            factor_nnz: 0,
+            increments: Vec::new(),
+        };
+        Ok(Writer {
+            pvd: PvdCollection::new(dir.join(format!("{name}.pvd"))),
+            dir: dir.to_path_buf(),
+            name,
+            summary,
+            progress,
+            quiet,
+            last: Instant::now(),
+            start,
+        })
+    }
+
+    fn log(&self, line: String) {
+        if self.quiet {
+            return;
+        }
+        if self.progress.is_hidden() {
+            eprintln!("{line}");
+        } else {
+            self.progress.println(line);
+        }
+    }
+
+    /// Final summary and convergence plot.
+    fn finish(&mut self) -> Result<()> {
+        self.summary.wall_time = self.start.elapsed().as_secs_f64();
+        self.summary.write(&self.dir.join("summary.json"))?;
+        let steps: Vec<plot::StepResiduals> = self
+            .summary
+            .increments
+            .iter()
+            .map(|i| plot::StepResiduals {
+                label: format!("{} t={:.4}", i.step_name, i.time),
+                residuals: i.residuals.clone(),
+            })
+            .collect();
+        plot::write_convergence_plot(&self.dir.join("convergence.svg"), &steps)
+    }
+}
+
+impl StepObserver for Writer {
+    fn on_converged(&mut self, problem: &Problem, record: &IncrementRecord, u: &[f64]) -> Result<()> {
+        let index = self.summary.increments.len() + 1;
+        let file = format!("{}_{index:04}.vtu", self.name);
+        let stresses = problem.model.cauchy_stresses(u);
+        let cauchy: Vec<f64> = stresses.iter().flat_map(|s| s.transpose().iter().copied().collect::<Vec<_>>()).collect();
+        let von_mises: Vec<f64> = stresses.iter().map(crate::material::von_mises).collect();
+        vtu::write_vtu(
+            &self.dir.join(&file),
+            &problem.model.mesh,
+            &[vtu::Field {
+                name: "displacement",
+                components: 3,
+                values: u,
+            }],
+            &[
+                vtu::Field {
+                    name: "cauchy_stress",
+                    components: 9,
+                    values: &cauchy,
+                },
+                vtu::Field {
+                    name: "von_mises",
+                    components: 1,
+                    values: &von_mises,
+                },
+            ],
+        )?;
+        self.pvd.add(record.time, &file)?;
+        let residual = problem
+            .residual(record.time, u, None)
+            .map_err(|f| Error::LinearSolver(problem.describe_failure(&f)))?;
+        let reaction_forces = problem.surface_forces(&residual.r).into_iter().collect();
+        let now = Instant::now();
+        let final_residual = record.newton.last().map(|r| r.residual).unwrap_or(0.0);
+        self.summary.increments.push(IncrementSummary {
+            step: record.step,
+            step_name: record.step_name.clone(),
+            time: record.time,
+            increment: record.increment,
+            iterations: record.iterations,
+            residuals: record.newton.iter().map(|r| r.residual).collect(),
+            corrections: record.newton.iter().map(|r| r.correction).collect(),
+            cuts: record.cuts,
+            wall_time: (now - self.last).as_secs_f64(),
+            file,
+            reaction_forces,
+        });
+        self.last = now;
+        self.summary.wall_time = self.start.elapsed().as_secs_f64();
+        self.summary.write(&self.dir.join("summary.json"))?;
+        let end = problem.steps.last().map(|s| s.end_time).unwrap_or(1.0);
+        self.progress.set_position((1000.0 * record.time / end) as u64);
+        self.progress.set_message(format!("{:.4} ({})", record.time, record.step_name));
+        self.log(format!(
+            "step '{}'  t = {:.6}  Δt = {:.3e}  iterations {:2}  residual {:.2e}",
+            record.step_name, record.time, record.increment, record.iterations, final_residual
+        ));
+        Ok(())
+    }
+
+    fn on_cut(&mut self, step: &str, time: f64, increment: f64, reason: &str) {
+        self.log(format!(
+            "step '{step}'  t = {time:.6}  Δt = {increment:.3e}  not converged ({reason}): cutting the increment"
+        ));
+    }
+}
+
+/// Remove VTU files of an earlier run with the same name, so the folder
+/// holds one consistent series.
+fn remove_old_series(dir: &Path, name: &str) -> Result<()> {
+    let entries = std::fs::read_dir(dir).map_err(|e| Error::io("list output folder", dir, e))?;
+    for entry in entries.flatten() {
+        let file = entry.file_name().to_string_lossy().into_owned();
+        let ours = file
+            .strip_prefix(&format!("{name}_"))
+            .and_then(|rest| rest.strip_suffix(".vtu"))
+            .is_some_and(|n| n.chars().all(|c| c.is_ascii_digit()));
+        if ours {
+            std::fs::remove_file(entry.path()).map_err(|e| Error::io("remove old result", entry.path(), e))?;
+        }
+    }
+    Ok(())
+}

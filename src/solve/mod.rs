@@ -1,0 +1,6 @@
+//! The nonlinear solve: sparse direct linear solves, Newton–Raphson with a
+//! backtracking line search, and adaptive load stepping.
+
+pub mod linear;
+pub mod newton;
+pub mod stepping;

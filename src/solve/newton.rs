@@ -1,0 +1,166 @@
+//! Newton–Raphson for one load increment, with the consistent tangent and a
+//! backtracking line search.
+//!
+//! Prescribed displacements are imposed exactly on the iterate; their rows
+//! and columns of `K` are replaced by a scaled identity, so the sparsity
+//! pattern (and its symbolic factorisation) never changes.
+
+use super::linear::SparseLdlt;
+use crate::problem::{norm, Problem};
+use crate::Result;
+
+/// One Newton iteration as reported to the user.
+#[derive(Clone, Debug, serde::Serialize)]
+pub struct IterationRecord {
+    /// `‖r_free‖ / max(‖f_ext‖, ‖f_int‖)` at the start of the iteration.
+    pub residual: f64,
+    /// `‖α δu‖ / ‖Δu‖` of the correction taken in this iteration (0 on the
+    /// last, converged, evaluation).
+    pub correction: f64,
+    /// Line-search step length taken.
+    pub step_length: f64,
+}
+
+/// How an increment ended.
+#[derive(Clone, Debug)]
+pub enum NewtonOutcome {
+    Converged,
+    /// Not converged; the reason is for the log and the final error.
+    Failed(String),
+}
+
+/// Solve the increment ending at time `t`, starting from the converged
+/// state `u_start`. On return `u` holds the last iterate.
+pub fn solve_increment(
+    problem: &Problem,
+    solver: &mut SparseLdlt,
+    constrained: &[bool],
+    u_start: &[f64],
+    t: f64,
+    u: &mut Vec<f64>,
+) -> Result<(NewtonOutcome, Vec<IterationRecord>)> {
+    let settings = &problem.settings;
+    let pattern = problem.model.pattern.symbolic();
+    u.clear();
+    u.extend_from_slice(u_start);
+    problem.apply_prescribed(t, u);
+    let mut records: Vec<IterationRecord> = Vec::new();
+    let mut k_values = vec![0.0; problem.model.pattern.nnz()];
+    let mut last_correction = f64::INFINITY;
+    for iteration in 0..=settings.max_iterations {
+        let residual = match problem.residual(t, u, Some(&mut k_values)) {
+            Ok(r) => r,
+            Err(f) => return Ok((NewtonOutcome::Failed(problem.describe_failure(&f)), records)),
+        };
+        let mut r = residual.r;
+        zero_constrained(&mut r, constrained);
+        let scale = residual.internal_norm.max(residual.external_norm).max(f64::MIN_POSITIVE);
+        let relative = norm(&r) / scale;
+        records.push(IterationRecord {
+            residual: relative,
+            correction: 0.0,
+            step_length: 0.0,
+        });
+        if !relative.is_finite() {
+            return Ok((NewtonOutcome::Failed("the residual is not finite".into()), records));
+        }
+        // converged: small residual, and a small last correction (or none needed)
+        let small_residual = relative <= settings.residual_tolerance || norm(&r) == 0.0;
+        if small_residual && (iteration == 0 || last_correction <= settings.displacement_tolerance) {
+            return Ok((NewtonOutcome::Converged, records));
+        }
+        if iteration == settings.max_iterations {
+            break;
+        }
+        if iteration >= 3 && relative > 1e3 * records[0].residual.max(settings.residual_tolerance) {
+            return Ok((NewtonOutcome::Failed(format!("diverging (relative residual {relative:.3e})")), records));
+        }
+        apply_identity_rows(problem, constrained, &mut k_values);
+        solver.factorize(pattern, &k_values, None)?;
+        let mut du: Vec<f64> = r.iter().map(|x| -x).collect();
+        solver.solve_in_place(&mut du)?;
+        zero_constrained(&mut du, constrained);
+        let step_length = line_search(problem, constrained, t, u, &du, norm(&r), relative);
+        for (ui, di) in u.iter_mut().zip(&du) {
+            *ui += step_length * di;
+        }
+        let total: Vec<f64> = u.iter().zip(u_start).map(|(a, b)| a - b).collect();
+        last_correction = step_length * norm(&du) / norm(&total).max(f64::MIN_POSITIVE);
+        let rec = records.last_mut().expect("pushed above");
+        rec.correction = last_correction;
+        rec.step_length = step_length;
+    }
+    let last = records.last().map(|r| r.residual).unwrap_or(f64::NAN);
+    Ok((
+        NewtonOutcome::Failed(format!(
+            "no convergence in {} iterations (relative residual {last:.3e})",
+            settings.max_iterations
+        )),
+        records,
+    ))
+}
+
+/// Backtracking on the residual norm: the full Newton step if it reduces
+/// `‖r‖` (or if the residual is already near the tolerance), otherwise the
+/// first of ½, ¼, … that does, and the full step again if none does (the
+/// divergence test and the step cut-back take over then).
+fn line_search(
+    problem: &Problem,
+    constrained: &[bool],
+    t: f64,
+    u: &[f64],
+    du: &[f64],
+    r0: f64,
+    relative: f64,
+) -> f64 {
+    if !problem.settings.line_search || relative < 1e3 * problem.settings.residual_tolerance {
+        return 1.0;
+    }
+    let mut trial = u.to_vec();
+    let mut alpha = 1.0;
+    for _ in 0..5 {
+        for ((x, u0), d) in trial.iter_mut().zip(u).zip(du) {
+            *x = u0 + alpha * d;
+        }
+        if let Ok(res) = problem.residual(t, &trial, None) {
+            let mut r = res.r;
+            zero_constrained(&mut r, constrained);
+            if norm(&r) < r0 {
+                return alpha;
+            }
+        }
+        alpha *= 0.5;
+    }
+    1.0
+}
+
+fn zero_constrained(v: &mut [f64], constrained: &[bool]) {
+    for (x, &c) in v.iter_mut().zip(constrained) {
+        if c {
+            *x = 0.0;
+        }
+    }
+}
+
+/// Replace the rows and columns of prescribed dofs by a scaled identity
+/// (the scale is the mean absolute diagonal of the free dofs).
+fn apply_identity_rows(problem: &Problem, constrained: &[bool], k: &mut [f64]) {
+    let pattern = problem.model.pattern.symbolic();
+    let (cp, ri) = (pattern.col_ptr(), pattern.row_idx());
+    let (mut sum, mut count) = (0.0, 0usize);
+    for (d, &c) in constrained.iter().enumerate() {
+        if !c {
+            sum += k[problem.model.pattern.diagonal_entry(d)].abs();
+            count += 1;
+        }
+    }
+    let scale = if count > 0 && sum > 0.0 { sum / count as f64 } else { 1.0 };
+    for j in 0..pattern.ncols() {
+        for idx in cp[j]..cp[j + 1] {
+            let i = ri[idx];
+            if constrained[i] || constrained[j] {
+                k[idx] = if i == j { scale } else { 0.0 };
+            }
+        }
+    }
+}

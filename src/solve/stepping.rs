@@ -1,0 +1,100 @@
+//! Adaptive load stepping: each step's pseudo-time interval is covered by
+//! increments that are cut (halved) when Newton fails — divergence, a NaN,
+//! an inverted element, too many iterations — and grown after easy ones.
+//! After `max_cuts` consecutive cuts the run stops with an error; every
+//! increment converged before stays written, since output happens in the
+//! `on_converged` callback as each increment converges.
+
+use super::linear::SparseLdlt;
+use super::newton::{solve_increment, IterationRecord, NewtonOutcome};
+use crate::problem::Problem;
+use crate::{Error, Result};
+use std::path::PathBuf;
+
+/// A converged increment.
+#[derive(Clone, Debug, serde::Serialize)]
+pub struct IncrementRecord {
+    /// Index of the step (0-based) and its name.
+    pub step: usize,
+    pub step_name: String,
+    /// Pseudo-time at the end of the increment.
+    pub time: f64,
+    /// Size of the increment.
+    pub increment: f64,
+    /// Newton iterations (the number of corrections solved).
+    pub iterations: usize,
+    /// Per-iteration residuals and corrections.
+    pub newton: Vec<IterationRecord>,
+    /// Cuts suffered before this increment converged.
+    pub cuts: usize,
+}
+
+/// What the stepper reports as it goes.
+pub trait StepObserver {
+    /// An increment converged; `u` is the new displacement. Write output
+    /// here.
+    fn on_converged(&mut self, problem: &Problem, record: &IncrementRecord, u: &[f64]) -> Result<()>;
+    /// An increment failed and is cut.
+    fn on_cut(&mut self, _step: &str, _time: f64, _increment: f64, _reason: &str) {}
+}
+
+/// Run every step of `problem` from `u = 0` (except the prescribed values).
+/// Returns the final displacement.
+pub fn run_steps(
+    problem: &Problem,
+    solver: &mut SparseLdlt,
+    observer: &mut dyn StepObserver,
+    output: PathBuf,
+) -> Result<Vec<f64>> {
+    let constrained = problem.constrained_dofs();
+    let mut u = vec![0.0; problem.model.num_dofs()];
+    problem.apply_prescribed(0.0, &mut u);
+    let mut trial = Vec::with_capacity(u.len());
+    let mut t = 0.0;
+    for (s, step) in problem.steps.iter().enumerate() {
+        let mut dt = step.initial_increment.min(step.end_time - t);
+        let mut cuts = 0;
+        while t < step.end_time - 1e-12 * step.end_time.abs().max(1.0) {
+            dt = dt.min(step.end_time - t);
+            let t_new = if dt >= step.end_time - t { step.end_time } else { t + dt };
+            let (outcome, newton) = solve_increment(problem, solver, &constrained, &u, t_new, &mut trial)?;
+            match outcome {
+                NewtonOutcome::Converged => {
+                    std::mem::swap(&mut u, &mut trial);
+                    let record = IncrementRecord {
+                        step: s,
+                        step_name: step.name.clone(),
+                        time: t_new,
+                        increment: t_new - t,
+                        iterations: newton.len() - 1,
+                        newton,
+                        cuts,
+                    };
+                    t = t_new;
+                    observer.on_converged(problem, &record, &u)?;
+                    if record.iterations <= problem.settings.easy_iterations && cuts == 0 {
+                        dt = (dt * problem.settings.growth_factor).min(step.max_increment);
+                    }
+                    cuts = 0;
+                }
+                NewtonOutcome::Failed(reason) => {
+                    observer.on_cut(&step.name, t_new, dt, &reason);
+                    cuts += 1;
+                    if cuts > problem.settings.max_cuts || 0.5 * dt < step.min_increment {
+                        return Err(Error::NoConvergence {
+                            step: step.name.clone(),
+                            time: t_new,
+                            cuts: cuts - 1,
+                            increment: dt,
+                            reason,
+                            last_converged_time: t,
+                            output,
+                        });
+                    }
+                    dt *= 0.5;
+                }
+            }
+        }
+    }
+    Ok(u)
+}

@@ -4,14 +4,12 @@
 //! `𝔻 = ∂S/∂E` (or `σ = ∂W/∂ε`, `ℂ = ∂σ/∂ε` for small-strain laws).
 //!
 //! Strains are perturbed directly in Voigt components (engineering shear):
-//! for finite strain `F' = R √(C + 2 δE)` with `R` the rotation of the polar
-//! decomposition `F = R U`, so that `F'ᵀF' = C + 2 δE` exactly; for small
-//! strain `F' = F + δε`.
+//! for finite strain `F' = F L⁻ᵀ L'ᵀ` with the Cholesky factors
+//! `C = L Lᵀ`, `C + 2 δE = L' L'ᵀ`, so that `F'ᵀF' = C + 2 δE` exactly; for
+//! small strain `F' = F + δε`.
 
-use super::{
-    sym_from_voigt, voigt_from_sym, Kinematics, Mat3, Mat6, Material, Vec6,
-};
-use nalgebra::{Rotation3, SymmetricEigen, Unit, Vector3};
+use super::{sym_from_voigt, voigt_from_sym, Kinematics, Mat3, Mat6, Material, Vec6};
+use nalgebra::{Rotation3, Unit, Vector3};
 use rand::rngs::StdRng;
 use rand::{Rng, SeedableRng};
 
@@ -67,25 +65,32 @@ pub fn deformations() -> Vec<(String, Mat3)> {
         ("1.1 I".to_string(), Mat3::identity() * 1.1),
         ("0.9 I".to_string(), Mat3::identity() * 0.9),
         ("Q diag(1.2, 1.2, 0.9)".to_string(), q * diag(1.2, 1.2, 0.9)),
-        ("Q diag(0.9, 1.2, 1.2) Qᵀ".to_string(), q * diag(0.9, 1.2, 1.2) * q.transpose()),
+        (
+            "Q diag(0.9, 1.2, 1.2) Qᵀ".to_string(),
+            q * diag(0.9, 1.2, 1.2) * q.transpose(),
+        ),
         ("Q 1.1 I".to_string(), q * 1.1),
-        ("diag(1.2, 1.2 + 1e-9, 0.8)".to_string(), diag(1.2, 1.2 + 1e-9, 0.8)),
-        ("Q diag(1.2, 1.2 + 1e-9, 0.8)".to_string(), q * diag(1.2, 1.2 + 1e-9, 0.8)),
-        ("diag(1.1, 1.1 + 1e-7, 1.1 - 1e-7)".to_string(), diag(1.1, 1.1 + 1e-7, 1.1 - 1e-7)),
-        ("simple shear 0.5".to_string(), Mat3::new(1.0, 0.5, 0.0, 0.0, 1.0, 0.0, 0.0, 0.0, 1.0)),
+        (
+            "diag(1.2, 1.2 + 1e-9, 0.8)".to_string(),
+            diag(1.2, 1.2 + 1e-9, 0.8),
+        ),
+        (
+            "Q diag(1.2, 1.2 + 1e-9, 0.8)".to_string(),
+            q * diag(1.2, 1.2 + 1e-9, 0.8),
+        ),
+        (
+            "diag(1.1, 1.1 + 1e-7, 1.1 - 1e-7)".to_string(),
+            diag(1.1, 1.1 + 1e-7, 1.1 - 1e-7),
+        ),
+        (
+            "simple shear 0.5".to_string(),
+            Mat3::new(1.0, 0.5, 0.0, 0.0, 1.0, 0.0, 0.0, 0.0, 1.0),
+        ),
     ];
     for (k, f) in random_deformations(42, 8, 0.3).into_iter().enumerate() {
         out.push((format!("random #{k}"), f));
     }
     out
-}
-
-/// Symmetric square root of a symmetric positive definite tensor.
-pub fn sym_sqrt(c: &Mat3) -> Mat3 {
-    let eig = SymmetricEigen::new(*c);
-    let v = eig.eigenvectors;
-    let d = Mat3::from_diagonal(&eig.eigenvalues.map(f64::sqrt));
-    v * d * v.transpose()
 }
 
 /// Symmetric tensor from a strain Voigt vector with engineering shear.
@@ -104,10 +109,17 @@ pub fn perturbed(kinematics: Kinematics, f: &Mat3, d: &Vec6) -> Mat3 {
     match kinematics {
         Kinematics::SmallStrain => f + de,
         Kinematics::FiniteStrain => {
+            // C = L Lᵀ, C' = C + 2δE = L' L'ᵀ (Cholesky, smooth in C and
+            // accurate even for repeated eigenvalues); F' = F L⁻ᵀ L'ᵀ has
+            // F'ᵀF' = C' and F' = F at δE = 0.
             let c = f.transpose() * f;
-            let u = sym_sqrt(&c);
-            let r = f * u.try_inverse().expect("F must be invertible");
-            r * sym_sqrt(&(c + de * 2.0))
+            let l = c.cholesky().expect("C must be positive definite").l();
+            let lp = (c + de * 2.0)
+                .cholesky()
+                .expect("C' must be positive definite")
+                .l();
+            let lt_inv = l.transpose().try_inverse().expect("F must be invertible");
+            f * lt_inv * lp.transpose()
         }
     }
 }
@@ -136,7 +148,10 @@ pub fn fd_tangent(m: &dyn Material, f: &Mat3) -> Mat6 {
     for k in 0..6 {
         let sp = m.stress_and_tangent(&perturbed(kin, f, &unit(k, H))).0;
         let sm = m.stress_and_tangent(&perturbed(kin, f, &unit(k, -H))).0;
-        d.set_column(k, &((voigt_from_sym(&sp) - voigt_from_sym(&sm)) / (2.0 * H)));
+        d.set_column(
+            k,
+            &((voigt_from_sym(&sp) - voigt_from_sym(&sm)) / (2.0 * H)),
+        );
     }
     d
 }

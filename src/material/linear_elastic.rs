@@ -125,16 +125,27 @@ mod tests {
 
     #[test]
     fn invalid_parameters_name_the_key() {
-        let err = LinearElastic::new(210.0, 0.5, "materials[0]").unwrap_err().to_string();
+        let err = LinearElastic::new(210.0, 0.5, "materials[0]")
+            .unwrap_err()
+            .to_string();
         assert!(err.contains("materials[0].poisson_ratio"), "{err}");
         assert!(err.contains("0.49"), "{err}");
-        let err = LinearElastic::new(-1.0, 0.3, "materials[2]").unwrap_err().to_string();
+        let err = LinearElastic::new(-1.0, 0.3, "materials[2]")
+            .unwrap_err()
+            .to_string();
         assert!(err.contains("materials[2].youngs_modulus"), "{err}");
-        let err = LinearElastic::new(f64::NAN, 0.3, "m").unwrap_err().to_string();
+        let err = LinearElastic::new(f64::NAN, 0.3, "m")
+            .unwrap_err()
+            .to_string();
         assert!(err.contains("m.youngs_modulus"), "{err}");
         let err = LinearElastic::new(1.0, -1.0, "m").unwrap_err().to_string();
-        assert!(err.contains("m.poisson_ratio") && err.contains("-1 < ν < 0.5"), "{err}");
-        let err = LinearElastic::new(1.0, f64::INFINITY, "m").unwrap_err().to_string();
+        assert!(
+            err.contains("m.poisson_ratio") && err.contains("-1 < ν < 0.5"),
+            "{err}"
+        );
+        let err = LinearElastic::new(1.0, f64::INFINITY, "m")
+            .unwrap_err()
+            .to_string();
         assert!(err.contains("m.poisson_ratio"), "{err}");
     }
 }

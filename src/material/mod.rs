@@ -164,10 +164,7 @@ pub(crate) fn sym_product_voigt(a: &Mat3) -> Mat6 {
 /// (`J ≤ 0`): NaN stress and tangent, which the solver treats as a failed
 /// iteration.
 pub(crate) fn nan_response() -> (Mat3, Mat6) {
-    (
-        Mat3::from_element(f64::NAN),
-        Mat6::from_element(f64::NAN),
-    )
+    (Mat3::from_element(f64::NAN), Mat6::from_element(f64::NAN))
 }
 
 /// `prefix.name`, or `name` alone for an empty prefix.
@@ -289,7 +286,10 @@ mod tests {
 
     #[test]
     fn key_paths() {
-        assert_eq!(key_path("materials[0]", "poisson_ratio"), "materials[0].poisson_ratio");
+        assert_eq!(
+            key_path("materials[0]", "poisson_ratio"),
+            "materials[0].poisson_ratio"
+        );
         assert_eq!(key_path("", "poisson_ratio"), "poisson_ratio");
     }
 }

@@ -177,10 +177,17 @@ mod tests {
 
     #[test]
     fn invalid_parameters_name_the_key() {
-        let err = NeoHookean::new(1.0, 0.5, "materials[3]").unwrap_err().to_string();
+        let err = NeoHookean::new(1.0, 0.5, "materials[3]")
+            .unwrap_err()
+            .to_string();
         assert!(err.contains("materials[3].poisson_ratio"), "{err}");
-        assert!(err.contains("incompressib") && err.contains("0.49"), "{err}");
-        let err = NeoHookean::new(-1.0, 0.3, "materials[3]").unwrap_err().to_string();
+        assert!(
+            err.contains("incompressib") && err.contains("0.49"),
+            "{err}"
+        );
+        let err = NeoHookean::new(-1.0, 0.3, "materials[3]")
+            .unwrap_err()
+            .to_string();
         assert!(err.contains("materials[3].youngs_modulus"), "{err}");
     }
 }

@@ -245,7 +245,7 @@ impl Material for Ogden {
             return f64::INFINITY;
         }
         let c = (f.transpose() * f).symmetric_eigenvalues();
-        if c.iter().any(|&ci| !(ci > 0.0)) {
+        if !c.iter().all(|&ci| ci > 0.0) {
             return f64::INFINITY;
         }
         self.energy(&c, j)
@@ -258,7 +258,7 @@ impl Material for Ogden {
         }
         let eig = SymmetricEigen::new(f.transpose() * f);
         let c = eig.eigenvalues;
-        if c.iter().any(|&ci| !(ci > 0.0)) {
+        if !c.iter().all(|&ci| ci > 0.0) {
             return nan_response();
         }
         let n = eig.eigenvectors;
@@ -425,11 +425,20 @@ mod tests {
         let reference = IsochoricNeoHookean { mu, kappa };
         for (label, f) in check::deformations() {
             let (w0, w1) = (ogden.strain_energy(&f), reference.strain_energy(&f));
-            assert!((w0 - w1).abs() <= 1e-10 * w1.abs().max(1e-3 * mu), "{label}: {w0} vs {w1}");
+            assert!(
+                (w0 - w1).abs() <= 1e-10 * w1.abs().max(1e-3 * mu),
+                "{label}: {w0} vs {w1}"
+            );
             let (s0, d0) = ogden.stress_and_tangent(&f);
             let (s1, d1) = reference.stress_and_tangent(&f);
-            assert!(check::rel_err(&s0, &s1, 1e-3 * mu) < 1e-10, "{label}: {s0} vs {s1}");
-            assert!(check::rel_err(&d0, &d1, 1e-3 * mu) < 1e-10, "{label}: {d0} vs {d1}");
+            assert!(
+                check::rel_err(&s0, &s1, 1e-3 * mu) < 1e-10,
+                "{label}: {s0} vs {s1}"
+            );
+            assert!(
+                check::rel_err(&d0, &d1, 1e-3 * mu) < 1e-10,
+                "{label}: {d0} vs {d1}"
+            );
         }
     }
 
@@ -503,8 +512,7 @@ mod tests {
             let lateral = |l: f64, t: f64| {
                 let j = l * t * t;
                 let (b1, b2) = (j.powf(-1.0 / 3.0) * l, j.powf(-1.0 / 3.0) * t);
-                2.0 * mu / (3.0 * alpha) * (b2.powf(alpha) - b1.powf(alpha))
-                    + kappa * j * (j - 1.0)
+                2.0 * mu / (3.0 * alpha) * (b2.powf(alpha) - b1.powf(alpha)) + kappa * j * (j - 1.0)
             };
             for l in [0.6, 0.9, 1.0, 1.3, 2.0] {
                 let mut t: f64 = 1.0;
@@ -521,7 +529,10 @@ mod tests {
                 let closed = 2.0 * mu / alpha * (b1.powf(alpha) - b2.powf(alpha)) / j;
                 let sigma = cauchy_stress(&f, &m.second_piola_kirchhoff(&f));
                 let scale = mu * 1e-12;
-                assert!((sigma[(0, 0)] - closed).abs() < scale, "α = {alpha}, l = {l}");
+                assert!(
+                    (sigma[(0, 0)] - closed).abs() < scale,
+                    "α = {alpha}, l = {l}"
+                );
                 assert!(sigma[(1, 1)].abs() < scale && sigma[(2, 2)].abs() < scale);
                 assert!((sigma - sigma.transpose()).amax() < scale);
             }
@@ -531,21 +542,34 @@ mod tests {
     #[test]
     fn invalid_parameters_name_the_key() {
         let k = "materials[4]";
-        let err = Ogden::new(vec![-1.0], vec![2.0], 10.0, k).unwrap_err().to_string();
+        let err = Ogden::new(vec![-1.0], vec![2.0], 10.0, k)
+            .unwrap_err()
+            .to_string();
         assert!(err.contains("materials[4].mu[0]"), "{err}");
         let err = Ogden::new(vec![1.0, -0.5], vec![2.0, -2.0], 10.0, k)
             .unwrap_err()
             .to_string();
         assert!(err.contains("materials[4].mu[1]"), "{err}");
-        let err = Ogden::new(vec![1.0, 2.0], vec![2.0], 10.0, k).unwrap_err().to_string();
-        assert!(err.contains("materials[4].alpha") && err.contains("1 entries"), "{err}");
+        let err = Ogden::new(vec![1.0, 2.0], vec![2.0], 10.0, k)
+            .unwrap_err()
+            .to_string();
+        assert!(
+            err.contains("materials[4].alpha") && err.contains("1 entries"),
+            "{err}"
+        );
         let err = Ogden::new(vec![], vec![], 10.0, k).unwrap_err().to_string();
         assert!(err.contains("materials[4].mu"), "{err}");
-        let err = Ogden::new(vec![1.0], vec![0.0], 10.0, k).unwrap_err().to_string();
+        let err = Ogden::new(vec![1.0], vec![0.0], 10.0, k)
+            .unwrap_err()
+            .to_string();
         assert!(err.contains("materials[4].alpha[0]"), "{err}");
-        let err = Ogden::new(vec![f64::NAN], vec![2.0], 10.0, k).unwrap_err().to_string();
+        let err = Ogden::new(vec![f64::NAN], vec![2.0], 10.0, k)
+            .unwrap_err()
+            .to_string();
         assert!(err.contains("materials[4].mu[0]"), "{err}");
-        let err = Ogden::new(vec![1.0], vec![2.0], 0.0, k).unwrap_err().to_string();
+        let err = Ogden::new(vec![1.0], vec![2.0], 0.0, k)
+            .unwrap_err()
+            .to_string();
         assert!(err.contains("materials[4].bulk_modulus"), "{err}");
         // Negative exponents are fine with a positive modulus.
         assert!(Ogden::new(vec![1.0], vec![-2.0], 10.0, k).is_ok());

@@ -108,9 +108,16 @@ mod tests {
 
     #[test]
     fn invalid_parameters_name_the_key() {
-        let err = SaintVenantKirchhoff::new(1.0, 0.5, "materials[1]").unwrap_err().to_string();
-        assert!(err.contains("materials[1].poisson_ratio") && err.contains("0.49"), "{err}");
-        let err = SaintVenantKirchhoff::new(-1.0, 0.3, "materials[1]").unwrap_err().to_string();
+        let err = SaintVenantKirchhoff::new(1.0, 0.5, "materials[1]")
+            .unwrap_err()
+            .to_string();
+        assert!(
+            err.contains("materials[1].poisson_ratio") && err.contains("0.49"),
+            "{err}"
+        );
+        let err = SaintVenantKirchhoff::new(-1.0, 0.3, "materials[1]")
+            .unwrap_err()
+            .to_string();
         assert!(err.contains("materials[1].youngs_modulus"), "{err}");
     }
 }

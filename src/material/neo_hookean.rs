@@ -1,0 +1,193 @@
+//! Compressible neo-Hookean hyperelasticity.
+
+use super::{
+    lame, nan_response, outer_voigt, sym_product_voigt, validate_youngs_poisson, Mat3, Mat6,
+    Material,
+};
+use crate::Result;
+
+/// Compressible neo-Hookean material (Ciarlet / Simo–Pister form), with
+/// `C = FᵀF`, `I₁ = tr C`, `J = det F` and `(λ, μ)` = [`lame`]`(E, ν)`:
+///
+/// - energy `W = μ/2 (I₁ − 3) − μ ln J + λ/2 (ln J)²`,
+/// - stress `S = μ (I − C⁻¹) + λ ln J C⁻¹`,
+/// - tangent `𝔻 = λ C⁻¹⊗C⁻¹ + 2(μ − λ ln J) 𝕀_{C⁻¹}` with
+///   `(𝕀_{C⁻¹})_ijkl = ½(C⁻¹_ik C⁻¹_jl + C⁻¹_il C⁻¹_jk)`.
+///
+/// At `F = I` it reduces to Hooke's law with the same `(λ, μ)`. For `J ≤ 0`
+/// the energy is `+∞` and stress and tangent are NaN (a failed iteration for
+/// the solver); it never panics.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct NeoHookean {
+    youngs_modulus: f64,
+    poisson_ratio: f64,
+    lambda: f64,
+    mu: f64,
+}
+
+impl NeoHookean {
+    /// Validates `E > 0` and `−1 < ν < 0.5` (finite); errors carry the key
+    /// paths `{key_prefix}.youngs_modulus` / `{key_prefix}.poisson_ratio`.
+    pub fn new(youngs_modulus: f64, poisson_ratio: f64, key_prefix: &str) -> Result<Self> {
+        validate_youngs_poisson(youngs_modulus, poisson_ratio, key_prefix)?;
+        let (lambda, mu) = lame(youngs_modulus, poisson_ratio);
+        Ok(Self {
+            youngs_modulus,
+            poisson_ratio,
+            lambda,
+            mu,
+        })
+    }
+
+    /// Young's modulus `E` (initial).
+    pub fn youngs_modulus(&self) -> f64 {
+        self.youngs_modulus
+    }
+
+    /// Poisson's ratio `ν` (initial).
+    pub fn poisson_ratio(&self) -> f64 {
+        self.poisson_ratio
+    }
+
+    /// Lamé parameters `(λ, μ)`.
+    pub fn lame(&self) -> (f64, f64) {
+        (self.lambda, self.mu)
+    }
+}
+
+impl Material for NeoHookean {
+    fn name(&self) -> &'static str {
+        "neo_hookean"
+    }
+
+    fn strain_energy(&self, f: &Mat3) -> f64 {
+        let j = f.determinant();
+        if !(j > 0.0 && j.is_finite()) {
+            return f64::INFINITY;
+        }
+        let i1 = f.norm_squared(); // tr(FᵀF)
+        let ln_j = j.ln();
+        0.5 * self.mu * (i1 - 3.0) - self.mu * ln_j + 0.5 * self.lambda * ln_j * ln_j
+    }
+
+    fn stress_and_tangent(&self, f: &Mat3) -> (Mat3, Mat6) {
+        let j = f.determinant();
+        if !(j > 0.0 && j.is_finite()) {
+            return nan_response();
+        }
+        let c = f.transpose() * f;
+        let Some(c_inv) = c.try_inverse() else {
+            return nan_response();
+        };
+        let c_inv = (c_inv + c_inv.transpose()) * 0.5;
+        let ln_j = j.ln();
+        let s = (Mat3::identity() - c_inv) * self.mu + c_inv * (self.lambda * ln_j);
+        let d = outer_voigt(&c_inv, &c_inv) * self.lambda
+            + sym_product_voigt(&c_inv) * (2.0 * (self.mu - self.lambda * ln_j));
+        (s, d)
+    }
+
+    fn reference_youngs_modulus(&self) -> f64 {
+        self.youngs_modulus
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::material::{cauchy_stress, check, isotropic_elasticity};
+
+    fn rubber() -> NeoHookean {
+        NeoHookean::new(10.0, 0.45, "materials[0]").unwrap()
+    }
+
+    #[test]
+    fn derivatives_match_finite_differences() {
+        check::check_derivatives(&rubber());
+        check::check_derivatives(&NeoHookean::new(200.0, 0.3, "m").unwrap());
+        check::check_derivatives(&NeoHookean::new(1.0, -0.2, "m").unwrap());
+    }
+
+    #[test]
+    fn reduces_to_hooke_at_identity() {
+        let m = rubber();
+        let (s, d) = m.stress_and_tangent(&Mat3::identity());
+        assert!(s.amax() < 1e-14);
+        let (lambda, mu) = lame(10.0, 0.45);
+        assert!((d - isotropic_elasticity(lambda, mu)).amax() < 1e-12 * d.amax());
+        assert_eq!(m.strain_energy(&Mat3::identity()), 0.0);
+    }
+
+    #[test]
+    fn objective_and_isotropic() {
+        check::check_objectivity(&rubber());
+        check::check_isotropy(&rubber());
+    }
+
+    #[test]
+    fn inverted_or_degenerate_gives_nan_not_panic() {
+        let m = rubber();
+        for f in [
+            check::diag(1.0, 1.0, -1.0),
+            Mat3::zeros(),
+            check::diag(1.0, 1.0, 0.0),
+            Mat3::from_element(f64::NAN),
+        ] {
+            let (s, d) = m.stress_and_tangent(&f);
+            assert!(s.iter().all(|x| x.is_nan()) && d.iter().all(|x| x.is_nan()));
+            assert!(m.strain_energy(&f) == f64::INFINITY);
+        }
+    }
+
+    /// Uniaxial stress: `F = diag(l, t, t)` with `t` such that the lateral
+    /// stress vanishes, `μ(t² − 1) + λ ln J = 0` (`J = l t²`). Then
+    /// `σ₁₁ = (μ(l² − 1) + λ ln J)/J = μ(l² − t²)/J`.
+    #[test]
+    fn uniaxial_stress_closed_form() {
+        let m = rubber();
+        let (lambda, mu) = m.lame();
+        for l in [0.7, 0.9, 1.0, 1.1, 1.5, 2.0] {
+            // Newton on g(t) = μ(t² − 1) + λ ln(l t²).
+            let mut t: f64 = 1.0;
+            for _ in 0..50 {
+                let g = mu * (t * t - 1.0) + lambda * (l * t * t).ln();
+                let dg = 2.0 * mu * t + 2.0 * lambda / t;
+                t -= g / dg;
+            }
+            let f = check::diag(l, t, t);
+            let j = l * t * t;
+            let sigma = cauchy_stress(&f, &m.second_piola_kirchhoff(&f));
+            let closed = (mu * (l * l - 1.0) + lambda * j.ln()) / j;
+            let closed_lateral = mu * (l * l - t * t) / j;
+            assert!((closed - closed_lateral).abs() < 1e-12 * mu);
+            assert!((sigma[(0, 0)] - closed).abs() < 1e-12 * mu, "l = {l}");
+            assert!(sigma[(1, 1)].abs() < 1e-12 * mu && sigma[(2, 2)].abs() < 1e-12 * mu);
+            // Small stretch: the slope is Young's modulus.
+            if l == 1.0 {
+                assert!(sigma.amax() < 1e-14);
+            }
+        }
+        let l: f64 = 1.0 + 1e-7;
+        let nu = m.poisson_ratio();
+        let t = 1.0 - nu * 1e-7;
+        let f = check::diag(l, t, t);
+        let sigma = cauchy_stress(&f, &m.second_piola_kirchhoff(&f));
+        assert!((sigma[(0, 0)] / 1e-7 - 10.0).abs() < 1e-5);
+    }
+
+    #[test]
+    fn invalid_parameters_name_the_key() {
+        let err = NeoHookean::new(1.0, 0.5, "materials[3]")
+            .unwrap_err()
+            .to_string();
+        assert!(err.contains("materials[3].poisson_ratio"), "{err}");
+        assert!(
+            err.contains("incompressib") && err.contains("0.49"),
+            "{err}"
+        );
+        let err = NeoHookean::new(-1.0, 0.3, "materials[3]")
+            .unwrap_err()
+            .to_string();
+        assert!(err.contains("materials[3].youngs_modulus"), "{err}");
+    }
+}

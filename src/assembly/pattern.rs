@@ -77,6 +77,19 @@ impl SparsityPattern {
         Some([0, 1, 2].map(|j| cp[3 * b + j] + 3 * pos))
     }
 
+    /// The node adjacency without self-loops, in CSR form `(xadj, adjncy)`,
+    /// for graph orderings.
+    pub fn node_graph(&self) -> (Vec<usize>, Vec<usize>) {
+        let mut xadj = Vec::with_capacity(self.neighbours.len() + 1);
+        let mut adjncy = Vec::new();
+        xadj.push(0);
+        for (n, list) in self.neighbours.iter().enumerate() {
+            adjncy.extend(list.iter().copied().filter(|&m| m != n));
+            xadj.push(adjncy.len());
+        }
+        (xadj, adjncy)
+    }
+
     /// Index of the diagonal entry of dof `d`.
     #[inline]
     pub fn diagonal_entry(&self, d: usize) -> usize {

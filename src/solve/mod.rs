@@ -4,3 +4,4 @@
 pub mod linear;
 pub mod newton;
 pub mod stepping;
+pub mod ordering;

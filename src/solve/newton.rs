@@ -78,7 +78,7 @@ pub fn solve_increment(
         apply_identity_rows(problem, constrained, &mut k_values);
         solver.factorize(pattern, &k_values, None)?;
         let mut du: Vec<f64> = r.iter().map(|x| -x).collect();
-        solver.solve_in_place(&mut du)?;
+        solver.solve_refined(pattern, &k_values, &mut du, 3)?;
         zero_constrained(&mut du, constrained);
         let step_length = line_search(problem, constrained, t, u, &du, norm(&r), relative);
         for (ui, di) in u.iter_mut().zip(&du) {
@@ -102,8 +102,10 @@ pub fn solve_increment(
 
 /// Backtracking on the residual norm: the full Newton step if it reduces
 /// `‖r‖` (or if the residual is already near the tolerance), otherwise the
-/// first of ½, ¼, … that does, and the full step again if none does (the
-/// divergence test and the step cut-back take over then).
+/// first of ½, ¼, … (down to 1/64) that does. If none does, the step length
+/// with the smallest residual (an inverted element counts as an infinite
+/// residual); the divergence test and the step cut-back take over from
+/// there.
 fn line_search(
     problem: &Problem,
     constrained: &[bool],
@@ -118,20 +120,25 @@ fn line_search(
     }
     let mut trial = u.to_vec();
     let mut alpha = 1.0;
-    for _ in 0..5 {
+    let mut best = (f64::INFINITY, 1.0 / 64.0);
+    for _ in 0..7 {
         for ((x, u0), d) in trial.iter_mut().zip(u).zip(du) {
             *x = u0 + alpha * d;
         }
         if let Ok(res) = problem.residual(t, &trial, None) {
             let mut r = res.r;
             zero_constrained(&mut r, constrained);
-            if norm(&r) < r0 {
+            let rn = norm(&r);
+            if rn < r0 {
                 return alpha;
+            }
+            if rn < best.0 {
+                best = (rn, alpha);
             }
         }
         alpha *= 0.5;
     }
-    1.0
+    best.1
 }
 
 fn zero_constrained(v: &mut [f64], constrained: &[bool]) {

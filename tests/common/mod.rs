@@ -65,3 +65,45 @@ pub fn solve(problem: &Problem) -> (Vec<f64>, Vec<IncrementRecord>) {
     let u = run_steps(problem, &mut solver, &mut rec, "unused".into()).expect("converges");
     (u, rec.increments)
 }
+
+/// The text of an ASCII MSH 2.2 file of `mesh` (physical groups: the
+/// regions as 3D groups, the surface sets as 2D groups), for tests that go
+/// through the case file and the Gmsh reader.
+pub fn msh22(mesh: &Mesh) -> String {
+    use std::fmt::Write;
+    let mut s = String::from("$MeshFormat\n2.2 0 8\n$EndMeshFormat\n$PhysicalNames\n");
+    let groups = mesh.regions.len() + mesh.surfaces.len();
+    writeln!(s, "{groups}").unwrap();
+    for (i, r) in mesh.regions.iter().enumerate() {
+        writeln!(s, "3 {} \"{}\"", i + 1, r.name).unwrap();
+    }
+    for (i, f) in mesh.surfaces.iter().enumerate() {
+        writeln!(s, "2 {} \"{}\"", 100 + i, f.name).unwrap();
+    }
+    s.push_str("$EndPhysicalNames\n$Nodes\n");
+    writeln!(s, "{}", mesh.nodes.len()).unwrap();
+    for (n, x) in mesh.nodes.iter().enumerate() {
+        writeln!(s, "{} {} {} {}", n + 1, x[0], x[1], x[2]).unwrap();
+    }
+    s.push_str("$EndNodes\n$Elements\n");
+    let mut lines = Vec::new();
+    for (i, f) in mesh.surfaces.iter().enumerate() {
+        for facet in &f.facets {
+            let nodes: Vec<String> = facet.nodes.iter().map(|n| (n + 1).to_string()).collect();
+            lines.push(format!("{} 2 {} {} {}", facet.kind.gmsh_type(), 100 + i, 100 + i, nodes.join(" ")));
+        }
+    }
+    for (i, r) in mesh.regions.iter().enumerate() {
+        for &e in &r.elements {
+            let el = &mesh.elements[e];
+            let nodes: Vec<String> = el.nodes.iter().map(|n| (n + 1).to_string()).collect();
+            lines.push(format!("{} 2 {} {} {}", el.kind.gmsh_type(), i + 1, i + 1, nodes.join(" ")));
+        }
+    }
+    writeln!(s, "{}", lines.len()).unwrap();
+    for (k, l) in lines.iter().enumerate() {
+        writeln!(s, "{} {l}", k + 1).unwrap();
+    }
+    s.push_str("$EndElements\n");
+    s
+}

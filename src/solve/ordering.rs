@@ -1,0 +1,82 @@
+//! Fill-reducing orderings for the sparse LDLᵀ.
+//!
+//! faer brings approximate minimum degree (AMD); for 3D meshes a nested
+//! dissection (METIS `NodeND`) fills far less: faer's supernodal factor of a
+//! structured Hex8 cube is about four times faster with it. METIS orders
+//! the node graph (three times smaller than the dof graph), and each node's
+//! three dofs stay together, which also keeps the supernodes wide. The
+//! `metis-sys` crate builds METIS from its vendored C sources with `cc`; no
+//! system library is needed.
+
+use crate::{Error, Result};
+
+/// Nested-dissection permutation of the dofs of a 3-dof-per-node matrix
+/// whose node adjacency (self excluded) is given in CSR form
+/// (`xadj`, `adjncy`). Returns `forward` with `forward[new] = old` (dof
+/// indices).
+pub fn nested_dissection(xadj: &[usize], adjncy: &[usize]) -> Result<Vec<usize>> {
+    let n = xadj.len().saturating_sub(1);
+    if n == 0 {
+        return Ok(Vec::new());
+    }
+    let to_idx = |v: usize| {
+        i32::try_from(v).map_err(|_| Error::LinearSolver("graph too large for 32-bit METIS indices".into()))
+    };
+    let mut x: Vec<i32> = xadj.iter().map(|&v| to_idx(v)).collect::<Result<_>>()?;
+    let mut a: Vec<i32> = adjncy.iter().map(|&v| to_idx(v)).collect::<Result<_>>()?;
+    let mut nv = to_idx(n)?;
+    let mut perm = vec![0i32; n];
+    let mut iperm = vec![0i32; n];
+    let mut options = [-1i32; metis_sys::METIS_NOPTIONS as usize];
+    // SAFETY: every array has the length METIS_NodeND expects (nvtxs + 1,
+    // xadj[nvtxs], nvtxs, nvtxs, NOPTIONS); METIS does not keep the pointers.
+    let status = unsafe {
+        metis_sys::METIS_SetDefaultOptions(options.as_mut_ptr());
+        metis_sys::METIS_NodeND(
+            &mut nv,
+            x.as_mut_ptr(),
+            a.as_mut_ptr(),
+            std::ptr::null_mut(),
+            options.as_mut_ptr(),
+            perm.as_mut_ptr(),
+            iperm.as_mut_ptr(),
+        )
+    };
+    if status != metis_sys::rstatus_et_METIS_OK {
+        return Err(Error::LinearSolver(format!("METIS_NodeND failed with status {status}")));
+    }
+    // METIS: row i of the permuted matrix is row perm[i] of the original.
+    Ok(perm
+        .iter()
+        .flat_map(|&node| {
+            let node = node as usize;
+            [3 * node, 3 * node + 1, 3 * node + 2]
+        })
+        .collect())
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// A path graph is ordered into a valid permutation of all dofs.
+    #[test]
+    fn permutation_is_valid() {
+        let n = 20;
+        let mut xadj = vec![0];
+        let mut adj = Vec::new();
+        for i in 0..n {
+            if i > 0 {
+                adj.push(i - 1);
+            }
+            if i + 1 < n {
+                adj.push(i + 1);
+            }
+            xadj.push(adj.len());
+        }
+        let mut p = nested_dissection(&xadj, &adj).unwrap();
+        assert_eq!(p.len(), 3 * n);
+        p.sort_unstable();
+        assert!(p.iter().enumerate().all(|(i, &v)| i == v));
+    }
+}

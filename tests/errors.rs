@@ -1,0 +1,183 @@
+//! Bad input, through the command line as a user meets it: every case gets
+//! a clear message naming the file, the line, the key or the entity, a
+//! non-zero exit code, and no panic.
+
+mod common;
+
+use signorini::mesh::structured::box_mesh;
+use signorini::mesh::ElementKind;
+use std::path::Path;
+use std::process::Command;
+
+/// A valid case: a neo-Hookean cube compressed through `bottom`/`top`.
+const CASE: &str = r#"
+[mesh]
+file = "cube.msh"
+
+[[material]]
+region = "body"
+model = "neo_hookean"
+youngs_modulus = 100.0
+poisson_ratio = 0.3
+
+[[displacement]]
+surface = "zmin"
+x = 0.0
+y = 0.0
+z = 0.0
+
+[[displacement]]
+surface = "zmax"
+z = -0.2
+
+[[step]]
+name = "press"
+end_time = 1.0
+initial_increment = 0.5
+"#;
+
+fn write_cube(dir: &Path) {
+    let mesh = box_mesh(ElementKind::Hex8, [2, 2, 2], [1.0, 1.0, 1.0]);
+    std::fs::write(dir.join("cube.msh"), common::msh22(&mesh)).unwrap();
+}
+
+/// Run `signorini <args>` in `dir`; return (exit code, stderr).
+fn signorini(dir: &Path, args: &[&str]) -> (i32, String) {
+    let out = Command::new(env!("CARGO_BIN_EXE_signorini"))
+        .args(args)
+        .current_dir(dir)
+        .output()
+        .expect("runs");
+    let stderr = String::from_utf8_lossy(&out.stderr).into_owned();
+    assert!(!stderr.contains("panicked"), "panic: {stderr}");
+    (out.status.code().unwrap_or(-1), stderr)
+}
+
+/// Write `case` (and the cube mesh) to a fresh folder, run `check` and `run`
+/// and expect both to fail with every fragment in `expect`.
+fn expect_failure(case: &str, expect: &[&str]) {
+    let dir = tempfile::tempdir().unwrap();
+    write_cube(dir.path());
+    std::fs::write(dir.path().join("case.toml"), case).unwrap();
+    for cmd in ["check", "run"] {
+        let (code, err) = signorini(dir.path(), &[cmd, "case.toml", "--quiet"][..if cmd == "check" { 2 } else { 3 }]);
+        assert_eq!(code, 1, "{cmd}: exit code {code}, stderr {err}");
+        for e in expect {
+            assert!(err.contains(e), "{cmd}: '{e}' not in: {err}");
+        }
+    }
+}
+
+#[test]
+fn valid_case_checks_and_runs() {
+    let dir = tempfile::tempdir().unwrap();
+    write_cube(dir.path());
+    std::fs::write(dir.path().join("case.toml"), CASE).unwrap();
+    let (code, err) = signorini(dir.path(), &["check", "case.toml"]);
+    assert_eq!(code, 0, "{err}");
+    let (code, err) = signorini(dir.path(), &["run", "case.toml", "--quiet", "--threads", "1"]);
+    assert_eq!(code, 0, "{err}");
+    assert!(dir.path().join("results/summary.json").exists());
+}
+
+#[test]
+fn missing_case_file() {
+    let dir = tempfile::tempdir().unwrap();
+    let (code, err) = signorini(dir.path(), &["run", "nothing.toml"]);
+    assert_eq!(code, 1);
+    assert!(err.contains("nothing.toml") && err.contains("cannot read case file"), "{err}");
+}
+
+#[test]
+fn missing_mesh_file() {
+    expect_failure(&CASE.replace("cube.msh", "absent.msh"), &["absent.msh"]);
+}
+
+#[test]
+fn malformed_mesh_says_where() {
+    let dir = tempfile::tempdir().unwrap();
+    write_cube(dir.path());
+    let text = std::fs::read_to_string(dir.path().join("cube.msh")).unwrap();
+    // damage the 3rd node line
+    let mut lines: Vec<String> = text.lines().map(String::from).collect();
+    let at = lines.iter().position(|l| l == "$Nodes").unwrap() + 4;
+    lines[at] = "3 0.5 zero 0.0".into();
+    std::fs::write(dir.path().join("cube.msh"), lines.join("\n")).unwrap();
+    std::fs::write(dir.path().join("case.toml"), CASE).unwrap();
+    let (code, err) = signorini(dir.path(), &["check", "case.toml"]);
+    assert_eq!(code, 1);
+    assert!(err.contains("cube.msh") && err.contains(&format!("line {}", at + 1)), "{err}");
+}
+
+#[test]
+fn unknown_group_lists_the_available_ones() {
+    expect_failure(
+        &CASE.replace("surface = \"zmax\"", "surface = \"lid\""),
+        &["displacement[1].surface", "'lid'", "zmax", "xmin"],
+    );
+    expect_failure(&CASE.replace("region = \"body\"", "region = \"rubber\""), &["'rubber'", "body"]);
+}
+
+#[test]
+fn misspelled_key_names_its_path() {
+    expect_failure(
+        &CASE.replace("poisson_ratio", "poison_ratio"),
+        &["material[0]", "poison_ratio", "line 9"],
+    );
+    expect_failure(&CASE.replace("[[step]]", "[[steps]]"), &["steps"]);
+}
+
+#[test]
+fn material_parameter_out_of_range() {
+    expect_failure(
+        &CASE.replace("poisson_ratio = 0.3", "poisson_ratio = 0.5"),
+        &["material[0].poisson_ratio", "0.5"],
+    );
+    expect_failure(
+        &CASE.replace("youngs_modulus = 100.0", "youngs_modulus = -1.0"),
+        &["material[0].youngs_modulus"],
+    );
+}
+
+#[test]
+fn inverted_element_is_named() {
+    let dir = tempfile::tempdir().unwrap();
+    let mut mesh = box_mesh(ElementKind::Tet4, [1, 1, 1], [1.0, 1.0, 1.0]);
+    mesh.elements[3].nodes.swap(1, 2);
+    std::fs::write(dir.path().join("cube.msh"), common::msh22(&mesh)).unwrap();
+    std::fs::write(dir.path().join("case.toml"), CASE).unwrap();
+    let (code, err) = signorini(dir.path(), &["check", "case.toml"]);
+    assert_eq!(code, 1);
+    // msh22 numbers surface facets first, then the volume elements
+    let facets: usize = mesh.surfaces.iter().map(|s| s.facets.len()).sum();
+    let id = facets + 4;
+    assert!(err.contains(&format!("element {id}")) && err.contains("inverted"), "{err}");
+}
+
+/// Newton failing after all cuts: the converged increments of the first
+/// step stay on disk, the summary says `failed`, the exit code is 1.
+#[test]
+fn no_convergence_keeps_converged_steps() {
+    let case = CASE.replace(
+        "[[step]]\nname = \"press\"\nend_time = 1.0\ninitial_increment = 0.5\n",
+        "[amplitudes]\ncrush = [[0.0, 0.0], [1.0, 1.0], [2.0, 6.0]]\n\n[[step]]\nname = \"press\"\nend_time = 1.0\ninitial_increment = 0.5\n\n[[step]]\nname = \"crush\"\nend_time = 2.0\ninitial_increment = 1.0\n\n[solver]\nmax_cuts = 3\n",
+    )
+    .replace("z = -0.2\n", "z = -0.2\namplitude = \"crush\"\n");
+    let dir = tempfile::tempdir().unwrap();
+    write_cube(dir.path());
+    std::fs::write(dir.path().join("case.toml"), case).unwrap();
+    let (code, err) = signorini(dir.path(), &["run", "case.toml", "--quiet"]);
+    assert_eq!(code, 1, "{err}");
+    assert!(err.contains("step 'crush'") && err.contains("did not converge"), "{err}");
+    let summary: serde_json::Value =
+        serde_json::from_str(&std::fs::read_to_string(dir.path().join("results/summary.json")).unwrap()).unwrap();
+    assert_eq!(summary["status"], "failed");
+    let increments = summary["increments"].as_array().unwrap();
+    assert!(increments.len() >= 2, "the press step converged");
+    for inc in increments {
+        let file = inc["file"].as_str().unwrap();
+        assert!(dir.path().join("results").join(file).exists(), "{file}");
+    }
+    let pvd = std::fs::read_to_string(dir.path().join("results/case.pvd")).unwrap();
+    assert_eq!(pvd.matches("<DataSet").count(), increments.len());
+}

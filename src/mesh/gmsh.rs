@@ -338,14 +338,14 @@ fn read_elements_41(cur: &mut Cursor, b: &mut Builder) -> Result<()> {
             continue;
         }
         for _ in 0..n {
-            let at = cur.pos;
-            let tag = if cur.binary {
+            let (tag, at) = if cur.binary {
+                let at = cur.pos;
                 let tag = cur.size("an element tag")?;
                 node_tags.clear();
                 for _ in 0..info.nodes {
                     node_tags.push(cur.size("a node tag of an element")?);
                 }
-                tag
+                (tag, at)
             } else {
                 let at = cur.int_line(&mut line, "an element line (element tag, node tags)")?;
                 let (&tag, nodes) = line.split_first().unwrap_or((&0, &[]));
@@ -361,7 +361,7 @@ fn read_elements_41(cur: &mut Cursor, b: &mut Builder) -> Result<()> {
                 }
                 node_tags.clear();
                 node_tags.extend(nodes.iter().map(|&t| u64::try_from(t).unwrap_or(0)));
-                u64::try_from(tag).unwrap_or(0)
+                (u64::try_from(tag).unwrap_or(0), at)
             };
             b.add_element(
                 cur,
@@ -479,13 +479,22 @@ fn read_elements_22(cur: &mut Cursor, b: &mut Builder) -> Result<()> {
             })?;
             let rest = line.get(3..).unwrap_or(&[]);
             let (element_tags, nodes) = rest.split_at(n_tags.min(rest.len()));
-            if element_tags.len() != n_tags || nodes.len() != info.nodes {
+            if element_tags.len() != n_tags {
                 return Err(cur.syntax(
                     at,
                     format!(
-                        "expected {n_tags} tags and {} node tags for element {tag} of type {element_type}, found {} numbers after the tag count",
+                        "expected {n_tags} tags for element {tag}, found {}",
+                        element_tags.len()
+                    ),
+                ));
+            }
+            if nodes.len() != info.nodes {
+                return Err(cur.syntax(
+                    at,
+                    format!(
+                        "expected {} node tags for element {tag} of type {element_type}, found {}",
                         info.nodes,
-                        rest.len()
+                        nodes.len()
                     ),
                 ));
             }

@@ -7,4 +7,3 @@ Mesh.CharacteristicLengthMin = 1;
 Mesh.CharacteristicLengthMax = 1;
 Mesh.ElementOrder = 2;
 Physical Volume("body") = {1};
-Physical Surface("top") = {6};

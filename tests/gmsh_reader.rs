@@ -105,7 +105,10 @@ fn elements_by_id(mesh: &Mesh) -> Vec<Vec<u64>> {
     v
 }
 
-fn summary(mesh: &Mesh) -> (usize, usize, Vec<(String, usize)>, Vec<(String, usize)>) {
+/// Node count, element count, (name, size) of every region and surface set.
+type Summary = (usize, usize, Vec<(String, usize)>, Vec<(String, usize)>);
+
+fn summary(mesh: &Mesh) -> Summary {
     (
         mesh.nodes.len(),
         mesh.elements.len(),
@@ -537,4 +540,17 @@ fn never_panics_on_damaged_files() {
             let _ = read_msh(&path);
         }
     }
+}
+
+#[test]
+fn msh22_element_in_two_volume_groups_is_one_element() {
+    // Gmsh 2.2 writes a volume element once per physical group, with a new
+    // element tag each time.
+    let dir = tempfile::tempdir().unwrap();
+    let text = small_22("1 4 2 1 1 1 2 3 4\n2 4 2 3 1 1 2 3 4\n3 2 2 2 5 2 3 4\n")
+        .replace("2\n2 2 \"top\"", "3\n3 3 \"hard\"\n2 2 \"top\"");
+    let mesh = read_msh(&write_temp(&dir, "two.msh", text.as_bytes())).unwrap();
+    assert_eq!(mesh.elements.len(), 1);
+    assert_eq!(mesh.region_names(), ["body", "hard"]);
+    assert!(mesh.regions.iter().all(|r| r.elements == [0]));
 }

@@ -394,118 +394,117 @@ fn read_elements_41(cur: &mut Cursor, b: &mut Builder) -> Result<()> {
 fn read_elements_22(cur: &mut Cursor, b: &mut Builder) -> Result<()> {
     let (count, _) = cur.ascii_int("the number of elements")?;
     let count = u64::try_from(count).unwrap_or(0);
-    let mut read = 0u64;
-    let mut node_tags = Vec::new();
-    let mut tags = Vec::new();
     if cur.binary_file() {
-        cur.begin_binary("$Elements")?;
-        while read < count {
-            let at = cur.pos;
-            let element_type = cur.int("the element type of a block header")?;
-            let n = cur.int("the number of elements of a block header")?;
-            let n_tags = cur.int("the number of tags of a block header")?;
-            let info = element_info(element_type).ok_or_else(|| {
-                cur.syntax(at, format!("unknown Gmsh element type {element_type}"))
-            })?;
-            if n < 0 || n_tags < 0 {
+        read_elements_22_binary(cur, b, count)?;
+    } else {
+        read_elements_22_ascii(cur, b, count)?;
+    }
+    cur.expect("$EndElements")
+}
+
+/// The ASCII `$Elements` (2.2) lines.
+fn read_elements_22_ascii(cur: &mut Cursor, b: &mut Builder, count: u64) -> Result<()> {
+    let mut node_tags = Vec::new();
+    let mut line = Vec::new();
+    for _ in 0..count {
+        let at = cur.int_line(
+            &mut line,
+            "an element line (tag type numTags tags... nodes...)",
+        )?;
+        let (tag, element_type, n_tags) = match line[..] {
+            [tag, element_type, n_tags, ..] if n_tags >= 0 => (tag, element_type, n_tags as usize),
+            _ => {
                 return Err(cur.syntax(
                     at,
-                    format!("expected non-negative counts in an element block header, found {n} elements with {n_tags} tags"),
-                ));
+                    "expected an element line 'tag type numTags tags... nodeTags...'".into(),
+                ))
             }
-            for _ in 0..n {
-                let at = cur.pos;
-                let tag = cur.int("an element tag")?;
-                tags.clear();
-                for _ in 0..n_tags {
-                    tags.push(cur.int("an element's tag")?);
-                }
-                node_tags.clear();
-                for _ in 0..info.nodes {
-                    node_tags
-                        .push(u64::try_from(cur.int("a node tag of an element")?).unwrap_or(0));
-                }
-                let physical: &[i64] = match tags.first() {
-                    Some(&p) if p != 0 => std::slice::from_ref(&tags[0]),
-                    _ => &[],
-                };
-                let tag = u64::try_from(tag).unwrap_or(0);
-                let entity = tags.get(1).copied().unwrap_or(0);
-                b.add_element(
-                    cur,
-                    at,
-                    tag,
-                    element_type,
-                    info,
-                    physical,
-                    entity,
-                    &node_tags,
-                )?;
-            }
-            read += n as u64;
-        }
-        if read != count {
+        };
+        let info = element_info(element_type).ok_or_else(|| {
+            cur.syntax(
+                at,
+                format!("unknown Gmsh element type {element_type} of element {tag}"),
+            )
+        })?;
+        let rest = line.get(3..).unwrap_or(&[]);
+        let (element_tags, nodes) = rest.split_at(n_tags.min(rest.len()));
+        if element_tags.len() != n_tags {
             return Err(cur.syntax(
-                cur.pos,
+                at,
                 format!(
-                    "the $Elements section announces {count} elements but its blocks hold {read}"
+                    "expected {n_tags} tags for element {tag}, found {}",
+                    element_tags.len()
                 ),
             ));
         }
-        cur.end_binary();
-    } else {
-        let mut line = Vec::new();
-        for _ in 0..count {
-            let at = cur.int_line(
-                &mut line,
-                "an element line (tag type numTags tags... nodes...)",
-            )?;
-            let (tag, element_type, n_tags) = match line[..] {
-                [tag, element_type, n_tags, ..] if n_tags >= 0 => {
-                    (tag, element_type, n_tags as usize)
-                }
-                _ => {
-                    return Err(cur.syntax(
-                        at,
-                        "expected an element line 'tag type numTags tags... nodeTags...'".into(),
-                    ))
-                }
-            };
-            let info = element_info(element_type).ok_or_else(|| {
-                cur.syntax(
-                    at,
-                    format!("unknown Gmsh element type {element_type} of element {tag}"),
-                )
-            })?;
-            let rest = line.get(3..).unwrap_or(&[]);
-            let (element_tags, nodes) = rest.split_at(n_tags.min(rest.len()));
-            if element_tags.len() != n_tags {
-                return Err(cur.syntax(
-                    at,
-                    format!(
-                        "expected {n_tags} tags for element {tag}, found {}",
-                        element_tags.len()
-                    ),
-                ));
+        if nodes.len() != info.nodes {
+            return Err(cur.syntax(
+                at,
+                format!(
+                    "expected {} node tags for element {tag} of type {element_type}, found {}",
+                    info.nodes,
+                    nodes.len()
+                ),
+            ));
+        }
+        let physical: &[i64] = match element_tags.first() {
+            Some(&p) if p != 0 => &element_tags[..1],
+            _ => &[],
+        };
+        let entity = element_tags.get(1).copied().unwrap_or(0);
+        node_tags.clear();
+        node_tags.extend(nodes.iter().map(|&t| u64::try_from(t).unwrap_or(0)));
+        let tag = u64::try_from(tag).unwrap_or(0);
+        b.add_element(
+            cur,
+            at,
+            tag,
+            element_type,
+            info,
+            physical,
+            entity,
+            &node_tags,
+        )?;
+    }
+    Ok(())
+}
+
+/// The binary `$Elements` (2.2) blocks.
+fn read_elements_22_binary(cur: &mut Cursor, b: &mut Builder, count: u64) -> Result<()> {
+    let mut read = 0u64;
+    let mut node_tags = Vec::new();
+    let mut tags = Vec::new();
+    cur.begin_binary("$Elements")?;
+    while read < count {
+        let at = cur.pos;
+        let element_type = cur.int("the element type of a block header")?;
+        let n = cur.int("the number of elements of a block header")?;
+        let n_tags = cur.int("the number of tags of a block header")?;
+        let info = element_info(element_type)
+            .ok_or_else(|| cur.syntax(at, format!("unknown Gmsh element type {element_type}")))?;
+        if n < 0 || n_tags < 0 {
+            return Err(cur.syntax(
+                at,
+                format!("expected non-negative counts in an element block header, found {n} elements with {n_tags} tags"),
+            ));
+        }
+        for _ in 0..n {
+            let at = cur.pos;
+            let tag = cur.int("an element tag")?;
+            tags.clear();
+            for _ in 0..n_tags {
+                tags.push(cur.int("an element's tag")?);
             }
-            if nodes.len() != info.nodes {
-                return Err(cur.syntax(
-                    at,
-                    format!(
-                        "expected {} node tags for element {tag} of type {element_type}, found {}",
-                        info.nodes,
-                        nodes.len()
-                    ),
-                ));
+            node_tags.clear();
+            for _ in 0..info.nodes {
+                node_tags.push(u64::try_from(cur.int("a node tag of an element")?).unwrap_or(0));
             }
-            let physical: &[i64] = match element_tags.first() {
-                Some(&p) if p != 0 => &element_tags[..1],
+            let physical: &[i64] = match tags.first() {
+                Some(&p) if p != 0 => &tags[..1],
                 _ => &[],
             };
-            let entity = element_tags.get(1).copied().unwrap_or(0);
-            node_tags.clear();
-            node_tags.extend(nodes.iter().map(|&t| u64::try_from(t).unwrap_or(0)));
             let tag = u64::try_from(tag).unwrap_or(0);
+            let entity = tags.get(1).copied().unwrap_or(0);
             b.add_element(
                 cur,
                 at,
@@ -517,8 +516,16 @@ fn read_elements_22(cur: &mut Cursor, b: &mut Builder) -> Result<()> {
                 &node_tags,
             )?;
         }
+        read += n as u64;
     }
-    cur.expect("$EndElements")
+    if read != count {
+        return Err(cur.syntax(
+            cur.pos,
+            format!("the $Elements section announces {count} elements but its blocks hold {read}"),
+        ));
+    }
+    cur.end_binary();
+    Ok(())
 }
 
 // ---------------------------------------------------------------------------

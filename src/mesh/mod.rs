@@ -7,6 +7,7 @@
 //! above them.
 
 pub mod boundary;
+pub mod gmsh;
 pub mod structured;
 
 /// Volume element types. Adding a type (Tet10, Hex20) means a variant here,

@@ -26,5 +26,6 @@ pub mod error;
 pub mod fem;
 pub mod material;
 pub mod mesh;
+pub mod output;
 
 pub use error::{Error, Result};

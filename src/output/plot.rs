@@ -209,3 +209,104 @@ fn render_convergence_plot(steps: &[StepResiduals]) -> Result<String, String> {
     }
     Ok(svg)
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn step(label: &str, residuals: &[f64]) -> StepResiduals {
+        StepResiduals {
+            label: label.to_string(),
+            residuals: residuals.to_vec(),
+        }
+    }
+
+    /// Polylines drawn in the colour of step `index` of `count`.
+    fn lines_of(svg: &str, index: usize, count: usize) -> usize {
+        let c = step_colour(index, count);
+        let stroke = format!("stroke=\"#{:02X}{:02X}{:02X}\"", c.0, c.1, c.2);
+        svg.split("<polyline")
+            .skip(1)
+            .filter(|p| p[..p.find("/>").unwrap()].contains(&stroke))
+            .count()
+    }
+
+    #[test]
+    fn one_line_per_step_with_legend() {
+        let steps = vec![
+            step("step 1, t = 0.5", &[1.0, 3e-2, 4e-5, 2e-10]),
+            step("step 2, t = 1.0", &[1.0, 0.2, 1e-3, 1e-7, 1e-13]),
+            step("step 3 <final>", &[0.5, 1e-4]),
+        ];
+        let dir = tempfile::tempdir().unwrap();
+        let path = dir.path().join("convergence.svg");
+        write_convergence_plot(&path, &steps).unwrap();
+        let svg = std::fs::read_to_string(&path).unwrap();
+        assert!(svg.contains("<svg"));
+        assert!(svg.trim_end().ends_with("</svg>"));
+        // One line per step plus its legend sample, and one marker per point.
+        for i in 0..3 {
+            assert_eq!(lines_of(&svg, i, 3), 2, "step {i}");
+        }
+        assert_eq!(svg.matches("<circle").count(), 4 + 5 + 2);
+        for text in [
+            "Newton convergence",
+            "Newton iteration",
+            "relative residual",
+            "step 1, t = 0.5",
+            "step 3 &lt;final&gt;",
+            "1e-13",
+        ] {
+            assert!(svg.contains(text), "missing {text}");
+        }
+    }
+
+    #[test]
+    fn many_steps_use_a_gradient_without_legend() {
+        let steps: Vec<StepResiduals> = (0..30)
+            .map(|i| step(&format!("step {i}"), &[1.0, 10f64.powi(-2 - i % 5), 1e-9]))
+            .collect();
+        let svg = render_convergence_plot(&steps).unwrap();
+        assert!(!svg.contains("step 7<"));
+        assert!(svg.contains("30 steps"));
+        assert_eq!(svg.matches("<circle").count(), 90);
+        assert_eq!(step_colour(0, 30), RGBColor(68, 1, 84));
+        assert_eq!(step_colour(29, 30), RGBColor(253, 231, 37));
+        assert_eq!(lines_of(&svg, 0, 30), 1);
+        assert_eq!(lines_of(&svg, 29, 30), 1);
+    }
+
+    #[test]
+    fn empty_zero_and_non_finite_residuals() {
+        let dir = tempfile::tempdir().unwrap();
+        let path = dir.path().join("empty.svg");
+        write_convergence_plot(&path, &[]).unwrap();
+        let svg = std::fs::read_to_string(&path).unwrap();
+        assert!(svg.contains("<svg") && svg.contains("no residuals to show"));
+
+        let steps = vec![
+            step("zeros", &[0.0, 0.0]),
+            step("empty", &[]),
+            step("mixed", &[1.0, f64::NAN, -1.0, f64::INFINITY, 1e-6, 0.0, 5e-324]),
+            step("single", &[1e-3]),
+        ];
+        write_convergence_plot(&path, &steps).unwrap();
+        let svg = std::fs::read_to_string(&path).unwrap();
+        // Only the drawable residuals of "mixed" and "single" are drawn.
+        assert_eq!(svg.matches("<circle").count(), 3);
+        assert_eq!(lines_of(&svg, 0, 4), 0);
+        assert_eq!(lines_of(&svg, 2, 4), 2);
+        assert!(!svg.contains("NaN") && !svg.contains("inf"));
+
+        write_convergence_plot(&path, &[step("all zero", &[0.0])]).unwrap();
+        // Extreme but finite residuals keep the axis finite.
+        write_convergence_plot(&path, &[step("huge", &[1e308, 1e-300])]).unwrap();
+    }
+
+    #[test]
+    fn y_range_is_whole_decades() {
+        assert_eq!(y_range(&[vec![(0, 0.5), (1, 2e-7)]]), (1e-7, 1.0));
+        assert_eq!(y_range(&[vec![(0, 1.0)]]), (1.0, 10.0));
+        assert_eq!(y_range(&[]), (1e-10, 1.0));
+    }
+}

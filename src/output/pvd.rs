@@ -102,10 +102,10 @@ mod tests {
         }
         let text = std::fs::read_to_string(&path).unwrap();
         assert!(text.contains(r#"<VTKFile type="Collection""#));
-        let data_sets: Vec<&str> = text
+        let data_sets: Vec<String> = text
             .split("<DataSet ")
             .skip(1)
-            .map(|s| &s[..s.find("/>").unwrap()])
+            .map(|s| format!(" {}", &s[..s.find("/>").unwrap()]))
             .collect();
         assert_eq!(data_sets.len(), 3);
         for (tag, (time, file)) in data_sets.iter().zip(steps) {

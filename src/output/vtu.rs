@@ -248,3 +248,244 @@ fn data_array<T: Scalar>(
     writeln!(w, "        </DataArray>")?;
     Ok(())
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::mesh::structured::box_mesh;
+    use crate::mesh::ElementKind;
+    use base64::Engine;
+    use std::collections::HashMap;
+
+    /// One `<DataArray>` read back: its section, attributes and raw bytes.
+    struct Array {
+        section: String,
+        attributes: HashMap<String, String>,
+        bytes: Vec<u8>,
+    }
+
+    impl Array {
+        fn f64s(&self) -> Vec<f64> {
+            assert_eq!(self.attributes["type"], "Float64");
+            self.bytes
+                .chunks_exact(8)
+                .map(|c| f64::from_le_bytes(c.try_into().unwrap()))
+                .collect()
+        }
+        fn i64s(&self) -> Vec<i64> {
+            assert_eq!(self.attributes["type"], "Int64");
+            self.bytes
+                .chunks_exact(8)
+                .map(|c| i64::from_le_bytes(c.try_into().unwrap()))
+                .collect()
+        }
+        fn components(&self) -> usize {
+            self.attributes["NumberOfComponents"].parse().unwrap()
+        }
+    }
+
+    /// Attributes of the tag that starts at the beginning of `tag`.
+    fn attributes(tag: &str) -> HashMap<String, String> {
+        let tag = &tag[..tag.find('>').unwrap()];
+        let mut map = HashMap::new();
+        let mut rest = tag;
+        while let Some(eq) = rest.find("=\"") {
+            let key = rest[..eq].rsplit(' ').next().unwrap().to_string();
+            let value_start = eq + 2;
+            let value_len = rest[value_start..].find('"').unwrap();
+            map.insert(key, rest[value_start..value_start + value_len].to_string());
+            rest = &rest[value_start + value_len + 1..];
+        }
+        map
+    }
+
+    /// A minimal reader for what [`write_vtu`] writes.
+    fn read_vtu(path: &Path) -> (HashMap<String, String>, HashMap<String, String>, Vec<Array>) {
+        let text = std::fs::read_to_string(path).unwrap();
+        assert!(text.starts_with("<?xml"));
+        let vtk_file = attributes(&text[text.find("<VTKFile").unwrap()..]);
+        let piece = attributes(&text[text.find("<Piece").unwrap()..]);
+        let mut arrays = Vec::new();
+        let mut at = 0;
+        while let Some(start) = text[at..].find("<DataArray ") {
+            let start = at + start;
+            let open_end = start + text[start..].find('>').unwrap() + 1;
+            let close = open_end + text[open_end..].find("</DataArray>").unwrap();
+            let before = &text[..start];
+            let section = ["<Points>", "<Cells>", "<PointData>", "<CellData>"]
+                .iter()
+                .max_by_key(|s| before.rfind(*s).map_or(-1, |i| i as i64))
+                .unwrap()
+                .trim_matches(|c| c == '<' || c == '>')
+                .to_string();
+            let attrs = attributes(&text[start..]);
+            assert_eq!(attrs["format"], "binary");
+            let decoded = base64::engine::general_purpose::STANDARD
+                .decode(text[open_end..close].trim())
+                .unwrap();
+            let header = u64::from_le_bytes(decoded[..8].try_into().unwrap()) as usize;
+            assert_eq!(header, decoded.len() - 8, "byte count header of {attrs:?}");
+            arrays.push(Array {
+                section,
+                attributes: attrs,
+                bytes: decoded[8..].to_vec(),
+            });
+            at = close;
+        }
+        (vtk_file, piece, arrays)
+    }
+
+    fn find<'a>(arrays: &'a [Array], section: &str, name: &str) -> &'a Array {
+        arrays
+            .iter()
+            .find(|a| a.section == section && a.attributes["Name"] == name)
+            .unwrap_or_else(|| panic!("no array {name} in {section}"))
+    }
+
+    fn round_trip(kind: ElementKind) {
+        let mesh = box_mesh(kind, [2, 2, 2], [1.0, 1.0, 1.0]);
+        let (np, nc) = (mesh.nodes.len(), mesh.elements.len());
+        // Values that do not survive a decimal round trip, plus extremes.
+        let mut displacement: Vec<f64> = (0..3 * np).map(|i| (i as f64 * 0.7).sin() / 3.0).collect();
+        displacement[0] = f64::MIN_POSITIVE;
+        displacement[1] = -1e300;
+        let stress: Vec<f64> = (0..9 * nc).map(|i| (i as f64).sqrt() * 1e5 - 7.0).collect();
+        let id: Vec<f64> = (0..nc).map(|i| mesh.elements[i].id as f64).collect();
+
+        let dir = tempfile::tempdir().unwrap();
+        let path = dir.path().join("out.vtu");
+        write_vtu(
+            &path,
+            &mesh,
+            &[Field { name: "displacement", components: 3, values: &displacement }],
+            &[
+                Field { name: "stress", components: 9, values: &stress },
+                Field { name: "element id", components: 1, values: &id },
+            ],
+        )
+        .unwrap();
+
+        let (vtk_file, piece, arrays) = read_vtu(&path);
+        assert_eq!(vtk_file["type"], "UnstructuredGrid");
+        assert_eq!(vtk_file["header_type"], "UInt64");
+        assert_eq!(vtk_file["byte_order"], "LittleEndian");
+        assert_eq!(piece["NumberOfPoints"], np.to_string());
+        assert_eq!(piece["NumberOfCells"], nc.to_string());
+        assert_eq!(arrays.len(), 7);
+
+        let points = find(&arrays, "Points", "Points");
+        assert_eq!(points.components(), 3);
+        let expected: Vec<f64> = mesh.nodes.iter().flatten().copied().collect();
+        assert_eq!(points.f64s(), expected);
+
+        let connectivity = find(&arrays, "Cells", "connectivity").i64s();
+        let expected: Vec<i64> = mesh
+            .elements
+            .iter()
+            .flat_map(|e| e.nodes.iter().map(|&n| n as i64))
+            .collect();
+        assert_eq!(connectivity, expected);
+        let offsets = find(&arrays, "Cells", "offsets").i64s();
+        let n = kind.num_nodes() as i64;
+        assert_eq!(offsets, (1..=nc as i64).map(|i| i * n).collect::<Vec<_>>());
+        let types = find(&arrays, "Cells", "types");
+        assert_eq!(types.attributes["type"], "UInt8");
+        assert_eq!(types.bytes, vec![kind.vtk_type(); nc]);
+
+        let u = find(&arrays, "PointData", "displacement");
+        assert_eq!(u.components(), 3);
+        assert_eq!(u.f64s(), displacement);
+        let s = find(&arrays, "CellData", "stress");
+        assert_eq!(s.components(), 9);
+        assert_eq!(s.f64s(), stress);
+        let e = find(&arrays, "CellData", "element id");
+        assert_eq!(e.components(), 1);
+        assert_eq!(e.f64s(), id);
+        // Only the target is left in the folder (the temporary was renamed).
+        assert_eq!(std::fs::read_dir(dir.path()).unwrap().count(), 1);
+    }
+
+    #[test]
+    fn hex8_round_trip() {
+        round_trip(ElementKind::Hex8);
+    }
+
+    #[test]
+    fn tet4_round_trip() {
+        round_trip(ElementKind::Tet4);
+    }
+
+    #[test]
+    fn mesh_without_data() {
+        let mesh = box_mesh(ElementKind::Hex8, [1, 1, 1], [2.0, 1.0, 1.0]);
+        let dir = tempfile::tempdir().unwrap();
+        let path = dir.path().join("bare.vtu");
+        write_vtu(&path, &mesh, &[], &[]).unwrap();
+        let (_, piece, arrays) = read_vtu(&path);
+        assert_eq!(piece["NumberOfPoints"], "8");
+        assert_eq!(piece["NumberOfCells"], "1");
+        assert_eq!(arrays.len(), 4);
+    }
+
+    #[test]
+    fn wrong_length_is_an_error_naming_the_field() {
+        let mesh = box_mesh(ElementKind::Hex8, [2, 2, 2], [1.0, 1.0, 1.0]);
+        let dir = tempfile::tempdir().unwrap();
+        let path = dir.path().join("bad.vtu");
+        let good = vec![0.0; 3 * 27];
+        let short = vec![0.0; 9 * 8 - 1];
+        let err = write_vtu(
+            &path,
+            &mesh,
+            &[Field { name: "displacement", components: 3, values: &good }],
+            &[Field { name: "cauchy_stress", components: 9, values: &short }],
+        )
+        .unwrap_err();
+        let message = err.to_string();
+        assert!(message.contains("cauchy_stress"), "{message}");
+        assert!(message.contains("71 values"), "{message}");
+        assert!(message.contains("72"), "{message}");
+        assert!(!path.exists());
+        assert_eq!(std::fs::read_dir(dir.path()).unwrap().count(), 0);
+
+        // A point field sized for cells.
+        let err = write_vtu(
+            &path,
+            &mesh,
+            &[Field { name: "pressure", components: 1, values: &[0.0; 8] }],
+            &[],
+        )
+        .unwrap_err();
+        assert!(err.to_string().contains("point field 'pressure'"), "{err}");
+
+        // Zero components and duplicate names.
+        let err = write_vtu(&path, &mesh, &[Field { name: "z", components: 0, values: &[] }], &[])
+            .unwrap_err();
+        assert!(err.to_string().contains("'z'"), "{err}");
+        let f = Field { name: "u", components: 3, values: &good };
+        let err = write_vtu(&path, &mesh, &[f, f], &[]).unwrap_err();
+        assert!(err.to_string().contains("'u'"), "{err}");
+        assert!(!path.exists());
+    }
+
+    #[test]
+    fn bad_connectivity_is_an_error() {
+        let mut mesh = box_mesh(ElementKind::Tet4, [1, 1, 1], [1.0, 1.0, 1.0]);
+        mesh.elements[0].nodes[2] = 1000;
+        let dir = tempfile::tempdir().unwrap();
+        let err = write_vtu(&dir.path().join("m.vtu"), &mesh, &[], &[]).unwrap_err();
+        assert!(err.to_string().contains("node index"), "{err}");
+    }
+
+    #[test]
+    fn field_names_are_escaped() {
+        let mesh = box_mesh(ElementKind::Tet4, [1, 1, 1], [1.0, 1.0, 1.0]);
+        let dir = tempfile::tempdir().unwrap();
+        let path = dir.path().join("e.vtu");
+        let values = vec![1.0; mesh.nodes.len()];
+        write_vtu(&path, &mesh, &[Field { name: "a<\"b\">&c", components: 1, values: &values }], &[])
+            .unwrap();
+        let text = std::fs::read_to_string(&path).unwrap();
+        assert!(text.contains(r#"Name="a&lt;&quot;b&quot;&gt;&amp;c""#));
+    }
+}

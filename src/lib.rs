@@ -26,6 +26,7 @@ pub mod error;
 pub mod fem;
 pub mod material;
 pub mod mesh;
+pub mod output;
 
 pub use error::{Error, Result};
 pub mod assembly;

@@ -1,0 +1,130 @@
+//! Results on disk: what a user opens after a run.
+//!
+//! - [`vtu`]: one VTK XML UnstructuredGrid (`.vtu`) per converged step — the
+//!   reference mesh with point data (e.g. `displacement`; warp by it in
+//!   ParaView) and cell data (e.g. stress tensors), inline base64 binary.
+//! - [`pvd`]: the ParaView collection (`.pvd`) that lists the `.vtu` files
+//!   with their times, so ParaView opens the whole series at once.
+//! - [`plot`]: an SVG plot of the Newton convergence of every step.
+//!
+//! Every file is written to a temporary file in the target's folder and then
+//! renamed over the target ([`write_atomically`]), so an interrupted run never
+//! leaves a half-written file behind: a reader sees either the old file or the
+//! complete new one.
+
+pub mod plot;
+pub mod pvd;
+pub mod vtu;
+
+pub use plot::{write_convergence_plot, StepResiduals};
+pub use pvd::PvdCollection;
+pub use vtu::{write_vtu, Field};
+
+use std::fs::File;
+use std::io::{BufWriter, Write};
+use std::path::{Path, PathBuf};
+use std::sync::atomic::{AtomicU64, Ordering};
+
+use crate::{Error, Result};
+
+/// Writes `path` atomically: `write` fills a temporary file in the same
+/// folder, which is flushed, synced and then renamed over `path`. On any
+/// error the temporary file is removed and `path` is left untouched.
+///
+/// An [`std::io::Error`] returned by `write` is reported as an
+/// [`Error::Io`] for `path`; use [`std::io::ErrorKind::InvalidInput`] with a
+/// message for invalid data.
+pub fn write_atomically<F>(path: &Path, write: F) -> Result<()>
+where
+    F: FnOnce(&mut dyn Write) -> std::io::Result<()>,
+{
+    let tmp = temporary_path(path)?;
+    let result = (|| -> Result<()> {
+        let file = File::create(&tmp).map_err(|e| Error::io("create", &tmp, e))?;
+        let mut writer = BufWriter::new(file);
+        write(&mut writer).map_err(|e| Error::io("write", path, e))?;
+        let file = writer
+            .into_inner()
+            .map_err(|e| Error::io("write", path, e.into_error()))?;
+        file.sync_all().map_err(|e| Error::io("write", path, e))?;
+        drop(file);
+        std::fs::rename(&tmp, path).map_err(|e| Error::io("replace", path, e))
+    })();
+    if result.is_err() {
+        let _ = std::fs::remove_file(&tmp);
+    }
+    result
+}
+
+/// A fresh temporary file name next to `path`: `.<name>.<pid>-<n>.tmp`.
+fn temporary_path(path: &Path) -> Result<PathBuf> {
+    static COUNTER: AtomicU64 = AtomicU64::new(0);
+    let name = path.file_name().ok_or_else(|| {
+        Error::io(
+            "write",
+            path,
+            std::io::Error::new(
+                std::io::ErrorKind::InvalidInput,
+                "the path does not name a file",
+            ),
+        )
+    })?;
+    let n = COUNTER.fetch_add(1, Ordering::Relaxed);
+    let tmp_name = format!(
+        ".{}.{}-{}.tmp",
+        name.to_string_lossy(),
+        std::process::id(),
+        n
+    );
+    Ok(path.with_file_name(tmp_name))
+}
+
+/// An [`std::io::Error`] of kind `InvalidInput` with `message`.
+fn invalid_input(message: String) -> std::io::Error {
+    std::io::Error::new(std::io::ErrorKind::InvalidInput, message)
+}
+
+/// Escapes `text` for use in XML character data and attribute values.
+fn xml_escape(text: &str) -> String {
+    let mut out = String::with_capacity(text.len());
+    for c in text.chars() {
+        match c {
+            '&' => out.push_str("&amp;"),
+            '<' => out.push_str("&lt;"),
+            '>' => out.push_str("&gt;"),
+            '"' => out.push_str("&quot;"),
+            '\'' => out.push_str("&apos;"),
+            c => out.push(c),
+        }
+    }
+    out
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn atomic_write_replaces_and_cleans_up() {
+        let dir = tempfile::tempdir().unwrap();
+        let path = dir.path().join("a.txt");
+        std::fs::write(&path, "old").unwrap();
+        write_atomically(&path, |w| w.write_all(b"new")).unwrap();
+        assert_eq!(std::fs::read_to_string(&path).unwrap(), "new");
+
+        let err = write_atomically(&path, |w| {
+            w.write_all(b"partial")?;
+            Err(invalid_input("boom".into()))
+        })
+        .unwrap_err();
+        assert!(err.to_string().contains("boom"), "{err}");
+        // The old content survives and no temporary file is left behind.
+        assert_eq!(std::fs::read_to_string(&path).unwrap(), "new");
+        assert_eq!(std::fs::read_dir(dir.path()).unwrap().count(), 1);
+    }
+
+    #[test]
+    fn escapes_xml() {
+        assert_eq!(xml_escape(r#"a<b>&"c'"#), "a&lt;b&gt;&amp;&quot;c&apos;");
+    }
+}

@@ -32,3 +32,5 @@ pub use error::{Error, Result};
 pub mod assembly;
 pub mod solve;
 pub mod problem;
+pub mod case;
+pub mod run;

@@ -14,6 +14,7 @@
 
 pub mod plot;
 pub mod pvd;
+pub mod summary;
 pub mod vtu;
 
 pub use plot::{write_convergence_plot, StepResiduals};

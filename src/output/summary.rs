@@ -62,6 +62,6 @@ impl Summary {
     /// Write as pretty JSON, atomically (temporary file + rename).
     pub fn write(&self, path: &Path) -> crate::Result<()> {
         let text = serde_json::to_string_pretty(self).expect("the summary serialises");
-        super::write_atomically(path, text.as_bytes())
+        super::write_atomically(path, |w| std::io::Write::write_all(w, text.as_bytes()))
     }
 }

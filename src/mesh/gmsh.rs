@@ -1,13 +1,14 @@
 //! Reader for Gmsh MSH files: format versions 4.1 and 2.2, ASCII and binary.
 //!
 //! ## Why hand-written
-//! The `mshio` crate (0.4.2, the latest release, from 2020) reads only MSH
-//! 4.1, not 2.2, which many users' meshes and older tools still produce; it
-//! also does not read `$PhysicalNames` (it parses only `$Entities`, `$Nodes`
-//! and `$Elements`), and its parser errors are a backtrace of nom error kinds
-//! pointing into the input slice, with no line numbers. A mesh file is user
-//! input, so this reader says where a file is wrong: the 1-based line for
-//! ASCII data, the byte offset for binary data.
+//! The `mshio` crate (0.4.2, its latest release, from 2020) reads only MSH
+//! 4.1 (ASCII and binary), not 2.2, which many users' meshes and older tools
+//! still produce. It also parses only `$Entities`, `$Nodes` and `$Elements`
+//! (no `$PhysicalNames`, so no group names), and its parser errors are a
+//! backtrace of nom error kinds with slices of the input (printed as hex
+//! dumps), not line numbers. A mesh file is user input, so this reader says
+//! where a file is wrong: the 1-based line for ASCII data, the byte offset
+//! for binary data.
 //!
 //! ## What it reads
 //! - `$MeshFormat` (required, first): version 4.1 or 2.2, file type 0
@@ -32,6 +33,7 @@
 //! MSH 2.2 writes an element once per physical group it belongs to (with a
 //! new element tag each time); a volume element repeated with the same nodes
 //! right after itself is therefore read as one element in several regions.
+//! Every node of `$Nodes` is kept, in file order, referenced or not.
 
 use super::{Element, ElementKind, Facet, FacetKind, Mesh, Region, SurfaceSet};
 use crate::{Error, Result};
@@ -1312,5 +1314,188 @@ fn show(tok: &[u8]) -> String {
     match s.char_indices().nth(40) {
         Some((i, _)) => format!("{}...", &s[..i]),
         None => s.into_owned(),
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// Writes binary values in the chosen byte order and `size_t` width.
+    struct Writer {
+        out: Vec<u8>,
+        big_endian: bool,
+        size_t: usize,
+    }
+
+    impl Writer {
+        fn text(&mut self, s: &str) -> &mut Self {
+            self.out.extend_from_slice(s.as_bytes());
+            self
+        }
+        fn int(&mut self, v: i32) -> &mut Self {
+            let b = if self.big_endian {
+                v.to_be_bytes()
+            } else {
+                v.to_le_bytes()
+            };
+            self.out.extend_from_slice(&b);
+            self
+        }
+        fn size(&mut self, v: u64) -> &mut Self {
+            let b = if self.big_endian {
+                v.to_be_bytes()
+            } else {
+                v.to_le_bytes()
+            };
+            if self.size_t == 4 {
+                let skip = if self.big_endian { 4 } else { 0 };
+                self.out.extend_from_slice(&b[skip..skip + 4]);
+            } else {
+                self.out.extend_from_slice(&b);
+            }
+            self
+        }
+        fn float(&mut self, v: f64) -> &mut Self {
+            let b = if self.big_endian {
+                v.to_be_bytes()
+            } else {
+                v.to_le_bytes()
+            };
+            self.out.extend_from_slice(&b);
+            self
+        }
+    }
+
+    const TET: [[f64; 3]; 4] = [[0., 0., 0.], [1., 0., 0.], [0., 1., 0.], [0., 0., 1.]];
+
+    /// One tet (nodes 11..14, element 5) in physical volume 1, MSH 4.1 binary.
+    fn tet_41_binary(big_endian: bool, size_t: usize) -> Vec<u8> {
+        let mut w = Writer {
+            out: Vec::new(),
+            big_endian,
+            size_t,
+        };
+        w.text(&format!("$MeshFormat\n4.1 1 {size_t}\n")).int(1);
+        w.text("\n$EndMeshFormat\n$Entities\n");
+        w.size(0).size(0).size(0).size(1).int(1);
+        for c in [0., 0., 0., 1., 1., 1.] {
+            w.float(c);
+        }
+        w.size(1).int(1).size(0).text("\n$EndEntities\n$Nodes\n");
+        w.size(1)
+            .size(4)
+            .size(11)
+            .size(14)
+            .int(3)
+            .int(1)
+            .int(0)
+            .size(4);
+        for tag in 11..=14 {
+            w.size(tag);
+        }
+        for x in TET.iter().flatten() {
+            w.float(*x);
+        }
+        w.text("\n$EndNodes\n$Elements\n");
+        w.size(1)
+            .size(1)
+            .size(5)
+            .size(5)
+            .int(3)
+            .int(1)
+            .int(4)
+            .size(1)
+            .size(5);
+        for tag in 11..=14 {
+            w.size(tag);
+        }
+        w.text("\n$EndElements\n");
+        w.out
+    }
+
+    /// The same tet in MSH 2.2 binary.
+    fn tet_22_binary(big_endian: bool) -> Vec<u8> {
+        let mut w = Writer {
+            out: Vec::new(),
+            big_endian,
+            size_t: 8,
+        };
+        w.text("$MeshFormat\n2.2 1 8\n").int(1);
+        w.text("\n$EndMeshFormat\n$Nodes\n4\n");
+        for (tag, x) in (11..).zip(TET) {
+            w.int(tag).float(x[0]).float(x[1]).float(x[2]);
+        }
+        w.text("\n$EndNodes\n$Elements\n1\n");
+        w.int(4).int(1).int(2).int(5).int(1).int(1);
+        for tag in 11..=14 {
+            w.int(tag);
+        }
+        w.text("\n$EndElements\n");
+        w.out
+    }
+
+    fn check_tet(mesh: &Mesh) {
+        assert_eq!(mesh.node_ids, [11, 12, 13, 14]);
+        assert_eq!(mesh.nodes, TET);
+        assert_eq!(mesh.elements.len(), 1);
+        assert_eq!(mesh.elements[0].id, 5);
+        assert_eq!(mesh.elements[0].nodes, [0, 1, 2, 3]);
+        assert_eq!(mesh.region_names(), ["1"]);
+    }
+
+    #[test]
+    fn binary_byte_orders_and_size_t_widths() {
+        let path = Path::new("tet.msh");
+        for big_endian in [false, true] {
+            for size_t in [4, 8] {
+                let mesh = parse_msh(&tet_41_binary(big_endian, size_t), path);
+                check_tet(&mesh.unwrap_or_else(|e| panic!("{big_endian} {size_t}: {e}")));
+            }
+            check_tet(&parse_msh(&tet_22_binary(big_endian), path).unwrap());
+        }
+    }
+
+    #[test]
+    fn binary_missing_node_gives_byte_offset() {
+        let mut bytes = tet_41_binary(false, 8);
+        let n = bytes.len();
+        // the last node tag of the element, just before "\n$EndElements\n"
+        let at = n - 14 - 8;
+        bytes[at..at + 8].copy_from_slice(&99u64.to_le_bytes());
+        let e = parse_msh(&bytes, Path::new("tet.msh"))
+            .unwrap_err()
+            .to_string();
+        let element_at = at - 4 * 8;
+        assert!(e.contains(&format!("byte offset {element_at}")), "{e}");
+        assert!(e.contains("element 5 refers to node tag 99"), "{e}");
+    }
+
+    #[test]
+    fn integers() {
+        assert_eq!(parse_int(b"-12"), Some(-12));
+        assert_eq!(parse_int(b"+7"), Some(7));
+        for bad in [&b""[..], b"-", b"1.0", b"1e3", b"99999999999999999999"] {
+            assert_eq!(parse_int(bad), None);
+        }
+    }
+
+    #[test]
+    fn element_table_knows_the_linear_types() {
+        let nodes = |t| element_info(t).map(|i| (i.dim, i.nodes));
+        assert_eq!(nodes(4), Some((3, 4)));
+        assert_eq!(nodes(5), Some((3, 8)));
+        assert_eq!(nodes(2), Some((2, 3)));
+        assert_eq!(nodes(3), Some((2, 4)));
+        assert_eq!(nodes(15), Some((0, 1)));
+        assert_eq!(nodes(11), Some((3, 10)));
+        assert_eq!(nodes(17), Some((3, 20)));
+        assert_eq!(nodes(66), Some((1, 11)));
+        assert_eq!(nodes(83), Some((3, 58)));
+        assert_eq!(nodes(105), Some((3, 104)));
+        assert_eq!(nodes(117), Some((3, 78)));
+        assert_eq!(nodes(131), Some((3, 69)));
+        assert_eq!(nodes(0), None);
+        assert_eq!(nodes(34), None); // polygons have no fixed node count
     }
 }

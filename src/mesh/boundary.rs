@@ -12,8 +12,13 @@ pub struct BoundaryFace {
     pub nodes: Vec<usize>,
 }
 
-fn face_key(nodes: &[usize]) -> Vec<usize> {
-    let mut k = nodes.to_vec();
+/// Sorted node list of a face, padded with `usize::MAX` (faces have 3 or
+/// 4 nodes): a key that identifies a face whatever its orientation.
+fn face_key(nodes: &[usize]) -> [usize; 4] {
+    let mut k = [usize::MAX; 4];
+    for (slot, &n) in k.iter_mut().zip(nodes) {
+        *slot = n;
+    }
     k.sort_unstable();
     k
 }
@@ -26,28 +31,67 @@ fn facet_kind(n: usize) -> FacetKind {
     }
 }
 
-/// All element faces keyed by their sorted node list; faces shared by two
-/// elements map to `None`, faces on the boundary to their outward-oriented
-/// node list.
-pub fn boundary_faces(mesh: &Mesh) -> HashMap<Vec<usize>, Option<BoundaryFace>> {
-    let mut faces: HashMap<Vec<usize>, Option<BoundaryFace>> = HashMap::new();
-    for (e, el) in mesh.elements.iter().enumerate() {
+/// The faces of the mesh that belong to exactly one element, outward
+/// oriented, keyed by their sorted node list.
+///
+/// Every element face is listed with its key and the list is sorted
+/// (in parallel): a face shared by two elements appears twice in a row.
+/// Sorting fixed-size keys is several times faster than hashing node
+/// vectors on meshes with millions of faces.
+pub fn boundary_faces(mesh: &Mesh) -> HashMap<[usize; 4], BoundaryFace> {
+    use rayon::prelude::*;
+    let mut faces: Vec<([usize; 4], u32, u8)> = mesh
+        .elements
+        .par_iter()
+        .enumerate()
+        .flat_map_iter(|(e, el)| {
+            el.kind.faces().iter().enumerate().map(move |(f, local)| {
+                let nodes: Vec<usize> = local.iter().map(|&a| el.nodes[a]).collect();
+                (face_key(&nodes), e as u32, f as u8)
+            })
+        })
+        .collect();
+    faces.par_sort_unstable();
+    let mut out = HashMap::new();
+    let mut i = 0;
+    while i < faces.len() {
+        let mut j = i + 1;
+        while j < faces.len() && faces[j].0 == faces[i].0 {
+            j += 1;
+        }
+        if j == i + 1 {
+            let (key, e, f) = faces[i];
+            let el = &mesh.elements[e as usize];
+            let nodes = el.kind.faces()[f as usize].iter().map(|&a| el.nodes[a]).collect();
+            out.insert(
+                key,
+                BoundaryFace {
+                    element: e as usize,
+                    nodes,
+                },
+            );
+        }
+        i = j;
+    }
+    out
+}
+
+/// Keys of all faces shared by two or more elements.
+fn interior_face_keys_of(elements: &[super::Element]) -> std::collections::HashSet<[usize; 4]> {
+    let mut count: HashMap<[usize; 4], usize> = HashMap::new();
+    for el in elements {
         for local in el.kind.faces() {
             let nodes: Vec<usize> = local.iter().map(|&a| el.nodes[a]).collect();
-            faces
-                .entry(face_key(&nodes))
-                .and_modify(|f| *f = None)
-                .or_insert(Some(BoundaryFace { element: e, nodes }));
+            *count.entry(face_key(&nodes)).or_insert(0) += 1;
         }
     }
-    faces
+    count.into_iter().filter(|(_, c)| *c > 1).map(|(k, _)| k).collect()
 }
 
 /// Boundary faces as facets, outward-oriented.
 pub fn boundary_facets(mesh: &Mesh) -> Vec<Facet> {
     let mut out: Vec<(usize, Facet)> = boundary_faces(mesh)
         .into_values()
-        .flatten()
         .map(|f| {
             (
                 f.element,
@@ -79,11 +123,13 @@ impl Mesh {
     /// match no element face are returned.
     pub fn orient_surfaces(&mut self) -> Vec<OrphanFacet> {
         let faces = boundary_faces(self);
+        let mut interior = None;
         let mut orphans = Vec::new();
         for surface in &mut self.surfaces {
             for facet in &mut surface.facets {
-                match faces.get(&face_key(&facet.nodes)) {
-                    Some(Some(face)) => {
+                let key = face_key(&facet.nodes);
+                match faces.get(&key) {
+                    Some(face) => {
                         // keep the facet's first node, follow the face's cycle
                         let start = face.nodes.iter().position(|&n| n == facet.nodes[0]);
                         if let Some(s) = start {
@@ -91,11 +137,16 @@ impl Mesh {
                             facet.nodes = (0..k).map(|i| face.nodes[(s + i) % k]).collect();
                         }
                     }
-                    Some(None) => {}
-                    None => orphans.push(OrphanFacet {
-                        surface: surface.name.clone(),
-                        facet_id: facet.id,
-                    }),
+                    None => {
+                        // an interface between two regions keeps its orientation
+                        let interior = interior.get_or_insert_with(|| interior_face_keys_of(&self.elements));
+                        if !interior.contains(&key) {
+                            orphans.push(OrphanFacet {
+                                surface: surface.name.clone(),
+                                facet_id: facet.id,
+                            });
+                        }
+                    }
                 }
             }
         }

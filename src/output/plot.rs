@@ -4,9 +4,9 @@
 //! Drawn with plotters' SVG backend without any font feature: the backend
 //! writes text as SVG `<text>` elements (font family `sans-serif`) that the
 //! viewer renders with its own fonts, so no font file and no system font
-//! library are needed. Plotters only estimates text extents for layout
-//! (roughly 0.6 em per character), which is why the label areas are sized
-//! generously.
+//! library are needed. Without a font feature plotters only estimates text
+//! extents for its layout (a fixed width per character), which is why the
+//! label areas are sized generously.
 
 use std::path::Path;
 

@@ -4,14 +4,15 @@
 //! Drawn with plotters' SVG backend without any font feature: the backend
 //! writes text as SVG `<text>` elements (font family `sans-serif`) that the
 //! viewer renders with its own fonts, so no font file and no system font
-//! library are needed. Plotters only estimates text extents for layout
-//! (roughly 0.6 em per character), which is why the label areas are sized
-//! generously.
+//! library are needed. Without a font feature plotters only estimates text
+//! extents for its layout (a fixed width per character), which is why the
+//! label areas are sized generously.
 
 use std::path::Path;
 
 use plotters::coord::combinators::IntoLogRange;
 use plotters::prelude::*;
+use plotters::style::text_anchor::{HPos, Pos, VPos};
 
 use super::write_atomically;
 
@@ -31,14 +32,17 @@ pub struct StepResiduals {
 /// legend.
 const MAX_LEGEND_STEPS: usize = 12;
 
-/// Residuals below this (or not finite) are not drawn (a residual of
-/// exactly zero cannot be shown on a log scale).
-const SMALLEST_RESIDUAL: f64 = 1e-300;
+/// At most this many decades are shown below the largest residual; smaller
+/// residuals are not drawn (they are zero for any practical purpose, and an
+/// unbounded log axis would have no usable ticks).
+const MAX_DECADES: i32 = 30;
 
 /// Writes the convergence plot of `steps` to `path` (SVG), atomically.
 ///
-/// Residuals that are zero, negative, below 1e-300 or not finite are
-/// skipped; a step without any drawable residual is left out of the plot.
+/// Residuals that are zero, negative or not finite are skipped, and so are
+/// residuals more than 30 decades below the largest one (or outside
+/// 1e-300‥1e300); a step without any drawable residual is left out of the
+/// plot, but keeps its colour.
 /// An empty `steps` gives an empty, labelled plot.
 pub fn write_convergence_plot(path: &Path, steps: &[StepResiduals]) -> crate::Result<()> {
     let svg = render_convergence_plot(steps)
@@ -46,12 +50,14 @@ pub fn write_convergence_plot(path: &Path, steps: &[StepResiduals]) -> crate::Re
     write_atomically(path, |w| w.write_all(svg.as_bytes()))
 }
 
-/// The drawable points (iteration, residual) of one step.
-fn points(step: &StepResiduals) -> Vec<(i32, f64)> {
+/// The drawable points (iteration, residual) of one step: residuals within
+/// the decades `lo..=hi`.
+fn points(step: &StepResiduals, (lo, hi): (i32, i32)) -> Vec<(i32, f64)> {
+    let (min, max) = (10f64.powi(lo), 10f64.powi(hi));
     step.residuals
         .iter()
         .enumerate()
-        .filter(|(_, r)| r.is_finite() && **r >= SMALLEST_RESIDUAL)
+        .filter(|(_, r)| r.is_finite() && **r >= min && **r <= max)
         .map(|(k, r)| (i32::try_from(k).unwrap_or(i32::MAX), *r))
         .collect()
 }
@@ -92,19 +98,21 @@ fn step_colour(index: usize, count: usize) -> RGBColor {
     RGBColor(mix(a.0, b.0), mix(a.1, b.1), mix(a.2, b.2))
 }
 
-/// The log-scale y range: whole decades around the data.
-fn y_range(steps: &[Vec<(i32, f64)>]) -> (f64, f64) {
-    let values = steps.iter().flatten().map(|p| p.1);
-    let (min, max) = values.fold((f64::INFINITY, 0.0f64), |(lo, hi), r| (lo.min(r), hi.max(r)));
-    if !(min.is_finite() && max > 0.0) {
-        return (1e-10, 1.0);
+/// The decades `(lo, hi)` of the log-scale y axis: whole decades around
+/// the positive finite residuals, at most [`MAX_DECADES`] below the largest,
+/// within 1e-300‥1e300. Without any such residual, `(-10, 0)`.
+fn y_decades<'a>(residuals: impl Iterator<Item = &'a f64>) -> (i32, i32) {
+    let (min, max) = residuals
+        .filter(|r| r.is_finite() && **r > 0.0)
+        .fold((f64::INFINITY, 0.0f64), |(lo, hi), &r| {
+            (lo.min(r), hi.max(r))
+        });
+    if max <= 0.0 {
+        return (-10, 0);
     }
-    let lo = min.log10().floor().clamp(-300.0, 307.0) as i32;
-    let mut hi = max.log10().ceil().clamp(-300.0, 308.0) as i32;
-    if hi <= lo {
-        hi = lo + 1;
-    }
-    (10f64.powi(lo), 10f64.powi(hi))
+    let hi = (max.log10().ceil() as i32).clamp(-299, 300);
+    let lo = (min.log10().floor() as i32).clamp((hi - MAX_DECADES).max(-300), hi - 1);
+    (lo, hi)
 }
 
 /// Formats a log-axis tick, e.g. `1e-6`.
@@ -115,30 +123,60 @@ fn format_tick(y: &f64) -> String {
 /// The SVG text of the plot.
 fn render_convergence_plot(steps: &[StepResiduals]) -> Result<String, String> {
     let err = |e: plotters::drawing::DrawingAreaErrorKind<std::io::Error>| e.to_string();
+    let decades = y_decades(steps.iter().flat_map(|s| s.residuals.iter()));
     let drawn: Vec<(usize, Vec<(i32, f64)>)> = steps
         .iter()
         .enumerate()
-        .map(|(i, s)| (i, points(s)))
+        .map(|(i, s)| (i, points(s, decades)))
         .filter(|(_, p)| !p.is_empty())
         .collect();
-    let all: Vec<Vec<(i32, f64)>> = drawn.iter().map(|(_, p)| p.clone()).collect();
-    let (y_lo, y_hi) = y_range(&all);
-    let x_hi = all
+    let x_hi = drawn
         .iter()
-        .flatten()
-        .map(|p| p.0)
+        .flat_map(|(_, p)| p.iter().map(|p| p.0))
         .max()
         .unwrap_or(0)
         .max(1);
+    // A factor 2 of margin at both ends, so that the markers there are not
+    // cut and the end decades get their tick labels.
+    let y_lo = 0.5 * 10f64.powi(decades.0);
+    let y_hi = 2.0 * 10f64.powi(decades.1);
     let legend = steps.len() <= MAX_LEGEND_STEPS;
+    let (width, height) = (900u32, 580u32);
+    let centre = width as i32 / 2;
 
     let mut svg = String::new();
     {
-        let root = SVGBackend::with_string(&mut svg, (900, 560)).into_drawing_area();
+        let root = SVGBackend::with_string(&mut svg, (width, height)).into_drawing_area();
         root.fill(&WHITE).map_err(err)?;
-        let mut chart = ChartBuilder::on(&root)
-            .caption("Newton convergence", ("sans-serif", 28))
+        let (header, body) = root.split_vertically(70);
+        let title = ("sans-serif", 28)
+            .into_text_style(&header)
+            .pos(Pos::new(HPos::Center, VPos::Top));
+        header
+            .draw_text("Newton convergence", &title, (centre, 10))
+            .map_err(err)?;
+        let note = if drawn.is_empty() {
+            Some("no residuals to show".to_string())
+        } else if !legend {
+            Some(format!(
+                "{} steps, coloured from the first (dark blue) to the last (yellow)",
+                steps.len()
+            ))
+        } else {
+            None
+        };
+        if let Some(note) = note {
+            let grey = BLACK.mix(0.7);
+            let style = ("sans-serif", 17)
+                .into_text_style(&header)
+                .color(&grey)
+                .pos(Pos::new(HPos::Center, VPos::Top));
+            header.draw_text(&note, &style, (centre, 45)).map_err(err)?;
+        }
+
+        let mut chart = ChartBuilder::on(&body)
             .margin(15)
+            .margin_top(5)
             .x_label_area_size(55)
             .y_label_area_size(85)
             .build_cartesian_2d(0..x_hi, (y_lo..y_hi).log_scale())
@@ -163,16 +201,13 @@ fn render_convergence_plot(steps: &[StepResiduals]) -> Result<String, String> {
                 ))
                 .map_err(err)?;
             if legend {
-                line.label(steps[*index].label.as_str()).legend(move |(x, y)| {
-                    PathElement::new(vec![(x, y), (x + 20, y)], colour.stroke_width(2))
-                });
+                line.label(steps[*index].label.as_str())
+                    .legend(move |(x, y)| {
+                        PathElement::new(vec![(x, y), (x + 20, y)], colour.stroke_width(2))
+                    });
             }
             chart
-                .draw_series(
-                    points
-                        .iter()
-                        .map(|&p| Circle::new(p, 3, colour.filled())),
-                )
+                .draw_series(points.iter().map(|&p| Circle::new(p, 3, colour.filled())))
                 .map_err(err)?;
         }
 
@@ -185,25 +220,6 @@ fn render_convergence_plot(steps: &[StepResiduals]) -> Result<String, String> {
                 .label_font(("sans-serif", 15))
                 .draw()
                 .map_err(err)?;
-        } else if !legend {
-            let note = format!(
-                "{} steps, coloured from the first (dark blue) to the last (yellow)",
-                steps.len()
-            );
-            root.draw_text(
-                &note,
-                &("sans-serif", 15).into_text_style(&root).color(&BLACK.mix(0.7)),
-                (110, 45),
-            )
-            .map_err(err)?;
-        }
-        if drawn.is_empty() {
-            root.draw_text(
-                "no residuals to show",
-                &("sans-serif", 18).into_text_style(&root).color(&BLACK.mix(0.6)),
-                (380, 270),
-            )
-            .map_err(err)?;
         }
         root.present().map_err(err)?;
     }
@@ -287,7 +303,10 @@ mod tests {
         let steps = vec![
             step("zeros", &[0.0, 0.0]),
             step("empty", &[]),
-            step("mixed", &[1.0, f64::NAN, -1.0, f64::INFINITY, 1e-6, 0.0, 5e-324]),
+            step(
+                "mixed",
+                &[1.0, f64::NAN, -1.0, f64::INFINITY, 1e-6, 0.0, 5e-324],
+            ),
             step("single", &[1e-3]),
         ];
         write_convergence_plot(&path, &steps).unwrap();
@@ -298,15 +317,21 @@ mod tests {
         assert_eq!(lines_of(&svg, 2, 4), 2);
         assert!(!svg.contains("NaN") && !svg.contains("inf"));
 
+        // Residuals far below the largest are not drawn.
+        let svg = render_convergence_plot(&[step("deep", &[1.0, 1e-5, 1e-40])]).unwrap();
+        assert_eq!(svg.matches("<circle").count(), 2);
+
         write_convergence_plot(&path, &[step("all zero", &[0.0])]).unwrap();
         // Extreme but finite residuals keep the axis finite.
         write_convergence_plot(&path, &[step("huge", &[1e308, 1e-300])]).unwrap();
     }
 
     #[test]
-    fn y_range_is_whole_decades() {
-        assert_eq!(y_range(&[vec![(0, 0.5), (1, 2e-7)]]), (1e-7, 1.0));
-        assert_eq!(y_range(&[vec![(0, 1.0)]]), (1.0, 10.0));
-        assert_eq!(y_range(&[]), (1e-10, 1.0));
+    fn y_axis_spans_whole_decades() {
+        assert_eq!(y_decades([0.5, 2e-7, 0.0, f64::NAN].iter()), (-7, 0));
+        assert_eq!(y_decades([1.0].iter()), (-1, 0));
+        assert_eq!(y_decades([].iter()), (-10, 0));
+        assert_eq!(y_decades([1e308, 5e-324].iter()), (270, 300));
+        assert_eq!(y_decades([1.0, 1e-100].iter()), (-30, 0));
     }
 }

@@ -43,7 +43,11 @@ impl PvdCollection {
         let file = file.into();
         if !time.is_finite() {
             let message = format!("the time {time} of data set '{file}' is not finite");
-            return Err(crate::Error::io("write", &self.path, invalid_input(message)));
+            return Err(crate::Error::io(
+                "write",
+                &self.path,
+                invalid_input(message),
+            ));
         }
         self.entries.push((time, file));
         let result = self.write();
@@ -94,7 +98,11 @@ mod tests {
         let dir = tempfile::tempdir().unwrap();
         let path = dir.path().join("result.pvd");
         let mut pvd = PvdCollection::new(&path);
-        let steps = [(0.25, "step_0001.vtu"), (0.5, "step_0002.vtu"), (1e-9 + 1.0, "a&b.vtu")];
+        let steps = [
+            (0.25, "step_0001.vtu"),
+            (0.5, "step_0002.vtu"),
+            (1e-9 + 1.0, "a&b.vtu"),
+        ];
         for (i, (time, file)) in steps.iter().enumerate() {
             pvd.add(*time, *file).unwrap();
             let text = std::fs::read_to_string(&path).unwrap();

@@ -216,10 +216,16 @@ fn data_array<T: Scalar>(
     values: impl Iterator<Item = T>,
     len: usize,
 ) -> io::Result<()> {
+    // One component is VTK's default; leaving the attribute out makes
+    // meshio read scalars as 1-D arrays.
+    let components = if components == 1 {
+        String::new()
+    } else {
+        format!(" NumberOfComponents=\"{components}\"")
+    };
     write!(
         w,
-        "        <DataArray type=\"{vtk_type}\" Name=\"{}\" \
-         NumberOfComponents=\"{components}\" format=\"binary\">\n          ",
+        "        <DataArray type=\"{vtk_type}\" Name=\"{}\"{components} format=\"binary\">\n          ",
         xml_escape(name)
     )?;
     {
@@ -280,7 +286,9 @@ mod tests {
                 .collect()
         }
         fn components(&self) -> usize {
-            self.attributes["NumberOfComponents"].parse().unwrap()
+            self.attributes
+                .get("NumberOfComponents")
+                .map_or(1, |n| n.parse().unwrap())
         }
     }
 
@@ -346,7 +354,8 @@ mod tests {
         let mesh = box_mesh(kind, [2, 2, 2], [1.0, 1.0, 1.0]);
         let (np, nc) = (mesh.nodes.len(), mesh.elements.len());
         // Values that do not survive a decimal round trip, plus extremes.
-        let mut displacement: Vec<f64> = (0..3 * np).map(|i| (i as f64 * 0.7).sin() / 3.0).collect();
+        let mut displacement: Vec<f64> =
+            (0..3 * np).map(|i| (i as f64 * 0.7).sin() / 3.0).collect();
         displacement[0] = f64::MIN_POSITIVE;
         displacement[1] = -1e300;
         let stress: Vec<f64> = (0..9 * nc).map(|i| (i as f64).sqrt() * 1e5 - 7.0).collect();
@@ -357,10 +366,22 @@ mod tests {
         write_vtu(
             &path,
             &mesh,
-            &[Field { name: "displacement", components: 3, values: &displacement }],
+            &[Field {
+                name: "displacement",
+                components: 3,
+                values: &displacement,
+            }],
             &[
-                Field { name: "stress", components: 9, values: &stress },
-                Field { name: "element id", components: 1, values: &id },
+                Field {
+                    name: "stress",
+                    components: 9,
+                    values: &stress,
+                },
+                Field {
+                    name: "element id",
+                    components: 1,
+                    values: &id,
+                },
             ],
         )
         .unwrap();
@@ -399,6 +420,7 @@ mod tests {
         assert_eq!(s.components(), 9);
         assert_eq!(s.f64s(), stress);
         let e = find(&arrays, "CellData", "element id");
+        assert!(!e.attributes.contains_key("NumberOfComponents"));
         assert_eq!(e.components(), 1);
         assert_eq!(e.f64s(), id);
         // Only the target is left in the folder (the temporary was renamed).
@@ -437,8 +459,16 @@ mod tests {
         let err = write_vtu(
             &path,
             &mesh,
-            &[Field { name: "displacement", components: 3, values: &good }],
-            &[Field { name: "cauchy_stress", components: 9, values: &short }],
+            &[Field {
+                name: "displacement",
+                components: 3,
+                values: &good,
+            }],
+            &[Field {
+                name: "cauchy_stress",
+                components: 9,
+                values: &short,
+            }],
         )
         .unwrap_err();
         let message = err.to_string();
@@ -452,17 +482,34 @@ mod tests {
         let err = write_vtu(
             &path,
             &mesh,
-            &[Field { name: "pressure", components: 1, values: &[0.0; 8] }],
+            &[Field {
+                name: "pressure",
+                components: 1,
+                values: &[0.0; 8],
+            }],
             &[],
         )
         .unwrap_err();
         assert!(err.to_string().contains("point field 'pressure'"), "{err}");
 
         // Zero components and duplicate names.
-        let err = write_vtu(&path, &mesh, &[Field { name: "z", components: 0, values: &[] }], &[])
-            .unwrap_err();
+        let err = write_vtu(
+            &path,
+            &mesh,
+            &[Field {
+                name: "z",
+                components: 0,
+                values: &[],
+            }],
+            &[],
+        )
+        .unwrap_err();
         assert!(err.to_string().contains("'z'"), "{err}");
-        let f = Field { name: "u", components: 3, values: &good };
+        let f = Field {
+            name: "u",
+            components: 3,
+            values: &good,
+        };
         let err = write_vtu(&path, &mesh, &[f, f], &[]).unwrap_err();
         assert!(err.to_string().contains("'u'"), "{err}");
         assert!(!path.exists());
@@ -483,8 +530,17 @@ mod tests {
         let dir = tempfile::tempdir().unwrap();
         let path = dir.path().join("e.vtu");
         let values = vec![1.0; mesh.nodes.len()];
-        write_vtu(&path, &mesh, &[Field { name: "a<\"b\">&c", components: 1, values: &values }], &[])
-            .unwrap();
+        write_vtu(
+            &path,
+            &mesh,
+            &[Field {
+                name: "a<\"b\">&c",
+                components: 1,
+                values: &values,
+            }],
+            &[],
+        )
+        .unwrap();
         let text = std::fs::read_to_string(&path).unwrap();
         assert!(text.contains(r#"Name="a&lt;&quot;b&quot;&gt;&amp;c""#));
     }

@@ -30,7 +30,7 @@ pub mod output;
 
 pub use error::{Error, Result};
 pub mod assembly;
-pub mod solve;
-pub mod problem;
 pub mod case;
+pub mod problem;
 pub mod run;
+pub mod solve;

@@ -6,7 +6,11 @@ use std::path::PathBuf;
 use std::process::ExitCode;
 
 #[derive(Parser)]
-#[command(name = "signorini", version, about = "Nonlinear 3D contact mechanics by finite elements")]
+#[command(
+    name = "signorini",
+    version,
+    about = "Nonlinear 3D contact mechanics by finite elements"
+)]
 struct Cli {
     #[command(subcommand)]
     command: Command,
@@ -57,10 +61,17 @@ fn main() -> ExitCode {
     }
 }
 
-fn run(case: PathBuf, output: Option<PathBuf>, threads: Option<usize>, quiet: bool) -> signorini::Result<()> {
+fn run(
+    case: PathBuf,
+    output: Option<PathBuf>,
+    threads: Option<usize>,
+    quiet: bool,
+) -> signorini::Result<()> {
     if let Some(t) = threads {
         // Only fails if a pool already exists, which cannot happen here.
-        let _ = rayon::ThreadPoolBuilder::new().num_threads(t.max(1)).build_global();
+        let _ = rayon::ThreadPoolBuilder::new()
+            .num_threads(t.max(1))
+            .build_global();
     }
     let options = signorini::run::RunOptions { output, quiet };
     let outcome = signorini::run::run(&case, &options)?;
@@ -84,14 +95,23 @@ fn check(case: PathBuf) -> signorini::Result<()> {
     println!("case      {}", case.display());
     println!("nodes     {}", mesh.num_nodes());
     println!("elements  {}", mesh.elements.len());
-    println!("dofs      {} ({} prescribed)", problem.model.num_dofs(), problem.constrained_dofs().iter().filter(|&&c| c).count());
+    println!(
+        "dofs      {} ({} prescribed)",
+        problem.model.num_dofs(),
+        problem.constrained_dofs().iter().filter(|&&c| c).count()
+    );
     println!("regions:");
     for r in &mesh.regions {
         println!("  {:<20} {} elements", r.name, r.elements.len());
     }
     println!("surface sets:");
     for s in &mesh.surfaces {
-        println!("  {:<20} {} facets, {} nodes", s.name, s.facets.len(), mesh.surface_nodes(s).len());
+        println!(
+            "  {:<20} {} facets, {} nodes",
+            s.name,
+            s.facets.len(),
+            mesh.surface_nodes(s).len()
+        );
     }
     println!("steps:");
     for s in &problem.steps {

@@ -228,7 +228,8 @@ impl Problem {
         mut tangent: Option<&mut [f64]>,
     ) -> Result<Residual, ElementFailure> {
         let mut r = vec![0.0; self.model.num_dofs()];
-        self.model.assemble_internal(u, &mut r, tangent.as_deref_mut())?;
+        self.model
+            .assemble_internal(u, &mut r, tangent.as_deref_mut())?;
         let internal_norm = norm(&r);
         let f_ext = self.external_force(t, u, tangent);
         for (ri, fi) in r.iter_mut().zip(&f_ext) {

@@ -80,7 +80,13 @@ struct Writer {
 }
 
 impl Writer {
-    fn new(case: &Case, problem: &Problem, dir: &Path, quiet: bool, start: Instant) -> Result<Self> {
+    fn new(
+        case: &Case,
+        problem: &Problem,
+        dir: &Path,
+        quiet: bool,
+        start: Instant,
+    ) -> Result<Self> {
         std::fs::create_dir_all(dir).map_err(|e| Error::io("create output folder", dir, e))?;
         let name = case.output_name();
         remove_old_series(dir, &name)?;
@@ -153,11 +159,19 @@ impl Writer {
 }
 
 impl StepObserver for Writer {
-    fn on_converged(&mut self, problem: &Problem, record: &IncrementRecord, u: &[f64]) -> Result<()> {
+    fn on_converged(
+        &mut self,
+        problem: &Problem,
+        record: &IncrementRecord,
+        u: &[f64],
+    ) -> Result<()> {
         let index = self.summary.increments.len() + 1;
         let file = format!("{}_{index:04}.vtu", self.name);
         let stresses = problem.model.cauchy_stresses(u);
-        let cauchy: Vec<f64> = stresses.iter().flat_map(|s| s.transpose().iter().copied().collect::<Vec<_>>()).collect();
+        let cauchy: Vec<f64> = stresses
+            .iter()
+            .flat_map(|s| s.transpose().iter().copied().collect::<Vec<_>>())
+            .collect();
         let von_mises: Vec<f64> = stresses.iter().map(crate::material::von_mises).collect();
         vtu::write_vtu(
             &self.dir.join(&file),
@@ -204,8 +218,10 @@ impl StepObserver for Writer {
         self.summary.wall_time = self.start.elapsed().as_secs_f64();
         self.summary.write(&self.dir.join("summary.json"))?;
         let end = problem.steps.last().map(|s| s.end_time).unwrap_or(1.0);
-        self.progress.set_position((1000.0 * record.time / end) as u64);
-        self.progress.set_message(format!("{:.4} ({})", record.time, record.step_name));
+        self.progress
+            .set_position((1000.0 * record.time / end) as u64);
+        self.progress
+            .set_message(format!("{:.4} ({})", record.time, record.step_name));
         self.log(format!(
             "step '{}'  t = {:.6}  Δt = {:.3e}  iterations {:2}  residual {:.2e}",
             record.step_name, record.time, record.increment, record.iterations, final_residual
@@ -227,7 +243,9 @@ pub fn fill_reducing_ordering(problem: &Problem) -> Result<Ordering> {
         return Ok(Ordering::Amd);
     }
     let (xadj, adjncy) = problem.model.pattern.node_graph();
-    Ok(Ordering::Custom(crate::solve::ordering::nested_dissection(&xadj, &adjncy)?))
+    Ok(Ordering::Custom(crate::solve::ordering::nested_dissection(
+        &xadj, &adjncy,
+    )?))
 }
 
 /// Remove VTU files of an earlier run with the same name, so the folder
@@ -241,7 +259,8 @@ fn remove_old_series(dir: &Path, name: &str) -> Result<()> {
             .and_then(|rest| rest.strip_suffix(".vtu"))
             .is_some_and(|n| n.chars().all(|c| c.is_ascii_digit()));
         if ours {
-            std::fs::remove_file(entry.path()).map_err(|e| Error::io("remove old result", entry.path(), e))?;
+            std::fs::remove_file(entry.path())
+                .map_err(|e| Error::io("remove old result", entry.path(), e))?;
         }
     }
     Ok(())

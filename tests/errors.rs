@@ -60,7 +60,10 @@ fn expect_failure(case: &str, expect: &[&str]) {
     write_cube(dir.path());
     std::fs::write(dir.path().join("case.toml"), case).unwrap();
     for cmd in ["check", "run"] {
-        let (code, err) = signorini(dir.path(), &[cmd, "case.toml", "--quiet"][..if cmd == "check" { 2 } else { 3 }]);
+        let (code, err) = signorini(
+            dir.path(),
+            &[cmd, "case.toml", "--quiet"][..if cmd == "check" { 2 } else { 3 }],
+        );
         assert_eq!(code, 1, "{cmd}: exit code {code}, stderr {err}");
         for e in expect {
             assert!(err.contains(e), "{cmd}: '{e}' not in: {err}");
@@ -75,7 +78,10 @@ fn valid_case_checks_and_runs() {
     std::fs::write(dir.path().join("case.toml"), CASE).unwrap();
     let (code, err) = signorini(dir.path(), &["check", "case.toml"]);
     assert_eq!(code, 0, "{err}");
-    let (code, err) = signorini(dir.path(), &["run", "case.toml", "--quiet", "--threads", "1"]);
+    let (code, err) = signorini(
+        dir.path(),
+        &["run", "case.toml", "--quiet", "--threads", "1"],
+    );
     assert_eq!(code, 0, "{err}");
     assert!(dir.path().join("results/summary.json").exists());
 }
@@ -85,7 +91,10 @@ fn missing_case_file() {
     let dir = tempfile::tempdir().unwrap();
     let (code, err) = signorini(dir.path(), &["run", "nothing.toml"]);
     assert_eq!(code, 1);
-    assert!(err.contains("nothing.toml") && err.contains("cannot read case file"), "{err}");
+    assert!(
+        err.contains("nothing.toml") && err.contains("cannot read case file"),
+        "{err}"
+    );
 }
 
 #[test]
@@ -106,7 +115,10 @@ fn malformed_mesh_says_where() {
     std::fs::write(dir.path().join("case.toml"), CASE).unwrap();
     let (code, err) = signorini(dir.path(), &["check", "case.toml"]);
     assert_eq!(code, 1);
-    assert!(err.contains("cube.msh") && err.contains(&format!("line {}", at + 1)), "{err}");
+    assert!(
+        err.contains("cube.msh") && err.contains(&format!("line {}", at + 1)),
+        "{err}"
+    );
 }
 
 #[test]
@@ -115,7 +127,10 @@ fn unknown_group_lists_the_available_ones() {
         &CASE.replace("surface = \"zmax\"", "surface = \"lid\""),
         &["displacement[1].surface", "'lid'", "zmax", "xmin"],
     );
-    expect_failure(&CASE.replace("region = \"body\"", "region = \"rubber\""), &["'rubber'", "body"]);
+    expect_failure(
+        &CASE.replace("region = \"body\"", "region = \"rubber\""),
+        &["'rubber'", "body"],
+    );
 }
 
 #[test]
@@ -151,7 +166,10 @@ fn inverted_element_is_named() {
     // msh22 numbers surface facets first, then the volume elements
     let facets: usize = mesh.surfaces.iter().map(|s| s.facets.len()).sum();
     let id = facets + 4;
-    assert!(err.contains(&format!("element {id}")) && err.contains("inverted"), "{err}");
+    assert!(
+        err.contains(&format!("element {id}")) && err.contains("inverted"),
+        "{err}"
+    );
 }
 
 /// Newton failing after all cuts: the converged increments of the first
@@ -168,9 +186,14 @@ fn no_convergence_keeps_converged_steps() {
     std::fs::write(dir.path().join("case.toml"), case).unwrap();
     let (code, err) = signorini(dir.path(), &["run", "case.toml", "--quiet"]);
     assert_eq!(code, 1, "{err}");
-    assert!(err.contains("step 'crush'") && err.contains("did not converge"), "{err}");
-    let summary: serde_json::Value =
-        serde_json::from_str(&std::fs::read_to_string(dir.path().join("results/summary.json")).unwrap()).unwrap();
+    assert!(
+        err.contains("step 'crush'") && err.contains("did not converge"),
+        "{err}"
+    );
+    let summary: serde_json::Value = serde_json::from_str(
+        &std::fs::read_to_string(dir.path().join("results/summary.json")).unwrap(),
+    )
+    .unwrap();
     assert_eq!(summary["status"], "failed");
     let increments = summary["increments"].as_array().unwrap();
     assert!(increments.len() >= 2, "the press step converged");

@@ -18,7 +18,11 @@ use std::sync::Arc;
 /// (a homogeneous deformation is an exact solution of both).
 #[test]
 fn patch_test_reproduces_affine_field() {
-    let a = [[0.02, -0.01, 0.005], [0.003, -0.015, 0.01], [-0.004, 0.006, 0.012]];
+    let a = [
+        [0.02, -0.01, 0.005],
+        [0.003, -0.015, 0.01],
+        [-0.004, 0.006, 0.012],
+    ];
     let c = [0.1, -0.2, 0.05];
     let materials: Vec<Arc<dyn Material>> = vec![
         Arc::new(LinearElastic::new(200.0, 0.3, "m").unwrap()),
@@ -126,10 +130,16 @@ fn bar_l2_error(kind: ElementKind, nx: usize) -> f64 {
 #[test]
 fn bar_under_body_force_converges_at_rate_two() {
     for kind in [ElementKind::Hex8, ElementKind::Tet4] {
-        let errors: Vec<f64> = [4, 8, 16].iter().map(|&nx| bar_l2_error(kind, nx)).collect();
+        let errors: Vec<f64> = [4, 8, 16]
+            .iter()
+            .map(|&nx| bar_l2_error(kind, nx))
+            .collect();
         for w in errors.windows(2) {
             let rate = (w[0] / w[1]).log2();
-            assert!((rate - 2.0).abs() < 0.25, "{kind:?}: errors {errors:?}, rate {rate}");
+            assert!(
+                (rate - 2.0).abs() < 0.25,
+                "{kind:?}: errors {errors:?}, rate {rate}"
+            );
         }
     }
 }
@@ -152,7 +162,15 @@ fn bisect(f: impl Fn(f64) -> f64, mut lo: f64, mut hi: f64) -> f64 {
 /// Uniaxial tension of a unit cube to stretch 2 (symmetry planes at x, y,
 /// z = 0, x = 1 pulled to x = 2). Returns (lateral stretch, σ₁₁ of every
 /// element, the reaction force on xmax, the increments).
-fn uniaxial(material: Arc<dyn Material>, kind: ElementKind) -> (f64, Vec<f64>, f64, Vec<signorini::solve::stepping::IncrementRecord>) {
+fn uniaxial(
+    material: Arc<dyn Material>,
+    kind: ElementKind,
+) -> (
+    f64,
+    Vec<f64>,
+    f64,
+    Vec<signorini::solve::stepping::IncrementRecord>,
+) {
     let mesh = box_mesh(kind, [2, 2, 2], [1.0, 1.0, 1.0]);
     let mut p = problem(mesh, material);
     fix(&mut p, "xmin", &[(0, 0.0)]);
@@ -163,11 +181,25 @@ fn uniaxial(material: Arc<dyn Material>, kind: ElementKind) -> (f64, Vec<f64>, f
     p.steps[0].max_increment = 0.25;
     let (u, incs) = solve(&p);
     let mesh = &p.model.mesh;
-    let corner = mesh.nodes.iter().position(|x| x == &[1.0, 1.0, 1.0]).unwrap();
+    let corner = mesh
+        .nodes
+        .iter()
+        .position(|x| x == &[1.0, 1.0, 1.0])
+        .unwrap();
     let lateral = 1.0 + u[3 * corner + 1];
-    let sigma: Vec<f64> = p.model.cauchy_stresses(&u).iter().map(|s| s[(0, 0)]).collect();
+    let sigma: Vec<f64> = p
+        .model
+        .cauchy_stresses(&u)
+        .iter()
+        .map(|s| s[(0, 0)])
+        .collect();
     let r = p.residual(1.0, &u, None).unwrap();
-    let reaction = p.surface_forces(&r.r).into_iter().find(|(n, _)| n == "xmax").unwrap().1[0];
+    let reaction = p
+        .surface_forces(&r.r)
+        .into_iter()
+        .find(|(n, _)| n == "xmax")
+        .unwrap()
+        .1[0];
     (lateral, sigma, reaction, incs)
 }
 
@@ -182,7 +214,10 @@ fn assert_quadratic(incs: &[signorini::solve::stepping::IncrementRecord]) {
         for w in r.windows(2) {
             if w[0] < 1e-2 && w[0] > 1e-7 && w[1] > 1e-15 {
                 let order = w[1].ln() / w[0].ln();
-                assert!(order > 1.8, "residuals {r:?}, steps {steps:?}: order {order}");
+                assert!(
+                    order > 1.8,
+                    "residuals {r:?}, steps {steps:?}: order {order}"
+                );
                 checked += 1;
             }
         }
@@ -197,18 +232,32 @@ fn assert_quadratic(incs: &[signorini::solve::stepping::IncrementRecord]) {
 #[test]
 fn neo_hookean_uniaxial_tension_to_stretch_two() {
     let (e, nu) = (10.0, 0.3);
-    let (lambda, mu) = (e * nu / ((1.0 + nu) * (1.0 - 2.0 * nu)), e / (2.0 * (1.0 + nu)));
+    let (lambda, mu) = (
+        e * nu / ((1.0 + nu) * (1.0 - 2.0 * nu)),
+        e / (2.0 * (1.0 + nu)),
+    );
     for kind in [ElementKind::Hex8, ElementKind::Tet4] {
-        let (t_fe, sigma, reaction, incs) = uniaxial(Arc::new(NeoHookean::new(e, nu, "m").unwrap()), kind);
+        let (t_fe, sigma, reaction, incs) =
+            uniaxial(Arc::new(NeoHookean::new(e, nu, "m").unwrap()), kind);
         let j = |t: f64| 2.0 * t * t;
-        let t = bisect(|t| mu / j(t) * (t * t - 1.0) + lambda * j(t).ln() / j(t), 0.3, 1.0);
+        let t = bisect(
+            |t| mu / j(t) * (t * t - 1.0) + lambda * j(t).ln() / j(t),
+            0.3,
+            1.0,
+        );
         let s11 = mu / j(t) * 3.0 + lambda * j(t).ln() / j(t);
-        assert!((t_fe - t).abs() < 1e-8 * t, "{kind:?}: lateral stretch {t_fe} vs {t}");
+        assert!(
+            (t_fe - t).abs() < 1e-8 * t,
+            "{kind:?}: lateral stretch {t_fe} vs {t}"
+        );
         for s in &sigma {
             assert!((s - s11).abs() < 1e-8 * s11, "{kind:?}: σ11 {s} vs {s11}");
         }
         // reaction = σ₁₁ × deformed area t²
-        assert!((reaction - s11 * t * t).abs() < 1e-7 * s11, "{kind:?}: reaction {reaction}");
+        assert!(
+            (reaction - s11 * t * t).abs() < 1e-7 * s11,
+            "{kind:?}: reaction {reaction}"
+        );
         assert_quadratic(&incs);
     }
 }
@@ -237,11 +286,20 @@ fn ogden_uniaxial_tension_to_stretch_two() {
         let (t_fe, sigma, reaction, incs) = uniaxial(mat.clone(), kind);
         let t = bisect(|t| stress([2.0, t, t])[1], 0.3, 1.2);
         let s11 = stress([2.0, t, t])[0];
-        assert!((t_fe - t).abs() < 1e-8 * t, "{kind:?}: lateral stretch {t_fe} vs {t}");
+        assert!(
+            (t_fe - t).abs() < 1e-8 * t,
+            "{kind:?}: lateral stretch {t_fe} vs {t}"
+        );
         for s in &sigma {
-            assert!((s - s11).abs() < 1e-7 * s11.abs(), "{kind:?}: σ11 {s} vs {s11}");
+            assert!(
+                (s - s11).abs() < 1e-7 * s11.abs(),
+                "{kind:?}: σ11 {s} vs {s11}"
+            );
         }
-        assert!((reaction - s11 * t * t).abs() < 1e-6 * s11.abs(), "{kind:?}: reaction {reaction}");
+        assert!(
+            (reaction - s11 * t * t).abs() < 1e-6 * s11.abs(),
+            "{kind:?}: reaction {reaction}"
+        );
         assert!(incs.iter().all(|i| i.iterations <= 20));
     }
 }
@@ -253,14 +311,20 @@ fn assembly_is_independent_of_thread_count() {
     let mut mesh = box_mesh(ElementKind::Hex8, [12, 10, 8], [1.0, 1.0, 1.0]);
     perturb_interior(&mut mesh, [12, 10, 8], [1.0, 1.0, 1.0], 0.2, 3);
     let p = problem(mesh, Arc::new(NeoHookean::new(10.0, 0.3, "m").unwrap()));
-    let u: Vec<f64> = (0..p.model.num_dofs()).map(|i| 0.01 * ((i as f64) * 0.7).sin()).collect();
+    let u: Vec<f64> = (0..p.model.num_dofs())
+        .map(|i| 0.01 * ((i as f64) * 0.7).sin())
+        .collect();
     let assemble = |threads: usize| {
-        rayon::ThreadPoolBuilder::new().num_threads(threads).build().unwrap().install(|| {
-            let mut k = vec![0.0; p.model.pattern.nnz()];
-            let mut f = vec![0.0; p.model.num_dofs()];
-            p.model.assemble_internal(&u, &mut f, Some(&mut k)).unwrap();
-            (f, k)
-        })
+        rayon::ThreadPoolBuilder::new()
+            .num_threads(threads)
+            .build()
+            .unwrap()
+            .install(|| {
+                let mut k = vec![0.0; p.model.pattern.nnz()];
+                let mut f = vec![0.0; p.model.num_dofs()];
+                p.model.assemble_internal(&u, &mut f, Some(&mut k)).unwrap();
+                (f, k)
+            })
     };
     let (f1, k1) = assemble(1);
     let (f2, k2) = assemble(2);
@@ -301,7 +365,11 @@ fn assembled_tangent_matches_finite_difference() {
             }
             for i in 0..n {
                 let fd = (fp[i] - fm[i]) / (2.0 * h);
-                assert!((fd - column[i]).abs() < 1e-6 * (1.0 + column[i].abs()), "{kind:?} K[{i},{j}] {} vs fd {fd}", column[i]);
+                assert!(
+                    (fd - column[i]).abs() < 1e-6 * (1.0 + column[i].abs()),
+                    "{kind:?} K[{i},{j}] {} vs fd {fd}",
+                    column[i]
+                );
             }
         }
     }

@@ -55,7 +55,10 @@ pub fn reference_geometry(
             }
             let inv_t = j0.try_inverse().unwrap_or_else(Matrix3::zeros).transpose();
             Ok(PointGeometry {
-                gradients: r.gradients[q].iter().map(|g| inv_t * Vector3::from(*g)).collect(),
+                gradients: r.gradients[q]
+                    .iter()
+                    .map(|g| inv_t * Vector3::from(*g))
+                    .collect(),
                 dv: det * r.weights[q],
             })
         })
@@ -105,7 +108,11 @@ pub fn internal_force_and_tangent(
     let dofs = 3 * n;
     let mut out = ElementOutput {
         force: vec![0.0; dofs],
-        stiffness: if with_tangent { vec![0.0; dofs * dofs] } else { Vec::new() },
+        stiffness: if with_tangent {
+            vec![0.0; dofs * dofs]
+        } else {
+            Vec::new()
+        },
     };
     let small = material.kinematics() == Kinematics::SmallStrain;
     let mut b = vec![nalgebra::Matrix6x3::zeros(); n];

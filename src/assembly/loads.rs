@@ -39,7 +39,11 @@ pub fn pressure_facet(
     let r = facet_reference(kind);
     let n = coords.len();
     let mut force = vec![0.0; 3 * n];
-    let mut k = if with_tangent { vec![0.0; 9 * n * n] } else { Vec::new() };
+    let mut k = if with_tangent {
+        vec![0.0; 9 * n * n]
+    } else {
+        Vec::new()
+    };
     for q in 0..r.num_points() {
         let mut a1 = Vector3::zeros();
         let mut a2 = Vector3::zeros();
@@ -81,7 +85,12 @@ mod tests {
     /// equally between the nodes of a square.
     #[test]
     fn uniform_pressure_on_flat_facets() {
-        let quad = [[0.0, 0.0, 1.0], [2.0, 0.0, 1.0], [2.0, 2.0, 1.0], [0.0, 2.0, 1.0]];
+        let quad = [
+            [0.0, 0.0, 1.0],
+            [2.0, 0.0, 1.0],
+            [2.0, 2.0, 1.0],
+            [0.0, 2.0, 1.0],
+        ];
         let (f, _) = pressure_facet(FacetKind::Quad4, &quad, 3.0, false);
         for a in 0..4 {
             assert!((f[3 * a + 2] + 3.0).abs() < 1e-13);
@@ -98,8 +107,19 @@ mod tests {
     #[test]
     fn follower_tangent_matches_finite_difference() {
         for (kind, coords) in [
-            (FacetKind::Quad4, vec![[0.1, 0.0, 1.0], [2.0, 0.3, 1.2], [2.2, 2.0, 0.8], [0.0, 1.9, 1.0]]),
-            (FacetKind::Tri3, vec![[0.0, 0.1, 0.2], [1.1, 0.0, 0.3], [0.2, 0.9, -0.1]]),
+            (
+                FacetKind::Quad4,
+                vec![
+                    [0.1, 0.0, 1.0],
+                    [2.0, 0.3, 1.2],
+                    [2.2, 2.0, 0.8],
+                    [0.0, 1.9, 1.0],
+                ],
+            ),
+            (
+                FacetKind::Tri3,
+                vec![[0.0, 0.1, 0.2], [1.1, 0.0, 0.3], [0.2, 0.9, -0.1]],
+            ),
         ] {
             let n = coords.len();
             let (_, k) = pressure_facet(kind, &coords, 2.5, true);
@@ -113,7 +133,10 @@ mod tests {
                     let (fm, _) = pressure_facet(kind, &cm, 2.5, false);
                     for r in 0..3 * n {
                         let fd = -(fp[r] - fm[r]) / (2.0 * h);
-                        assert!((fd - k[r * 3 * n + 3 * b + j]).abs() < 1e-7, "{kind:?} {r} {b} {j}");
+                        assert!(
+                            (fd - k[r * 3 * n + 3 * b + j]).abs() < 1e-7,
+                            "{kind:?} {r} {b} {j}"
+                        );
                     }
                 }
             }

@@ -55,8 +55,10 @@ impl Model {
             .enumerate()
             .map(|(e, el)| {
                 let coords: Vec<[f64; 3]> = el.nodes.iter().map(|&n| mesh.nodes[n]).collect();
-                kernel::reference_geometry(el.kind, &coords)
-                    .map_err(|failure| ElementFailure { element: e, failure })
+                kernel::reference_geometry(el.kind, &coords).map_err(|failure| ElementFailure {
+                    element: e,
+                    failure,
+                })
             })
             .collect::<Result<Vec<_>, _>>()?;
         let pattern = SparsityPattern::from_elements(
@@ -111,7 +113,10 @@ impl Model {
                         self.materials[self.element_material[e]].as_ref(),
                         with_tangent,
                     )
-                    .map_err(|failure| ElementFailure { element: e, failure })
+                    .map_err(|failure| ElementFailure {
+                        element: e,
+                        failure,
+                    })
                 })
                 .collect::<Result<Vec<_>, _>>()?;
             for (e, out) in (start..end).zip(outputs) {
@@ -146,7 +151,10 @@ impl Model {
 
     /// Reference volume of every element.
     pub fn element_volumes(&self) -> Vec<f64> {
-        self.geometry.iter().map(|g| g.iter().map(|p| p.dv).sum()).collect()
+        self.geometry
+            .iter()
+            .map(|g| g.iter().map(|p| p.dv).sum())
+            .collect()
     }
 
     /// `∫ N_a dV₀` for every node, over the elements in `elements`: the

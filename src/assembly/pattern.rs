@@ -17,7 +17,10 @@ pub struct SparsityPattern {
 impl SparsityPattern {
     /// Pattern of the matrix coupling every pair of nodes that share an
     /// element (`element_nodes` yields each element's node list).
-    pub fn from_elements<'a>(num_nodes: usize, element_nodes: impl Iterator<Item = &'a [usize]>) -> Self {
+    pub fn from_elements<'a>(
+        num_nodes: usize,
+        element_nodes: impl Iterator<Item = &'a [usize]>,
+    ) -> Self {
         let mut neighbours: Vec<Vec<usize>> = (0..num_nodes).map(|n| vec![n]).collect();
         for nodes in element_nodes {
             for &a in nodes {
@@ -42,7 +45,10 @@ impl SparsityPattern {
             }
         }
         let symbolic = SymbolicSparseColMat::new_checked(n, n, col_ptr, None, row_idx);
-        SparsityPattern { neighbours, symbolic }
+        SparsityPattern {
+            neighbours,
+            symbolic,
+        }
     }
 
     /// Number of rows (= columns).
@@ -114,7 +120,10 @@ mod tests {
                 for j in 0..3 {
                     let k = p.block_entry(a, i, b, j).unwrap();
                     assert_eq!(p.symbolic().row_idx()[k], 3 * a + i);
-                    assert!(k >= p.symbolic().col_ptr()[3 * b + j] && k < p.symbolic().col_ptr()[3 * b + j + 1]);
+                    assert!(
+                        k >= p.symbolic().col_ptr()[3 * b + j]
+                            && k < p.symbolic().col_ptr()[3 * b + j + 1]
+                    );
                 }
             }
         }

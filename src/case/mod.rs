@@ -8,7 +8,7 @@ use crate::assembly::Model;
 use crate::material::{self, Material};
 use crate::mesh::Mesh;
 use crate::problem::{
-    Amplitude, BodyForce, PressureLoad, PrescribedDisplacement, Problem, SolverSettings, Step,
+    Amplitude, BodyForce, PrescribedDisplacement, PressureLoad, Problem, SolverSettings, Step,
 };
 use crate::{Error, Result};
 use schema::{AmplitudeRef, CaseFile, MaterialModel};
@@ -43,7 +43,11 @@ pub fn parse(path: &Path, text: &str) -> Result<CaseFile> {
                 format!("line {line}: ")
             })
             .unwrap_or_default();
-        let key = if key == "." { String::new() } else { format!("at key '{key}': ") };
+        let key = if key == "." {
+            String::new()
+        } else {
+            format!("at key '{key}': ")
+        };
         case_error(path, format!("{location}{key}{msg}"))
     })
 }
@@ -52,7 +56,10 @@ pub fn parse(path: &Path, text: &str) -> Result<CaseFile> {
 pub fn load(path: &Path) -> Result<Case> {
     let text = std::fs::read_to_string(path).map_err(|e| Error::io("read case file", path, e))?;
     let spec = parse(path, &text)?;
-    let mesh_path = path.parent().unwrap_or(Path::new(".")).join(&spec.mesh.file);
+    let mesh_path = path
+        .parent()
+        .unwrap_or(Path::new("."))
+        .join(&spec.mesh.file);
     let mesh = crate::mesh::gmsh::read_msh(&mesh_path)?;
     if mesh.elements.is_empty() {
         return Err(Error::Mesh {
@@ -78,7 +85,9 @@ impl Case {
     pub fn output_dir(&self, override_dir: Option<&Path>) -> PathBuf {
         match override_dir {
             Some(d) => d.to_path_buf(),
-            None => self.dir().join(self.spec.output.folder.as_deref().unwrap_or("results")),
+            None => self
+                .dir()
+                .join(self.spec.output.folder.as_deref().unwrap_or("results")),
         }
     }
 
@@ -106,13 +115,19 @@ impl Case {
                 let have: Vec<&str> = self.spec.amplitudes.keys().map(|s| s.as_str()).collect();
                 self.err(format!(
                     "{key}: no amplitude named '{name}' in [amplitudes]; it has: {}",
-                    if have.is_empty() { "none".to_string() } else { have.join(", ") }
+                    if have.is_empty() {
+                        "none".to_string()
+                    } else {
+                        have.join(", ")
+                    }
                 ))
             })?,
             Some(AmplitudeRef::Points(p)) => p,
         };
         if points.is_empty() {
-            return Err(self.err(format!("{key}: an amplitude needs at least one [time, value] point")));
+            return Err(self.err(format!(
+                "{key}: an amplitude needs at least one [time, value] point"
+            )));
         }
         for w in points.windows(2) {
             if !(w[1][0] > w[0][0]) {
@@ -125,7 +140,9 @@ impl Case {
         if points.iter().flatten().any(|v| !v.is_finite()) {
             return Err(self.err(format!("{key}: amplitude values must be finite")));
         }
-        Ok(Amplitude::new(points.iter().map(|p| (p[0], p[1])).collect()))
+        Ok(Amplitude::new(
+            points.iter().map(|p| (p[0], p[1])).collect(),
+        ))
     }
 
     fn surface(&self, key: &str, name: &str) -> Result<&crate::mesh::SurfaceSet> {
@@ -154,7 +171,10 @@ impl Case {
         };
         let forbid = |present: bool, name: &str| {
             if present {
-                Err(self.err(format!("{key}.{name} does not apply to model {:?}; remove it", m.model)))
+                Err(self.err(format!(
+                    "{key}.{name} does not apply to model {:?}; remove it",
+                    m.model
+                )))
             } else {
                 Ok(())
             }
@@ -163,17 +183,32 @@ impl Case {
             MaterialModel::Ogden => {
                 forbid(m.youngs_modulus.is_some(), "youngs_modulus")?;
                 forbid(m.poisson_ratio.is_some(), "poisson_ratio")?;
-                let mu = m.mu.clone().ok_or_else(|| self.err(format!("{key}.mu is required for model Ogden")))?;
-                let alpha = m.alpha.clone().ok_or_else(|| self.err(format!("{key}.alpha is required for model Ogden")))?;
-                Arc::new(material::Ogden::new(mu, alpha, need(m.bulk_modulus, "bulk_modulus")?, &key)?)
+                let mu =
+                    m.mu.clone()
+                        .ok_or_else(|| self.err(format!("{key}.mu is required for model Ogden")))?;
+                let alpha = m
+                    .alpha
+                    .clone()
+                    .ok_or_else(|| self.err(format!("{key}.alpha is required for model Ogden")))?;
+                Arc::new(material::Ogden::new(
+                    mu,
+                    alpha,
+                    need(m.bulk_modulus, "bulk_modulus")?,
+                    &key,
+                )?)
             }
             model => {
                 forbid(m.mu.is_some(), "mu")?;
                 forbid(m.alpha.is_some(), "alpha")?;
                 forbid(m.bulk_modulus.is_some(), "bulk_modulus")?;
-                let (e, nu) = (need(m.youngs_modulus, "youngs_modulus")?, need(m.poisson_ratio, "poisson_ratio")?);
+                let (e, nu) = (
+                    need(m.youngs_modulus, "youngs_modulus")?,
+                    need(m.poisson_ratio, "poisson_ratio")?,
+                );
                 match model {
-                    MaterialModel::LinearElastic => Arc::new(material::LinearElastic::new(e, nu, &key)?),
+                    MaterialModel::LinearElastic => {
+                        Arc::new(material::LinearElastic::new(e, nu, &key)?)
+                    }
                     MaterialModel::SaintVenantKirchhoff => {
                         Arc::new(material::SaintVenantKirchhoff::new(e, nu, &key)?)
                     }
@@ -227,19 +262,25 @@ impl Case {
 
         let model = Model::new(mesh.clone(), materials, element_material).map_err(|f| {
             let (quadrature_point, det_j) = match f.failure {
-                crate::assembly::kernel::KernelFailure::ReferenceInverted { quadrature_point, det_j } => {
-                    (quadrature_point, det_j)
-                }
-                crate::assembly::kernel::KernelFailure::Inverted { quadrature_point, det_f } => {
-                    (quadrature_point, det_f)
-                }
+                crate::assembly::kernel::KernelFailure::ReferenceInverted {
+                    quadrature_point,
+                    det_j,
+                } => (quadrature_point, det_j),
+                crate::assembly::kernel::KernelFailure::Inverted {
+                    quadrature_point,
+                    det_f,
+                } => (quadrature_point, det_f),
             };
             Error::InvertedElement {
                 element: mesh.elements[f.element].id,
                 quadrature_point,
                 det_j,
                 in_reference: true,
-                what: if det_j == 0.0 { "degenerate" } else { "inverted" },
+                what: if det_j == 0.0 {
+                    "degenerate"
+                } else {
+                    "inverted"
+                },
             }
         })?;
 
@@ -314,13 +355,19 @@ impl Case {
             let initial = s.initial_increment.unwrap_or(length);
             let max = s.max_increment.unwrap_or(length);
             let min = s.min_increment.unwrap_or(initial / 1024.0);
-            for (name, v) in [("initial_increment", initial), ("max_increment", max), ("min_increment", min)] {
+            for (name, v) in [
+                ("initial_increment", initial),
+                ("max_increment", max),
+                ("min_increment", min),
+            ] {
                 if !(v > 0.0) || !v.is_finite() {
                     return Err(self.err(format!("{key}.{name} = {v} must be positive")));
                 }
             }
             if min > initial {
-                return Err(self.err(format!("{key}.min_increment = {min} exceeds initial_increment = {initial}")));
+                return Err(self.err(format!(
+                    "{key}.min_increment = {min} exceeds initial_increment = {initial}"
+                )));
             }
             steps.push(Step {
                 name: s.name.clone(),
@@ -336,7 +383,9 @@ impl Case {
         let settings = SolverSettings {
             max_iterations: sv.max_iterations.unwrap_or(d.max_iterations),
             residual_tolerance: sv.residual_tolerance.unwrap_or(d.residual_tolerance),
-            displacement_tolerance: sv.displacement_tolerance.unwrap_or(d.displacement_tolerance),
+            displacement_tolerance: sv
+                .displacement_tolerance
+                .unwrap_or(d.displacement_tolerance),
             line_search: sv.line_search.unwrap_or(d.line_search),
             max_cuts: sv.max_cuts.unwrap_or(d.max_cuts),
             growth_factor: sv.growth_factor.unwrap_or(d.growth_factor),
@@ -351,7 +400,10 @@ impl Case {
             }
         }
         if !(settings.growth_factor >= 1.0) {
-            return Err(self.err(format!("solver.growth_factor = {} must be ≥ 1", settings.growth_factor)));
+            return Err(self.err(format!(
+                "solver.growth_factor = {} must be ≥ 1",
+                settings.growth_factor
+            )));
         }
         if settings.max_iterations == 0 {
             return Err(self.err("solver.max_iterations must be at least 1"));

@@ -62,7 +62,10 @@ pub fn boundary_faces(mesh: &Mesh) -> HashMap<[usize; 4], BoundaryFace> {
         if j == i + 1 {
             let (key, e, f) = faces[i];
             let el = &mesh.elements[e as usize];
-            let nodes = el.kind.faces()[f as usize].iter().map(|&a| el.nodes[a]).collect();
+            let nodes = el.kind.faces()[f as usize]
+                .iter()
+                .map(|&a| el.nodes[a])
+                .collect();
             out.insert(
                 key,
                 BoundaryFace {
@@ -85,7 +88,11 @@ fn interior_face_keys_of(elements: &[super::Element]) -> std::collections::HashS
             *count.entry(face_key(&nodes)).or_insert(0) += 1;
         }
     }
-    count.into_iter().filter(|(_, c)| *c > 1).map(|(k, _)| k).collect()
+    count
+        .into_iter()
+        .filter(|(_, c)| *c > 1)
+        .map(|(k, _)| k)
+        .collect()
 }
 
 /// Boundary faces as facets, outward-oriented.
@@ -139,7 +146,8 @@ impl Mesh {
                     }
                     None => {
                         // an interface between two regions keeps its orientation
-                        let interior = interior.get_or_insert_with(|| interior_face_keys_of(&self.elements));
+                        let interior =
+                            interior.get_or_insert_with(|| interior_face_keys_of(&self.elements));
                         if !interior.contains(&key) {
                             orphans.push(OrphanFacet {
                                 surface: surface.name.clone(),

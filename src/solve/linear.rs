@@ -145,7 +145,8 @@ impl SparseLdlt {
         let symbolic = self.symbolic.as_ref().expect("analysed above");
         let a = SparseColMatRef::new(pattern.as_ref(), values);
         let params: Spec<LdltParams, f64> = Default::default();
-        let mut mem = MemBuffer::new(symbolic.factorize_numeric_ldlt_scratch::<f64>(self.par, params));
+        let mut mem =
+            MemBuffer::new(symbolic.factorize_numeric_ldlt_scratch::<f64>(self.par, params));
         let regularization = match signs {
             Some(s) => LdltRegularization {
                 dynamic_regularization_signs: Some(s),
@@ -212,7 +213,12 @@ impl SparseLdlt {
         max_refinements: usize,
     ) -> Result<f64> {
         let b = rhs.to_vec();
-        let b_norm = b.iter().map(|v| v * v).sum::<f64>().sqrt().max(f64::MIN_POSITIVE);
+        let b_norm = b
+            .iter()
+            .map(|v| v * v)
+            .sum::<f64>()
+            .sqrt()
+            .max(f64::MIN_POSITIVE);
         self.solve_in_place(rhs)?;
         let mut ax = vec![0.0; b.len()];
         let mut relative = f64::INFINITY;

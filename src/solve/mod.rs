@@ -3,5 +3,5 @@
 
 pub mod linear;
 pub mod newton;
-pub mod stepping;
 pub mod ordering;
+pub mod stepping;

@@ -54,7 +54,10 @@ pub fn solve_increment(
         };
         let mut r = residual.r;
         zero_constrained(&mut r, constrained);
-        let scale = residual.internal_norm.max(residual.external_norm).max(f64::MIN_POSITIVE);
+        let scale = residual
+            .internal_norm
+            .max(residual.external_norm)
+            .max(f64::MIN_POSITIVE);
         let relative = norm(&r) / scale;
         records.push(IterationRecord {
             residual: relative,
@@ -62,18 +65,25 @@ pub fn solve_increment(
             step_length: 0.0,
         });
         if !relative.is_finite() {
-            return Ok((NewtonOutcome::Failed("the residual is not finite".into()), records));
+            return Ok((
+                NewtonOutcome::Failed("the residual is not finite".into()),
+                records,
+            ));
         }
         // converged: small residual, and a small last correction (or none needed)
         let small_residual = relative <= settings.residual_tolerance || norm(&r) == 0.0;
-        if small_residual && (iteration == 0 || last_correction <= settings.displacement_tolerance) {
+        if small_residual && (iteration == 0 || last_correction <= settings.displacement_tolerance)
+        {
             return Ok((NewtonOutcome::Converged, records));
         }
         if iteration == settings.max_iterations {
             break;
         }
         if iteration >= 3 && relative > 1e3 * records[0].residual.max(settings.residual_tolerance) {
-            return Ok((NewtonOutcome::Failed(format!("diverging (relative residual {relative:.3e})")), records));
+            return Ok((
+                NewtonOutcome::Failed(format!("diverging (relative residual {relative:.3e})")),
+                records,
+            ));
         }
         apply_identity_rows(problem, constrained, &mut k_values);
         solver.factorize(pattern, &k_values, None)?;
@@ -161,7 +171,11 @@ fn apply_identity_rows(problem: &Problem, constrained: &[bool], k: &mut [f64]) {
             count += 1;
         }
     }
-    let scale = if count > 0 && sum > 0.0 { sum / count as f64 } else { 1.0 };
+    let scale = if count > 0 && sum > 0.0 {
+        sum / count as f64
+    } else {
+        1.0
+    };
     for j in 0..pattern.ncols() {
         for idx in cp[j]..cp[j + 1] {
             let i = ri[idx];

@@ -20,7 +20,8 @@ pub fn nested_dissection(xadj: &[usize], adjncy: &[usize]) -> Result<Vec<usize>>
         return Ok(Vec::new());
     }
     let to_idx = |v: usize| {
-        i32::try_from(v).map_err(|_| Error::LinearSolver("graph too large for 32-bit METIS indices".into()))
+        i32::try_from(v)
+            .map_err(|_| Error::LinearSolver("graph too large for 32-bit METIS indices".into()))
     };
     let mut x: Vec<i32> = xadj.iter().map(|&v| to_idx(v)).collect::<Result<_>>()?;
     let mut a: Vec<i32> = adjncy.iter().map(|&v| to_idx(v)).collect::<Result<_>>()?;
@@ -43,7 +44,9 @@ pub fn nested_dissection(xadj: &[usize], adjncy: &[usize]) -> Result<Vec<usize>>
         )
     };
     if status != metis_sys::rstatus_et_METIS_OK {
-        return Err(Error::LinearSolver(format!("METIS_NodeND failed with status {status}")));
+        return Err(Error::LinearSolver(format!(
+            "METIS_NodeND failed with status {status}"
+        )));
     }
     // METIS: row i of the permuted matrix is row perm[i] of the original.
     Ok(perm

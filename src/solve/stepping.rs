@@ -33,7 +33,12 @@ pub struct IncrementRecord {
 pub trait StepObserver {
     /// An increment converged; `u` is the new displacement. Write output
     /// here.
-    fn on_converged(&mut self, problem: &Problem, record: &IncrementRecord, u: &[f64]) -> Result<()>;
+    fn on_converged(
+        &mut self,
+        problem: &Problem,
+        record: &IncrementRecord,
+        u: &[f64],
+    ) -> Result<()>;
     /// An increment failed and is cut.
     fn on_cut(&mut self, _step: &str, _time: f64, _increment: f64, _reason: &str) {}
 }
@@ -56,8 +61,13 @@ pub fn run_steps(
         let mut cuts = 0;
         while t < step.end_time - 1e-12 * step.end_time.abs().max(1.0) {
             dt = dt.min(step.end_time - t);
-            let t_new = if dt >= step.end_time - t { step.end_time } else { t + dt };
-            let (outcome, newton) = solve_increment(problem, solver, &constrained, &u, t_new, &mut trial)?;
+            let t_new = if dt >= step.end_time - t {
+                step.end_time
+            } else {
+                t + dt
+            };
+            let (outcome, newton) =
+                solve_increment(problem, solver, &constrained, &u, t_new, &mut trial)?;
             match outcome {
                 NewtonOutcome::Converged => {
                     std::mem::swap(&mut u, &mut trial);

@@ -52,7 +52,12 @@ pub struct Recorder {
 }
 
 impl StepObserver for Recorder {
-    fn on_converged(&mut self, _p: &Problem, record: &IncrementRecord, _u: &[f64]) -> signorini::Result<()> {
+    fn on_converged(
+        &mut self,
+        _p: &Problem,
+        record: &IncrementRecord,
+        _u: &[f64],
+    ) -> signorini::Result<()> {
         self.increments.push(record.clone());
         Ok(())
     }
@@ -90,14 +95,26 @@ pub fn msh22(mesh: &Mesh) -> String {
     for (i, f) in mesh.surfaces.iter().enumerate() {
         for facet in &f.facets {
             let nodes: Vec<String> = facet.nodes.iter().map(|n| (n + 1).to_string()).collect();
-            lines.push(format!("{} 2 {} {} {}", facet.kind.gmsh_type(), 100 + i, 100 + i, nodes.join(" ")));
+            lines.push(format!(
+                "{} 2 {} {} {}",
+                facet.kind.gmsh_type(),
+                100 + i,
+                100 + i,
+                nodes.join(" ")
+            ));
         }
     }
     for (i, r) in mesh.regions.iter().enumerate() {
         for &e in &r.elements {
             let el = &mesh.elements[e];
             let nodes: Vec<String> = el.nodes.iter().map(|n| (n + 1).to_string()).collect();
-            lines.push(format!("{} 2 {} {} {}", el.kind.gmsh_type(), i + 1, i + 1, nodes.join(" ")));
+            lines.push(format!(
+                "{} 2 {} {} {}",
+                el.kind.gmsh_type(),
+                i + 1,
+                i + 1,
+                nodes.join(" ")
+            ));
         }
     }
     writeln!(s, "{}", lines.len()).unwrap();

@@ -374,3 +374,56 @@ fn assembled_tangent_matches_finite_difference() {
         }
     }
 }
+
+/// Hydrostatic pressure `p` on the three outer faces of a neo-Hookean cube
+/// (symmetry planes on the others): a homogeneous stretch `λ I`.
+/// - Follower pressure (on the deformed faces): Cauchy `σ = −p I`, so
+///   `−p = μ/J (λ² − 1) + λ_L ln J / J` with `J = λ³`.
+/// - Dead pressure (force per reference area): `P = −p I`, so
+///   `σ = P Fᵀ / J = −p/λ² I`.
+///
+/// `λ` is found by bisection on the closed form and compared with the FE
+/// stretch to 1e-8.
+#[test]
+fn hydrostatic_dead_and_follower_pressure() {
+    let (e, nu, p) = (10.0, 0.3, 3.0);
+    let (lambda_l, mu) = (e * nu / ((1.0 + nu) * (1.0 - 2.0 * nu)), e / (2.0 * (1.0 + nu)));
+    let cauchy = |l: f64| {
+        let j = l * l * l;
+        mu / j * (l * l - 1.0) + lambda_l * j.ln() / j
+    };
+    for follower in [true, false] {
+        for kind in [ElementKind::Hex8, ElementKind::Tet4] {
+            let mesh = box_mesh(kind, [2, 2, 2], [1.0, 1.0, 1.0]);
+            let mut pr = problem(mesh, Arc::new(NeoHookean::new(e, nu, "m").unwrap()));
+            fix(&mut pr, "xmin", &[(0, 0.0)]);
+            fix(&mut pr, "ymin", &[(1, 0.0)]);
+            fix(&mut pr, "zmin", &[(2, 0.0)]);
+            for face in ["xmax", "ymax", "zmax"] {
+                let facets = pr.model.mesh.surface(face).unwrap().facets.clone();
+                pr.pressures.push(signorini::problem::PressureLoad {
+                    surface: face.into(),
+                    facets,
+                    pressure: p,
+                    follower,
+                    amplitude: Amplitude::ramp(),
+                });
+            }
+            pr.steps[0].initial_increment = 0.5;
+            let (u, _) = solve(&pr);
+            let expected = if follower {
+                bisect(|l| cauchy(l) + p, 0.5, 1.0)
+            } else {
+                bisect(|l| cauchy(l) + p / (l * l), 0.5, 1.0)
+            };
+            let corner = pr.model.mesh.nodes.iter().position(|x| x == &[1.0, 1.0, 1.0]).unwrap();
+            for i in 0..3 {
+                let stretch = 1.0 + u[3 * corner + i];
+                assert!(
+                    (stretch - expected).abs() < 1e-8,
+                    "{kind:?} follower={follower}: stretch {stretch} vs {expected}"
+                );
+            }
+        }
+    }
+}

@@ -70,9 +70,13 @@ pub fn solve_increment(
                 records,
             ));
         }
-        // converged: small residual, and a small last correction (or none needed)
+        // converged: a small residual, and a small last correction; or a
+        // residual so far below its tolerance that the next correction
+        // would be negligible (a linear problem converges in one solve)
         let small_residual = relative <= settings.residual_tolerance || norm(&r) == 0.0;
-        if small_residual && (iteration == 0 || last_correction <= settings.displacement_tolerance)
+        let negligible = relative <= 1e-3 * settings.residual_tolerance;
+        if small_residual
+            && (iteration == 0 || negligible || last_correction <= settings.displacement_tolerance)
         {
             return Ok((NewtonOutcome::Converged, records));
         }

@@ -31,21 +31,35 @@ pub enum NewtonOutcome {
 
 /// Solve the increment ending at time `t`, starting from the converged
 /// state `u_start`. On return `u` holds the last iterate.
+///
+/// The prescribed displacements are not jumped to their new values before
+/// the first iteration (that would distort the elements along the boundary
+/// and start Newton far from the solution); the jump `d = ū(t) − u` on the
+/// prescribed dofs is part of the first Newton correction instead:
+/// `K_ff δu_f = −r_f − K_fc d`, `δu_c = d`, which is the linearisation
+/// about the converged state (a consistent predictor).
+///
+/// `force_scale` is the largest `max(‖f_int‖, ‖f_ext‖)` of the converged
+/// increments so far: residuals are measured relative to it too, so that a
+/// state of vanishing load (unloading to zero) can converge.
 pub fn solve_increment(
     problem: &Problem,
     solver: &mut SparseLdlt,
     constrained: &[bool],
     u_start: &[f64],
     t: f64,
+    force_scale: f64,
     u: &mut Vec<f64>,
 ) -> Result<(NewtonOutcome, Vec<IterationRecord>)> {
     let settings = &problem.settings;
     let pattern = problem.model.pattern.symbolic();
     u.clear();
     u.extend_from_slice(u_start);
-    problem.apply_prescribed(t, u);
+    let mut target = u_start.to_vec();
+    problem.apply_prescribed(t, &mut target);
     let mut records: Vec<IterationRecord> = Vec::new();
     let mut k_values = vec![0.0; problem.model.pattern.nnz()];
+    let mut kd = vec![0.0; u.len()];
     let mut last_correction = f64::INFINITY;
     for iteration in 0..=settings.max_iterations {
         let residual = match problem.residual(t, u, Some(&mut k_values)) {
@@ -54,9 +68,14 @@ pub fn solve_increment(
         };
         let mut r = residual.r;
         zero_constrained(&mut r, constrained);
+        // the prescribed values still to be reached (all of the jump at first)
+        let jump: Vec<f64> = (0..u.len())
+            .map(|i| if constrained[i] { target[i] - u[i] } else { 0.0 })
+            .collect();
         let scale = residual
             .internal_norm
             .max(residual.external_norm)
+            .max(force_scale)
             .max(f64::MIN_POSITIVE);
         let relative = norm(&r) / scale;
         records.push(IterationRecord {
@@ -65,17 +84,17 @@ pub fn solve_increment(
             step_length: 0.0,
         });
         if !relative.is_finite() {
-            return Ok((
-                NewtonOutcome::Failed("the residual is not finite".into()),
-                records,
-            ));
+            return Ok((NewtonOutcome::Failed("the residual is not finite".into()), records));
         }
-        // converged: a small residual, and a small last correction; or a
-        // residual so far below its tolerance that the next correction
-        // would be negligible (a linear problem converges in one solve)
+        // converged: prescribed values reached, a small residual, and a small
+        // last correction; or a residual so far below its tolerance that the
+        // next correction would be negligible (a linear problem converges in
+        // one solve)
+        let at_target = jump.iter().all(|&d| d == 0.0);
         let small_residual = relative <= settings.residual_tolerance || norm(&r) == 0.0;
         let negligible = relative <= 1e-3 * settings.residual_tolerance;
-        if small_residual
+        if at_target
+            && small_residual
             && (iteration == 0 || negligible || last_correction <= settings.displacement_tolerance)
         {
             return Ok((NewtonOutcome::Converged, records));
@@ -83,20 +102,36 @@ pub fn solve_increment(
         if iteration == settings.max_iterations {
             break;
         }
-        if iteration >= 3 && relative > 1e3 * records[0].residual.max(settings.residual_tolerance) {
-            return Ok((
-                NewtonOutcome::Failed(format!("diverging (relative residual {relative:.3e})")),
-                records,
-            ));
+        // diverging: far above the residual after the predictor (the first
+        // residual may be ~0 when only prescribed displacements change)
+        let reference = records[0].residual.max(records[1.min(iteration)].residual);
+        if iteration >= 3 && relative > 1e3 * reference.max(settings.residual_tolerance) {
+            return Ok((NewtonOutcome::Failed(format!("diverging (relative residual {relative:.3e})")), records));
         }
-        apply_identity_rows(problem, constrained, &mut k_values);
+        // rhs: −r_f − K_fc d on the free dofs, (diagonal scale) · d on the prescribed ones
+        super::linear::multiply(pattern, &k_values, &jump, &mut kd);
+        let diagonal = apply_identity_rows(problem, constrained, &mut k_values);
+        let mut du: Vec<f64> = (0..u.len())
+            .map(|i| if constrained[i] { diagonal * jump[i] } else { -r[i] - kd[i] })
+            .collect();
         solver.factorize(pattern, &k_values, None)?;
-        let mut du: Vec<f64> = r.iter().map(|x| -x).collect();
         solver.solve_refined(pattern, &k_values, &mut du, 3)?;
-        zero_constrained(&mut du, constrained);
+        for (i, d) in du.iter_mut().enumerate() {
+            if constrained[i] {
+                *d = jump[i];
+            }
+        }
         let step_length = line_search(problem, constrained, t, u, &du, norm(&r), relative);
         for (ui, di) in u.iter_mut().zip(&du) {
             *ui += step_length * di;
+        }
+        if step_length == 1.0 {
+            // land exactly on the prescribed values
+            for i in 0..u.len() {
+                if constrained[i] {
+                    u[i] = target[i];
+                }
+            }
         }
         let total: Vec<f64> = u.iter().zip(u_start).map(|(a, b)| a - b).collect();
         last_correction = step_length * norm(&du) / norm(&total).max(f64::MIN_POSITIVE);
@@ -164,8 +199,9 @@ fn zero_constrained(v: &mut [f64], constrained: &[bool]) {
 }
 
 /// Replace the rows and columns of prescribed dofs by a scaled identity
-/// (the scale is the mean absolute diagonal of the free dofs).
-fn apply_identity_rows(problem: &Problem, constrained: &[bool], k: &mut [f64]) {
+/// (the scale is the mean absolute diagonal of the free dofs); returns the
+/// scale.
+fn apply_identity_rows(problem: &Problem, constrained: &[bool], k: &mut [f64]) -> f64 {
     let pattern = problem.model.pattern.symbolic();
     let (cp, ri) = (pattern.col_ptr(), pattern.row_idx());
     let (mut sum, mut count) = (0.0, 0usize);
@@ -188,4 +224,5 @@ fn apply_identity_rows(problem: &Problem, constrained: &[bool], k: &mut [f64]) {
             }
         }
     }
+    scale
 }

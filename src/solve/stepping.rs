@@ -56,21 +56,27 @@ pub fn run_steps(
     problem.apply_prescribed(0.0, &mut u);
     let mut trial = Vec::with_capacity(u.len());
     let mut t = 0.0;
+    let mut force_scale = 0.0f64;
     for (s, step) in problem.steps.iter().enumerate() {
         let mut dt = step.initial_increment.min(step.end_time - t);
         let mut cuts = 0;
         while t < step.end_time - 1e-12 * step.end_time.abs().max(1.0) {
             dt = dt.min(step.end_time - t);
+            // no sliver of an increment at the end of a step
+            if step.end_time - (t + dt) < 0.25 * dt {
+                dt = step.end_time - t;
+            }
             let t_new = if dt >= step.end_time - t {
                 step.end_time
             } else {
                 t + dt
             };
             let (outcome, newton) =
-                solve_increment(problem, solver, &constrained, &u, t_new, &mut trial)?;
+                solve_increment(problem, solver, &constrained, &u, t_new, force_scale, &mut trial)?;
             match outcome {
                 NewtonOutcome::Converged => {
                     std::mem::swap(&mut u, &mut trial);
+                    force_scale = force_scale.max(problem.force_scale(t_new, &u));
                     let record = IncrementRecord {
                         step: s,
                         step_name: step.name.clone(),

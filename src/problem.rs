@@ -167,8 +167,13 @@ impl Problem {
         }
     }
 
+    /// Whether the tangent is nonsymmetric (follower pressure on a surface).
+    pub fn has_nonsymmetric_tangent(&self) -> bool {
+        self.pressures.iter().any(|p| p.follower)
+    }
+
     /// External force at time `t` and displacement `u`; if `tangent` is
-    /// given, add the (symmetrised) follower-load stiffness `−∂f_ext/∂u`.
+    /// given, add the follower-load stiffness `−∂f_ext/∂u` (nonsymmetric).
     pub fn external_force(&self, t: f64, u: &[f64], mut tangent: Option<&mut [f64]>) -> Vec<f64> {
         let mesh = &self.model.mesh;
         let mut f = vec![0.0; self.model.num_dofs()];
@@ -199,14 +204,13 @@ impl Problem {
                     })
                     .collect();
                 let with_tangent = p.follower && tangent.is_some();
-                let (fe, mut ke) = pressure_facet(facet.kind, &coords, value, with_tangent);
+                let (fe, ke) = pressure_facet(facet.kind, &coords, value, with_tangent);
                 for (a, &n) in facet.nodes.iter().enumerate() {
                     for i in 0..3 {
                         f[3 * n + i] += fe[3 * a + i];
                     }
                 }
                 if let (true, Some(k)) = (with_tangent, tangent.as_deref_mut()) {
-                    symmetrise(&mut ke, 3 * facet.nodes.len());
                     crate::assembly::scatter_block_matrix(
                         &self.model.pattern,
                         &facet.nodes,
@@ -288,17 +292,6 @@ impl Problem {
 /// Euclidean norm.
 pub fn norm(v: &[f64]) -> f64 {
     v.iter().map(|x| x * x).sum::<f64>().sqrt()
-}
-
-/// Replace a square row-major matrix by its symmetric part.
-fn symmetrise(k: &mut [f64], n: usize) {
-    for i in 0..n {
-        for j in 0..i {
-            let s = 0.5 * (k[i * n + j] + k[j * n + i]);
-            k[i * n + j] = s;
-            k[j * n + i] = s;
-        }
-    }
 }
 
 #[cfg(test)]

@@ -74,12 +74,22 @@ fn thick_cylinder_matches_lame() {
 fn rubber_tension_matches_closed_form() {
     let (_out, outcome) = run_example("rubber-tension");
     let incs = &outcome.summary.increments;
-    let peak = incs.iter().find(|i| (i.time - 1.0).abs() < 1e-12).expect("an increment ends at t = 1");
+    let peak = incs
+        .iter()
+        .find(|i| (i.time - 1.0).abs() < 1e-12)
+        .expect("an increment ends at t = 1");
     let (t, s11) = (0.589116143815, 2.47040956270);
     let reaction = peak.reaction_forces["xmax"][0];
-    assert!((reaction - s11 * t * t).abs() < 1e-6 * s11 * t * t, "reaction {reaction}");
+    assert!(
+        (reaction - s11 * t * t).abs() < 1e-6 * s11 * t * t,
+        "reaction {reaction}"
+    );
     // released: back to the reference configuration
     assert!(outcome.displacement.iter().all(|u| u.abs() < 1e-10));
     // Newton's rate: every increment within 6 iterations
-    assert!(incs.iter().all(|i| i.iterations <= 6), "{:?}", incs.iter().map(|i| i.iterations).collect::<Vec<_>>());
+    assert!(
+        incs.iter().all(|i| i.iterations <= 6),
+        "{:?}",
+        incs.iter().map(|i| i.iterations).collect::<Vec<_>>()
+    );
 }

@@ -180,7 +180,14 @@ fn no_convergence_keeps_converged_steps() {
         "[[step]]\nname = \"press\"\nend_time = 1.0\ninitial_increment = 0.5\n",
         "[amplitudes]\ncrush = [[0.0, 0.0], [1.0, 1.0], [2.0, 6.0]]\n\n[[step]]\nname = \"press\"\nend_time = 1.0\ninitial_increment = 0.5\n\n[[step]]\nname = \"crush\"\nend_time = 2.0\ninitial_increment = 1.0\n\n[solver]\nmax_cuts = 3\n",
     )
-    .replace("z = -0.2\n", "z = -0.2\namplitude = \"crush\"\n");
+    .replace("z = -0.2\n", "z = -0.2\namplitude = \"crush\"\n")
+    // confined compression (no lateral escape, no flipping over) past the
+    // cube's height: impossible, so Newton must fail
+    .replace(
+        "[[step]]\nname = \"press\"",
+        "[[displacement]]\nsurface = \"xmin\"\nx = 0.0\n\n[[displacement]]\nsurface = \"xmax\"\nx = 0.0\n\n\
+         [[displacement]]\nsurface = \"ymin\"\ny = 0.0\n\n[[displacement]]\nsurface = \"ymax\"\ny = 0.0\n\n[[step]]\nname = \"press\"",
+    );
     let dir = tempfile::tempdir().unwrap();
     write_cube(dir.path());
     std::fs::write(dir.path().join("case.toml"), case).unwrap();

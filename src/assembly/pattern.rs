@@ -12,6 +12,8 @@ pub struct SparsityPattern {
     neighbours: Vec<Vec<usize>>,
     /// Symbolic CSC structure, all entries (both triangles).
     symbolic: SymbolicSparseColMat<usize>,
+    /// `mirror[k]` is the index of entry (j, i) for entry `k` = (i, j).
+    mirror: Vec<usize>,
 }
 
 impl SparsityPattern {
@@ -45,10 +47,23 @@ impl SparsityPattern {
             }
         }
         let symbolic = SymbolicSparseColMat::new_checked(n, n, col_ptr, None, row_idx);
-        SparsityPattern {
+        let mut pattern = SparsityPattern {
             neighbours,
             symbolic,
-        }
+            mirror: Vec::new(),
+        };
+        let cp = pattern.symbolic.col_ptr();
+        let ri = pattern.symbolic.row_idx();
+        let mirror = (0..n)
+            .flat_map(|j| (cp[j]..cp[j + 1]).map(move |k| (ri[k], j)))
+            .map(|(i, j)| {
+                pattern
+                    .block_entry(j / 3, j % 3, i / 3, i % 3)
+                    .expect("the node-block pattern is structurally symmetric")
+            })
+            .collect();
+        pattern.mirror = mirror;
+        pattern
     }
 
     /// Number of rows (= columns).
@@ -96,6 +111,15 @@ impl SparsityPattern {
         (xadj, adjncy)
     }
 
+    /// The symmetric part `½ (A + Aᵀ)` of values on this pattern.
+    pub fn symmetric_part(&self, values: &[f64]) -> Vec<f64> {
+        self.mirror
+            .iter()
+            .enumerate()
+            .map(|(k, &m)| 0.5 * (values[k] + values[m]))
+            .collect()
+    }
+
     /// Index of the diagonal entry of dof `d`.
     #[inline]
     pub fn diagonal_entry(&self, d: usize) -> usize {
@@ -128,5 +152,20 @@ mod tests {
             }
         }
         assert!(p.block_entry(0, 0, 3, 0).is_none());
+        // symmetric part of a matrix with A[i][j] = i − j + 2ij is 2ij
+        let (cp, ri) = (p.symbolic().col_ptr(), p.symbolic().row_idx());
+        let mut values = vec![0.0; p.nnz()];
+        for j in 0..12 {
+            for k in cp[j]..cp[j + 1] {
+                let i = ri[k] as f64;
+                values[k] = i - j as f64 + 2.0 * i * j as f64;
+            }
+        }
+        let sym = p.symmetric_part(&values);
+        for j in 0..12 {
+            for k in cp[j]..cp[j + 1] {
+                assert_eq!(sym[k], 2.0 * ri[k] as f64 * j as f64);
+            }
+        }
     }
 }

@@ -61,6 +61,7 @@ pub fn solve_increment(
     let mut k_values = vec![0.0; problem.model.pattern.nnz()];
     let mut kd = vec![0.0; u.len()];
     let mut last_correction = f64::INFINITY;
+    let nonsymmetric = problem.has_nonsymmetric_tangent();
     for iteration in 0..=settings.max_iterations {
         let residual = match problem.residual(t, u, Some(&mut k_values)) {
             Ok(r) => r,
@@ -70,7 +71,13 @@ pub fn solve_increment(
         zero_constrained(&mut r, constrained);
         // the prescribed values still to be reached (all of the jump at first)
         let jump: Vec<f64> = (0..u.len())
-            .map(|i| if constrained[i] { target[i] - u[i] } else { 0.0 })
+            .map(|i| {
+                if constrained[i] {
+                    target[i] - u[i]
+                } else {
+                    0.0
+                }
+            })
             .collect();
         let scale = residual
             .internal_norm
@@ -84,7 +91,10 @@ pub fn solve_increment(
             step_length: 0.0,
         });
         if !relative.is_finite() {
-            return Ok((NewtonOutcome::Failed("the residual is not finite".into()), records));
+            return Ok((
+                NewtonOutcome::Failed("the residual is not finite".into()),
+                records,
+            ));
         }
         // converged: prescribed values reached, a small residual, and a small
         // last correction; or a residual so far below its tolerance that the
@@ -106,22 +116,39 @@ pub fn solve_increment(
         // residual may be ~0 when only prescribed displacements change)
         let reference = records[0].residual.max(records[1.min(iteration)].residual);
         if iteration >= 3 && relative > 1e3 * reference.max(settings.residual_tolerance) {
-            return Ok((NewtonOutcome::Failed(format!("diverging (relative residual {relative:.3e})")), records));
+            return Ok((
+                NewtonOutcome::Failed(format!("diverging (relative residual {relative:.3e})")),
+                records,
+            ));
         }
         // rhs: −r_f − K_fc d on the free dofs, (diagonal scale) · d on the prescribed ones
         super::linear::multiply(pattern, &k_values, &jump, &mut kd);
         let diagonal = apply_identity_rows(problem, constrained, &mut k_values);
         let mut du: Vec<f64> = (0..u.len())
-            .map(|i| if constrained[i] { diagonal * jump[i] } else { -r[i] - kd[i] })
+            .map(|i| {
+                if constrained[i] {
+                    diagonal * jump[i]
+                } else {
+                    -r[i] - kd[i]
+                }
+            })
             .collect();
-        solver.factorize(pattern, &k_values, None)?;
-        solver.solve_refined(pattern, &k_values, &mut du, 3)?;
+        if nonsymmetric {
+            // LDLᵀ of the symmetric part, refined against the true tangent:
+            // the skew part lives only on follower-loaded facets
+            let k_sym = problem.model.pattern.symmetric_part(&k_values);
+            solver.factorize(pattern, &k_sym, None)?;
+            solver.solve_refined(pattern, &k_values, &mut du, 30)?;
+        } else {
+            solver.factorize(pattern, &k_values, None)?;
+            solver.solve_refined(pattern, &k_values, &mut du, 3)?;
+        }
         for (i, d) in du.iter_mut().enumerate() {
             if constrained[i] {
                 *d = jump[i];
             }
         }
-        let step_length = line_search(problem, constrained, t, u, &du, norm(&r), relative);
+        let step_length = line_search(problem, constrained, t, u, &du, &r, relative);
         for (ui, di) in u.iter_mut().zip(&du) {
             *ui += step_length * di;
         }
@@ -149,45 +176,63 @@ pub fn solve_increment(
     ))
 }
 
-/// Backtracking on the residual norm: the full Newton step if it reduces
-/// `‖r‖` (or if the residual is already near the tolerance), otherwise the
-/// first of ½, ¼, … (down to 1/64) that does. If none does, the step length
-/// with the smallest residual (an inverted element counts as an infinite
-/// residual); the divergence test and the step cut-back take over from
-/// there.
+/// Line search along the Newton direction `δu`.
+///
+/// The slope of the potential along the line, `s(α) = δu · r(u + α δu)`
+/// (free dofs), is negative at `α = 0` for a descent direction. The full
+/// step is taken if `|s(1)| ≤ ½ |s(0)|` or if the residual norm decreases
+/// (Crisfield's test, which accepts steps that raise `‖r‖` but lower the
+/// energy, as bending under large rotations needs); otherwise `α` moves to
+/// the zero of the secant of `s` (regula falsi, bounded to [0.1α, 0.9α]),
+/// or is halved when the trial state inverts an element. Skipped near the
+/// tolerance, where the full step keeps the quadratic rate. At most six
+/// trials; the one with the smallest `|s|` is taken if none passes.
 fn line_search(
     problem: &Problem,
     constrained: &[bool],
     t: f64,
     u: &[f64],
     du: &[f64],
-    r0: f64,
+    r: &[f64],
     relative: f64,
 ) -> f64 {
     if !problem.settings.line_search || relative < 1e3 * problem.settings.residual_tolerance {
         return 1.0;
     }
+    let r0 = norm(r);
+    let s0 = dot(du, r);
     let mut trial = u.to_vec();
     let mut alpha = 1.0;
     let mut best = (f64::INFINITY, 1.0 / 64.0);
-    for _ in 0..7 {
+    for _ in 0..6 {
         for ((x, u0), d) in trial.iter_mut().zip(u).zip(du) {
             *x = u0 + alpha * d;
         }
-        if let Ok(res) = problem.residual(t, &trial, None) {
-            let mut r = res.r;
-            zero_constrained(&mut r, constrained);
-            let rn = norm(&r);
-            if rn < r0 {
-                return alpha;
-            }
-            if rn < best.0 {
-                best = (rn, alpha);
-            }
+        let Ok(res) = problem.residual(t, &trial, None) else {
+            alpha *= 0.5;
+            continue;
+        };
+        let mut ra = res.r;
+        zero_constrained(&mut ra, constrained);
+        let sa = dot(du, &ra);
+        if norm(&ra) < r0 || (s0 < 0.0 && sa.abs() <= 0.5 * s0.abs()) {
+            return alpha;
         }
-        alpha *= 0.5;
+        if sa.abs() < best.0 {
+            best = (sa.abs(), alpha);
+        }
+        alpha = if s0 < 0.0 && sa > 0.0 {
+            // the slope changed sign in (0, α): its secant zero
+            (alpha * s0 / (s0 - sa)).clamp(0.1 * alpha, 0.9 * alpha)
+        } else {
+            0.5 * alpha
+        };
     }
     best.1
+}
+
+fn dot(a: &[f64], b: &[f64]) -> f64 {
+    a.iter().zip(b).map(|(x, y)| x * y).sum()
 }
 
 fn zero_constrained(v: &mut [f64], constrained: &[bool]) {

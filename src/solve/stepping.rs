@@ -71,8 +71,15 @@ pub fn run_steps(
             } else {
                 t + dt
             };
-            let (outcome, newton) =
-                solve_increment(problem, solver, &constrained, &u, t_new, force_scale, &mut trial)?;
+            let (outcome, newton) = solve_increment(
+                problem,
+                solver,
+                &constrained,
+                &u,
+                t_new,
+                force_scale,
+                &mut trial,
+            )?;
             match outcome {
                 NewtonOutcome::Converged => {
                     std::mem::swap(&mut u, &mut trial);

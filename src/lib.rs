@@ -22,6 +22,9 @@
 //!
 //! Units are whatever the user chooses, consistently (e.g. mm, N, MPa).
 
+// `!(x > 0.0)` is written on purpose throughout: it rejects NaN too.
+#![allow(clippy::neg_cmp_op_on_partial_ord)]
+
 pub mod error;
 pub mod fem;
 pub mod material;

@@ -119,7 +119,8 @@ pub fn internal_force_and_tangent(
     for (q, p) in geometry.iter().enumerate() {
         let f = deformation_gradient(&p.gradients, displacements);
         let det_f = f.determinant();
-        if !small && !(det_f > 0.0 && det_f.is_finite()) {
+        let admissible = det_f > 0.0 && det_f.is_finite();
+        if !small && !admissible {
             return Err(KernelFailure::Inverted {
                 quadrature_point: q,
                 det_f,
@@ -138,13 +139,13 @@ pub fn internal_force_and_tangent(
         if !with_tangent {
             continue;
         }
-        for a in 0..n {
-            b[a] = strain_operator(&kin, &p.gradients[a]);
+        for (b_a, g_a) in b.iter_mut().zip(&p.gradients) {
+            *b_a = strain_operator(&kin, g_a);
         }
-        for a in 0..n {
-            let db_a = (d * b[a]) * p.dv; // 6×3
-            for bb in 0..n {
-                let kab = b[bb].transpose() * db_a; // 3×3 (row: b-dof, col: a-dof)
+        for (a, b_a) in b.iter().enumerate() {
+            let db_a = (d * b_a) * p.dv; // 6×3
+            for (bb, b_b) in b.iter().enumerate() {
+                let kab = b_b.transpose() * db_a; // 3×3 (row: b-dof, col: a-dof)
                 let geo = if small {
                     0.0
                 } else {

@@ -98,7 +98,8 @@ impl SparseLdlt {
                     CholeskySymbolicParams::default(),
                 )
                 .map_err(|e| Error::LinearSolver(format!("symbolic analysis: {e:?}")))?;
-                return Ok(self.finish_analysis(symbolic, pattern, start));
+                self.finish_analysis(symbolic, pattern, start);
+                return Ok(());
             }
         };
         let symbolic = factorize_symbolic_cholesky(

@@ -79,12 +79,23 @@ pub fn solve_increment(
                 }
             })
             .collect();
+
+        // the out-of-balance force, with the linearised effect of the
+        // prescribed values still to be reached: r_f + K_fc d
+        super::linear::multiply(pattern, &k_values, &jump, &mut kd);
+        let out_of_balance: Vec<f64> = (0..u.len())
+            .map(|i| if constrained[i] { 0.0 } else { r[i] + kd[i] })
+            .collect();
+        // the force scale: internal and external forces, those of earlier
+        // increments, and the forces the prescribed jump sets up (which are
+        // all there is at the first iteration of a displacement-driven run)
         let scale = residual
             .internal_norm
             .max(residual.external_norm)
             .max(force_scale)
+            .max(norm(&kd))
             .max(f64::MIN_POSITIVE);
-        let relative = norm(&r) / scale;
+        let relative = norm(&out_of_balance) / scale;
         records.push(IterationRecord {
             residual: relative,
             correction: 0.0,
@@ -122,14 +133,13 @@ pub fn solve_increment(
             ));
         }
         // rhs: −r_f − K_fc d on the free dofs, (diagonal scale) · d on the prescribed ones
-        super::linear::multiply(pattern, &k_values, &jump, &mut kd);
         let diagonal = apply_identity_rows(problem, constrained, &mut k_values);
         let mut du: Vec<f64> = (0..u.len())
             .map(|i| {
                 if constrained[i] {
                     diagonal * jump[i]
                 } else {
-                    -r[i] - kd[i]
+                    -out_of_balance[i]
                 }
             })
             .collect();
@@ -148,7 +158,7 @@ pub fn solve_increment(
                 *d = jump[i];
             }
         }
-        let step_length = line_search(problem, constrained, t, u, &du, &r, relative);
+        let step_length = line_search(problem, constrained, t, u, &du, &out_of_balance, relative);
         for (ui, di) in u.iter_mut().zip(&du) {
             *ui += step_length * di;
         }

@@ -28,8 +28,8 @@ enum Command {
         #[arg(long)]
         output: Option<PathBuf>,
         /// Worker threads for assembly and factorisation (default: all cores).
-        #[arg(long)]
-        threads: Option<usize>,
+        #[arg(long, value_parser = clap::value_parser!(u32).range(1..))]
+        threads: Option<u32>,
         /// No progress bar and no log lines.
         #[arg(long)]
         quiet: bool,
@@ -64,13 +64,13 @@ fn main() -> ExitCode {
 fn run(
     case: PathBuf,
     output: Option<PathBuf>,
-    threads: Option<usize>,
+    threads: Option<u32>,
     quiet: bool,
 ) -> signorini::Result<()> {
     if let Some(t) = threads {
         // Only fails if a pool already exists, which cannot happen here.
         let _ = rayon::ThreadPoolBuilder::new()
-            .num_threads(t.max(1))
+            .num_threads(t as usize)
             .build_global();
     }
     let options = signorini::run::RunOptions { output, quiet };

@@ -246,14 +246,6 @@ impl Problem {
         })
     }
 
-    /// `max(‖f_int‖, ‖f_ext‖)` at a state: the force scale against which
-    /// residuals are measured.
-    pub fn force_scale(&self, t: f64, u: &[f64]) -> f64 {
-        self.residual(t, u, None)
-            .map(|r| r.internal_norm.max(r.external_norm))
-            .unwrap_or(0.0)
-    }
-
     /// Total of `r = f_int − f_ext` over the nodes of each surface set: the
     /// reaction force where displacements are prescribed (zero, to the
     /// tolerance, on a free surface).

@@ -90,8 +90,11 @@ impl Writer {
         std::fs::create_dir_all(dir).map_err(|e| Error::io("create output folder", dir, e))?;
         let name = case.output_name();
         remove_old_series(dir, &name)?;
+        // an empty series at once: a .pvd of an earlier run must not list
+        // files that are gone
+        let pvd = PvdCollection::new(dir.join(format!("{name}.pvd")));
+        pvd.write()?;
         let mesh = &problem.model.mesh;
-        let end = problem.steps.last().map(|s| s.end_time).unwrap_or(1.0);
         let progress = if quiet {
             ProgressBar::hidden()
         } else {
@@ -102,7 +105,6 @@ impl Writer {
             );
             bar
         };
-        let _ = end;
         let summary = Summary {
             case: case.path.display().to_string(),
             status: "running".into(),
@@ -119,7 +121,7 @@ impl Writer {
             increments: Vec::new(),
         };
         Ok(Writer {
-            pvd: PvdCollection::new(dir.join(format!("{name}.pvd"))),
+            pvd,
             dir: dir.to_path_buf(),
             name,
             summary,
@@ -164,6 +166,7 @@ impl StepObserver for Writer {
         problem: &Problem,
         record: &IncrementRecord,
         u: &[f64],
+        residual: &[f64],
     ) -> Result<()> {
         let index = self.summary.increments.len() + 1;
         let file = format!("{}_{index:04}.vtu", self.name);
@@ -195,10 +198,7 @@ impl StepObserver for Writer {
             ],
         )?;
         self.pvd.add(record.time, &file)?;
-        let residual = problem
-            .residual(record.time, u, None)
-            .map_err(|f| Error::LinearSolver(problem.describe_failure(&f)))?;
-        let reaction_forces = problem.surface_forces(&residual.r).into_iter().collect();
+        let reaction_forces = problem.surface_forces(residual).into_iter().collect();
         let now = Instant::now();
         let final_residual = record.newton.last().map(|r| r.residual).unwrap_or(0.0);
         self.summary.increments.push(IncrementSummary {
@@ -236,10 +236,11 @@ impl StepObserver for Writer {
     }
 }
 
-/// AMD for small problems, METIS nested dissection above 30 000 dofs
-/// (where it fills much less).
+/// AMD for small problems, METIS nested dissection above 10 000 dofs
+/// (where it already fills less: 2.4 times fewer factor entries at 28 k
+/// dofs on a Hex8 box).
 pub fn fill_reducing_ordering(problem: &Problem) -> Result<Ordering> {
-    if problem.model.num_dofs() <= 30_000 {
+    if problem.model.num_dofs() <= 10_000 {
         return Ok(Ordering::Amd);
     }
     let (xadj, adjncy) = problem.model.pattern.node_graph();

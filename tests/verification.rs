@@ -204,9 +204,9 @@ fn uniaxial(
 }
 
 /// Asserts Newton's quadratic rate in the last iterations of each
-/// increment (after the predictor): once the relative residual is below 1e-3,
-/// `r_{k+1} ≤ 10 r_k²` (or at round-off, 1e-13). A linear rate of even 0.1
-/// fails this (1e-3 → 1e-4 against the bound 1e-5).
+/// increment (after the predictor): once the relative residual is below 1e-4,
+/// `r_{k+1} ≤ 100 r_k²` (or at round-off, 1e-13). A linear rate of even 0.1
+/// fails this (1e-4 → 1e-5 against the bound 1e-6).
 fn assert_quadratic(incs: &[signorini::solve::stepping::IncrementRecord]) {
     let mut checked = 0;
     for inc in incs {
@@ -214,9 +214,9 @@ fn assert_quadratic(incs: &[signorini::solve::stepping::IncrementRecord]) {
         // skip the residual before the predictor (≈ 0 when only prescribed
         // displacements change)
         for w in r[1..].windows(2) {
-            if w[0] <= 1e-3 && w[0] > 1e-13 {
+            if w[0] <= 1e-4 && w[0] > 1e-13 {
                 assert!(
-                    w[1] <= (10.0 * w[0] * w[0]).max(1e-13),
+                    w[1] <= (100.0 * w[0] * w[0]).max(1e-13),
                     "residuals {r:?}: {} → {}",
                     w[0],
                     w[1]
@@ -452,7 +452,7 @@ fn follower_pressure_keeps_newton_quadratic() {
     pr.pressures.push(signorini::problem::PressureLoad {
         surface: "zmax".into(),
         facets,
-        pressure: 0.4,
+        pressure: 1.0,
         follower: true,
         amplitude: Amplitude::ramp(),
     });
@@ -467,6 +467,40 @@ fn follower_pressure_keeps_newton_quadratic() {
         .iter()
         .position(|x| x == &[4.0, 1.0, 1.0])
         .unwrap();
-    assert!(u[3 * tip + 2] < -1.0, "tip deflection {}", u[3 * tip + 2]);
+    // the tip curls down by most of the length
+    assert!(u[3 * tip + 2] < -2.0, "tip deflection {}", u[3 * tip + 2]);
     assert_quadratic(&incs);
+}
+
+/// The whole solution (assembly, nested-dissection LDLᵀ, Newton) with 1 and
+/// 2 threads agrees to round-off: assembly is bitwise identical, the
+/// parallel factorisation may sum in another order.
+#[test]
+fn solution_is_independent_of_thread_count() {
+    let mesh = box_mesh(ElementKind::Hex8, [10, 6, 6], [2.0, 1.0, 1.0]);
+    let mut p = problem(mesh, Arc::new(NeoHookean::new(10.0, 0.3, "m").unwrap()));
+    fix(&mut p, "xmin", &[(0, 0.0), (1, 0.0), (2, 0.0)]);
+    fix(&mut p, "xmax", &[(0, 0.3), (2, -0.4)]);
+    let (xadj, adjncy) = p.model.pattern.node_graph();
+    let perm = signorini::solve::ordering::nested_dissection(&xadj, &adjncy).unwrap();
+    let solve_with = |threads: usize| {
+        rayon::ThreadPoolBuilder::new()
+            .num_threads(threads)
+            .build()
+            .unwrap()
+            .install(|| {
+                let mut solver = signorini::solve::linear::SparseLdlt::new(
+                    signorini::solve::linear::Ordering::Custom(perm.clone()),
+                    threads,
+                );
+                let mut rec = common::Recorder::default();
+                signorini::solve::stepping::run_steps(&p, &mut solver, &mut rec, "unused".into())
+                    .unwrap()
+            })
+    };
+    let (u1, u2) = (solve_with(1), solve_with(2));
+    let scale = u1.iter().fold(0.0f64, |m, v| m.max(v.abs()));
+    for (a, b) in u1.iter().zip(&u2) {
+        assert!((a - b).abs() <= 1e-12 * scale, "{a} vs {b}");
+    }
 }

@@ -24,10 +24,19 @@ pub struct IterationRecord {
 /// How an increment ended.
 #[derive(Clone, Debug)]
 pub enum NewtonOutcome {
-    Converged,
+    /// Converged; `residual` is `r = f_int − f_ext` at the solution, over
+    /// all dofs (its prescribed entries are the reactions), and
+    /// `force_scale` the `max(‖f_int‖, ‖f_ext‖)` there.
+    Converged {
+        residual: Vec<f64>,
+        force_scale: f64,
+    },
     /// Not converged; the reason is for the log and the final error.
     Failed(String),
 }
+
+/// Relative tolerance of the Krylov solve of a nonsymmetric tangent.
+const KRYLOV_TOLERANCE: f64 = 1e-12;
 
 /// Solve the increment ending at time `t`, starting from the converged
 /// state `u_start`. On return `u` holds the last iterate.
@@ -42,6 +51,10 @@ pub enum NewtonOutcome {
 /// `force_scale` is the largest `max(‖f_int‖, ‖f_ext‖)` of the converged
 /// increments so far: residuals are measured relative to it too, so that a
 /// state of vanishing load (unloading to zero) can converge.
+///
+/// A failure of the linear solve (a singular tangent at a limit point, a
+/// Krylov solve that does not converge) is reported as a failed increment,
+/// which the stepper cuts; only errors that no cut can mend are `Err`.
 pub fn solve_increment(
     problem: &Problem,
     solver: &mut SparseLdlt,
@@ -62,13 +75,10 @@ pub fn solve_increment(
     let mut kd = vec![0.0; u.len()];
     let mut last_correction = f64::INFINITY;
     let nonsymmetric = problem.has_nonsymmetric_tangent();
+    let failed = |reason: String, records: Vec<IterationRecord>| {
+        Ok((NewtonOutcome::Failed(reason), records))
+    };
     for iteration in 0..=settings.max_iterations {
-        let residual = match problem.residual(t, u, Some(&mut k_values)) {
-            Ok(r) => r,
-            Err(f) => return Ok((NewtonOutcome::Failed(problem.describe_failure(&f)), records)),
-        };
-        let mut r = residual.r;
-        zero_constrained(&mut r, constrained);
         // the prescribed values still to be reached (all of the jump at first)
         let jump: Vec<f64> = (0..u.len())
             .map(|i| {
@@ -79,16 +89,30 @@ pub fn solve_increment(
                 }
             })
             .collect();
-
+        let at_target = jump.iter().all(|&d| d == 0.0);
+        // the force alone first where it may show convergence: the tangent
+        // costs far more and is not needed then
+        let mut have_tangent = !at_target;
+        let evaluate = |u: &[f64], k: Option<&mut [f64]>| problem.residual(t, u, k);
+        let mut residual = match evaluate(u, have_tangent.then_some(&mut k_values[..])) {
+            Ok(r) => r,
+            Err(f) => return failed(problem.describe_failure(&f), records),
+        };
+        let mut r = residual.r.clone();
+        zero_constrained(&mut r, constrained);
         // the out-of-balance force, with the linearised effect of the
         // prescribed values still to be reached: r_f + K_fc d
-        super::linear::multiply(pattern, &k_values, &jump, &mut kd);
+        if have_tangent {
+            super::linear::multiply(pattern, &k_values, &jump, &mut kd);
+        } else {
+            kd.iter_mut().for_each(|x| *x = 0.0);
+        }
         let out_of_balance: Vec<f64> = (0..u.len())
             .map(|i| if constrained[i] { 0.0 } else { r[i] + kd[i] })
             .collect();
         // the force scale: internal and external forces, those of earlier
-        // increments, and the forces the prescribed jump sets up (which are
-        // all there is at the first iteration of a displacement-driven run)
+        // increments, and the forces the prescribed jump sets up (all there
+        // is at the first iteration of a displacement-driven run)
         let scale = residual
             .internal_norm
             .max(residual.external_norm)
@@ -102,23 +126,26 @@ pub fn solve_increment(
             step_length: 0.0,
         });
         if !relative.is_finite() {
-            return Ok((
-                NewtonOutcome::Failed("the residual is not finite".into()),
-                records,
-            ));
+            return failed("the residual is not finite".into(), records);
         }
         // converged: prescribed values reached, a small residual, and a small
         // last correction; or a residual so far below its tolerance that the
         // next correction would be negligible (a linear problem converges in
         // one solve)
-        let at_target = jump.iter().all(|&d| d == 0.0);
         let small_residual = relative <= settings.residual_tolerance || norm(&r) == 0.0;
         let negligible = relative <= 1e-3 * settings.residual_tolerance;
         if at_target
             && small_residual
             && (iteration == 0 || negligible || last_correction <= settings.displacement_tolerance)
         {
-            return Ok((NewtonOutcome::Converged, records));
+            let force_scale = residual.internal_norm.max(residual.external_norm);
+            return Ok((
+                NewtonOutcome::Converged {
+                    residual: residual.r,
+                    force_scale,
+                },
+                records,
+            ));
         }
         if iteration == settings.max_iterations {
             break;
@@ -127,14 +154,22 @@ pub fn solve_increment(
         // residual may be ~0 when only prescribed displacements change)
         let reference = records[0].residual.max(records[1.min(iteration)].residual);
         if iteration >= 3 && relative > 1e3 * reference.max(settings.residual_tolerance) {
-            return Ok((
-                NewtonOutcome::Failed(format!("diverging (relative residual {relative:.3e})")),
+            return failed(
+                format!("diverging (relative residual {relative:.3e})"),
                 records,
-            ));
+            );
         }
-        // rhs: −r_f − K_fc d on the free dofs, (diagonal scale) · d on the prescribed ones
+        if !have_tangent {
+            residual = match evaluate(u, Some(&mut k_values[..])) {
+                Ok(r) => r,
+                Err(f) => return failed(problem.describe_failure(&f), records),
+            };
+            have_tangent = true;
+        }
+        debug_assert!(have_tangent && residual.r.len() == u.len());
+        // rhs: −(r_f + K_fc d) on the free dofs, (diagonal scale) · d on the prescribed ones
         let diagonal = apply_identity_rows(problem, constrained, &mut k_values);
-        let mut du: Vec<f64> = (0..u.len())
+        let rhs: Vec<f64> = (0..u.len())
             .map(|i| {
                 if constrained[i] {
                     diagonal * jump[i]
@@ -143,15 +178,16 @@ pub fn solve_increment(
                 }
             })
             .collect();
-        if nonsymmetric {
-            // LDLᵀ of the symmetric part, refined against the true tangent:
-            // the skew part lives only on follower-loaded facets
-            let k_sym = problem.model.pattern.symmetric_part(&k_values);
-            solver.factorize(pattern, &k_sym, None)?;
-            solver.solve_refined(pattern, &k_values, &mut du, 30)?;
-        } else {
-            solver.factorize(pattern, &k_values, None)?;
-            solver.solve_refined(pattern, &k_values, &mut du, 3)?;
+        let mut du = rhs.clone();
+        if let Err(reason) = solve_linear(
+            solver,
+            &problem.model.pattern,
+            &k_values,
+            nonsymmetric,
+            &rhs,
+            &mut du,
+        ) {
+            return failed(reason, records);
         }
         for (i, d) in du.iter_mut().enumerate() {
             if constrained[i] {
@@ -177,13 +213,61 @@ pub fn solve_increment(
         rec.step_length = step_length;
     }
     let last = records.last().map(|r| r.residual).unwrap_or(f64::NAN);
-    Ok((
-        NewtonOutcome::Failed(format!(
+    failed(
+        format!(
             "no convergence in {} iterations (relative residual {last:.3e})",
             settings.max_iterations
-        )),
+        ),
         records,
-    ))
+    )
+}
+
+/// Solve `K δu = rhs` (`du` holds `rhs` on entry). A symmetric tangent is
+/// factorised and solved directly (with iterative refinement). A
+/// nonsymmetric one (follower loads) is solved by GMRES preconditioned with
+/// the LDLᵀ of its symmetric part: the skew part lives only on the loaded
+/// facets, so a few Krylov iterations suffice. Returns the reason on
+/// failure (singular tangent, no Krylov convergence).
+fn solve_linear(
+    solver: &mut SparseLdlt,
+    blocks: &crate::assembly::pattern::SparsityPattern,
+    k_values: &[f64],
+    nonsymmetric: bool,
+    rhs: &[f64],
+    du: &mut [f64],
+) -> std::result::Result<(), String> {
+    let pattern = blocks.symbolic();
+    if !nonsymmetric {
+        solver
+            .factorize(pattern, k_values, None)
+            .map_err(|e| e.to_string())?;
+        solver
+            .solve_refined(pattern, k_values, du, 3)
+            .map_err(|e| e.to_string())?;
+        return Ok(());
+    }
+    let k_sym = blocks.symmetric_part(k_values);
+    solver
+        .factorize(pattern, &k_sym, None)
+        .map_err(|e| e.to_string())?;
+    du.iter_mut().for_each(|x| *x = 0.0);
+    let report = super::gmres::gmres(
+        |v, y| super::linear::multiply(pattern, k_values, v, y),
+        |z| solver.solve_in_place(z),
+        rhs,
+        du,
+        KRYLOV_TOLERANCE,
+        50,
+        200,
+    )
+    .map_err(|e| e.to_string())?;
+    if report.relative_residual > 1e3 * KRYLOV_TOLERANCE {
+        return Err(format!(
+            "the nonsymmetric linear solve did not converge (GMRES relative residual {:.1e} after {} iterations)",
+            report.relative_residual, report.iterations
+        ));
+    }
+    Ok(())
 }
 
 /// Line search along the Newton direction `δu`.
@@ -213,12 +297,16 @@ fn line_search(
     let s0 = dot(du, r);
     let mut trial = u.to_vec();
     let mut alpha = 1.0;
-    let mut best = (f64::INFINITY, 1.0 / 64.0);
+    let mut best = (f64::INFINITY, 1.0);
     for _ in 0..6 {
         for ((x, u0), d) in trial.iter_mut().zip(u).zip(du) {
             *x = u0 + alpha * d;
         }
         let Ok(res) = problem.residual(t, &trial, None) else {
+            // an inverted element: shorter, and remember it in case all fail
+            if best.0 == f64::INFINITY {
+                best.1 = 0.5 * alpha;
+            }
             alpha *= 0.5;
             continue;
         };

@@ -31,13 +31,15 @@ pub struct IncrementRecord {
 
 /// What the stepper reports as it goes.
 pub trait StepObserver {
-    /// An increment converged; `u` is the new displacement. Write output
-    /// here.
+    /// An increment converged; `u` is the new displacement and `residual`
+    /// the `f_int − f_ext` there (the reactions on prescribed dofs). Write
+    /// output here.
     fn on_converged(
         &mut self,
         problem: &Problem,
         record: &IncrementRecord,
         u: &[f64],
+        residual: &[f64],
     ) -> Result<()>;
     /// An increment failed and is cut.
     fn on_cut(&mut self, _step: &str, _time: f64, _increment: f64, _reason: &str) {}
@@ -81,9 +83,12 @@ pub fn run_steps(
                 &mut trial,
             )?;
             match outcome {
-                NewtonOutcome::Converged => {
+                NewtonOutcome::Converged {
+                    residual,
+                    force_scale: scale,
+                } => {
                     std::mem::swap(&mut u, &mut trial);
-                    force_scale = force_scale.max(problem.force_scale(t_new, &u));
+                    force_scale = force_scale.max(scale);
                     let record = IncrementRecord {
                         step: s,
                         step_name: step.name.clone(),
@@ -94,7 +99,7 @@ pub fn run_steps(
                         cuts,
                     };
                     t = t_new;
-                    observer.on_converged(problem, &record, &u)?;
+                    observer.on_converged(problem, &record, &u, &residual)?;
                     if record.iterations <= problem.settings.easy_iterations && cuts == 0 {
                         dt = (dt * problem.settings.growth_factor).min(step.max_increment);
                     }

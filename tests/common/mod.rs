@@ -57,6 +57,7 @@ impl StepObserver for Recorder {
         _p: &Problem,
         record: &IncrementRecord,
         _u: &[f64],
+        _r: &[f64],
     ) -> signorini::Result<()> {
         self.increments.push(record.clone());
         Ok(())

@@ -10,6 +10,8 @@
 //! - `SIGNORINI_BENCH_SIZES`: cells per edge, comma separated
 //!   (default `25,40,69` ≈ 53 k, 207 k, 1.0 M dofs).
 //! - `SIGNORINI_BENCH_ITERS`: Newton iterations per case (default 2, ≥ 2).
+//! - `SIGNORINI_BENCH_THREADS`: threads of the main runs (default: all
+//!   cores); the thread comparison runs 1 thread against it.
 //! - `SIGNORINI_BENCH_MAX_GIB`: largest factor + matrix estimate for which
 //!   the numeric factorisation is attempted (default 20 GiB; it is also
 //!   capped by `MemAvailable`).
@@ -29,9 +31,7 @@ use signorini::assembly::Model;
 use signorini::material::{Material, NeoHookean};
 use signorini::mesh::structured::box_mesh;
 use signorini::mesh::ElementKind;
-use signorini::problem::{
-    norm, Amplitude, PrescribedDisplacement, Problem, SolverSettings, Step,
-};
+use signorini::problem::{norm, Amplitude, PrescribedDisplacement, Problem, SolverSettings, Step};
 use signorini::solve::linear::{multiply, Ordering, SparseLdlt};
 use signorini::solve::ordering::nested_dissection;
 use std::process::Command;
@@ -120,7 +120,7 @@ fn parent() {
         .and_then(|v| v.parse().ok())
         .unwrap_or(20.0);
     let cores = std::thread::available_parallelism().map_or(1, |n| n.get());
-    let threads = cores.min(2).max(1);
+    let threads = env_list("SIGNORINI_BENCH_THREADS", &cores.to_string())[0].max(1);
     println!("signorini scaling benchmark");
     println!(
         "Hex8 unit cube, neo-Hookean (E = 1, nu = 0.3), bottom (zmin) fixed, top (zmax) u = (0, 0, {TOP_DISPLACEMENT}) (2 % compression), predictor u_z = d z / L; {iterations} full Newton iterations per case"
@@ -274,25 +274,64 @@ fn rows(results: &[Value]) -> Vec<(String, Vec<String>)> {
     let mut rows: Vec<(String, Vec<String>)> = vec![
         ("elements".into(), col(&|r| count(f(r, "elements")))),
         ("dofs".into(), col(&|r| count(f(r, "dofs")))),
-        ("matrix nnz (both triangles)".into(), col(&|r| count(f(r, "nnz")))),
+        (
+            "matrix nnz (both triangles)".into(),
+            col(&|r| count(f(r, "nnz"))),
+        ),
         ("threads".into(), col(&|r| format!("{}", r["threads"]))),
         ("mesh + model setup".into(), col(&|r| secs(r, "setup_s"))),
-        ("ordering (METIS ND, node graph)".into(), col(&|r| secs(r, "ordering_s"))),
-        ("symbolic analysis (incl. AMD)".into(), col(&|r| secs(r, "symbolic_s"))),
+        (
+            "ordering (METIS ND, node graph)".into(),
+            col(&|r| secs(r, "ordering_s")),
+        ),
+        (
+            "symbolic analysis (incl. AMD)".into(),
+            col(&|r| secs(r, "symbolic_s")),
+        ),
         ("factor nnz".into(), col(&|r| count(f(r, "factor_nnz")))),
-        ("factor memory (8 B x nnz)".into(), col(&|r| bytes(8.0 * f(r, "factor_nnz")))),
-        ("factor flops (sum c_j^2)".into(), col(&|r| count(f(r, "flops")))),
-        ("estimate factor + matrix".into(), col(&|r| bytes(f(r, "estimate_bytes")))),
-        ("faer numeric scratch".into(), col(&|r| bytes(f(r, "scratch_bytes")))),
-        ("estimate whole process".into(), col(&|r| bytes(f(r, "process_estimate_bytes")))),
+        (
+            "factor memory (8 B x nnz)".into(),
+            col(&|r| bytes(8.0 * f(r, "factor_nnz"))),
+        ),
+        (
+            "factor flops (sum c_j^2)".into(),
+            col(&|r| count(f(r, "flops"))),
+        ),
+        (
+            "estimate factor + matrix".into(),
+            col(&|r| bytes(f(r, "estimate_bytes"))),
+        ),
+        (
+            "faer numeric scratch".into(),
+            col(&|r| bytes(f(r, "scratch_bytes"))),
+        ),
+        (
+            "estimate whole process".into(),
+            col(&|r| bytes(f(r, "process_estimate_bytes"))),
+        ),
     ];
     for i in 0..max_iters {
         let n = i + 1;
-        rows.push((format!("it {n}: assembly (f + K)"), col(&|r| iter_secs(r, i, "assembly_s"))));
-        rows.push((format!("it {n}: BC rows/cols"), col(&|r| iter_secs(r, i, "bc_s"))));
-        rows.push((format!("it {n}: factorize() call"), col(&|r| iter_secs(r, i, "factorize_s"))));
-        rows.push((format!("it {n}:   of which numeric"), col(&|r| iter_secs(r, i, "numeric_s"))));
-        rows.push((format!("it {n}: solve (1 rhs)"), col(&|r| iter_secs(r, i, "solve_s"))));
+        rows.push((
+            format!("it {n}: assembly (f + K)"),
+            col(&|r| iter_secs(r, i, "assembly_s")),
+        ));
+        rows.push((
+            format!("it {n}: BC rows/cols"),
+            col(&|r| iter_secs(r, i, "bc_s")),
+        ));
+        rows.push((
+            format!("it {n}: factorize() call"),
+            col(&|r| iter_secs(r, i, "factorize_s")),
+        ));
+        rows.push((
+            format!("it {n}:   of which numeric"),
+            col(&|r| iter_secs(r, i, "numeric_s")),
+        ));
+        rows.push((
+            format!("it {n}: solve (1 rhs)"),
+            col(&|r| iter_secs(r, i, "solve_s")),
+        ));
         rows.push((
             format!("it {n}: Newton residual before"),
             col(&|r| match r["iterations"].get(i) {
@@ -329,36 +368,71 @@ fn rows(results: &[Value]) -> Vec<(String, Vec<String>)> {
             }
         }),
     ));
-    rows.push(("peak RSS after setup".into(), col(&|r| bytes(f(r, "hwm_setup")))));
-    rows.push(("peak RSS after analysis".into(), col(&|r| bytes(f(r, "hwm_symbolic")))));
-    rows.push(("peak RSS (VmHWM, whole case)".into(), col(&|r| bytes(f(r, "hwm_end")))));
+    rows.push((
+        "peak RSS after setup".into(),
+        col(&|r| bytes(f(r, "hwm_setup"))),
+    ));
+    rows.push((
+        "peak RSS after analysis".into(),
+        col(&|r| bytes(f(r, "hwm_symbolic"))),
+    ));
+    rows.push((
+        "peak RSS (VmHWM, whole case)".into(),
+        col(&|r| bytes(f(r, "hwm_end"))),
+    ));
     rows.push(("case wall time".into(), col(&|r| secs(r, "wall_s"))));
+    rows.push((
+        "load average (1 min) start / end".into(),
+        col(&|r| format!("{:.1} / {:.1}", f(r, "load_start"), f(r, "load_end"))),
+    ));
     rows.push((
         "note".into(),
         col(&|r| {
-            r["failed"]
-                .as_str()
-                .or(r["skipped"].as_str())
-                .unwrap_or("")
-                .to_string()
+            if r["failed"].is_string() || r["skipped"].is_string() {
+                "see below".into()
+            } else {
+                String::new()
+            }
         }),
     ));
     rows
 }
 
+/// The notes of failed or skipped cases, below a table.
+fn notes(header: &[String], results: &[Value]) {
+    for (h, r) in header.iter().zip(results) {
+        if let Some(note) = r["failed"].as_str().or(r["skipped"].as_str()) {
+            println!("note ({h}): {note}");
+        }
+    }
+    if results
+        .iter()
+        .any(|r| r["failed"].is_string() || r["skipped"].is_string())
+    {
+        println!();
+    }
+}
+
 fn print_scaling(results: &[Value]) {
-    println!("== Scaling (METIS nested dissection, {} threads) ==", results.first().map_or(0, |r| r["threads"].as_u64().unwrap_or(0)));
+    println!(
+        "== Scaling (METIS nested dissection, {} threads) ==",
+        results
+            .first()
+            .map_or(0, |r| r["threads"].as_u64().unwrap_or(0))
+    );
     let header: Vec<String> = results
         .iter()
         .map(|r| format!("{}^3 cells", r["cells"]))
         .collect();
     table(&header, &rows(results));
+    notes(&header, results);
 }
 
 fn print_orderings(results: &[Value]) {
     println!("== Ordering ({}^3 cells) ==", results[0]["cells"]);
     let header = vec!["AMD (faer)".to_string(), "METIS ND".to_string()];
     table(&header, &rows(results));
+    notes(&header, results);
 }
 
 fn print_threads(results: &[Value], cores: usize) {
@@ -371,6 +445,7 @@ fn print_threads(results: &[Value], cores: usize) {
         .map(|r| format!("{} thread(s)", r["threads"]))
         .collect();
     table(&header, &rows(results));
+    notes(&header, results);
 }
 
 // ----------------------------------------------------------------- child
@@ -460,8 +535,17 @@ fn prescribe(problem: &mut Problem, surface: &str, components: &[(usize, f64)]) 
     });
 }
 
+/// The 1-minute load average of the machine.
+fn load_average() -> f64 {
+    std::fs::read_to_string("/proc/loadavg")
+        .ok()
+        .and_then(|s| s.split_whitespace().next()?.parse().ok())
+        .unwrap_or(f64::NAN)
+}
+
 fn run_case(spec: &Spec) -> Value {
     let wall = Instant::now();
+    let load_start = load_average();
     rayon::ThreadPoolBuilder::new()
         .num_threads(spec.threads)
         .build_global()
@@ -475,8 +559,8 @@ fn run_case(spec: &Spec) -> Value {
     let num_elements = mesh.elements.len();
     let material: Arc<dyn Material> =
         Arc::new(NeoHookean::new(1.0, 0.3, "material").expect("valid material"));
-    let model = Model::new(Arc::new(mesh), vec![material], vec![0; num_elements])
-        .expect("valid mesh");
+    let model =
+        Model::new(Arc::new(mesh), vec![material], vec![0; num_elements]).expect("valid mesh");
     let mut problem = Problem {
         model,
         prescribed: Vec::new(),
@@ -492,7 +576,11 @@ fn run_case(spec: &Spec) -> Value {
         settings: SolverSettings::default(),
     };
     prescribe(&mut problem, "zmin", &[(0, 0.0), (1, 0.0), (2, 0.0)]);
-    prescribe(&mut problem, "zmax", &[(0, 0.0), (1, 0.0), (2, TOP_DISPLACEMENT)]);
+    prescribe(
+        &mut problem,
+        "zmax",
+        &[(0, 0.0), (1, 0.0), (2, TOP_DISPLACEMENT)],
+    );
     let constrained = problem.constrained_dofs();
     let setup = start.elapsed();
     let dofs = problem.model.num_dofs();
@@ -512,6 +600,7 @@ fn run_case(spec: &Spec) -> Value {
         "nnz": nnz,
         "setup_s": dur(setup),
         "hwm_setup": hwm_setup,
+        "load_start": load_start,
     });
 
     // --- fill-reducing ordering
@@ -612,6 +701,7 @@ fn run_case(spec: &Spec) -> Value {
         ));
         result["hwm_end"] = json!(status_bytes("VmHWM"));
         result["wall_s"] = json!(dur(wall.elapsed()));
+        result["load_end"] = json!(load_average());
         log("skipped the numeric factorisation".into());
         return result;
     }
@@ -640,8 +730,11 @@ fn run_case(spec: &Spec) -> Value {
                 *x = 0.0;
             }
         }
-        let relative =
-            norm(&r) / residual.internal_norm.max(residual.external_norm).max(f64::MIN_POSITIVE);
+        let relative = norm(&r)
+            / residual
+                .internal_norm
+                .max(residual.external_norm)
+                .max(f64::MIN_POSITIVE);
 
         let start = Instant::now();
         apply_identity_rows(&problem, &constrained, &mut k_values);
@@ -694,18 +787,23 @@ fn run_case(spec: &Spec) -> Value {
             "analyses": t.analyses,
         }));
     }
-    assert_eq!(solver.timings.analyses, 1, "the symbolic analysis is reused");
-    let residual = problem.residual(1.0, &u, None).expect("no inverted element");
+    assert_eq!(
+        solver.timings.analyses, 1,
+        "the symbolic analysis is reused"
+    );
+    let residual = problem
+        .residual(1.0, &u, None)
+        .expect("no inverted element");
     let mut r = residual.r;
     for (x, &c) in r.iter_mut().zip(&constrained) {
         if c {
             *x = 0.0;
         }
     }
-    result["final_residual"] =
-        json!(norm(&r) / residual.internal_norm.max(residual.external_norm));
+    result["final_residual"] = json!(norm(&r) / residual.internal_norm.max(residual.external_norm));
     result["iterations"] = Value::Array(iterations);
     result["hwm_end"] = json!(status_bytes("VmHWM"));
     result["wall_s"] = json!(dur(wall.elapsed()));
+    result["load_end"] = json!(load_average());
     result
 }

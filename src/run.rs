@@ -118,6 +118,7 @@ impl Writer {
             symbolic_analyses: 0,
             matrix_nnz: problem.model.pattern.nnz(),
             factor_nnz: 0,
+            steps: Vec::new(),
             increments: Vec::new(),
         };
         Ok(Writer {

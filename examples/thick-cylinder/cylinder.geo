@@ -9,8 +9,9 @@ BooleanDifference(3) = { Volume{1}; Delete; }{ Volume{2}; Delete; };
 Mesh.CharacteristicLengthMax = 0.12;
 eps = 1e-6;
 Physical Volume("body") = {3};
+// only the curved inner face lies entirely inside this box (the planar
+// faces reach out to r = b)
 Physical Surface("inner") = Surface In BoundingBox{-eps, -eps, -eps, a + eps, a + eps, h + eps};
-// keep only the curved inner face: remove planar faces found by the box
 Physical Surface("symmetry_x") = Surface In BoundingBox{-eps, -eps, -eps, eps, b + eps, h + eps};
 Physical Surface("symmetry_y") = Surface In BoundingBox{-eps, -eps, -eps, b + eps, eps, h + eps};
 Physical Surface("bottom") = Surface In BoundingBox{-eps, -eps, -eps, b + eps, b + eps, eps};

@@ -33,6 +33,21 @@ pub struct IncrementSummary {
     pub reaction_forces: BTreeMap<String, [f64; 3]>,
 }
 
+/// Totals of one load step over its converged increments.
+#[derive(Clone, Debug, Serialize)]
+pub struct StepSummary {
+    pub name: String,
+    /// Pseudo-time reached in the step.
+    pub time: f64,
+    pub increments: usize,
+    /// Newton iterations of the step's converged increments.
+    pub iterations: usize,
+    /// Cuts of the increment within the step.
+    pub cuts: usize,
+    /// Wall time of the step's converged increments, seconds.
+    pub wall_time: f64,
+}
+
 /// The whole run.
 #[derive(Clone, Debug, Serialize)]
 pub struct Summary {
@@ -55,12 +70,39 @@ pub struct Summary {
     /// Stored entries of the tangent and of its LDLᵀ factor.
     pub matrix_nnz: usize,
     pub factor_nnz: usize,
+    /// Per load step, totals over its increments.
+    pub steps: Vec<StepSummary>,
     pub increments: Vec<IncrementSummary>,
 }
 
 impl Summary {
+    /// Recompute the per-step totals from the increments.
+    pub fn update_step_totals(&mut self) {
+        let mut steps: Vec<StepSummary> = Vec::new();
+        for inc in &self.increments {
+            if steps.last().is_none_or(|s| s.name != inc.step_name) {
+                steps.push(StepSummary {
+                    name: inc.step_name.clone(),
+                    time: inc.time,
+                    increments: 0,
+                    iterations: 0,
+                    cuts: 0,
+                    wall_time: 0.0,
+                });
+            }
+            let s = steps.last_mut().expect("pushed above");
+            s.time = inc.time;
+            s.increments += 1;
+            s.iterations += inc.iterations;
+            s.cuts += inc.cuts;
+            s.wall_time += inc.wall_time;
+        }
+        self.steps = steps;
+    }
+
     /// Write as pretty JSON, atomically (temporary file + rename).
-    pub fn write(&self, path: &Path) -> crate::Result<()> {
+    pub fn write(&mut self, path: &Path) -> crate::Result<()> {
+        self.update_step_totals();
         let text = serde_json::to_string_pretty(self).expect("the summary serialises");
         super::write_atomically(path, |w| std::io::Write::write_all(w, text.as_bytes()))
     }

@@ -44,8 +44,8 @@ pub struct SolverTimings {
 pub struct SparseLdlt {
     ordering: Ordering,
     symbolic: Option<SymbolicCholesky<usize>>,
-    /// The pattern the symbolic analysis was made for.
-    analysed: Option<(Vec<usize>, Vec<usize>)>,
+    /// Fingerprint of the pattern the symbolic analysis was made for.
+    analysed: Option<u64>,
     factor: Vec<f64>,
     par: Par,
     pub timings: SolverTimings,
@@ -69,61 +69,48 @@ impl SparseLdlt {
         }
     }
 
+    /// The symbolic analysis, done again only when the pattern changes
+    /// (recognised by a fingerprint of its structure, so that no copy of the
+    /// pattern is kept).
     fn analyse(&mut self, pattern: &SymbolicSparseColMat<usize>) -> Result<()> {
-        let same = self.analysed.as_ref().is_some_and(|(cp, ri)| {
-            cp.as_slice() == pattern.col_ptr() && ri.as_slice() == pattern.row_idx()
-        });
-        if same {
+        let fingerprint = pattern_fingerprint(pattern);
+        if self.symbolic.is_some() && self.analysed == Some(fingerprint) {
             return Ok(());
         }
         let start = Instant::now();
-        let ord = match &self.ordering {
-            Ordering::Amd => SymmetricOrdering::Amd,
+        // faer's convention: the factorised matrix is P A Pᵀ with
+        // forward[new] = old (METIS NodeND's `perm` has the same meaning)
+        let perm = match &self.ordering {
+            Ordering::Amd => None,
             Ordering::Custom(fwd) => {
-                let n = fwd.len();
-                let mut inv = vec![0usize; n];
+                let mut inv = vec![0usize; fwd.len()];
                 for (new, &old) in fwd.iter().enumerate() {
                     inv[old] = new;
                 }
-                let perm = faer::perm::Perm::new_checked(
+                Some(faer::perm::Perm::new_checked(
                     fwd.clone().into_boxed_slice(),
                     inv.into_boxed_slice(),
-                    n,
-                );
-                // The symbolic factorisation copies what it needs.
-                let symbolic = factorize_symbolic_cholesky(
-                    pattern.as_ref(),
-                    Side::Lower,
-                    SymmetricOrdering::Custom(perm.as_ref()),
-                    CholeskySymbolicParams::default(),
-                )
-                .map_err(|e| Error::LinearSolver(format!("symbolic analysis: {e:?}")))?;
-                self.finish_analysis(symbolic, pattern, start);
-                return Ok(());
+                    fwd.len(),
+                ))
             }
+        };
+        let ordering = match &perm {
+            None => SymmetricOrdering::Amd,
+            Some(p) => SymmetricOrdering::Custom(p.as_ref()),
         };
         let symbolic = factorize_symbolic_cholesky(
             pattern.as_ref(),
             Side::Lower,
-            ord,
+            ordering,
             CholeskySymbolicParams::default(),
         )
         .map_err(|e| Error::LinearSolver(format!("symbolic analysis: {e:?}")))?;
-        self.finish_analysis(symbolic, pattern, start);
-        Ok(())
-    }
-
-    fn finish_analysis(
-        &mut self,
-        symbolic: SymbolicCholesky<usize>,
-        pattern: &SymbolicSparseColMat<usize>,
-        start: Instant,
-    ) {
         self.factor = vec![0.0; symbolic.len_val()];
         self.symbolic = Some(symbolic);
-        self.analysed = Some((pattern.col_ptr().to_vec(), pattern.row_idx().to_vec()));
+        self.analysed = Some(fingerprint);
         self.timings.symbolic = start.elapsed();
         self.timings.analyses += 1;
+        Ok(())
     }
 
     /// Number of stored entries of the factor `L` (after analysis).
@@ -237,6 +224,20 @@ impl SparseLdlt {
         }
         Ok(relative)
     }
+}
+
+/// A hash of a pattern's structure (FNV-1a over its dimensions, column
+/// pointers and row indices).
+fn pattern_fingerprint(pattern: &SymbolicSparseColMat<usize>) -> u64 {
+    let mut h: u64 = 0xcbf2_9ce4_8422_2325;
+    let mut eat = |v: usize| {
+        h ^= v as u64;
+        h = h.wrapping_mul(0x0100_0000_01b3);
+    };
+    eat(pattern.nrows());
+    pattern.col_ptr().iter().for_each(|&v| eat(v));
+    pattern.row_idx().iter().for_each(|&v| eat(v));
+    h
 }
 
 fn max_abs_diagonal(pattern: &SymbolicSparseColMat<usize>, values: &[f64]) -> f64 {

@@ -86,6 +86,8 @@ fn rubber_tension_matches_closed_form() {
     );
     // released: back to the reference configuration
     assert!(outcome.displacement.iter().all(|u| u.abs() < 1e-10));
+    // one symbolic analysis for the whole run (the pattern never changes)
+    assert_eq!(outcome.summary.symbolic_analyses, 1);
     // Newton's rate: every increment within 6 iterations
     assert!(
         incs.iter().all(|i| i.iterations <= 6),

@@ -1,5 +1,8 @@
 //! The table of Gmsh element types: dimension, node count and shape.
 
+use super::cursor::Cursor;
+use crate::Result;
+
 /// Dimension, node count and shape of a Gmsh element type.
 #[derive(Clone, Copy, Debug)]
 pub(super) struct ElementInfo {
@@ -110,6 +113,34 @@ pub(super) fn element_info(element_type: i64) -> Option<ElementInfo> {
         _ => return None,
     };
     Some(ElementInfo { dim, nodes, shape })
+}
+
+impl ElementInfo {
+    /// Checks that an ASCII element line gave this type's number of node tags
+    /// and copies them into `out`.
+    pub(super) fn node_tags(
+        &self,
+        cur: &Cursor,
+        at: usize,
+        tag: i64,
+        element_type: i64,
+        nodes: &[i64],
+        out: &mut Vec<u64>,
+    ) -> Result<()> {
+        if nodes.len() != self.nodes {
+            return Err(cur.syntax(
+                at,
+                format!(
+                    "expected {} node tags for element {tag} of type {element_type}, found {}",
+                    self.nodes,
+                    nodes.len()
+                ),
+            ));
+        }
+        out.clear();
+        out.extend(nodes.iter().map(|&t| u64::try_from(t).unwrap_or(0)));
+        Ok(())
+    }
 }
 
 #[cfg(test)]

@@ -79,23 +79,8 @@ fn read_elements_ascii(cur: &mut Cursor, b: &mut Builder, count: u64) -> Result<
                 ),
             ));
         }
-        if nodes.len() != info.nodes {
-            return Err(cur.syntax(
-                at,
-                format!(
-                    "expected {} node tags for element {tag} of type {element_type}, found {}",
-                    info.nodes,
-                    nodes.len()
-                ),
-            ));
-        }
-        let physical: &[i64] = match element_tags.first() {
-            Some(&p) if p != 0 => &element_tags[..1],
-            _ => &[],
-        };
-        let entity = element_tags.get(1).copied().unwrap_or(0);
-        node_tags.clear();
-        node_tags.extend(nodes.iter().map(|&t| u64::try_from(t).unwrap_or(0)));
+        info.node_tags(cur, at, tag, element_type, nodes, &mut node_tags)?;
+        let (physical, entity) = physical_and_entity(element_tags);
         let tag = u64::try_from(tag).unwrap_or(0);
         b.add_element(
             cur,
@@ -141,12 +126,8 @@ fn read_elements_binary(cur: &mut Cursor, b: &mut Builder, count: u64) -> Result
             for _ in 0..info.nodes {
                 node_tags.push(u64::try_from(cur.int("a node tag of an element")?).unwrap_or(0));
             }
-            let physical: &[i64] = match tags.first() {
-                Some(&p) if p != 0 => &tags[..1],
-                _ => &[],
-            };
+            let (physical, entity) = physical_and_entity(&tags);
             let tag = u64::try_from(tag).unwrap_or(0);
-            let entity = tags.get(1).copied().unwrap_or(0);
             b.add_element(
                 cur,
                 at,
@@ -168,4 +149,14 @@ fn read_elements_binary(cur: &mut Cursor, b: &mut Builder, count: u64) -> Result
     }
     cur.end_binary();
     Ok(())
+}
+
+/// The physical group (none for tag 0) and the elementary entity of an
+/// element, from its first two tags.
+fn physical_and_entity(tags: &[i64]) -> (&[i64], i64) {
+    let physical: &[i64] = match tags.first() {
+        Some(&p) if p != 0 => &tags[..1],
+        _ => &[],
+    };
+    (physical, tags.get(1).copied().unwrap_or(0))
 }

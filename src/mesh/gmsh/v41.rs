@@ -3,7 +3,7 @@
 
 use super::builder::Builder;
 use super::cursor::Cursor;
-use super::element_type::element_info;
+use super::element_type::{element_info, ElementInfo};
 use crate::Result;
 
 /// `$Entities`: the counts of points, curves, surfaces and volumes,
@@ -122,42 +122,12 @@ pub(super) fn read_elements(cur: &mut Cursor, b: &mut Builder) -> Result<()> {
             .cloned()
             .unwrap_or_default();
         if cur.binary && info.dim < 2 {
-            // points and lines are ignored: skip the whole block at once
-            let bytes = n
-                .checked_mul(1 + info.nodes as u64)
-                .and_then(|k| k.checked_mul(cur.size_t as u64))
-                .and_then(|k| usize::try_from(k).ok())
-                .unwrap_or(usize::MAX);
-            cur.bytes(bytes, "the elements of a block of points or lines")?;
+            skip_binary_block(cur, info, n)?;
             read += n;
             continue;
         }
         for _ in 0..n {
-            let (tag, at) = if cur.binary {
-                let at = cur.pos;
-                let tag = cur.size("an element tag")?;
-                node_tags.clear();
-                for _ in 0..info.nodes {
-                    node_tags.push(cur.size("a node tag of an element")?);
-                }
-                (tag, at)
-            } else {
-                let at = cur.int_line(&mut line, "an element line (element tag, node tags)")?;
-                let (&tag, nodes) = line.split_first().unwrap_or((&0, &[]));
-                if nodes.len() != info.nodes {
-                    return Err(cur.syntax(
-                        at,
-                        format!(
-                            "expected {} node tags for element {tag} of type {element_type}, found {}",
-                            info.nodes,
-                            nodes.len()
-                        ),
-                    ));
-                }
-                node_tags.clear();
-                node_tags.extend(nodes.iter().map(|&t| u64::try_from(t).unwrap_or(0)));
-                (u64::try_from(tag).unwrap_or(0), at)
-            };
+            let (tag, at) = read_element(cur, element_type, info, &mut line, &mut node_tags)?;
             b.add_element(
                 cur,
                 at,
@@ -179,4 +149,41 @@ pub(super) fn read_elements(cur: &mut Cursor, b: &mut Builder) -> Result<()> {
     }
     cur.end_binary();
     cur.expect("$EndElements")
+}
+
+/// Skips a binary block of `n` points or lines (which the mesh ignores)
+/// at once.
+fn skip_binary_block(cur: &mut Cursor, info: ElementInfo, n: u64) -> Result<()> {
+    let bytes = n
+        .checked_mul(1 + info.nodes as u64)
+        .and_then(|k| k.checked_mul(cur.size_t as u64))
+        .and_then(|k| usize::try_from(k).ok())
+        .unwrap_or(usize::MAX);
+    cur.bytes(bytes, "the elements of a block of points or lines")?;
+    Ok(())
+}
+
+/// One element of a block, `elementTag nodeTag...`, into `node_tags`
+/// (ASCII: through the scratch `line`); returns its tag and offset.
+fn read_element(
+    cur: &mut Cursor,
+    element_type: i64,
+    info: ElementInfo,
+    line: &mut Vec<i64>,
+    node_tags: &mut Vec<u64>,
+) -> Result<(u64, usize)> {
+    if cur.binary {
+        let at = cur.pos;
+        let tag = cur.size("an element tag")?;
+        node_tags.clear();
+        for _ in 0..info.nodes {
+            node_tags.push(cur.size("a node tag of an element")?);
+        }
+        Ok((tag, at))
+    } else {
+        let at = cur.int_line(line, "an element line (element tag, node tags)")?;
+        let (&tag, nodes) = line.split_first().unwrap_or((&0, &[]));
+        info.node_tags(cur, at, tag, element_type, nodes, node_tags)?;
+        Ok((u64::try_from(tag).unwrap_or(0), at))
+    }
 }

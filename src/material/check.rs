@@ -259,3 +259,13 @@ pub fn check_isotropy(m: &dyn Material) {
         );
     }
 }
+
+/// Where the energy is undefined (inverted, degenerate or NaN `F`): NaN
+/// stress and tangent and `+∞` energy, no panic.
+pub fn check_nan_where_undefined(m: &dyn Material, deformations: &[Mat3]) {
+    for f in deformations {
+        let (s, d) = m.stress_and_tangent(f);
+        assert!(s.iter().all(|x| x.is_nan()) && d.iter().all(|x| x.is_nan()));
+        assert!(m.strain_energy(f) == f64::INFINITY);
+    }
+}

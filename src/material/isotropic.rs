@@ -6,7 +6,7 @@
 //! [`SaintVenantKirchhoff`]: super::SaintVenantKirchhoff
 //! [`NeoHookean`]: super::NeoHookean
 
-use super::{key_path, lame};
+use super::{isotropic_elasticity, key_path, lame, Mat3, Mat6};
 use crate::{Error, Result};
 
 /// Validated `(E, ν)` with their Lamé parameters `(λ, μ)` = [`lame`]`(E, ν)`.
@@ -45,6 +45,19 @@ impl IsotropicParameters {
     /// Lamé parameters `(λ, μ)`.
     pub(crate) fn lame(&self) -> (f64, f64) {
         (self.lambda, self.mu)
+    }
+
+    /// Hooke's energy in the strain `e`: `λ/2 (tr e)² + μ e : e`.
+    pub(crate) fn hooke_energy(&self, e: &Mat3) -> f64 {
+        let tr = e.trace();
+        0.5 * self.lambda * tr * tr + self.mu * e.component_mul(e).sum()
+    }
+
+    /// Hooke's stress `λ tr(e) I + 2μ e` in the strain `e` and the constant
+    /// tangent `ℂ = λ I⊗I + 2μ 𝕀`.
+    pub(crate) fn hooke_stress_and_tangent(&self, e: &Mat3) -> (Mat3, Mat6) {
+        let stress = Mat3::identity() * (self.lambda * e.trace()) + e * (2.0 * self.mu);
+        (stress, isotropic_elasticity(self.lambda, self.mu))
     }
 }
 

@@ -1,6 +1,6 @@
 //! Small-strain isotropic Hooke's law.
 
-use super::{isotropic_elasticity, IsotropicParameters, Kinematics, Mat3, Mat6, Material};
+use super::{IsotropicParameters, Kinematics, Mat3, Mat6, Material};
 use crate::Result;
 
 /// Small-strain isotropic linear elasticity (Hooke).
@@ -58,17 +58,11 @@ impl Material for LinearElastic {
     }
 
     fn strain_energy(&self, f: &Mat3) -> f64 {
-        let (lambda, mu) = self.params.lame();
-        let eps = Self::strain(f);
-        let tr = eps.trace();
-        0.5 * lambda * tr * tr + mu * eps.component_mul(&eps).sum()
+        self.params.hooke_energy(&Self::strain(f))
     }
 
     fn stress_and_tangent(&self, f: &Mat3) -> (Mat3, Mat6) {
-        let (lambda, mu) = self.params.lame();
-        let eps = Self::strain(f);
-        let sigma = Mat3::identity() * (lambda * eps.trace()) + eps * (2.0 * mu);
-        (sigma, isotropic_elasticity(lambda, mu))
+        self.params.hooke_stress_and_tangent(&Self::strain(f))
     }
 
     fn reference_youngs_modulus(&self) -> f64 {
@@ -79,7 +73,7 @@ impl Material for LinearElastic {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::material::{check, lame};
+    use crate::material::{check, isotropic_elasticity, lame};
 
     fn steel() -> LinearElastic {
         LinearElastic::new(210.0, 0.3, "materials[0]").unwrap()

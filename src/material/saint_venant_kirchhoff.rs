@@ -1,6 +1,6 @@
 //! Saint Venant–Kirchhoff: Hooke's law in the Green–Lagrange strain.
 
-use super::{isotropic_elasticity, IsotropicParameters, Mat3, Mat6, Material};
+use super::{IsotropicParameters, Mat3, Mat6, Material};
 use crate::Result;
 
 /// Saint Venant–Kirchhoff hyperelasticity, with `E = ½(FᵀF − I)`:
@@ -51,17 +51,12 @@ impl Material for SaintVenantKirchhoff {
     }
 
     fn strain_energy(&self, f: &Mat3) -> f64 {
-        let (lambda, mu) = self.params.lame();
-        let e = Self::green_lagrange(f);
-        let tr = e.trace();
-        0.5 * lambda * tr * tr + mu * e.component_mul(&e).sum()
+        self.params.hooke_energy(&Self::green_lagrange(f))
     }
 
     fn stress_and_tangent(&self, f: &Mat3) -> (Mat3, Mat6) {
-        let (lambda, mu) = self.params.lame();
-        let e = Self::green_lagrange(f);
-        let s = Mat3::identity() * (lambda * e.trace()) + e * (2.0 * mu);
-        (s, isotropic_elasticity(lambda, mu))
+        self.params
+            .hooke_stress_and_tangent(&Self::green_lagrange(f))
     }
 
     fn reference_youngs_modulus(&self) -> f64 {
@@ -72,7 +67,7 @@ impl Material for SaintVenantKirchhoff {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::material::{check, lame, Kinematics};
+    use crate::material::{check, isotropic_elasticity, lame, Kinematics};
 
     fn material() -> SaintVenantKirchhoff {
         SaintVenantKirchhoff::new(200.0, 0.3, "materials[1]").unwrap()

@@ -259,3 +259,19 @@ pub fn check_isotropy(m: &dyn Material) {
         );
     }
 }
+
+/// Where the energy is undefined: NaN stress and tangent and `+∞` energy,
+/// no panic, for an inverted `F`, the zero `F`, the singular `degenerate`
+/// and an all-NaN `F`.
+pub fn check_nan_where_undefined(m: &dyn Material, degenerate: Mat3) {
+    for f in [
+        diag(1.0, 1.0, -1.0),
+        Mat3::zeros(),
+        degenerate,
+        Mat3::from_element(f64::NAN),
+    ] {
+        let (s, d) = m.stress_and_tangent(&f);
+        assert!(s.iter().all(|x| x.is_nan()) && d.iter().all(|x| x.is_nan()));
+        assert!(m.strain_energy(&f) == f64::INFINITY);
+    }
+}

@@ -1,8 +1,6 @@
 //! Small-strain isotropic Hooke's law.
 
-use super::{
-    isotropic_elasticity, lame, validate_youngs_poisson, Kinematics, Mat3, Mat6, Material,
-};
+use super::{IsotropicParameters, Kinematics, Mat3, Mat6, Material};
 use crate::Result;
 
 /// Small-strain isotropic linear elasticity (Hooke).
@@ -13,45 +11,36 @@ use crate::Result;
 /// - stress `σ = ℂ : ε = λ tr(ε) I + 2μ ε`,
 /// - tangent `∂σ/∂ε = ℂ = λ I⊗I + 2μ 𝕀` (constant),
 ///
-/// with Lamé parameters `(λ, μ)` = [`lame`]`(E, ν)`. Its
+/// with Lamé parameters `(λ, μ)` = [`lame`](super::lame)`(E, ν)`. Its
 /// [`Kinematics`] is [`Kinematics::SmallStrain`]: the returned "S" is the
 /// Cauchy stress σ, which the caller uses as is (no push-forward). The law is
 /// not objective under large rotations, by design.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct LinearElastic {
-    youngs_modulus: f64,
-    poisson_ratio: f64,
-    lambda: f64,
-    mu: f64,
+    params: IsotropicParameters,
 }
 
 impl LinearElastic {
     /// Validates `E > 0` and `−1 < ν < 0.5` (finite); errors carry the key
     /// paths `{key_prefix}.youngs_modulus` / `{key_prefix}.poisson_ratio`.
     pub fn new(youngs_modulus: f64, poisson_ratio: f64, key_prefix: &str) -> Result<Self> {
-        validate_youngs_poisson(youngs_modulus, poisson_ratio, key_prefix)?;
-        let (lambda, mu) = lame(youngs_modulus, poisson_ratio);
-        Ok(Self {
-            youngs_modulus,
-            poisson_ratio,
-            lambda,
-            mu,
-        })
+        let params = IsotropicParameters::new(youngs_modulus, poisson_ratio, key_prefix)?;
+        Ok(Self { params })
     }
 
     /// Young's modulus `E`.
     pub fn youngs_modulus(&self) -> f64 {
-        self.youngs_modulus
+        self.params.youngs_modulus()
     }
 
     /// Poisson's ratio `ν`.
     pub fn poisson_ratio(&self) -> f64 {
-        self.poisson_ratio
+        self.params.poisson_ratio()
     }
 
     /// Lamé parameters `(λ, μ)`.
     pub fn lame(&self) -> (f64, f64) {
-        (self.lambda, self.mu)
+        self.params.lame()
     }
 
     fn strain(f: &Mat3) -> Mat3 {
@@ -69,26 +58,22 @@ impl Material for LinearElastic {
     }
 
     fn strain_energy(&self, f: &Mat3) -> f64 {
-        let eps = Self::strain(f);
-        let tr = eps.trace();
-        0.5 * self.lambda * tr * tr + self.mu * eps.component_mul(&eps).sum()
+        self.params.hooke_energy(&Self::strain(f))
     }
 
     fn stress_and_tangent(&self, f: &Mat3) -> (Mat3, Mat6) {
-        let eps = Self::strain(f);
-        let sigma = Mat3::identity() * (self.lambda * eps.trace()) + eps * (2.0 * self.mu);
-        (sigma, isotropic_elasticity(self.lambda, self.mu))
+        self.params.hooke_stress_and_tangent(&Self::strain(f))
     }
 
     fn reference_youngs_modulus(&self) -> f64 {
-        self.youngs_modulus
+        self.params.youngs_modulus()
     }
 }
 
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::material::check;
+    use crate::material::{check, isotropic_elasticity, lame};
 
     fn steel() -> LinearElastic {
         LinearElastic::new(210.0, 0.3, "materials[0]").unwrap()

@@ -18,6 +18,7 @@
 
 use nalgebra::{Matrix3, Matrix6, Vector6};
 
+mod isotropic;
 mod linear_elastic;
 mod neo_hookean;
 mod ogden;
@@ -26,12 +27,11 @@ mod saint_venant_kirchhoff;
 #[cfg(test)]
 pub(crate) mod check;
 
+pub(crate) use isotropic::IsotropicParameters;
 pub use linear_elastic::LinearElastic;
 pub use neo_hookean::NeoHookean;
 pub use ogden::Ogden;
 pub use saint_venant_kirchhoff::SaintVenantKirchhoff;
-
-use crate::{Error, Result};
 
 /// 3×3 tensor.
 pub type Mat3 = Matrix3<f64>;
@@ -174,44 +174,6 @@ pub(crate) fn key_path(prefix: &str, name: &str) -> String {
     } else {
         format!("{prefix}.{name}")
     }
-}
-
-/// Checks `E > 0` and `−1 < ν < 0.5`, both finite; errors name
-/// `{key_prefix}.youngs_modulus` / `{key_prefix}.poisson_ratio`.
-pub(crate) fn validate_youngs_poisson(
-    youngs_modulus: f64,
-    poisson_ratio: f64,
-    key_prefix: &str,
-) -> Result<()> {
-    if !(youngs_modulus.is_finite() && youngs_modulus > 0.0) {
-        return Err(Error::MaterialParameter {
-            key: key_path(key_prefix, "youngs_modulus"),
-            message: format!(
-                "Young's modulus must be finite and > 0, got {youngs_modulus}; \
-                 give a positive value in your unit system (e.g. 210000 for steel in MPa)"
-            ),
-        });
-    }
-    if !poisson_ratio.is_finite() || poisson_ratio <= -1.0 {
-        return Err(Error::MaterialParameter {
-            key: key_path(key_prefix, "poisson_ratio"),
-            message: format!(
-                "Poisson's ratio must be finite with -1 < ν < 0.5, got {poisson_ratio}; \
-                 typical values are 0.3 for metals and 0.45-0.49 for rubbers"
-            ),
-        });
-    }
-    if poisson_ratio >= 0.5 {
-        return Err(Error::MaterialParameter {
-            key: key_path(key_prefix, "poisson_ratio"),
-            message: format!(
-                "Poisson's ratio must satisfy -1 < ν < 0.5, got {poisson_ratio}; \
-                 incompressible materials (ν = 0.5) are not supported by this \
-                 displacement formulation: use a nearly incompressible value such as 0.49"
-            ),
-        });
-    }
-    Ok(())
 }
 
 #[cfg(test)]

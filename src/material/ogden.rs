@@ -487,17 +487,7 @@ mod tests {
 
     #[test]
     fn inverted_or_degenerate_gives_nan_not_panic() {
-        let m = rubber();
-        for f in [
-            check::diag(1.0, 1.0, -1.0),
-            Mat3::zeros(),
-            check::diag(1.0, 0.0, 1.0),
-            Mat3::from_element(f64::NAN),
-        ] {
-            let (s, d) = m.stress_and_tangent(&f);
-            assert!(s.iter().all(|x| x.is_nan()) && d.iter().all(|x| x.is_nan()));
-            assert!(m.strain_energy(&f) == f64::INFINITY);
-        }
+        check::check_nan_where_undefined(&rubber(), check::diag(1.0, 0.0, 1.0));
     }
 
     /// Uniaxial stress, one term: principal Kirchhoff stresses

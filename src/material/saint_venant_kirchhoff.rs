@@ -1,6 +1,6 @@
 //! Saint Venant–Kirchhoff: Hooke's law in the Green–Lagrange strain.
 
-use super::{isotropic_elasticity, lame, validate_youngs_poisson, Mat3, Mat6, Material};
+use super::{IsotropicParameters, Mat3, Mat6, Material};
 use crate::Result;
 
 /// Saint Venant–Kirchhoff hyperelasticity, with `E = ½(FᵀF − I)`:
@@ -9,44 +9,35 @@ use crate::Result;
 /// - stress `S = λ tr(E) I + 2μ E`,
 /// - tangent `𝔻 = ∂S/∂E = ℂ = λ I⊗I + 2μ 𝕀` (constant),
 ///
-/// with `(λ, μ)` = [`lame`]`(E, ν)`. Objective and valid for large
+/// with `(λ, μ)` = [`lame`](super::lame)`(E, ν)`. Objective and valid for large
 /// rotations, but only for moderate strains (it softens and loses stability
 /// in strong compression). Defined for every `F`, so no NaN guard.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct SaintVenantKirchhoff {
-    youngs_modulus: f64,
-    poisson_ratio: f64,
-    lambda: f64,
-    mu: f64,
+    params: IsotropicParameters,
 }
 
 impl SaintVenantKirchhoff {
     /// Validates `E > 0` and `−1 < ν < 0.5` (finite); errors carry the key
     /// paths `{key_prefix}.youngs_modulus` / `{key_prefix}.poisson_ratio`.
     pub fn new(youngs_modulus: f64, poisson_ratio: f64, key_prefix: &str) -> Result<Self> {
-        validate_youngs_poisson(youngs_modulus, poisson_ratio, key_prefix)?;
-        let (lambda, mu) = lame(youngs_modulus, poisson_ratio);
-        Ok(Self {
-            youngs_modulus,
-            poisson_ratio,
-            lambda,
-            mu,
-        })
+        let params = IsotropicParameters::new(youngs_modulus, poisson_ratio, key_prefix)?;
+        Ok(Self { params })
     }
 
     /// Young's modulus `E`.
     pub fn youngs_modulus(&self) -> f64 {
-        self.youngs_modulus
+        self.params.youngs_modulus()
     }
 
     /// Poisson's ratio `ν`.
     pub fn poisson_ratio(&self) -> f64 {
-        self.poisson_ratio
+        self.params.poisson_ratio()
     }
 
     /// Lamé parameters `(λ, μ)`.
     pub fn lame(&self) -> (f64, f64) {
-        (self.lambda, self.mu)
+        self.params.lame()
     }
 
     fn green_lagrange(f: &Mat3) -> Mat3 {
@@ -60,26 +51,23 @@ impl Material for SaintVenantKirchhoff {
     }
 
     fn strain_energy(&self, f: &Mat3) -> f64 {
-        let e = Self::green_lagrange(f);
-        let tr = e.trace();
-        0.5 * self.lambda * tr * tr + self.mu * e.component_mul(&e).sum()
+        self.params.hooke_energy(&Self::green_lagrange(f))
     }
 
     fn stress_and_tangent(&self, f: &Mat3) -> (Mat3, Mat6) {
-        let e = Self::green_lagrange(f);
-        let s = Mat3::identity() * (self.lambda * e.trace()) + e * (2.0 * self.mu);
-        (s, isotropic_elasticity(self.lambda, self.mu))
+        self.params
+            .hooke_stress_and_tangent(&Self::green_lagrange(f))
     }
 
     fn reference_youngs_modulus(&self) -> f64 {
-        self.youngs_modulus
+        self.params.youngs_modulus()
     }
 }
 
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::material::{check, Kinematics};
+    use crate::material::{check, isotropic_elasticity, lame, Kinematics};
 
     fn material() -> SaintVenantKirchhoff {
         SaintVenantKirchhoff::new(200.0, 0.3, "materials[1]").unwrap()

@@ -497,33 +497,6 @@ fn dur(d: Duration) -> f64 {
     d.as_secs_f64()
 }
 
-/// The library's Newton loop replaces the rows and columns of prescribed
-/// dofs by a scaled identity (`solve::newton`, private); the same here.
-fn apply_identity_rows(problem: &Problem, constrained: &[bool], k: &mut [f64]) {
-    let pattern = problem.model.pattern.symbolic();
-    let (cp, ri) = (pattern.col_ptr(), pattern.row_idx());
-    let (mut sum, mut count) = (0.0, 0usize);
-    for (d, &c) in constrained.iter().enumerate() {
-        if !c {
-            sum += k[problem.model.pattern.diagonal_entry(d)].abs();
-            count += 1;
-        }
-    }
-    let scale = if count > 0 && sum > 0.0 {
-        sum / count as f64
-    } else {
-        1.0
-    };
-    for j in 0..pattern.ncols() {
-        for idx in cp[j]..cp[j + 1] {
-            let i = ri[idx];
-            if constrained[i] || constrained[j] {
-                k[idx] = if i == j { scale } else { 0.0 };
-            }
-        }
-    }
-}
-
 fn prescribe(problem: &mut Problem, surface: &str, components: &[(usize, f64)]) {
     let mesh = &problem.model.mesh;
     let s = mesh.surface(surface).expect("surface exists");
@@ -737,7 +710,7 @@ fn run_case(spec: &Spec) -> Value {
                 .max(f64::MIN_POSITIVE);
 
         let start = Instant::now();
-        apply_identity_rows(&problem, &constrained, &mut k_values);
+        signorini::solve::newton::apply_identity_rows(&problem, &constrained, &mut k_values);
         let bc = start.elapsed();
 
         let start = Instant::now();

@@ -344,7 +344,7 @@ fn zero_constrained(v: &mut [f64], constrained: &[bool]) {
 /// Replace the rows and columns of prescribed dofs by a scaled identity
 /// (the scale is the mean absolute diagonal of the free dofs); returns the
 /// scale.
-fn apply_identity_rows(problem: &Problem, constrained: &[bool], k: &mut [f64]) -> f64 {
+pub fn apply_identity_rows(problem: &Problem, constrained: &[bool], k: &mut [f64]) -> f64 {
     let pattern = problem.model.pattern.symbolic();
     let (cp, ri) = (pattern.col_ptr(), pattern.row_idx());
     let (mut sum, mut count) = (0.0, 0usize);

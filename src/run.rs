@@ -244,10 +244,10 @@ pub fn fill_reducing_ordering(problem: &Problem) -> Result<Ordering> {
     if problem.model.num_dofs() <= 10_000 {
         return Ok(Ordering::Amd);
     }
-    let (xadj, adjncy) = problem.model.pattern.node_graph();
-    Ok(Ordering::Custom(crate::solve::ordering::nested_dissection(
-        &xadj, &adjncy,
-    )?))
+    let pattern = &problem.model.pattern;
+    let (xadj, adjncy) = pattern.node_graph();
+    let nodes = crate::solve::ordering::nested_dissection(&xadj, &adjncy)?;
+    Ok(Ordering::Custom(pattern.dof_ordering(&nodes)))
 }
 
 /// Remove VTU files of an earlier run with the same name, so the folder

@@ -482,7 +482,8 @@ fn solution_is_independent_of_thread_count() {
     fix(&mut p, "xmin", &[(0, 0.0), (1, 0.0), (2, 0.0)]);
     fix(&mut p, "xmax", &[(0, 0.3), (2, -0.4)]);
     let (xadj, adjncy) = p.model.pattern.node_graph();
-    let perm = signorini::solve::ordering::nested_dissection(&xadj, &adjncy).unwrap();
+    let nodes = signorini::solve::ordering::nested_dissection(&xadj, &adjncy).unwrap();
+    let perm = p.model.pattern.dof_ordering(&nodes);
     let solve_with = |threads: usize| {
         rayon::ThreadPoolBuilder::new()
             .num_threads(threads)

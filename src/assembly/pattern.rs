@@ -1,19 +1,41 @@
 //! The fixed sparsity pattern of the global tangent, built once per mesh
 //! from node adjacency (3×3 blocks per node pair), in compressed sparse
 //! column form for faer.
+//!
+//! Besides the 3 displacement dofs of every node, the pattern can hold
+//! scalar *multiplier* unknowns (contact pressures, constraint forces),
+//! numbered after the displacements (`3N + k`), each coupled to the
+//! displacement dofs of a list of nodes and to itself. The resulting saddle
+//! system is symmetric indefinite; [`SparsityPattern::dof_ordering`] orders
+//! each multiplier right after its nodes, and
+//! [`SparsityPattern::pivot_signs`] gives the expected LDLᵀ pivot signs.
 
 use faer::sparse::SymbolicSparseColMat;
 
-/// Node-block sparsity pattern of a 3-dof-per-node matrix, plus the node
-/// adjacency that locates a block in `O(log degree)`.
+/// Node-block sparsity pattern of a 3-dof-per-node matrix, with optional
+/// multiplier unknowns, plus the adjacency that locates an entry in
+/// `O(log degree)`.
 #[derive(Debug)]
 pub struct SparsityPattern {
     /// Sorted neighbour nodes of each node (itself included).
     neighbours: Vec<Vec<usize>>,
+    /// Sorted multipliers coupled to each node.
+    node_multipliers: Vec<Vec<usize>>,
+    /// Sorted nodes coupled to each multiplier.
+    multiplier_nodes: Vec<Vec<usize>>,
     /// Symbolic CSC structure, all entries (both triangles).
     symbolic: SymbolicSparseColMat<usize>,
     /// `mirror[k]` is the index of entry (j, i) for entry `k` = (i, j).
     mirror: Vec<usize>,
+}
+
+/// Where the entries coupling multiplier `k` and node `a` are stored.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct MultiplierEntries {
+    /// Entries (row `3a + i`, column `3N + k`), `i = 0, 1, 2`.
+    pub node_rows: [usize; 3],
+    /// Entries (row `3N + k`, column `3a + i`), `i = 0, 1, 2`.
+    pub multiplier_row: [usize; 3],
 }
 
 impl SparsityPattern {
@@ -22,6 +44,17 @@ impl SparsityPattern {
     pub fn from_elements<'a>(
         num_nodes: usize,
         element_nodes: impl Iterator<Item = &'a [usize]>,
+    ) -> Self {
+        Self::with_multipliers(num_nodes, element_nodes, &[])
+    }
+
+    /// Pattern of the node-block matrix plus one multiplier unknown per
+    /// entry of `multiplier_nodes`, coupled to the displacement dofs of the
+    /// nodes listed there (and to itself: the diagonal is always stored).
+    pub fn with_multipliers<'a>(
+        num_nodes: usize,
+        element_nodes: impl Iterator<Item = &'a [usize]>,
+        multiplier_nodes: &[Vec<usize>],
     ) -> Self {
         let mut neighbours: Vec<Vec<usize>> = (0..num_nodes).map(|n| vec![n]).collect();
         for nodes in element_nodes {
@@ -33,37 +66,132 @@ impl SparsityPattern {
             list.sort_unstable();
             list.dedup();
         }
-        let n = 3 * num_nodes;
+        let multiplier_nodes: Vec<Vec<usize>> = multiplier_nodes
+            .iter()
+            .map(|l| {
+                let mut l = l.clone();
+                l.sort_unstable();
+                l.dedup();
+                l
+            })
+            .collect();
+        let mut node_multipliers: Vec<Vec<usize>> = vec![Vec::new(); num_nodes];
+        for (k, nodes) in multiplier_nodes.iter().enumerate() {
+            for &a in nodes {
+                node_multipliers[a].push(k);
+            }
+        }
+        let first_multiplier = 3 * num_nodes;
+        let n = first_multiplier + multiplier_nodes.len();
         let mut col_ptr = Vec::with_capacity(n + 1);
-        let nnz: usize = neighbours.iter().map(|l| 9 * l.len()).sum();
-        let mut row_idx = Vec::with_capacity(nnz);
+        let mut row_idx = Vec::new();
         col_ptr.push(0);
-        for list in &neighbours {
+        for (list, multipliers) in neighbours.iter().zip(&node_multipliers) {
             for _j in 0..3 {
                 for &a in list {
                     row_idx.extend([3 * a, 3 * a + 1, 3 * a + 2]);
                 }
+                row_idx.extend(multipliers.iter().map(|k| first_multiplier + k));
                 col_ptr.push(row_idx.len());
             }
         }
+        for (k, nodes) in multiplier_nodes.iter().enumerate() {
+            for &a in nodes {
+                row_idx.extend([3 * a, 3 * a + 1, 3 * a + 2]);
+            }
+            row_idx.push(first_multiplier + k);
+            col_ptr.push(row_idx.len());
+        }
         let symbolic = SymbolicSparseColMat::new_checked(n, n, col_ptr, None, row_idx);
-        let mut pattern = SparsityPattern {
-            neighbours,
-            symbolic,
-            mirror: Vec::new(),
-        };
-        let cp = pattern.symbolic.col_ptr();
-        let ri = pattern.symbolic.row_idx();
+        let (cp, ri) = (symbolic.col_ptr(), symbolic.row_idx());
+        // entry (j, i) for each (i, j): rows are sorted in every column
         let mirror = (0..n)
             .flat_map(|j| (cp[j]..cp[j + 1]).map(move |k| (ri[k], j)))
             .map(|(i, j)| {
-                pattern
-                    .block_entry(j / 3, j % 3, i / 3, i % 3)
-                    .expect("the node-block pattern is structurally symmetric")
+                let column = &ri[cp[i]..cp[i + 1]];
+                cp[i]
+                    + column
+                        .binary_search(&j)
+                        .expect("the pattern is structurally symmetric")
             })
             .collect();
-        pattern.mirror = mirror;
-        pattern
+        SparsityPattern {
+            neighbours,
+            node_multipliers,
+            multiplier_nodes,
+            symbolic,
+            mirror,
+        }
+    }
+
+    /// Number of nodes (each with 3 displacement dofs, numbered first).
+    pub fn num_nodes(&self) -> usize {
+        self.neighbours.len()
+    }
+
+    /// Number of multiplier unknowns (numbered after the displacements).
+    pub fn num_multipliers(&self) -> usize {
+        self.multiplier_nodes.len()
+    }
+
+    /// Entries coupling multiplier `k` and node `a`, or `None` if they are
+    /// not coupled.
+    pub fn multiplier_entries(&self, k: usize, a: usize) -> Option<MultiplierEntries> {
+        let cp = self.symbolic.col_ptr();
+        let in_column = self.node_multipliers[a].binary_search(&k).ok()?;
+        let in_row = self.multiplier_nodes[k].binary_search(&a).ok()?;
+        let node_count = 3 * self.neighbours[a].len();
+        let column = 3 * self.num_nodes() + k;
+        Some(MultiplierEntries {
+            node_rows: [0, 1, 2].map(|i| cp[column] + 3 * in_row + i),
+            multiplier_row: [0, 1, 2].map(|i| cp[3 * a + i] + node_count + in_column),
+        })
+    }
+
+    /// Index of the diagonal entry of multiplier `k`.
+    pub fn multiplier_diagonal(&self, k: usize) -> usize {
+        let column = 3 * self.num_nodes() + k;
+        self.symbolic.col_ptr()[column + 1] - 1
+    }
+
+    /// Expected signs of the LDLᵀ pivots: +1 for displacement dofs, −1 for
+    /// multipliers (the saddle point's negative block), for faer's dynamic
+    /// regularisation.
+    pub fn pivot_signs(&self) -> Vec<i8> {
+        let mut signs = vec![1i8; 3 * self.num_nodes()];
+        signs.resize(self.dimension(), -1);
+        signs
+    }
+
+    /// A dof ordering from a node ordering (`node_order[new] = old`): each
+    /// node's three dofs stay together, and each multiplier follows the last
+    /// of its nodes, so that it is eliminated after them (ordering the
+    /// multipliers all at the end fills far more). Returns
+    /// `forward[new] = old` over all dofs.
+    pub fn dof_ordering(&self, node_order: &[usize]) -> Vec<usize> {
+        let mut position = vec![0usize; self.num_nodes()];
+        for (new, &old) in node_order.iter().enumerate() {
+            position[old] = new;
+        }
+        // multipliers attached to the node (in the new order) they follow
+        let mut after: Vec<Vec<usize>> = vec![Vec::new(); self.num_nodes()];
+        for (k, nodes) in self.multiplier_nodes.iter().enumerate() {
+            let last = nodes.iter().copied().max_by_key(|&a| position[a]);
+            match last {
+                Some(a) => after[a].push(k),
+                None => after[node_order.last().copied().unwrap_or(0)].push(k),
+            }
+        }
+        let first_multiplier = 3 * self.num_nodes();
+        let mut forward = Vec::with_capacity(self.dimension());
+        for &node in node_order {
+            forward.extend([3 * node, 3 * node + 1, 3 * node + 2]);
+            forward.extend(after[node].iter().map(|k| first_multiplier + k));
+        }
+        if node_order.is_empty() {
+            forward.extend(first_multiplier..self.dimension());
+        }
+        forward
     }
 
     /// Number of rows (= columns).

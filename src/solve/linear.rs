@@ -83,8 +83,20 @@ impl SparseLdlt {
         let perm = match &self.ordering {
             Ordering::Amd => None,
             Ordering::Custom(fwd) => {
-                let mut inv = vec![0usize; fwd.len()];
+                if fwd.len() != pattern.nrows() {
+                    return Err(Error::LinearSolver(format!(
+                        "the ordering has {} entries for a matrix of dimension {}",
+                        fwd.len(),
+                        pattern.nrows()
+                    )));
+                }
+                let mut inv = vec![usize::MAX; fwd.len()];
                 for (new, &old) in fwd.iter().enumerate() {
+                    if old >= inv.len() || inv[old] != usize::MAX {
+                        return Err(Error::LinearSolver(
+                            "the ordering is not a permutation".into(),
+                        ));
+                    }
                     inv[old] = new;
                 }
                 Some(faer::perm::Perm::new_checked(

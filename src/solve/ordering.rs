@@ -11,10 +11,10 @@
 
 use crate::{Error, Result};
 
-/// Nested-dissection permutation of the dofs of a 3-dof-per-node matrix
-/// whose node adjacency (self excluded) is given in CSR form
-/// (`xadj`, `adjncy`). Returns `forward` with `forward[new] = old` (dof
-/// indices).
+/// Nested-dissection permutation of the nodes of a graph given in CSR form
+/// (`xadj`, `adjncy`, self excluded). Returns `forward` with
+/// `forward[new] = old` (node indices); expand it to dofs with
+/// [`crate::assembly::pattern::SparsityPattern::dof_ordering`].
 pub fn nested_dissection(xadj: &[usize], adjncy: &[usize]) -> Result<Vec<usize>> {
     let n = xadj.len().saturating_sub(1);
     if n == 0 {
@@ -50,13 +50,7 @@ pub fn nested_dissection(xadj: &[usize], adjncy: &[usize]) -> Result<Vec<usize>>
         )));
     }
     // METIS: row i of the permuted matrix is row perm[i] of the original.
-    Ok(perm
-        .iter()
-        .flat_map(|&node| {
-            let node = node as usize;
-            [3 * node, 3 * node + 1, 3 * node + 2]
-        })
-        .collect())
+    Ok(perm.iter().map(|&node| node as usize).collect())
 }
 
 #[cfg(test)]
@@ -79,7 +73,7 @@ mod tests {
             xadj.push(adj.len());
         }
         let mut p = nested_dissection(&xadj, &adj).unwrap();
-        assert_eq!(p.len(), 3 * n);
+        assert_eq!(p.len(), n);
         p.sort_unstable();
         assert!(p.iter().enumerate().all(|(i, &v)| i == v));
     }

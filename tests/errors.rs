@@ -211,3 +211,88 @@ fn no_convergence_keeps_converged_steps() {
     let pvd = std::fs::read_to_string(dir.path().join("results/case.pvd")).unwrap();
     assert_eq!(pvd.matches("<DataSet").count(), increments.len());
 }
+
+#[test]
+fn check_prints_what_was_read() {
+    let dir = tempfile::tempdir().unwrap();
+    write_cube(dir.path());
+    std::fs::write(dir.path().join("case.toml"), CASE).unwrap();
+    let out = Command::new(env!("CARGO_BIN_EXE_signorini"))
+        .args(["check", "case.toml"])
+        .current_dir(dir.path())
+        .output()
+        .unwrap();
+    let stdout = String::from_utf8_lossy(&out.stdout);
+    // 2×2×2 Hex8 cube: 27 nodes, 8 elements, 81 dofs
+    for expected in [
+        "nodes     27",
+        "elements  8",
+        "dofs      81",
+        "body",
+        "zmax",
+        "press",
+    ] {
+        assert!(stdout.contains(expected), "'{expected}' not in:\n{stdout}");
+    }
+}
+
+#[test]
+fn region_without_material() {
+    let dir = tempfile::tempdir().unwrap();
+    let mut mesh = box_mesh(ElementKind::Hex8, [2, 2, 2], [1.0, 1.0, 1.0]);
+    // split "body" into "lower" and "upper" halves
+    let (lower, upper): (Vec<usize>, Vec<usize>) = (0..mesh.elements.len()).partition(|&e| {
+        mesh.elements[e]
+            .nodes
+            .iter()
+            .map(|&n| mesh.nodes[n][2])
+            .sum::<f64>()
+            < 4.0
+    });
+    mesh.regions = vec![
+        signorini::mesh::Region {
+            name: "lower".into(),
+            elements: lower,
+        },
+        signorini::mesh::Region {
+            name: "upper".into(),
+            elements: upper,
+        },
+    ];
+    std::fs::write(dir.path().join("cube.msh"), common::msh22(&mesh)).unwrap();
+    std::fs::write(
+        dir.path().join("case.toml"),
+        CASE.replace("region = \"body\"", "region = \"lower\""),
+    )
+    .unwrap();
+    let (code, err) = signorini(dir.path(), &["check", "case.toml"]);
+    assert_eq!(code, 1);
+    assert!(
+        err.contains("(region upper) has no material") && err.contains("region = \"upper\""),
+        "{err}"
+    );
+}
+
+#[test]
+fn other_case_errors_name_their_key() {
+    // two materials on one region
+    expect_failure(
+        &CASE.replace(
+            "[[displacement]]\nsurface = \"zmin\"",
+            "[[material]]\nregion = \"body\"\nmodel = \"saint_venant_kirchhoff\"\nyoungs_modulus = 1.0\npoisson_ratio = 0.2\n\n[[displacement]]\nsurface = \"zmin\"",
+        ),
+        &["material[1].region", "already has the material of material[0]"],
+    );
+    expect_failure(
+        &CASE.replace("z = -0.2\n", "z = -0.2\namplitude = \"slow\"\n"),
+        &["displacement[1].amplitude", "no amplitude named 'slow'"],
+    );
+    expect_failure(
+        &CASE.replace("model = \"neo_hookean\"", "model = \"ogden\""),
+        &["material[0].youngs_modulus does not apply to model Ogden"],
+    );
+    expect_failure(
+        &CASE.replace("end_time = 1.0", "end_time = -1.0"),
+        &["step[0].end_time"],
+    );
+}

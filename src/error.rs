@@ -64,14 +64,18 @@ pub enum Error {
 
     /// Newton did not converge even after the allowed number of step cuts.
     /// Every step converged before this one is on disk.
-    #[error("step '{step}' did not converge at time {time:.6} after {cuts} cuts of the increment (smallest increment {increment:.3e}): {reason}. Converged steps up to time {last_converged_time:.6} are written in '{output}'")]
+    #[error("step '{step}' did not converge at time {time:.6} after {cuts} cuts of the increment (smallest increment {increment:.3e}): {reason}. {}", match last_converged_time {
+        Some(t) => format!("The increments converged up to time {t:.6} are written in '{}'", output.display()),
+        None => "No increment had converged, so no result was written; try a smaller initial_increment".to_string(),
+    })]
     NoConvergence {
         step: String,
         time: f64,
         cuts: usize,
         increment: f64,
         reason: String,
-        last_converged_time: f64,
+        /// `None` if no increment converged at all.
+        last_converged_time: Option<f64>,
         output: PathBuf,
     },
 }

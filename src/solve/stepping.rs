@@ -59,6 +59,7 @@ pub fn run_steps(
     let mut trial = Vec::with_capacity(u.len());
     let mut t = 0.0;
     let mut force_scale = 0.0f64;
+    let mut any_converged = false;
     for (s, step) in problem.steps.iter().enumerate() {
         let mut dt = step.initial_increment.min(step.end_time - t);
         let mut cuts = 0;
@@ -89,6 +90,7 @@ pub fn run_steps(
                 } => {
                     std::mem::swap(&mut u, &mut trial);
                     force_scale = force_scale.max(scale);
+                    any_converged = true;
                     let record = IncrementRecord {
                         step: s,
                         step_name: step.name.clone(),
@@ -115,7 +117,7 @@ pub fn run_steps(
                             cuts: cuts - 1,
                             increment: dt,
                             reason,
-                            last_converged_time: t,
+                            last_converged_time: any_converged.then_some(t),
                             output,
                         });
                     }

@@ -142,15 +142,17 @@ pub fn internal_force_and_tangent(
         for (b_a, g_a) in b.iter_mut().zip(&p.gradients) {
             *b_a = strain_operator(&kin, g_a);
         }
+        // the tangent is symmetric: compute the blocks b ≥ a, mirror the rest
         for (a, b_a) in b.iter().enumerate() {
             let db_a = (d * b_a) * p.dv; // 6×3
-            for (bb, b_b) in b.iter().enumerate() {
+            let sg_a = if small {
+                Vector3::zeros()
+            } else {
+                s * p.gradients[a] * p.dv
+            };
+            for (bb, b_b) in b.iter().enumerate().skip(a) {
                 let kab = b_b.transpose() * db_a; // 3×3 (row: b-dof, col: a-dof)
-                let geo = if small {
-                    0.0
-                } else {
-                    (p.gradients[a].transpose() * s * p.gradients[bb])[0] * p.dv
-                };
+                let geo = sg_a.dot(&p.gradients[bb]);
                 for i in 0..3 {
                     for j in 0..3 {
                         // K[(a,i),(b,j)] = (B_aᵀ 𝔻 B_b)_{ij} + δ_ij G_aᵀ S G_b
@@ -159,6 +161,9 @@ pub fn internal_force_and_tangent(
                             v += geo;
                         }
                         out.stiffness[(3 * a + i) * dofs + 3 * bb + j] += v;
+                        if bb != a {
+                            out.stiffness[(3 * bb + j) * dofs + 3 * a + i] += v;
+                        }
                     }
                 }
             }

@@ -34,6 +34,7 @@
 use nalgebra::{Matrix3, Vector3};
 
 pub mod penalty;
+pub mod rockafellar;
 pub mod uzawa;
 
 #[cfg(test)]

@@ -35,10 +35,13 @@ use nalgebra::{Matrix3, Vector3};
 
 pub mod penalty;
 pub mod rockafellar;
+pub mod slack;
 pub mod uzawa;
 
 #[cfg(test)]
 pub(crate) mod fd;
+
+pub use slack::SlackState;
 
 /// The gap of one secondary node and its derivatives with respect to the
 /// node's spatial position `x_s`.
@@ -122,6 +125,96 @@ impl NodeContribution {
     }
 }
 
+/// Per-node contact state beyond the displacement.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct NodeContactState {
+    /// Multiplier `λ`: a global unknown for [`NormalLaw::Rockafellar`] and
+    /// [`NormalLaw::Slack`] (`t_N = kλ` at a converged active node); the
+    /// multiplier held fixed during Newton for [`NormalLaw::Uzawa`]
+    /// (a pressure); unused by [`NormalLaw::Penalty`].
+    pub lambda: f64,
+    /// Local slack unknowns `(s, λ₁)`, used only by [`NormalLaw::Slack`].
+    pub slack: SlackState,
+}
+
+impl NodeContactState {
+    /// The state of a node when it is first paired with an obstacle:
+    /// `λ = 0` and, for [`NormalLaw::Slack`], the local unknowns that solve
+    /// the node's own equations at gap `g` ([`SlackState::consistent`]:
+    /// free with `s = −g` when open, clamped with `λ₁ = −p g/k` when
+    /// penetrating). Starting from `s = λ₁ = 0` instead would sit on the
+    /// switch and clamp every node, pulling open nodes onto the obstacle.
+    pub fn initial(law: &NormalLaw, signed_gap: f64) -> Self {
+        let slack = match *law {
+            NormalLaw::Slack { p, k } => SlackState::consistent(signed_gap, 0.0, p, k),
+            _ => SlackState {
+                s: 0.0,
+                lambda1: 0.0,
+            },
+        };
+        Self { lambda: 0.0, slack }
+    }
+}
+
+/// The normal-contact enforcement law (formulation note §2.1, items 1–4).
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub enum NormalLaw {
+    /// `t_N = ε⟨−g⟩`, `ε > 0` a pressure per unit penetration.
+    Penalty { epsilon: f64 },
+    /// `t_N = ⟨λ − εg⟩` with `λ` fixed during Newton, then `λ ← ⟨λ − εg⟩`.
+    Uzawa { epsilon: f64 },
+    /// Monolithic Rockafellar augmented Lagrangian, penalty `p`, scaling `k`.
+    Rockafellar { p: f64, k: f64 },
+    /// The paper's slack-variable Rockafellar Lagrangian, condensed per node.
+    Slack { p: f64, k: f64 },
+}
+
+impl NormalLaw {
+    /// Whether the law adds one multiplier dof `λ` per secondary node to the
+    /// global system.
+    pub fn has_multiplier_dof(&self) -> bool {
+        matches!(self, Self::Rockafellar { .. } | Self::Slack { .. })
+    }
+
+    /// The node's residual and tangent contribution in the current state.
+    pub fn contribution(
+        &self,
+        area: f64,
+        gap: &GapGeometry,
+        state: &NodeContactState,
+    ) -> NodeContribution {
+        match *self {
+            Self::Penalty { epsilon } => penalty::contribution(area, gap, epsilon),
+            Self::Uzawa { epsilon } => uzawa::contribution(area, gap, state.lambda, epsilon),
+            Self::Rockafellar { p, k } => rockafellar::contribution(area, gap, state.lambda, p, k),
+            Self::Slack { p, k } => state.slack.condense(area, gap, state.lambda, p, k).0,
+        }
+    }
+
+    /// Apply a Newton increment `(Δu_s, Δλ)` to the node's own unknowns:
+    /// `λ += Δλ` for the multiplier laws, plus the back-substitution of the
+    /// condensed slack unknowns `(s, λ₁)`. `gap` must be the geometry the
+    /// contribution was assembled with (the previous iterate).
+    pub fn apply_increment(
+        &self,
+        area: f64,
+        gap: &GapGeometry,
+        state: &mut NodeContactState,
+        du: &Vector3<f64>,
+        dlambda: f64,
+    ) {
+        match *self {
+            Self::Penalty { .. } | Self::Uzawa { .. } => {}
+            Self::Rockafellar { .. } => state.lambda += dlambda,
+            Self::Slack { p, k } => {
+                let (_, recovery) = state.slack.condense(area, gap, state.lambda, p, k);
+                state.slack = recovery.apply(&state.slack, du, dlambda);
+                state.lambda += dlambda;
+            }
+        }
+    }
+}
+
 /// Default penalty `p` and scaling `k` for the Rockafellar laws from the
 /// body's Young's modulus `E` and a contact element size `h`: `p = k = E/h`.
 ///
@@ -168,5 +261,35 @@ mod tests {
         // H n = 0 and tr H = 2/|x − c|.
         assert!((g.hessian * g.normal).norm() < 1e-15);
         assert!((g.hessian.trace() - 2.0 / d).abs() < 1e-15);
+    }
+
+    #[test]
+    fn dispatch_reaches_each_law() {
+        let gap = GapGeometry::plane(
+            &Vector3::new(0.0, 0.0, -0.01),
+            &Vector3::zeros(),
+            &Vector3::z(),
+        );
+        let slack_law = NormalLaw::Slack { p: 100.0, k: 50.0 };
+        let state = NodeContactState {
+            lambda: 0.5,
+            ..NodeContactState::initial(&slack_law, gap.signed_gap)
+        };
+        let area = 2.0;
+        let pen = NormalLaw::Penalty { epsilon: 100.0 }.contribution(area, &gap, &state);
+        assert_eq!(pen, penalty::contribution(area, &gap, 100.0));
+        let uz = NormalLaw::Uzawa { epsilon: 100.0 }.contribution(area, &gap, &state);
+        assert_eq!(uz, uzawa::contribution(area, &gap, 0.5, 100.0));
+        let rock = NormalLaw::Rockafellar { p: 100.0, k: 50.0 }.contribution(area, &gap, &state);
+        assert_eq!(
+            rock,
+            rockafellar::contribution(area, &gap, 0.5, 100.0, 50.0)
+        );
+        let sl = slack_law.contribution(area, &gap, &state);
+        assert_eq!(sl, state.slack.condense(area, &gap, 0.5, 100.0, 50.0).0);
+        assert!(!NormalLaw::Penalty { epsilon: 1.0 }.has_multiplier_dof());
+        assert!(!NormalLaw::Uzawa { epsilon: 1.0 }.has_multiplier_dof());
+        assert!(NormalLaw::Rockafellar { p: 1.0, k: 1.0 }.has_multiplier_dof());
+        assert!(NormalLaw::Slack { p: 1.0, k: 1.0 }.has_multiplier_dof());
     }
 }

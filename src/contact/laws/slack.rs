@@ -1,6 +1,6 @@
 //! The paper's slack-variable Rockafellar Lagrangian (§4, eqs. 22–26), as
 //! the formulation note §2.1 item 4 reads it, condensed node by node to the
-//! `(u, λ)` shape of [`rockafellar`](super::rockafellar).
+//! `(u, λ)` shape of [`rockafellar`].
 //!
 //! ## The Lagrangian (paper's variables)
 //! Per secondary node: slack `s`, multipliers `λ_p` (the paper's `λ`) and
@@ -52,7 +52,7 @@
 //! ## Condensation and the global multiplier
 //! `s` and `λ₁` are eliminated from the node's Newton system by a Schur
 //! complement. The global multiplier is `λ = −λ_p`, so that `t_N = kλ` as in
-//! [`rockafellar`](super::rockafellar) and one assembly path serves both.
+//! [`rockafellar`] and one assembly path serves both.
 //! The condensed contribution is
 //! ```text
 //! clamped:  r_u = −A (kλ − p g) n,  r_λ = −A k g,

@@ -34,6 +34,7 @@ pub mod output;
 pub use error::{Error, Result};
 pub mod assembly;
 pub mod case;
+pub mod contact;
 pub mod problem;
 pub mod run;
 pub mod solve;

@@ -1,0 +1,295 @@
+//! Per-node normal-contact enforcement laws (formulation note §2, paper §3–4).
+//!
+//! Everything here is a pure function of one secondary node `s`:
+//! its tributary reference area `A_s`, the signed gap `g` (`g ≥ 0` open,
+//! `g < 0` penetration), the obstacle normal `n` (from the obstacle toward
+//! the body), `∂g/∂x_s = n` and the gap Hessian `H = ∂²g/∂x_s²` (zero for a
+//! plane, `(I − n nᵀ)/|x − c|` for a sphere centred at `c`). The geometry
+//! arrives in a [`GapGeometry`]; obstacles and search live elsewhere.
+//!
+//! ## Signs (the crate's conventions, applied to contact)
+//! - Residual `r = f_int − f_ext − f_contact`, tangent `K = ∂r/∂(u, λ)`;
+//!   since `x_s = X_s + u_s`, `∂/∂u_s = ∂/∂x_s`.
+//! - The contact force on the body is `A_s t_N n` with pressure `t_N ≥ 0`
+//!   (compressive positive), so the node's residual receives `−A_s t_N n`.
+//! - Where a potential `A_s Φ` exists, the residual is its gradient and the
+//!   tangent its Hessian. The curvature term is therefore always
+//!   `(∂(A_s Φ)/∂g) H = −A_s t H`, with `t` the (augmented) pressure of the
+//!   active branch: it *softens* `K_uu` in the tangential directions of a
+//!   convex obstacle.
+//! - For the multiplier laws ([`rockafellar`], [`slack`]) the global
+//!   multiplier `λ` is scaled so that `t_N = kλ` at a converged active node
+//!   (formulation note §2.1 item 3). The slack law's own multiplier
+//!   `λ_paper = −λ` is converted inside [`slack`], so one assembly path
+//!   serves both.
+//!
+//! ## Laws, one per file
+//! | law | file | unknowns per node | note |
+//! |---|---|---|---|
+//! | penalty | [`penalty`] | – | `t_N = ε⟨−g⟩` |
+//! | augmented Lagrangian, Uzawa | [`uzawa`] | `λ` fixed in Newton, updated outside | `t_N = ⟨λ − εg⟩` |
+//! | Rockafellar, monolithic | [`rockafellar`] | global `λ` | `t_N = ⟨kλ − pg⟩` |
+//! | slack-variable Rockafellar (the paper) | [`slack`] | global `λ`, local `s`, `λ₁` | condensed to the shape of `rockafellar` |
+
+use nalgebra::{Matrix3, Vector3};
+
+pub mod penalty;
+pub mod rockafellar;
+pub mod slack;
+pub mod uzawa;
+
+#[cfg(test)]
+pub(crate) mod fd;
+
+pub use slack::SlackState;
+
+/// The gap of one secondary node and its derivatives with respect to the
+/// node's spatial position `x_s`.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct GapGeometry {
+    /// Signed gap `g = (x_s − x̄)·n`; `g > 0` open, `g < 0` penetration.
+    pub signed_gap: f64,
+    /// Unit obstacle normal `n = ∂g/∂x_s`, pointing from the obstacle toward the body.
+    pub normal: Vector3<f64>,
+    /// Gap Hessian `H = ∂²g/∂x_s² = ∂n/∂x_s` (symmetric; zero for a plane).
+    pub hessian: Matrix3<f64>,
+}
+
+impl GapGeometry {
+    /// A plane through `point` with unit normal `normal`: `g = (x − x₀)·n`, `H = 0`.
+    pub fn plane(
+        spatial_point: &Vector3<f64>,
+        point: &Vector3<f64>,
+        normal: &Vector3<f64>,
+    ) -> Self {
+        let n = normal.normalize();
+        Self {
+            signed_gap: (spatial_point - point).dot(&n),
+            normal: n,
+            hessian: Matrix3::zeros(),
+        }
+    }
+
+    /// Outside of a rigid sphere (centre `c`, radius `R`): `g = |x − c| − R`,
+    /// `n = (x − c)/|x − c|`, `H = (I − n nᵀ)/|x − c|`.
+    ///
+    /// Undefined at the centre (the normal has no direction there).
+    pub fn sphere(spatial_point: &Vector3<f64>, centre: &Vector3<f64>, radius: f64) -> Self {
+        let d = spatial_point - centre;
+        let dist = d.norm();
+        let n = d / dist;
+        Self {
+            signed_gap: dist - radius,
+            normal: n,
+            hessian: (Matrix3::identity() - n * n.transpose()) / dist,
+        }
+    }
+}
+
+/// What one secondary node adds to the residual and tangent of the global
+/// `(u, λ)` system.
+///
+/// Rows/columns: `u` is the node's three displacement dofs, `λ` its (scaled)
+/// multiplier when the law has one. Laws without a multiplier dof leave the
+/// `λ` entries at zero.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct NodeContribution {
+    /// `∂(A_s Φ)/∂x_s`: for every law `−A_s t n`, `t` the branch's pressure.
+    pub r_u: Vector3<f64>,
+    /// Constraint residual `∂(A_s Φ)/∂λ` (0 without a multiplier dof).
+    pub r_lambda: f64,
+    /// `∂r_u/∂u` (symmetric).
+    pub k_uu: Matrix3<f64>,
+    /// `∂r_u/∂λ = (∂r_λ/∂u)ᵀ`.
+    pub k_ulambda: Vector3<f64>,
+    /// `∂r_λ/∂λ`.
+    pub k_lambdalambda: f64,
+    /// Contact pressure `t_N ≥ 0` (compressive positive) to report.
+    pub pressure: f64,
+    /// Whether the node transmits force in this state (the switch of the law).
+    pub active: bool,
+}
+
+impl NodeContribution {
+    /// No contribution at all: an open node of a law without multiplier.
+    pub fn zero() -> Self {
+        Self {
+            r_u: Vector3::zeros(),
+            r_lambda: 0.0,
+            k_uu: Matrix3::zeros(),
+            k_ulambda: Vector3::zeros(),
+            k_lambdalambda: 0.0,
+            pressure: 0.0,
+            active: false,
+        }
+    }
+}
+
+/// Per-node contact state beyond the displacement.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct NodeContactState {
+    /// Multiplier `λ`: a global unknown for [`NormalLaw::Rockafellar`] and
+    /// [`NormalLaw::Slack`] (`t_N = kλ` at a converged active node); the
+    /// multiplier held fixed during Newton for [`NormalLaw::Uzawa`]
+    /// (a pressure); unused by [`NormalLaw::Penalty`].
+    pub lambda: f64,
+    /// Local slack unknowns `(s, λ₁)`, used only by [`NormalLaw::Slack`].
+    pub slack: SlackState,
+}
+
+impl NodeContactState {
+    /// The state of a node when it is first paired with an obstacle:
+    /// `λ = 0` and, for [`NormalLaw::Slack`], the local unknowns that solve
+    /// the node's own equations at gap `g` ([`SlackState::consistent`]:
+    /// free with `s = −g` when open, clamped with `λ₁ = −p g/k` when
+    /// penetrating). Starting from `s = λ₁ = 0` instead would sit on the
+    /// switch and clamp every node, pulling open nodes onto the obstacle.
+    pub fn initial(law: &NormalLaw, signed_gap: f64) -> Self {
+        let slack = match *law {
+            NormalLaw::Slack { p, k } => SlackState::consistent(signed_gap, 0.0, p, k),
+            _ => SlackState {
+                s: 0.0,
+                lambda1: 0.0,
+            },
+        };
+        Self { lambda: 0.0, slack }
+    }
+}
+
+/// The normal-contact enforcement law (formulation note §2.1, items 1–4).
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub enum NormalLaw {
+    /// `t_N = ε⟨−g⟩`, `ε > 0` a pressure per unit penetration.
+    Penalty { epsilon: f64 },
+    /// `t_N = ⟨λ − εg⟩` with `λ` fixed during Newton, then `λ ← ⟨λ − εg⟩`.
+    Uzawa { epsilon: f64 },
+    /// Monolithic Rockafellar augmented Lagrangian, penalty `p`, scaling `k`.
+    Rockafellar { p: f64, k: f64 },
+    /// The paper's slack-variable Rockafellar Lagrangian, condensed per node.
+    Slack { p: f64, k: f64 },
+}
+
+impl NormalLaw {
+    /// Whether the law adds one multiplier dof `λ` per secondary node to the
+    /// global system.
+    pub fn has_multiplier_dof(&self) -> bool {
+        matches!(self, Self::Rockafellar { .. } | Self::Slack { .. })
+    }
+
+    /// The node's residual and tangent contribution in the current state.
+    pub fn contribution(
+        &self,
+        area: f64,
+        gap: &GapGeometry,
+        state: &NodeContactState,
+    ) -> NodeContribution {
+        match *self {
+            Self::Penalty { epsilon } => penalty::contribution(area, gap, epsilon),
+            Self::Uzawa { epsilon } => uzawa::contribution(area, gap, state.lambda, epsilon),
+            Self::Rockafellar { p, k } => rockafellar::contribution(area, gap, state.lambda, p, k),
+            Self::Slack { p, k } => state.slack.condense(area, gap, state.lambda, p, k).0,
+        }
+    }
+
+    /// Apply a Newton increment `(Δu_s, Δλ)` to the node's own unknowns:
+    /// `λ += Δλ` for the multiplier laws, plus the back-substitution of the
+    /// condensed slack unknowns `(s, λ₁)`. `gap` must be the geometry the
+    /// contribution was assembled with (the previous iterate).
+    pub fn apply_increment(
+        &self,
+        area: f64,
+        gap: &GapGeometry,
+        state: &mut NodeContactState,
+        du: &Vector3<f64>,
+        dlambda: f64,
+    ) {
+        match *self {
+            Self::Penalty { .. } | Self::Uzawa { .. } => {}
+            Self::Rockafellar { .. } => state.lambda += dlambda,
+            Self::Slack { p, k } => {
+                let (_, recovery) = state.slack.condense(area, gap, state.lambda, p, k);
+                state.slack = recovery.apply(&state.slack, du, dlambda);
+                state.lambda += dlambda;
+            }
+        }
+    }
+}
+
+/// Default penalty `p` and scaling `k` for the Rockafellar laws from the
+/// body's Young's modulus `E` and a contact element size `h`: `p = k = E/h`.
+///
+/// Why (formulation note §2.1 item 3, "start from `p ≈ k ≈ E/h`"): the
+/// solution does not depend on `p` and `k`, they only condition the system.
+/// With `A_s ~ h²`, the contact blocks `A_s p n nᵀ` and `A_s k n` are then
+/// of order `E h`, the size of a linear element's stiffness, and the scaled
+/// multiplier `λ = t_N/k` is a length comparable to the displacements.
+///
+/// # Panics
+/// If `E` or `h` is not positive and finite.
+pub fn automatic_parameters(youngs_modulus: f64, element_size: f64) -> (f64, f64) {
+    assert!(
+        youngs_modulus > 0.0 && youngs_modulus.is_finite(),
+        "Young's modulus must be positive, got {youngs_modulus}"
+    );
+    assert!(
+        element_size > 0.0 && element_size.is_finite(),
+        "contact element size must be positive, got {element_size}"
+    );
+    let p = youngs_modulus / element_size;
+    (p, p)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn automatic_parameters_are_e_over_h() {
+        let (p, k) = automatic_parameters(210_000.0, 2.0);
+        assert_eq!(p, 105_000.0);
+        assert_eq!(k, 105_000.0);
+    }
+
+    #[test]
+    fn sphere_geometry_matches_its_definition() {
+        let c = Vector3::new(1.0, -2.0, 0.5);
+        let x = Vector3::new(2.0, 0.0, 3.0);
+        let g = GapGeometry::sphere(&x, &c, 2.5);
+        let d = (x - c).norm();
+        assert!((g.signed_gap - (d - 2.5)).abs() < 1e-15);
+        assert!((g.normal.norm() - 1.0).abs() < 1e-15);
+        // H n = 0 and tr H = 2/|x − c|.
+        assert!((g.hessian * g.normal).norm() < 1e-15);
+        assert!((g.hessian.trace() - 2.0 / d).abs() < 1e-15);
+    }
+
+    #[test]
+    fn dispatch_reaches_each_law() {
+        let gap = GapGeometry::plane(
+            &Vector3::new(0.0, 0.0, -0.01),
+            &Vector3::zeros(),
+            &Vector3::z(),
+        );
+        let slack_law = NormalLaw::Slack { p: 100.0, k: 50.0 };
+        let state = NodeContactState {
+            lambda: 0.5,
+            ..NodeContactState::initial(&slack_law, gap.signed_gap)
+        };
+        let area = 2.0;
+        let pen = NormalLaw::Penalty { epsilon: 100.0 }.contribution(area, &gap, &state);
+        assert_eq!(pen, penalty::contribution(area, &gap, 100.0));
+        let uz = NormalLaw::Uzawa { epsilon: 100.0 }.contribution(area, &gap, &state);
+        assert_eq!(uz, uzawa::contribution(area, &gap, 0.5, 100.0));
+        let rock = NormalLaw::Rockafellar { p: 100.0, k: 50.0 }.contribution(area, &gap, &state);
+        assert_eq!(
+            rock,
+            rockafellar::contribution(area, &gap, 0.5, 100.0, 50.0)
+        );
+        let sl = slack_law.contribution(area, &gap, &state);
+        assert_eq!(sl, state.slack.condense(area, &gap, 0.5, 100.0, 50.0).0);
+        assert!(!NormalLaw::Penalty { epsilon: 1.0 }.has_multiplier_dof());
+        assert!(!NormalLaw::Uzawa { epsilon: 1.0 }.has_multiplier_dof());
+        assert!(NormalLaw::Rockafellar { p: 1.0, k: 1.0 }.has_multiplier_dof());
+        assert!(NormalLaw::Slack { p: 1.0, k: 1.0 }.has_multiplier_dof());
+    }
+}

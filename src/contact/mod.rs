@@ -1,0 +1,2 @@
+//! Contact with obstacles and between bodies: gap kinematics and normal-contact laws.
+pub mod laws;

@@ -3,7 +3,7 @@
 //! pressure into nodal forces.
 //!
 //! - [`obstacle`]: rigid obstacles (plane, sphere, cylinder, triangulated
-//!   surface) and their [`Projection`](obstacle::Projection) of a point:
+//!   surface) and their [`Projection`] of a point:
 //!   closest point `x̄`, unit outward normal `n`, signed gap `g` and
 //!   curvature `∂²g/∂x²`.
 //! - [`triangle`]: the closest point on one triangle, with the Voronoi

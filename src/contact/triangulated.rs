@@ -207,8 +207,11 @@ impl TriangulatedSurface {
         })
     }
 
-    /// Reads an STL file, ASCII or binary (via the `stl_io` crate).
-    /// Coincident vertices are merged. Errors name the file.
+    /// Reads an STL file, ASCII or binary (via the `stl_io` crate). STL
+    /// stores single-precision coordinates; bit-identical vertices are
+    /// merged, so a closed STL solid gives a closed surface. The facet
+    /// normals in the file are ignored: the vertex order (counter-clockwise
+    /// seen from outside) defines the normal. Errors name the file.
     pub fn from_stl(path: &Path) -> Result<Self> {
         let what = format!("STL file '{}'", path.display());
         let mut file = std::fs::File::open(path).map_err(|e| Error::io("open", path, e))?;

@@ -43,6 +43,12 @@ pub enum Error {
     #[error("case file '{path}': {message}")]
     Case { path: PathBuf, message: String },
 
+    /// Contact input that cannot be used: an obstacle with a zero normal or
+    /// axis or a non-positive radius, an unreadable or degenerate STL file.
+    /// `what` names the obstacle or the file.
+    #[error("{what}: {message}")]
+    ContactInput { what: String, message: String },
+
     /// A material parameter outside its admissible range.
     #[error("{key}: {message}")]
     MaterialParameter { key: String, message: String },

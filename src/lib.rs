@@ -5,7 +5,9 @@
 //! kernels, parallel assembly into a fixed sparsity pattern) → [`solve`]
 //! (Newton, line search, adaptive load stepping, sparse LDLᵀ) → [`output`]
 //! (VTU/PVD, `summary.json`, convergence plot). [`case`] is the TOML case
-//! file; [`run`] ties it all together.
+//! file; [`run`] ties it all together. [`contact`] holds the geometric
+//! kernels of contact (obstacles, projection, search, tributary areas), not
+//! yet wired into Newton.
 //!
 //! ## Conventions (fixed once, used everywhere)
 //! - Total Lagrangian: reference position `X`, displacement `u`, current

@@ -1,2 +1,38 @@
-//! Contact with obstacles and between bodies: gap kinematics and normal-contact laws.
+//! Contact: the kernels that turn a secondary node's position into a gap, a
+//! normal and a curvature, the weights that turn a contact pressure into
+//! nodal forces, and the per-node normal-contact laws.
+//!
+//! - [`obstacle`]: rigid obstacles (plane, sphere, cylinder, triangulated
+//!   surface) and their [`Projection`] of a point:
+//!   closest point `x̄`, unit outward normal `n`, signed gap `g` and
+//!   curvature `∂²g/∂x²`.
+//! - [`triangle`]: the closest point on one triangle, with the Voronoi
+//!   feature (face, edge, vertex) it lies on.
+//! - [`triangulated`]: a triangulated surface with a bounding-volume
+//!   hierarchy for the closest-point search and pseudo-normals for the sign;
+//!   read from STL or from a Gmsh surface set.
+//! - [`tributary`]: the tributary reference area `A_s` of each secondary node.
+//! - [`laws`]: per-node enforcement of the normal constraint (penalty, Uzawa
+//!   augmented Lagrangian, Rockafellar augmented Lagrangian, the paper's
+//!   slack-variable Lagrangian), residual and tangent blocks in `(u_s, λ_s)`.
+//!
+//! ## Conventions (as in the crate root and `formulation.md` §2)
+//! - The obstacle's outward normal `n` points from the obstacle toward the
+//!   body.
+//! - Signed gap `g = (x_s − x̄)·n`: `g ≥ 0` open, `g < 0` penetration.
+//! - In two-body contact the surfaces are *primary* (projected onto) and
+//!   *secondary* (whose nodes are projected).
+//!
+//! Status: these are building blocks, each tested on its own. Nothing here
+//! is called by the Newton solver yet (see DESIGN.md, "Contact").
+
 pub mod laws;
+pub mod obstacle;
+pub mod triangle;
+pub mod triangulated;
+pub mod tributary;
+
+pub use obstacle::{Projection, RigidObstacle};
+pub use triangle::{closest_point_on_triangle, Feature, TriangleProjection};
+pub use triangulated::TriangulatedSurface;
+pub use tributary::tributary_areas;

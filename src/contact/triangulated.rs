@@ -1,0 +1,580 @@
+//! A triangulated surface as a rigid obstacle (or, later, as a primary
+//! surface): closest-point search through a bounding-volume hierarchy and a
+//! signed gap that does not jump at edges and vertices.
+//!
+//! ## Orientation
+//! Each triangle `(x₁, x₂, x₃)` has the right-hand normal
+//! `n = (a₁ × a₂)/|a₁ × a₂|`, `a₁ = x₂ − x₁`, `a₂ = x₃ − x₁` (paper eqs.
+//! 27–28). It must point **out of the obstacle, toward the body**: for a
+//! closed solid that is the outward normal, which is the STL convention
+//! (vertices counter-clockwise seen from outside) and the orientation of a
+//! Gmsh surface set after [`Mesh::orient_surfaces`]. Adjacent triangles must
+//! agree (each shared edge traversed in opposite directions); the
+//! constructor checks it.
+//!
+//! ## Signed gap and normal
+//! With `x̄` the closest point and `d = |x − x̄|`:
+//! - on a triangle's face, `n` is the face normal and `g = (x − x̄)·n`;
+//! - on an edge or a vertex, the sign is that of `(x − x̄)·N`, with `N` the
+//!   pseudo-normal of the feature (Bærentzen & Aanæs, 2005): for an edge the
+//!   normalised sum of the normals of its (one or two) triangles, for a
+//!   vertex the angle-weighted sum `Σ αₜ nₜ` of its triangles' normals. Then
+//!   `n = sign · (x − x̄)/d` and `g = sign · d`, so the normal turns
+//!   continuously around a convex edge instead of jumping from one face
+//!   normal to the next. When `d ≤ 10⁻¹⁰ L` (`L` the diagonal of the
+//!   surface's bounding box) the direction of `x − x̄` is round-off and `n`
+//!   is the pseudo-normal itself.
+//!
+//! For a closed, consistently oriented surface this sign is exact (points
+//! inside the solid get `g < 0`). For an open sheet, points beyond its
+//! boundary are classified by the side of the boundary triangle's plane.
+//!
+//! ## Curvature
+//! `∂²g/∂x²` of the piecewise gap function: `0` on a face,
+//! `sign (I − e eᵀ − n nᵀ)/d` on an edge of unit direction `e`,
+//! `sign (I − n nᵀ)/d` on a vertex (a sphere or cylinder of radius zero),
+//! and `0` when `d ≤ 10⁻¹⁰ L`, where the gap is not differentiable.
+//!
+//! ## Search
+//! An axis-aligned bounding-box tree (median split along the longest axis of
+//! the triangle centroids, at most [`LEAF_SIZE`] triangles per leaf) is built
+//! once. A query visits boxes best first, ordered by the squared distance
+//! from `x` to the box, and stops when the nearest unvisited box is farther
+//! than the best triangle found (branch and bound). The result is exactly
+//! the brute-force minimum over all triangles.
+//!
+//! [`Mesh::orient_surfaces`]: crate::mesh::Mesh::orient_surfaces
+
+use crate::contact::obstacle::Projection;
+use crate::contact::triangle::{closest_point_on_triangle, Feature, TriangleProjection};
+use crate::error::{Error, Result};
+use crate::mesh::{FacetKind, Mesh};
+use nalgebra::{Matrix3, Vector3};
+use std::cmp::Ordering;
+use std::collections::{BinaryHeap, HashMap};
+use std::path::Path;
+
+/// Largest number of triangles in a leaf of the bounding-box tree.
+pub const LEAF_SIZE: usize = 4;
+
+/// Distance below which `x − x̄` gives no reliable direction, relative to
+/// the diagonal of the surface's bounding box.
+const DIRECTION_TOLERANCE: f64 = 1e-10;
+
+/// A triangulated surface with its search tree and pseudo-normals. See the
+/// module documentation for the orientation convention.
+#[derive(Clone, Debug)]
+pub struct TriangulatedSurface {
+    vertices: Vec<Vector3<f64>>,
+    triangles: Vec<[usize; 3]>,
+    /// Unit right-hand normal of each triangle.
+    face_normals: Vec<Vector3<f64>>,
+    /// Unit pseudo-normal of edge `i` (vertex `i` to `i + 1`) of each triangle.
+    edge_normals: Vec<[Vector3<f64>; 3]>,
+    /// Unit angle-weighted pseudo-normal of each vertex.
+    vertex_normals: Vec<Vector3<f64>>,
+    bvh: Bvh,
+    /// Below this distance `x − x̄` gives no direction.
+    tiny: f64,
+}
+
+fn invalid(what: &str, message: String) -> Error {
+    Error::ContactInput {
+        what: what.to_string(),
+        message,
+    }
+}
+
+impl TriangulatedSurface {
+    /// A surface from vertex positions and triangles (indices into
+    /// `vertices`, right-hand normal toward the body). Errors on no
+    /// triangles, an index out of range, a non-finite coordinate, a
+    /// zero-area triangle or inconsistently oriented neighbours.
+    pub fn new(vertices: Vec<Vector3<f64>>, triangles: Vec<[usize; 3]>) -> Result<Self> {
+        Self::build(vertices, triangles, "triangulated surface")
+    }
+
+    /// `new`, with `what` naming the source in error messages.
+    fn build(vertices: Vec<Vector3<f64>>, triangles: Vec<[usize; 3]>, what: &str) -> Result<Self> {
+        if triangles.is_empty() {
+            return Err(invalid(what, "the surface has no triangles".into()));
+        }
+        if let Some(v) = vertices
+            .iter()
+            .position(|v| !v.iter().all(|x| x.is_finite()))
+        {
+            return Err(invalid(
+                what,
+                format!("vertex {v} has a non-finite coordinate"),
+            ));
+        }
+        for (t, tri) in triangles.iter().enumerate() {
+            if let Some(&i) = tri.iter().find(|&&i| i >= vertices.len()) {
+                return Err(invalid(
+                    what,
+                    format!(
+                        "triangle {t} refers to vertex {i}, but there are {} vertices",
+                        vertices.len()
+                    ),
+                ));
+            }
+        }
+
+        // face normals; reject zero-area triangles
+        let mut face_normals = Vec::with_capacity(triangles.len());
+        for (t, tri) in triangles.iter().enumerate() {
+            let [a, b, c] = tri.map(|i| vertices[i]);
+            let cross = (b - a).cross(&(c - a));
+            let scale = (b - a)
+                .norm_squared()
+                .max((c - a).norm_squared())
+                .max((c - b).norm_squared());
+            if !(cross.norm_squared() > 1e-24 * scale * scale) {
+                return Err(invalid(
+                    what,
+                    format!(
+                        "triangle {t} (vertices {}, {}, {}) has zero area",
+                        tri[0], tri[1], tri[2]
+                    ),
+                ));
+            }
+            face_normals.push(cross.normalize());
+        }
+
+        // edge pseudo-normals and the orientation check: every directed
+        // edge appears at most once
+        let mut directed: HashMap<(usize, usize), usize> = HashMap::new();
+        let mut edge_sum: HashMap<(usize, usize), Vector3<f64>> = HashMap::new();
+        for (t, tri) in triangles.iter().enumerate() {
+            for i in 0..3 {
+                let (p, q) = (tri[i], tri[(i + 1) % 3]);
+                if let Some(other) = directed.insert((p, q), t) {
+                    return Err(invalid(
+                        what,
+                        format!(
+                            "triangles {other} and {t} both run along edge {p}→{q}: \
+                             neighbouring triangles are not consistently oriented"
+                        ),
+                    ));
+                }
+                *edge_sum
+                    .entry((p.min(q), p.max(q)))
+                    .or_insert_with(Vector3::zeros) += face_normals[t];
+            }
+        }
+        let edge_normals = triangles
+            .iter()
+            .enumerate()
+            .map(|(t, tri)| {
+                std::array::from_fn(|i| {
+                    let (p, q) = (tri[i], tri[(i + 1) % 3]);
+                    edge_sum[&(p.min(q), p.max(q))]
+                        .try_normalize(1e-12)
+                        .unwrap_or(face_normals[t])
+                })
+            })
+            .collect();
+
+        // angle-weighted vertex pseudo-normals
+        let mut vertex_sum = vec![Vector3::zeros(); vertices.len()];
+        let mut some_face = vec![Vector3::zeros(); vertices.len()];
+        for (t, tri) in triangles.iter().enumerate() {
+            for i in 0..3 {
+                let v = vertices[tri[i]];
+                let u = vertices[tri[(i + 1) % 3]] - v;
+                let w = vertices[tri[(i + 2) % 3]] - v;
+                let angle = u.cross(&w).norm().atan2(u.dot(&w));
+                vertex_sum[tri[i]] += face_normals[t] * angle;
+                some_face[tri[i]] = face_normals[t];
+            }
+        }
+        let vertex_normals = vertex_sum
+            .iter()
+            .zip(&some_face)
+            .map(|(s, f)| s.try_normalize(1e-12).unwrap_or(*f))
+            .collect();
+
+        let bvh = Bvh::build(&vertices, &triangles);
+        let diagonal = (bvh.nodes[0].bounds.hi - bvh.nodes[0].bounds.lo).norm();
+        Ok(TriangulatedSurface {
+            tiny: DIRECTION_TOLERANCE * diagonal,
+            vertices,
+            triangles,
+            face_normals,
+            edge_normals,
+            vertex_normals,
+            bvh,
+        })
+    }
+
+    /// Reads an STL file, ASCII or binary (via the `stl_io` crate). STL
+    /// stores single-precision coordinates; bit-identical vertices are
+    /// merged, so a closed STL solid gives a closed surface. The facet
+    /// normals in the file are ignored: the vertex order (counter-clockwise
+    /// seen from outside) defines the normal. Errors name the file.
+    pub fn from_stl(path: &Path) -> Result<Self> {
+        let what = format!("STL file '{}'", path.display());
+        let mut file = std::fs::File::open(path).map_err(|e| Error::io("open", path, e))?;
+        let mesh = stl_io::read_stl(&mut file)
+            .map_err(|e| invalid(&what, format!("cannot be read as STL: {e}")))?;
+        let vertices = mesh
+            .vertices
+            .iter()
+            .map(|v| Vector3::new(v.0[0] as f64, v.0[1] as f64, v.0[2] as f64))
+            .collect();
+        let triangles = mesh.faces.iter().map(|f| f.vertices).collect();
+        Self::build(vertices, triangles, &what)
+    }
+
+    /// The surface set `surface` of `mesh` (e.g. read by
+    /// [`crate::mesh::gmsh::read_msh`]), in the reference configuration.
+    /// Quadrangles `(0, 1, 2, 3)` are split along the diagonal 0–2 into
+    /// `(0, 1, 2)` and `(0, 2, 3)`. The facets' orientation (outward from
+    /// the mesh's body) is kept: the body being projected must lie on that
+    /// side. Vertices are the surface's nodes, in increasing node index.
+    pub fn from_surface_facets(mesh: &Mesh, surface: &str) -> Result<Self> {
+        let set = mesh.surface(surface).ok_or_else(|| Error::UnknownGroup {
+            key: "obstacle surface".into(),
+            kind: "surface set",
+            name: surface.to_string(),
+            available: mesh.surface_names(),
+        })?;
+        let nodes = mesh.surface_nodes(set);
+        let local: HashMap<usize, usize> = nodes.iter().enumerate().map(|(i, &n)| (n, i)).collect();
+        let vertices = nodes
+            .iter()
+            .map(|&n| Vector3::from(mesh.nodes[n]))
+            .collect();
+        let mut triangles = Vec::new();
+        for f in &set.facets {
+            let v: Vec<usize> = f.nodes.iter().map(|n| local[n]).collect();
+            match f.kind {
+                FacetKind::Tri3 => triangles.push([v[0], v[1], v[2]]),
+                FacetKind::Quad4 => {
+                    triangles.push([v[0], v[1], v[2]]);
+                    triangles.push([v[0], v[2], v[3]]);
+                }
+            }
+        }
+        Self::build(vertices, triangles, &format!("surface set '{surface}'"))
+    }
+
+    /// Vertex positions.
+    pub fn vertices(&self) -> &[Vector3<f64>] {
+        &self.vertices
+    }
+
+    /// Triangles as vertex indices.
+    pub fn triangles(&self) -> &[[usize; 3]] {
+        &self.triangles
+    }
+
+    /// Unit right-hand normal of triangle `t`.
+    pub fn face_normal(&self, t: usize) -> Vector3<f64> {
+        self.face_normals[t]
+    }
+
+    /// Unit angle-weighted pseudo-normal of vertex `v`.
+    pub fn vertex_normal(&self, v: usize) -> Vector3<f64> {
+        self.vertex_normals[v]
+    }
+
+    /// The surface moved rigidly by `d` (the search tree moves with it).
+    pub fn translated(&self, d: &Vector3<f64>) -> Self {
+        let mut moved = self.clone();
+        for v in &mut moved.vertices {
+            *v += d;
+        }
+        for node in &mut moved.bvh.nodes {
+            node.bounds.lo += d;
+            node.bounds.hi += d;
+        }
+        moved
+    }
+
+    /// The closest point on the surface to `x`: the triangle's index and the
+    /// projection onto it. `None` only for a surface without triangles,
+    /// which the constructors do not make.
+    pub fn closest_point(&self, x: &Vector3<f64>) -> Option<(usize, TriangleProjection)> {
+        self.closest_point_counted(x).0
+    }
+
+    /// [`closest_point`](Self::closest_point), also returning how many
+    /// triangles were tested (the cost of the search).
+    pub fn closest_point_counted(
+        &self,
+        x: &Vector3<f64>,
+    ) -> (Option<(usize, TriangleProjection)>, usize) {
+        let mut best: Option<(f64, usize, TriangleProjection)> = None;
+        let mut tests = 0;
+        let mut queue = BinaryHeap::new();
+        queue.push(Candidate {
+            distance2: self.bvh.nodes[0].bounds.distance2(x),
+            node: 0,
+        });
+        while let Some(Candidate { distance2, node }) = queue.pop() {
+            if best.as_ref().is_some_and(|b| distance2 >= b.0) {
+                break; // every box left is at least as far
+            }
+            match self.bvh.nodes[node].kind {
+                NodeKind::Leaf { first, count } => {
+                    for &t in &self.bvh.order[first..first + count] {
+                        tests += 1;
+                        let [a, b, c] = self.triangles[t].map(|i| &self.vertices[i]);
+                        let p = closest_point_on_triangle(x, a, b, c);
+                        let d2 = (x - p.point).norm_squared();
+                        if best.as_ref().is_none_or(|b| d2 < b.0) {
+                            best = Some((d2, t, p));
+                        }
+                    }
+                }
+                NodeKind::Inner { left, right } => {
+                    for child in [left, right] {
+                        let d2 = self.bvh.nodes[child].bounds.distance2(x);
+                        if best.as_ref().is_none_or(|b| d2 < b.0) {
+                            queue.push(Candidate {
+                                distance2: d2,
+                                node: child,
+                            });
+                        }
+                    }
+                }
+            }
+        }
+        (best.map(|(_, t, p)| (t, p)), tests)
+    }
+
+    /// Projects the spatial point `x` onto the surface: closest point,
+    /// normal, signed gap and curvature as in the module documentation.
+    pub fn project(&self, x: &Vector3<f64>) -> Projection {
+        let (t, p) = self
+            .closest_point(x)
+            .expect("a TriangulatedSurface has at least one triangle");
+        let diff = x - p.point;
+        let tri = self.triangles[t];
+        let pseudo = match p.feature {
+            Feature::Face => {
+                let n = self.face_normals[t];
+                return Projection {
+                    point: p.point,
+                    normal: n,
+                    gap: diff.dot(&n),
+                    curvature: Matrix3::zeros(),
+                };
+            }
+            Feature::Edge(i) => self.edge_normals[t][i],
+            Feature::Vertex(i) => self.vertex_normals[tri[i]],
+        };
+        let d = diff.norm();
+        if !(d > self.tiny) {
+            return Projection {
+                point: p.point,
+                normal: pseudo,
+                gap: diff.dot(&pseudo),
+                curvature: Matrix3::zeros(),
+            };
+        }
+        let sign = if diff.dot(&pseudo) >= 0.0 { 1.0 } else { -1.0 };
+        let n = diff * (sign / d);
+        let mut projector = Matrix3::identity() - n * n.transpose();
+        if let Feature::Edge(i) = p.feature {
+            let e = (self.vertices[tri[(i + 1) % 3]] - self.vertices[tri[i]]).normalize();
+            projector -= e * e.transpose();
+        }
+        Projection {
+            point: p.point,
+            normal: n,
+            gap: sign * d,
+            curvature: projector * (sign / d),
+        }
+    }
+}
+
+/// An axis-aligned bounding box.
+#[derive(Clone, Copy, Debug)]
+struct Aabb {
+    lo: Vector3<f64>,
+    hi: Vector3<f64>,
+}
+
+impl Aabb {
+    fn empty() -> Self {
+        Aabb {
+            lo: Vector3::repeat(f64::INFINITY),
+            hi: Vector3::repeat(f64::NEG_INFINITY),
+        }
+    }
+    fn grow(&mut self, p: &Vector3<f64>) {
+        self.lo = self.lo.inf(p);
+        self.hi = self.hi.sup(p);
+    }
+    /// Squared distance from `x` to the box (0 inside).
+    fn distance2(&self, x: &Vector3<f64>) -> f64 {
+        (0..3)
+            .map(|k| {
+                let d = (self.lo[k] - x[k]).max(x[k] - self.hi[k]).max(0.0);
+                d * d
+            })
+            .sum()
+    }
+}
+
+#[derive(Clone, Copy, Debug)]
+enum NodeKind {
+    /// Triangles `order[first..first + count]`.
+    Leaf {
+        first: usize,
+        count: usize,
+    },
+    Inner {
+        left: usize,
+        right: usize,
+    },
+}
+
+#[derive(Clone, Copy, Debug)]
+struct BvhNode {
+    bounds: Aabb,
+    kind: NodeKind,
+}
+
+/// Bounding-box tree; node 0 is the root.
+#[derive(Clone, Debug)]
+struct Bvh {
+    nodes: Vec<BvhNode>,
+    /// Triangle indices, permuted so that each leaf owns a contiguous range.
+    order: Vec<usize>,
+}
+
+impl Bvh {
+    fn build(vertices: &[Vector3<f64>], triangles: &[[usize; 3]]) -> Self {
+        let centroids: Vec<Vector3<f64>> = triangles
+            .iter()
+            .map(|t| (vertices[t[0]] + vertices[t[1]] + vertices[t[2]]) / 3.0)
+            .collect();
+        let mut bvh = Bvh {
+            nodes: Vec::with_capacity(2 * triangles.len() / LEAF_SIZE + 1),
+            order: (0..triangles.len()).collect(),
+        };
+        bvh.build_node(0, triangles.len(), vertices, triangles, &centroids);
+        bvh
+    }
+
+    /// Builds the node over `order[first..first + count]`; returns its index.
+    fn build_node(
+        &mut self,
+        first: usize,
+        count: usize,
+        vertices: &[Vector3<f64>],
+        triangles: &[[usize; 3]],
+        centroids: &[Vector3<f64>],
+    ) -> usize {
+        let range = first..first + count;
+        let mut bounds = Aabb::empty();
+        let mut centre_bounds = Aabb::empty();
+        for &t in &self.order[range.clone()] {
+            for &v in &triangles[t] {
+                bounds.grow(&vertices[v]);
+            }
+            centre_bounds.grow(&centroids[t]);
+        }
+        let index = self.nodes.len();
+        self.nodes.push(BvhNode {
+            bounds,
+            kind: NodeKind::Leaf { first, count },
+        });
+        if count <= LEAF_SIZE {
+            return index;
+        }
+        let extent = centre_bounds.hi - centre_bounds.lo;
+        let axis = extent.imax();
+        let half = count / 2;
+        self.order[range].select_nth_unstable_by(half, |&a, &b| {
+            centroids[a][axis].total_cmp(&centroids[b][axis])
+        });
+        let left = self.build_node(first, half, vertices, triangles, centroids);
+        let right = self.build_node(first + half, count - half, vertices, triangles, centroids);
+        self.nodes[index].kind = NodeKind::Inner { left, right };
+        index
+    }
+}
+
+/// A box in the best-first queue, nearest first.
+#[derive(Clone, Copy, Debug, PartialEq)]
+struct Candidate {
+    distance2: f64,
+    node: usize,
+}
+
+impl Eq for Candidate {}
+
+impl Ord for Candidate {
+    fn cmp(&self, other: &Self) -> Ordering {
+        // BinaryHeap is a max-heap: reverse for nearest first
+        other
+            .distance2
+            .total_cmp(&self.distance2)
+            .then(other.node.cmp(&self.node))
+    }
+}
+
+impl PartialOrd for Candidate {
+    fn partial_cmp(&self, other: &Self) -> Option<Ordering> {
+        Some(self.cmp(other))
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// Unit square in z = 0 as two triangles, normal +z.
+    fn square() -> TriangulatedSurface {
+        TriangulatedSurface::new(
+            vec![
+                Vector3::new(0.0, 0.0, 0.0),
+                Vector3::new(1.0, 0.0, 0.0),
+                Vector3::new(1.0, 1.0, 0.0),
+                Vector3::new(0.0, 1.0, 0.0),
+            ],
+            vec![[0, 1, 2], [0, 2, 3]],
+        )
+        .unwrap()
+    }
+
+    #[test]
+    fn square_gap_on_face_edge_and_vertex() {
+        let s = square();
+        let p = s.project(&Vector3::new(0.3, 0.6, 0.25));
+        assert!((p.gap - 0.25).abs() < 1e-15 && p.normal == Vector3::z());
+        // beyond the edge x = 1, above the plane: distance to the edge
+        let p = s.project(&Vector3::new(1.3, 0.5, 0.4));
+        assert!((p.gap - 0.5).abs() < 1e-15);
+        assert!((p.normal - Vector3::new(0.6, 0.0, 0.8)).norm() < 1e-15);
+        // below the plane, beyond the vertex (0, 0)
+        let p = s.project(&Vector3::new(-1.0, -2.0, -2.0));
+        assert!((p.gap + 3.0).abs() < 1e-15);
+        // on the diagonal (shared edge): the pseudo-normal is +z
+        let p = s.project(&Vector3::new(0.5, 0.5, 0.0));
+        assert_eq!(p.normal, Vector3::z());
+        assert_eq!(p.gap, 0.0);
+    }
+
+    #[test]
+    fn rejects_bad_surfaces() {
+        let v = vec![
+            Vector3::zeros(),
+            Vector3::x(),
+            Vector3::y(),
+            Vector3::x() * 2.0,
+        ];
+        let e = TriangulatedSurface::new(v.clone(), vec![]).unwrap_err();
+        assert!(e.to_string().contains("no triangles"), "{e}");
+        let e = TriangulatedSurface::new(v.clone(), vec![[0, 1, 7]]).unwrap_err();
+        assert!(e.to_string().contains("vertex 7"), "{e}");
+        let e = TriangulatedSurface::new(v.clone(), vec![[0, 1, 3]]).unwrap_err();
+        assert!(e.to_string().contains("zero area"), "{e}");
+        let e = TriangulatedSurface::new(v, vec![[0, 1, 2], [1, 2, 0]]).unwrap_err();
+        assert!(e.to_string().contains("consistently oriented"), "{e}");
+    }
+}

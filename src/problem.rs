@@ -8,6 +8,8 @@
 use crate::assembly::kernel::KernelFailure;
 use crate::assembly::loads::pressure_facet;
 use crate::assembly::{ElementFailure, Model};
+use crate::contact::interface::{ContactInterface, NodeReport};
+use crate::contact::laws::NodeContactState;
 use crate::mesh::Facet;
 
 /// A piecewise-linear function of pseudo-time, constant beyond its first
@@ -125,15 +127,28 @@ impl Default for SolverSettings {
 
 /// The resolved problem.
 pub struct Problem {
+    /// The mesh, materials and the sparsity pattern (which holds the
+    /// contact multipliers, if any, after the displacements).
     pub model: Model,
     pub prescribed: Vec<PrescribedDisplacement>,
     pub pressures: Vec<PressureLoad>,
     pub body_forces: Vec<BodyForce>,
+    /// Contact interfaces with rigid obstacles.
+    pub contacts: Vec<ContactInterface>,
     pub steps: Vec<Step>,
     pub settings: SolverSettings,
 }
 
-/// Residual `r = f_int − f_ext` over all dofs with the norms used to scale it.
+/// The per-node contact states of every interface (multipliers held fixed
+/// by Uzawa, local slack unknowns): history that Newton reads and the
+/// stepper commits when an increment converges.
+#[derive(Clone, Debug, Default, PartialEq)]
+pub struct ContactState {
+    pub interfaces: Vec<Vec<NodeContactState>>,
+}
+
+/// Residual `r = f_int − f_ext − f_contact` over all unknowns (displacements,
+/// then contact multipliers) with the norms used to scale it.
 pub struct Residual {
     pub r: Vec<f64>,
     pub internal_norm: f64,
@@ -143,7 +158,7 @@ pub struct Residual {
 impl Problem {
     /// Which dofs are prescribed (in any step).
     pub fn constrained_dofs(&self) -> Vec<bool> {
-        let mut mask = vec![false; self.model.num_dofs()];
+        let mut mask = vec![false; self.num_unknowns()];
         for c in &self.prescribed {
             for &n in &c.nodes {
                 for &(i, _) in &c.components {
@@ -224,26 +239,140 @@ impl Problem {
         f
     }
 
-    /// Residual at time `t` and displacement `u`, and the tangent if asked.
+    /// Number of unknowns: 3 displacements per node, then the contact
+    /// multipliers.
+    pub fn num_unknowns(&self) -> usize {
+        self.model.pattern.dimension()
+    }
+
+    /// Whether the system has multiplier unknowns (a saddle point).
+    pub fn has_multipliers(&self) -> bool {
+        self.num_unknowns() > self.model.num_dofs()
+    }
+
+    /// The contact states before the first increment (gaps at `x`, time 0).
+    pub fn initial_contact_state(&self, x: &[f64]) -> ContactState {
+        let reference = &self.model.mesh.nodes;
+        ContactState {
+            interfaces: self
+                .contacts
+                .iter()
+                .map(|c| {
+                    let obstacle = c.obstacle_at(0.0);
+                    (0..c.nodes.len())
+                        .map(|i| {
+                            let g = c.gap_geometry(reference, &obstacle, x, i).signed_gap;
+                            NodeContactState::initial(&c.law, g)
+                        })
+                        .collect()
+                })
+                .collect(),
+        }
+    }
+
+    /// After a converged Newton solve: for every Uzawa interface whose
+    /// largest penetration exceeds its tolerance (1e-9 of its element size),
+    /// update the multipliers `λ ← ⟨λ − ε g⟩` and return `true` (solve
+    /// again); `false` when every interface is within tolerance.
+    pub fn augment_multipliers(&self, t: f64, x: &[f64], contact: &mut ContactState) -> bool {
+        let mut again = false;
+        for (c, states) in self.contacts.iter().zip(&mut contact.interfaces) {
+            let crate::contact::laws::NormalLaw::Uzawa { epsilon } = c.law else {
+                continue;
+            };
+            let obstacle = c.obstacle_at(t);
+            let gaps: Vec<f64> = (0..c.nodes.len())
+                .map(|i| {
+                    c.gap_geometry(&self.model.mesh.nodes, &obstacle, x, i)
+                        .signed_gap
+                })
+                .collect();
+            let penetration = gaps.iter().fold(0.0f64, |m, &g| m.max(-g));
+            if penetration > 1e-9 * c.element_size {
+                again = true;
+                for (state, g) in states.iter_mut().zip(&gaps) {
+                    state.lambda =
+                        crate::contact::laws::uzawa::update_multiplier(state.lambda, *g, epsilon);
+                }
+            }
+        }
+        again
+    }
+
+    /// Carry the contact states along a Newton step `dx` from `x`.
+    pub fn advance_contact_states(
+        &self,
+        t: f64,
+        x: &[f64],
+        dx: &[f64],
+        contact: &mut ContactState,
+    ) {
+        for (c, states) in self.contacts.iter().zip(&mut contact.interfaces) {
+            c.advance_states(
+                &self.model.mesh.nodes,
+                t,
+                x,
+                dx,
+                self.model.num_dofs(),
+                states,
+            );
+        }
+    }
+
+    /// Residual at time `t` and unknowns `x` for a problem without contact
+    /// history (or at its initial state), and the tangent if asked.
     pub fn residual(
         &self,
         t: f64,
-        u: &[f64],
-        mut tangent: Option<&mut [f64]>,
+        x: &[f64],
+        tangent: Option<&mut [f64]>,
     ) -> Result<Residual, ElementFailure> {
-        let mut r = vec![0.0; self.model.num_dofs()];
+        self.residual_in(t, x, &self.initial_contact_state(x), tangent)
+            .map(|(r, _)| r)
+    }
+
+    /// Residual at time `t`, unknowns `x` and contact states `contact`, the
+    /// tangent if asked, and the contact report of every interface node.
+    pub fn residual_in(
+        &self,
+        t: f64,
+        x: &[f64],
+        contact: &ContactState,
+        mut tangent: Option<&mut [f64]>,
+    ) -> Result<(Residual, Vec<Vec<NodeReport>>), ElementFailure> {
+        let mut r = vec![0.0; self.num_unknowns()];
         self.model
-            .assemble_internal(u, &mut r, tangent.as_deref_mut())?;
+            .assemble_internal(x, &mut r, tangent.as_deref_mut())?;
+        let first_multiplier = self.model.num_dofs();
+        let reports = self
+            .contacts
+            .iter()
+            .zip(&contact.interfaces)
+            .map(|(c, states)| {
+                c.assemble(
+                    &self.model.mesh.nodes,
+                    t,
+                    x,
+                    states,
+                    first_multiplier,
+                    &mut r,
+                    tangent.as_deref_mut().map(|k| (&self.model.pattern, k)),
+                )
+            })
+            .collect();
         let internal_norm = norm(&r);
-        let f_ext = self.external_force(t, u, tangent);
+        let f_ext = self.external_force(t, x, tangent);
         for (ri, fi) in r.iter_mut().zip(&f_ext) {
             *ri -= fi;
         }
-        Ok(Residual {
-            r,
-            internal_norm,
-            external_norm: norm(&f_ext),
-        })
+        Ok((
+            Residual {
+                r,
+                internal_norm,
+                external_norm: norm(&f_ext),
+            },
+            reports,
+        ))
     }
 
     /// Total of `r = f_int − f_ext` over the nodes of each surface set: the

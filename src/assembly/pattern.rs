@@ -251,6 +251,10 @@ impl SparsityPattern {
     /// Index of the diagonal entry of dof `d`.
     #[inline]
     pub fn diagonal_entry(&self, d: usize) -> usize {
+        let first_multiplier = 3 * self.num_nodes();
+        if d >= first_multiplier {
+            return self.multiplier_diagonal(d - first_multiplier);
+        }
         self.block_entry(d / 3, d % 3, d / 3, d % 3)
             .expect("every node is its own neighbour")
     }

@@ -413,6 +413,7 @@ impl Case {
             prescribed,
             pressures,
             body_forces,
+            contacts: Vec::new(),
             steps,
             settings,
         })

@@ -26,6 +26,7 @@
 //! Status: these are building blocks, each tested on its own. Nothing here
 //! is called by the Newton solver yet (see DESIGN.md, "Contact").
 
+pub mod interface;
 pub mod laws;
 pub mod obstacle;
 pub mod triangle;

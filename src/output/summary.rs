@@ -26,11 +26,27 @@ pub struct IncrementSummary {
     pub cuts: usize,
     /// Wall time of the increment, seconds.
     pub wall_time: f64,
+    /// Contact nodes that switched status, per Newton iteration.
+    pub switched: Vec<usize>,
+    /// Per contact interface: totals at the end of the increment.
+    pub contact: BTreeMap<String, InterfaceSummary>,
     /// VTU file of the increment (relative to the output folder).
     pub file: String,
     /// `Σ (f_int − f_ext)` over the nodes of each surface set: the reaction
     /// force where displacements are prescribed.
     pub reaction_forces: BTreeMap<String, [f64; 3]>,
+}
+
+/// One contact interface at the end of an increment.
+#[derive(Clone, Debug, Default, Serialize)]
+pub struct InterfaceSummary {
+    /// Total contact force on the body, `Σ A_s t_N n`.
+    pub force: [f64; 3],
+    /// Reference area of the closed nodes, `Σ A_s`.
+    pub area: f64,
+    pub closed_nodes: usize,
+    /// Largest penetration `max(0, −g)` over the secondary nodes.
+    pub largest_penetration: f64,
 }
 
 /// Totals of one load step over its converged increments.

@@ -6,7 +6,7 @@
 //! pattern (and its symbolic factorisation) never changes.
 
 use super::linear::SparseLdlt;
-use crate::problem::{norm, Problem};
+use crate::problem::{norm, ContactState, Problem};
 use crate::Result;
 
 /// One Newton iteration as reported to the user.
@@ -19,6 +19,9 @@ pub struct IterationRecord {
     pub correction: f64,
     /// Line-search step length taken.
     pub step_length: f64,
+    /// Contact nodes whose status (open/closed) changed since the previous
+    /// iteration.
+    pub switched: usize,
 }
 
 /// How an increment ended.
@@ -62,6 +65,7 @@ pub fn solve_increment(
     u_start: &[f64],
     t: f64,
     force_scale: f64,
+    contact: &mut ContactState,
     u: &mut Vec<f64>,
 ) -> Result<(NewtonOutcome, Vec<IterationRecord>)> {
     let settings = &problem.settings;
@@ -75,6 +79,10 @@ pub fn solve_increment(
     let mut kd = vec![0.0; u.len()];
     let mut last_correction = f64::INFINITY;
     let nonsymmetric = problem.has_nonsymmetric_tangent();
+    let signs = problem
+        .has_multipliers()
+        .then(|| problem.model.pattern.pivot_signs());
+    let mut previous_active: Option<Vec<bool>> = None;
     let failed = |reason: String, records: Vec<IterationRecord>| {
         Ok((NewtonOutcome::Failed(reason), records))
     };
@@ -93,11 +101,19 @@ pub fn solve_increment(
         // the force alone first where it may show convergence: the tangent
         // costs far more and is not needed then
         let mut have_tangent = !at_target;
-        let evaluate = |u: &[f64], k: Option<&mut [f64]>| problem.residual(t, u, k);
-        let mut residual = match evaluate(u, have_tangent.then_some(&mut k_values[..])) {
-            Ok(r) => r,
-            Err(f) => return failed(problem.describe_failure(&f), records),
+        let evaluate =
+            |u: &[f64], k: Option<&mut [f64]>, c: &ContactState| problem.residual_in(t, u, c, k);
+        let (mut residual, reports) =
+            match evaluate(u, have_tangent.then_some(&mut k_values[..]), contact) {
+                Ok(r) => r,
+                Err(f) => return failed(problem.describe_failure(&f), records),
+            };
+        let active: Vec<bool> = reports.iter().flatten().map(|n| n.active).collect();
+        let switched = match &previous_active {
+            Some(p) => p.iter().zip(&active).filter(|(a, b)| a != b).count(),
+            None => 0,
         };
+        previous_active = Some(active);
         let mut r = residual.r.clone();
         zero_constrained(&mut r, constrained);
         // the out-of-balance force, with the linearised effect of the
@@ -124,6 +140,7 @@ pub fn solve_increment(
             residual: relative,
             correction: 0.0,
             step_length: 0.0,
+            switched,
         });
         if !relative.is_finite() {
             return failed("the residual is not finite".into(), records);
@@ -160,8 +177,8 @@ pub fn solve_increment(
             );
         }
         if !have_tangent {
-            residual = match evaluate(u, Some(&mut k_values[..])) {
-                Ok(r) => r,
+            residual = match evaluate(u, Some(&mut k_values[..]), contact) {
+                Ok((r, _)) => r,
                 Err(f) => return failed(problem.describe_failure(&f), records),
             };
             have_tangent = true;
@@ -185,6 +202,7 @@ pub fn solve_increment(
             &k_values,
             nonsymmetric,
             &rhs,
+            signs.as_deref(),
             &mut du,
         ) {
             return failed(reason, records);
@@ -194,9 +212,20 @@ pub fn solve_increment(
                 *d = jump[i];
             }
         }
-        let step_length = line_search(problem, constrained, t, u, &du, &out_of_balance, relative);
-        for (ui, di) in u.iter_mut().zip(&du) {
-            *ui += step_length * di;
+        let step_length = line_search(
+            problem,
+            constrained,
+            t,
+            u,
+            &du,
+            &out_of_balance,
+            relative,
+            contact,
+        );
+        let scaled: Vec<f64> = du.iter().map(|d| step_length * d).collect();
+        problem.advance_contact_states(t, u, &scaled, contact);
+        for (ui, di) in u.iter_mut().zip(&scaled) {
+            *ui += di;
         }
         if step_length == 1.0 {
             // land exactly on the prescribed values
@@ -234,12 +263,13 @@ fn solve_linear(
     k_values: &[f64],
     nonsymmetric: bool,
     rhs: &[f64],
+    signs: Option<&[i8]>,
     du: &mut [f64],
 ) -> std::result::Result<(), String> {
     let pattern = blocks.symbolic();
     if !nonsymmetric {
         solver
-            .factorize(pattern, k_values, None)
+            .factorize(pattern, k_values, signs)
             .map_err(|e| e.to_string())?;
         solver
             .solve_refined(pattern, k_values, du, 3)
@@ -248,7 +278,7 @@ fn solve_linear(
     }
     let k_sym = blocks.symmetric_part(k_values);
     solver
-        .factorize(pattern, &k_sym, None)
+        .factorize(pattern, &k_sym, signs)
         .map_err(|e| e.to_string())?;
     du.iter_mut().for_each(|x| *x = 0.0);
     let report = super::gmres::gmres(
@@ -289,6 +319,7 @@ fn line_search(
     du: &[f64],
     r: &[f64],
     relative: f64,
+    contact: &ContactState,
 ) -> f64 {
     if !problem.settings.line_search || relative < 1e3 * problem.settings.residual_tolerance {
         return 1.0;
@@ -302,7 +333,7 @@ fn line_search(
         for ((x, u0), d) in trial.iter_mut().zip(u).zip(du) {
             *x = u0 + alpha * d;
         }
-        let Ok(res) = problem.residual(t, &trial, None) else {
+        let Ok((res, _)) = problem.residual_in(t, &trial, contact, None) else {
             // an inverted element: shorter, and remember it in case all fail
             if best.0 == f64::INFINITY {
                 best.1 = 0.5 * alpha;
@@ -348,7 +379,12 @@ pub fn apply_identity_rows(problem: &Problem, constrained: &[bool], k: &mut [f64
     let pattern = problem.model.pattern.symbolic();
     let (cp, ri) = (pattern.col_ptr(), pattern.row_idx());
     let (mut sum, mut count) = (0.0, 0usize);
-    for (d, &c) in constrained.iter().enumerate() {
+    // the displacement dofs set the scale (multiplier diagonals may be 0)
+    for (d, &c) in constrained
+        .iter()
+        .enumerate()
+        .take(problem.model.num_dofs())
+    {
         if !c {
             sum += k[problem.model.pattern.diagonal_entry(d)].abs();
             count += 1;

@@ -7,7 +7,7 @@
 
 use super::linear::SparseLdlt;
 use super::newton::{solve_increment, IterationRecord, NewtonOutcome};
-use crate::problem::Problem;
+use crate::problem::{ContactState, Problem};
 use crate::{Error, Result};
 use std::path::PathBuf;
 
@@ -31,15 +31,17 @@ pub struct IncrementRecord {
 
 /// What the stepper reports as it goes.
 pub trait StepObserver {
-    /// An increment converged; `u` is the new displacement and `residual`
-    /// the `f_int − f_ext` there (the reactions on prescribed dofs). Write
-    /// output here.
+    /// An increment converged; `u` holds the new unknowns (displacements,
+    /// then contact multipliers), `residual` the `f_int − f_ext − f_contact`
+    /// there (the reactions on prescribed dofs) and `contact` the committed
+    /// contact states. Write output here.
     fn on_converged(
         &mut self,
         problem: &Problem,
         record: &IncrementRecord,
         u: &[f64],
         residual: &[f64],
+        contact: &ContactState,
     ) -> Result<()>;
     /// An increment failed and is cut.
     fn on_cut(&mut self, _step: &str, _time: f64, _increment: f64, _reason: &str) {}
@@ -54,8 +56,9 @@ pub fn run_steps(
     output: PathBuf,
 ) -> Result<Vec<f64>> {
     let constrained = problem.constrained_dofs();
-    let mut u = vec![0.0; problem.model.num_dofs()];
+    let mut u = vec![0.0; problem.num_unknowns()];
     problem.apply_prescribed(0.0, &mut u);
+    let mut contact = problem.initial_contact_state(&u);
     let mut trial = Vec::with_capacity(u.len());
     let mut t = 0.0;
     let mut force_scale = 0.0f64;
@@ -74,13 +77,15 @@ pub fn run_steps(
             } else {
                 t + dt
             };
-            let (outcome, newton) = solve_increment(
+            let mut trial_contact = contact.clone();
+            let (outcome, newton) = solve_with_augmentation(
                 problem,
                 solver,
                 &constrained,
                 &u,
                 t_new,
                 force_scale,
+                &mut trial_contact,
                 &mut trial,
             )?;
             match outcome {
@@ -89,6 +94,7 @@ pub fn run_steps(
                     force_scale: scale,
                 } => {
                     std::mem::swap(&mut u, &mut trial);
+                    contact = trial_contact;
                     force_scale = force_scale.max(scale);
                     any_converged = true;
                     let record = IncrementRecord {
@@ -101,7 +107,7 @@ pub fn run_steps(
                         cuts,
                     };
                     t = t_new;
-                    observer.on_converged(problem, &record, &u, &residual)?;
+                    observer.on_converged(problem, &record, &u, &residual, &contact)?;
                     if record.iterations <= problem.settings.easy_iterations && cuts == 0 {
                         dt = (dt * problem.settings.growth_factor).min(step.max_increment);
                     }
@@ -127,4 +133,61 @@ pub fn run_steps(
         }
     }
     Ok(u)
+}
+
+/// Most outer (Uzawa) augmentations of one increment.
+const MAX_AUGMENTATIONS: usize = 200;
+
+/// Newton for one increment; for Uzawa interfaces, followed by multiplier
+/// updates and new Newton solves at the same time until the largest
+/// penetration is within tolerance (formulation note §2.1 item 2).
+#[allow(clippy::too_many_arguments)]
+fn solve_with_augmentation(
+    problem: &Problem,
+    solver: &mut SparseLdlt,
+    constrained: &[bool],
+    u_start: &[f64],
+    t: f64,
+    force_scale: f64,
+    contact: &mut ContactState,
+    u: &mut Vec<f64>,
+) -> Result<(NewtonOutcome, Vec<IterationRecord>)> {
+    let (mut outcome, mut records) = solve_increment(
+        problem,
+        solver,
+        constrained,
+        u_start,
+        t,
+        force_scale,
+        contact,
+        u,
+    )?;
+    let mut augmentations = 0;
+    while matches!(outcome, NewtonOutcome::Converged { .. })
+        && problem.augment_multipliers(t, u, contact)
+    {
+        augmentations += 1;
+        if augmentations > MAX_AUGMENTATIONS {
+            return Ok((
+                NewtonOutcome::Failed(format!(
+                    "the Uzawa multipliers did not reach the penetration tolerance in {MAX_AUGMENTATIONS} updates"
+                )),
+                records,
+            ));
+        }
+        let start = u.clone();
+        let (next, more) = solve_increment(
+            problem,
+            solver,
+            constrained,
+            &start,
+            t,
+            force_scale,
+            contact,
+            u,
+        )?;
+        outcome = next;
+        records.extend(more);
+    }
+    Ok((outcome, records))
 }

@@ -19,6 +19,7 @@ pub fn problem(mesh: Mesh, material: Arc<dyn Material>) -> Problem {
         prescribed: Vec::new(),
         pressures: Vec::new(),
         body_forces: Vec::new(),
+        contacts: Vec::new(),
         steps: vec![Step {
             name: "load".into(),
             end_time: 1.0,
@@ -58,6 +59,7 @@ impl StepObserver for Recorder {
         record: &IncrementRecord,
         _u: &[f64],
         _r: &[f64],
+        _c: &signorini::problem::ContactState,
     ) -> signorini::Result<()> {
         self.increments.push(record.clone());
         Ok(())

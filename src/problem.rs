@@ -239,6 +239,26 @@ impl Problem {
         f
     }
 
+    /// Install contact interfaces: number their multipliers one after the
+    /// other and rebuild the sparsity pattern with them (fixed for the run:
+    /// every secondary node keeps its multiplier, active or not).
+    pub fn set_contacts(&mut self, mut contacts: Vec<ContactInterface>) {
+        let mut offset = 0;
+        let mut couplings = Vec::new();
+        for c in &mut contacts {
+            c.multiplier_offset = offset;
+            offset += c.num_multipliers();
+            couplings.extend(c.multiplier_couplings());
+        }
+        let mesh = &self.model.mesh;
+        self.model.pattern = crate::assembly::pattern::SparsityPattern::with_multipliers(
+            mesh.num_nodes(),
+            mesh.elements.iter().map(|e| e.nodes.as_slice()),
+            &couplings,
+        );
+        self.contacts = contacts;
+    }
+
     /// Number of unknowns: 3 displacements per node, then the contact
     /// multipliers.
     pub fn num_unknowns(&self) -> usize {

@@ -24,9 +24,11 @@ pub fn potential(area: f64, gap: &GapGeometry, epsilon: f64) -> f64 {
     0.5 * area * epsilon * pen * pen
 }
 
-/// Residual and tangent of one node; active iff `g < 0`.
+/// Residual and tangent of one node; active iff `g ≤ 0`. A node exactly in
+/// touch (`g = 0`) takes the closed branch's tangent, so that a body that
+/// rests on the obstacle with no other support is not singular.
 pub fn contribution(area: f64, gap: &GapGeometry, epsilon: f64) -> NodeContribution {
-    if !(gap.signed_gap < 0.0) {
+    if !(gap.signed_gap <= 0.0) {
         return NodeContribution::zero();
     }
     let t = pressure(gap.signed_gap, epsilon);

@@ -25,9 +25,10 @@ pub fn potential(area: f64, gap: &GapGeometry, lambda: f64, epsilon: f64) -> f64
     0.5 * area * t * t / epsilon
 }
 
-/// Residual and tangent of one node with `λ` fixed; active iff `λ − εg > 0`.
+/// Residual and tangent of one node with `λ` fixed; active iff `λ − εg ≥ 0`
+/// (a node exactly in touch takes the closed branch's tangent).
 pub fn contribution(area: f64, gap: &GapGeometry, lambda: f64, epsilon: f64) -> NodeContribution {
-    if !(lambda - epsilon * gap.signed_gap > 0.0) {
+    if !(lambda - epsilon * gap.signed_gap >= 0.0) {
         return NodeContribution::zero();
     }
     let t = pressure(gap.signed_gap, lambda, epsilon);

@@ -1,0 +1,245 @@
+//! Frictionless contact with rigid obstacles, through the library API:
+//! the contact patch test, exactness of the Lagrangian methods, penalty's
+//! expected penetration, release, and a finite-difference check of the
+//! assembled contact tangent — for every enforcement method on the one
+//! assembly path.
+
+mod common;
+
+use common::{fix, problem};
+use nalgebra::Vector3;
+use signorini::contact::interface::ContactInterface;
+use signorini::contact::laws::NormalLaw;
+use signorini::contact::{tributary_areas, RigidObstacle};
+use signorini::material::{LinearElastic, NeoHookean};
+use signorini::mesh::structured::{box_mesh, perturb_interior};
+use signorini::mesh::ElementKind;
+use signorini::problem::{Amplitude, ContactState, PressureLoad, Problem};
+use signorini::solve::linear::SparseLdlt;
+use signorini::solve::stepping::{run_steps, IncrementRecord, StepObserver};
+use std::sync::Arc;
+
+const E: f64 = 100.0;
+const H: f64 = 0.25; // cell size of the test blocks
+
+/// Every method, with parameters from the automatic rule `p = k = ε = E/h`.
+fn methods() -> Vec<(&'static str, NormalLaw)> {
+    let e = E / H;
+    vec![
+        ("penalty", NormalLaw::Penalty { epsilon: e }),
+        ("uzawa", NormalLaw::Uzawa { epsilon: e }),
+        ("rockafellar", NormalLaw::Rockafellar { p: e, k: e }),
+        ("slack", NormalLaw::Slack { p: e, k: e }),
+    ]
+}
+
+fn interface(
+    p: &Problem,
+    surface: &str,
+    obstacle: RigidObstacle,
+    law: NormalLaw,
+) -> ContactInterface {
+    let mesh = &p.model.mesh;
+    let (nodes, areas) = tributary_areas(mesh, mesh.surface(surface).unwrap());
+    ContactInterface {
+        name: surface.into(),
+        surface: surface.into(),
+        nodes,
+        areas,
+        obstacle,
+        motion: Vector3::zeros(),
+        amplitude: Amplitude::ramp(),
+        law,
+        multiplier_offset: 0,
+        element_size: H,
+    }
+}
+
+/// The final state of a run: unknowns, contact state and the reports.
+#[derive(Default)]
+struct Last {
+    x: Vec<f64>,
+    contact: ContactState,
+    increments: Vec<IncrementRecord>,
+}
+
+impl StepObserver for Last {
+    fn on_converged(
+        &mut self,
+        _p: &Problem,
+        record: &IncrementRecord,
+        u: &[f64],
+        _r: &[f64],
+        c: &ContactState,
+    ) -> signorini::Result<()> {
+        self.x = u.to_vec();
+        self.contact = c.clone();
+        self.increments.push(record.clone());
+        Ok(())
+    }
+}
+
+fn run(p: &Problem) -> Last {
+    let mut solver = SparseLdlt::new(signorini::run::fill_reducing_ordering(p).unwrap(), 1);
+    let mut last = Last::default();
+    run_steps(p, &mut solver, &mut last, "unused".into()).expect("converges");
+    last
+}
+
+/// A block on a rigid plane (its bottom face on z = 0), symmetry planes
+/// x = 0 and y = 0, uniform dead pressure `p` on top.
+fn pressed_block(kind: ElementKind, law: NormalLaw, p: f64) -> Problem {
+    let (cells, lengths) = ([4, 4, 2], [1.0, 1.0, 0.5]);
+    let mut mesh = box_mesh(kind, cells, lengths);
+    perturb_interior(&mut mesh, cells, lengths, 0.2, 11);
+    let mut pr = problem(mesh, Arc::new(LinearElastic::new(E, 0.3, "m").unwrap()));
+    fix(&mut pr, "xmin", &[(0, 0.0)]);
+    fix(&mut pr, "ymin", &[(1, 0.0)]);
+    let facets = pr.model.mesh.surface("zmax").unwrap().facets.clone();
+    pr.pressures.push(PressureLoad {
+        surface: "zmax".into(),
+        facets,
+        pressure: p,
+        follower: false,
+        amplitude: Amplitude::ramp(),
+    });
+    let plane = RigidObstacle::plane(Vector3::zeros(), Vector3::z()).unwrap();
+    let c = interface(&pr, "zmin", plane, law);
+    pr.set_contacts(vec![c]);
+    pr
+}
+
+/// Contact patch test (formulation note §2): a uniform pressure `p` on top
+/// reaches the plane as a uniform contact pressure `p` at every closed node,
+/// to 1e-8 relative, on irregular Tet4 and Hex8 meshes, for every method.
+/// The Lagrangian methods leave a penetration below 1e-8 of the element
+/// size; penalty leaves its expected `p/ε` (to 1e-8 relative).
+#[test]
+fn contact_patch_test_and_exactness() {
+    let p = 2.0;
+    for kind in [ElementKind::Tet4, ElementKind::Hex8] {
+        for (name, law) in methods() {
+            let pr = pressed_block(kind, law, p);
+            let last = run(&pr);
+            let c = &pr.contacts[0];
+            let (_, reports) = pr.residual_in(1.0, &last.x, &last.contact, None).unwrap();
+            for (i, r) in reports[0].iter().enumerate() {
+                assert!(r.active, "{kind:?} {name}: node {} open", c.nodes[i]);
+                assert!(
+                    (r.pressure - p).abs() < 1e-8 * p,
+                    "{kind:?} {name}: t_N = {} at node {}",
+                    r.pressure,
+                    c.nodes[i]
+                );
+                match law {
+                    NormalLaw::Penalty { epsilon } => {
+                        let expected = -p / epsilon;
+                        assert!(
+                            (r.gap - expected).abs() < 1e-8 * expected.abs(),
+                            "{kind:?} penalty gap {}",
+                            r.gap
+                        );
+                    }
+                    _ => assert!(r.gap.abs() < 1e-8 * H, "{kind:?} {name}: gap {}", r.gap),
+                }
+            }
+            // total contact force balances the applied load p × area 1
+            let total: f64 = reports[0].iter().map(|r| r.force[2]).sum();
+            assert!(
+                (total - p).abs() < 1e-8 * p,
+                "{kind:?} {name}: total {total}"
+            );
+        }
+    }
+}
+
+/// Release: the top face is pushed down by a prescribed displacement, then
+/// the plane is lowered away from the block: every node opens and the
+/// pressure returns to zero, for every method (this exercises the slack
+/// law's switch).
+#[test]
+fn lifting_the_obstacle_releases_every_node() {
+    for (name, law) in methods() {
+        let (cells, lengths) = ([3, 3, 2], [0.75, 0.75, 0.5]);
+        let mesh = box_mesh(ElementKind::Hex8, cells, lengths);
+        let mut pr = problem(mesh, Arc::new(NeoHookean::new(E, 0.3, "m").unwrap()));
+        fix(&mut pr, "xmin", &[(0, 0.0)]);
+        fix(&mut pr, "ymin", &[(1, 0.0)]);
+        fix(&mut pr, "zmax", &[(2, -0.02)]);
+        pr.prescribed.last_mut().unwrap().amplitude = Amplitude::new(vec![(0.0, 0.0), (1.0, 1.0)]);
+        pr.steps.push(signorini::problem::Step {
+            name: "lift".into(),
+            end_time: 2.0,
+            initial_increment: 0.5,
+            min_increment: 1e-4,
+            max_increment: 0.5,
+        });
+        let plane = RigidObstacle::plane(Vector3::zeros(), Vector3::z()).unwrap();
+        let mut c = interface(&pr, "zmin", plane, law);
+        c.motion = Vector3::new(0.0, 0.0, -0.1);
+        c.amplitude = Amplitude::new(vec![(0.0, 0.0), (1.0, 0.0), (2.0, 1.0)]);
+        pr.set_contacts(vec![c]);
+        let last = run(&pr);
+        // the press step closed the contact
+        assert!(last.increments.iter().any(|i| i.time <= 1.0));
+        let (_, reports) = pr.residual_in(2.0, &last.x, &last.contact, None).unwrap();
+        for r in &reports[0] {
+            assert!(
+                !r.active,
+                "{name}: a node stays closed (gap {}, t_N {})",
+                r.gap, r.pressure
+            );
+            assert_eq!(r.pressure, 0.0, "{name}");
+            assert!(r.gap > 0.0, "{name}: gap {}", r.gap);
+        }
+    }
+}
+
+/// The assembled tangent (elasticity + contact, displacements and
+/// multipliers) is the derivative of the assembled residual, for a block
+/// pressed into a rigid sphere (curved: the gap Hessian matters), by
+/// central differences, for penalty, Uzawa and Rockafellar. (The slack law's
+/// condensed tangent is the Newton matrix of its full local system, which
+/// equals this derivative only at a consistent local state; its own tests in
+/// `src/contact/laws/slack.rs` check it against the full system.)
+#[test]
+fn assembled_contact_tangent_matches_finite_difference() {
+    for (name, law) in methods().into_iter().filter(|(n, _)| *n != "slack") {
+        let mesh = box_mesh(ElementKind::Hex8, [2, 2, 1], [1.0, 1.0, 0.5]);
+        let mut pr = problem(mesh, Arc::new(NeoHookean::new(E, 0.3, "m").unwrap()));
+        let sphere = RigidObstacle::sphere(Vector3::new(0.4, 0.6, -1.0), 1.02).unwrap();
+        let c = interface(&pr, "zmin", sphere, law);
+        pr.set_contacts(vec![c]);
+        let n = pr.num_unknowns();
+        let x: Vec<f64> = (0..n).map(|i| 0.01 * ((i as f64) * 0.77).sin()).collect();
+        let state = pr.initial_contact_state(&x);
+        let mut k = vec![0.0; pr.model.pattern.nnz()];
+        let (res, reports) = pr.residual_in(0.5, &x, &state, Some(&mut k)).unwrap();
+        assert!(
+            reports[0].iter().any(|r| r.active) && reports[0].iter().any(|r| !r.active),
+            "{name}: mixed state"
+        );
+        let pattern = pr.model.pattern.symbolic();
+        let h = 1e-7;
+        for j in 0..n {
+            let (mut xp, mut xm) = (x.clone(), x.clone());
+            xp[j] += h;
+            xm[j] -= h;
+            let rp = pr.residual_in(0.5, &xp, &state, None).unwrap().0.r;
+            let rm = pr.residual_in(0.5, &xm, &state, None).unwrap().0.r;
+            let mut column = vec![0.0; n];
+            for idx in pattern.col_ptr()[j]..pattern.col_ptr()[j + 1] {
+                column[pattern.row_idx()[idx]] = k[idx];
+            }
+            for i in 0..n {
+                let fd = (rp[i] - rm[i]) / (2.0 * h);
+                assert!(
+                    (fd - column[i]).abs() < 1e-5 * (1.0 + column[i].abs()),
+                    "{name}: K[{i},{j}] = {} vs fd {fd}",
+                    column[i]
+                );
+            }
+        }
+        let _ = res;
+    }
+}

@@ -5,13 +5,17 @@
 pub mod schema;
 
 use crate::assembly::Model;
+use crate::contact::interface::ContactInterface;
+use crate::contact::laws::{automatic_parameters, NormalLaw};
+use crate::contact::{tributary_areas, RigidObstacle, TriangulatedSurface};
 use crate::material::{self, Material};
 use crate::mesh::Mesh;
 use crate::problem::{
     Amplitude, BodyForce, PrescribedDisplacement, PressureLoad, Problem, SolverSettings, Step,
 };
 use crate::{Error, Result};
-use schema::{AmplitudeRef, CaseFile, MaterialModel};
+use nalgebra::Vector3;
+use schema::{AmplitudeRef, CaseFile, ContactMethod, MaterialModel, ObstacleShape};
 use std::path::{Path, PathBuf};
 use std::sync::Arc;
 
@@ -408,7 +412,7 @@ impl Case {
         if settings.max_iterations == 0 {
             return Err(self.err("solver.max_iterations must be at least 1"));
         }
-        Ok(Problem {
+        let mut problem = Problem {
             model,
             prescribed,
             pressures,
@@ -416,6 +420,140 @@ impl Case {
             contacts: Vec::new(),
             steps,
             settings,
+        };
+        let contacts = self.contacts(&problem)?;
+        if !contacts.is_empty() {
+            problem.set_contacts(contacts);
+        }
+        Ok(problem)
+    }
+
+    /// The `[[obstacle]]` at index `i`, validated.
+    fn obstacle(&self, i: usize) -> Result<RigidObstacle> {
+        let o = &self.spec.obstacle[i];
+        let key = format!("obstacle[{i}]");
+        let vector = |v: Option<[f64; 3]>, name: &str| {
+            v.map(Vector3::from).ok_or_else(|| {
+                self.err(format!("{key}.{name} is required for shape {:?}", o.shape))
+            })
+        };
+        let radius = || {
+            o.radius.ok_or_else(|| {
+                self.err(format!("{key}.radius is required for shape {:?}", o.shape))
+            })
+        };
+        let with_key = |e: Error| self.err(format!("{key} ('{}'): {e}", o.name));
+        Ok(match o.shape {
+            ObstacleShape::Plane => {
+                RigidObstacle::plane(vector(o.point, "point")?, vector(o.normal, "normal")?)
+                    .map_err(with_key)?
+            }
+            ObstacleShape::Sphere => {
+                RigidObstacle::sphere(vector(o.center, "center")?, radius()?).map_err(with_key)?
+            }
+            ObstacleShape::Cylinder => RigidObstacle::cylinder(
+                vector(o.point, "point")?,
+                vector(o.axis, "axis")?,
+                radius()?,
+            )
+            .map_err(with_key)?,
+            ObstacleShape::Stl => {
+                let file = o
+                    .file
+                    .as_ref()
+                    .ok_or_else(|| self.err(format!("{key}.file is required for shape Stl")))?;
+                RigidObstacle::Triangulated(TriangulatedSurface::from_stl(&self.dir().join(file))?)
+            }
         })
+    }
+
+    /// The `[[contact]]` interfaces, validated against the mesh and the
+    /// obstacles, with automatic parameters where none are given.
+    fn contacts(&self, problem: &Problem) -> Result<Vec<ContactInterface>> {
+        let spec = &self.spec;
+        let mesh = &self.mesh;
+        let youngs = problem
+            .model
+            .materials
+            .iter()
+            .map(|m| m.reference_youngs_modulus())
+            .fold(0.0f64, f64::max);
+        let mut out = Vec::new();
+        for (i, c) in spec.contact.iter().enumerate() {
+            let key = format!("contact[{i}]");
+            let surface = self.surface(&format!("{key}.surface"), &c.surface)?;
+            let index = spec
+                .obstacle
+                .iter()
+                .position(|o| o.name == c.obstacle)
+                .ok_or_else(|| {
+                    let have: Vec<&str> = spec.obstacle.iter().map(|o| o.name.as_str()).collect();
+                    self.err(format!(
+                        "{key}.obstacle: no [[obstacle]] named '{}'; there are: {}",
+                        c.obstacle,
+                        if have.is_empty() {
+                            "none".to_string()
+                        } else {
+                            have.join(", ")
+                        }
+                    ))
+                })?;
+            let o = &spec.obstacle[index];
+            let obstacle = self.obstacle(index)?;
+            let (nodes, areas) = tributary_areas(mesh, surface);
+            let total: f64 = areas.iter().sum();
+            if nodes.is_empty() || !(total > 0.0) {
+                return Err(self.err(format!("{key}.surface '{}' has no area", c.surface)));
+            }
+            let h = (total / nodes.len() as f64).sqrt();
+            let (auto, _) = automatic_parameters(youngs, h);
+            let positive = |v: Option<f64>, name: &str| -> Result<f64> {
+                match v {
+                    None => Ok(auto),
+                    Some(x) if x > 0.0 && x.is_finite() => Ok(x),
+                    Some(x) => Err(self.err(format!("{key}.{name} = {x} must be positive"))),
+                }
+            };
+            let (p, k) = (
+                positive(c.penalty, "penalty")?,
+                positive(c.scaling, "scaling")?,
+            );
+            let law = match c.method {
+                ContactMethod::Penalty => NormalLaw::Penalty { epsilon: p },
+                ContactMethod::Uzawa => NormalLaw::Uzawa { epsilon: p },
+                ContactMethod::Rockafellar => NormalLaw::Rockafellar { p, k },
+                ContactMethod::Slack => NormalLaw::Slack { p, k },
+            };
+            let interface = ContactInterface {
+                name: c.name.clone().unwrap_or_else(|| c.surface.clone()),
+                surface: c.surface.clone(),
+                nodes,
+                areas,
+                obstacle,
+                motion: o.motion.map(Vector3::from).unwrap_or_else(Vector3::zeros),
+                amplitude: self.amplitude(&format!("obstacle[{index}].amplitude"), &o.amplitude)?,
+                law,
+                multiplier_offset: 0,
+                element_size: h,
+            };
+            // a surface that starts inside the obstacle is a set-up error
+            let tolerance = c.initial_penetration_tolerance.unwrap_or(0.01 * h);
+            let start = interface.obstacle_at(0.0);
+            let zero = vec![0.0; 3 * mesh.num_nodes()];
+            for j in 0..interface.nodes.len() {
+                let g = interface
+                    .gap_geometry(&mesh.nodes, &start, &zero, j)
+                    .signed_gap;
+                if g < -tolerance {
+                    return Err(self.err(format!(
+                        "{key}: node {} of surface '{}' starts inside obstacle '{}' (gap {g:.3e}, tolerance {tolerance:.3e}); \
+                         move the obstacle or the body, or check the obstacle's normal (it must point toward the body)",
+                        mesh.node_ids[interface.nodes[j]], c.surface, o.name
+                    )));
+                }
+            }
+            out.push(interface);
+        }
+        Ok(out)
     }
 }

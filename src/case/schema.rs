@@ -22,6 +22,12 @@ pub struct CaseFile {
     /// `[[body_force]]`: force per unit reference volume.
     #[serde(default)]
     pub body_force: Vec<BodyForceSpec>,
+    /// `[[obstacle]]`: rigid obstacles.
+    #[serde(default)]
+    pub obstacle: Vec<ObstacleSpec>,
+    /// `[[contact]]`: a surface of the body against an obstacle.
+    #[serde(default)]
+    pub contact: Vec<ContactSpec>,
     /// `[amplitudes]`: named piecewise-linear functions of pseudo-time,
     /// `name = [[t0, v0], [t1, v1], …]`.
     #[serde(default)]
@@ -121,6 +127,80 @@ pub struct BodyForceSpec {
     /// Force per unit reference volume (e.g. `ρ g`).
     pub value: [f64; 3],
     pub amplitude: Option<AmplitudeRef>,
+}
+
+/// Obstacle shapes.
+#[derive(Clone, Copy, Debug, Deserialize, PartialEq, Eq)]
+#[serde(rename_all = "snake_case")]
+pub enum ObstacleShape {
+    Plane,
+    Sphere,
+    Cylinder,
+    /// A triangulated surface read from an STL file.
+    Stl,
+}
+
+/// `[[obstacle]]`: a rigid obstacle. Its outward normal points toward the
+/// body (for an STL surface: the triangles' right-hand normals).
+#[derive(Debug, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct ObstacleSpec {
+    /// Name that `[[contact]]` refers to.
+    pub name: String,
+    /// `plane`, `sphere`, `cylinder` or `stl`.
+    pub shape: ObstacleShape,
+    /// Plane: a point on it; cylinder: a point on the axis.
+    pub point: Option<[f64; 3]>,
+    /// Plane: the outward normal (toward the body); need not be unit.
+    pub normal: Option<[f64; 3]>,
+    /// Sphere: centre.
+    pub center: Option<[f64; 3]>,
+    /// Sphere, cylinder: radius > 0.
+    pub radius: Option<f64>,
+    /// Cylinder: axis direction.
+    pub axis: Option<[f64; 3]>,
+    /// STL: the file, relative to the case file.
+    pub file: Option<String>,
+    /// Rigid translation, scaled by `amplitude` (default none).
+    pub motion: Option<[f64; 3]>,
+    pub amplitude: Option<AmplitudeRef>,
+}
+
+/// Enforcement methods of the normal contact constraint.
+#[derive(Clone, Copy, Debug, Deserialize, PartialEq, Eq, Default)]
+#[serde(rename_all = "snake_case")]
+pub enum ContactMethod {
+    Penalty,
+    Uzawa,
+    /// Monolithic Rockafellar augmented Lagrangian (the default).
+    #[default]
+    Rockafellar,
+    /// The paper's slack-variable augmented Lagrangian.
+    Slack,
+}
+
+/// `[[contact]]`: frictionless node-to-surface contact of a surface set
+/// of the body (its nodes are the secondary nodes) with an obstacle.
+#[derive(Debug, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct ContactSpec {
+    /// Name in reports; default: the surface's name.
+    pub name: Option<String>,
+    /// Secondary surface set of the body.
+    pub surface: String,
+    /// An `[[obstacle]]` name.
+    pub obstacle: String,
+    /// `penalty`, `uzawa`, `rockafellar` (default) or `slack`.
+    #[serde(default)]
+    pub method: ContactMethod,
+    /// ε (penalty, Uzawa) or p (Rockafellar, slack); default `E/h`, `E` the
+    /// stiffest material's Young's modulus, `h` the contact element size.
+    pub penalty: Option<f64>,
+    /// k (Rockafellar, slack); default `E/h`.
+    pub scaling: Option<f64>,
+    /// Largest initial penetration accepted; default 1 % of the contact
+    /// element size.
+    pub initial_penetration_tolerance: Option<f64>,
 }
 
 /// `[[step]]`

@@ -58,6 +58,7 @@ const KRYLOV_TOLERANCE: f64 = 1e-12;
 /// A failure of the linear solve (a singular tangent at a limit point, a
 /// Krylov solve that does not converge) is reported as a failed increment,
 /// which the stepper cuts; only errors that no cut can mend are `Err`.
+#[allow(clippy::too_many_arguments)]
 pub fn solve_increment(
     problem: &Problem,
     solver: &mut SparseLdlt,
@@ -311,6 +312,7 @@ fn solve_linear(
 /// or is halved when the trial state inverts an element. Skipped near the
 /// tolerance, where the full step keeps the quadratic rate. At most six
 /// trials; the one with the smallest `|s|` is taken if none passes.
+#[allow(clippy::too_many_arguments)]
 fn line_search(
     problem: &Problem,
     constrained: &[bool],

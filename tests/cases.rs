@@ -95,3 +95,88 @@ fn rubber_tension_matches_closed_form() {
         incs.iter().map(|i| i.iterations).collect::<Vec<_>>()
     );
 }
+
+/// `examples/hertz`: an elastic hemisphere (R = 1, E = 1000, ν = 0.3) pressed
+/// on a rigid plane (quarter model, Rockafellar augmented Lagrangian).
+/// Reference: Hertz with the measured total force `F`,
+/// `a = (3FR / 4E*)^{1/3}`, `p₀ = 3F / (2πa²)`, `p(r) = p₀ √(1 − r²/a²)`,
+/// `E* = E/(1 − ν²)`. Asserted (see the example's README):
+/// - peak nodal pressure within 3 % of `p₀`;
+/// - contact radius from a least-squares fit of `p² = p₀² (1 − r²/a²)` to
+///   the nodal pressures within 3 % of `a`;
+/// - the pressure averaged over rings of width 0.1a within 5 % of `p₀` of
+///   Hertz's mean over the ring, for r < 0.8a;
+/// - the reaction on the loaded face equals the total contact force to
+///   1e-8 relative;
+/// - the largest penetration is below 1e-8 of the contact element size.
+#[test]
+fn hertz_hemisphere_on_plane() {
+    let (_out, outcome) = run_example("hertz");
+    let case = signorini::case::load(
+        &Path::new(env!("CARGO_MANIFEST_DIR")).join("examples/hertz/case.toml"),
+    )
+    .unwrap();
+    let problem = case.build_problem().unwrap();
+    let x = &outcome.displacement;
+    let (_, reports) = problem
+        .residual_in(1.0, x, &problem.initial_contact_state(x), None)
+        .unwrap();
+    let interface = &problem.contacts[0];
+    let last = outcome.summary.increments.last().unwrap();
+    let force = last.contact["pole"].force[2];
+    let reaction = last.reaction_forces["top"][2];
+    assert!(
+        (reaction + force).abs() < 1e-8 * force,
+        "reaction {reaction} vs contact force {force}"
+    );
+    assert!(last.contact["pole"].largest_penetration < 1e-8 * interface.element_size);
+    let (e_star, radius) = (1000.0 / (1.0 - 0.09), 1.0);
+    let total = 4.0 * force; // quarter model
+    let a = (3.0 * total * radius / (4.0 * e_star)).powf(1.0 / 3.0);
+    let p0 = 3.0 * total / (2.0 * std::f64::consts::PI * a * a);
+    let nodes: Vec<(f64, f64)> = interface
+        .nodes
+        .iter()
+        .zip(&reports[0])
+        .map(|(&s, r)| {
+            let p = case.mesh.nodes[s];
+            let (xs, ys) = (p[0] + x[3 * s], p[1] + x[3 * s + 1]);
+            ((xs * xs + ys * ys).sqrt(), r.pressure)
+        })
+        .collect();
+    let peak = nodes.iter().map(|n| n.1).fold(0.0, f64::max);
+    assert!((peak - p0).abs() < 0.03 * p0, "peak {peak} vs Hertz {p0}");
+    // least-squares fit of p² = c₀ + c₁ r² over nodes with p > 0.2 p₀
+    let fit: Vec<(f64, f64)> = nodes
+        .iter()
+        .filter(|n| n.1 > 0.2 * p0)
+        .map(|n| (n.0 * n.0, n.1 * n.1))
+        .collect();
+    let m = fit.len() as f64;
+    let (sx, sy) = (
+        fit.iter().map(|f| f.0).sum::<f64>(),
+        fit.iter().map(|f| f.1).sum::<f64>(),
+    );
+    let sxx = fit.iter().map(|f| f.0 * f.0).sum::<f64>();
+    let sxy = fit.iter().map(|f| f.0 * f.1).sum::<f64>();
+    let slope = (m * sxy - sx * sy) / (m * sxx - sx * sx);
+    let intercept = (sy - slope * sx) / m;
+    let a_fit = (-intercept / slope).sqrt();
+    assert!(
+        (a_fit - a).abs() < 0.03 * a,
+        "contact radius {a_fit} vs Hertz {a}"
+    );
+    let hertz = |r: f64| p0 * (1.0 - (r / a).powi(2)).max(0.0).sqrt();
+    for ring in 0..8 {
+        let (lo, hi) = (ring as f64 * 0.1 * a, (ring + 1) as f64 * 0.1 * a);
+        let in_ring: Vec<&(f64, f64)> = nodes.iter().filter(|n| n.0 >= lo && n.0 < hi).collect();
+        assert!(!in_ring.is_empty());
+        let k = in_ring.len() as f64;
+        let mean = in_ring.iter().map(|n| n.1).sum::<f64>() / k;
+        let reference = in_ring.iter().map(|n| hertz(n.0)).sum::<f64>() / k;
+        assert!(
+            (mean - reference).abs() < 0.05 * p0,
+            "ring {ring}: {mean} vs {reference}"
+        );
+    }
+}

@@ -296,3 +296,58 @@ fn other_case_errors_name_their_key() {
         &["step[0].end_time"],
     );
 }
+
+/// The cube of `CASE` resting on a plane at z = 0, with `obstacle` replaced
+/// by the given table body.
+fn contact_case(obstacle: &str, contact_surface: &str) -> String {
+    format!(
+        "{CASE}\n[[obstacle]]\nname = \"floor\"\n{obstacle}\n\n[[contact]]\nsurface = \"{contact_surface}\"\nobstacle = \"floor\"\n"
+    )
+    .replace("[[displacement]]\nsurface = \"zmin\"\nx = 0.0\ny = 0.0\nz = 0.0\n", "[[displacement]]\nsurface = \"xmin\"\nx = 0.0\n")
+}
+
+#[test]
+fn contact_input_errors() {
+    let plane = "shape = \"plane\"\npoint = [0.0, 0.0, 0.0]\nnormal = [0.0, 0.0, 1.0]";
+    // the valid case checks
+    let dir = tempfile::tempdir().unwrap();
+    write_cube(dir.path());
+    std::fs::write(dir.path().join("case.toml"), contact_case(plane, "zmin")).unwrap();
+    let (code, err) = signorini(dir.path(), &["check", "case.toml"]);
+    assert_eq!(code, 0, "{err}");
+    // a contact surface the mesh lacks
+    expect_failure(
+        &contact_case(plane, "sole"),
+        &["contact[0].surface", "'sole'", "zmin"],
+    );
+    // a zero normal, a non-positive radius
+    expect_failure(
+        &contact_case(&plane.replace("[0.0, 0.0, 1.0]", "[0.0, 0.0, 0.0]"), "zmin"),
+        &["obstacle[0]", "normal"],
+    );
+    expect_failure(
+        &contact_case(
+            "shape = \"sphere\"\ncenter = [0.5, 0.5, -2.0]\nradius = -1.0",
+            "zmin",
+        ),
+        &["obstacle[0]", "radius"],
+    );
+    // an STL that cannot be read
+    expect_failure(
+        &contact_case("shape = \"stl\"\nfile = \"punch.stl\"", "zmin"),
+        &["punch.stl"],
+    );
+    // the surface starts inside the obstacle (the plane raised into the cube)
+    expect_failure(
+        &contact_case(
+            &plane.replace("point = [0.0, 0.0, 0.0]", "point = [0.0, 0.0, 0.2]"),
+            "zmin",
+        ),
+        &["contact[0]", "starts inside obstacle 'floor'", "gap"],
+    );
+    // an obstacle name that does not exist
+    expect_failure(
+        &contact_case(plane, "zmin").replace("obstacle = \"floor\"\n", "obstacle = \"ground\"\n"),
+        &["contact[0].obstacle", "'ground'", "floor"],
+    );
+}

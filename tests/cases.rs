@@ -166,6 +166,15 @@ fn hertz_hemisphere_on_plane() {
         (a_fit - a).abs() < 0.03 * a,
         "contact radius {a_fit} vs Hertz {a}"
     );
+    // Newton, monolithic with no outer loop: a handful of iterations per
+    // increment, and a quadratic last step (r_{k+1} ≤ 100 r_k², or at
+    // round-off), from a residual already below 0.1
+    for inc in &outcome.summary.increments {
+        assert!(inc.iterations <= 8, "{} iterations", inc.iterations);
+        let r = &inc.residuals;
+        let (before, after) = (r[r.len() - 2], r[r.len() - 1]);
+        assert!(before <= 0.1 && after <= (100.0 * before * before).max(1e-13), "not quadratic: {r:?}");
+    }
     let hertz = |r: f64| p0 * (1.0 - (r / a).powi(2)).max(0.0).sqrt();
     for ring in 0..8 {
         let (lo, hi) = (ring as f64 * 0.1 * a, (ring + 1) as f64 * 0.1 * a);

@@ -96,24 +96,31 @@ fn rubber_tension_matches_closed_form() {
     );
 }
 
-/// `examples/hertz`: an elastic hemisphere (R = 1, E = 1000, ν = 0.3) pressed
-/// on a rigid plane (quarter model, Rockafellar augmented Lagrangian).
-/// Reference: Hertz with the measured total force `F`,
-/// `a = (3FR / 4E*)^{1/3}`, `p₀ = 3F / (2πa²)`, `p(r) = p₀ √(1 − r²/a²)`,
-/// `E* = E/(1 − ν²)`. Asserted (see the example's README):
+/// Compare a quarter-model sphere/plane contact run with Hertz, with the
+/// measured total force `F`: `a = (3FR / 4E*)^{1/3}`, `p₀ = 3F / (2πa²)`,
+/// `p(r) = p₀ √(1 − r²/a²)`, `E* = E/(1 − ν²)`, `E = 1000`, `ν = 0.3`,
+/// `R = 1`. Asserted (see the examples' READMEs):
 /// - peak nodal pressure within 3 % of `p₀`;
 /// - contact radius from a least-squares fit of `p² = p₀² (1 − r²/a²)` to
 ///   the nodal pressures within 3 % of `a`;
 /// - the pressure averaged over rings of width 0.1a within 5 % of `p₀` of
 ///   Hertz's mean over the ring, for r < 0.8a;
-/// - the reaction on the loaded face equals the total contact force to
+/// - the reaction on the supported face equals the total contact force to
 ///   1e-8 relative;
 /// - the largest penetration is below 1e-8 of the contact element size.
-#[test]
-fn hertz_hemisphere_on_plane() {
-    let (_out, outcome) = run_example("hertz");
+///
+/// Returns the run's summary for further checks.
+fn assert_hertz(
+    example: &str,
+    interface_name: &str,
+    supported_face: &str,
+) -> signorini::output::summary::Summary {
+    let (_out, outcome) = run_example(example);
     let case = signorini::case::load(
-        &Path::new(env!("CARGO_MANIFEST_DIR")).join("examples/hertz/case.toml"),
+        &Path::new(env!("CARGO_MANIFEST_DIR"))
+            .join("examples")
+            .join(example)
+            .join("case.toml"),
     )
     .unwrap();
     let problem = case.build_problem().unwrap();
@@ -123,15 +130,15 @@ fn hertz_hemisphere_on_plane() {
         .unwrap();
     let interface = &problem.contacts[0];
     let last = outcome.summary.increments.last().unwrap();
-    let force = last.contact["pole"].force[2];
-    let reaction = last.reaction_forces["top"][2];
+    let force = last.contact[interface_name].force[2];
+    let reaction = last.reaction_forces[supported_face][2];
     assert!(
-        (reaction + force).abs() < 1e-8 * force,
+        (reaction + force).abs() < 1e-8 * force.abs(),
         "reaction {reaction} vs contact force {force}"
     );
-    assert!(last.contact["pole"].largest_penetration < 1e-8 * interface.element_size);
+    assert!(last.contact[interface_name].largest_penetration < 1e-8 * interface.element_size);
     let (e_star, radius) = (1000.0 / (1.0 - 0.09), 1.0);
-    let total = 4.0 * force; // quarter model
+    let total = 4.0 * force.abs(); // quarter model
     let a = (3.0 * total * radius / (4.0 * e_star)).powf(1.0 / 3.0);
     let p0 = 3.0 * total / (2.0 * std::f64::consts::PI * a * a);
     let nodes: Vec<(f64, f64)> = interface
@@ -166,15 +173,6 @@ fn hertz_hemisphere_on_plane() {
         (a_fit - a).abs() < 0.03 * a,
         "contact radius {a_fit} vs Hertz {a}"
     );
-    // Newton, monolithic with no outer loop: a handful of iterations per
-    // increment, and a quadratic last step (r_{k+1} ≤ 100 r_k², or at
-    // round-off), from a residual already below 0.1
-    for inc in &outcome.summary.increments {
-        assert!(inc.iterations <= 8, "{} iterations", inc.iterations);
-        let r = &inc.residuals;
-        let (before, after) = (r[r.len() - 2], r[r.len() - 1]);
-        assert!(before <= 0.1 && after <= (100.0 * before * before).max(1e-13), "not quadratic: {r:?}");
-    }
     let hertz = |r: f64| p0 * (1.0 - (r / a).powi(2)).max(0.0).sqrt();
     for ring in 0..8 {
         let (lo, hi) = (ring as f64 * 0.1 * a, (ring + 1) as f64 * 0.1 * a);
@@ -188,4 +186,31 @@ fn hertz_hemisphere_on_plane() {
             "ring {ring}: {mean} vs {reference}"
         );
     }
+    outcome.summary
+}
+
+/// `examples/hertz`: an elastic hemisphere pressed on a rigid plane
+/// (Rockafellar augmented Lagrangian), against Hertz (see [`assert_hertz`]);
+/// and Newton, monolithic with no outer loop, takes a handful of iterations
+/// per increment with a quadratic last step (`r_{k+1} ≤ 100 r_k²`, from a
+/// residual already below 0.1).
+#[test]
+fn hertz_hemisphere_on_plane() {
+    let summary = assert_hertz("hertz", "pole", "top");
+    for inc in &summary.increments {
+        assert!(inc.iterations <= 8, "{} iterations", inc.iterations);
+        let r = &inc.residuals;
+        let (before, after) = (r[r.len() - 2], r[r.len() - 1]);
+        assert!(
+            before <= 0.1 && after <= (100.0 * before * before).max(1e-13),
+            "not quadratic: {r:?}"
+        );
+    }
+}
+
+/// `examples/indenter`: a rigid sphere pressed into an elastic block, the
+/// roles of the Hertz example swapped, against Hertz (see [`assert_hertz`]).
+#[test]
+fn rigid_sphere_indenting_a_block() {
+    assert_hertz("indenter", "indentation", "bottom");
 }

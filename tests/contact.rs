@@ -214,7 +214,13 @@ fn assembled_contact_tangent_matches_finite_difference() {
         let n = pr.num_unknowns();
         let dofs = pr.model.num_dofs();
         let x: Vec<f64> = (0..n)
-            .map(|i| if name == "slack" && i >= dofs { 0.0 } else { 0.01 * ((i as f64) * 0.77).sin() })
+            .map(|i| {
+                if name == "slack" && i >= dofs {
+                    0.0
+                } else {
+                    0.01 * ((i as f64) * 0.77).sin()
+                }
+            })
             .collect();
         let state = pr.initial_contact_state(&x);
         let mut k = vec![0.0; pr.model.pattern.nnz()];

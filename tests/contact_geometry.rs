@@ -5,6 +5,9 @@
 //! force (and its cost), STL and Gmsh readers, and tributary areas against
 //! the consistent pressure loads.
 
+mod common;
+
+use common::icosphere;
 use nalgebra::{Matrix3, Vector3};
 use rand::rngs::StdRng;
 use rand::{Rng, SeedableRng};
@@ -356,70 +359,6 @@ fn closest_point_on_random_triangles_matches_reference() {
 
 // ---------------------------------------------------------------------------
 // triangulated surfaces and the search tree
-
-/// An icosphere of radius `r`: the icosahedron with each triangle split in
-/// four `levels` times, new vertices pushed onto the sphere. Right-hand
-/// normals point outward. `20·4^levels` triangles.
-fn icosphere(r: f64, levels: usize) -> (Vec<V3>, Vec<[usize; 3]>) {
-    let t = (1.0 + 5f64.sqrt()) / 2.0;
-    let mut vertices: Vec<V3> = [
-        (-1.0, t, 0.0),
-        (1.0, t, 0.0),
-        (-1.0, -t, 0.0),
-        (1.0, -t, 0.0),
-        (0.0, -1.0, t),
-        (0.0, 1.0, t),
-        (0.0, -1.0, -t),
-        (0.0, 1.0, -t),
-        (t, 0.0, -1.0),
-        (t, 0.0, 1.0),
-        (-t, 0.0, -1.0),
-        (-t, 0.0, 1.0),
-    ]
-    .iter()
-    .map(|&(x, y, z)| v(x, y, z).normalize() * r)
-    .collect();
-    let mut triangles: Vec<[usize; 3]> = vec![
-        [0, 11, 5],
-        [0, 5, 1],
-        [0, 1, 7],
-        [0, 7, 10],
-        [0, 10, 11],
-        [1, 5, 9],
-        [5, 11, 4],
-        [11, 10, 2],
-        [10, 7, 6],
-        [7, 1, 8],
-        [3, 9, 4],
-        [3, 4, 2],
-        [3, 2, 6],
-        [3, 6, 8],
-        [3, 8, 9],
-        [4, 9, 5],
-        [2, 4, 11],
-        [6, 2, 10],
-        [8, 6, 7],
-        [9, 8, 1],
-    ];
-    for _ in 0..levels {
-        let mut midpoint: HashMap<(usize, usize), usize> = HashMap::new();
-        let mut mid = |i: usize, j: usize, vertices: &mut Vec<V3>| {
-            *midpoint.entry((i.min(j), i.max(j))).or_insert_with(|| {
-                vertices.push(((vertices[i] + vertices[j]) / 2.0).normalize() * r);
-                vertices.len() - 1
-            })
-        };
-        let mut finer = Vec::with_capacity(4 * triangles.len());
-        for [a, b, c] in triangles {
-            let ab = mid(a, b, &mut vertices);
-            let bc = mid(b, c, &mut vertices);
-            let ca = mid(c, a, &mut vertices);
-            finer.extend([[a, ab, ca], [b, bc, ab], [c, ca, bc], [ab, bc, ca]]);
-        }
-        triangles = finer;
-    }
-    (vertices, triangles)
-}
 
 /// A random point at a distance in `[lo, hi)·r` from the origin, uniform in
 /// direction.

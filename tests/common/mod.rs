@@ -2,12 +2,14 @@
 //! built directly through the library API.
 #![allow(dead_code)]
 
+use nalgebra::Vector3;
 use signorini::assembly::Model;
 use signorini::material::Material;
 use signorini::mesh::Mesh;
 use signorini::problem::{Amplitude, PrescribedDisplacement, Problem, SolverSettings, Step};
 use signorini::solve::linear::{Ordering, SparseLdlt};
 use signorini::solve::stepping::{run_steps, IncrementRecord, StepObserver};
+use std::collections::HashMap;
 use std::sync::Arc;
 
 /// A problem with one material everywhere and no loads yet.
@@ -126,4 +128,68 @@ pub fn msh22(mesh: &Mesh) -> String {
     }
     s.push_str("$EndElements\n");
     s
+}
+
+/// An icosphere of radius `r`: the icosahedron with each triangle split in
+/// four `levels` times, new vertices pushed onto the sphere. Right-hand
+/// normals point outward. `20·4^levels` triangles.
+pub fn icosphere(r: f64, levels: usize) -> (Vec<Vector3<f64>>, Vec<[usize; 3]>) {
+    let t = (1.0 + 5f64.sqrt()) / 2.0;
+    let mut vertices: Vec<Vector3<f64>> = [
+        (-1.0, t, 0.0),
+        (1.0, t, 0.0),
+        (-1.0, -t, 0.0),
+        (1.0, -t, 0.0),
+        (0.0, -1.0, t),
+        (0.0, 1.0, t),
+        (0.0, -1.0, -t),
+        (0.0, 1.0, -t),
+        (t, 0.0, -1.0),
+        (t, 0.0, 1.0),
+        (-t, 0.0, -1.0),
+        (-t, 0.0, 1.0),
+    ]
+    .iter()
+    .map(|&(x, y, z)| Vector3::new(x, y, z).normalize() * r)
+    .collect();
+    let mut triangles: Vec<[usize; 3]> = vec![
+        [0, 11, 5],
+        [0, 5, 1],
+        [0, 1, 7],
+        [0, 7, 10],
+        [0, 10, 11],
+        [1, 5, 9],
+        [5, 11, 4],
+        [11, 10, 2],
+        [10, 7, 6],
+        [7, 1, 8],
+        [3, 9, 4],
+        [3, 4, 2],
+        [3, 2, 6],
+        [3, 6, 8],
+        [3, 8, 9],
+        [4, 9, 5],
+        [2, 4, 11],
+        [6, 2, 10],
+        [8, 6, 7],
+        [9, 8, 1],
+    ];
+    for _ in 0..levels {
+        let mut midpoint: HashMap<(usize, usize), usize> = HashMap::new();
+        let mut mid = |i: usize, j: usize, vertices: &mut Vec<Vector3<f64>>| {
+            *midpoint.entry((i.min(j), i.max(j))).or_insert_with(|| {
+                vertices.push(((vertices[i] + vertices[j]) / 2.0).normalize() * r);
+                vertices.len() - 1
+            })
+        };
+        let mut finer = Vec::with_capacity(4 * triangles.len());
+        for [a, b, c] in triangles {
+            let ab = mid(a, b, &mut vertices);
+            let bc = mid(b, c, &mut vertices);
+            let ca = mid(c, a, &mut vertices);
+            finer.extend([[a, ab, ca], [b, bc, ab], [c, ca, bc], [ab, bc, ca]]);
+        }
+        triangles = finer;
+    }
+    (vertices, triangles)
 }

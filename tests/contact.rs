@@ -338,3 +338,104 @@ fn triangulated_sphere_matches_the_analytic_sphere() {
         "faceted {faceted} vs analytic {analytic}"
     );
 }
+
+/// End to end through the case file, with the obstacle a surface set of a
+/// Gmsh mesh (a triangulated square): a block under a uniform pressure `p`
+/// on it reports a total contact force `p × area` and a uniform
+/// `contact_pressure` `p`.
+#[test]
+fn gmsh_surface_obstacle_through_the_case_file() {
+    let dir = tempfile::tempdir().unwrap();
+    let body = box_mesh(ElementKind::Hex8, [3, 3, 2], [1.0, 1.0, 0.5]);
+    std::fs::write(dir.path().join("block.msh"), common::msh22(&body)).unwrap();
+    // the obstacle: a square [−1, 2]² at z = 0, normals +z, and no volume
+    let mut floor = signorini::mesh::Mesh::default();
+    for j in 0..4 {
+        for i in 0..4 {
+            floor.nodes.push([-1.0 + i as f64, -1.0 + j as f64, 0.0]);
+            floor.node_ids.push(floor.nodes.len() as u64);
+        }
+    }
+    let facets = (0..3)
+        .flat_map(|j| (0..3).map(move |i| (i, j)))
+        .map(|(i, j)| signorini::mesh::Facet {
+            kind: signorini::mesh::FacetKind::Quad4,
+            nodes: vec![
+                i + 4 * j,
+                i + 1 + 4 * j,
+                i + 1 + 4 * (j + 1),
+                i + 4 * (j + 1),
+            ],
+            id: 0,
+        })
+        .collect();
+    floor.surfaces.push(signorini::mesh::SurfaceSet {
+        name: "floor".into(),
+        facets,
+    });
+    std::fs::write(dir.path().join("floor.msh"), common::msh22(&floor)).unwrap();
+    let case = r#"
+[mesh]
+file = "block.msh"
+
+[[material]]
+region = "body"
+model = "linear_elastic"
+youngs_modulus = 100.0
+poisson_ratio = 0.3
+
+[[displacement]]
+surface = "xmin"
+x = 0.0
+
+[[displacement]]
+surface = "ymin"
+y = 0.0
+
+[[pressure]]
+surface = "zmax"
+value = 3.0
+
+[[obstacle]]
+name = "ground"
+shape = "gmsh"
+file = "floor.msh"
+surface = "floor"
+
+[[contact]]
+name = "sole"
+surface = "zmin"
+obstacle = "ground"
+
+[[step]]
+name = "press"
+end_time = 1.0
+"#;
+    std::fs::write(dir.path().join("case.toml"), case).unwrap();
+    let outcome = signorini::run::run(
+        &dir.path().join("case.toml"),
+        &signorini::run::RunOptions {
+            output: None,
+            quiet: true,
+        },
+    )
+    .unwrap();
+    let sole = &outcome.summary.increments.last().unwrap().contact["sole"];
+    assert!(
+        (sole.force[2] - 3.0).abs() < 1e-8 * 3.0,
+        "contact force {:?}",
+        sole.force
+    );
+    assert_eq!(sole.closed_nodes, 16);
+    assert!((sole.area - 1.0).abs() < 1e-12);
+    let vtu = std::fs::read_to_string(outcome.output_dir.join(&outcome.summary.increments[0].file))
+        .unwrap();
+    for field in [
+        "\"contact_pressure\"",
+        "\"gap\"",
+        "\"contact_status\"",
+        "\"displacement\"",
+    ] {
+        assert!(vtu.contains(field), "{field} missing from the VTU");
+    }
+}

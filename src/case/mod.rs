@@ -464,6 +464,20 @@ impl Case {
                     .ok_or_else(|| self.err(format!("{key}.file is required for shape Stl")))?;
                 RigidObstacle::Triangulated(TriangulatedSurface::from_stl(&self.dir().join(file))?)
             }
+            ObstacleShape::Gmsh => {
+                let file = o
+                    .file
+                    .as_ref()
+                    .ok_or_else(|| self.err(format!("{key}.file is required for shape Gmsh")))?;
+                let surface = o
+                    .surface
+                    .as_ref()
+                    .ok_or_else(|| self.err(format!("{key}.surface is required for shape Gmsh")))?;
+                let mesh = crate::mesh::gmsh::read_surface_msh(&self.dir().join(file))?;
+                RigidObstacle::Triangulated(TriangulatedSurface::from_surface_facets(
+                    &mesh, surface,
+                )?)
+            }
         })
     }
 

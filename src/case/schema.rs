@@ -138,6 +138,9 @@ pub enum ObstacleShape {
     Cylinder,
     /// A triangulated surface read from an STL file.
     Stl,
+    /// A triangulated surface: a surface set of a Gmsh mesh (quadrangles
+    /// split in two).
+    Gmsh,
 }
 
 /// `[[obstacle]]`: a rigid obstacle. Its outward normal points toward the
@@ -147,7 +150,7 @@ pub enum ObstacleShape {
 pub struct ObstacleSpec {
     /// Name that `[[contact]]` refers to.
     pub name: String,
-    /// `plane`, `sphere`, `cylinder` or `stl`.
+    /// `plane`, `sphere`, `cylinder`, `stl` or `gmsh`.
     pub shape: ObstacleShape,
     /// Plane: a point on it; cylinder: a point on the axis.
     pub point: Option<[f64; 3]>,
@@ -159,8 +162,10 @@ pub struct ObstacleSpec {
     pub radius: Option<f64>,
     /// Cylinder: axis direction.
     pub axis: Option<[f64; 3]>,
-    /// STL: the file, relative to the case file.
+    /// STL or Gmsh: the file, relative to the case file.
     pub file: Option<String>,
+    /// Gmsh: the surface set (2D physical group) that is the obstacle.
+    pub surface: Option<String>,
     /// Rigid translation, scaled by `amplitude` (default none).
     pub motion: Option<[f64; 3]>,
     pub amplitude: Option<AmplitudeRef>,

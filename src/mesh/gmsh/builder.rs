@@ -199,9 +199,10 @@ impl Builder {
     }
 
     /// Names the regions and surface sets, orients the surfaces and checks
-    /// that every facet lies on a volume element.
-    pub(super) fn finish(self, cur: &Cursor) -> Result<Mesh> {
-        if self.elements.is_empty() {
+    /// that every facet lies on a volume element (unless `surface_only`: a
+    /// mesh of surfaces, kept as written).
+    pub(super) fn finish(self, cur: &Cursor, surface_only: bool) -> Result<Mesh> {
+        if self.elements.is_empty() && !surface_only {
             return Err(cur.invalid(
                 "the file has no Tet4 or Hex8 volume elements; mesh the volume (gmsh -3) and, \
                  if the model has physical groups, put the volume in a Physical Volume \
@@ -241,7 +242,11 @@ impl Builder {
             regions,
             surfaces,
         };
-        let orphans = mesh.orient_surfaces();
+        let orphans = if surface_only {
+            Vec::new()
+        } else {
+            mesh.orient_surfaces()
+        };
         if let Some(first) = orphans.first() {
             let more = match orphans.len() - 1 {
                 0 => String::new(),

@@ -64,8 +64,20 @@ pub fn read_msh(path: &Path) -> Result<Mesh> {
     parse_msh(&data, path)
 }
 
+/// Reads a Gmsh MSH file that may hold surfaces only (a rigid obstacle):
+/// no volume elements are required, and facets keep the orientation the
+/// file gives them (right-hand normals must point toward the body).
+pub fn read_surface_msh(path: &Path) -> Result<Mesh> {
+    let data = std::fs::read(path).map_err(|e| Error::io("read", path, e))?;
+    parse(&data, path, true)
+}
+
 /// Parses the contents of a MSH file; `path` is used only in error messages.
 pub fn parse_msh(data: &[u8], path: &Path) -> Result<Mesh> {
+    parse(data, path, false)
+}
+
+fn parse(data: &[u8], path: &Path, surface_only: bool) -> Result<Mesh> {
     let mut cur = Cursor::new(data, path);
     let version = read_mesh_format(&mut cur)?;
     let mut b = Builder::default();
@@ -103,7 +115,7 @@ pub fn parse_msh(data: &[u8], path: &Path) -> Result<Mesh> {
             return Err(cur.invalid(format!("the file has no {section} section")));
         }
     }
-    b.finish(&cur)
+    b.finish(&cur, surface_only)
 }
 
 /// Whether a `$Nodes`/`$Elements`/`$MeshFormat` header repeats one already read.

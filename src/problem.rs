@@ -278,10 +278,10 @@ impl Problem {
                 .contacts
                 .iter()
                 .map(|c| {
-                    let obstacle = c.obstacle_at(0.0);
+                    let translation = c.translation_at(0.0);
                     (0..c.nodes.len())
                         .map(|i| {
-                            let g = c.gap_geometry(reference, &obstacle, x, i).signed_gap;
+                            let g = c.gap_geometry(reference, &translation, x, i).signed_gap;
                             NodeContactState::initial(&c.law, g)
                         })
                         .collect()
@@ -300,10 +300,10 @@ impl Problem {
             let crate::contact::laws::NormalLaw::Uzawa { epsilon } = c.law else {
                 continue;
             };
-            let obstacle = c.obstacle_at(t);
+            let translation = c.translation_at(t);
             let gaps: Vec<f64> = (0..c.nodes.len())
                 .map(|i| {
-                    c.gap_geometry(&self.model.mesh.nodes, &obstacle, x, i)
+                    c.gap_geometry(&self.model.mesh.nodes, &translation, x, i)
                         .signed_gap
                 })
                 .collect();

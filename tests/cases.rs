@@ -200,6 +200,10 @@ fn hertz_hemisphere_on_plane() {
     for inc in &summary.increments {
         assert!(inc.iterations <= 8, "{} iterations", inc.iterations);
         let r = &inc.residuals;
+        assert!(
+            r.len() >= 2,
+            "an increment converged without an iteration: {r:?}"
+        );
         let (before, after) = (r[r.len() - 2], r[r.len() - 1]);
         assert!(
             before <= 0.1 && after <= (100.0 * before * before).max(1e-13),

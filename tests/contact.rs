@@ -340,9 +340,10 @@ fn triangulated_sphere_matches_the_analytic_sphere() {
 }
 
 /// End to end through the case file, with the obstacle a surface set of a
-/// Gmsh mesh (a triangulated square): a block under a uniform pressure `p`
-/// on it reports a total contact force `p × area` and a uniform
-/// `contact_pressure` `p`.
+/// Gmsh mesh (a square of quadrangles, split into triangles): a block under
+/// a uniform pressure `p` on it reports a total contact force `p × area`
+/// (1e-8), every bottom node closed, the contact area, and writes the
+/// contact fields into the VTU.
 #[test]
 fn gmsh_surface_obstacle_through_the_case_file() {
     let dir = tempfile::tempdir().unwrap();

@@ -74,6 +74,19 @@ impl Model {
         })
     }
 
+    /// The diagonal of the reference bounding box: a length scale of the body.
+    pub fn size(&self) -> f64 {
+        let mut lo = [f64::INFINITY; 3];
+        let mut hi = [f64::NEG_INFINITY; 3];
+        for x in &self.mesh.nodes {
+            for d in 0..3 {
+                lo[d] = lo[d].min(x[d]);
+                hi[d] = hi[d].max(x[d]);
+            }
+        }
+        (0..3).map(|d| (hi[d] - lo[d]).powi(2)).sum::<f64>().sqrt()
+    }
+
     /// Number of unknowns (3 per node).
     pub fn num_dofs(&self) -> usize {
         3 * self.mesh.num_nodes()

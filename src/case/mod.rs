@@ -552,7 +552,7 @@ impl Case {
             };
             // a surface that starts inside the obstacle is a set-up error
             let tolerance = c.initial_penetration_tolerance.unwrap_or(0.01 * h);
-            let start = interface.obstacle_at(0.0);
+            let start = interface.translation_at(0.0);
             let zero = vec![0.0; 3 * mesh.num_nodes()];
             for j in 0..interface.nodes.len() {
                 let g = interface

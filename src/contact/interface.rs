@@ -67,29 +67,27 @@ impl ContactInterface {
             .collect()
     }
 
-    /// The obstacle at pseudo-time `t`.
-    pub fn obstacle_at(&self, t: f64) -> RigidObstacle {
-        let a = self.amplitude.value(t);
-        if a == 0.0 || self.motion == Vector3::zeros() {
-            self.obstacle.clone()
-        } else {
-            self.obstacle.translated(&(self.motion * a))
-        }
+    /// The obstacle's rigid translation at pseudo-time `t`.
+    pub fn translation_at(&self, t: f64) -> Vector3<f64> {
+        self.motion * self.amplitude.value(t)
     }
 
-    /// Gap geometry of secondary node `i` at displacement `x` (global
-    /// unknowns) against `obstacle`.
+    /// Gap geometry of secondary node `i` at unknowns `x` against the
+    /// obstacle translated by `translation`: the point is moved back by the
+    /// translation and projected on the stored obstacle (no copy of a
+    /// triangulated surface and its tree), then the closest point moved
+    /// forward again; gap, normal and curvature are unchanged by it.
     pub fn gap_geometry(
         &self,
         reference: &[[f64; 3]],
-        obstacle: &RigidObstacle,
+        translation: &Vector3<f64>,
         x: &[f64],
         i: usize,
     ) -> GapGeometry {
         let s = self.nodes[i];
         let position =
             Vector3::from(reference[s]) + Vector3::new(x[3 * s], x[3 * s + 1], x[3 * s + 2]);
-        let p = obstacle.project(&position);
+        let p = self.obstacle.project(&(position - translation));
         GapGeometry {
             signed_gap: p.gap,
             normal: p.normal,
@@ -127,10 +125,10 @@ impl ContactInterface {
         residual: &mut [f64],
         mut tangent: Option<(&SparsityPattern, &mut [f64])>,
     ) -> Vec<NodeReport> {
-        let obstacle = self.obstacle_at(t);
+        let translation = self.translation_at(t);
         let mut reports = Vec::with_capacity(self.nodes.len());
         for (i, (&s, &area)) in self.nodes.iter().zip(&self.areas).enumerate() {
-            let gap = self.gap_geometry(reference, &obstacle, x, i);
+            let gap = self.gap_geometry(reference, &translation, x, i);
             let state = self.node_state(states, x, first_multiplier, i);
             let c: NodeContribution = self.law.contribution(area, &gap, &state);
             for d in 0..3 {
@@ -188,10 +186,10 @@ impl ContactInterface {
         if !matches!(self.law, NormalLaw::Slack { .. }) {
             return;
         }
-        let obstacle = self.obstacle_at(t);
+        let translation = self.translation_at(t);
         for i in 0..self.nodes.len() {
             let s = self.nodes[i];
-            let gap = self.gap_geometry(reference, &obstacle, x, i);
+            let gap = self.gap_geometry(reference, &translation, x, i);
             let mut state = self.node_state(states, x, first_multiplier, i);
             let du = Vector3::new(dx[3 * s], dx[3 * s + 1], dx[3 * s + 2]);
             let dlambda = dx[first_multiplier + self.multiplier_offset + i];

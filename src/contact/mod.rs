@@ -23,8 +23,9 @@
 //! - In two-body contact the surfaces are *primary* (projected onto) and
 //!   *secondary* (whose nodes are projected).
 //!
-//! Status: these are building blocks, each tested on its own. Nothing here
-//! is called by the Newton solver yet (see DESIGN.md, "Contact").
+//! [`interface`] ties them together: a secondary surface against a rigid
+//! obstacle, assembled into the Newton system (see DESIGN.md, "Contact
+//! with rigid obstacles").
 
 pub mod interface;
 pub mod laws;

@@ -153,6 +153,7 @@ pub fn solve_increment(
         let small_residual = relative <= settings.residual_tolerance || norm(&r) == 0.0;
         let negligible = relative <= 1e-3 * settings.residual_tolerance;
         if at_target
+            && switched == 0
             && small_residual
             && (iteration == 0 || negligible || last_correction <= settings.displacement_tolerance)
         {
@@ -212,6 +213,22 @@ pub fn solve_increment(
             if constrained[i] {
                 *d = jump[i];
             }
+        }
+        // a correction far larger than the body: a rigid-body mode that the
+        // saddle system's regularisation let through (the body lost contact,
+        // or supports are missing)
+        let largest = du[..problem.model.num_dofs()]
+            .iter()
+            .fold(0.0f64, |m, d| m.max(d.abs()));
+        if largest > 10.0 * problem.model.size() {
+            return failed(
+                format!(
+                    "a correction of {largest:.3e} against a body of size {:.3e}: a rigid-body mode \
+                     (the body lost contact, or a support is missing)",
+                    problem.model.size()
+                ),
+                records,
+            );
         }
         let step_length = line_search(
             problem,
@@ -327,15 +344,23 @@ fn line_search(
         return 1.0;
     }
     let r0 = norm(r);
-    let s0 = dot(du, r);
+    // the slope of the potential along the line, over the displacements
+    // only: a saddle point is not a minimum in the multipliers
+    let dofs = problem.model.num_dofs();
+    let slope = |r: &[f64]| dot(&du[..dofs], &r[..dofs]);
+    let s0 = slope(r);
     let mut trial = u.to_vec();
     let mut alpha = 1.0;
     let mut best = (f64::INFINITY, 1.0);
     for _ in 0..6 {
-        for ((x, u0), d) in trial.iter_mut().zip(u).zip(du) {
-            *x = u0 + alpha * d;
+        let step: Vec<f64> = du.iter().map(|d| alpha * d).collect();
+        for ((x, u0), d) in trial.iter_mut().zip(u).zip(&step) {
+            *x = u0 + d;
         }
-        let Ok((res, _)) = problem.residual_in(t, &trial, contact, None) else {
+        // the local contact unknowns follow the trial step too
+        let mut trial_contact = contact.clone();
+        problem.advance_contact_states(t, u, &step, &mut trial_contact);
+        let Ok((res, _)) = problem.residual_in(t, &trial, &trial_contact, None) else {
             // an inverted element: shorter, and remember it in case all fail
             if best.0 == f64::INFINITY {
                 best.1 = 0.5 * alpha;
@@ -345,7 +370,7 @@ fn line_search(
         };
         let mut ra = res.r;
         zero_constrained(&mut ra, constrained);
-        let sa = dot(du, &ra);
+        let sa = slope(&ra);
         if norm(&ra) < r0 || (s0 < 0.0 && sa.abs() <= 0.5 * s0.abs()) {
             return alpha;
         }

@@ -99,9 +99,13 @@ pub fn solve_increment(
             })
             .collect();
         let at_target = jump.iter().all(|&d| d == 0.0);
-        // the force alone first where it may show convergence: the tangent
-        // costs far more and is not needed then
-        let mut have_tangent = !at_target;
+        // the force alone first where it may show convergence (the first
+        // evaluation, or after a residual already near the tolerance): the
+        // tangent costs far more and is not needed then; otherwise both at once
+        let may_converge = records
+            .last()
+            .is_none_or(|r| r.residual < 1e3 * settings.residual_tolerance);
+        let mut have_tangent = !(at_target && may_converge);
         let evaluate =
             |u: &[f64], k: Option<&mut [f64]>, c: &ContactState| problem.residual_in(t, u, c, k);
         let (mut residual, reports) =

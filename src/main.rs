@@ -113,6 +113,19 @@ fn check(case: PathBuf) -> signorini::Result<()> {
             mesh.surface_nodes(s).len()
         );
     }
+    if !problem.contacts.is_empty() {
+        println!("contacts:");
+        for c in &problem.contacts {
+            println!(
+                "  {:<20} surface '{}' ({} secondary nodes), {:?}, h = {:.3e}",
+                c.name,
+                c.surface,
+                c.nodes.len(),
+                c.law,
+                c.element_size
+            );
+        }
+    }
     println!("steps:");
     for s in &problem.steps {
         println!("  {:<20} to t = {}", s.name, s.end_time);

@@ -1,0 +1,321 @@
+//! Contact methods on Hertz: the `examples/hertz` hemisphere pressed on a
+//! rigid plane, run end to end (`signorini::run::run`) with each of the four
+//! normal-contact methods (`penalty`, `uzawa`, `rockafellar`, `slack`) on
+//! meshes of several sizes, compared with Hertz.
+//!
+//! ```text
+//! cargo bench --bench contact_methods                                   # small,medium
+//! SIGNORINI_CONTACT_BENCH_SIZES=small cargo bench --bench contact_methods
+//! SIGNORINI_CONTACT_BENCH_SIZES=small,medium,large cargo bench --bench contact_methods
+//! ```
+//!
+//! The meshes are made at run time with `gmsh` (must be on `PATH`) from a
+//! copy of `examples/hertz/hemisphere.geo` with the refinement field's
+//! `SizeMin` and `SizeMax` scaled, in a temporary folder:
+//! - `small`: the example's sizes (`SizeMin = 0.006`), about 26 k dofs;
+//! - `medium`: `SizeMin = 0.0038`, about 100 k dofs;
+//! - `large`: `SizeMin = 0.0024`, about 400 k dofs. Not run by default
+//!   (it takes well over 10 minutes on a 2-core machine); ask for it.
+//!
+//! Per run the table gives: dofs, method, Newton iterations per increment,
+//! their total, the Uzawa outer iterations (Newton restarts inferred from
+//! the residual history, see [`outer_iterations`]), the largest penetration
+//! over the contact element size `h`, the errors of the contact radius
+//! (least-squares fit of `p²` against `r²`, as in `tests/cases.rs`) and of
+//! the peak nodal pressure against Hertz with the measured force, and the
+//! wall time of the run (total and per Newton iteration). A run that fails
+//! is reported as such (with its error), which is a result too.
+
+use signorini::run::{run, RunOptions};
+use std::path::{Path, PathBuf};
+use std::time::Instant;
+
+const METHODS: [&str; 4] = ["penalty", "uzawa", "rockafellar", "slack"];
+
+/// Mesh sizes: name, `SizeMin`, `SizeMax` of the threshold field.
+const SIZES: [(&str, f64, f64); 3] = [
+    ("small", 0.006, 0.15),
+    ("medium", 0.0038, 0.095),
+    ("large", 0.0024, 0.06),
+];
+
+/// One run's row.
+struct Row {
+    size: String,
+    dofs: usize,
+    method: String,
+    per_increment: Vec<usize>,
+    total: usize,
+    outer: Vec<usize>,
+    penetration_over_h: f64,
+    radius_error: f64,
+    peak_error: f64,
+    wall: f64,
+    failure: Option<String>,
+}
+
+fn main() {
+    // `cargo bench` passes `--bench`; nothing else to parse
+    let wanted: Vec<String> = std::env::var("SIGNORINI_CONTACT_BENCH_SIZES")
+        .unwrap_or_else(|_| "small,medium".into())
+        .split(',')
+        .map(|s| s.trim().to_string())
+        .filter(|s| !s.is_empty())
+        .collect();
+    for w in &wanted {
+        assert!(
+            SIZES.iter().any(|s| s.0 == w),
+            "unknown size {w} (small, medium, large)"
+        );
+    }
+    let root = Path::new(env!("CARGO_MANIFEST_DIR"));
+    let geo = std::fs::read_to_string(root.join("examples/hertz/hemisphere.geo"))
+        .expect("examples/hertz/hemisphere.geo");
+    let case = std::fs::read_to_string(root.join("examples/hertz/case.toml"))
+        .expect("examples/hertz/case.toml");
+    let tmp = tempfile::tempdir().expect("a temporary folder");
+    println!("signorini contact methods on Hertz (examples/hertz)");
+    println!("threads: {}", rayon::current_num_threads());
+    let mut rows = Vec::new();
+    for &(name, size_min, size_max) in SIZES.iter().filter(|s| wanted.iter().any(|w| w == s.0)) {
+        let dir = tmp.path().join(name);
+        std::fs::create_dir_all(&dir).unwrap();
+        let start = Instant::now();
+        mesh(&geo, &dir, size_min, size_max);
+        eprintln!(
+            "[{name}] mesh SizeMin = {size_min}, SizeMax = {size_max}: {:.1} s",
+            start.elapsed().as_secs_f64()
+        );
+        for method in METHODS {
+            let row = run_one(&case, &dir, name, method);
+            eprintln!("{}", format_row(&row));
+            rows.push(row);
+        }
+    }
+    println!();
+    println!("{}", header());
+    for row in &rows {
+        println!("{}", format_row(row));
+    }
+    for row in rows.iter().filter(|r| r.failure.is_some()) {
+        println!(
+            "{} {}: {}",
+            row.size,
+            row.method,
+            row.failure.as_deref().unwrap_or_default()
+        );
+    }
+}
+
+/// Write `hemisphere.geo` with the threshold sizes replaced into `dir` and
+/// mesh it with gmsh into `dir/hemisphere.msh`.
+fn mesh(geo: &str, dir: &Path, size_min: f64, size_max: f64) {
+    let mut replaced = (false, false);
+    let text: String = geo
+        .lines()
+        .map(|line| {
+            if line.starts_with("Field[2].SizeMin") {
+                replaced.0 = true;
+                format!("Field[2].SizeMin = {size_min};")
+            } else if line.starts_with("Field[2].SizeMax") {
+                replaced.1 = true;
+                format!("Field[2].SizeMax = {size_max};")
+            } else {
+                line.to_string()
+            }
+        })
+        .collect::<Vec<_>>()
+        .join("\n");
+    assert!(
+        replaced.0 && replaced.1,
+        "SizeMin/SizeMax lines not found in hemisphere.geo"
+    );
+    let geo_path = dir.join("hemisphere.geo");
+    std::fs::write(&geo_path, text + "\n").unwrap();
+    let status = std::process::Command::new("gmsh")
+        .arg("-3")
+        .arg(&geo_path)
+        .args(["-format", "msh41", "-o"])
+        .arg(dir.join("hemisphere.msh"))
+        .stdout(std::process::Stdio::null())
+        .status()
+        .expect("gmsh on PATH (the meshes are made at run time)");
+    assert!(status.success(), "gmsh failed");
+}
+
+/// Run the example's case with `method` on the mesh in `dir`.
+fn run_one(case_text: &str, dir: &Path, size: &str, method: &str) -> Row {
+    let text = case_text.replace(
+        "method = \"rockafellar\"",
+        &format!("method = \"{method}\""),
+    );
+    assert!(text.contains(&format!("method = \"{method}\"")));
+    let case_path = dir.join(format!("case-{method}.toml"));
+    std::fs::write(&case_path, text).unwrap();
+    let out: PathBuf = dir.join(format!("out-{method}"));
+    let start = Instant::now();
+    let result = run(
+        &case_path,
+        &RunOptions {
+            output: Some(out.clone()),
+            quiet: true,
+        },
+    );
+    let wall = start.elapsed().as_secs_f64();
+    let case = signorini::case::load(&case_path).expect("the case loads");
+    let problem = case.build_problem().expect("the problem builds");
+    let interface = &problem.contacts[0];
+    let h = interface.element_size;
+    let dofs = problem.model.num_dofs();
+    let mut row = Row {
+        size: size.into(),
+        dofs,
+        method: method.into(),
+        per_increment: vec![],
+        total: 0,
+        outer: vec![],
+        penetration_over_h: f64::NAN,
+        radius_error: f64::NAN,
+        peak_error: f64::NAN,
+        wall,
+        failure: None,
+    };
+    let outcome = match result {
+        Ok(outcome) => outcome,
+        Err(e) => {
+            row.failure = Some(e.to_string());
+            // the converged increments are in the summary the run left
+            if let Ok(text) = std::fs::read_to_string(out.join("summary.json")) {
+                if let Ok(v) = serde_json::from_str::<serde_json::Value>(&text) {
+                    for inc in v["increments"].as_array().into_iter().flatten() {
+                        let n = inc["iterations"].as_u64().unwrap_or(0) as usize;
+                        row.per_increment.push(n);
+                        let r: Vec<f64> = inc["residuals"]
+                            .as_array()
+                            .into_iter()
+                            .flatten()
+                            .filter_map(|x| x.as_f64())
+                            .collect();
+                        row.outer.push(outer_iterations(&r));
+                    }
+                    row.total = row.per_increment.iter().sum();
+                }
+            }
+            return row;
+        }
+    };
+    let incs = &outcome.summary.increments;
+    row.per_increment = incs.iter().map(|i| i.iterations).collect();
+    row.total = row.per_increment.iter().sum();
+    row.outer = incs.iter().map(|i| outer_iterations(&i.residuals)).collect();
+    let last = incs.last().expect("an increment");
+    let name = interface.name.clone();
+    row.penetration_over_h = last.contact[&name].largest_penetration / h;
+    let force = last.contact[&name].force[2];
+    // Hertz with the measured force, as tests/cases.rs `assert_hertz`
+    let (e_star, radius) = (1000.0 / (1.0 - 0.09), 1.0);
+    let total = 4.0 * force.abs(); // quarter model
+    let a = (3.0 * total * radius / (4.0 * e_star)).powf(1.0 / 3.0);
+    let p0 = 3.0 * total / (2.0 * std::f64::consts::PI * a * a);
+    let x = &outcome.displacement;
+    let (_, reports) = problem
+        .residual_in(1.0, x, &problem.initial_contact_state(x), None)
+        .expect("the residual at the solution");
+    let nodes: Vec<(f64, f64)> = interface
+        .nodes
+        .iter()
+        .zip(&reports[0])
+        .map(|(&s, r)| {
+            let p = case.mesh.nodes[s];
+            let (xs, ys) = (p[0] + x[3 * s], p[1] + x[3 * s + 1]);
+            ((xs * xs + ys * ys).sqrt(), r.pressure)
+        })
+        .collect();
+    let peak = nodes.iter().map(|n| n.1).fold(0.0, f64::max);
+    row.peak_error = (peak - p0) / p0;
+    // least-squares fit of p² = c₀ + c₁ r² over nodes with p > 0.2 p₀
+    let fit: Vec<(f64, f64)> = nodes
+        .iter()
+        .filter(|n| n.1 > 0.2 * p0)
+        .map(|n| (n.0 * n.0, n.1 * n.1))
+        .collect();
+    let m = fit.len() as f64;
+    let (sx, sy) = (
+        fit.iter().map(|f| f.0).sum::<f64>(),
+        fit.iter().map(|f| f.1).sum::<f64>(),
+    );
+    let sxx = fit.iter().map(|f| f.0 * f.0).sum::<f64>();
+    let sxy = fit.iter().map(|f| f.0 * f.1).sum::<f64>();
+    let slope = (m * sxy - sx * sy) / (m * sxx - sx * sx);
+    let intercept = (sy - slope * sx) / m;
+    let a_fit = (-intercept / slope).sqrt();
+    row.radius_error = (a_fit - a) / a;
+    row
+}
+
+/// Newton solves in one increment's residual history. The summary
+/// concatenates the Newton runs of every Uzawa multiplier update of an
+/// increment; a new run starts where the residual jumps up from a converged
+/// value (≤ 1e-8, the default tolerance). For the other methods this is 1.
+fn outer_iterations(residuals: &[f64]) -> usize {
+    1 + residuals
+        .windows(2)
+        .filter(|w| w[0] <= 1e-8 && w[1] > 10.0 * w[0].max(1e-14))
+        .count()
+}
+
+fn header() -> String {
+    format!(
+        "| {:>6} | {:>7} | {:<11} | {:<18} | {:>5} | {:<16} | {:>9} | {:>8} | {:>8} | {:>8} | {:>8} |",
+        "size",
+        "dofs",
+        "method",
+        "Newton/increment",
+        "total",
+        "outer/increment",
+        "pen/h",
+        "a err",
+        "p0 err",
+        "wall s",
+        "s/iter"
+    ) + "\n|---:|---:|---|---|---:|---|---:|---:|---:|---:|---:|"
+}
+
+fn format_row(r: &Row) -> String {
+    let list = |v: &[usize]| {
+        v.iter()
+            .map(|n| n.to_string())
+            .collect::<Vec<_>>()
+            .join(",")
+    };
+    let pct = |x: f64| {
+        if x.is_finite() {
+            format!("{:+.2}%", 100.0 * x)
+        } else {
+            "-".into()
+        }
+    };
+    let method = if r.failure.is_some() {
+        format!("{} FAILED", r.method)
+    } else {
+        r.method.clone()
+    };
+    format!(
+        "| {:>6} | {:>7} | {:<11} | {:<18} | {:>5} | {:<16} | {:>9} | {:>8} | {:>8} | {:>8.1} | {:>8.2} |",
+        r.size,
+        r.dofs,
+        method,
+        list(&r.per_increment),
+        r.total,
+        list(&r.outer),
+        if r.penetration_over_h.is_finite() {
+            format!("{:.1e}", r.penetration_over_h)
+        } else {
+            "-".into()
+        },
+        pct(r.radius_error),
+        pct(r.peak_error),
+        r.wall,
+        r.wall / r.total.max(1) as f64
+    )
+}

@@ -55,7 +55,17 @@ struct Row {
 }
 
 fn main() {
-    // `cargo bench` passes `--bench`; nothing else to parse
+    let args: Vec<String> = std::env::args().collect();
+    // child: `--child SIZE METHOD DIR`, one run, its row as a JSON line
+    if let Some(i) = args.iter().position(|a| a == "--child") {
+        let case = std::fs::read_to_string(
+            Path::new(env!("CARGO_MANIFEST_DIR")).join("examples/hertz/case.toml"),
+        )
+        .expect("examples/hertz/case.toml");
+        let row = run_one(&case, Path::new(&args[i + 3]), &args[i + 1], &args[i + 2]);
+        println!("ROW {}", row.to_json());
+        return;
+    }
     let wanted: Vec<String> = std::env::var("SIGNORINI_CONTACT_BENCH_SIZES")
         .unwrap_or_else(|_| "small,medium".into())
         .split(',')
@@ -68,14 +78,19 @@ fn main() {
             "unknown size {w} (small, medium, large)"
         );
     }
+    let timeout: f64 = std::env::var("SIGNORINI_CONTACT_BENCH_TIMEOUT")
+        .ok()
+        .and_then(|v| v.parse().ok())
+        .unwrap_or(600.0);
     let root = Path::new(env!("CARGO_MANIFEST_DIR"));
     let geo = std::fs::read_to_string(root.join("examples/hertz/hemisphere.geo"))
         .expect("examples/hertz/hemisphere.geo");
-    let case = std::fs::read_to_string(root.join("examples/hertz/case.toml"))
-        .expect("examples/hertz/case.toml");
     let tmp = tempfile::tempdir().expect("a temporary folder");
     println!("signorini contact methods on Hertz (examples/hertz)");
-    println!("threads: {}", rayon::current_num_threads());
+    println!(
+        "threads: {}, time limit per run: {timeout} s",
+        rayon::current_num_threads()
+    );
     let mut rows = Vec::new();
     for &(name, size_min, size_max) in SIZES.iter().filter(|s| wanted.iter().any(|w| w == s.0)) {
         let dir = tmp.path().join(name);
@@ -87,7 +102,7 @@ fn main() {
             start.elapsed().as_secs_f64()
         );
         for method in METHODS {
-            let row = run_one(&case, &dir, name, method);
+            let row = run_child(&dir, name, method, timeout);
             eprintln!("{}", format_row(&row));
             rows.push(row);
         }
@@ -105,6 +120,127 @@ fn main() {
             row.failure.as_deref().unwrap_or_default()
         );
     }
+}
+
+/// Run one case in a child process (this binary with `--child`), killed
+/// after `timeout` seconds; a killed run is reported from the increments it
+/// finished (the run rewrites `summary.json` after each).
+fn run_child(dir: &Path, size: &str, method: &str, timeout: f64) -> Row {
+    let start = Instant::now();
+    let mut child = std::process::Command::new(std::env::current_exe().unwrap())
+        .arg("--child")
+        .args([size, method])
+        .arg(dir)
+        .stdout(std::process::Stdio::piped())
+        .spawn()
+        .expect("the bench re-invoked as a child");
+    loop {
+        if let Some(status) = child.try_wait().unwrap() {
+            let mut text = String::new();
+            use std::io::Read;
+            child
+                .stdout
+                .take()
+                .unwrap()
+                .read_to_string(&mut text)
+                .unwrap();
+            if let Some(line) = text.lines().find_map(|l| l.strip_prefix("ROW ")) {
+                return Row::from_json(line);
+            }
+            let mut row = partial_row(dir, size, method, start.elapsed().as_secs_f64());
+            row.failure = Some(format!("the child ended with {status} and no result"));
+            return row;
+        }
+        if start.elapsed().as_secs_f64() > timeout {
+            let _ = child.kill();
+            let _ = child.wait();
+            let mut row = partial_row(dir, size, method, start.elapsed().as_secs_f64());
+            row.failure = Some(format!(
+                "stopped after {timeout} s (SIGNORINI_CONTACT_BENCH_TIMEOUT); {} increments done",
+                row.per_increment.len()
+            ));
+            return row;
+        }
+        std::thread::sleep(std::time::Duration::from_millis(200));
+    }
+}
+
+/// A row from the `summary.json` a run left (converged increments only).
+fn partial_row(dir: &Path, size: &str, method: &str, wall: f64) -> Row {
+    let mut row = Row {
+        size: size.into(),
+        dofs: 0,
+        method: method.into(),
+        per_increment: vec![],
+        total: 0,
+        outer: vec![],
+        penetration_over_h: f64::NAN,
+        radius_error: f64::NAN,
+        peak_error: f64::NAN,
+        wall,
+        failure: None,
+    };
+    let out = dir.join(format!("out-{method}"));
+    if let Ok(text) = std::fs::read_to_string(out.join("summary.json")) {
+        if let Ok(v) = serde_json::from_str::<serde_json::Value>(&text) {
+            row.dofs = v["dofs"].as_u64().unwrap_or(0) as usize;
+            for inc in v["increments"].as_array().into_iter().flatten() {
+                let n = inc["iterations"].as_u64().unwrap_or(0) as usize;
+                row.per_increment.push(n);
+                let r: Vec<f64> = inc["residuals"]
+                    .as_array()
+                    .into_iter()
+                    .flatten()
+                    .filter_map(|x| x.as_f64())
+                    .collect();
+                row.outer.push(outer_iterations(&r));
+            }
+            row.total = row.per_increment.iter().sum();
+        }
+    }
+    row
+}
+
+impl Row {
+    fn to_json(&self) -> String {
+        serde_json::json!({
+            "size": self.size, "dofs": self.dofs, "method": self.method,
+            "per_increment": self.per_increment, "total": self.total, "outer": self.outer,
+            "pen": num(self.penetration_over_h), "a": num(self.radius_error),
+            "p0": num(self.peak_error), "wall": self.wall, "failure": self.failure,
+        })
+        .to_string()
+    }
+
+    fn from_json(s: &str) -> Row {
+        let v: serde_json::Value = serde_json::from_str(s).expect("a row");
+        let list = |k: &str| -> Vec<usize> {
+            v[k].as_array()
+                .into_iter()
+                .flatten()
+                .filter_map(|x| x.as_u64().map(|n| n as usize))
+                .collect()
+        };
+        let f = |k: &str| v[k].as_f64().unwrap_or(f64::NAN);
+        Row {
+            size: v["size"].as_str().unwrap_or_default().into(),
+            dofs: v["dofs"].as_u64().unwrap_or(0) as usize,
+            method: v["method"].as_str().unwrap_or_default().into(),
+            per_increment: list("per_increment"),
+            total: v["total"].as_u64().unwrap_or(0) as usize,
+            outer: list("outer"),
+            penetration_over_h: f("pen"),
+            radius_error: f("a"),
+            peak_error: f("p0"),
+            wall: f("wall"),
+            failure: v["failure"].as_str().map(String::from),
+        }
+    }
+}
+
+/// NaN as JSON null.
+fn num(x: f64) -> Option<f64> {
+    x.is_finite().then_some(x)
 }
 
 /// Write `hemisphere.geo` with the threshold sizes replaced into `dir` and
@@ -183,31 +319,19 @@ fn run_one(case_text: &str, dir: &Path, size: &str, method: &str) -> Row {
     let outcome = match result {
         Ok(outcome) => outcome,
         Err(e) => {
-            row.failure = Some(e.to_string());
-            // the converged increments are in the summary the run left
-            if let Ok(text) = std::fs::read_to_string(out.join("summary.json")) {
-                if let Ok(v) = serde_json::from_str::<serde_json::Value>(&text) {
-                    for inc in v["increments"].as_array().into_iter().flatten() {
-                        let n = inc["iterations"].as_u64().unwrap_or(0) as usize;
-                        row.per_increment.push(n);
-                        let r: Vec<f64> = inc["residuals"]
-                            .as_array()
-                            .into_iter()
-                            .flatten()
-                            .filter_map(|x| x.as_f64())
-                            .collect();
-                        row.outer.push(outer_iterations(&r));
-                    }
-                    row.total = row.per_increment.iter().sum();
-                }
-            }
-            return row;
+            let mut partial = partial_row(dir, size, method, wall);
+            partial.dofs = dofs;
+            partial.failure = Some(e.to_string());
+            return partial;
         }
     };
     let incs = &outcome.summary.increments;
     row.per_increment = incs.iter().map(|i| i.iterations).collect();
     row.total = row.per_increment.iter().sum();
-    row.outer = incs.iter().map(|i| outer_iterations(&i.residuals)).collect();
+    row.outer = incs
+        .iter()
+        .map(|i| outer_iterations(&i.residuals))
+        .collect();
     let last = incs.last().expect("an increment");
     let name = interface.name.clone();
     row.penetration_over_h = last.contact[&name].largest_penetration / h;

@@ -101,11 +101,16 @@ fn main() {
             "[{name}] mesh SizeMin = {size_min}, SizeMax = {size_max}: {:.1} s",
             start.elapsed().as_secs_f64()
         );
+        let first = rows.len();
         for method in METHODS {
             let row = run_child(&dir, name, method, timeout);
             eprintln!("{}", format_row(&row));
             rows.push(row);
         }
+        // a run killed before its first increment left no dof count: the
+        // same mesh as the size's other runs
+        let dofs = rows[first..].iter().map(|r| r.dofs).max().unwrap_or(0);
+        rows[first..].iter_mut().for_each(|r| r.dofs = dofs);
     }
     println!();
     println!("{}", header());
@@ -425,7 +430,7 @@ fn format_row(r: &Row) -> String {
         r.method.clone()
     };
     format!(
-        "| {:>6} | {:>7} | {:<11} | {:<18} | {:>5} | {:<16} | {:>9} | {:>8} | {:>8} | {:>8.1} | {:>8.2} |",
+        "| {:>6} | {:>7} | {:<11} | {:<18} | {:>5} | {:<16} | {:>9} | {:>8} | {:>8} | {:>8.1} | {:>8} |",
         r.size,
         r.dofs,
         method,
@@ -440,6 +445,10 @@ fn format_row(r: &Row) -> String {
         pct(r.radius_error),
         pct(r.peak_error),
         r.wall,
-        r.wall / r.total.max(1) as f64
+        if r.total > 0 {
+            format!("{:.2}", r.wall / r.total as f64)
+        } else {
+            "-".into()
+        }
     )
 }

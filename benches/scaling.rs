@@ -540,6 +540,7 @@ fn run_case(spec: &Spec) -> Value {
         pressures: Vec::new(),
         body_forces: Vec::new(),
         contacts: Vec::new(),
+        timings: Default::default(),
         steps: vec![Step {
             name: "load".into(),
             end_time: 1.0,

@@ -137,6 +137,33 @@ pub struct Problem {
     pub contacts: Vec<ContactInterface>,
     pub steps: Vec<Step>,
     pub settings: SolverSettings,
+    /// Time spent in assembly and contact, for reports and benchmarks.
+    pub timings: PhaseTimings,
+}
+
+/// Time spent in the assembly phases (element kernels and scatter; contact
+/// search and contact assembly), summed over every residual evaluation.
+#[derive(Debug, Default)]
+pub struct PhaseTimings {
+    pub assembly_ns: std::sync::atomic::AtomicU64,
+    pub contact_ns: std::sync::atomic::AtomicU64,
+}
+
+impl PhaseTimings {
+    fn add(counter: &std::sync::atomic::AtomicU64, since: std::time::Instant) {
+        counter.fetch_add(
+            since.elapsed().as_nanos() as u64,
+            std::sync::atomic::Ordering::Relaxed,
+        );
+    }
+    /// Seconds in element assembly (internal forces and tangent, loads).
+    pub fn assembly(&self) -> f64 {
+        self.assembly_ns.load(std::sync::atomic::Ordering::Relaxed) as f64 * 1e-9
+    }
+    /// Seconds in contact search and contact assembly.
+    pub fn contact(&self) -> f64 {
+        self.contact_ns.load(std::sync::atomic::Ordering::Relaxed) as f64 * 1e-9
+    }
 }
 
 /// The per-node contact states of every interface (multipliers held fixed
@@ -360,9 +387,12 @@ impl Problem {
         contact: &ContactState,
         mut tangent: Option<&mut [f64]>,
     ) -> Result<(Residual, Vec<Vec<NodeReport>>), ElementFailure> {
+        let start = std::time::Instant::now();
         let mut r = vec![0.0; self.num_unknowns()];
         self.model
             .assemble_internal(x, &mut r, tangent.as_deref_mut())?;
+        PhaseTimings::add(&self.timings.assembly_ns, start);
+        let start = std::time::Instant::now();
         let first_multiplier = self.model.num_dofs();
         let reports = self
             .contacts
@@ -380,8 +410,11 @@ impl Problem {
                 )
             })
             .collect();
+        PhaseTimings::add(&self.timings.contact_ns, start);
+        let start = std::time::Instant::now();
         let internal_norm = norm(&r);
         let f_ext = self.external_force(t, x, tangent);
+        PhaseTimings::add(&self.timings.assembly_ns, start);
         for (ri, fi) in r.iter_mut().zip(&f_ext) {
             *ri -= fi;
         }

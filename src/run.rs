@@ -3,8 +3,8 @@
 //! converged increment → summary and plot.
 
 use crate::case::{self, Case};
-use crate::output::summary::InterfaceSummary;
 use crate::output::summary::{IncrementSummary, Summary};
+use crate::output::summary::{InterfaceSummary, PhaseTimes};
 use crate::output::{plot, pvd::PvdCollection, vtu};
 use crate::problem::{ContactState, Problem};
 use crate::solve::linear::{Ordering, SparseLdlt};
@@ -45,6 +45,13 @@ pub fn run(case_path: &Path, options: &RunOptions) -> Result<RunOutcome> {
     let result = run_steps(&problem, &mut solver, &mut writer, output_dir.clone());
     writer.progress.finish_and_clear();
     writer.summary.symbolic_analyses = solver.timings.analyses;
+    writer.summary.phase_times = PhaseTimes {
+        assembly: problem.timings.assembly(),
+        contact: problem.timings.contact(),
+        symbolic: solver.timings.symbolic_total.as_secs_f64(),
+        factorisation: solver.timings.numeric_total.as_secs_f64(),
+        solve: solver.timings.solve_total.as_secs_f64(),
+    };
     writer.summary.factor_nnz = solver.factor_nnz();
     writer.summary.wall_time = start.elapsed().as_secs_f64();
     match result {
@@ -119,6 +126,7 @@ impl Writer {
             symbolic_analyses: 0,
             matrix_nnz: problem.model.pattern.nnz(),
             factor_nnz: 0,
+            phase_times: Default::default(),
             steps: Vec::new(),
             increments: Vec::new(),
         };

@@ -420,6 +420,7 @@ impl Case {
             contacts: Vec::new(),
             steps,
             settings,
+            timings: Default::default(),
         };
         let contacts = self.contacts(&problem)?;
         if !contacts.is_empty() {

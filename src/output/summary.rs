@@ -37,6 +37,22 @@ pub struct IncrementSummary {
     pub reaction_forces: BTreeMap<String, [f64; 3]>,
 }
 
+/// Where the time went, seconds.
+#[derive(Clone, Debug, Default, Serialize)]
+pub struct PhaseTimes {
+    /// Element kernels, scatter and loads (every residual evaluation,
+    /// line-search trials included).
+    pub assembly: f64,
+    /// Contact search (projection on the obstacles) and contact assembly.
+    pub contact: f64,
+    /// Symbolic analyses.
+    pub symbolic: f64,
+    /// Numeric factorisations.
+    pub factorisation: f64,
+    /// Triangular solves (refinement and Krylov iterations included).
+    pub solve: f64,
+}
+
 /// One contact interface at the end of an increment.
 #[derive(Clone, Debug, Default, Serialize)]
 pub struct InterfaceSummary {
@@ -86,6 +102,9 @@ pub struct Summary {
     /// Stored entries of the tangent and of its LDLᵀ factor.
     pub matrix_nnz: usize,
     pub factor_nnz: usize,
+    /// Wall time split by phase, seconds (totals of the run, filled when it
+    /// ends).
+    pub phase_times: PhaseTimes,
     /// Per load step, totals over its increments.
     pub steps: Vec<StepSummary>,
     pub increments: Vec<IncrementSummary>,

@@ -32,11 +32,16 @@ pub enum Ordering {
 /// Timings of the last calls, for reports and benchmarks.
 #[derive(Clone, Copy, Debug, Default)]
 pub struct SolverTimings {
+    /// The last symbolic analysis, numeric factorisation and solve.
     pub symbolic: Duration,
     pub numeric: Duration,
     pub solve: Duration,
     /// Number of symbolic analyses done so far.
     pub analyses: usize,
+    /// Totals since the solver was made.
+    pub symbolic_total: Duration,
+    pub numeric_total: Duration,
+    pub solve_total: Duration,
 }
 
 /// A reusable sparse LDLᵀ solver for symmetric matrices given by their
@@ -121,6 +126,7 @@ impl SparseLdlt {
         self.symbolic = Some(symbolic);
         self.analysed = Some(fingerprint);
         self.timings.symbolic = start.elapsed();
+        self.timings.symbolic_total += self.timings.symbolic;
         self.timings.analyses += 1;
         Ok(())
     }
@@ -172,6 +178,7 @@ impl SparseLdlt {
                 ))
             })?;
         self.timings.numeric = start.elapsed();
+        self.timings.numeric_total += self.timings.numeric;
         Ok(())
     }
 
@@ -188,6 +195,7 @@ impl SparseLdlt {
         let x = MatMut::from_column_major_slice_mut(rhs, n, 1);
         ldlt.solve_in_place_with_conj(faer::Conj::No, x, self.par, MemStack::new(&mut mem));
         self.timings.solve = start.elapsed();
+        self.timings.solve_total += self.timings.solve;
         if rhs.iter().any(|v| !v.is_finite()) {
             return Err(Error::LinearSolver(
                 "the solution is not finite: the tangent is singular or badly conditioned".into(),

@@ -22,6 +22,7 @@ pub fn problem(mesh: Mesh, material: Arc<dyn Material>) -> Problem {
         pressures: Vec::new(),
         body_forces: Vec::new(),
         contacts: Vec::new(),
+        timings: Default::default(),
         steps: vec![Step {
             name: "load".into(),
             end_time: 1.0,

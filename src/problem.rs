@@ -309,7 +309,7 @@ impl Problem {
                     (0..c.nodes.len())
                         .map(|i| {
                             let g = c.gap_geometry(reference, &translation, x, i).signed_gap;
-                            NodeContactState::initial(&c.law, g)
+                            NodeContactState::initial(&c.law_at(i), g)
                         })
                         .collect()
                 })
@@ -324,9 +324,9 @@ impl Problem {
     pub fn augment_multipliers(&self, t: f64, x: &[f64], contact: &mut ContactState) -> bool {
         let mut again = false;
         for (c, states) in self.contacts.iter().zip(&mut contact.interfaces) {
-            let crate::contact::laws::NormalLaw::Uzawa { epsilon } = c.law else {
+            if !matches!(c.law, crate::contact::laws::NormalLaw::Uzawa { .. }) {
                 continue;
-            };
+            }
             let translation = c.translation_at(t);
             let gaps: Vec<f64> = (0..c.nodes.len())
                 .map(|i| {
@@ -337,9 +337,14 @@ impl Problem {
             let penetration = gaps.iter().fold(0.0f64, |m, &g| m.max(-g));
             if penetration > 1e-9 * c.element_size {
                 again = true;
-                for (state, g) in states.iter_mut().zip(&gaps) {
-                    state.lambda =
-                        crate::contact::laws::uzawa::update_multiplier(state.lambda, *g, epsilon);
+                for (i, (state, g)) in states.iter_mut().zip(&gaps).enumerate() {
+                    if let crate::contact::laws::NormalLaw::Uzawa { epsilon } = c.law_at(i) {
+                        state.lambda = crate::contact::laws::uzawa::update_multiplier(
+                            state.lambda,
+                            *g,
+                            epsilon,
+                        );
+                    }
                 }
             }
         }

@@ -50,6 +50,7 @@ fn interface(
         motion: Vector3::zeros(),
         amplitude: Amplitude::ramp(),
         law,
+        node_scale: Vec::new(),
         multiplier_offset: 0,
         element_size: H,
     }

@@ -539,7 +539,15 @@ impl Case {
                 ContactMethod::Rockafellar => NormalLaw::Rockafellar { p, k },
                 ContactMethod::Slack => NormalLaw::Slack { p, k },
             };
+            // automatic parameters follow the local mesh size: E/h_s, h_s = √A_s
+            let automatic = c.penalty.is_none() && c.scaling.is_none();
+            let node_scale = if automatic {
+                areas.iter().map(|a| h / a.sqrt().max(1e-300)).collect()
+            } else {
+                Vec::new()
+            };
             let interface = ContactInterface {
+                node_scale,
                 name: c.name.clone().unwrap_or_else(|| c.surface.clone()),
                 surface: c.surface.clone(),
                 nodes,

@@ -198,10 +198,11 @@ pub struct ContactSpec {
     /// `penalty`, `uzawa`, `rockafellar` (default) or `slack`.
     #[serde(default)]
     pub method: ContactMethod,
-    /// ε (penalty, Uzawa) or p (Rockafellar, slack); default `E/h`, `E` the
-    /// stiffest material's Young's modulus, `h` the contact element size.
+    /// ε (penalty, Uzawa) or p (Rockafellar, slack); default `E/h_s` at each
+    /// secondary node, `E` the stiffest material's Young's modulus, `h_s` the
+    /// square root of the node's tributary area.
     pub penalty: Option<f64>,
-    /// k (Rockafellar, slack); default `E/h`.
+    /// k (Rockafellar, slack); default `E/h_s` per node.
     pub scaling: Option<f64>,
     /// Largest initial penetration accepted; default 1 % of the contact
     /// element size.

@@ -32,8 +32,13 @@ pub struct ContactInterface {
     /// Rigid translation of the obstacle: `motion · amplitude(t)`.
     pub motion: Vector3<f64>,
     pub amplitude: Amplitude,
-    /// Enforcement of the normal constraint.
+    /// Enforcement of the normal constraint, with the interface's parameters.
     pub law: NormalLaw,
+    /// Per-node factors on the law's parameters (empty: 1 everywhere). The
+    /// automatic parameters use `E/h_s` with the node's own size
+    /// `h_s = √A_s`, so that a locally refined surface gets locally stiffer
+    /// enforcement.
+    pub node_scale: Vec<f64>,
     /// Index of this interface's first multiplier among all multipliers.
     pub multiplier_offset: usize,
     /// A representative contact element size (for reports and tolerances).
@@ -50,6 +55,22 @@ pub struct NodeReport {
 }
 
 impl ContactInterface {
+    /// The law of secondary node `i` (the interface's law with the node's
+    /// parameter factor).
+    pub fn law_at(&self, i: usize) -> NormalLaw {
+        let f = self.node_scale.get(i).copied().unwrap_or(1.0);
+        match self.law {
+            NormalLaw::Penalty { epsilon } => NormalLaw::Penalty {
+                epsilon: epsilon * f,
+            },
+            NormalLaw::Uzawa { epsilon } => NormalLaw::Uzawa {
+                epsilon: epsilon * f,
+            },
+            NormalLaw::Rockafellar { p, k } => NormalLaw::Rockafellar { p: p * f, k: k * f },
+            NormalLaw::Slack { p, k } => NormalLaw::Slack { p: p * f, k: k * f },
+        }
+    }
+
     /// Number of multiplier unknowns this interface adds.
     pub fn num_multipliers(&self) -> usize {
         if self.law.has_multiplier_dof() {
@@ -130,7 +151,7 @@ impl ContactInterface {
         for (i, (&s, &area)) in self.nodes.iter().zip(&self.areas).enumerate() {
             let gap = self.gap_geometry(reference, &translation, x, i);
             let state = self.node_state(states, x, first_multiplier, i);
-            let c: NodeContribution = self.law.contribution(area, &gap, &state);
+            let c: NodeContribution = self.law_at(i).contribution(area, &gap, &state);
             for d in 0..3 {
                 residual[3 * s + d] += c.r_u[d];
             }
@@ -193,7 +214,7 @@ impl ContactInterface {
             let mut state = self.node_state(states, x, first_multiplier, i);
             let du = Vector3::new(dx[3 * s], dx[3 * s + 1], dx[3 * s + 2]);
             let dlambda = dx[first_multiplier + self.multiplier_offset + i];
-            self.law
+            self.law_at(i)
                 .apply_increment(self.areas[i], &gap, &mut state, &du, dlambda);
             states[i] = state;
         }

@@ -26,6 +26,7 @@
 //! wall time of the run (total and per Newton iteration). A run that fails
 //! is reported as such (with its error), which is a result too.
 
+use signorini::contact::hertz::{fitted_contact_radius, Hertz};
 use signorini::run::{run, RunOptions};
 use std::path::{Path, PathBuf};
 use std::time::Instant;
@@ -341,11 +342,9 @@ fn run_one(case_text: &str, dir: &Path, size: &str, method: &str) -> Row {
     let name = interface.name.clone();
     row.penetration_over_h = last.contact[&name].largest_penetration / h;
     let force = last.contact[&name].force[2];
-    // Hertz with the measured force, as tests/cases.rs `assert_hertz`
-    let (e_star, radius) = (1000.0 / (1.0 - 0.09), 1.0);
-    let total = 4.0 * force.abs(); // quarter model
-    let a = (3.0 * total * radius / (4.0 * e_star)).powf(1.0 / 3.0);
-    let p0 = 3.0 * total / (2.0 * std::f64::consts::PI * a * a);
+    // Hertz with the measured force (`signorini::contact::hertz`)
+    let reference = Hertz::new(4.0 * force.abs(), 1.0, 1000.0 / (1.0 - 0.09)); // quarter model
+    let (a, p0) = (reference.radius, reference.peak_pressure);
     let x = &outcome.displacement;
     let (_, reports) = problem
         .residual_in(1.0, x, &problem.initial_contact_state(x), None)
@@ -362,22 +361,7 @@ fn run_one(case_text: &str, dir: &Path, size: &str, method: &str) -> Row {
         .collect();
     let peak = nodes.iter().map(|n| n.1).fold(0.0, f64::max);
     row.peak_error = (peak - p0) / p0;
-    // least-squares fit of p² = c₀ + c₁ r² over nodes with p > 0.2 p₀
-    let fit: Vec<(f64, f64)> = nodes
-        .iter()
-        .filter(|n| n.1 > 0.2 * p0)
-        .map(|n| (n.0 * n.0, n.1 * n.1))
-        .collect();
-    let m = fit.len() as f64;
-    let (sx, sy) = (
-        fit.iter().map(|f| f.0).sum::<f64>(),
-        fit.iter().map(|f| f.1).sum::<f64>(),
-    );
-    let sxx = fit.iter().map(|f| f.0 * f.0).sum::<f64>();
-    let sxy = fit.iter().map(|f| f.0 * f.1).sum::<f64>();
-    let slope = (m * sxy - sx * sy) / (m * sxx - sx * sx);
-    let intercept = (sy - slope * sx) / m;
-    let a_fit = (-intercept / slope).sqrt();
+    let a_fit = fitted_contact_radius(&nodes, 0.2 * p0);
     row.radius_error = (a_fit - a) / a;
     row
 }

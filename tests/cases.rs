@@ -1,6 +1,7 @@
 //! Every shipped example, run end to end through the library as the CLI
 //! runs it, and compared with the reference stated in its README.
 
+use signorini::contact::hertz::{fitted_contact_radius, Hertz};
 use signorini::run::{run, RunOptions};
 use std::path::Path;
 
@@ -137,10 +138,9 @@ fn assert_hertz(
         "reaction {reaction} vs contact force {force}"
     );
     assert!(last.contact[interface_name].largest_penetration < 1e-8 * interface.element_size);
-    let (e_star, radius) = (1000.0 / (1.0 - 0.09), 1.0);
-    let total = 4.0 * force.abs(); // quarter model
-    let a = (3.0 * total * radius / (4.0 * e_star)).powf(1.0 / 3.0);
-    let p0 = 3.0 * total / (2.0 * std::f64::consts::PI * a * a);
+    let e_star = 1000.0 / (1.0 - 0.09);
+    let reference = Hertz::new(4.0 * force.abs(), 1.0, e_star); // quarter model
+    let (a, p0) = (reference.radius, reference.peak_pressure);
     let nodes: Vec<(f64, f64)> = interface
         .nodes
         .iter()
@@ -153,27 +153,12 @@ fn assert_hertz(
         .collect();
     let peak = nodes.iter().map(|n| n.1).fold(0.0, f64::max);
     assert!((peak - p0).abs() < 0.03 * p0, "peak {peak} vs Hertz {p0}");
-    // least-squares fit of p² = c₀ + c₁ r² over nodes with p > 0.2 p₀
-    let fit: Vec<(f64, f64)> = nodes
-        .iter()
-        .filter(|n| n.1 > 0.2 * p0)
-        .map(|n| (n.0 * n.0, n.1 * n.1))
-        .collect();
-    let m = fit.len() as f64;
-    let (sx, sy) = (
-        fit.iter().map(|f| f.0).sum::<f64>(),
-        fit.iter().map(|f| f.1).sum::<f64>(),
-    );
-    let sxx = fit.iter().map(|f| f.0 * f.0).sum::<f64>();
-    let sxy = fit.iter().map(|f| f.0 * f.1).sum::<f64>();
-    let slope = (m * sxy - sx * sy) / (m * sxx - sx * sx);
-    let intercept = (sy - slope * sx) / m;
-    let a_fit = (-intercept / slope).sqrt();
+    let a_fit = fitted_contact_radius(&nodes, 0.2 * p0);
     assert!(
         (a_fit - a).abs() < 0.03 * a,
         "contact radius {a_fit} vs Hertz {a}"
     );
-    let hertz = |r: f64| p0 * (1.0 - (r / a).powi(2)).max(0.0).sqrt();
+    let hertz = |r: f64| reference.pressure(r);
     for ring in 0..8 {
         let (lo, hi) = (ring as f64 * 0.1 * a, (ring + 1) as f64 * 0.1 * a);
         let in_ring: Vec<&(f64, f64)> = nodes.iter().filter(|n| n.0 >= lo && n.0 < hi).collect();

@@ -27,6 +27,7 @@
 //! obstacle, assembled into the Newton system (see DESIGN.md, "Contact
 //! with rigid obstacles").
 
+pub mod hertz;
 pub mod interface;
 pub mod laws;
 pub mod obstacle;

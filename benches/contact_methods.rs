@@ -7,6 +7,7 @@
 //! cargo bench --bench contact_methods                                   # small,medium
 //! SIGNORINI_CONTACT_BENCH_SIZES=small cargo bench --bench contact_methods
 //! SIGNORINI_CONTACT_BENCH_SIZES=small,medium,large cargo bench --bench contact_methods
+//! SIGNORINI_CONTACT_BENCH_METHODS=rockafellar,slack cargo bench --bench contact_methods
 //! ```
 //!
 //! The meshes are made at run time with `gmsh` (must be on `PATH`) from a
@@ -23,7 +24,9 @@
 //! over the contact element size `h`, the errors of the contact radius
 //! (least-squares fit of `p²` against `r²`, as in `tests/cases.rs`) and of
 //! the peak nodal pressure against Hertz with the measured force, and the
-//! wall time of the run (total and per Newton iteration). A run that fails
+//! wall time of the run (total and per Newton iteration) with its split
+//! from `summary.json`'s `phase_times` (element assembly, contact search and
+//! assembly, numeric factorisation, triangular solves). A run that fails
 //! is reported as such (with its error), which is a result too.
 
 use signorini::contact::hertz::{fitted_contact_radius, Hertz};
@@ -52,6 +55,9 @@ struct Row {
     radius_error: f64,
     peak_error: f64,
     wall: f64,
+    /// `phase_times` of the run's summary: assembly, contact, factorisation,
+    /// solve (seconds; NaN for a run that did not finish).
+    phases: [f64; 4],
     failure: Option<String>,
 }
 
@@ -79,6 +85,15 @@ fn main() {
             "unknown size {w} (small, medium, large)"
         );
     }
+    let methods: Vec<String> = std::env::var("SIGNORINI_CONTACT_BENCH_METHODS")
+        .map(|v| v.split(',').map(|s| s.trim().to_string()).collect())
+        .unwrap_or_else(|_| METHODS.iter().map(|m| m.to_string()).collect());
+    for m in &methods {
+        assert!(
+            METHODS.contains(&m.as_str()),
+            "unknown method {m} (penalty, uzawa, rockafellar, slack)"
+        );
+    }
     let timeout: f64 = std::env::var("SIGNORINI_CONTACT_BENCH_TIMEOUT")
         .ok()
         .and_then(|v| v.parse().ok())
@@ -103,7 +118,7 @@ fn main() {
             start.elapsed().as_secs_f64()
         );
         let first = rows.len();
-        for method in METHODS {
+        for method in &methods {
             let row = run_child(&dir, name, method, timeout);
             eprintln!("{}", format_row(&row));
             rows.push(row);
@@ -184,6 +199,7 @@ fn partial_row(dir: &Path, size: &str, method: &str, wall: f64) -> Row {
         radius_error: f64::NAN,
         peak_error: f64::NAN,
         wall,
+        phases: [f64::NAN; 4],
         failure: None,
     };
     let out = dir.join(format!("out-{method}"));
@@ -213,7 +229,7 @@ impl Row {
             "size": self.size, "dofs": self.dofs, "method": self.method,
             "per_increment": self.per_increment, "total": self.total, "outer": self.outer,
             "pen": num(self.penetration_over_h), "a": num(self.radius_error),
-            "p0": num(self.peak_error), "wall": self.wall, "failure": self.failure,
+            "p0": num(self.peak_error), "wall": self.wall, "phases": self.phases.map(num), "failure": self.failure,
         })
         .to_string()
     }
@@ -239,6 +255,7 @@ impl Row {
             radius_error: f("a"),
             peak_error: f("p0"),
             wall: f("wall"),
+            phases: std::array::from_fn(|i| v["phases"][i].as_f64().unwrap_or(f64::NAN)),
             failure: v["failure"].as_str().map(String::from),
         }
     }
@@ -320,6 +337,7 @@ fn run_one(case_text: &str, dir: &Path, size: &str, method: &str) -> Row {
         radius_error: f64::NAN,
         peak_error: f64::NAN,
         wall,
+        phases: [f64::NAN; 4],
         failure: None,
     };
     let outcome = match result {
@@ -331,6 +349,8 @@ fn run_one(case_text: &str, dir: &Path, size: &str, method: &str) -> Row {
             return partial;
         }
     };
+    let t = &outcome.summary.phase_times;
+    row.phases = [t.assembly, t.contact, t.factorisation, t.solve];
     let incs = &outcome.summary.increments;
     row.per_increment = incs.iter().map(|i| i.iterations).collect();
     row.total = row.per_increment.iter().sum();
@@ -347,7 +367,7 @@ fn run_one(case_text: &str, dir: &Path, size: &str, method: &str) -> Row {
     let (a, p0) = (reference.radius, reference.peak_pressure);
     let x = &outcome.displacement;
     let (_, reports) = problem
-        .residual_in(1.0, x, &problem.initial_contact_state(x), None)
+        .residual_in(1.0, x, &outcome.contact, None)
         .expect("the residual at the solution");
     let nodes: Vec<(f64, f64)> = interface
         .nodes
@@ -379,7 +399,7 @@ fn outer_iterations(residuals: &[f64]) -> usize {
 
 fn header() -> String {
     format!(
-        "| {:>6} | {:>7} | {:<11} | {:<18} | {:>5} | {:<16} | {:>9} | {:>8} | {:>8} | {:>8} | {:>8} |",
+        "| {:>6} | {:>7} | {:<11} | {:<18} | {:>5} | {:<16} | {:>9} | {:>8} | {:>8} | {:>8} | {:>8} | {:>7} | {:>9} | {:>8} | {:>7} |",
         "size",
         "dofs",
         "method",
@@ -390,8 +410,12 @@ fn header() -> String {
         "a err",
         "p0 err",
         "wall s",
-        "s/iter"
-    ) + "\n|---:|---:|---|---|---:|---|---:|---:|---:|---:|---:|"
+        "s/iter",
+        "asm s",
+        "contact s",
+        "factor s",
+        "solve s"
+    ) + "\n|---:|---:|---|---|---:|---|---:|---:|---:|---:|---:|---:|---:|---:|---:|"
 }
 
 fn format_row(r: &Row) -> String {
@@ -414,7 +438,7 @@ fn format_row(r: &Row) -> String {
         r.method.clone()
     };
     format!(
-        "| {:>6} | {:>7} | {:<11} | {:<18} | {:>5} | {:<16} | {:>9} | {:>8} | {:>8} | {:>8.1} | {:>8} |",
+        "| {:>6} | {:>7} | {:<11} | {:<18} | {:>5} | {:<16} | {:>9} | {:>8} | {:>8} | {:>8.1} | {:>8} | {:>7} | {:>9} | {:>8} | {:>7} |",
         r.size,
         r.dofs,
         method,
@@ -433,6 +457,18 @@ fn format_row(r: &Row) -> String {
             format!("{:.2}", r.wall / r.total as f64)
         } else {
             "-".into()
-        }
+        },
+        seconds(r.phases[0]),
+        seconds(r.phases[1]),
+        seconds(r.phases[2]),
+        seconds(r.phases[3]),
     )
+}
+
+fn seconds(x: f64) -> String {
+    if x.is_finite() {
+        format!("{x:.1}")
+    } else {
+        "-".into()
+    }
 }

@@ -30,6 +30,10 @@ pub struct RunOutcome {
     pub summary: Summary,
     /// Final displacement of every dof.
     pub displacement: Vec<f64>,
+    /// Contact history committed with the last converged increment
+    /// (Uzawa multipliers, slack unknowns, friction's tangential traction
+    /// and slip).
+    pub contact: ContactState,
 }
 
 /// Run a case file end to end. On failure the converged increments, the
@@ -62,6 +66,7 @@ pub fn run(case_path: &Path, options: &RunOptions) -> Result<RunOutcome> {
                 output_dir,
                 summary: writer.summary,
                 displacement,
+                contact: writer.contact,
             })
         }
         Err(e) => {
@@ -85,6 +90,7 @@ struct Writer {
     quiet: bool,
     last: Instant,
     start: Instant,
+    contact: ContactState,
 }
 
 impl Writer {
@@ -139,6 +145,7 @@ impl Writer {
             quiet,
             last: Instant::now(),
             start,
+            contact: ContactState::default(),
         })
     }
 
@@ -179,6 +186,7 @@ impl StepObserver for Writer {
         residual: &[f64],
         contact: &ContactState,
     ) -> Result<()> {
+        self.contact.clone_from(contact);
         let index = self.summary.increments.len() + 1;
         let file = format!("{}_{index:04}.vtu", self.name);
         let stresses = problem.model.cauchy_stresses(u);

@@ -209,9 +209,10 @@ impl Problem {
         }
     }
 
-    /// Whether the tangent is nonsymmetric (follower pressure on a surface).
+    /// Whether the tangent is nonsymmetric (follower pressure on a
+    /// surface, Coulomb friction).
     pub fn has_nonsymmetric_tangent(&self) -> bool {
-        self.pressures.iter().any(|p| p.follower)
+        self.pressures.iter().any(|p| p.follower) || self.contacts.iter().any(|c| c.has_friction())
     }
 
     /// External force at time `t` and displacement `u`; if `tangent` is
@@ -299,21 +300,21 @@ impl Problem {
 
     /// The contact states before the first increment (gaps at `x`, time 0).
     pub fn initial_contact_state(&self, x: &[f64]) -> ContactState {
-        let reference = &self.model.mesh.nodes;
         ContactState {
             interfaces: self
                 .contacts
                 .iter()
-                .map(|c| {
-                    let translation = c.translation_at(0.0);
-                    (0..c.nodes.len())
-                        .map(|i| {
-                            let g = c.gap_geometry(reference, &translation, x, i).signed_gap;
-                            NodeContactState::initial(&c.law_at(i), g)
-                        })
-                        .collect()
-                })
+                .map(|c| c.initial_states(&self.model.mesh.nodes, x))
                 .collect(),
+        }
+    }
+
+    /// Commit the contact history (friction's traction, slip and anchor;
+    /// every node's status) once an increment has converged at time `t`
+    /// and unknowns `x` (formulation note §3).
+    pub fn commit_contact_history(&self, t: f64, x: &[f64], contact: &mut ContactState) {
+        for (c, states) in self.contacts.iter().zip(&mut contact.interfaces) {
+            c.commit_history(&self.model.mesh.nodes, t, x, self.model.num_dofs(), states);
         }
     }
 

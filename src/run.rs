@@ -3,6 +3,7 @@
 //! converged increment → summary and plot.
 
 use crate::case::{self, Case};
+use crate::contact::friction::ContactStatus;
 use crate::output::summary::{IncrementSummary, Summary};
 use crate::output::summary::{InterfaceSummary, PhaseTimes};
 use crate::output::{plot, pvd::PvdCollection, vtu};
@@ -219,6 +220,16 @@ impl StepObserver for Writer {
                     components: 1,
                     values: &contact_fields.status,
                 },
+                vtu::Field {
+                    name: "contact_traction",
+                    components: 3,
+                    values: &contact_fields.traction,
+                },
+                vtu::Field {
+                    name: "slip",
+                    components: 3,
+                    values: &contact_fields.slip,
+                },
             ]);
         }
         vtu::write_vtu(
@@ -285,8 +296,13 @@ struct ContactFields {
     pressure: Vec<f64>,
     /// Signed gap at secondary nodes, NaN elsewhere.
     gap: Vec<f64>,
-    /// 1 closed, 0 open (and 0 away from contact surfaces).
+    /// 0 open, 1 stick (closed, without friction), 2 slip (0 away from
+    /// contact surfaces).
     status: Vec<f64>,
+    /// Traction on the body, `t_N n + t_T` (3 per node, 0 elsewhere).
+    traction: Vec<f64>,
+    /// Accumulated slip vector (3 per node, 0 elsewhere).
+    slip: Vec<f64>,
     summaries: std::collections::BTreeMap<String, InterfaceSummary>,
 }
 
@@ -297,6 +313,8 @@ impl ContactFields {
             pressure: vec![0.0; n],
             gap: vec![f64::NAN; n],
             status: vec![0.0; n],
+            traction: vec![0.0; 3 * n],
+            slip: vec![0.0; 3 * n],
             summaries: Default::default(),
         };
         if problem.contacts.is_empty() {
@@ -308,14 +326,29 @@ impl ContactFields {
                 path: PathBuf::new(),
                 message: problem.describe_failure(&f),
             })?;
-        for (c, nodes) in problem.contacts.iter().zip(&reports) {
+        for ((c, nodes), states) in problem
+            .contacts
+            .iter()
+            .zip(&reports)
+            .zip(&contact.interfaces)
+        {
             let mut summary = InterfaceSummary::default();
-            for ((&s, &area), r) in c.nodes.iter().zip(&c.areas).zip(nodes) {
+            for (((&s, &area), r), state) in c.nodes.iter().zip(&c.areas).zip(nodes).zip(states) {
+                // status, tangential traction and slip as committed for this increment
+                let history = &state.friction;
                 fields.pressure[s] = r.pressure;
                 fields.gap[s] = r.gap;
-                fields.status[s] = if r.active { 1.0 } else { 0.0 };
+                fields.status[s] = history.status.code() as f64;
                 for d in 0..3 {
                     summary.force[d] += r.force[d];
+                    summary.tangential_force[d] += area * history.traction[d];
+                    fields.traction[3 * s + d] = r.force[d] / area + history.traction[d];
+                    fields.slip[3 * s + d] = history.slip[d];
+                }
+                match history.status {
+                    ContactStatus::Open => {}
+                    ContactStatus::Stick => summary.stick_nodes += 1,
+                    ContactStatus::Slip => summary.slip_nodes += 1,
                 }
                 if r.active {
                     summary.closed_nodes += 1;

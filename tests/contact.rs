@@ -6,17 +6,14 @@
 
 mod common;
 
-use common::{fix, problem};
+use common::{assert_tangent_matches_fd, fix, interface, problem, run};
 use nalgebra::Vector3;
-use signorini::contact::interface::ContactInterface;
 use signorini::contact::laws::NormalLaw;
-use signorini::contact::{tributary_areas, RigidObstacle};
+use signorini::contact::RigidObstacle;
 use signorini::material::{LinearElastic, NeoHookean};
 use signorini::mesh::structured::{box_mesh, perturb_interior};
 use signorini::mesh::ElementKind;
-use signorini::problem::{Amplitude, ContactState, PressureLoad, Problem};
-use signorini::solve::linear::SparseLdlt;
-use signorini::solve::stepping::{run_steps, IncrementRecord, StepObserver};
+use signorini::problem::{Amplitude, PressureLoad, Problem};
 use std::sync::Arc;
 
 const E: f64 = 100.0;
@@ -31,60 +28,6 @@ fn methods() -> Vec<(&'static str, NormalLaw)> {
         ("rockafellar", NormalLaw::Rockafellar { p: e, k: e }),
         ("slack", NormalLaw::Slack { p: e, k: e }),
     ]
-}
-
-fn interface(
-    p: &Problem,
-    surface: &str,
-    obstacle: RigidObstacle,
-    law: NormalLaw,
-) -> ContactInterface {
-    let mesh = &p.model.mesh;
-    let (nodes, areas) = tributary_areas(mesh, mesh.surface(surface).unwrap());
-    ContactInterface {
-        name: surface.into(),
-        surface: surface.into(),
-        nodes,
-        areas,
-        obstacle,
-        motion: Vector3::zeros(),
-        amplitude: Amplitude::ramp(),
-        law,
-        node_scale: Vec::new(),
-        multiplier_offset: 0,
-        element_size: H,
-    }
-}
-
-/// The final state of a run: unknowns, contact state and the reports.
-#[derive(Default)]
-struct Last {
-    x: Vec<f64>,
-    contact: ContactState,
-    increments: Vec<IncrementRecord>,
-}
-
-impl StepObserver for Last {
-    fn on_converged(
-        &mut self,
-        _p: &Problem,
-        record: &IncrementRecord,
-        u: &[f64],
-        _r: &[f64],
-        c: &ContactState,
-    ) -> signorini::Result<()> {
-        self.x = u.to_vec();
-        self.contact = c.clone();
-        self.increments.push(record.clone());
-        Ok(())
-    }
-}
-
-fn run(p: &Problem) -> Last {
-    let mut solver = SparseLdlt::new(signorini::run::fill_reducing_ordering(p).unwrap(), 1);
-    let mut last = Last::default();
-    run_steps(p, &mut solver, &mut last, "unused".into()).expect("converges");
-    last
 }
 
 /// A block on a rigid plane (its bottom face on z = 0), symmetry planes
@@ -105,7 +48,7 @@ fn pressed_block(kind: ElementKind, law: NormalLaw, p: f64) -> Problem {
         amplitude: Amplitude::ramp(),
     });
     let plane = RigidObstacle::plane(Vector3::zeros(), Vector3::z()).unwrap();
-    let c = interface(&pr, "zmin", plane, law);
+    let c = interface(&pr, H, "zmin", plane, law);
     pr.set_contacts(vec![c]);
     pr
 }
@@ -176,7 +119,7 @@ fn lifting_the_obstacle_releases_every_node() {
             max_increment: 0.5,
         });
         let plane = RigidObstacle::plane(Vector3::zeros(), Vector3::z()).unwrap();
-        let mut c = interface(&pr, "zmin", plane, law);
+        let mut c = interface(&pr, H, "zmin", plane, law);
         c.motion = Vector3::new(0.0, 0.0, -0.1);
         c.amplitude = Amplitude::new(vec![(0.0, 0.0), (1.0, 0.0), (2.0, 1.0)]);
         pr.set_contacts(vec![c]);
@@ -210,7 +153,7 @@ fn assembled_contact_tangent_matches_finite_difference() {
         let mesh = box_mesh(ElementKind::Hex8, [2, 2, 1], [1.0, 1.0, 0.5]);
         let mut pr = problem(mesh, Arc::new(NeoHookean::new(E, 0.3, "m").unwrap()));
         let sphere = RigidObstacle::sphere(Vector3::new(0.4, 0.6, -1.0), 1.02).unwrap();
-        let c = interface(&pr, "zmin", sphere, law);
+        let c = interface(&pr, H, "zmin", sphere, law);
         pr.set_contacts(vec![c]);
         let n = pr.num_unknowns();
         let dofs = pr.model.num_dofs();
@@ -225,33 +168,12 @@ fn assembled_contact_tangent_matches_finite_difference() {
             .collect();
         let state = pr.initial_contact_state(&x);
         let mut k = vec![0.0; pr.model.pattern.nnz()];
-        let (res, reports) = pr.residual_in(0.5, &x, &state, Some(&mut k)).unwrap();
+        let (_, reports) = pr.residual_in(0.5, &x, &state, Some(&mut k)).unwrap();
         assert!(
             reports[0].iter().any(|r| r.active) && reports[0].iter().any(|r| !r.active),
             "{name}: mixed state"
         );
-        let pattern = pr.model.pattern.symbolic();
-        let h = 1e-7;
-        for j in 0..n {
-            let (mut xp, mut xm) = (x.clone(), x.clone());
-            xp[j] += h;
-            xm[j] -= h;
-            let rp = pr.residual_in(0.5, &xp, &state, None).unwrap().0.r;
-            let rm = pr.residual_in(0.5, &xm, &state, None).unwrap().0.r;
-            let mut column = vec![0.0; n];
-            for idx in pattern.col_ptr()[j]..pattern.col_ptr()[j + 1] {
-                column[pattern.row_idx()[idx]] = k[idx];
-            }
-            for i in 0..n {
-                let fd = (rp[i] - rm[i]) / (2.0 * h);
-                assert!(
-                    (fd - column[i]).abs() < 1e-5 * (1.0 + column[i].abs()),
-                    "{name}: K[{i},{j}] = {} vs fd {fd}",
-                    column[i]
-                );
-            }
-        }
-        let _ = res;
+        assert_tangent_matches_fd(&pr, 0.5, &x, &state, name);
     }
 }
 
@@ -315,6 +237,7 @@ fn triangulated_sphere_matches_the_analytic_sphere() {
         fix(&mut pr, "zmin", &[(2, 0.0)]);
         let mut c = interface(
             &pr,
+            H,
             "zmax",
             obstacle,
             NormalLaw::Rockafellar { p: E / H, k: E / H },

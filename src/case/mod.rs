@@ -5,6 +5,7 @@
 pub mod schema;
 
 use crate::assembly::Model;
+use crate::contact::friction::Coulomb;
 use crate::contact::interface::ContactInterface;
 use crate::contact::laws::{automatic_parameters, NormalLaw};
 use crate::contact::{tributary_areas, RigidObstacle, TriangulatedSurface};
@@ -546,7 +547,35 @@ impl Case {
             } else {
                 Vec::new()
             };
+            let friction = match (c.friction_coefficient, c.tangential_penalty) {
+                (None, Some(_)) => {
+                    return Err(self.err(format!(
+                        "{key}.tangential_penalty is given without {key}.friction_coefficient; \
+                         add the friction coefficient or remove the tangential penalty"
+                    )))
+                }
+                (None, None) => None,
+                (Some(mu), _) if !(mu >= 0.0 && mu.is_finite()) => {
+                    return Err(self.err(format!(
+                        "{key}.friction_coefficient = {mu} must be zero or positive"
+                    )))
+                }
+                (Some(mu), eps) => Some(Coulomb {
+                    coefficient: mu,
+                    tangential_penalty: match eps {
+                        None => p,
+                        Some(_) => positive(eps, "tangential_penalty")?,
+                    },
+                }),
+            };
+            let tangential_scale = if c.tangential_penalty.is_none() {
+                node_scale.clone()
+            } else {
+                Vec::new()
+            };
             let interface = ContactInterface {
+                friction,
+                tangential_scale,
                 node_scale,
                 name: c.name.clone().unwrap_or_else(|| c.surface.clone()),
                 surface: c.surface.clone(),

@@ -204,6 +204,11 @@ pub struct ContactSpec {
     pub penalty: Option<f64>,
     /// k (Rockafellar, slack); default `E/h_s` per node.
     pub scaling: Option<f64>,
+    /// Coulomb friction coefficient `μ ≥ 0`; default 0 (frictionless).
+    pub friction_coefficient: Option<f64>,
+    /// Tangential penalty `ε_T` of the friction law (traction per unit
+    /// elastic slip); default: the normal penalty (`E/h_s` per node).
+    pub tangential_penalty: Option<f64>,
     /// Largest initial penetration accepted; default 1 % of the contact
     /// element size.
     pub initial_penetration_tolerance: Option<f64>,

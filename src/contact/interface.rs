@@ -8,8 +8,11 @@
 //! `λ` per node, numbered after all displacements (global index
 //! `3N + multiplier_offset + i`). Per node the contribution is
 //! `r_u += ∂(A_s Φ)/∂x_s = −A_s t n`, `r_λ += ∂(A_s Φ)/∂λ`, and the 4×4
-//! tangent block of the law (formulation note §2.1).
+//! tangent block of the law (formulation note §2.1). With Coulomb friction
+//! ([`friction`]) a closed node adds `r_u += −A_s t_T` and the
+//! nonsymmetric blocks `−A_s ∂t_T/∂x_s`, `−A_s ∂t_T/∂λ`.
 
+use super::friction::{self, ContactStatus, Coulomb, NormalPressure, TangentialResponse};
 use super::laws::{GapGeometry, NodeContactState, NodeContribution, NormalLaw};
 use super::obstacle::RigidObstacle;
 use crate::assembly::pattern::SparsityPattern;
@@ -34,6 +37,11 @@ pub struct ContactInterface {
     pub amplitude: Amplitude,
     /// Enforcement of the normal constraint, with the interface's parameters.
     pub law: NormalLaw,
+    /// Coulomb friction (`None`: frictionless).
+    pub friction: Option<Coulomb>,
+    /// Per-node factors on the tangential penalty (empty: 1 everywhere);
+    /// the automatic default follows [`node_scale`](Self::node_scale).
+    pub tangential_scale: Vec<f64>,
     /// Per-node factors on the law's parameters (empty: 1 everywhere). The
     /// automatic parameters use `E/h_s` with the node's own size
     /// `h_s = √A_s`, so that a locally refined surface gets locally stiffer
@@ -51,7 +59,22 @@ pub struct NodeReport {
     pub gap: f64,
     pub pressure: f64,
     pub active: bool,
+    /// Open, stick (or closed without friction), slip.
+    pub status: ContactStatus,
+    /// Normal force on the body, `A_s t_N n`.
     pub force: [f64; 3],
+    /// Tangential traction `t_T` (zero without friction).
+    pub tangential_traction: [f64; 3],
+}
+
+/// One node evaluated in a state: geometry, normal law, tangential response.
+struct NodeEvaluation {
+    gap: GapGeometry,
+    relative_position: Vector3<f64>,
+    normal: NodeContribution,
+    /// `None` when the node is open; a zero traction in stick when the
+    /// interface is frictionless.
+    tangential: Option<TangentialResponse>,
 }
 
 impl ContactInterface {
@@ -69,6 +92,21 @@ impl ContactInterface {
             NormalLaw::Rockafellar { p, k } => NormalLaw::Rockafellar { p: p * f, k: k * f },
             NormalLaw::Slack { p, k } => NormalLaw::Slack { p: p * f, k: k * f },
         }
+    }
+
+    /// The friction law of secondary node `i` (its tangential penalty
+    /// with the node's factor).
+    pub fn friction_at(&self, i: usize) -> Option<Coulomb> {
+        let f = self.tangential_scale.get(i).copied().unwrap_or(1.0);
+        self.friction.map(|c| Coulomb {
+            tangential_penalty: c.tangential_penalty * f,
+            ..c
+        })
+    }
+
+    /// Whether friction makes the tangent nonsymmetric.
+    pub fn has_friction(&self) -> bool {
+        self.friction.is_some_and(|c| c.coefficient > 0.0)
     }
 
     /// Number of multiplier unknowns this interface adds.
@@ -105,14 +143,88 @@ impl ContactInterface {
         x: &[f64],
         i: usize,
     ) -> GapGeometry {
+        self.geometry_at(&self.relative_position(reference, translation, x, i))
+    }
+
+    /// Position of secondary node `i` relative to the obstacle's
+    /// translation, `x_s − c(t)`: the point projected on the stored
+    /// obstacle, and where friction measures slip from.
+    pub fn relative_position(
+        &self,
+        reference: &[[f64; 3]],
+        translation: &Vector3<f64>,
+        x: &[f64],
+        i: usize,
+    ) -> Vector3<f64> {
         let s = self.nodes[i];
-        let position =
-            Vector3::from(reference[s]) + Vector3::new(x[3 * s], x[3 * s + 1], x[3 * s + 2]);
-        let p = self.obstacle.project(&(position - translation));
+        Vector3::from(reference[s]) + Vector3::new(x[3 * s], x[3 * s + 1], x[3 * s + 2])
+            - translation
+    }
+
+    fn geometry_at(&self, relative_position: &Vector3<f64>) -> GapGeometry {
+        let p = self.obstacle.project(relative_position);
         GapGeometry {
             signed_gap: p.gap,
             normal: p.normal,
             hessian: p.curvature,
+        }
+    }
+
+    /// The states of the nodes when the interface is set up at unknowns `x`
+    /// (time 0): the normal law's initial state, friction anchored where the
+    /// node is.
+    pub fn initial_states(&self, reference: &[[f64; 3]], x: &[f64]) -> Vec<NodeContactState> {
+        let translation = self.translation_at(0.0);
+        (0..self.nodes.len())
+            .map(|i| {
+                let relative = self.relative_position(reference, &translation, x, i);
+                let g = self.geometry_at(&relative).signed_gap;
+                NodeContactState {
+                    friction: friction::FrictionHistory::at(relative),
+                    ..NodeContactState::initial(&self.law_at(i), g)
+                }
+            })
+            .collect()
+    }
+
+    /// Node `i` in state `state` (multiplier already taken from the
+    /// unknowns) at `relative_position`.
+    fn evaluate(
+        &self,
+        i: usize,
+        relative_position: Vector3<f64>,
+        state: &NodeContactState,
+    ) -> NodeEvaluation {
+        let gap = self.geometry_at(&relative_position);
+        let normal = self.law_at(i).contribution(self.areas[i], &gap, state);
+        // a closed node at zero pressure sticks at its anchor (the return
+        // mapping with a zero bound): its tangential stiffness holds a body
+        // whose only tangential support is friction before the load arrives
+        let tangential = normal.active.then(|| match self.friction_at(i) {
+            Some(coulomb) => friction::return_map(
+                &coulomb,
+                &state.friction,
+                &relative_position,
+                &gap,
+                &NormalPressure {
+                    value: normal.pressure,
+                    gradient: normal.pressure_gradient,
+                    multiplier_derivative: normal.pressure_multiplier_derivative,
+                },
+            ),
+            _ => TangentialResponse {
+                traction: Vector3::zeros(),
+                status: ContactStatus::Stick,
+                traction_gradient: Default::default(),
+                traction_multiplier_derivative: Vector3::zeros(),
+                slip_increment: Vector3::zeros(),
+            },
+        });
+        NodeEvaluation {
+            gap,
+            relative_position,
+            normal,
+            tangential,
         }
     }
 
@@ -149,11 +261,27 @@ impl ContactInterface {
         let translation = self.translation_at(t);
         let mut reports = Vec::with_capacity(self.nodes.len());
         for (i, (&s, &area)) in self.nodes.iter().zip(&self.areas).enumerate() {
-            let gap = self.gap_geometry(reference, &translation, x, i);
             let state = self.node_state(states, x, first_multiplier, i);
-            let c: NodeContribution = self.law_at(i).contribution(area, &gap, &state);
+            let relative = self.relative_position(reference, &translation, x, i);
+            let NodeEvaluation {
+                gap,
+                normal: c,
+                tangential,
+                ..
+            } = self.evaluate(i, relative, &state);
+            let zero = TangentialResponse {
+                traction: Vector3::zeros(),
+                status: ContactStatus::Open,
+                traction_gradient: Default::default(),
+                traction_multiplier_derivative: Vector3::zeros(),
+                slip_increment: Vector3::zeros(),
+            };
+            let t_t = tangential.unwrap_or(zero);
+            // r_u = −A_s (t_N n + t_T); K_uu = K_N − A_s ∂t_T/∂x_s
+            let r_u = c.r_u - area * t_t.traction;
+            let k_uu = c.k_uu - area * t_t.traction_gradient;
             for d in 0..3 {
-                residual[3 * s + d] += c.r_u[d];
+                residual[3 * s + d] += r_u[d];
             }
             let multiplier = self
                 .law
@@ -166,7 +294,7 @@ impl ContactInterface {
                 if let Some(columns) = pattern.block_columns(s, s) {
                     for (j, col) in columns.iter().enumerate() {
                         for r in 0..3 {
-                            k[col + r] += c.k_uu[(r, j)];
+                            k[col + r] += k_uu[(r, j)];
                         }
                     }
                 }
@@ -174,7 +302,9 @@ impl ContactInterface {
                     let m = self.multiplier_offset + i;
                     if let Some(e) = pattern.multiplier_entries(m, s) {
                         for d in 0..3 {
-                            k[e.node_rows[d]] += c.k_ulambda[d];
+                            // ∂r_u/∂λ carries friction's coupling; ∂r_λ/∂u does not
+                            k[e.node_rows[d]] +=
+                                c.k_ulambda[d] - area * t_t.traction_multiplier_derivative[d];
                             k[e.multiplier_row[d]] += c.k_ulambda[d];
                         }
                     }
@@ -186,10 +316,34 @@ impl ContactInterface {
                 gap: gap.signed_gap,
                 pressure: c.pressure,
                 active: c.active,
+                status: t_t.status,
                 force: [f[0], f[1], f[2]],
+                tangential_traction: [t_t.traction[0], t_t.traction[1], t_t.traction[2]],
             });
         }
         reports
+    }
+
+    /// Commit the friction history of every node after an increment
+    /// converged at time `t` and unknowns `x` (formulation note §3): the
+    /// traction, status and accumulated slip of the return mapping there,
+    /// and the new anchor. Frictionless nodes record their status only.
+    pub fn commit_history(
+        &self,
+        reference: &[[f64; 3]],
+        t: f64,
+        x: &[f64],
+        first_multiplier: usize,
+        states: &mut [NodeContactState],
+    ) {
+        let translation = self.translation_at(t);
+        for i in 0..self.nodes.len() {
+            let state = self.node_state(states, x, first_multiplier, i);
+            let relative = self.relative_position(reference, &translation, x, i);
+            let e = self.evaluate(i, relative, &state);
+            states[i].friction =
+                friction::commit(&state.friction, e.tangential.as_ref(), e.relative_position);
+        }
     }
 
     /// Carry the per-node states along a Newton step `dx` taken from `x`

@@ -15,6 +15,8 @@
 //! - [`laws`]: per-node enforcement of the normal constraint (penalty, Uzawa
 //!   augmented Lagrangian, Rockafellar augmented Lagrangian, the paper's
 //!   slack-variable Lagrangian), residual and tangent blocks in `(u_s, λ_s)`.
+//! - [`friction`]: Coulomb friction by return mapping, its consistent
+//!   (nonsymmetric) linearisation and the history committed per increment.
 //!
 //! ## Conventions (as in the crate root and `formulation.md` §2)
 //! - The obstacle's outward normal `n` points from the obstacle toward the
@@ -27,6 +29,7 @@
 //! obstacle, assembled into the Newton system (see DESIGN.md, "Contact
 //! with rigid obstacles").
 
+pub mod friction;
 pub mod hertz;
 pub mod interface;
 pub mod laws;

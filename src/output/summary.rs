@@ -56,8 +56,14 @@ pub struct PhaseTimes {
 /// One contact interface at the end of an increment.
 #[derive(Clone, Debug, Default, Serialize)]
 pub struct InterfaceSummary {
-    /// Total contact force on the body, `Σ A_s t_N n`.
+    /// Total normal contact force on the body, `Σ A_s t_N n`.
     pub force: [f64; 3],
+    /// Total tangential (friction) force on the body, `Σ A_s t_T`.
+    pub tangential_force: [f64; 3],
+    /// Closed nodes that stick (every closed node without friction) and
+    /// that slip.
+    pub stick_nodes: usize,
+    pub slip_nodes: usize,
     /// Reference area of the closed nodes, `Σ A_s`.
     pub area: f64,
     pub closed_nodes: usize,

@@ -19,8 +19,8 @@ pub struct IterationRecord {
     pub correction: f64,
     /// Line-search step length taken.
     pub step_length: f64,
-    /// Contact nodes whose status (open/closed) changed since the previous
-    /// iteration.
+    /// Contact nodes whose status (open/stick/slip) changed since the
+    /// previous iteration.
     pub switched: usize,
 }
 
@@ -83,7 +83,7 @@ pub fn solve_increment(
     let signs = problem
         .has_multipliers()
         .then(|| problem.model.pattern.pivot_signs());
-    let mut previous_active: Option<Vec<bool>> = None;
+    let mut chatter = super::chattering::ChatterDetector::default();
     let failed = |reason: String, records: Vec<IterationRecord>| {
         Ok((NewtonOutcome::Failed(reason), records))
     };
@@ -113,12 +113,8 @@ pub fn solve_increment(
                 Ok(r) => r,
                 Err(f) => return failed(problem.describe_failure(&f), records),
             };
-        let active: Vec<bool> = reports.iter().flatten().map(|n| n.active).collect();
-        let switched = match &previous_active {
-            Some(p) => p.iter().zip(&active).filter(|(a, b)| a != b).count(),
-            None => 0,
-        };
-        previous_active = Some(active);
+        let statuses = reports.iter().flatten().map(|n| n.status.code()).collect();
+        let (switched, chattering) = chatter.observe(statuses);
         let mut r = residual.r.clone();
         zero_constrained(&mut r, constrained);
         // the out-of-balance force, with the linearised effect of the
@@ -172,6 +168,9 @@ pub fn solve_increment(
         }
         if iteration == settings.max_iterations {
             break;
+        }
+        if let Some(c) = chattering {
+            return failed(c.to_string(), records);
         }
         // diverging: far above the residual after the predictor (the first
         // residual may be ~0 when only prescribed displacements change)

@@ -94,6 +94,7 @@ pub fn run_steps(
                     force_scale: scale,
                 } => {
                     std::mem::swap(&mut u, &mut trial);
+                    problem.commit_contact_history(t_new, &u, &mut trial_contact);
                     contact = trial_contact;
                     force_scale = force_scale.max(scale);
                     any_converged = true;

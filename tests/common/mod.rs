@@ -4,9 +4,14 @@
 
 use nalgebra::Vector3;
 use signorini::assembly::Model;
+use signorini::contact::interface::ContactInterface;
+use signorini::contact::laws::NormalLaw;
+use signorini::contact::{tributary_areas, RigidObstacle};
 use signorini::material::Material;
 use signorini::mesh::Mesh;
-use signorini::problem::{Amplitude, PrescribedDisplacement, Problem, SolverSettings, Step};
+use signorini::problem::{
+    Amplitude, ContactState, PrescribedDisplacement, Problem, SolverSettings, Step,
+};
 use signorini::solve::linear::{Ordering, SparseLdlt};
 use signorini::solve::stepping::{run_steps, IncrementRecord, StepObserver};
 use std::collections::HashMap;
@@ -193,4 +198,149 @@ pub fn icosphere(r: f64, levels: usize) -> (Vec<Vector3<f64>>, Vec<[usize; 3]>) 
         triangles = finer;
     }
     (vertices, triangles)
+}
+
+/// A contact interface on surface `surface` of `p` against `obstacle`,
+/// frictionless, fixed obstacle, no per-node parameter factors.
+pub fn interface(
+    p: &Problem,
+    element_size: f64,
+    surface: &str,
+    obstacle: RigidObstacle,
+    law: NormalLaw,
+) -> ContactInterface {
+    let mesh = &p.model.mesh;
+    let (nodes, areas) = tributary_areas(mesh, mesh.surface(surface).unwrap());
+    ContactInterface {
+        name: surface.into(),
+        surface: surface.into(),
+        nodes,
+        areas,
+        obstacle,
+        motion: Vector3::zeros(),
+        amplitude: Amplitude::ramp(),
+        law,
+        friction: None,
+        tangential_scale: Vec::new(),
+        node_scale: Vec::new(),
+        multiplier_offset: 0,
+        element_size,
+    }
+}
+
+/// One converged increment: its record, unknowns, residual (reactions on
+/// prescribed dofs) and committed contact state.
+#[derive(Clone)]
+pub struct Snapshot {
+    pub record: IncrementRecord,
+    pub x: Vec<f64>,
+    pub residual: Vec<f64>,
+    pub contact: ContactState,
+}
+
+/// The final state of a run (unknowns, contact state) and every increment.
+#[derive(Default)]
+pub struct Last {
+    pub x: Vec<f64>,
+    pub contact: ContactState,
+    pub increments: Vec<IncrementRecord>,
+    pub snapshots: Vec<Snapshot>,
+}
+
+impl StepObserver for Last {
+    fn on_converged(
+        &mut self,
+        _p: &Problem,
+        record: &IncrementRecord,
+        u: &[f64],
+        r: &[f64],
+        c: &ContactState,
+    ) -> signorini::Result<()> {
+        self.x = u.to_vec();
+        self.contact = c.clone();
+        self.increments.push(record.clone());
+        self.snapshots.push(Snapshot {
+            record: record.clone(),
+            x: u.to_vec(),
+            residual: r.to_vec(),
+            contact: c.clone(),
+        });
+        Ok(())
+    }
+}
+
+/// Run every step with the run's fill-reducing ordering; panics if the
+/// run fails.
+pub fn run(p: &Problem) -> Last {
+    let mut solver = SparseLdlt::new(signorini::run::fill_reducing_ordering(p).unwrap(), 1);
+    let mut last = Last::default();
+    run_steps(p, &mut solver, &mut last, "unused".into()).expect("converges");
+    last
+}
+
+/// Asserts Newton's quadratic rate in the last iterations of each
+/// increment (after the predictor): once the relative residual is below 1e-4,
+/// `r_{k+1} ≤ 100 r_k²` (or at round-off, 1e-13). A linear rate of even 0.1
+/// fails this (1e-4 → 1e-5 against the bound 1e-6). A rise from a
+/// converged residual (≤ 1e-10) starts a new Newton solve (an Uzawa
+/// multiplier update within the increment) and is not a pair. Returns the
+/// number of iteration pairs checked (at least one).
+pub fn assert_quadratic(incs: &[IncrementRecord]) -> usize {
+    let mut checked = 0;
+    for inc in incs {
+        let r: Vec<f64> = inc.newton.iter().map(|i| i.residual).collect();
+        // skip the residual before the predictor (≈ 0 when only prescribed
+        // displacements change)
+        for w in r[1..].windows(2) {
+            let new_solve = w[0] <= 1e-10 && w[1] > w[0];
+            if w[0] <= 1e-4 && w[0] > 1e-13 && !new_solve {
+                assert!(
+                    w[1] <= (100.0 * w[0] * w[0]).max(1e-13),
+                    "residuals {r:?}: {} → {}",
+                    w[0],
+                    w[1]
+                );
+                checked += 1;
+            }
+        }
+    }
+    assert!(checked > 0, "no iteration pair in the quadratic range");
+    checked
+}
+
+/// The assembled tangent at `(t, x)` with contact states `state` is the
+/// central-difference derivative of the assembled residual, column by
+/// column over every unknown, to `1e-5 (1 + |K_ij|)`.
+#[track_caller]
+pub fn assert_tangent_matches_fd(
+    pr: &Problem,
+    t: f64,
+    x: &[f64],
+    state: &ContactState,
+    label: &str,
+) {
+    let n = pr.num_unknowns();
+    let mut k = vec![0.0; pr.model.pattern.nnz()];
+    pr.residual_in(t, x, state, Some(&mut k)).unwrap();
+    let pattern = pr.model.pattern.symbolic();
+    let h = 1e-7;
+    for j in 0..n {
+        let (mut xp, mut xm) = (x.to_vec(), x.to_vec());
+        xp[j] += h;
+        xm[j] -= h;
+        let rp = pr.residual_in(t, &xp, state, None).unwrap().0.r;
+        let rm = pr.residual_in(t, &xm, state, None).unwrap().0.r;
+        let mut column = vec![0.0; n];
+        for idx in pattern.col_ptr()[j]..pattern.col_ptr()[j + 1] {
+            column[pattern.row_idx()[idx]] = k[idx];
+        }
+        for i in 0..n {
+            let fd = (rp[i] - rm[i]) / (2.0 * h);
+            assert!(
+                (fd - column[i]).abs() < 1e-5 * (1.0 + column[i].abs()),
+                "{label}: K[{i},{j}] = {} vs fd {fd}",
+                column[i]
+            );
+        }
+    }
 }

@@ -186,5 +186,19 @@ pub fn check_state(
     let f = |z: &DVector<f64>| residual_vector(&at(z));
     let jac = jacobian(&f, &z, &h).view((0, 0), (n, n)).into_owned();
     assert_relative(&k, &jac, rel, &format!("tangent vs FD Jacobian, {state}"));
+
+    // the pressure's derivatives (friction's coupling to the normal law)
+    if c.pressure > 0.0 {
+        let p = |z: &DVector<f64>| at(z).pressure;
+        let fd = gradient(&p, &z, &h).rows(0, n).into_owned();
+        let g = c.pressure_gradient;
+        let exact = [g.x, g.y, g.z, c.pressure_multiplier_derivative];
+        assert_relative(
+            &DMatrix::from_column_slice(n, 1, &exact[..n]),
+            &DMatrix::from_column_slice(n, 1, fd.as_slice()),
+            rel,
+            &format!("pressure derivatives vs FD, {state}"),
+        );
+    }
     c
 }

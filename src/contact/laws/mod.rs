@@ -106,6 +106,11 @@ pub struct NodeContribution {
     pub k_lambdalambda: f64,
     /// Contact pressure `t_N ≥ 0` (compressive positive) to report.
     pub pressure: f64,
+    /// `∂t_N/∂x_s` where `t_N > 0` (zero elsewhere): what friction's bound
+    /// `μ t_N` couples to.
+    pub pressure_gradient: Vector3<f64>,
+    /// `∂t_N/∂λ` where `t_N > 0` (zero elsewhere or without a multiplier).
+    pub pressure_multiplier_derivative: f64,
     /// Whether the node transmits force in this state (the switch of the law).
     pub active: bool,
 }
@@ -120,6 +125,8 @@ impl NodeContribution {
             k_ulambda: Vector3::zeros(),
             k_lambdalambda: 0.0,
             pressure: 0.0,
+            pressure_gradient: Vector3::zeros(),
+            pressure_multiplier_derivative: 0.0,
             active: false,
         }
     }
@@ -135,6 +142,9 @@ pub struct NodeContactState {
     pub lambda: f64,
     /// Local slack unknowns `(s, λ₁)`, used only by [`NormalLaw::Slack`].
     pub slack: SlackState,
+    /// Friction history committed at the last converged increment (also
+    /// the status of frictionless nodes, for output).
+    pub friction: crate::contact::friction::FrictionHistory,
 }
 
 impl NodeContactState {
@@ -152,7 +162,11 @@ impl NodeContactState {
                 lambda1: 0.0,
             },
         };
-        Self { lambda: 0.0, slack }
+        Self {
+            lambda: 0.0,
+            slack,
+            friction: Default::default(),
+        }
     }
 }
 

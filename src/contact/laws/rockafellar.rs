@@ -23,6 +23,7 @@
 //! `g > 0`. The reported pressure is `⟨t̂⟩`.
 
 use super::{GapGeometry, NodeContribution};
+use nalgebra::Vector3;
 
 /// Augmented pressure `t̂ = kλ − p g` (negative when inactive).
 pub fn augmented_pressure(signed_gap: f64, lambda: f64, p: f64, k: f64) -> f64 {
@@ -75,6 +76,8 @@ pub fn branch_contribution(
             k_ulambda: -area * k * n,
             k_lambdalambda: 0.0,
             pressure: t.max(0.0),
+            pressure_gradient: if t > 0.0 { -p * n } else { Vector3::zeros() },
+            pressure_multiplier_derivative: if t > 0.0 { k } else { 0.0 },
             active: true,
         }
     } else {

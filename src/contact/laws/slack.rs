@@ -269,17 +269,21 @@ impl SlackState {
 
         // Convert λ_p = −λ: the λ row and column change sign.
         let r_u = Vector3::new(r_red[0], r_red[1], r_red[2]);
+        let t = rockafellar::augmented_pressure(gap.signed_gap, lambda, p, k);
+        let pressing = clamped && t > 0.0;
         let contribution = NodeContribution {
             r_u,
             r_lambda: -r_red[3],
             k_uu: k_red.fixed_view::<3, 3>(0, 0).into_owned(),
             k_ulambda: -k_red.fixed_view::<3, 1>(0, 3).into_owned(),
             k_lambdalambda: k_red[(3, 3)],
-            pressure: if clamped {
-                rockafellar::augmented_pressure(gap.signed_gap, lambda, p, k).max(0.0)
+            pressure: if clamped { t.max(0.0) } else { 0.0 },
+            pressure_gradient: if pressing {
+                -p * gap.normal
             } else {
-                0.0
+                Vector3::zeros()
             },
+            pressure_multiplier_derivative: if pressing { k } else { 0.0 },
             active: clamped,
         };
         (contribution, SlackRecovery { v, m })

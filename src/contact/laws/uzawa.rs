@@ -37,6 +37,7 @@ pub fn contribution(area: f64, gap: &GapGeometry, lambda: f64, epsilon: f64) -> 
         r_u: -area * t * n,
         k_uu: area * epsilon * n * n.transpose() - area * t * gap.hessian,
         pressure: t,
+        pressure_gradient: -epsilon * n,
         active: true,
         ..NodeContribution::zero()
     }

@@ -1,0 +1,357 @@
+//! Coulomb friction by return mapping (formulation note §3, the paper's §6),
+//! per secondary node.
+//!
+//! ## Signs and kinematics
+//! `t_T` is the tangential traction the obstacle exerts on the body; it
+//! opposes the body's slip. The nodal force on the body is
+//! `A_s (t_N n + t_T)`, so the node's residual receives `−A_s t_T`.
+//! With the tangent projector `T = I − n nᵀ`, the slip increment from the
+//! last converged increment is measured relative to the obstacle:
+//! ```text
+//! d    = (x_s − c(t)) − (x_s − c)ₙ          c(t): the obstacle's translation
+//! Δg_T = T d
+//! ```
+//! (`(x_s − c)ₙ` is the node's *anchor*, [`FrictionHistory::anchor`]).
+//!
+//! ## Return mapping (tangential penalty `ε_T`, coefficient `μ`)
+//! ```text
+//! t_T* = T t_T,n − ε_T Δg_T                   trial (old traction projected
+//!                                              on the current tangent plane)
+//! f    = |t_T*| − μ t_N
+//! stick (f ≤ 0):  t_T = t_T*
+//! slip  (f > 0):  t_T = μ t_N m,   m = t_T*/|t_T*|
+//! ```
+//! The paper's eq. 35 writes `+ε_T` with the opposite sign for `t_T`.
+//!
+//! ## Consistent linearisation
+//! With `H = ∂n/∂x_s` (the gap Hessian, symmetric, `H n = 0`), the
+//! derivative of the projection `T v` of a fixed vector `v` is
+//! `−(n·v) H − n (H v)ᵀ`, so
+//! ```text
+//! J* = ∂t_T*/∂x_s = −(n·t_T,n) H − n (H t_T,n)ᵀ − ε_T [T − (n·d) H − n (H d)ᵀ]
+//! stick:  ∂t_T/∂x_s = J*,                           ∂t_T/∂λ = 0
+//! slip:   ∂t_T/∂x_s = μ t_N/|t_T*| (I − m mᵀ) J* + μ m ⊗ ∂t_N/∂x_s,
+//!         ∂t_T/∂λ   = μ m ∂t_N/∂λ
+//! ```
+//! The last terms couple friction to the normal pressure; the paper's
+//! eq. 51 leaves them out, and Newton then loses its quadratic rate while
+//! slipping. The tangent is nonsymmetric. On a plane (`H = 0`) stick gives
+//! `∂t_T/∂x_s = −ε_T T`, i.e. `+A_s ε_T T` in `K`: positive semi-definite.
+//!
+//! ## History
+//! [`FrictionHistory`] (traction, anchor, accumulated slip, status) is read,
+//! never written, during the Newton iterations of an increment, and
+//! committed once the increment has converged ([`commit`]). Updating it per
+//! iteration (as the paper says) breaks path independence.
+
+use super::laws::GapGeometry;
+use nalgebra::{Matrix3, Vector3};
+
+/// Coulomb's law with its regularising tangential penalty.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Coulomb {
+    /// Friction coefficient `μ ≥ 0`.
+    pub coefficient: f64,
+    /// Tangential penalty `ε_T > 0` (traction per unit elastic slip).
+    pub tangential_penalty: f64,
+}
+
+/// State of a secondary node for output: the integers of the VTU field
+/// `contact_status`.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Hash)]
+pub enum ContactStatus {
+    /// Not in contact (`0`).
+    #[default]
+    Open,
+    /// In contact and sticking; every closed node of a frictionless
+    /// interface (`1`).
+    Stick,
+    /// In contact and slipping (`2`).
+    Slip,
+}
+
+impl ContactStatus {
+    /// `0` open, `1` stick (or closed without friction), `2` slip.
+    pub fn code(self) -> u8 {
+        match self {
+            Self::Open => 0,
+            Self::Stick => 1,
+            Self::Slip => 2,
+        }
+    }
+}
+
+/// What a node remembers from the last converged increment.
+#[derive(Clone, Copy, Debug, Default, PartialEq)]
+pub struct FrictionHistory {
+    /// Tangential traction `t_T,n`.
+    pub traction: Vector3<f64>,
+    /// The node's position relative to the obstacle's translation,
+    /// `(x_s − c)ₙ`: where the slip increment is measured from.
+    pub anchor: Vector3<f64>,
+    /// Accumulated slip `Σ Δg_T^slip` (a vector; zero where the node always stuck).
+    pub slip: Vector3<f64>,
+    /// Status at the last converged increment.
+    pub status: ContactStatus,
+}
+
+impl FrictionHistory {
+    /// A node that has not moved yet: anchored at `relative_position`.
+    pub fn at(relative_position: Vector3<f64>) -> Self {
+        Self {
+            anchor: relative_position,
+            ..Self::default()
+        }
+    }
+}
+
+/// The normal pressure the friction law is bounded by, with its derivatives
+/// (from the normal law's [`NodeContribution`](super::laws::NodeContribution)).
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct NormalPressure {
+    /// `t_N > 0`.
+    pub value: f64,
+    /// `∂t_N/∂x_s`.
+    pub gradient: Vector3<f64>,
+    /// `∂t_N/∂λ` (zero without a multiplier dof).
+    pub multiplier_derivative: f64,
+}
+
+/// The tangential response of one closed node.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct TangentialResponse {
+    /// `t_T`.
+    pub traction: Vector3<f64>,
+    /// [`ContactStatus::Stick`] or [`ContactStatus::Slip`].
+    pub status: ContactStatus,
+    /// `∂t_T/∂x_s` (not symmetric in slip or on a curved obstacle).
+    pub traction_gradient: Matrix3<f64>,
+    /// `∂t_T/∂λ`.
+    pub traction_multiplier_derivative: Vector3<f64>,
+    /// Slip part of the increment, `Δg_T + (t_T − T t_T,n)/ε_T`
+    /// (`−(|t_T*| − μ t_N) m / ε_T` in slip, exactly zero in stick).
+    pub slip_increment: Vector3<f64>,
+}
+
+/// Derivative of the projection `T v = v − n (n·v)` of a fixed vector `v`
+/// with respect to `x_s`: `−(n·v) H − n (H v)ᵀ`.
+fn projection_derivative(gap: &GapGeometry, v: &Vector3<f64>) -> Matrix3<f64> {
+    -gap.normal.dot(v) * gap.hessian - gap.normal * (gap.hessian * v).transpose()
+}
+
+/// The return mapping of one closed node (`t_N > 0`) at its current
+/// `relative_position = x_s − c(t)`, from the committed `history`.
+pub fn return_map(
+    law: &Coulomb,
+    history: &FrictionHistory,
+    relative_position: &Vector3<f64>,
+    gap: &GapGeometry,
+    pressure: &NormalPressure,
+) -> TangentialResponse {
+    let n = gap.normal;
+    let projector = Matrix3::identity() - n * n.transpose();
+    let eps = law.tangential_penalty;
+    let d = relative_position - history.anchor;
+    let old = projector * history.traction;
+    let slip = projector * d;
+    let trial = old - eps * slip;
+    let trial_gradient = projection_derivative(gap, &history.traction)
+        - eps * (projector + projection_derivative(gap, &d));
+    let bound = law.coefficient * pressure.value;
+    let size = trial.norm();
+    if size <= bound {
+        return TangentialResponse {
+            traction: trial,
+            status: ContactStatus::Stick,
+            traction_gradient: trial_gradient,
+            traction_multiplier_derivative: Vector3::zeros(),
+            slip_increment: Vector3::zeros(),
+        };
+    }
+    let m = trial / size;
+    let traction = bound * m;
+    let mu = law.coefficient;
+    TangentialResponse {
+        traction,
+        status: ContactStatus::Slip,
+        traction_gradient: (bound / size)
+            * (Matrix3::identity() - m * m.transpose())
+            * trial_gradient
+            + mu * m * pressure.gradient.transpose(),
+        traction_multiplier_derivative: mu * pressure.multiplier_derivative * m,
+        slip_increment: slip + (traction - old) / eps,
+    }
+}
+
+/// The history after an increment converged with the node in `response`
+/// (`None`: the node is open) at `relative_position`.
+pub fn commit(
+    history: &FrictionHistory,
+    response: Option<&TangentialResponse>,
+    relative_position: Vector3<f64>,
+) -> FrictionHistory {
+    match response {
+        Some(r) => FrictionHistory {
+            traction: r.traction,
+            anchor: relative_position,
+            slip: history.slip + r.slip_increment,
+            status: r.status,
+        },
+        None => FrictionHistory {
+            traction: Vector3::zeros(),
+            anchor: relative_position,
+            slip: history.slip,
+            status: ContactStatus::Open,
+        },
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    const MU: f64 = 0.3;
+    const EPS_T: f64 = 500.0;
+    const P: f64 = 800.0;
+    const K: f64 = 300.0;
+
+    /// A Rockafellar-like pressure `t_N = kλ − p g` around a state.
+    fn pressure_at(gap: &GapGeometry, lambda: f64) -> NormalPressure {
+        NormalPressure {
+            value: K * lambda - P * gap.signed_gap,
+            gradient: -P * gap.normal,
+            multiplier_derivative: K,
+        }
+    }
+
+    fn sphere(x: &Vector3<f64>) -> GapGeometry {
+        GapGeometry::sphere(x, &Vector3::new(0.1, -0.2, -1.0), 1.0)
+    }
+
+    fn plane(x: &Vector3<f64>) -> GapGeometry {
+        GapGeometry::plane(x, &Vector3::zeros(), &Vector3::new(0.1, 0.2, 1.0))
+    }
+
+    fn law() -> Coulomb {
+        Coulomb {
+            coefficient: MU,
+            tangential_penalty: EPS_T,
+        }
+    }
+
+    /// `∂t_T/∂x_s` and `∂t_T/∂λ` against central differences of the return
+    /// mapping (geometry re-evaluated at each perturbed point).
+    fn check_tangent(
+        geometry: fn(&Vector3<f64>) -> GapGeometry,
+        x: Vector3<f64>,
+        lambda: f64,
+        history: &FrictionHistory,
+        expect: ContactStatus,
+    ) {
+        let response = |x: &Vector3<f64>, l: f64| {
+            let g = geometry(x);
+            return_map(&law(), history, x, &g, &pressure_at(&g, l))
+        };
+        let r0 = response(&x, lambda);
+        assert_eq!(r0.status, expect);
+        let h = 1e-7;
+        let scale = r0.traction_gradient.norm().max(1.0);
+        for j in 0..3 {
+            let mut e = Vector3::zeros();
+            e[j] = h;
+            let fd = (response(&(x + e), lambda).traction - response(&(x - e), lambda).traction)
+                / (2.0 * h);
+            let err = (fd - r0.traction_gradient.column(j)).norm();
+            assert!(
+                err < 1e-6 * scale,
+                "{expect:?} column {j}: fd {fd:?} vs {:?}",
+                r0.traction_gradient.column(j).into_owned()
+            );
+        }
+        let fd =
+            (response(&x, lambda + h).traction - response(&x, lambda - h).traction) / (2.0 * h);
+        let err = (fd - r0.traction_multiplier_derivative).norm();
+        assert!(
+            err < 1e-6 * scale.max(K),
+            "λ: fd {fd:?} vs {:?}",
+            r0.traction_multiplier_derivative
+        );
+    }
+
+    #[test]
+    fn stick_and_slip_tangents_match_finite_differences() {
+        for geometry in [plane as fn(&Vector3<f64>) -> GapGeometry, sphere] {
+            let x = Vector3::new(0.05, 0.02, -0.003);
+            let n = geometry(&x).normal;
+            // an old traction in the current tangent plane and a small move
+            let t_old = Vector3::new(1.0, -0.5, 0.0);
+            let t_old = t_old - n * n.dot(&t_old);
+            let small = FrictionHistory {
+                traction: t_old,
+                anchor: x - Vector3::new(1e-4, 2e-4, 0.0),
+                ..Default::default()
+            };
+            check_tangent(geometry, x, 0.1, &small, ContactStatus::Stick);
+            // a long move slips
+            let far = FrictionHistory {
+                anchor: x - Vector3::new(0.02, -0.01, 0.0),
+                ..small
+            };
+            check_tangent(geometry, x, 0.1, &far, ContactStatus::Slip);
+        }
+    }
+
+    #[test]
+    fn slip_lies_on_the_coulomb_cone_against_the_slip() {
+        let x = Vector3::new(0.0, 0.0, -0.001);
+        let g = plane(&x);
+        let history = FrictionHistory::at(x - Vector3::new(0.05, 0.0, 0.0));
+        let p = pressure_at(&g, 0.01);
+        let r = return_map(&law(), &history, &x, &g, &p);
+        assert_eq!(r.status, ContactStatus::Slip);
+        assert!((r.traction.norm() - MU * p.value).abs() < 1e-12 * p.value);
+        assert!(r.traction.dot(&g.normal).abs() < 1e-12);
+        // the traction opposes the motion (+x projected), the slip follows it
+        let motion = x - history.anchor;
+        assert!(r.traction.dot(&motion) < 0.0);
+        assert!(r.slip_increment.dot(&motion) > 0.0);
+        // elastic part + slip part = the tangential motion
+        let tangential_motion = motion - g.normal * g.normal.dot(&motion);
+        let elastic = -r.traction / EPS_T;
+        assert!((elastic + r.slip_increment - tangential_motion).norm() < 1e-15);
+    }
+
+    #[test]
+    fn stick_is_elastic_and_commits_no_slip() {
+        let x = Vector3::new(0.0, 0.0, -0.001);
+        let g = plane(&x);
+        let history = FrictionHistory::at(x - Vector3::new(1e-6, 0.0, 0.0));
+        let p = pressure_at(&g, 0.01);
+        let r = return_map(&law(), &history, &x, &g, &p);
+        assert_eq!(r.status, ContactStatus::Stick);
+        let projector = Matrix3::identity() - g.normal * g.normal.transpose();
+        assert!((r.traction + EPS_T * projector * Vector3::new(1e-6, 0.0, 0.0)).norm() < 1e-15);
+        let committed = commit(&history, Some(&r), x);
+        assert_eq!(committed.slip, Vector3::zeros());
+        assert_eq!(committed.anchor, x);
+        // re-evaluated at the committed state: the same traction, still stick
+        let again = return_map(&law(), &committed, &x, &g, &p);
+        assert!((again.traction - r.traction).norm() < 1e-15);
+        assert_eq!(again.status, ContactStatus::Stick);
+    }
+
+    #[test]
+    fn open_nodes_forget_their_traction_and_keep_their_slip() {
+        let h = FrictionHistory {
+            traction: Vector3::new(1.0, 2.0, 0.0),
+            anchor: Vector3::zeros(),
+            slip: Vector3::new(0.1, 0.0, 0.0),
+            status: ContactStatus::Slip,
+        };
+        let c = commit(&h, None, Vector3::new(1.0, 1.0, 1.0));
+        assert_eq!(c.traction, Vector3::zeros());
+        assert_eq!(c.slip, h.slip);
+        assert_eq!(c.status, ContactStatus::Open);
+        assert_eq!(ContactStatus::Slip.code(), 2);
+    }
+}

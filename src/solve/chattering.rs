@@ -1,0 +1,114 @@
+//! Detection of a contact status that cycles between Newton iterations
+//! (active-set or stick–slip chattering).
+//!
+//! Newton on a contact problem re-evaluates every node's status (open,
+//! stick, slip) at each iterate. Near a status boundary it can fall into a
+//! cycle: a set of nodes flips one way, the next iterate flips them back,
+//! and so on, without the residual settling. Iterating to the limit then
+//! wastes the whole iteration budget. The detector remembers the status
+//! vector of every iteration of an increment; an iteration whose status
+//! changed (`switched > 0`) and equals that of an earlier iteration other
+//! than the previous one is a *revisit*. After [`REVISITS`] revisits the
+//! increment is declared chattering, so the stepper can cut it: a smaller
+//! increment moves fewer nodes across the boundary at once.
+
+/// Revisits of an earlier status before the increment is given up.
+pub const REVISITS: usize = 3;
+
+/// A detected cycle.
+#[derive(Clone, Debug, PartialEq, Eq)]
+pub struct Chatter {
+    /// Iterations between the two visits of the last revisited status.
+    pub period: usize,
+    /// Nodes whose status changed in the last iteration.
+    pub flipping: usize,
+    /// How many times an earlier status came back.
+    pub revisits: usize,
+}
+
+impl std::fmt::Display for Chatter {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        write!(
+            f,
+            "contact status chattering: an earlier set of open/stick/slip nodes came back {} times \
+             (cycle of {} iterations, {} nodes flipping)",
+            self.revisits, self.period, self.flipping
+        )
+    }
+}
+
+/// Remembers the status vector of each iteration of one increment.
+#[derive(Default)]
+pub struct ChatterDetector {
+    seen: Vec<Vec<u8>>,
+    revisits: usize,
+}
+
+impl ChatterDetector {
+    /// Record this iteration's statuses (`0` open, `1` stick, `2` slip, one
+    /// per secondary node). Returns the number of nodes that switched since
+    /// the previous iteration, and the cycle once it has come back
+    /// [`REVISITS`] times.
+    pub fn observe(&mut self, statuses: Vec<u8>) -> (usize, Option<Chatter>) {
+        let switched = self.seen.last().map_or(0, |previous| {
+            previous
+                .iter()
+                .zip(&statuses)
+                .filter(|(a, b)| a != b)
+                .count()
+        });
+        let mut chatter = None;
+        if switched > 0 {
+            let earlier = self.seen.len().saturating_sub(1);
+            if let Some(j) = self.seen[..earlier].iter().rposition(|s| *s == statuses) {
+                self.revisits += 1;
+                if self.revisits >= REVISITS {
+                    chatter = Some(Chatter {
+                        period: self.seen.len() - j,
+                        flipping: switched,
+                        revisits: self.revisits,
+                    });
+                }
+            }
+        }
+        self.seen.push(statuses);
+        (switched, chatter)
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn a_period_two_flip_is_caught_on_its_third_return() {
+        let mut d = ChatterDetector::default();
+        let (a, b) = (vec![1, 2, 0], vec![1, 1, 1]);
+        assert_eq!(d.observe(a.clone()), (0, None));
+        assert_eq!(d.observe(b.clone()), (2, None));
+        assert_eq!(d.observe(a.clone()), (2, None)); // revisit 1
+        assert_eq!(d.observe(b.clone()), (2, None)); // revisit 2
+        let (switched, chatter) = d.observe(a);
+        assert_eq!(switched, 2);
+        assert_eq!(
+            chatter,
+            Some(Chatter {
+                period: 2,
+                flipping: 2,
+                revisits: 3
+            })
+        );
+    }
+
+    #[test]
+    fn settling_statuses_are_not_chattering() {
+        let mut d = ChatterDetector::default();
+        // a monotone progression, then a fixed status: no revisit
+        for s in [vec![0, 0, 0], vec![1, 0, 0], vec![1, 1, 0], vec![1, 1, 2]] {
+            assert!(d.observe(s).1.is_none());
+        }
+        for _ in 0..10 {
+            assert_eq!(d.observe(vec![1, 1, 2]), (0, None));
+        }
+    }
+}

@@ -109,6 +109,21 @@ pub struct SolverSettings {
     pub growth_factor: f64,
     /// An increment that converged in at most this many iterations is easy.
     pub easy_iterations: usize,
+    /// Linear solver of nonsymmetric tangents (friction, follower loads).
+    pub nonsymmetric: NonsymmetricSolver,
+}
+
+/// How a nonsymmetric tangent is solved.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, serde::Deserialize)]
+#[serde(rename_all = "lowercase")]
+pub enum NonsymmetricSolver {
+    /// GMRES preconditioned by the LDLᵀ of a symmetric neighbour of the
+    /// tangent (its symmetric part, friction in stick), with the sparse LU
+    /// as the fallback when it does not converge.
+    #[default]
+    Gmres,
+    /// Sparse LU with partial pivoting, every time.
+    Lu,
 }
 
 impl Default for SolverSettings {
@@ -121,6 +136,7 @@ impl Default for SolverSettings {
             max_cuts: 8,
             growth_factor: 1.5,
             easy_iterations: 5,
+            nonsymmetric: NonsymmetricSolver::Gmres,
         }
     }
 }
@@ -350,6 +366,31 @@ impl Problem {
             }
         }
         again
+    }
+
+    /// The preconditioner of a nonsymmetric solve from the symmetric part
+    /// `values` of the tangent: friction's slip blocks replaced by stick
+    /// blocks ([`ContactInterface::shift_to_stick_preconditioner`]).
+    pub fn stick_preconditioner(
+        &self,
+        t: f64,
+        x: &[f64],
+        contact: &ContactState,
+        constrained: &[bool],
+        values: &mut [f64],
+    ) {
+        for (c, states) in self.contacts.iter().zip(&contact.interfaces) {
+            c.shift_to_stick_preconditioner(
+                &self.model.mesh.nodes,
+                t,
+                x,
+                states,
+                self.model.num_dofs(),
+                constrained,
+                &self.model.pattern,
+                values,
+            );
+        }
     }
 
     /// Carry the contact states along a Newton step `dx` from `x`.

@@ -395,6 +395,7 @@ impl Case {
             max_cuts: sv.max_cuts.unwrap_or(d.max_cuts),
             growth_factor: sv.growth_factor.unwrap_or(d.growth_factor),
             easy_iterations: d.easy_iterations,
+            nonsymmetric: sv.nonsymmetric.unwrap_or(d.nonsymmetric),
         };
         for (name, v) in [
             ("residual_tolerance", settings.residual_tolerance),

@@ -245,6 +245,10 @@ pub struct SolverSpec {
     pub max_cuts: Option<usize>,
     /// Increment growth after an easy increment (default 1.5).
     pub growth_factor: Option<f64>,
+    /// Solver of nonsymmetric tangents (friction, follower pressure):
+    /// `gmres` (default; preconditioned by an LDLᵀ, falls back to `lu`) or
+    /// `lu`.
+    pub nonsymmetric: Option<crate::problem::NonsymmetricSolver>,
 }
 
 /// `[output]`

@@ -128,9 +128,27 @@ pub struct TangentialResponse {
     pub traction_gradient: Matrix3<f64>,
     /// `∂t_T/∂λ`.
     pub traction_multiplier_derivative: Vector3<f64>,
+    /// `J* = ∂t_T*/∂x_s`, the trial (stick) derivative, whatever the
+    /// status: the tangential stiffness a preconditioner may use in slip.
+    pub trial_gradient: Matrix3<f64>,
     /// Slip part of the increment, `Δg_T + (t_T − T t_T,n)/ε_T`
     /// (`−(|t_T*| − μ t_N) m / ε_T` in slip, exactly zero in stick).
     pub slip_increment: Vector3<f64>,
+}
+
+impl TangentialResponse {
+    /// No tangential traction and no stiffness (an open node, status
+    /// [`ContactStatus::Open`]).
+    pub fn none() -> Self {
+        Self {
+            traction: Vector3::zeros(),
+            status: ContactStatus::Open,
+            traction_gradient: Matrix3::zeros(),
+            traction_multiplier_derivative: Vector3::zeros(),
+            trial_gradient: Matrix3::zeros(),
+            slip_increment: Vector3::zeros(),
+        }
+    }
 }
 
 /// Derivative of the projection `T v = v − n (n·v)` of a fixed vector `v`
@@ -165,6 +183,7 @@ pub fn return_map(
             status: ContactStatus::Stick,
             traction_gradient: trial_gradient,
             traction_multiplier_derivative: Vector3::zeros(),
+            trial_gradient,
             slip_increment: Vector3::zeros(),
         };
     }
@@ -179,6 +198,7 @@ pub fn return_map(
             * trial_gradient
             + mu * m * pressure.gradient.transpose(),
         traction_multiplier_derivative: mu * pressure.multiplier_derivative * m,
+        trial_gradient,
         slip_increment: slip + (traction - old) / eps,
     }
 }

@@ -212,12 +212,9 @@ impl ContactInterface {
                     multiplier_derivative: normal.pressure_multiplier_derivative,
                 },
             ),
-            _ => TangentialResponse {
-                traction: Vector3::zeros(),
+            None => TangentialResponse {
                 status: ContactStatus::Stick,
-                traction_gradient: Default::default(),
-                traction_multiplier_derivative: Vector3::zeros(),
-                slip_increment: Vector3::zeros(),
+                ..TangentialResponse::none()
             },
         });
         NodeEvaluation {
@@ -269,14 +266,7 @@ impl ContactInterface {
                 tangential,
                 ..
             } = self.evaluate(i, relative, &state);
-            let zero = TangentialResponse {
-                traction: Vector3::zeros(),
-                status: ContactStatus::Open,
-                traction_gradient: Default::default(),
-                traction_multiplier_derivative: Vector3::zeros(),
-                slip_increment: Vector3::zeros(),
-            };
-            let t_t = tangential.unwrap_or(zero);
+            let t_t = tangential.unwrap_or_else(TangentialResponse::none);
             // r_u = −A_s (t_N n + t_T); K_uu = K_N − A_s ∂t_T/∂x_s
             let r_u = c.r_u - area * t_t.traction;
             let k_uu = c.k_uu - area * t_t.traction_gradient;
@@ -343,6 +333,66 @@ impl ContactInterface {
             let e = self.evaluate(i, relative, &state);
             states[i].friction =
                 friction::commit(&state.friction, e.tangential.as_ref(), e.relative_position);
+        }
+    }
+
+    /// Turn the symmetric part of the assembled tangent, `values`, into the
+    /// preconditioner of the nonsymmetric frictional solve: at every
+    /// closed node with friction, replace `sym(−A_s ∂t_T/∂(x_s, λ))` by the
+    /// stick stiffness `sym(−A_s J*)` (the trial derivative, `A_s ε_T T` on
+    /// a plane). Slipping nodes then keep a positive tangential stiffness,
+    /// where the symmetrised slip tangent has none along the slip direction
+    /// and an indefinite coupling to the normal: the preconditioner stays a
+    /// quasi-definite saddle matrix that the sign-aware LDLᵀ factorises, and
+    /// differs from the tangent only in the contact blocks (so GMRES has
+    /// little left to resolve). Entries of `constrained` dofs are skipped.
+    #[allow(clippy::too_many_arguments)]
+    pub fn shift_to_stick_preconditioner(
+        &self,
+        reference: &[[f64; 3]],
+        t: f64,
+        x: &[f64],
+        states: &[NodeContactState],
+        first_multiplier: usize,
+        constrained: &[bool],
+        pattern: &SparsityPattern,
+        values: &mut [f64],
+    ) {
+        if self.friction.is_none() {
+            return;
+        }
+        let translation = self.translation_at(t);
+        for (i, (&s, &area)) in self.nodes.iter().zip(&self.areas).enumerate() {
+            let state = self.node_state(states, x, first_multiplier, i);
+            let relative = self.relative_position(reference, &translation, x, i);
+            let Some(r) = self.evaluate(i, relative, &state).tangential else {
+                continue;
+            };
+            let consistent = -area * r.traction_gradient;
+            let stick = -area * r.trial_gradient;
+            let shift = 0.5 * ((stick - consistent) + (stick - consistent).transpose());
+            if let Some(columns) = pattern.block_columns(s, s) {
+                for (j, col) in columns.iter().enumerate() {
+                    for q in 0..3 {
+                        if !constrained[3 * s + q] && !constrained[3 * s + j] {
+                            values[col + q] += shift[(q, j)];
+                        }
+                    }
+                }
+            }
+            if self.law.has_multiplier_dof() {
+                let m = self.multiplier_offset + i;
+                if let Some(e) = pattern.multiplier_entries(m, s) {
+                    for d in 0..3 {
+                        if !constrained[3 * s + d] {
+                            // sym added ½(−A_s ∂t_T/∂λ) to both entries: remove it
+                            let half = -0.5 * area * r.traction_multiplier_derivative[d];
+                            values[e.node_rows[d]] -= half;
+                            values[e.multiplier_row[d]] -= half;
+                        }
+                    }
+                }
+            }
         }
     }
 

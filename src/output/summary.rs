@@ -111,6 +111,11 @@ pub struct Summary {
     /// Wall time split by phase, seconds (totals of the run, filled when it
     /// ends).
     pub phase_times: PhaseTimes,
+    /// Nonsymmetric linear solves: by GMRES (with their Krylov iterations
+    /// in total) and by the sparse LU (chosen, or the fallback).
+    pub krylov_solves: usize,
+    pub krylov_iterations: usize,
+    pub lu_solves: usize,
     /// Per load step, totals over its increments.
     pub steps: Vec<StepSummary>,
     pub increments: Vec<IncrementSummary>,

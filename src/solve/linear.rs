@@ -42,6 +42,11 @@ pub struct SolverTimings {
     pub symbolic_total: Duration,
     pub numeric_total: Duration,
     pub solve_total: Duration,
+    /// Nonsymmetric solves by GMRES, their Krylov iterations in total, and
+    /// the solves that fell back to (or chose) the sparse LU.
+    pub krylov_solves: usize,
+    pub krylov_iterations: usize,
+    pub lu_solves: usize,
 }
 
 /// A reusable sparse LDLᵀ solver for symmetric matrices given by their
@@ -54,6 +59,8 @@ pub struct SparseLdlt {
     factor: Vec<f64>,
     par: Par,
     pub timings: SolverTimings,
+    /// The sparse LU for nonsymmetric tangents that GMRES cannot solve.
+    pub lu: super::lu::SparseLu,
 }
 
 impl SparseLdlt {
@@ -71,6 +78,7 @@ impl SparseLdlt {
             factor: Vec::new(),
             par,
             timings: SolverTimings::default(),
+            lu: Default::default(),
         }
     }
 

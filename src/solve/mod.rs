@@ -4,6 +4,7 @@
 pub mod chattering;
 pub mod gmres;
 pub mod linear;
+pub mod lu;
 pub mod newton;
 pub mod ordering;
 pub mod stepping;

@@ -351,3 +351,49 @@ fn contact_input_errors() {
         &["contact[0].obstacle", "'ground'", "floor"],
     );
 }
+
+#[test]
+fn friction_input_errors() {
+    let plane = "shape = \"plane\"\npoint = [0.0, 0.0, 0.0]\nnormal = [0.0, 0.0, 1.0]";
+    let with = |keys: &str| format!("{}{keys}\n", contact_case(plane, "zmin"));
+    // a valid frictional interface checks
+    let dir = tempfile::tempdir().unwrap();
+    write_cube(dir.path());
+    std::fs::write(
+        dir.path().join("case.toml"),
+        with("friction_coefficient = 0.3\ntangential_penalty = 1e3"),
+    )
+    .unwrap();
+    let (code, err) = signorini(dir.path(), &["check", "case.toml"]);
+    assert_eq!(code, 0, "{err}");
+    // a negative coefficient
+    expect_failure(
+        &with("friction_coefficient = -0.1"),
+        &[
+            "contact[0].friction_coefficient",
+            "-0.1",
+            "zero or positive",
+        ],
+    );
+    // a tangential penalty without friction, or not positive
+    expect_failure(
+        &with("tangential_penalty = 1e3"),
+        &[
+            "contact[0].tangential_penalty",
+            "without",
+            "friction_coefficient",
+        ],
+    );
+    expect_failure(
+        &with("friction_coefficient = 0.3\ntangential_penalty = 0.0"),
+        &["contact[0].tangential_penalty", "must be positive"],
+    );
+    // an unknown nonsymmetric solver
+    expect_failure(
+        &format!(
+            "{}\n[solver]\nnonsymmetric = \"bicgstab\"\n",
+            with("friction_coefficient = 0.3")
+        ),
+        &["solver.nonsymmetric", "bicgstab"],
+    );
+}

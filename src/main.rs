@@ -91,6 +91,7 @@ fn run(
 fn check(case: PathBuf) -> signorini::Result<()> {
     let loaded = signorini::case::load(&case)?;
     let problem = loaded.build_problem()?;
+    let requests = loaded.output_requests(&problem)?;
     let mesh = &problem.model.mesh;
     println!("case      {}", case.display());
     println!("nodes     {}", mesh.num_nodes());
@@ -129,6 +130,21 @@ fn check(case: PathBuf) -> signorini::Result<()> {
     println!("steps:");
     for s in &problem.steps {
         println!("  {:<20} to t = {}", s.name, s.end_time);
+    }
+    for h in &requests.histories {
+        let x = mesh.nodes[h.node];
+        println!(
+            "history   {}: {} at node {} ({}, {}, {})",
+            h.name, h.label, h.node_id, x[0], x[1], x[2]
+        );
+    }
+    for p in &requests.profiles {
+        println!(
+            "profile   {}: {} nodes of interface '{}'",
+            p.name,
+            p.nodes.len(),
+            p.interface_name
+        );
     }
     println!("ok: the case is valid");
     Ok(())

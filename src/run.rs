@@ -4,6 +4,7 @@
 
 use crate::case::{self, Case};
 use crate::contact::friction::ContactStatus;
+use crate::contact::interface::NodeReport;
 use crate::output::summary::{IncrementSummary, Summary};
 use crate::output::summary::{InterfaceSummary, PhaseTimes};
 use crate::output::{plot, pvd::PvdCollection, vtu};
@@ -46,6 +47,7 @@ pub fn run(case_path: &Path, options: &RunOptions) -> Result<RunOutcome> {
     let problem = case.build_problem()?;
     let output_dir = case.output_dir(options.output.as_deref());
     let mut writer = Writer::new(&case, &problem, &output_dir, options.quiet, start)?;
+    writer.log_requests(&problem);
     let mut solver = SparseLdlt::new(fill_reducing_ordering(&problem)?, 0);
     let result = run_steps(&problem, &mut solver, &mut writer, output_dir.clone());
     writer.progress.finish_and_clear();
@@ -95,6 +97,8 @@ struct Writer {
     last: Instant,
     start: Instant,
     contact: ContactState,
+    /// `[[output.history]]` and `[[output.profile]]`.
+    requests: crate::case::output::OutputRequests,
 }
 
 impl Writer {
@@ -107,6 +111,7 @@ impl Writer {
     ) -> Result<Self> {
         std::fs::create_dir_all(dir).map_err(|e| Error::io("create output folder", dir, e))?;
         let name = case.output_name();
+        let requests = case.output_requests(problem)?;
         remove_old_series(dir, &name)?;
         // an empty series at once: a .pvd of an earlier run must not list
         // files that are gone
@@ -153,7 +158,48 @@ impl Writer {
             last: Instant::now(),
             start,
             contact: ContactState::default(),
+            requests,
         })
+    }
+
+    /// Log which node each history reads.
+    fn log_requests(&self, problem: &Problem) {
+        for h in &self.requests.histories {
+            let x = problem.model.mesh.nodes[h.node];
+            self.log(format!(
+                "history '{}': {} at node {} ({}, {}, {})",
+                h.name, h.label, h.node_id, x[0], x[1], x[2]
+            ));
+        }
+        for p in &self.requests.profiles {
+            self.log(format!(
+                "profile '{}': {} nodes of interface '{}'",
+                p.name,
+                p.nodes.len(),
+                p.interface_name
+            ));
+        }
+    }
+
+    /// Histories after every increment; profiles at the end of a step.
+    fn write_requests(
+        &mut self,
+        problem: &Problem,
+        record: &IncrementRecord,
+        u: &[f64],
+        reports: &[Vec<NodeReport>],
+    ) -> Result<()> {
+        for h in &mut self.requests.histories {
+            h.record(record.time, u, reports);
+            h.write(&self.dir)?;
+        }
+        if record.time == problem.steps[record.step].end_time {
+            for p in &mut self.requests.profiles {
+                p.record(&record.step_name, record.time, &reports[p.interface]);
+                p.write(&self.dir)?;
+            }
+        }
+        Ok(())
     }
 
     fn log(&self, line: String) {
@@ -256,6 +302,7 @@ impl StepObserver for Writer {
             ],
         )?;
         self.pvd.add(record.time, &file)?;
+        self.write_requests(problem, record, u, &contact_fields.reports)?;
         let reaction_forces = problem.surface_forces(residual).into_iter().collect();
         let now = Instant::now();
         let final_residual = record.newton.last().map(|r| r.residual).unwrap_or(0.0);
@@ -310,6 +357,8 @@ struct ContactFields {
     /// Accumulated slip vector (3 per node, 0 elsewhere).
     slip: Vec<f64>,
     summaries: std::collections::BTreeMap<String, InterfaceSummary>,
+    /// Every secondary node of every interface.
+    reports: Vec<Vec<NodeReport>>,
 }
 
 impl ContactFields {
@@ -322,26 +371,33 @@ impl ContactFields {
             traction: vec![0.0; 3 * n],
             slip: vec![0.0; 3 * n],
             summaries: Default::default(),
+            reports: Vec::new(),
         };
         if problem.contacts.is_empty() {
             return Ok(fields);
         }
-        let (_, reports) = problem
-            .residual_in(t, x, contact, None)
-            .map_err(|f| Error::Case {
-                path: PathBuf::new(),
-                message: problem.describe_failure(&f),
-            })?;
+        let (_, mut reports) =
+            problem
+                .residual_in(t, x, contact, None)
+                .map_err(|f| Error::Case {
+                    path: PathBuf::new(),
+                    message: problem.describe_failure(&f),
+                })?;
         for ((c, nodes), states) in problem
             .contacts
             .iter()
-            .zip(&reports)
+            .zip(&mut reports)
             .zip(&contact.interfaces)
         {
             let mut summary = InterfaceSummary::default();
             for (((&s, &area), r), state) in c.nodes.iter().zip(&c.areas).zip(nodes).zip(states) {
-                // status, tangential traction and slip as committed for this increment
+                // status and tangential traction as committed for this
+                // increment (re-evaluated from the committed history, a
+                // slipping node would sit exactly on the Coulomb cone and
+                // may read as stick), for every consumer of the reports
                 let history = &state.friction;
+                r.status = history.status;
+                r.tangential_traction = history.traction.into();
                 fields.pressure[s] = r.pressure;
                 fields.gap[s] = r.gap;
                 fields.status[s] = history.status.code() as f64;
@@ -364,6 +420,7 @@ impl ContactFields {
             }
             fields.summaries.insert(c.name.clone(), summary);
         }
+        fields.reports = reports;
         Ok(fields)
     }
 }

@@ -212,17 +212,24 @@ fn no_convergence_keeps_converged_steps() {
     assert_eq!(pvd.matches("<DataSet").count(), increments.len());
 }
 
-#[test]
-fn check_prints_what_was_read() {
+/// `signorini check` on `case` (with the cube mesh): success and stdout.
+fn check_stdout(case: &str) -> (bool, String) {
     let dir = tempfile::tempdir().unwrap();
     write_cube(dir.path());
-    std::fs::write(dir.path().join("case.toml"), CASE).unwrap();
+    std::fs::write(dir.path().join("case.toml"), case).unwrap();
     let out = Command::new(env!("CARGO_BIN_EXE_signorini"))
         .args(["check", "case.toml"])
         .current_dir(dir.path())
         .output()
         .unwrap();
-    let stdout = String::from_utf8_lossy(&out.stdout);
+    let stdout = String::from_utf8_lossy(&out.stdout).into_owned();
+    (out.status.success(), stdout)
+}
+
+#[test]
+fn check_prints_what_was_read() {
+    let (success, stdout) = check_stdout(CASE);
+    assert!(success, "{stdout}");
     // 2×2×2 Hex8 cube: 27 nodes, 8 elements, 81 dofs
     for expected in [
         "nodes     27",
@@ -395,5 +402,86 @@ fn friction_input_errors() {
             with("friction_coefficient = 0.3")
         ),
         &["solver.nonsymmetric", "bicgstab"],
+    );
+}
+
+/// `contact_case` on `zmin` with `output` appended (history and profile
+/// tables).
+fn output_case(output: &str) -> String {
+    let plane = "shape = \"plane\"\npoint = [0.0, 0.0, 0.0]\nnormal = [0.0, 0.0, 1.0]";
+    format!("{}\n{output}\n", contact_case(plane, "zmin"))
+}
+
+#[test]
+fn history_and_profile_input_errors() {
+    let profile = "[[output.profile]]\nname = \"line\"\ninterface = \"zmin\"\nfrom = [0.0, 0.5, 0.0]\nto = [1.0, 0.5, 0.0]\nwidth = 0.01";
+    let history = "[[output.history]]\nname = \"lift\"\npoint = [0.5, 0.5, 0.0]\nquantity = \"gap\"\ninterface = \"zmin\"";
+    // the valid ones check, and name their nodes
+    let (success, stdout) = check_stdout(&output_case(&format!("{history}\n\n{profile}")));
+    assert!(success, "{stdout}");
+    // the centre of the cube's bottom, and the 3 bottom nodes on y = 0.5
+    assert!(
+        stdout.contains("history   lift: gap at node") && stdout.contains("(0.5, 0.5, 0)"),
+        "{stdout}"
+    );
+    assert!(
+        stdout.contains("profile   line: 3 nodes of interface 'zmin'"),
+        "{stdout}"
+    );
+    // unknown interface
+    expect_failure(
+        &output_case(&profile.replace("interface = \"zmin\"", "interface = \"sole\"")),
+        &["output.profile[0].interface", "'sole'", "zmin"],
+    );
+    expect_failure(
+        &output_case(&history.replace("interface = \"zmin\"", "interface = \"sole\"")),
+        &["output.history[0].interface", "'sole'"],
+    );
+    // zero-length segment
+    expect_failure(
+        &output_case(&profile.replace("to = [1.0, 0.5, 0.0]", "to = [0.0, 0.5, 0.0]")),
+        &["output.profile[0]", "same point", "positive length"],
+    );
+    // non-positive width
+    for width in ["0.0", "-1.0"] {
+        expect_failure(
+            &output_case(&profile.replace("width = 0.01", &format!("width = {width}"))),
+            &["output.profile[0].width", "must be positive"],
+        );
+    }
+    // a band with no node in it
+    expect_failure(
+        &output_case(
+            &profile
+                .replace("[0.0, 0.5, 0.0]", "[0.0, 0.5, 0.7]")
+                .replace("[1.0, 0.5, 0.0]", "[1.0, 0.5, 0.7]"),
+        ),
+        &["output.profile[0]", "no secondary node", "widen the band"],
+    );
+    // unknown quantity: serde names the key and the choices
+    expect_failure(
+        &output_case(&history.replace("quantity = \"gap\"", "quantity = \"lift\"")),
+        &[
+            "output.history[0].quantity",
+            "unknown variant",
+            "displacement_z",
+        ],
+    );
+    // gap without an interface; a displacement with one
+    expect_failure(
+        &output_case(&history.replace("\ninterface = \"zmin\"", "")),
+        &["output.history[0].interface is required"],
+    );
+    expect_failure(
+        &output_case(&history.replace("quantity = \"gap\"", "quantity = \"displacement_z\"")),
+        &["output.history[0].interface applies to gap"],
+    );
+    // two outputs with one name
+    expect_failure(
+        &output_case(&format!(
+            "{history}\n\n{}",
+            profile.replace("\"line\"", "\"lift\"")
+        )),
+        &["output.profile[0].name = 'lift' is already used"],
     );
 }

@@ -2,6 +2,7 @@
 //! Every check of the user's input lives here, with the key path in the
 //! message.
 
+pub mod output;
 pub mod schema;
 
 use crate::assembly::Model;

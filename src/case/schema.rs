@@ -260,4 +260,60 @@ pub struct OutputSpec {
     pub folder: Option<String>,
     /// File-name stem of the VTU series (default: the case file's stem).
     pub name: Option<String>,
+    /// `[[output.history]]`: a nodal quantity after every increment.
+    #[serde(default)]
+    pub history: Vec<HistorySpec>,
+    /// `[[output.profile]]`: contact quantities along a line of an
+    /// interface at the end of every load step.
+    #[serde(default)]
+    pub profile: Vec<ProfileSpec>,
+}
+
+/// Quantities a history can record.
+#[derive(Clone, Copy, Debug, Deserialize, PartialEq, Eq)]
+#[serde(rename_all = "snake_case")]
+pub enum HistoryQuantitySpec {
+    DisplacementX,
+    DisplacementY,
+    DisplacementZ,
+    /// Signed gap of a secondary node (needs `interface`).
+    Gap,
+    /// Contact pressure `t_N` of a secondary node (needs `interface`).
+    ContactPressure,
+}
+
+/// `[[output.history]]`: `quantity` at the mesh node nearest `point`
+/// (for `gap` and `contact_pressure`: the nearest secondary node of
+/// `interface`), written as `<name>.csv` and `<name>.svg` after every
+/// converged increment.
+#[derive(Debug, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct HistorySpec {
+    /// File stem: letters, digits, `-`, `_`, `.`.
+    pub name: String,
+    /// Reference-configuration point; the nearest node is used.
+    pub point: [f64; 3],
+    /// `displacement_x`, `displacement_y`, `displacement_z`, `gap` or
+    /// `contact_pressure`.
+    pub quantity: HistoryQuantitySpec,
+    /// A `[[contact]]` name (required for `gap` and `contact_pressure`).
+    pub interface: Option<String>,
+}
+
+/// `[[output.profile]]`: the secondary nodes of `interface` within `width`
+/// of the reference segment `from → to`, ordered along it; written at the
+/// end of every load step as `<name>_<step>.csv` and plotted in
+/// `<name>.svg`.
+#[derive(Debug, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct ProfileSpec {
+    /// File stem: letters, digits, `-`, `_`, `.`.
+    pub name: String,
+    /// A `[[contact]]` name.
+    pub interface: String,
+    /// Segment ends in the reference configuration (distinct).
+    pub from: [f64; 3],
+    pub to: [f64; 3],
+    /// Half-width of the band around the segment, > 0 (length unit).
+    pub width: f64,
 }

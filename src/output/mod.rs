@@ -6,15 +6,23 @@
 //! - [`pvd`]: the ParaView collection (`.pvd`) that lists the `.vtu` files
 //!   with their times, so ParaView opens the whole series at once.
 //! - [`plot`]: an SVG plot of the Newton convergence of every step.
+//! - [`history`]: a nodal quantity after every increment (`.csv`, `.svg`).
+//! - [`profile`]: contact quantities along a line of an interface at the end
+//!   of every load step (`.csv` per step, one `.svg`).
+//! - [`line_plot`], [`table`]: the x–y plots and CSV tables they write.
 //!
 //! Every file is written to a temporary file in the target's folder and then
 //! renamed over the target ([`write_atomically`]), so an interrupted run never
 //! leaves a half-written file behind: a reader sees either the old file or the
 //! complete new one.
 
+pub mod history;
+pub mod line_plot;
 pub mod plot;
+pub mod profile;
 pub mod pvd;
 pub mod summary;
+pub mod table;
 pub mod vtu;
 
 pub use plot::{write_convergence_plot, StepResiduals};

@@ -64,7 +64,7 @@ fn points(step: &StepResiduals, (lo, hi): (i32, i32)) -> Vec<(i32, f64)> {
 
 /// A colour for each step: a qualitative palette for few steps, a
 /// dark-blue → green → yellow gradient (viridis-like) for many.
-fn step_colour(index: usize, count: usize) -> RGBColor {
+pub(crate) fn step_colour(index: usize, count: usize) -> RGBColor {
     const PALETTE: [(u8, u8, u8); MAX_LEGEND_STEPS] = [
         (31, 119, 180),
         (255, 127, 14),

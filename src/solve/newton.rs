@@ -42,7 +42,11 @@ pub enum NewtonOutcome {
 const KRYLOV_TOLERANCE: f64 = 1e-12;
 
 /// Solve the increment ending at time `t`, starting from the converged
-/// state `u_start`. On return `u` holds the last iterate.
+/// state `u_start`. On return `u` holds the last iterate. The displacement
+/// criterion compares each correction with the change since
+/// `increment_start`, the state converged at the start of the increment
+/// (`u_start` itself, except for the Uzawa re-solves of one increment,
+/// whose own changes become tiny as the multipliers settle).
 ///
 /// The prescribed displacements are not jumped to their new values before
 /// the first iteration (that would distort the elements along the boundary
@@ -64,6 +68,7 @@ pub fn solve_increment(
     solver: &mut SparseLdlt,
     constrained: &[bool],
     u_start: &[f64],
+    increment_start: &[f64],
     t: f64,
     force_scale: f64,
     contact: &mut ContactState,
@@ -265,7 +270,7 @@ pub fn solve_increment(
                 }
             }
         }
-        let total: Vec<f64> = u.iter().zip(u_start).map(|(a, b)| a - b).collect();
+        let total: Vec<f64> = u.iter().zip(increment_start).map(|(a, b)| a - b).collect();
         last_correction = step_length * norm(&du) / norm(&total).max(f64::MIN_POSITIVE);
         let rec = records.last_mut().expect("pushed above");
         rec.correction = last_correction;

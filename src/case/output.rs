@@ -1,0 +1,195 @@
+//! Validation of `[[output.history]]` and `[[output.profile]]`: names,
+//! points, interfaces and segments checked against the problem, and the
+//! nodes they read resolved once.
+
+use super::schema::HistoryQuantitySpec;
+use super::Case;
+use crate::output::history::{History, HistoryQuantity};
+use crate::output::profile::{nodes_in_band, Profile, ProfileNode};
+use crate::problem::Problem;
+use crate::Result;
+
+/// The histories and profiles a run writes.
+#[derive(Clone, Debug, Default, PartialEq)]
+pub struct OutputRequests {
+    pub histories: Vec<History>,
+    pub profiles: Vec<Profile>,
+}
+
+/// The index of the point of `candidates` (indices into `nodes`) nearest
+/// `point`, the first one on a tie.
+fn nearest(
+    nodes: &[[f64; 3]],
+    candidates: impl Iterator<Item = usize>,
+    point: [f64; 3],
+) -> Option<usize> {
+    let distance = |n: usize| {
+        (0..3)
+            .map(|i| (nodes[n][i] - point[i]).powi(2))
+            .sum::<f64>()
+    };
+    candidates.min_by(|&a, &b| distance(a).total_cmp(&distance(b)).then(a.cmp(&b)))
+}
+
+impl Case {
+    /// The interface named `name` (its index), or an error at `key` that
+    /// lists the interfaces.
+    fn interface_index(&self, problem: &Problem, key: &str, name: &str) -> Result<usize> {
+        problem
+            .contacts
+            .iter()
+            .position(|c| c.name == name)
+            .ok_or_else(|| {
+                let have: Vec<&str> = problem.contacts.iter().map(|c| c.name.as_str()).collect();
+                self.err(format!(
+                    "{key}: no contact interface named '{name}'; there are: {}",
+                    if have.is_empty() {
+                        "none (add a [[contact]])".to_string()
+                    } else {
+                        have.join(", ")
+                    }
+                ))
+            })
+    }
+
+    /// A history or profile name: a non-empty file stem, unique among all
+    /// of them and not `convergence` (the convergence plot's name).
+    fn output_file_stem(&self, key: &str, name: &str, taken: &mut Vec<String>) -> Result<()> {
+        let valid = !name.is_empty()
+            && name
+                .chars()
+                .all(|c| c.is_ascii_alphanumeric() || matches!(c, '-' | '_' | '.'))
+            && !name.starts_with('.');
+        if !valid {
+            return Err(self.err(format!(
+                "{key}.name = '{name}': use letters, digits, '-', '_' and '.' (it names the output files)"
+            )));
+        }
+        if name == "convergence" || taken.iter().any(|t| t == name) {
+            return Err(self.err(format!(
+                "{key}.name = '{name}' is already used by another output file; choose another name"
+            )));
+        }
+        taken.push(name.to_string());
+        Ok(())
+    }
+
+    /// Validate `[[output.history]]` and `[[output.profile]]` against the
+    /// problem and resolve their nodes.
+    pub fn output_requests(&self, problem: &Problem) -> Result<OutputRequests> {
+        let mesh = &problem.model.mesh;
+        let mut taken = Vec::new();
+        let mut out = OutputRequests::default();
+        for (i, h) in self.spec.output.history.iter().enumerate() {
+            let key = format!("output.history[{i}]");
+            self.output_file_stem(&key, &h.name, &mut taken)?;
+            if h.point.iter().any(|v| !v.is_finite()) {
+                return Err(self.err(format!("{key}.point must be finite")));
+            }
+            let component = match h.quantity {
+                HistoryQuantitySpec::DisplacementX => Some(0),
+                HistoryQuantitySpec::DisplacementY => Some(1),
+                HistoryQuantitySpec::DisplacementZ => Some(2),
+                HistoryQuantitySpec::Gap | HistoryQuantitySpec::ContactPressure => None,
+            };
+            let (node, quantity, label) = match (component, &h.interface) {
+                (Some(c), None) => {
+                    let node = nearest(&mesh.nodes, 0..mesh.num_nodes(), h.point)
+                        .ok_or_else(|| self.err(format!("{key}: the mesh has no node")))?;
+                    let label = ["displacement_x", "displacement_y", "displacement_z"][c];
+                    (node, HistoryQuantity::Displacement(c), label)
+                }
+                (Some(_), Some(_)) => {
+                    return Err(self.err(format!(
+                        "{key}.interface applies to gap and contact_pressure only; remove it"
+                    )))
+                }
+                (None, None) => {
+                    return Err(self.err(format!(
+                        "{key}.interface is required for quantity {:?}: give a [[contact]] name",
+                        h.quantity
+                    )))
+                }
+                (None, Some(name)) => {
+                    let interface =
+                        self.interface_index(problem, &format!("{key}.interface"), name)?;
+                    let nodes = &problem.contacts[interface].nodes;
+                    let index = nearest(
+                        &nodes.iter().map(|&n| mesh.nodes[n]).collect::<Vec<_>>(),
+                        0..nodes.len(),
+                        h.point,
+                    )
+                    .ok_or_else(|| self.err(format!("{key}: interface '{name}' has no node")))?;
+                    let (quantity, label) = if h.quantity == HistoryQuantitySpec::Gap {
+                        (HistoryQuantity::Gap { interface, index }, "gap")
+                    } else {
+                        (
+                            HistoryQuantity::ContactPressure { interface, index },
+                            "contact_pressure",
+                        )
+                    };
+                    (nodes[index], quantity, label)
+                }
+            };
+            out.histories.push(History::new(
+                h.name.clone(),
+                node,
+                mesh.node_ids[node],
+                quantity,
+                label.to_string(),
+            ));
+        }
+        for (i, p) in self.spec.output.profile.iter().enumerate() {
+            let key = format!("output.profile[{i}]");
+            self.output_file_stem(&key, &p.name, &mut taken)?;
+            let interface =
+                self.interface_index(problem, &format!("{key}.interface"), &p.interface)?;
+            if p.from.iter().chain(&p.to).any(|v| !v.is_finite()) {
+                return Err(self.err(format!("{key}.from and .to must be finite")));
+            }
+            let length = (0..3)
+                .map(|d| (p.to[d] - p.from[d]).powi(2))
+                .sum::<f64>()
+                .sqrt();
+            if !(length > 0.0) {
+                return Err(self.err(format!(
+                    "{key}: from and to are the same point ({:?}); give a segment of positive length",
+                    p.from
+                )));
+            }
+            if !(p.width > 0.0) || !p.width.is_finite() {
+                return Err(self.err(format!("{key}.width = {} must be positive", p.width)));
+            }
+            let contact = &problem.contacts[interface];
+            let positions: Vec<[f64; 3]> = contact.nodes.iter().map(|&n| mesh.nodes[n]).collect();
+            let nodes: Vec<ProfileNode> = nodes_in_band(&positions, p.from, p.to, p.width)
+                .into_iter()
+                .map(|(index, abscissa)| ProfileNode {
+                    index,
+                    node_id: mesh.node_ids[contact.nodes[index]],
+                    abscissa,
+                })
+                .collect();
+            if nodes.is_empty() {
+                return Err(self.err(format!(
+                    "{key}: no secondary node of interface '{}' lies within width = {} of the segment {:?} → {:?}; widen the band or move the segment onto the surface '{}'",
+                    p.interface, p.width, p.from, p.to, contact.surface
+                )));
+            }
+            out.profiles.push(Profile {
+                name: p.name.clone(),
+                interface,
+                interface_name: p.interface.clone(),
+                direction: {
+                    let d: Vec<f64> = (0..3).map(|i| p.to[i] - p.from[i]).collect();
+                    let l = (d[0] * d[0] + d[1] * d[1] + d[2] * d[2]).sqrt();
+                    [d[0] / l, d[1] / l, d[2] / l]
+                },
+                friction_coefficient: contact.friction.map(|f| f.coefficient),
+                nodes,
+                steps: Vec::new(),
+            });
+        }
+        Ok(out)
+    }
+}

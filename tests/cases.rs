@@ -203,3 +203,95 @@ fn hertz_hemisphere_on_plane() {
 fn rigid_sphere_indenting_a_block() {
     assert_hertz("indenter", "indentation", "bottom");
 }
+
+/// `examples/press-pull` (the paper's example 1): a block pressed with
+/// p = 10 on its 4 × 0.5 top (N = 20), then pulled by a traction on its
+/// right side (F = 4.8 = 0.8 μN, μ = 0.3). References: equilibrium (the
+/// normal force balances the press, the friction force the pull, to 1e-6
+/// relative) and Coulomb's law at every node (|t_T| ≤ μ t_N, with equality
+/// where the node slips, to 1e-9); qualitatively (Armero & Petocz 1999):
+/// after the pull the slip zone reaches the pulled end and the trailing end
+/// sticks. The plots of the tractions along the contact line are written.
+#[test]
+fn press_pull_friction_example() {
+    let (out, outcome) = run_example("press-pull");
+    let (n_force, pull, mu) = (20.0, 4.8, 0.3);
+    for inc in &outcome.summary.increments {
+        let c = &inc.contact["base"];
+        let expected_pull = if inc.time <= 1.0 {
+            0.0
+        } else {
+            pull * (inc.time - 1.0)
+        };
+        assert!(
+            (c.force[2] - n_force * inc.time.min(1.0)).abs() < 1e-6 * n_force,
+            "t = {}: N = {:?}",
+            inc.time,
+            c.force
+        );
+        assert!(
+            (c.tangential_force[0] + expected_pull).abs() < 1e-6 * n_force,
+            "t = {}: friction {:?} against the pull {expected_pull}",
+            inc.time,
+            c.tangential_force
+        );
+        assert_eq!(
+            c.stick_nodes + c.slip_nodes,
+            c.closed_nodes,
+            "t = {}",
+            inc.time
+        );
+    }
+    // Coulomb's law node by node, from the committed state
+    let case = signorini::case::load(
+        &Path::new(env!("CARGO_MANIFEST_DIR")).join("examples/press-pull/case.toml"),
+    )
+    .unwrap();
+    let problem = case.build_problem().unwrap();
+    let (_, reports) = problem
+        .residual_in(2.0, &outcome.displacement, &outcome.contact, None)
+        .unwrap();
+    for (r, state) in reports[0].iter().zip(&outcome.contact.interfaces[0]) {
+        let h = &state.friction;
+        let bound = mu * r.pressure;
+        assert!(
+            h.traction.norm() <= bound * (1.0 + 1e-9) + 1e-12,
+            "|t_T| {} > μ t_N {bound}",
+            h.traction.norm()
+        );
+        if h.status == signorini::contact::friction::ContactStatus::Slip {
+            assert!(
+                (h.traction.norm() - bound).abs() <= 1e-9 * bound,
+                "slip off the cone"
+            );
+        }
+    }
+    // stick at the trailing end, slip at the pulled end, along the contact line
+    let csv = std::fs::read_to_string(out.path().join("contact_line_pull.csv")).unwrap();
+    let rows: Vec<Vec<f64>> = csv
+        .lines()
+        .skip(1)
+        .map(|l| l.split(',').map(|v| v.parse().unwrap()).collect())
+        .collect();
+    let status = |row: &Vec<f64>| row[4] as u8;
+    assert_eq!(status(rows.first().unwrap()), 1, "the trailing end sticks");
+    assert_eq!(status(rows.last().unwrap()), 2, "the pulled end slips");
+    // one stick zone then one slip zone: the slip front
+    let fronts = rows
+        .windows(2)
+        .filter(|w| status(&w[0]) != status(&w[1]))
+        .count();
+    assert_eq!(
+        fronts,
+        1,
+        "statuses along the line: {:?}",
+        rows.iter().map(status).collect::<Vec<_>>()
+    );
+    for file in [
+        "contact_line.svg",
+        "contact_line_press.csv",
+        "right_end_displacement.svg",
+    ] {
+        assert!(out.path().join(file).exists(), "{file}");
+    }
+}

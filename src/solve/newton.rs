@@ -233,7 +233,7 @@ pub fn solve_increment(
         }
         // a correction far larger than the body: a rigid-body mode that the
         // saddle system's regularisation let through (the body lost contact,
-        // or supports are missing)
+        // slides as a whole, or supports are missing)
         let largest = du[..problem.model.num_dofs()]
             .iter()
             .fold(0.0f64, |m, d| m.max(d.abs()));
@@ -241,7 +241,8 @@ pub fn solve_increment(
             return failed(
                 format!(
                     "a correction of {largest:.3e} against a body of size {:.3e}: a rigid-body mode \
-                     (the body lost contact, or a support is missing)",
+                     (the body lost contact, every contact node slips so that friction cannot hold a load \
+                     beyond its capacity, or a support is missing)",
                     problem.model.size()
                 ),
                 records,

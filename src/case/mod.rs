@@ -524,7 +524,12 @@ impl Case {
                 return Err(self.err(format!("{key}.surface '{}' has no area", c.surface)));
             }
             let h = (total / nodes.len() as f64).sqrt();
-            let (auto, _) = automatic_parameters(youngs, h);
+            let (base, _) = automatic_parameters(youngs, h);
+            let auto = if matches!(c.method, ContactMethod::Uzawa) {
+                base * crate::contact::laws::uzawa::AUTOMATIC_FACTOR
+            } else {
+                base
+            };
             let positive = |v: Option<f64>, name: &str| -> Result<f64> {
                 match v {
                     None => Ok(auto),
@@ -564,9 +569,12 @@ impl Case {
                 }
                 (Some(mu), eps) => Some(Coulomb {
                     coefficient: mu,
-                    tangential_penalty: match eps {
-                        None => p,
-                        Some(_) => positive(eps, "tangential_penalty")?,
+                    // default: the user's normal penalty, else E/h_s (also
+                    // for Uzawa, whose larger automatic ε is for its outer loop)
+                    tangential_penalty: match (eps, c.penalty) {
+                        (None, Some(_)) => p,
+                        (None, None) => base,
+                        (Some(_), _) => positive(eps, "tangential_penalty")?,
                     },
                 }),
             };

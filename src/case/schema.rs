@@ -199,8 +199,10 @@ pub struct ContactSpec {
     #[serde(default)]
     pub method: ContactMethod,
     /// ε (penalty, Uzawa) or p (Rockafellar, slack); default `E/h_s` at each
-    /// secondary node, `E` the stiffest material's Young's modulus, `h_s` the
-    /// square root of the node's tributary area.
+    /// secondary node (100 `E/h_s` for Uzawa, see
+    /// `contact::laws::uzawa::AUTOMATIC_FACTOR`), `E` the stiffest
+    /// material's Young's modulus, `h_s` the square root of the node's
+    /// tributary area.
     pub penalty: Option<f64>,
     /// k (Rockafellar, slack); default `E/h_s` per node.
     pub scaling: Option<f64>,

@@ -11,6 +11,8 @@
 //! - [`triangulated`]: a triangulated surface with a bounding-volume
 //!   hierarchy for the closest-point search and pseudo-normals for the sign;
 //!   read from STL or from a Gmsh surface set.
+//! - [`triangle_gap`]: a secondary node's gap against a deforming primary
+//!   triangle, with its exact gradient and Hessian in all four nodes.
 //! - [`tributary`]: the tributary reference area `A_s` of each secondary node.
 //! - [`laws`]: per-node enforcement of the normal constraint (penalty, Uzawa
 //!   augmented Lagrangian, Rockafellar augmented Lagrangian, the paper's
@@ -35,6 +37,7 @@ pub mod interface;
 pub mod laws;
 pub mod obstacle;
 pub mod triangle;
+pub mod triangle_gap;
 pub mod triangulated;
 pub mod tributary;
 

@@ -8,6 +8,7 @@
 use crate::assembly::kernel::KernelFailure;
 use crate::assembly::loads::pressure_facet;
 use crate::assembly::{ElementFailure, Model};
+use crate::contact::interface::Primary;
 use crate::contact::interface::{ContactInterface, NodeReport};
 use crate::contact::laws::NodeContactState;
 use crate::mesh::Facet;
@@ -284,23 +285,97 @@ impl Problem {
     }
 
     /// Install contact interfaces: number their multipliers one after the
-    /// other and rebuild the sparsity pattern with them (fixed for the run:
-    /// every secondary node keeps its multiplier, active or not).
+    /// other, pair secondary nodes with primary surfaces at the reference
+    /// configuration, and rebuild the sparsity pattern with them (every
+    /// secondary node keeps its multiplier, active or not, so the number of
+    /// unknowns is fixed for the run).
     pub fn set_contacts(&mut self, mut contacts: Vec<ContactInterface>) {
         let mut offset = 0;
-        let mut couplings = Vec::new();
         for c in &mut contacts {
             c.multiplier_offset = offset;
             offset += c.num_multipliers();
+        }
+        self.contacts = contacts;
+        let zero = vec![0.0; self.model.num_dofs()];
+        self.refresh_contact_pairs(&zero, 0.0);
+        self.rebuild_pattern();
+    }
+
+    /// The sparsity pattern of the elements, of each secondary node with the
+    /// primary nodes it may touch, and of the multipliers.
+    fn rebuild_pattern(&mut self) {
+        let mut couplings = Vec::new();
+        let mut groups = Vec::new();
+        for c in &self.contacts {
             couplings.extend(c.multiplier_couplings());
+            if matches!(c.primary, Primary::Surface(_)) {
+                groups.extend((0..c.nodes.len()).map(|i| c.coupled_nodes(i)));
+            }
         }
         let mesh = &self.model.mesh;
         self.model.pattern = crate::assembly::pattern::SparsityPattern::with_multipliers(
             mesh.num_nodes(),
-            mesh.elements.iter().map(|e| e.nodes.as_slice()),
+            mesh.elements
+                .iter()
+                .map(|e| e.nodes.as_slice())
+                .chain(groups.iter().map(|g| g.as_slice())),
             &couplings,
         );
-        self.contacts = contacts;
+    }
+
+    /// Pair the secondary nodes of every deformable interface with the
+    /// primary triangles they may touch at unknowns `x`, with a search
+    /// margin `2h + 2 motion` (`src/contact/primary.rs`, search rule;
+    /// `motion` the largest nodal displacement expected in the coming
+    /// increment), and rebuild the sparsity pattern if a pairing changed.
+    /// Returns whether it did.
+    pub fn refresh_contact_pairs(&mut self, x: &[f64], motion: f64) -> bool {
+        let reference = &self.model.mesh.nodes;
+        let mut changed = false;
+        for c in &mut self.contacts {
+            let h = c.element_size;
+            let nodes = c.nodes.clone();
+            if let Primary::Surface(p) = &mut c.primary {
+                let margin = 2.0 * h.max(p.element_size) + 2.0 * motion;
+                changed |= p.refresh(reference, x, &nodes, margin);
+            }
+        }
+        if changed {
+            self.rebuild_pattern();
+        }
+        changed
+    }
+
+    /// Whether every secondary node of the deformable interfaces found, at
+    /// unknowns `x`, the primary triangle a fresh search would give it: the
+    /// check, after an increment converged, that no node slid out of the
+    /// candidates it was paired with at the increment's start (then the
+    /// increment is cut, which shrinks the motion per increment).
+    pub fn contact_pairs_hold(&self, x: &[f64]) -> bool {
+        let reference = &self.model.mesh.nodes;
+        self.contacts.iter().all(|c| {
+            let Primary::Surface(p) = &c.primary else {
+                return true;
+            };
+            let mut fresh = p.clone();
+            fresh.refresh(
+                reference,
+                x,
+                &c.nodes,
+                2.0 * c.element_size.max(p.element_size),
+            );
+            let mut with_fresh = c.clone();
+            with_fresh.primary = Primary::Surface(fresh);
+            let (used, now) = (
+                c.gaps(reference, 0.0, x),
+                with_fresh.gaps(reference, 0.0, x),
+            );
+            let tolerance = 1e-9 * c.element_size;
+            used.iter()
+                .zip(&now)
+                // the same gap, or open either way (no force)
+                .all(|(a, b)| (a - b).abs() <= tolerance || (*a > 0.0 && *b > 0.0))
+        })
     }
 
     /// Number of unknowns: 3 displacements per node, then the contact
@@ -344,13 +419,7 @@ impl Problem {
             if !matches!(c.law, crate::contact::laws::NormalLaw::Uzawa { .. }) {
                 continue;
             }
-            let translation = c.translation_at(t);
-            let gaps: Vec<f64> = (0..c.nodes.len())
-                .map(|i| {
-                    c.gap_geometry(&self.model.mesh.nodes, &translation, x, i)
-                        .signed_gap
-                })
-                .collect();
+            let gaps = c.gaps(&self.model.mesh.nodes, t, x);
             let penetration = gaps.iter().fold(0.0f64, |m, &g| m.max(-g));
             if penetration > 1e-9 * c.element_size {
                 again = true;

@@ -44,12 +44,12 @@ pub struct RunOutcome {
 pub fn run(case_path: &Path, options: &RunOptions) -> Result<RunOutcome> {
     let start = Instant::now();
     let case = case::load(case_path)?;
-    let problem = case.build_problem()?;
+    let mut problem = case.build_problem()?;
     let output_dir = case.output_dir(options.output.as_deref());
     let mut writer = Writer::new(&case, &problem, &output_dir, options.quiet, start)?;
     writer.log_requests(&problem);
     let mut solver = SparseLdlt::new(fill_reducing_ordering(&problem)?, 0);
-    let result = run_steps(&problem, &mut solver, &mut writer, output_dir.clone());
+    let result = run_steps(&mut problem, &mut solver, &mut writer, output_dir.clone());
     writer.progress.finish_and_clear();
     writer.summary.symbolic_analyses = solver.timings.analyses;
     writer.summary.phase_times = PhaseTimes {

@@ -8,6 +8,7 @@ mod common;
 
 use common::{assert_tangent_matches_fd, fix, interface, problem, run};
 use nalgebra::Vector3;
+use signorini::contact::interface::Primary;
 use signorini::contact::laws::NormalLaw;
 use signorini::contact::RigidObstacle;
 use signorini::material::{LinearElastic, NeoHookean};
@@ -63,8 +64,8 @@ fn contact_patch_test_and_exactness() {
     let p = 2.0;
     for kind in [ElementKind::Tet4, ElementKind::Hex8] {
         for (name, law) in methods() {
-            let pr = pressed_block(kind, law, p);
-            let last = run(&pr);
+            let mut pr = pressed_block(kind, law, p);
+            let last = run(&mut pr);
             let c = &pr.contacts[0];
             let (_, reports) = pr.residual_in(1.0, &last.x, &last.contact, None).unwrap();
             for (i, r) in reports[0].iter().enumerate() {
@@ -123,7 +124,7 @@ fn lifting_the_obstacle_releases_every_node() {
         c.motion = Vector3::new(0.0, 0.0, -0.1);
         c.amplitude = Amplitude::new(vec![(0.0, 0.0), (1.0, 0.0), (2.0, 1.0)]);
         pr.set_contacts(vec![c]);
-        let last = run(&pr);
+        let last = run(&mut pr);
         // the press step closed the contact
         assert!(last.increments.iter().any(|i| i.time <= 1.0));
         let (_, reports) = pr.residual_in(2.0, &last.x, &last.contact, None).unwrap();
@@ -209,9 +210,9 @@ fn triangulated_plane_matches_the_analytic_plane() {
         .collect();
     let surface = signorini::contact::TriangulatedSurface::new(vertices, triangles).unwrap();
     let mut contacts = pr.contacts.clone();
-    contacts[0].obstacle = RigidObstacle::Triangulated(surface);
+    contacts[0].primary = Primary::Rigid(RigidObstacle::Triangulated(surface));
     pr.set_contacts(contacts);
-    let last = run(&pr);
+    let last = run(&mut pr);
     let (_, reports) = pr.residual_in(1.0, &last.x, &last.contact, None).unwrap();
     for r in &reports[0] {
         assert!(
@@ -245,7 +246,7 @@ fn triangulated_sphere_matches_the_analytic_sphere() {
         c.motion = Vector3::new(0.0, 0.0, -0.03);
         pr.set_contacts(vec![c]);
         pr.steps[0].initial_increment = 0.5;
-        let last = run(&pr);
+        let last = run(&mut pr);
         let (_, reports) = pr.residual_in(1.0, &last.x, &last.contact, None).unwrap();
         reports[0].iter().map(|r| r.force[2]).sum::<f64>()
     };

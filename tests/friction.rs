@@ -135,8 +135,8 @@ fn totals(pr: &Problem, t: f64, last: &Last) -> Totals {
 #[test]
 fn sliding_block_transmits_mu_times_the_normal_force() {
     for (name, law) in methods() {
-        let pr = block_on_plane(law, Some(0.05), 0.0);
-        let last = run(&pr);
+        let mut pr = block_on_plane(law, Some(0.05), 0.0);
+        let last = run(&mut pr);
         let t = totals(&pr, 2.0, &last);
         assert!(
             t.statuses.iter().all(|&s| s == ContactStatus::Slip),
@@ -185,7 +185,7 @@ fn newton_is_quadratic_while_sliding() {
         let mut pr = block_on_plane(law, Some(0.1), 0.3);
         let material = Arc::new(NeoHookean::new(E, 0.3, "m").unwrap());
         pr.model.materials = vec![material];
-        let last = run(&pr);
+        let last = run(&mut pr);
         let t = totals(&pr, 2.0, &last);
         assert!(
             t.statuses.contains(&ContactStatus::Slip),
@@ -207,8 +207,8 @@ fn newton_is_quadratic_while_sliding() {
 #[test]
 fn gentle_pull_leaves_every_node_stuck() {
     for (name, law) in methods() {
-        let pr = block_on_plane(law, Some(0.002), 0.0);
-        let last = run(&pr);
+        let mut pr = block_on_plane(law, Some(0.002), 0.0);
+        let last = run(&mut pr);
         let t = totals(&pr, 2.0, &last);
         assert!(
             t.tangential.norm() < 0.5 * MU * t.normal.norm(),
@@ -238,11 +238,11 @@ fn gentle_pull_leaves_every_node_stuck() {
 #[test]
 fn dragging_the_plane_equals_pulling_the_block() {
     for (name, law) in methods() {
-        let pulled = block_on_plane(law, Some(0.05), 0.3);
+        let mut pulled = block_on_plane(law, Some(0.05), 0.3);
         let mut dragged = block_on_plane(law, Some(0.0), 0.3);
         dragged.contacts[0].motion = Vector3::new(-0.05, 0.0, 0.0);
         dragged.contacts[0].amplitude = pull();
-        let (a, b) = (run(&pulled), run(&dragged));
+        let (a, b) = (run(&mut pulled), run(&mut dragged));
         let (ta, tb) = (totals(&pulled, 2.0, &a), totals(&dragged, 2.0, &b));
         assert!(
             (ta.tangential - tb.tangential).norm() < 1e-8 * ta.tangential.norm(),
@@ -290,7 +290,7 @@ fn pull_and_release_leaves_residual_slip_where_nodes_slipped() {
             follower: false,
             amplitude: Amplitude::new(vec![(0.0, 0.0), (1.0, 0.0), (2.0, 1.0), (3.0, 0.0)]),
         });
-        let last = run(&pr);
+        let last = run(&mut pr);
         let at = |time: f64| {
             last.snapshots
                 .iter()

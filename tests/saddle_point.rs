@@ -25,7 +25,7 @@ fn lagrange_multipliers_reproduce_prescribed_displacements() {
     let mut reference = problem(mesh, Arc::new(LinearElastic::new(100.0, 0.3, "m").unwrap()));
     fix(&mut reference, "zmin", &[(0, 0.0), (1, 0.0), (2, 0.0)]);
     fix(&mut reference, "zmax", &[(2, d)]);
-    let (u_ref, _) = solve(&reference);
+    let (u_ref, _) = solve(&mut reference);
     let r_ref = reference.residual(1.0, &u_ref, None).unwrap().r;
 
     // the same with multipliers on the top face

@@ -52,7 +52,7 @@ fn patch_test_reproduces_affine_field() {
                     amplitude: Amplitude::ramp(),
                 });
             }
-            let (u, _) = solve(&p);
+            let (u, _) = solve(&mut p);
             let interior = (0..nodes.len()).filter(|n| !boundary.contains(n)).count();
             assert!(interior > 0);
             for (n, x) in nodes.iter().enumerate() {
@@ -87,7 +87,7 @@ fn bar_l2_error(kind: ElementKind, nx: usize) -> f64 {
         force: [b, 0.0, 0.0],
         amplitude: Amplitude::ramp(),
     });
-    let (u, _) = solve(&p);
+    let (u, _) = solve(&mut p);
     let exact = |x: f64| b / e_mod * (length * x - 0.5 * x * x);
     // integrate the error with a 3×3×3 Gauss rule on each element's
     // isoparametric map (Hex8) or the 4-point rule (Tet4)
@@ -179,7 +179,7 @@ fn uniaxial(
     fix(&mut p, "xmax", &[(0, 1.0)]);
     p.steps[0].initial_increment = 0.25;
     p.steps[0].max_increment = 0.25;
-    let (u, incs) = solve(&p);
+    let (u, incs) = solve(&mut p);
     let mesh = &p.model.mesh;
     let corner = mesh
         .nodes
@@ -391,7 +391,7 @@ fn hydrostatic_dead_and_follower_pressure() {
                 });
             }
             pr.steps[0].initial_increment = 0.5;
-            let (u, _) = solve(&pr);
+            let (u, _) = solve(&mut pr);
             let expected = if follower {
                 bisect(|l| cauchy(l) + p, 0.5, 1.0)
             } else {
@@ -433,7 +433,7 @@ fn follower_pressure_keeps_newton_quadratic() {
     });
     pr.steps[0].initial_increment = 0.25;
     pr.steps[0].max_increment = 0.25;
-    let (u, incs) = solve(&pr);
+    let (u, incs) = solve(&mut pr);
     // the tip deflects by a large fraction of the length
     let tip = pr
         .model
@@ -459,7 +459,7 @@ fn solution_is_independent_of_thread_count() {
     let (xadj, adjncy) = p.model.pattern.node_graph();
     let nodes = signorini::solve::ordering::nested_dissection(&xadj, &adjncy).unwrap();
     let perm = p.model.pattern.dof_ordering(&nodes);
-    let solve_with = |threads: usize| {
+    let mut solve_with = |threads: usize| {
         rayon::ThreadPoolBuilder::new()
             .num_threads(threads)
             .build()
@@ -470,8 +470,13 @@ fn solution_is_independent_of_thread_count() {
                     threads,
                 );
                 let mut rec = common::Recorder::default();
-                signorini::solve::stepping::run_steps(&p, &mut solver, &mut rec, "unused".into())
-                    .unwrap()
+                signorini::solve::stepping::run_steps(
+                    &mut p,
+                    &mut solver,
+                    &mut rec,
+                    "unused".into(),
+                )
+                .unwrap()
             })
     };
     let (u1, u2) = (solve_with(1), solve_with(2));

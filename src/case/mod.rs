@@ -7,7 +7,7 @@ pub mod schema;
 
 use crate::assembly::Model;
 use crate::contact::friction::Coulomb;
-use crate::contact::interface::ContactInterface;
+use crate::contact::interface::{ContactInterface, Primary};
 use crate::contact::laws::{automatic_parameters, NormalLaw};
 use crate::contact::{tributary_areas, RigidObstacle, TriangulatedSurface};
 use crate::material::{self, Material};
@@ -591,7 +591,7 @@ impl Case {
                 surface: c.surface.clone(),
                 nodes,
                 areas,
-                obstacle,
+                primary: Primary::Rigid(obstacle),
                 motion: o.motion.map(Vector3::from).unwrap_or_else(Vector3::zeros),
                 amplitude: self.amplitude(&format!("obstacle[{index}].amplitude"), &o.amplitude)?,
                 law,

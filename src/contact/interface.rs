@@ -15,11 +15,21 @@
 use super::friction::{self, ContactStatus, Coulomb, NormalPressure, TangentialResponse};
 use super::laws::{GapGeometry, NodeContactState, NodeContribution, NormalLaw};
 use super::obstacle::RigidObstacle;
+use super::primary::PrimarySurface;
 use crate::assembly::pattern::SparsityPattern;
 use crate::problem::Amplitude;
 use nalgebra::Vector3;
 
-/// One secondary surface against one rigid obstacle.
+/// What the secondary nodes of an interface touch.
+#[derive(Clone, Debug)]
+pub enum Primary {
+    /// A rigid obstacle, translated by the interface's `motion · amplitude(t)`.
+    Rigid(RigidObstacle),
+    /// A surface of another (deformable) body of the mesh.
+    Surface(PrimarySurface),
+}
+
+/// One secondary surface against a rigid obstacle or a primary surface.
 #[derive(Clone, Debug)]
 pub struct ContactInterface {
     /// Name for reports (the case file's `contact[i].name`).
@@ -30,8 +40,8 @@ pub struct ContactInterface {
     pub nodes: Vec<usize>,
     /// Tributary reference area `A_s` of each secondary node.
     pub areas: Vec<f64>,
-    /// The obstacle in its initial position.
-    pub obstacle: RigidObstacle,
+    /// The rigid obstacle in its initial position, or the primary surface.
+    pub primary: Primary,
     /// Rigid translation of the obstacle: `motion · amplitude(t)`.
     pub motion: Vector3<f64>,
     pub amplitude: Amplitude,
@@ -65,6 +75,9 @@ pub struct NodeReport {
     pub force: [f64; 3],
     /// Tangential traction `t_T` (zero without friction).
     pub tangential_traction: [f64; 3],
+    /// The primary triangle the node is projected on (deformable
+    /// interfaces only).
+    pub facet: Option<usize>,
 }
 
 /// One node evaluated in a state: geometry, normal law, tangential response.
@@ -122,8 +135,19 @@ impl ContactInterface {
     /// sparsity pattern.
     pub fn multiplier_couplings(&self) -> Vec<Vec<usize>> {
         (0..self.num_multipliers())
-            .map(|i| vec![self.nodes[i]])
+            .map(|i| self.coupled_nodes(i))
             .collect()
+    }
+
+    /// Secondary node `i` with the primary nodes it may touch in this
+    /// increment (itself alone against a rigid obstacle): one group of the
+    /// sparsity pattern.
+    pub fn coupled_nodes(&self, i: usize) -> Vec<usize> {
+        let mut nodes = vec![self.nodes[i]];
+        if let Primary::Surface(p) = &self.primary {
+            nodes.extend(p.candidate_nodes(i));
+        }
+        nodes
     }
 
     /// The obstacle's rigid translation at pseudo-time `t`.
@@ -146,6 +170,22 @@ impl ContactInterface {
         self.geometry_at(&self.relative_position(reference, translation, x, i))
     }
 
+    /// The signed gap of every secondary node at time `t` and unknowns `x`
+    /// (the search margin for a node without primary candidates).
+    pub fn gaps(&self, reference: &[[f64; 3]], t: f64, x: &[f64]) -> Vec<f64> {
+        let translation = self.translation_at(t);
+        (0..self.nodes.len())
+            .map(|i| match &self.primary {
+                Primary::Rigid(_) => self.gap_geometry(reference, &translation, x, i).signed_gap,
+                Primary::Surface(p) => {
+                    let state = NodeContactState::initial(&self.law_at(i), p.margin);
+                    self.surface_node(p, reference, x, i, &state)
+                        .map_or(p.margin, |n| n.gap.gap)
+                }
+            })
+            .collect()
+    }
+
     /// Position of secondary node `i` relative to the obstacle's
     /// translation, `x_s − c(t)`: the point projected on the stored
     /// obstacle, and where friction measures slip from.
@@ -162,7 +202,10 @@ impl ContactInterface {
     }
 
     fn geometry_at(&self, relative_position: &Vector3<f64>) -> GapGeometry {
-        let p = self.obstacle.project(relative_position);
+        let Primary::Rigid(obstacle) = &self.primary else {
+            unreachable!("rigid-obstacle geometry asked of a deformable interface")
+        };
+        let p = obstacle.project(relative_position);
         GapGeometry {
             signed_gap: p.gap,
             normal: p.normal,
@@ -174,6 +217,9 @@ impl ContactInterface {
     /// (time 0): the normal law's initial state, friction anchored where the
     /// node is.
     pub fn initial_states(&self, reference: &[[f64; 3]], x: &[f64]) -> Vec<NodeContactState> {
+        if let Primary::Surface(p) = &self.primary {
+            return self.initial_surface_states(p, reference, x);
+        }
         let translation = self.translation_at(0.0);
         (0..self.nodes.len())
             .map(|i| {
@@ -255,6 +301,17 @@ impl ContactInterface {
         residual: &mut [f64],
         mut tangent: Option<(&SparsityPattern, &mut [f64])>,
     ) -> Vec<NodeReport> {
+        if let Primary::Surface(p) = &self.primary {
+            return self.assemble_on_surface(
+                p,
+                reference,
+                x,
+                states,
+                first_multiplier,
+                residual,
+                tangent,
+            );
+        }
         let translation = self.translation_at(t);
         let mut reports = Vec::with_capacity(self.nodes.len());
         for (i, (&s, &area)) in self.nodes.iter().zip(&self.areas).enumerate() {
@@ -309,6 +366,7 @@ impl ContactInterface {
                 status: t_t.status,
                 force: [f[0], f[1], f[2]],
                 tangential_traction: [t_t.traction[0], t_t.traction[1], t_t.traction[2]],
+                facet: None,
             });
         }
         reports
@@ -326,6 +384,9 @@ impl ContactInterface {
         first_multiplier: usize,
         states: &mut [NodeContactState],
     ) {
+        if let Primary::Surface(p) = &self.primary {
+            return self.commit_surface_history(p, reference, x, first_multiplier, states);
+        }
         let translation = self.translation_at(t);
         for i in 0..self.nodes.len() {
             let state = self.node_state(states, x, first_multiplier, i);
@@ -408,6 +469,9 @@ impl ContactInterface {
         first_multiplier: usize,
         states: &mut [NodeContactState],
     ) {
+        if let Primary::Surface(p) = &self.primary {
+            return self.advance_surface_states(p, reference, x, dx, first_multiplier, states);
+        }
         if !matches!(self.law, NormalLaw::Slack { .. }) {
             return;
         }

@@ -14,6 +14,10 @@
 //! - [`triangle_gap`]: a secondary node's gap against a deforming primary
 //!   triangle, with its exact gradient and Hessian in all four nodes.
 //! - [`tributary`]: the tributary reference area `A_s` of each secondary node.
+//! - [`primary`]: a primary surface of a deformable body as triangles, and
+//!   the per-increment search pairing secondary nodes with them;
+//!   [`surface_contact`] assembles a secondary node against a moving primary
+//!   triangle through the normal laws.
 //! - [`laws`]: per-node enforcement of the normal constraint (penalty, Uzawa
 //!   augmented Lagrangian, Rockafellar augmented Lagrangian, the paper's
 //!   slack-variable Lagrangian), residual and tangent blocks in `(u_s, λ_s)`.
@@ -36,6 +40,8 @@ pub mod hertz;
 pub mod interface;
 pub mod laws;
 pub mod obstacle;
+pub mod primary;
+pub mod surface_contact;
 pub mod triangle;
 pub mod triangle_gap;
 pub mod triangulated;

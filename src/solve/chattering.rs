@@ -40,16 +40,17 @@ impl std::fmt::Display for Chatter {
 /// Remembers the status vector of each iteration of one increment.
 #[derive(Default)]
 pub struct ChatterDetector {
-    seen: Vec<Vec<u8>>,
+    seen: Vec<Vec<u64>>,
     revisits: usize,
 }
 
 impl ChatterDetector {
-    /// Record this iteration's statuses (`0` open, `1` stick, `2` slip, one
-    /// per secondary node). Returns the number of nodes that switched since
+    /// Record this iteration's statuses (one per secondary node: `0` open,
+    /// `1` stick, `2` slip, plus 4 × (1 + the primary triangle) on a
+    /// deformable interface, so that a change of triangle counts too). Returns the number of nodes that switched since
     /// the previous iteration, and the cycle once it has come back
     /// [`REVISITS`] times.
-    pub fn observe(&mut self, statuses: Vec<u8>) -> (usize, Option<Chatter>) {
+    pub fn observe(&mut self, statuses: Vec<u64>) -> (usize, Option<Chatter>) {
         let switched = self.seen.last().map_or(0, |previous| {
             previous
                 .iter()

@@ -118,7 +118,11 @@ pub fn solve_increment(
                 Ok(r) => r,
                 Err(f) => return failed(problem.describe_failure(&f), records),
             };
-        let statuses = reports.iter().flatten().map(|n| n.status.code()).collect();
+        let statuses = reports
+            .iter()
+            .flatten()
+            .map(|n| n.status.code() as u64 + 4 * n.facet.map_or(0, |f| f as u64 + 1))
+            .collect();
         let (switched, chattering) = chatter.observe(statuses);
         let mut r = residual.r.clone();
         zero_constrained(&mut r, constrained);

@@ -48,9 +48,11 @@ pub trait StepObserver {
 }
 
 /// Run every step of `problem` from `u = 0` (except the prescribed values).
-/// Returns the final displacement.
+/// Returns the final displacement. `problem` is mutable for the contact
+/// pairs of deformable interfaces, searched again at the start of every
+/// increment attempt (and the sparsity pattern with them).
 pub fn run_steps(
-    problem: &Problem,
+    problem: &mut Problem,
     solver: &mut SparseLdlt,
     observer: &mut dyn StepObserver,
     output: PathBuf,
@@ -63,7 +65,10 @@ pub fn run_steps(
     let mut t = 0.0;
     let mut force_scale = 0.0f64;
     let mut any_converged = false;
-    for (s, step) in problem.steps.iter().enumerate() {
+    // largest nodal displacement of the last converged increment, and its length
+    let mut last_motion: Option<(f64, f64)> = None;
+    let steps = problem.steps.clone();
+    for (s, step) in steps.iter().enumerate() {
         let mut dt = step.initial_increment.min(step.end_time - t);
         let mut cuts = 0;
         while t < step.end_time - 1e-12 * step.end_time.abs().max(1.0) {
@@ -77,6 +82,9 @@ pub fn run_steps(
             } else {
                 t + dt
             };
+            let motion = last_motion.map_or(0.0, |(m, last_dt)| m * (t_new - t) / last_dt);
+            problem.refresh_contact_pairs(&u, motion);
+            let problem: &Problem = problem;
             let mut trial_contact = contact.clone();
             let (outcome, newton) = solve_with_augmentation(
                 problem,
@@ -88,11 +96,30 @@ pub fn run_steps(
                 &mut trial_contact,
                 &mut trial,
             )?;
+            let outcome = match outcome {
+                NewtonOutcome::Converged { .. } if !problem.contact_pairs_hold(&trial) => {
+                    NewtonOutcome::Failed(
+                        "a contact node slid beyond the primary triangles it was paired with at the \
+                         start of the increment"
+                            .into(),
+                    )
+                }
+                other => other,
+            };
             match outcome {
                 NewtonOutcome::Converged {
                     residual,
                     force_scale: scale,
                 } => {
+                    let moved = (0..problem.model.num_dofs() / 3)
+                        .map(|n| {
+                            (0..3)
+                                .map(|d| (trial[3 * n + d] - u[3 * n + d]).powi(2))
+                                .sum::<f64>()
+                                .sqrt()
+                        })
+                        .fold(0.0f64, f64::max);
+                    last_motion = Some((moved, t_new - t));
                     std::mem::swap(&mut u, &mut trial);
                     problem.commit_contact_history(t_new, &u, &mut trial_contact);
                     contact = trial_contact;

@@ -4,7 +4,7 @@
 
 use nalgebra::Vector3;
 use signorini::assembly::Model;
-use signorini::contact::interface::ContactInterface;
+use signorini::contact::interface::{ContactInterface, Primary};
 use signorini::contact::laws::NormalLaw;
 use signorini::contact::{tributary_areas, RigidObstacle};
 use signorini::material::Material;
@@ -75,7 +75,7 @@ impl StepObserver for Recorder {
 }
 
 /// Solve all steps; return the displacement and the increments.
-pub fn solve(problem: &Problem) -> (Vec<f64>, Vec<IncrementRecord>) {
+pub fn solve(problem: &mut Problem) -> (Vec<f64>, Vec<IncrementRecord>) {
     let mut solver = SparseLdlt::new(Ordering::Amd, 1);
     let mut rec = Recorder::default();
     let u = run_steps(problem, &mut solver, &mut rec, "unused".into()).expect("converges");
@@ -216,7 +216,7 @@ pub fn interface(
         surface: surface.into(),
         nodes,
         areas,
-        obstacle,
+        primary: Primary::Rigid(obstacle),
         motion: Vector3::zeros(),
         amplitude: Amplitude::ramp(),
         law,
@@ -271,7 +271,7 @@ impl StepObserver for Last {
 
 /// Run every step with the run's fill-reducing ordering; panics if the
 /// run fails.
-pub fn run(p: &Problem) -> Last {
+pub fn run(p: &mut Problem) -> Last {
     let mut solver = SparseLdlt::new(signorini::run::fill_reducing_ordering(p).unwrap(), 1);
     let mut last = Last::default();
     run_steps(p, &mut solver, &mut last, "unused".into()).expect("converges");
@@ -280,8 +280,9 @@ pub fn run(p: &Problem) -> Last {
 
 /// Asserts Newton's quadratic rate in the last iterations of each
 /// increment (after the predictor): once the relative residual is below 1e-4,
-/// `r_{k+1} ≤ 100 r_k²` (or at round-off, 1e-13). A linear rate of even 0.1
-/// fails this (1e-4 → 1e-5 against the bound 1e-6). A rise from a
+/// `r_{k+1} ≤ 100 r_k²` (or at the round-off floor of contact systems, 1e-11). A linear rate of even 0.1
+/// fails this (1e-4 → 1e-5 against the bound 1e-6). Pairs across which a
+/// contact node changed status (or primary triangle) are skipped. A rise from a
 /// converged residual (≤ 1e-10) starts a new Newton solve (an Uzawa
 /// multiplier update within the increment) and is not a pair. Returns the
 /// number of iteration pairs checked (at least one).
@@ -291,11 +292,15 @@ pub fn assert_quadratic(incs: &[IncrementRecord]) -> usize {
         let r: Vec<f64> = inc.newton.iter().map(|i| i.residual).collect();
         // skip the residual before the predictor (≈ 0 when only prescribed
         // displacements change)
-        for w in r[1..].windows(2) {
+        let switched: Vec<usize> = inc.newton.iter().map(|i| i.switched).collect();
+        for (k, w) in r.windows(2).enumerate().skip(1) {
             let new_solve = w[0] <= 1e-10 && w[1] > w[0];
-            if w[0] <= 1e-4 && w[0] > 1e-13 && !new_solve {
+            // a contact node changed status or primary triangle: another
+            // system, not a Newton step on the same one
+            let changed = switched[k + 1] > 0;
+            if w[0] <= 1e-4 && w[0] > 1e-11 && !new_solve && !changed {
                 assert!(
-                    w[1] <= (100.0 * w[0] * w[0]).max(1e-13),
+                    w[1] <= (100.0 * w[0] * w[0]).max(1e-11),
                     "residuals {r:?}: {} → {}",
                     w[0],
                     w[1]
@@ -342,5 +347,80 @@ pub fn assert_tangent_matches_fd(
                 column[i]
             );
         }
+    }
+}
+
+/// Two bodies in one mesh: `b` translated by `offset`, its node and element
+/// numbering after `a`'s; regions renamed `a_name` and `b_name`, surface
+/// sets prefixed `"{a_name}."` and `"{b_name}."` (e.g. `upper.zmin`).
+pub fn two_bodies(a: Mesh, a_name: &str, b: Mesh, b_name: &str, offset: [f64; 3]) -> Mesh {
+    let (na, ea) = (a.nodes.len(), a.elements.len());
+    let mut m = Mesh {
+        nodes: a.nodes.clone(),
+        node_ids: (1..=na as u64).collect(),
+        elements: a.elements.clone(),
+        regions: vec![signorini::mesh::Region {
+            name: a_name.into(),
+            elements: (0..ea).collect(),
+        }],
+        surfaces: a
+            .surfaces
+            .iter()
+            .map(|s| signorini::mesh::SurfaceSet {
+                name: format!("{a_name}.{}", s.name),
+                facets: s.facets.clone(),
+            })
+            .collect(),
+    };
+    m.nodes.extend(
+        b.nodes
+            .iter()
+            .map(|x| [x[0] + offset[0], x[1] + offset[1], x[2] + offset[2]]),
+    );
+    m.node_ids = (1..=m.nodes.len() as u64).collect();
+    for (k, e) in b.elements.iter().enumerate() {
+        let mut e = e.clone();
+        e.nodes.iter_mut().for_each(|n| *n += na);
+        e.id = (ea + k + 1) as u64;
+        m.elements.push(e);
+    }
+    m.regions.push(signorini::mesh::Region {
+        name: b_name.into(),
+        elements: (ea..ea + b.elements.len()).collect(),
+    });
+    for s in &b.surfaces {
+        let mut facets = s.facets.clone();
+        for f in &mut facets {
+            f.nodes.iter_mut().for_each(|n| *n += na);
+        }
+        m.surfaces.push(signorini::mesh::SurfaceSet {
+            name: format!("{b_name}.{}", s.name),
+            facets,
+        });
+    }
+    m
+}
+
+/// A deformable interface: the nodes of surface `secondary` against the
+/// triangles of surface `primary`, frictionless.
+pub fn surface_interface(
+    p: &Problem,
+    secondary: &str,
+    primary: &str,
+    law: NormalLaw,
+) -> ContactInterface {
+    let mesh = &p.model.mesh;
+    let surface = signorini::contact::primary::PrimarySurface::from_mesh(mesh, primary).unwrap();
+    let (_, areas) = tributary_areas(mesh, mesh.surface(secondary).unwrap());
+    let h = (areas.iter().sum::<f64>() / areas.len() as f64).sqrt();
+    ContactInterface {
+        primary: Primary::Surface(surface),
+        ..interface(
+            p,
+            h,
+            secondary,
+            RigidObstacle::plane(Vector3::zeros(), Vector3::z()).unwrap(),
+            law,
+        )
     }
 }

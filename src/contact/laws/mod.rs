@@ -145,6 +145,11 @@ pub struct NodeContactState {
     /// Friction history committed at the last converged increment (also
     /// the status of frictionless nodes, for output).
     pub friction: crate::contact::friction::FrictionHistory,
+    /// The primary triangle the node was last projected on (deformable
+    /// interfaces): kept while the node stays over it, so that a node over
+    /// a shared edge does not flip between two triangles from one Newton
+    /// iteration to the next.
+    pub facet: Option<usize>,
 }
 
 impl NodeContactState {
@@ -166,6 +171,7 @@ impl NodeContactState {
             lambda: 0.0,
             slack,
             friction: Default::default(),
+            facet: None,
         }
     }
 }

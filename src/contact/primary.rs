@@ -1,0 +1,248 @@
+//! A primary surface of a deformable body (formulation note §4, last
+//! point): the triangles that the secondary nodes of an interface are
+//! projected on, moving with the mesh, and the search that pairs each
+//! secondary node with the triangles it may touch.
+//!
+//! ## Search rule
+//! Pairs are found at the start of every increment attempt, from the last
+//! converged configuration: the candidates of a secondary node are the
+//! primary triangles whose bounding box, grown by a margin `δ`, contains the
+//! node. `δ = 2 h + 2 d`, with `h` the larger contact element size of the
+//! two surfaces and `d` the largest displacement of a contact node over the
+//! previous increment scaled to the new increment's length: the pairs hold
+//! while no node slides more than a few elements within one increment, and
+//! a cut increment shrinks `d`. The candidates fix the sparsity pattern of
+//! the increment (each secondary node is coupled with the nodes of its
+//! candidates); within the increment each Newton iteration projects the
+//! node on its best candidate ([`best_triangle`]). The search is a uniform
+//! grid over the grown boxes, linear in the number of triangles and nodes.
+//!
+//! Quadrangle facets (Hex8 faces) are split into two triangles
+//! (`(q0, q1, q2)`, `(q0, q2, q3)`), so the projection is exact and the gap
+//! smooth within each triangle.
+
+use crate::contact::closest_point_on_triangle;
+use crate::contact::triangle_gap::split_quadrangle;
+use crate::mesh::{FacetKind, Mesh};
+use nalgebra::Vector3;
+use std::collections::HashMap;
+
+/// A surface of the mesh as primary triangles, with the current candidates.
+#[derive(Clone, Debug)]
+pub struct PrimarySurface {
+    /// Surface-set name.
+    pub surface: String,
+    /// Mesh node indices of each triangle, ordered so that the right-hand
+    /// normal points out of the primary body (the mesh's facet orientation).
+    pub triangles: Vec<[usize; 3]>,
+    /// The surface's nodes (sorted).
+    pub nodes: Vec<usize>,
+    /// Per secondary node, the candidate triangles (indices into
+    /// `triangles`), refreshed by [`refresh`](Self::refresh).
+    pub candidates: Vec<Vec<usize>>,
+    /// Contact element size of the primary surface (square root of the mean
+    /// triangle area).
+    pub element_size: f64,
+    /// The search margin `δ` of the last refresh: the gap reported for a
+    /// secondary node without candidates (it is at least that far).
+    pub margin: f64,
+}
+
+impl PrimarySurface {
+    /// The surface set `surface` of `mesh` as triangles; `None` if the mesh
+    /// has no such set.
+    pub fn from_mesh(mesh: &Mesh, surface: &str) -> Option<Self> {
+        let set = mesh.surface(surface)?;
+        let mut triangles = Vec::new();
+        for f in &set.facets {
+            let n = &f.nodes;
+            match f.kind {
+                FacetKind::Tri3 => triangles.push([n[0], n[1], n[2]]),
+                FacetKind::Quad4 => triangles.extend(split_quadrangle([n[0], n[1], n[2], n[3]])),
+            }
+        }
+        let area: f64 = triangles
+            .iter()
+            .map(|t| {
+                let p = |i: usize| Vector3::from(mesh.nodes[t[i]]);
+                0.5 * (p(1) - p(0)).cross(&(p(2) - p(0))).norm()
+            })
+            .sum();
+        let element_size = (area / triangles.len().max(1) as f64).sqrt();
+        Some(Self {
+            surface: surface.to_string(),
+            triangles,
+            nodes: mesh.surface_nodes(set),
+            candidates: Vec::new(),
+            element_size,
+            margin: 2.0 * element_size,
+        })
+    }
+
+    /// Current position of mesh node `n`.
+    pub fn position(reference: &[[f64; 3]], x: &[f64], n: usize) -> Vector3<f64> {
+        Vector3::new(
+            reference[n][0] + x[3 * n],
+            reference[n][1] + x[3 * n + 1],
+            reference[n][2] + x[3 * n + 2],
+        )
+    }
+
+    /// Current corners of triangle `t`.
+    pub fn corners(&self, reference: &[[f64; 3]], x: &[f64], t: usize) -> [Vector3<f64>; 3] {
+        self.triangles[t].map(|n| Self::position(reference, x, n))
+    }
+
+    /// Recompute every secondary node's candidates at configuration `x`
+    /// with margin `margin` (see the module's search rule). Returns whether
+    /// any candidate list changed.
+    pub fn refresh(
+        &mut self,
+        reference: &[[f64; 3]],
+        x: &[f64],
+        secondary: &[usize],
+        margin: f64,
+    ) -> bool {
+        let boxes: Vec<(Vector3<f64>, Vector3<f64>)> = (0..self.triangles.len())
+            .map(|t| {
+                let c = self.corners(reference, x, t);
+                let lo = c[0].inf(&c[1]).inf(&c[2]).add_scalar(-margin);
+                let hi = c[0].sup(&c[1]).sup(&c[2]).add_scalar(margin);
+                (lo, hi)
+            })
+            .collect();
+        let points: Vec<Vector3<f64>> = secondary
+            .iter()
+            .map(|&s| Self::position(reference, x, s))
+            .collect();
+        let candidates = boxes_containing(&boxes, &points);
+        let changed = candidates != self.candidates;
+        self.candidates = candidates;
+        self.margin = margin;
+        changed
+    }
+
+    /// Every mesh node of the candidates of secondary node `i` (sorted,
+    /// without repeats).
+    pub fn candidate_nodes(&self, i: usize) -> Vec<usize> {
+        let mut nodes: Vec<usize> = self
+            .candidates
+            .get(i)
+            .into_iter()
+            .flatten()
+            .flat_map(|&t| self.triangles[t])
+            .collect();
+        nodes.sort_unstable();
+        nodes.dedup();
+        nodes
+    }
+}
+
+/// For each point, the boxes (`(lo, hi)`) that contain it, by a uniform
+/// grid whose cell is the mean box extent: each box is entered in the cells
+/// it overlaps, each point looks in its own cell.
+pub fn boxes_containing(
+    boxes: &[(Vector3<f64>, Vector3<f64>)],
+    points: &[Vector3<f64>],
+) -> Vec<Vec<usize>> {
+    if boxes.is_empty() {
+        return vec![Vec::new(); points.len()];
+    }
+    let mean_extent =
+        boxes.iter().map(|(lo, hi)| (hi - lo).max()).sum::<f64>() / boxes.len() as f64;
+    let cell = mean_extent.max(f64::MIN_POSITIVE);
+    let index = |v: f64| (v / cell).floor() as i64;
+    let key = |p: &Vector3<f64>| (index(p.x), index(p.y), index(p.z));
+    let mut grid: HashMap<(i64, i64, i64), Vec<usize>> = HashMap::new();
+    for (b, (lo, hi)) in boxes.iter().enumerate() {
+        let (l, h) = (key(lo), key(hi));
+        for i in l.0..=h.0 {
+            for j in l.1..=h.1 {
+                for k in l.2..=h.2 {
+                    grid.entry((i, j, k)).or_default().push(b);
+                }
+            }
+        }
+    }
+    points
+        .iter()
+        .map(|p| {
+            grid.get(&key(p))
+                .into_iter()
+                .flatten()
+                .copied()
+                .filter(|&b| {
+                    let (lo, hi) = &boxes[b];
+                    (0..3).all(|d| lo[d] <= p[d] && p[d] <= hi[d])
+                })
+                .collect()
+        })
+        .collect()
+}
+
+/// The candidate triangle a secondary node at `x_s` is projected on: among
+/// the triangles (given by their current corners) whose closest point to
+/// `x_s` is nearest, the first. A node over the interior of a triangle
+/// gets that triangle; a node over an edge or a vertex between triangles
+/// gets one of them (its plane's gap is then used: the usual node-to-surface
+/// choice, exact on flat surfaces). `None` without candidates.
+pub fn best_triangle(
+    x_s: &Vector3<f64>,
+    candidates: &[(usize, [Vector3<f64>; 3])],
+) -> Option<usize> {
+    let mut best: Option<(usize, f64)> = None;
+    for (t, c) in candidates {
+        let p = closest_point_on_triangle(x_s, &c[0], &c[1], &c[2]);
+        let d = (x_s - p.point).norm_squared();
+        if best.is_none_or(|(_, b)| d < b) {
+            best = Some((*t, d));
+        }
+    }
+    best.map(|b| b.0)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn grid_finds_exactly_the_containing_boxes() {
+        // boxes of a 4 × 4 grid of unit squares (thin in z), points anywhere
+        let mut boxes = Vec::new();
+        for i in 0..4 {
+            for j in 0..4 {
+                let lo = Vector3::new(i as f64 - 0.1, j as f64 - 0.1, -0.1);
+                boxes.push((lo, lo + Vector3::new(1.2, 1.2, 0.2)));
+            }
+        }
+        let points: Vec<Vector3<f64>> = (0..50)
+            .map(|k| {
+                let f = k as f64;
+                Vector3::new(
+                    (f * 0.37) % 4.4 - 0.2,
+                    (f * 0.71) % 4.4 - 0.2,
+                    ((f * 0.13) % 0.3) - 0.15,
+                )
+            })
+            .collect();
+        let found = boxes_containing(&boxes, &points);
+        for (p, f) in points.iter().zip(&found) {
+            let brute: Vec<usize> = (0..boxes.len())
+                .filter(|&b| (0..3).all(|d| boxes[b].0[d] <= p[d] && p[d] <= boxes[b].1[d]))
+                .collect();
+            let mut f = f.clone();
+            f.sort_unstable();
+            assert_eq!(f, brute, "point {p:?}");
+        }
+    }
+
+    #[test]
+    fn best_triangle_is_the_one_under_the_node() {
+        let a = [Vector3::zeros(), Vector3::x(), Vector3::y()];
+        let b = [Vector3::x(), Vector3::new(1.0, 1.0, 0.0), Vector3::y()];
+        let c = [(4, a), (7, b)];
+        assert_eq!(best_triangle(&Vector3::new(0.2, 0.2, 0.3), &c), Some(4));
+        assert_eq!(best_triangle(&Vector3::new(0.8, 0.7, -0.2), &c), Some(7));
+        assert_eq!(best_triangle(&Vector3::zeros(), &[]), None);
+    }
+}

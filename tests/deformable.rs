@@ -1,0 +1,181 @@
+//! Contact between deformable bodies (node-to-surface on moving primary
+//! triangles, formulation note §4), through the library API: stacked
+//! blocks with non-matching meshes (the contact patch test, one pass),
+//! action and reaction, a finite-difference check of the assembled tangent
+//! with the primary nodes, and Newton's quadratic rate.
+
+mod common;
+
+use common::{
+    assert_quadratic, assert_tangent_matches_fd, fix, problem, run, surface_interface, two_bodies,
+};
+use signorini::contact::laws::NormalLaw;
+use signorini::material::{LinearElastic, NeoHookean};
+use signorini::mesh::structured::box_mesh;
+use signorini::mesh::ElementKind;
+use signorini::problem::{Amplitude, PressureLoad, Problem};
+use std::sync::Arc;
+
+const E: f64 = 100.0;
+const P: f64 = 2.0;
+
+fn methods(h: f64) -> Vec<(&'static str, NormalLaw)> {
+    let e = E / h;
+    vec![
+        ("penalty", NormalLaw::Penalty { epsilon: e }),
+        ("uzawa", NormalLaw::Uzawa { epsilon: e }),
+        ("rockafellar", NormalLaw::Rockafellar { p: e, k: e }),
+        ("slack", NormalLaw::Slack { p: e, k: e }),
+    ]
+}
+
+/// A 1 × 1 × 0.5 block (`lower`, 4 × 4 × 2 Hex8) under another (`upper`,
+/// 3 × 3 × 2 Hex8: the meshes do not match at z = 0.5), symmetry planes
+/// x = 0 and y = 0 for both, the lower block's bottom held in z, a dead
+/// pressure `P` on the upper block's top; the upper block's bottom
+/// (secondary) against the lower block's top (primary).
+fn stacked_blocks(law: NormalLaw, offset: [f64; 3]) -> Problem {
+    let lower = box_mesh(ElementKind::Hex8, [4, 4, 2], [1.0, 1.0, 0.5]);
+    let upper = box_mesh(ElementKind::Hex8, [3, 3, 2], [1.0, 1.0, 0.5]);
+    let mesh = two_bodies(lower, "lower", upper, "upper", offset);
+    let mut pr = problem(mesh, Arc::new(LinearElastic::new(E, 0.3, "m").unwrap()));
+    fix(&mut pr, "lower.zmin", &[(2, 0.0)]);
+    for body in ["lower", "upper"] {
+        fix(&mut pr, &format!("{body}.xmin"), &[(0, 0.0)]);
+        fix(&mut pr, &format!("{body}.ymin"), &[(1, 0.0)]);
+    }
+    let facets = pr.model.mesh.surface("upper.zmax").unwrap().facets.clone();
+    pr.pressures.push(PressureLoad {
+        surface: "upper.zmax".into(),
+        facets,
+        pressure: P,
+        follower: false,
+        amplitude: Amplitude::ramp(),
+    });
+    let c = surface_interface(&pr, "upper.zmin", "lower.zmax", law);
+    pr.set_contacts(vec![c]);
+    pr
+}
+
+/// Sum of `f_int − f_ext` (no contact) over the nodes of a surface set: at
+/// equilibrium, the contact force the surface receives.
+fn contact_force_on(pr: &Problem, x: &[f64], surface: &str) -> [f64; 3] {
+    let mut r = vec![0.0; pr.num_unknowns()];
+    pr.model.assemble_internal(x, &mut r, None).unwrap();
+    let f_ext = pr.external_force(1.0, x, None);
+    let mesh = &pr.model.mesh;
+    let mut total = [0.0; 3];
+    for n in mesh.surface_nodes(mesh.surface(surface).unwrap()) {
+        for d in 0..3 {
+            total[d] += r[3 * n + d] - f_ext[3 * n + d];
+        }
+    }
+    total
+}
+
+/// The contact patch test on non-matching meshes, one pass (the upper,
+/// coarser block's nodes against the lower block's triangles). The total
+/// contact force carries the load exactly (1e-8). The nodal pressure is
+/// NOT uniform: node-to-surface puts each secondary node's force on the
+/// primary triangle's nodes by the shape functions at its projection,
+/// which are not the consistent nodal forces of a uniform pressure on the
+/// primary mesh, so the lower block is loaded unevenly, its top warps
+/// slightly and the secondary pressures settle between 0.76 P and 1.23 P
+/// (the two-pass variant, which would average this out, is not
+/// implemented yet). Action and reaction: the contact force the primary
+/// surface receives, measured independently from the lower block's
+/// internal forces, balances the secondary's to 1e-8 (along the normal).
+#[test]
+fn stacked_blocks_patch_test_and_action_reaction() {
+    for (name, law) in methods(1.0 / 3.0) {
+        let mut pr = stacked_blocks(law, [0.0, 0.0, 0.5]);
+        let last = run(&mut pr);
+        let (_, reports) = pr.residual_in(1.0, &last.x, &last.contact, None).unwrap();
+        let total: f64 = reports[0].iter().map(|r| r.force[2]).sum();
+        assert!((total - P).abs() < 1e-8 * P, "{name}: total {total}");
+        // one pass does not transmit the uniform pressure on non-matching
+        // meshes: measured 1.52–2.46 (Lagrangian methods) and 1.64–2.33
+        // (penalty) against P = 2 at the 16 secondary nodes, a documented
+        // limit of node-to-surface contact (the bound guards against worse)
+        let worst = reports[0]
+            .iter()
+            .map(|r| (r.pressure - P).abs())
+            .fold(0.0f64, f64::max);
+        assert!(worst < 0.3 * P, "{name}: pressure off by {worst}");
+        // action and reaction, from the bodies' own forces
+        let on_primary = contact_force_on(&pr, &last.x, "lower.zmax");
+        let on_secondary = contact_force_on(&pr, &last.x, "upper.zmin");
+        // (along z only: the x and y sums also hold the reactions of the
+        // symmetry planes at the surfaces' edges)
+        assert!(
+            (on_primary[2] + on_secondary[2]).abs() < 1e-8 * P,
+            "{name}: primary {on_primary:?} secondary {on_secondary:?}"
+        );
+        assert!(
+            (on_secondary[2] - P).abs() < 1e-8 * P,
+            "{name}: {on_secondary:?}"
+        );
+    }
+}
+
+/// The assembled tangent (elasticity, contact on the secondary and the
+/// primary nodes, multipliers) is the derivative of the assembled residual,
+/// on stacked blocks shifted so that no secondary node lies over a primary
+/// edge, at a perturbed state with penetrating and open nodes, for every
+/// method: the linearisation includes the primary nodes, the projection
+/// point and the normal.
+#[test]
+fn deformable_contact_tangent_matches_finite_differences() {
+    for (name, law) in methods(1.0 / 3.0) {
+        let mesh_lower = box_mesh(ElementKind::Hex8, [2, 2, 1], [1.0, 1.0, 0.5]);
+        let mesh_upper = box_mesh(ElementKind::Hex8, [2, 2, 1], [0.8, 0.8, 0.5]);
+        let mesh = two_bodies(mesh_lower, "lower", mesh_upper, "upper", [0.07, 0.11, 0.5]);
+        let mut pr = problem(mesh, Arc::new(NeoHookean::new(E, 0.3, "m").unwrap()));
+        let c = surface_interface(&pr, "upper.zmin", "lower.zmax", law);
+        pr.set_contacts(vec![c]);
+        let n = pr.num_unknowns();
+        let dofs = pr.model.num_dofs();
+        let x: Vec<f64> = (0..n)
+            .map(|i| {
+                if i >= dofs {
+                    if name == "slack" {
+                        0.0
+                    } else {
+                        0.02 * ((i as f64) * 1.3).cos()
+                    }
+                } else {
+                    0.02 * ((i as f64) * 0.77).sin()
+                }
+            })
+            .collect();
+        let state = pr.initial_contact_state(&x);
+        let (_, reports) = pr.residual_in(0.5, &x, &state, None).unwrap();
+        assert!(
+            reports[0].iter().any(|r| r.active) && reports[0].iter().any(|r| !r.active),
+            "{name}: want open and closed nodes: {:?}",
+            reports[0].iter().map(|r| r.gap).collect::<Vec<_>>()
+        );
+        assert_tangent_matches_fd(&pr, 0.5, &x, &state, name);
+    }
+}
+
+/// Newton's quadratic rate with a deformable primary: the stacked
+/// neo-Hookean blocks, the upper one pressed down 0.1 (20 % of its height)
+/// by its top face, which also slides 0.05 sideways.
+#[test]
+fn newton_is_quadratic_with_a_deformable_primary() {
+    for (name, law) in methods(1.0 / 3.0) {
+        let mut pr = stacked_blocks(law, [0.0, 0.0, 0.5]);
+        pr.pressures.clear();
+        pr.model.materials = vec![Arc::new(NeoHookean::new(E, 0.3, "m").unwrap())];
+        fix(&mut pr, "upper.zmax", &[(2, -0.1), (1, 0.05)]);
+        pr.steps[0].initial_increment = 0.5;
+        let last = run(&mut pr);
+        assert_quadratic(&last.increments);
+        let (_, reports) = pr.residual_in(1.0, &last.x, &last.contact, None).unwrap();
+        assert!(
+            reports[0].iter().all(|r| r.active),
+            "{name}: every node pressed"
+        );
+    }
+}

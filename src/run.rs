@@ -4,7 +4,9 @@
 
 use crate::case::{self, Case};
 use crate::contact::friction::ContactStatus;
-use crate::contact::interface::NodeReport;
+use crate::contact::interface::{ContactInterface, NodeReport, Primary};
+use crate::contact::laws::NodeContactState;
+use crate::contact::primary::PrimarySurface;
 use crate::output::summary::{IncrementSummary, Summary};
 use crate::output::summary::{InterfaceSummary, PhaseTimes};
 use crate::output::{plot, pvd::PvdCollection, vtu};
@@ -418,10 +420,53 @@ impl ContactFields {
                 }
                 summary.largest_penetration = summary.largest_penetration.max(-r.gap);
             }
+            if let Primary::Surface(p) = &c.primary {
+                summary.primary_force = Some(fields.add_primary_side(problem, c, p, x, states));
+            }
             fields.summaries.insert(c.name.clone(), summary);
         }
         fields.reports = reports;
         Ok(fields)
+    }
+}
+
+impl ContactFields {
+    /// Pressure and status on the nodes of a deformable primary surface:
+    /// each secondary node's force `A_s t_N n` goes to its triangle's nodes
+    /// with the weights `N_i(ξ)` and is divided by the primary node's
+    /// tributary area. Returns the total force on the primary surface.
+    fn add_primary_side(
+        &mut self,
+        problem: &Problem,
+        c: &ContactInterface,
+        primary: &PrimarySurface,
+        x: &[f64],
+        states: &[NodeContactState],
+    ) -> [f64; 3] {
+        let mesh = &problem.model.mesh;
+        let reference = &mesh.nodes;
+        let mut nodal = vec![0.0; mesh.num_nodes()];
+        let mut total = [0.0; 3];
+        for (i, &area) in c.areas.iter().enumerate() {
+            let state = c.node_state(states, x, problem.model.num_dofs(), i);
+            let Some(node) = c.surface_node(primary, reference, x, i, &state) else {
+                continue;
+            };
+            let force = area * node.law.pressure;
+            for (k, &n) in node.nodes[1..].iter().enumerate() {
+                nodal[n] += force * node.gap.shape[k];
+            }
+            for (d, t) in total.iter_mut().enumerate() {
+                *t -= force * node.gap.normal[d];
+            }
+        }
+        let set = mesh.surface(&primary.surface).expect("validated");
+        let (nodes, areas) = crate::contact::tributary_areas(mesh, set);
+        for (&n, &a) in nodes.iter().zip(&areas) {
+            self.pressure[n] = nodal[n] / a;
+            self.status[n] = if nodal[n] > 0.0 { 1.0 } else { 0.0 };
+        }
+        total
     }
 }
 

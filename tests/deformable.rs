@@ -179,3 +179,124 @@ fn newton_is_quadratic_with_a_deformable_primary() {
         );
     }
 }
+
+/// The stacked blocks through the case file and the CLI's `run` (a mesh
+/// with two regions, each with its own material and supports, and a
+/// `[[contact]]` with `primary`): the run completes, the contact force in
+/// `summary.json` carries the load (1e-8), and the input errors of a
+/// deformable interface are clear.
+#[test]
+fn stacked_blocks_through_the_case_file() {
+    let lower = box_mesh(ElementKind::Hex8, [4, 4, 2], [1.0, 1.0, 0.5]);
+    let upper = box_mesh(ElementKind::Hex8, [3, 3, 2], [1.0, 1.0, 0.5]);
+    let mesh = two_bodies(lower, "lower", upper, "upper", [0.0, 0.0, 0.5]);
+    let dir = tempfile::tempdir().unwrap();
+    std::fs::write(dir.path().join("blocks.msh"), common::msh22(&mesh)).unwrap();
+    let case = r#"
+[mesh]
+file = "blocks.msh"
+
+[[material]]
+region = "lower"
+model = "linear_elastic"
+youngs_modulus = 100.0
+poisson_ratio = 0.3
+
+[[material]]
+region = "upper"
+model = "neo_hookean"
+youngs_modulus = 50.0
+poisson_ratio = 0.3
+
+[[displacement]]
+surface = "lower.zmin"
+z = 0.0
+
+[[displacement]]
+surface = "lower.xmin"
+x = 0.0
+
+[[displacement]]
+surface = "lower.ymin"
+y = 0.0
+
+[[displacement]]
+surface = "upper.xmin"
+x = 0.0
+
+[[displacement]]
+surface = "upper.ymin"
+y = 0.0
+
+[[pressure]]
+surface = "upper.zmax"
+value = 2.0
+
+[[contact]]
+name = "interface"
+surface = "upper.zmin"
+primary = "lower.zmax"
+
+[[step]]
+name = "press"
+end_time = 1.0
+initial_increment = 0.5
+"#;
+    std::fs::write(dir.path().join("case.toml"), case).unwrap();
+    let outcome = signorini::run::run(
+        &dir.path().join("case.toml"),
+        &signorini::run::RunOptions {
+            output: Some(dir.path().join("out")),
+            quiet: true,
+        },
+    )
+    .expect("the case runs");
+    let interface = &outcome.summary.increments.last().unwrap().contact["interface"];
+    let force = interface.force;
+    assert!((force[2] - P).abs() < 1e-8 * P, "contact force {force:?}");
+    // the force on the primary surface, from the distributed nodal forces
+    let on_primary = interface.primary_force.expect("a deformable interface");
+    for d in 0..3 {
+        assert!(
+            (on_primary[d] + force[d]).abs() < 1e-10 * P,
+            "{on_primary:?} vs {force:?}"
+        );
+    }
+    // input errors
+    let check = |text: &str, expect: &[&str]| {
+        std::fs::write(dir.path().join("bad.toml"), text).unwrap();
+        let err = signorini::case::load(&dir.path().join("bad.toml"))
+            .and_then(|c| c.build_problem().map(|_| ()))
+            .expect_err("a bad case");
+        let message = err.to_string();
+        for e in expect {
+            assert!(message.contains(e), "{message}\nlacks: {e}");
+        }
+    };
+    check(
+        &case.replace("primary = \"lower.zmax\"", "primary = \"lower.top\""),
+        &["contact[0].primary", "lower.top", "lower.zmax"],
+    );
+    check(
+        &case.replace("primary = \"lower.zmax\"", "primary = \"upper.zmin\""),
+        &["contact[0].primary", "secondary surface itself"],
+    );
+    check(
+        &case.replace("primary = \"lower.zmax\"", ""),
+        &["contact[0]", "either `obstacle`", "neither"],
+    );
+    check(
+        &case.replace(
+            "primary = \"lower.zmax\"",
+            "primary = \"lower.zmax\"\nfriction_coefficient = 0.3",
+        ),
+        &["contact[0].friction_coefficient", "not supported yet"],
+    );
+    check(
+        &case.replace("[mesh]", "").replace("file = \"blocks.msh\"", "")
+            .replace("[[material]]\nregion = \"lower\"", "[mesh]\nfile = \"blocks.msh\"\n\n[[material]]\nregion = \"lower\"")
+            .replace("value = 2.0", "value = 2.0\n\n[[obstacle]]\nname = \"floor\"\nshape = \"plane\"\npoint = [0.0, 0.0, 0.0]\nnormal = [0.0, 0.0, 1.0]")
+            .replace("primary = \"lower.zmax\"", "primary = \"lower.zmax\"\nobstacle = \"floor\""),
+        &["contact[0]", "not both"],
+    );
+}

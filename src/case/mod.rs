@@ -9,6 +9,7 @@ use crate::assembly::Model;
 use crate::contact::friction::Coulomb;
 use crate::contact::interface::{ContactInterface, Primary};
 use crate::contact::laws::{automatic_parameters, NormalLaw};
+use crate::contact::primary::PrimarySurface;
 use crate::contact::{tributary_areas, RigidObstacle, TriangulatedSurface};
 use crate::material::{self, Material};
 use crate::mesh::Mesh;
@@ -500,24 +501,53 @@ impl Case {
         for (i, c) in spec.contact.iter().enumerate() {
             let key = format!("contact[{i}]");
             let surface = self.surface(&format!("{key}.surface"), &c.surface)?;
-            let index = spec
-                .obstacle
-                .iter()
-                .position(|o| o.name == c.obstacle)
-                .ok_or_else(|| {
-                    let have: Vec<&str> = spec.obstacle.iter().map(|o| o.name.as_str()).collect();
-                    self.err(format!(
-                        "{key}.obstacle: no [[obstacle]] named '{}'; there are: {}",
-                        c.obstacle,
-                        if have.is_empty() {
-                            "none".to_string()
-                        } else {
-                            have.join(", ")
-                        }
-                    ))
-                })?;
-            let o = &spec.obstacle[index];
-            let obstacle = self.obstacle(index)?;
+            // what the secondary nodes touch
+            enum Target {
+                Obstacle(usize),
+                Surface(PrimarySurface),
+            }
+            let target = match (&c.obstacle, &c.primary) {
+                (Some(name), None) => {
+                    let index = spec
+                        .obstacle
+                        .iter()
+                        .position(|o| &o.name == name)
+                        .ok_or_else(|| {
+                            let have: Vec<&str> =
+                                spec.obstacle.iter().map(|o| o.name.as_str()).collect();
+                            self.err(format!(
+                                "{key}.obstacle: no [[obstacle]] named '{name}'; there are: {}",
+                                if have.is_empty() {
+                                    "none".to_string()
+                                } else {
+                                    have.join(", ")
+                                }
+                            ))
+                        })?;
+                    Target::Obstacle(index)
+                }
+                (None, Some(name)) => {
+                    self.surface(&format!("{key}.primary"), name)?;
+                    if name == &c.surface {
+                        return Err(self.err(format!(
+                            "{key}.primary = '{name}' is the secondary surface itself; name the surface of the other body"
+                        )));
+                    }
+                    if c.friction_coefficient.is_some_and(|mu| mu > 0.0) {
+                        return Err(self.err(format!(
+                            "{key}.friction_coefficient: friction between deformable bodies is not supported yet; \
+                             remove it (frictionless) or use a rigid [[obstacle]]"
+                        )));
+                    }
+                    Target::Surface(PrimarySurface::from_mesh(mesh, name).expect("checked above"))
+                }
+                _ => {
+                    return Err(self.err(format!(
+                        "{key}: give either `obstacle` (a rigid [[obstacle]] name) or `primary` (a surface set of another body), not {}",
+                        if c.obstacle.is_some() { "both" } else { "neither" }
+                    )))
+                }
+            };
             let (nodes, areas) = tributary_areas(mesh, surface);
             let total: f64 = areas.iter().sum();
             if nodes.is_empty() || !(total > 0.0) {
@@ -583,6 +613,31 @@ impl Case {
             } else {
                 Vec::new()
             };
+            let (primary, motion, amplitude, against) = match target {
+                Target::Obstacle(index) => {
+                    let o = &spec.obstacle[index];
+                    (
+                        Primary::Rigid(self.obstacle(index)?),
+                        o.motion.map(Vector3::from).unwrap_or_else(Vector3::zeros),
+                        self.amplitude(&format!("obstacle[{index}].amplitude"), &o.amplitude)?,
+                        format!("obstacle '{}'", o.name),
+                    )
+                }
+                Target::Surface(mut surface) => {
+                    // the pairs at the start, for the initial check (the
+                    // problem searches again when it installs the interface)
+                    let zero = vec![0.0; 3 * mesh.num_nodes()];
+                    let margin = 2.0 * h.max(surface.element_size);
+                    surface.refresh(&mesh.nodes, &zero, &nodes, margin);
+                    let against = format!("primary surface '{}'", surface.surface);
+                    (
+                        Primary::Surface(surface),
+                        Vector3::zeros(),
+                        crate::problem::Amplitude::ramp(),
+                        against,
+                    )
+                }
+            };
             let interface = ContactInterface {
                 friction,
                 tangential_scale,
@@ -591,26 +646,23 @@ impl Case {
                 surface: c.surface.clone(),
                 nodes,
                 areas,
-                primary: Primary::Rigid(obstacle),
-                motion: o.motion.map(Vector3::from).unwrap_or_else(Vector3::zeros),
-                amplitude: self.amplitude(&format!("obstacle[{index}].amplitude"), &o.amplitude)?,
+                primary,
+                motion,
+                amplitude,
                 law,
                 multiplier_offset: 0,
                 element_size: h,
             };
             // a surface that starts inside the obstacle is a set-up error
             let tolerance = c.initial_penetration_tolerance.unwrap_or(0.01 * h);
-            let start = interface.translation_at(0.0);
             let zero = vec![0.0; 3 * mesh.num_nodes()];
-            for j in 0..interface.nodes.len() {
-                let g = interface
-                    .gap_geometry(&mesh.nodes, &start, &zero, j)
-                    .signed_gap;
+            let gaps = interface.gaps(&mesh.nodes, 0.0, &zero);
+            for (j, &g) in gaps.iter().enumerate() {
                 if g < -tolerance {
                     return Err(self.err(format!(
-                        "{key}: node {} of surface '{}' starts inside obstacle '{}' (gap {g:.3e}, tolerance {tolerance:.3e}); \
-                         move the obstacle or the body, or check the obstacle's normal (it must point toward the body)",
-                        mesh.node_ids[interface.nodes[j]], c.surface, o.name
+                        "{key}: node {} of surface '{}' starts inside {against} (gap {g:.3e}, tolerance {tolerance:.3e}); \
+                         move the bodies apart, or check the normal (an obstacle's must point toward the body)",
+                        mesh.node_ids[interface.nodes[j]], c.surface
                     )));
                 }
             }

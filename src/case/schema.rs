@@ -193,8 +193,11 @@ pub struct ContactSpec {
     pub name: Option<String>,
     /// Secondary surface set of the body.
     pub surface: String,
-    /// An `[[obstacle]]` name.
-    pub obstacle: String,
+    /// An `[[obstacle]]` name (contact with a rigid obstacle) …
+    pub obstacle: Option<String>,
+    /// … or a surface set of another body of the mesh (contact between
+    /// deformable bodies: the secondary nodes against its triangles).
+    pub primary: Option<String>,
     /// `penalty`, `uzawa`, `rockafellar` (default) or `slack`.
     #[serde(default)]
     pub method: ContactMethod,

@@ -69,6 +69,11 @@ pub struct InterfaceSummary {
     pub closed_nodes: usize,
     /// Largest penetration `max(0, −g)` over the secondary nodes.
     pub largest_penetration: f64,
+    /// With a deformable primary surface: the total contact force on it,
+    /// `−Σ A_s t_N N_i(ξ) n` over its nodes (minus `force`: action and
+    /// reaction); absent for a rigid obstacle.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub primary_force: Option<[f64; 3]>,
 }
 
 /// Totals of one load step over its converged increments.

@@ -351,31 +351,34 @@ impl Problem {
     /// check, after an increment converged, that no node slid out of the
     /// candidates it was paired with at the increment's start (then the
     /// increment is cut, which shrinks the motion per increment).
-    pub fn contact_pairs_hold(&self, x: &[f64]) -> bool {
+    pub fn contact_pairs_hold(&self, x: &[f64], contact: &ContactState) -> bool {
         let reference = &self.model.mesh.nodes;
-        self.contacts.iter().all(|c| {
-            let Primary::Surface(p) = &c.primary else {
-                return true;
-            };
-            let mut fresh = p.clone();
-            fresh.refresh(
-                reference,
-                x,
-                &c.nodes,
-                2.0 * c.element_size.max(p.element_size),
-            );
-            let mut with_fresh = c.clone();
-            with_fresh.primary = Primary::Surface(fresh);
-            let (used, now) = (
-                c.gaps(reference, 0.0, x),
-                with_fresh.gaps(reference, 0.0, x),
-            );
-            let tolerance = 1e-9 * c.element_size;
-            used.iter()
-                .zip(&now)
-                // the same gap, or open either way (no force)
-                .all(|(a, b)| (a - b).abs() <= tolerance || (*a > 0.0 && *b > 0.0))
-        })
+        self.contacts
+            .iter()
+            .zip(&contact.interfaces)
+            .all(|(c, states)| {
+                let Primary::Surface(p) = &c.primary else {
+                    return true;
+                };
+                let mut fresh = p.clone();
+                fresh.refresh(
+                    reference,
+                    x,
+                    &c.nodes,
+                    2.0 * c.element_size.max(p.element_size),
+                );
+                let mut with_fresh = c.clone();
+                with_fresh.primary = Primary::Surface(fresh);
+                let (used, now) = (
+                    c.gaps(reference, 0.0, x, Some(states)),
+                    with_fresh.gaps(reference, 0.0, x, Some(states)),
+                );
+                let tolerance = 1e-9 * c.element_size;
+                used.iter()
+                    .zip(&now)
+                    // the same gap, or open either way (no force)
+                    .all(|(a, b)| (a - b).abs() <= tolerance || (*a > 0.0 && *b > 0.0))
+            })
     }
 
     /// Number of unknowns: 3 displacements per node, then the contact
@@ -419,7 +422,7 @@ impl Problem {
             if !matches!(c.law, crate::contact::laws::NormalLaw::Uzawa { .. }) {
                 continue;
             }
-            let gaps = c.gaps(&self.model.mesh.nodes, t, x);
+            let gaps = c.gaps(&self.model.mesh.nodes, t, x, Some(states));
             let penetration = gaps.iter().fold(0.0f64, |m, &g| m.max(-g));
             if penetration > 1e-9 * c.element_size {
                 again = true;

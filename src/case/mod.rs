@@ -533,7 +533,7 @@ impl Case {
                             "{key}.primary = '{name}' is the secondary surface itself; name the surface of the other body"
                         )));
                     }
-                    if c.friction_coefficient.is_some_and(|mu| mu > 0.0) {
+                    if c.friction_coefficient.is_some() || c.tangential_penalty.is_some() {
                         return Err(self.err(format!(
                             "{key}.friction_coefficient: friction between deformable bodies is not supported yet; \
                              remove it (frictionless) or use a rigid [[obstacle]]"
@@ -656,7 +656,7 @@ impl Case {
             // a surface that starts inside the obstacle is a set-up error
             let tolerance = c.initial_penetration_tolerance.unwrap_or(0.01 * h);
             let zero = vec![0.0; 3 * mesh.num_nodes()];
-            let gaps = interface.gaps(&mesh.nodes, 0.0, &zero);
+            let gaps = interface.gaps(&mesh.nodes, 0.0, &zero, None);
             for (j, &g) in gaps.iter().enumerate() {
                 if g < -tolerance {
                     return Err(self.err(format!(

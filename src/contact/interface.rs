@@ -171,14 +171,25 @@ impl ContactInterface {
     }
 
     /// The signed gap of every secondary node at time `t` and unknowns `x`
-    /// (the search margin for a node without primary candidates).
-    pub fn gaps(&self, reference: &[[f64; 3]], t: f64, x: &[f64]) -> Vec<f64> {
+    /// (the search margin for a node without primary candidates), with the
+    /// nodes' states where given (a deformable interface then uses each
+    /// node's kept triangle, as the assembly does).
+    pub fn gaps(
+        &self,
+        reference: &[[f64; 3]],
+        t: f64,
+        x: &[f64],
+        states: Option<&[NodeContactState]>,
+    ) -> Vec<f64> {
         let translation = self.translation_at(t);
         (0..self.nodes.len())
             .map(|i| match &self.primary {
                 Primary::Rigid(_) => self.gap_geometry(reference, &translation, x, i).signed_gap,
                 Primary::Surface(p) => {
-                    let state = NodeContactState::initial(&self.law_at(i), p.margin);
+                    let state = states.map_or_else(
+                        || NodeContactState::initial(&self.law_at(i), p.margin),
+                        |s| s[i],
+                    );
                     self.surface_node(p, reference, x, i, &state)
                         .map_or(p.margin, |n| n.gap.gap)
                 }
@@ -419,7 +430,9 @@ impl ContactInterface {
         pattern: &SparsityPattern,
         values: &mut [f64],
     ) {
-        if self.friction.is_none() {
+        // friction lives on rigid interfaces only (the case file refuses it
+        // on a deformable one)
+        if self.friction.is_none() || !matches!(self.primary, Primary::Rigid(_)) {
             return;
         }
         let translation = self.translation_at(t);

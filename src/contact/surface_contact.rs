@@ -89,8 +89,8 @@ impl ContactInterface {
             .iter()
             .map(|&t| (t, primary.corners(reference, x, t)))
             .collect();
-        // the last triangle while the node stays over it (within a band of
-        // 1e-3 of its size), else the nearest candidate
+        // the last triangle while the node stays over it (within the
+        // band), else the nearest candidate
         let kept = state.facet.and_then(|t| {
             let corners = candidates.iter().find(|c| c.0 == t)?.1;
             let gap = triangle_gap(&x_s, [&corners[0], &corners[1], &corners[2]])?;
@@ -104,10 +104,15 @@ impl ContactInterface {
             None => {
                 let t = best_triangle(&x_s, &candidates)?;
                 let corners = candidates.iter().find(|c| c.0 == t)?.1;
-                (
-                    t,
-                    triangle_gap(&x_s, [&corners[0], &corners[1], &corners[2]])?,
-                )
+                let gap = triangle_gap(&x_s, [&corners[0], &corners[1], &corners[2]])?;
+                // a node whose projection misses even its nearest triangle
+                // is beyond the primary surface's edge: open (its extended
+                // plane would otherwise push it, with negative weights on
+                // the primary nodes)
+                if gap.shape.iter().any(|&n| n < -STICKY_BAND) {
+                    return None;
+                }
+                (t, gap)
             }
         };
         let law = self

@@ -256,7 +256,7 @@ impl SparseLdlt {
 
 /// A hash of a pattern's structure (FNV-1a over its dimensions, column
 /// pointers and row indices).
-fn pattern_fingerprint(pattern: &SymbolicSparseColMat<usize>) -> u64 {
+pub(super) fn pattern_fingerprint(pattern: &SymbolicSparseColMat<usize>) -> u64 {
     let mut h: u64 = 0xcbf2_9ce4_8422_2325;
     let mut eat = |v: usize| {
         h ^= v as u64;

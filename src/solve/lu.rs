@@ -16,10 +16,13 @@ use faer::MatMut;
 use std::time::{Duration, Instant};
 
 /// A reusable sparse LU: the symbolic analysis is kept while the pattern
-/// (recognised by its dimension and number of entries) does not change.
+/// (recognised by a fingerprint of its structure) does not change.
 #[derive(Default)]
 pub struct SparseLu {
-    symbolic: Option<(SymbolicLu<usize>, usize, usize)>,
+    /// The symbolic analysis and the fingerprint of the pattern it was made
+    /// for (the structure, not only its size: a rebuilt pattern of the same
+    /// size must be analysed again).
+    symbolic: Option<(SymbolicLu<usize>, u64)>,
     /// Time spent in factorisations and solves so far.
     pub total: Duration,
     /// Factorisations so far.
@@ -36,13 +39,13 @@ impl SparseLu {
         rhs: &mut [f64],
     ) -> Result<()> {
         let start = Instant::now();
-        let key = (pattern.nrows(), pattern.compute_nnz());
+        let key = super::linear::pattern_fingerprint(pattern);
         let symbolic = match &self.symbolic {
-            Some((s, n, nnz)) if (*n, *nnz) == key => s.clone(),
+            Some((s, k)) if *k == key => s.clone(),
             _ => {
                 let s = SymbolicLu::try_new(pattern.as_ref())
                     .map_err(|e| Error::LinearSolver(format!("LU symbolic analysis: {e:?}")))?;
-                self.symbolic = Some((s.clone(), key.0, key.1));
+                self.symbolic = Some((s.clone(), key));
                 s
             }
         };

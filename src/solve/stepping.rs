@@ -97,7 +97,7 @@ pub fn run_steps(
                 &mut trial,
             )?;
             let outcome = match outcome {
-                NewtonOutcome::Converged { .. } if !problem.contact_pairs_hold(&trial) => {
+                NewtonOutcome::Converged { .. } if !problem.contact_pairs_hold(&trial, &trial_contact) => {
                     NewtonOutcome::Failed(
                         "a contact node slid beyond the primary triangles it was paired with at the \
                          start of the increment"

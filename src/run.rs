@@ -347,8 +347,15 @@ impl StepObserver for Writer {
 
 /// Nodal contact output of every interface, and its totals.
 struct ContactFields {
-    /// `t_N` at secondary nodes, 0 elsewhere.
+    /// Contact pressure: at a node of a contact surface, the normal force
+    /// that every interface puts on it (`A_s t_N` as a secondary node, the
+    /// shares `N_i(ξ) A_s t_N` as a primary node) over its tributary area;
+    /// `t_N` at the secondary nodes of one pass, the sum of the two passes'
+    /// shares with `two_pass`. 0 elsewhere.
     pressure: Vec<f64>,
+    /// The normal force and tributary area behind `pressure`.
+    nodal_force: Vec<f64>,
+    nodal_area: Vec<f64>,
     /// Signed gap at secondary nodes, NaN elsewhere.
     gap: Vec<f64>,
     /// 0 open, 1 stick (closed, without friction), 2 slip (0 away from
@@ -368,6 +375,8 @@ impl ContactFields {
         let n = problem.model.mesh.num_nodes();
         let mut fields = ContactFields {
             pressure: vec![0.0; n],
+            nodal_force: vec![0.0; n],
+            nodal_area: vec![0.0; n],
             gap: vec![f64::NAN; n],
             status: vec![0.0; n],
             traction: vec![0.0; 3 * n],
@@ -392,7 +401,17 @@ impl ContactFields {
             .zip(&contact.interfaces)
         {
             let mut summary = InterfaceSummary::default();
-            for (((&s, &area), r), state) in c.nodes.iter().zip(&c.areas).zip(nodes).zip(states) {
+            let mesh = &problem.model.mesh;
+            let set = mesh.surface(&c.surface).expect("validated");
+            let (_, whole) = crate::contact::tributary_areas(mesh, set);
+            for ((((&s, &area), r), state), &whole) in c
+                .nodes
+                .iter()
+                .zip(&c.areas)
+                .zip(nodes)
+                .zip(states)
+                .zip(&whole)
+            {
                 // status and tangential traction as committed for this
                 // increment (re-evaluated from the committed history, a
                 // slipping node would sit exactly on the Coulomb cone and
@@ -400,9 +419,10 @@ impl ContactFields {
                 let history = &state.friction;
                 r.status = history.status;
                 r.tangential_traction = history.traction.into();
-                fields.pressure[s] = r.pressure;
+                fields.nodal_force[s] += area * r.pressure;
+                fields.nodal_area[s] = whole;
                 fields.gap[s] = r.gap;
-                fields.status[s] = history.status.code() as f64;
+                fields.status[s] = fields.status[s].max(history.status.code() as f64);
                 for d in 0..3 {
                     summary.force[d] += r.force[d];
                     summary.tangential_force[d] += area * history.traction[d];
@@ -425,16 +445,26 @@ impl ContactFields {
             }
             fields.summaries.insert(c.name.clone(), summary);
         }
+        for ((p, f), a) in fields
+            .pressure
+            .iter_mut()
+            .zip(&fields.nodal_force)
+            .zip(&fields.nodal_area)
+        {
+            if *a > 0.0 {
+                *p = f / a;
+            }
+        }
         fields.reports = reports;
         Ok(fields)
     }
 }
 
 impl ContactFields {
-    /// Pressure and status on the nodes of a deformable primary surface:
-    /// each secondary node's force `A_s t_N n` goes to its triangle's nodes
-    /// with the weights `N_i(ξ)` and is divided by the primary node's
-    /// tributary area. Returns the total force on the primary surface.
+    /// Force and status on the nodes of a deformable primary surface: each
+    /// secondary node's force `A_s t_N n` goes to its triangle's nodes with
+    /// the weights `N_i(ξ)` (divided by the primary node's tributary area
+    /// for `pressure`). Returns the total force on the primary surface.
     fn add_primary_side(
         &mut self,
         problem: &Problem,
@@ -463,8 +493,11 @@ impl ContactFields {
         let set = mesh.surface(&primary.surface).expect("validated");
         let (nodes, areas) = crate::contact::tributary_areas(mesh, set);
         for (&n, &a) in nodes.iter().zip(&areas) {
-            self.pressure[n] = nodal[n] / a;
-            self.status[n] = if nodal[n] > 0.0 { 1.0 } else { 0.0 };
+            self.nodal_force[n] += nodal[n];
+            self.nodal_area[n] = a;
+            if nodal[n] > 0.0 {
+                self.status[n] = self.status[n].max(1.0);
+            }
         }
         total
     }

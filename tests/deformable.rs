@@ -81,9 +81,8 @@ fn contact_force_on(pr: &Problem, x: &[f64], surface: &str) -> [f64; 3] {
 /// which are not the consistent nodal forces of a uniform pressure on the
 /// primary mesh, so the lower block is loaded unevenly, its top warps
 /// slightly and the secondary pressures settle between 0.76 P and 1.23 P
-/// (the two-pass variant, which would average this out, is not
-/// implemented yet). Action and reaction: the contact force the primary
-/// surface receives, measured independently from the lower block's
+/// (`tests/two_pass.rs` measures the symmetric two-pass variant). Action
+/// and reaction: the contact force the primary surface receives, measured independently from the lower block's
 /// internal forces, balances the secondary's to 1e-8 (along the normal).
 #[test]
 fn stacked_blocks_patch_test_and_action_reaction() {

@@ -500,7 +500,7 @@ impl Case {
         let mut out = Vec::new();
         for (i, c) in spec.contact.iter().enumerate() {
             let key = format!("contact[{i}]");
-            let surface = self.surface(&format!("{key}.surface"), &c.surface)?;
+            self.surface(&format!("{key}.surface"), &c.surface)?;
             // what the secondary nodes touch
             enum Target {
                 Obstacle(usize),
@@ -548,125 +548,179 @@ impl Case {
                     )))
                 }
             };
-            let (nodes, areas) = tributary_areas(mesh, surface);
-            let total: f64 = areas.iter().sum();
-            if nodes.is_empty() || !(total > 0.0) {
-                return Err(self.err(format!("{key}.surface '{}' has no area", c.surface)));
+            // the passes: one, or with `two_pass` also the primary surface's
+            // nodes against the secondary surface's triangles, each pass on
+            // half of every node's tributary area
+            if c.two_pass && !matches!(target, Target::Surface(_)) {
+                return Err(self.err(format!(
+                    "{key}.two_pass applies to contact between deformable bodies only (with `primary`); \
+                     remove it, or name the other body's surface with `primary` instead of `obstacle`"
+                )));
             }
-            let h = (total / nodes.len() as f64).sqrt();
-            let (base, _) = automatic_parameters(youngs, h);
-            let auto = if matches!(c.method, ContactMethod::Uzawa) {
-                base * crate::contact::laws::uzawa::AUTOMATIC_FACTOR
-            } else {
-                base
-            };
-            let positive = |v: Option<f64>, name: &str| -> Result<f64> {
-                match v {
-                    None => Ok(auto),
-                    Some(x) if x > 0.0 && x.is_finite() => Ok(x),
-                    Some(x) => Err(self.err(format!("{key}.{name} = {x} must be positive"))),
-                }
-            };
-            let (p, k) = (
-                positive(c.penalty, "penalty")?,
-                positive(c.scaling, "scaling")?,
-            );
-            let law = match c.method {
-                ContactMethod::Penalty => NormalLaw::Penalty { epsilon: p },
-                ContactMethod::Uzawa => NormalLaw::Uzawa { epsilon: p },
-                ContactMethod::Rockafellar => NormalLaw::Rockafellar { p, k },
-                ContactMethod::Slack => NormalLaw::Slack { p, k },
-            };
-            // automatic parameters follow the local mesh size: E/h_s, h_s = √A_s
-            let automatic = c.penalty.is_none() && c.scaling.is_none();
-            let node_scale = if automatic {
-                areas.iter().map(|a| h / a.sqrt().max(1e-300)).collect()
-            } else {
-                Vec::new()
-            };
-            let friction = match (c.friction_coefficient, c.tangential_penalty) {
-                (None, Some(_)) => {
+            // two passes constrain the same motion twice (at least where
+            // nodes coincide: the stacked blocks' 41 constraints have rank
+            // 37), and a multiplier unknown per constraint makes the saddle
+            // system singular (`tests/two_pass.rs`): only the methods
+            // without multiplier unknowns
+            if c.two_pass && matches!(c.method, ContactMethod::Rockafellar | ContactMethod::Slack) {
+                return Err(self.err(format!(
+                    "{key}.two_pass needs method = \"uzawa\" or \"penalty\" (method is \"{}\"): the two passes \
+                     constrain the same motion twice, which makes the multiplier system of rockafellar and slack \
+                     singular; uzawa reaches the same Lagrangian solution without multiplier unknowns",
+                    if matches!(c.method, ContactMethod::Slack) {
+                        "slack"
+                    } else {
+                        "rockafellar"
+                    }
+                )));
+            }
+            let name = c.name.clone().unwrap_or_else(|| c.surface.clone());
+            let mut passes = vec![(name.clone(), c.surface.clone(), target, "")];
+            if let (true, Some(primary)) = (c.two_pass, &c.primary) {
+                let reverse = format!("{name}.reverse");
+                if let Some(j) = spec
+                    .contact
+                    .iter()
+                    .position(|o| o.name.as_deref().unwrap_or(&o.surface) == reverse)
+                {
                     return Err(self.err(format!(
-                        "{key}.tangential_penalty is given without {key}.friction_coefficient; \
-                         add the friction coefficient or remove the tangential penalty"
-                    )))
-                }
-                (None, None) => None,
-                (Some(mu), _) if !(mu >= 0.0 && mu.is_finite()) => {
-                    return Err(self.err(format!(
-                        "{key}.friction_coefficient = {mu} must be zero or positive"
-                    )))
-                }
-                (Some(mu), eps) => Some(Coulomb {
-                    coefficient: mu,
-                    // default: the user's normal penalty, else E/h_s (also
-                    // for Uzawa, whose larger automatic ε is for its outer loop)
-                    tangential_penalty: match (eps, c.penalty) {
-                        (None, Some(_)) => p,
-                        (None, None) => base,
-                        (Some(_), _) => positive(eps, "tangential_penalty")?,
-                    },
-                }),
-            };
-            let tangential_scale = if c.tangential_penalty.is_none() {
-                node_scale.clone()
-            } else {
-                Vec::new()
-            };
-            let (primary, motion, amplitude, against) = match target {
-                Target::Obstacle(index) => {
-                    let o = &spec.obstacle[index];
-                    (
-                        Primary::Rigid(self.obstacle(index)?),
-                        o.motion.map(Vector3::from).unwrap_or_else(Vector3::zeros),
-                        self.amplitude(&format!("obstacle[{index}].amplitude"), &o.amplitude)?,
-                        format!("obstacle '{}'", o.name),
-                    )
-                }
-                Target::Surface(mut surface) => {
-                    // the pairs at the start, for the initial check (the
-                    // problem searches again when it installs the interface)
-                    let zero = vec![0.0; 3 * mesh.num_nodes()];
-                    let margin = 2.0 * h.max(surface.element_size);
-                    surface.refresh(&mesh.nodes, &zero, &nodes, margin);
-                    let against = format!("primary surface '{}'", surface.surface);
-                    (
-                        Primary::Surface(surface),
-                        Vector3::zeros(),
-                        crate::problem::Amplitude::ramp(),
-                        against,
-                    )
-                }
-            };
-            let interface = ContactInterface {
-                friction,
-                tangential_scale,
-                node_scale,
-                name: c.name.clone().unwrap_or_else(|| c.surface.clone()),
-                surface: c.surface.clone(),
-                nodes,
-                areas,
-                primary,
-                motion,
-                amplitude,
-                law,
-                multiplier_offset: 0,
-                element_size: h,
-            };
-            // a surface that starts inside the obstacle is a set-up error
-            let tolerance = c.initial_penetration_tolerance.unwrap_or(0.01 * h);
-            let zero = vec![0.0; 3 * mesh.num_nodes()];
-            let gaps = interface.gaps(&mesh.nodes, 0.0, &zero, None);
-            for (j, &g) in gaps.iter().enumerate() {
-                if g < -tolerance {
-                    return Err(self.err(format!(
-                        "{key}: node {} of surface '{}' starts inside {against} (gap {g:.3e}, tolerance {tolerance:.3e}); \
-                         move the bodies apart, or check the normal (an obstacle's must point toward the body)",
-                        mesh.node_ids[interface.nodes[j]], c.surface
+                        "{key}.two_pass names its reverse pass '{reverse}', which is the name of contact[{j}]; rename one of them"
                     )));
                 }
+                passes.push((
+                    reverse,
+                    primary.clone(),
+                    Target::Surface(
+                        PrimarySurface::from_mesh(mesh, &c.surface).expect("checked above"),
+                    ),
+                    " (two_pass: the reverse pass)",
+                ));
             }
-            out.push(interface);
+            let share = if c.two_pass { 0.5 } else { 1.0 };
+            for (name, secondary, target, pass) in passes {
+                let surface = self.surface(&format!("{key}.surface"), &secondary)?;
+                let (nodes, areas) = tributary_areas(mesh, surface);
+                let total: f64 = areas.iter().sum();
+                if nodes.is_empty() || !(total > 0.0) {
+                    return Err(self.err(format!("{key}{pass}: surface '{secondary}' has no area")));
+                }
+                let h = (total / nodes.len() as f64).sqrt();
+                let (base, _) = automatic_parameters(youngs, h);
+                let auto = if matches!(c.method, ContactMethod::Uzawa) {
+                    base * crate::contact::laws::uzawa::AUTOMATIC_FACTOR
+                } else {
+                    base
+                };
+                let positive = |v: Option<f64>, name: &str| -> Result<f64> {
+                    match v {
+                        None => Ok(auto),
+                        Some(x) if x > 0.0 && x.is_finite() => Ok(x),
+                        Some(x) => Err(self.err(format!("{key}.{name} = {x} must be positive"))),
+                    }
+                };
+                let (p, k) = (
+                    positive(c.penalty, "penalty")?,
+                    positive(c.scaling, "scaling")?,
+                );
+                let law = match c.method {
+                    ContactMethod::Penalty => NormalLaw::Penalty { epsilon: p },
+                    ContactMethod::Uzawa => NormalLaw::Uzawa { epsilon: p },
+                    ContactMethod::Rockafellar => NormalLaw::Rockafellar { p, k },
+                    ContactMethod::Slack => NormalLaw::Slack { p, k },
+                };
+                // automatic parameters follow the local mesh size: E/h_s, h_s = √A_s
+                let automatic = c.penalty.is_none() && c.scaling.is_none();
+                let node_scale = if automatic {
+                    areas.iter().map(|a| h / a.sqrt().max(1e-300)).collect()
+                } else {
+                    Vec::new()
+                };
+                let friction = match (c.friction_coefficient, c.tangential_penalty) {
+                    (None, Some(_)) => {
+                        return Err(self.err(format!(
+                            "{key}.tangential_penalty is given without {key}.friction_coefficient; \
+                             add the friction coefficient or remove the tangential penalty"
+                        )))
+                    }
+                    (None, None) => None,
+                    (Some(mu), _) if !(mu >= 0.0 && mu.is_finite()) => {
+                        return Err(self.err(format!(
+                            "{key}.friction_coefficient = {mu} must be zero or positive"
+                        )))
+                    }
+                    (Some(mu), eps) => Some(Coulomb {
+                        coefficient: mu,
+                        // default: the user's normal penalty, else E/h_s (also
+                        // for Uzawa, whose larger automatic ε is for its outer loop)
+                        tangential_penalty: match (eps, c.penalty) {
+                            (None, Some(_)) => p,
+                            (None, None) => base,
+                            (Some(_), _) => positive(eps, "tangential_penalty")?,
+                        },
+                    }),
+                };
+                let tangential_scale = if c.tangential_penalty.is_none() {
+                    node_scale.clone()
+                } else {
+                    Vec::new()
+                };
+                let (primary, motion, amplitude, against) = match target {
+                    Target::Obstacle(index) => {
+                        let o = &spec.obstacle[index];
+                        (
+                            Primary::Rigid(self.obstacle(index)?),
+                            o.motion.map(Vector3::from).unwrap_or_else(Vector3::zeros),
+                            self.amplitude(&format!("obstacle[{index}].amplitude"), &o.amplitude)?,
+                            format!("obstacle '{}'", o.name),
+                        )
+                    }
+                    Target::Surface(mut surface) => {
+                        // the pairs at the start, for the initial check (the
+                        // problem searches again when it installs the interface)
+                        let zero = vec![0.0; 3 * mesh.num_nodes()];
+                        let margin = 2.0 * h.max(surface.element_size);
+                        surface.refresh(&mesh.nodes, &zero, &nodes, margin);
+                        let against = format!("primary surface '{}'", surface.surface);
+                        (
+                            Primary::Surface(surface),
+                            Vector3::zeros(),
+                            crate::problem::Amplitude::ramp(),
+                            against,
+                        )
+                    }
+                };
+                let interface = ContactInterface {
+                    friction,
+                    tangential_scale,
+                    node_scale,
+                    name,
+                    surface: secondary.clone(),
+                    nodes,
+                    // the parameters above (E/h_s) are those of the whole
+                    // tributary area; two passes share it
+                    areas: areas.iter().map(|a| share * a).collect(),
+                    primary,
+                    motion,
+                    amplitude,
+                    law,
+                    multiplier_offset: 0,
+                    element_size: h,
+                };
+                // a surface that starts inside the obstacle is a set-up error
+                let tolerance = c.initial_penetration_tolerance.unwrap_or(0.01 * h);
+                let zero = vec![0.0; 3 * mesh.num_nodes()];
+                let gaps = interface.gaps(&mesh.nodes, 0.0, &zero, None);
+                for (j, &g) in gaps.iter().enumerate() {
+                    if g < -tolerance {
+                        return Err(self.err(format!(
+                            "{key}{pass}: node {} of surface '{secondary}' starts inside {against} (gap {g:.3e}, tolerance {tolerance:.3e}); \
+                             move the bodies apart, or check the normal (an obstacle's must point toward the body)",
+                            mesh.node_ids[interface.nodes[j]]
+                        )));
+                    }
+                }
+                out.push(interface);
+            }
         }
         Ok(out)
     }

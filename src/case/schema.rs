@@ -217,6 +217,12 @@ pub struct ContactSpec {
     /// Largest initial penetration accepted; default 1 % of the contact
     /// element size.
     pub initial_penetration_tolerance: Option<f64>,
+    /// Symmetric (two-pass) node-to-surface contact, with `primary` only:
+    /// a second interface `<name>.reverse` checks the primary surface's
+    /// nodes against the secondary's triangles, and both interfaces use
+    /// half of each node's tributary area (default false: one pass).
+    #[serde(default)]
+    pub two_pass: bool,
 }
 
 /// `[[step]]`

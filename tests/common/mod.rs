@@ -424,3 +424,28 @@ pub fn surface_interface(
         )
     }
 }
+
+/// The two passes of a symmetric deformable interface, as the case file's
+/// `two_pass = true` builds them: the nodes of `secondary` against the
+/// triangles of `primary` (named `secondary`), and the nodes of `primary`
+/// against the triangles of `secondary` (named `"{secondary}.reverse"`),
+/// each node with half its tributary area.
+pub fn two_pass_interfaces(
+    p: &Problem,
+    secondary: &str,
+    primary: &str,
+    law: NormalLaw,
+) -> Vec<ContactInterface> {
+    [(secondary, primary), (primary, secondary)]
+        .iter()
+        .enumerate()
+        .map(|(k, &(s, m))| {
+            let mut c = surface_interface(p, s, m, law);
+            c.areas.iter_mut().for_each(|a| *a *= 0.5);
+            if k == 1 {
+                c.name = format!("{secondary}.reverse");
+            }
+            c
+        })
+        .collect()
+}

@@ -6,7 +6,7 @@
 
 mod common;
 
-use common::{assert_tangent_matches_fd, fix, interface, problem, run};
+use common::{assert_tangent_matches_fd, fix, interface, perturbed_state, problem, run};
 use nalgebra::Vector3;
 use signorini::contact::interface::Primary;
 use signorini::contact::laws::NormalLaw;
@@ -156,17 +156,7 @@ fn assembled_contact_tangent_matches_finite_difference() {
         let sphere = RigidObstacle::sphere(Vector3::new(0.4, 0.6, -1.0), 1.02).unwrap();
         let c = interface(&pr, H, "zmin", sphere, law);
         pr.set_contacts(vec![c]);
-        let n = pr.num_unknowns();
-        let dofs = pr.model.num_dofs();
-        let x: Vec<f64> = (0..n)
-            .map(|i| {
-                if name == "slack" && i >= dofs {
-                    0.0
-                } else {
-                    0.01 * ((i as f64) * 0.77).sin()
-                }
-            })
-            .collect();
+        let x = perturbed_state(&pr, 0.01, name == "slack");
         let state = pr.initial_contact_state(&x);
         let mut k = vec![0.0; pr.model.pattern.nnz()];
         let (_, reports) = pr.residual_in(0.5, &x, &state, Some(&mut k)).unwrap();

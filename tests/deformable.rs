@@ -7,13 +7,14 @@
 mod common;
 
 use common::{
-    assert_quadratic, assert_tangent_matches_fd, fix, problem, run, surface_interface, two_bodies,
+    assert_quadratic, assert_tangent_matches_fd, fix, problem, run, support_stacked_blocks,
+    surface_interface, two_bodies, write_stacked_blocks_case,
 };
 use signorini::contact::laws::NormalLaw;
 use signorini::material::{LinearElastic, NeoHookean};
 use signorini::mesh::structured::box_mesh;
 use signorini::mesh::ElementKind;
-use signorini::problem::{Amplitude, PressureLoad, Problem};
+use signorini::problem::Problem;
 use std::sync::Arc;
 
 const E: f64 = 100.0;
@@ -39,19 +40,7 @@ fn stacked_blocks(law: NormalLaw, offset: [f64; 3]) -> Problem {
     let upper = box_mesh(ElementKind::Hex8, [3, 3, 2], [1.0, 1.0, 0.5]);
     let mesh = two_bodies(lower, "lower", upper, "upper", offset);
     let mut pr = problem(mesh, Arc::new(LinearElastic::new(E, 0.3, "m").unwrap()));
-    fix(&mut pr, "lower.zmin", &[(2, 0.0)]);
-    for body in ["lower", "upper"] {
-        fix(&mut pr, &format!("{body}.xmin"), &[(0, 0.0)]);
-        fix(&mut pr, &format!("{body}.ymin"), &[(1, 0.0)]);
-    }
-    let facets = pr.model.mesh.surface("upper.zmax").unwrap().facets.clone();
-    pr.pressures.push(PressureLoad {
-        surface: "upper.zmax".into(),
-        facets,
-        pressure: P,
-        follower: false,
-        amplitude: Amplitude::ramp(),
-    });
+    support_stacked_blocks(&mut pr, P);
     let c = surface_interface(&pr, "upper.zmin", "lower.zmax", law);
     pr.set_contacts(vec![c]);
     pr
@@ -196,64 +185,12 @@ fn newton_is_quadratic_with_a_deformable_primary() {
 /// deformable interface are clear.
 #[test]
 fn stacked_blocks_through_the_case_file() {
-    let lower = box_mesh(ElementKind::Hex8, [4, 4, 2], [1.0, 1.0, 0.5]);
-    let upper = box_mesh(ElementKind::Hex8, [3, 3, 2], [1.0, 1.0, 0.5]);
-    let mesh = two_bodies(lower, "lower", upper, "upper", [0.0, 0.0, 0.5]);
     let dir = tempfile::tempdir().unwrap();
-    std::fs::write(dir.path().join("blocks.msh"), common::msh22(&mesh)).unwrap();
-    let case = r#"
-[mesh]
-file = "blocks.msh"
-
-[[material]]
-region = "lower"
-model = "linear_elastic"
-youngs_modulus = 100.0
-poisson_ratio = 0.3
-
-[[material]]
-region = "upper"
-model = "neo_hookean"
-youngs_modulus = 50.0
-poisson_ratio = 0.3
-
-[[displacement]]
-surface = "lower.zmin"
-z = 0.0
-
-[[displacement]]
-surface = "lower.xmin"
-x = 0.0
-
-[[displacement]]
-surface = "lower.ymin"
-y = 0.0
-
-[[displacement]]
-surface = "upper.xmin"
-x = 0.0
-
-[[displacement]]
-surface = "upper.ymin"
-y = 0.0
-
-[[pressure]]
-surface = "upper.zmax"
-value = 2.0
-
-[[contact]]
-name = "interface"
-surface = "upper.zmin"
-primary = "lower.zmax"
-
-[[step]]
-name = "press"
-end_time = 1.0
-initial_increment = 0.5
-"#;
-    std::fs::write(dir.path().join("case.toml"), case).unwrap();
+    let upper = "model = \"neo_hookean\"\nyoungs_modulus = 50.0\npoisson_ratio = 0.3";
+    let path = write_stacked_blocks_case(dir.path(), upper, "");
+    let case = std::fs::read_to_string(&path).unwrap();
     let outcome = signorini::run::run(
-        &dir.path().join("case.toml"),
+        &path,
         &signorini::run::RunOptions {
             output: Some(dir.path().join("out")),
             quiet: true,
@@ -298,9 +235,11 @@ initial_increment = 0.5
         &["contact[0].friction_coefficient", "not supported yet"],
     );
     check(
-        &case.replace("[mesh]", "").replace("file = \"blocks.msh\"", "")
-            .replace("[[material]]\nregion = \"lower\"", "[mesh]\nfile = \"blocks.msh\"\n\n[[material]]\nregion = \"lower\"")
-            .replace("value = 2.0", "value = 2.0\n\n[[obstacle]]\nname = \"floor\"\nshape = \"plane\"\npoint = [0.0, 0.0, 0.0]\nnormal = [0.0, 0.0, 1.0]")
+        &case
+            .replace(
+                "[[step]]",
+                "[[obstacle]]\nname = \"floor\"\nshape = \"plane\"\npoint = [0.0, 0.0, 0.0]\nnormal = [0.0, 0.0, 1.0]\n\n[[step]]",
+            )
             .replace("primary = \"lower.zmax\"", "primary = \"lower.zmax\"\nobstacle = \"floor\""),
         &["contact[0]", "not both"],
     );
@@ -317,19 +256,7 @@ fn nodes_beyond_the_primary_edge_stay_open() {
     let upper = box_mesh(ElementKind::Hex8, [6, 6, 2], [1.5, 1.5, 0.5]);
     let mesh = two_bodies(lower, "lower", upper, "upper", [0.0, 0.0, 0.5]);
     let mut pr = problem(mesh, Arc::new(LinearElastic::new(E, 0.3, "m").unwrap()));
-    fix(&mut pr, "lower.zmin", &[(2, 0.0)]);
-    for body in ["lower", "upper"] {
-        fix(&mut pr, &format!("{body}.xmin"), &[(0, 0.0)]);
-        fix(&mut pr, &format!("{body}.ymin"), &[(1, 0.0)]);
-    }
-    let facets = pr.model.mesh.surface("upper.zmax").unwrap().facets.clone();
-    pr.pressures.push(PressureLoad {
-        surface: "upper.zmax".into(),
-        facets,
-        pressure: P,
-        follower: false,
-        amplitude: Amplitude::ramp(),
-    });
+    support_stacked_blocks(&mut pr, P);
     let law = NormalLaw::Rockafellar {
         p: 4.0 * E,
         k: 4.0 * E,

@@ -8,7 +8,10 @@
 
 mod common;
 
-use common::{assert_quadratic, assert_tangent_matches_fd, fix, interface, problem, run, Last};
+use common::{
+    assert_quadratic, assert_tangent_matches_fd, fix, interface, perturbed_state, problem, run,
+    Last,
+};
 use nalgebra::Vector3;
 use signorini::contact::friction::{ContactStatus, Coulomb};
 use signorini::contact::laws::NormalLaw;
@@ -370,17 +373,7 @@ fn frictional_tangent_matches_finite_differences_in_stick_and_slip() {
         let mut c = interface(&pr, H, "zmin", sphere, law);
         c.friction = Some(coulomb());
         pr.set_contacts(vec![c]);
-        let n = pr.num_unknowns();
-        let dofs = pr.model.num_dofs();
-        let x: Vec<f64> = (0..n)
-            .map(|i| {
-                if name == "slack" && i >= dofs {
-                    0.0
-                } else {
-                    0.01 * ((i as f64) * 0.77).sin()
-                }
-            })
-            .collect();
+        let x = perturbed_state(&pr, 0.01, name == "slack");
         let mut state = pr.initial_contact_state(&x);
         // history: alternate nodes anchored far away (slip) or nearby with
         // an old traction in the tangent plane (stick)

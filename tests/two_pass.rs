@@ -6,102 +6,26 @@
 
 mod common;
 
-use common::{msh22, problem, run, two_bodies, two_pass_interfaces};
+use common::{
+    problem, run, stacked_blocks_case, stacked_blocks_mesh, two_pass_interfaces,
+    write_stacked_blocks_case,
+};
 use nalgebra::{DMatrix, DVector};
 use signorini::contact::laws::NormalLaw;
 use signorini::contact::tributary_areas;
 use signorini::material::LinearElastic;
-use signorini::mesh::structured::box_mesh;
-use signorini::mesh::{ElementKind, Mesh};
 use signorini::problem::Problem;
-use std::path::Path;
 use std::sync::Arc;
 
 const P: f64 = 2.0;
 
-/// The stacked blocks: lower 4 × 4 × 2 Hex8, upper 3 × 3 × 2 Hex8, both
-/// 1 × 1 × 0.5, non-matching at z = 0.5.
-fn blocks() -> Mesh {
-    let lower = box_mesh(ElementKind::Hex8, [4, 4, 2], [1.0, 1.0, 0.5]);
-    let upper = box_mesh(ElementKind::Hex8, [3, 3, 2], [1.0, 1.0, 0.5]);
-    two_bodies(lower, "lower", upper, "upper", [0.0, 0.0, 0.5])
-}
-
-/// The stacked blocks of `tests/deformable.rs` as a case file (both blocks
-/// linear elastic, E = 100, ν = 0.3; symmetry planes x = 0 and y = 0, the
-/// lower bottom held in z, pressure P on the upper top; one increment,
-/// residual tolerance 1e-10); `contact` is the `[[contact]]` table's keys
-/// after `name`, `surface` and `primary`.
-fn case_text(contact: &str) -> String {
-    format!(
-        r#"
-[mesh]
-file = "blocks.msh"
-
-[[material]]
-region = "lower"
-model = "linear_elastic"
-youngs_modulus = 100.0
-poisson_ratio = 0.3
-
-[[material]]
-region = "upper"
-model = "linear_elastic"
-youngs_modulus = 100.0
-poisson_ratio = 0.3
-
-[[displacement]]
-surface = "lower.zmin"
-z = 0.0
-
-[[displacement]]
-surface = "lower.xmin"
-x = 0.0
-
-[[displacement]]
-surface = "lower.ymin"
-y = 0.0
-
-[[displacement]]
-surface = "upper.xmin"
-x = 0.0
-
-[[displacement]]
-surface = "upper.ymin"
-y = 0.0
-
-[[pressure]]
-surface = "upper.zmax"
-value = {P}
-
-[[contact]]
-name = "interface"
-surface = "upper.zmin"
-primary = "lower.zmax"
-{contact}
-
-[[step]]
-name = "press"
-end_time = 1.0
-
-[solver]
-residual_tolerance = 1e-10
-"#
-    )
-}
-
-/// Write the mesh and the case with `contact` into `dir`; the case's path.
-fn write_case(dir: &Path, contact: &str) -> std::path::PathBuf {
-    std::fs::write(dir.join("blocks.msh"), msh22(&blocks())).unwrap();
-    let path = dir.join("case.toml");
-    std::fs::write(&path, case_text(contact)).unwrap();
-    path
-}
+/// The upper block's material in these cases.
+const LINEAR: &str = "model = \"linear_elastic\"\nyoungs_modulus = 100.0\npoisson_ratio = 0.3";
 
 /// The problem the case builder makes of the stacked blocks with `contact`.
 fn build(contact: &str) -> Problem {
     let dir = tempfile::tempdir().unwrap();
-    signorini::case::load(&write_case(dir.path(), contact))
+    signorini::case::load(&write_stacked_blocks_case(dir.path(), LINEAR, contact))
         .and_then(|c| c.build_problem())
         .unwrap()
 }
@@ -261,7 +185,7 @@ fn two_pass_constraints_cannot_produce_a_uniform_pressure() {
     let law = NormalLaw::Rockafellar { p: 300.0, k: 300.0 };
     for (two, count, rank, misfit) in [(false, 16, 16, 0.1719), (true, 41, 37, 0.01157)] {
         let mut pr = problem(
-            blocks(),
+            stacked_blocks_mesh(),
             Arc::new(LinearElastic::new(100.0, 0.3, "m").unwrap()),
         );
         pr.set_contacts(if two {
@@ -322,7 +246,7 @@ fn two_pass_constraints_cannot_produce_a_uniform_pressure() {
 #[test]
 fn two_pass_through_the_case_file() {
     let dir = tempfile::tempdir().unwrap();
-    let path = write_case(dir.path(), "method = \"uzawa\"\ntwo_pass = true");
+    let path = write_stacked_blocks_case(dir.path(), LINEAR, "method = \"uzawa\"\ntwo_pass = true");
     let outcome = signorini::run::run(
         &path,
         &signorini::run::RunOptions {
@@ -342,7 +266,8 @@ fn two_pass_through_the_case_file() {
         }
     }
     let check = |contact: &str, extra: &str, expect: &[&str]| {
-        let text = case_text(contact).replace("[[step]]", &format!("{extra}\n[[step]]"));
+        let text =
+            stacked_blocks_case(LINEAR, contact).replace("[[step]]", &format!("{extra}\n[[step]]"));
         std::fs::write(dir.path().join("bad.toml"), text).unwrap();
         let err = signorini::case::load(&dir.path().join("bad.toml"))
             .and_then(|c| c.build_problem().map(|_| ()))
@@ -353,7 +278,7 @@ fn two_pass_through_the_case_file() {
         }
     };
     let obstacle = "[[obstacle]]\nname = \"floor\"\nshape = \"plane\"\npoint = [0.0, 0.0, 0.0]\nnormal = [0.0, 0.0, 1.0]\n";
-    let mut with_obstacle = case_text("method = \"uzawa\"\ntwo_pass = true")
+    let mut with_obstacle = stacked_blocks_case(LINEAR, "method = \"uzawa\"\ntwo_pass = true")
         .replace("primary = \"lower.zmax\"", "obstacle = \"floor\"")
         .replace("surface = \"upper.zmin\"", "surface = \"lower.zmin\"");
     with_obstacle = with_obstacle.replace("[[step]]", &format!("{obstacle}\n[[step]]"));

@@ -15,6 +15,7 @@ use signorini::problem::{
 use signorini::solve::linear::{Ordering, SparseLdlt};
 use signorini::solve::stepping::{run_steps, IncrementRecord, StepObserver};
 use std::collections::HashMap;
+use std::path::Path;
 use std::sync::Arc;
 
 /// A problem with one material everywhere and no loads yet.
@@ -448,4 +449,123 @@ pub fn two_pass_interfaces(
             c
         })
         .collect()
+}
+
+/// The stacked blocks: lower 4 × 4 × 2 Hex8, upper 3 × 3 × 2 Hex8, both
+/// 1 × 1 × 0.5, non-matching at z = 0.5.
+pub fn stacked_blocks_mesh() -> Mesh {
+    use signorini::mesh::{structured::box_mesh, ElementKind};
+    let lower = box_mesh(ElementKind::Hex8, [4, 4, 2], [1.0, 1.0, 0.5]);
+    let upper = box_mesh(ElementKind::Hex8, [3, 3, 2], [1.0, 1.0, 0.5]);
+    two_bodies(lower, "lower", upper, "upper", [0.0, 0.0, 0.5])
+}
+
+/// The stacked blocks as a case file (the lower block linear elastic,
+/// E = 100, ν = 0.3; the upper one `upper_material` (its `model` and
+/// parameters); symmetry planes x = 0 and y = 0, the lower bottom held in
+/// z, pressure 2 on the upper top; one increment, residual tolerance
+/// 1e-10); `contact` is the `[[contact]]` table's keys after `name`,
+/// `surface` and `primary`.
+pub fn stacked_blocks_case(upper_material: &str, contact: &str) -> String {
+    format!(
+        r#"
+[mesh]
+file = "blocks.msh"
+
+[[material]]
+region = "lower"
+model = "linear_elastic"
+youngs_modulus = 100.0
+poisson_ratio = 0.3
+
+[[material]]
+region = "upper"
+{upper_material}
+
+[[displacement]]
+surface = "lower.zmin"
+z = 0.0
+
+[[displacement]]
+surface = "lower.xmin"
+x = 0.0
+
+[[displacement]]
+surface = "lower.ymin"
+y = 0.0
+
+[[displacement]]
+surface = "upper.xmin"
+x = 0.0
+
+[[displacement]]
+surface = "upper.ymin"
+y = 0.0
+
+[[pressure]]
+surface = "upper.zmax"
+value = 2.0
+
+[[contact]]
+name = "interface"
+surface = "upper.zmin"
+primary = "lower.zmax"
+{contact}
+
+[[step]]
+name = "press"
+end_time = 1.0
+
+[solver]
+residual_tolerance = 1e-10
+"#
+    )
+}
+
+/// Write the stacked blocks' mesh and case into `dir`; the case's path.
+pub fn write_stacked_blocks_case(
+    dir: &Path,
+    upper_material: &str,
+    contact: &str,
+) -> std::path::PathBuf {
+    std::fs::write(dir.join("blocks.msh"), msh22(&stacked_blocks_mesh())).unwrap();
+    let path = dir.join("case.toml");
+    std::fs::write(&path, stacked_blocks_case(upper_material, contact)).unwrap();
+    path
+}
+
+/// A state for finite-difference checks of a contact tangent: every
+/// unknown `amplitude · sin(0.77 i)`, except the multipliers of the slack
+/// law (`slack = true`), which start at 0 so that its local unknowns can be
+/// solved consistently for the gap.
+pub fn perturbed_state(pr: &Problem, amplitude: f64, slack: bool) -> Vec<f64> {
+    let dofs = pr.model.num_dofs();
+    (0..pr.num_unknowns())
+        .map(|i| {
+            if slack && i >= dofs {
+                0.0
+            } else {
+                amplitude * ((i as f64) * 0.77).sin()
+            }
+        })
+        .collect()
+}
+
+/// Supports and load of two stacked blocks in one mesh: symmetry planes
+/// x = 0 and y = 0 for both (`lower.xmin`, …, `upper.ymin`), the lower
+/// block's bottom held in z, a dead pressure `pressure` on the upper top.
+pub fn support_stacked_blocks(pr: &mut Problem, pressure: f64) {
+    fix(pr, "lower.zmin", &[(2, 0.0)]);
+    for body in ["lower", "upper"] {
+        fix(pr, &format!("{body}.xmin"), &[(0, 0.0)]);
+        fix(pr, &format!("{body}.ymin"), &[(1, 0.0)]);
+    }
+    let facets = pr.model.mesh.surface("upper.zmax").unwrap().facets.clone();
+    pr.pressures.push(signorini::problem::PressureLoad {
+        surface: "upper.zmax".into(),
+        facets,
+        pressure,
+        follower: false,
+        amplitude: Amplitude::ramp(),
+    });
 }

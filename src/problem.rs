@@ -346,6 +346,23 @@ impl Problem {
         changed
     }
 
+    /// The nodes of every deformable interface (secondary and primary), whose
+    /// motion sets the search margin.
+    pub fn deformable_contact_nodes(&self) -> Vec<usize> {
+        let mut nodes: Vec<usize> = self
+            .contacts
+            .iter()
+            .filter_map(|c| match &c.primary {
+                Primary::Surface(p) => Some(c.nodes.iter().chain(&p.nodes).copied()),
+                Primary::Rigid(_) => None,
+            })
+            .flatten()
+            .collect();
+        nodes.sort_unstable();
+        nodes.dedup();
+        nodes
+    }
+
     /// Whether every secondary node of the deformable interfaces found, at
     /// unknowns `x`, the primary triangle a fresh search would give it: the
     /// check, after an increment converged, that no node slid out of the

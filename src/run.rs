@@ -11,7 +11,7 @@ use crate::output::summary::{IncrementSummary, Summary};
 use crate::output::summary::{InterfaceSummary, PhaseTimes};
 use crate::output::{plot, pvd::PvdCollection, vtu};
 use crate::problem::{ContactState, Problem};
-use crate::solve::linear::{Ordering, SparseLdlt};
+use crate::solve::linear::SparseLdlt;
 use crate::solve::stepping::{run_steps, IncrementRecord, StepObserver};
 use crate::{Error, Result};
 use indicatif::{ProgressBar, ProgressStyle};
@@ -503,19 +503,7 @@ impl ContactFields {
     }
 }
 
-/// AMD for small problems, METIS nested dissection above 10 000 dofs
-/// (where it already fills less: 2.4 times fewer factor entries at 28 k
-/// dofs on a Hex8 box).
-pub fn fill_reducing_ordering(problem: &Problem) -> Result<Ordering> {
-    // a saddle system needs each multiplier after its node: always ND then
-    if problem.model.num_dofs() <= 10_000 && !problem.has_multipliers() {
-        return Ok(Ordering::Amd);
-    }
-    let pattern = &problem.model.pattern;
-    let (xadj, adjncy) = pattern.node_graph();
-    let nodes = crate::solve::ordering::nested_dissection(&xadj, &adjncy)?;
-    Ok(Ordering::Custom(pattern.dof_ordering(&nodes)))
-}
+pub use crate::solve::ordering::fill_reducing_ordering;
 
 /// Remove VTU files of an earlier run with the same name, so the folder
 /// holds one consistent series.

@@ -102,8 +102,14 @@ impl ContactInterface {
         let (t, gap) = match kept {
             Some(k) => k,
             None => {
-                let t = best_triangle(&x_s, &candidates)?;
-                let corners = candidates.iter().find(|c| c.0 == t)?.1;
+                // the nearest candidate that is not degenerate
+                let usable: Vec<(usize, [Vector3<f64>; 3])> = candidates
+                    .iter()
+                    .filter(|(_, c)| triangle_gap(&x_s, [&c[0], &c[1], &c[2]]).is_some())
+                    .cloned()
+                    .collect();
+                let t = best_triangle(&x_s, &usable)?;
+                let corners = usable.iter().find(|c| c.0 == t)?.1;
                 let gap = triangle_gap(&x_s, [&corners[0], &corners[1], &corners[2]])?;
                 // a node whose projection misses even its nearest triangle
                 // is beyond the primary surface's edge: open (its extended

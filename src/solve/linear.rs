@@ -64,6 +64,14 @@ pub struct SparseLdlt {
 }
 
 impl SparseLdlt {
+    /// Use `ordering` from the next factorisation on (a new symbolic
+    /// analysis): after the sparsity pattern changed, e.g. new contact pairs.
+    pub fn set_ordering(&mut self, ordering: Ordering) {
+        self.ordering = ordering;
+        self.symbolic = None;
+        self.analysed = None;
+    }
+
     /// A solver using `ordering` and `threads` threads (0 = rayon's pool).
     pub fn new(ordering: Ordering, threads: usize) -> Self {
         let par = match threads {

@@ -83,7 +83,10 @@ pub fn run_steps(
                 t + dt
             };
             let motion = last_motion.map_or(0.0, |(m, last_dt)| m * (t_new - t) / last_dt);
-            problem.refresh_contact_pairs(&u, motion);
+            if problem.refresh_contact_pairs(&u, motion) {
+                // new couplings: order them (each multiplier after its nodes)
+                solver.set_ordering(super::ordering::fill_reducing_ordering(problem)?);
+            }
             let problem: &Problem = problem;
             let mut trial_contact = contact.clone();
             let (outcome, newton) = solve_with_augmentation(
@@ -111,7 +114,9 @@ pub fn run_steps(
                     residual,
                     force_scale: scale,
                 } => {
-                    let moved = (0..problem.model.num_dofs() / 3)
+                    let moved = problem
+                        .deformable_contact_nodes()
+                        .into_iter()
                         .map(|n| {
                             (0..3)
                                 .map(|d| (trial[3 * n + d] - u[3 * n + d]).powi(2))

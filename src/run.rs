@@ -242,6 +242,8 @@ impl StepObserver for Writer {
         contact: &ContactState,
     ) -> Result<()> {
         self.contact.clone_from(contact);
+        // deformable contact may have rebuilt the pattern with new pairs
+        self.summary.matrix_nnz = problem.model.pattern.nnz();
         let index = self.summary.increments.len() + 1;
         let file = format!("{}_{index:04}.vtu", self.name);
         let stresses = problem.model.cauchy_stresses(u);

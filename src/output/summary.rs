@@ -110,7 +110,8 @@ pub struct Summary {
     pub wall_time: f64,
     /// Symbolic analyses of the tangent's pattern (1 on a fixed mesh).
     pub symbolic_analyses: usize,
-    /// Stored entries of the tangent and of its LDLᵀ factor.
+    /// Stored entries of the tangent (at the last converged increment: new
+    /// deformable contact pairs change the pattern) and of its LDLᵀ factor.
     pub matrix_nnz: usize,
     pub factor_nnz: usize,
     /// Wall time split by phase, seconds (totals of the run, filled when it

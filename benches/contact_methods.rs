@@ -29,7 +29,7 @@
 //! assembly, numeric factorisation, triangular solves). A run that fails
 //! is reported as such (with its error), which is a result too.
 
-use signorini::contact::hertz::{fitted_contact_radius, Hertz};
+use signorini::contact::hertz::{fitted_contact_radius, radial_pressures, Hertz};
 use signorini::run::{run, RunOptions};
 use std::path::{Path, PathBuf};
 use std::time::Instant;
@@ -188,20 +188,7 @@ fn run_child(dir: &Path, size: &str, method: &str, timeout: f64) -> Row {
 
 /// A row from the `summary.json` a run left (converged increments only).
 fn partial_row(dir: &Path, size: &str, method: &str, wall: f64) -> Row {
-    let mut row = Row {
-        size: size.into(),
-        dofs: 0,
-        method: method.into(),
-        per_increment: vec![],
-        total: 0,
-        outer: vec![],
-        penetration_over_h: f64::NAN,
-        radius_error: f64::NAN,
-        peak_error: f64::NAN,
-        wall,
-        phases: [f64::NAN; 4],
-        failure: None,
-    };
+    let mut row = Row::empty(size, method, wall);
     let out = dir.join(format!("out-{method}"));
     if let Ok(text) = std::fs::read_to_string(out.join("summary.json")) {
         if let Ok(v) = serde_json::from_str::<serde_json::Value>(&text) {
@@ -224,6 +211,24 @@ fn partial_row(dir: &Path, size: &str, method: &str, wall: f64) -> Row {
 }
 
 impl Row {
+    /// A row with nothing measured but the wall time.
+    fn empty(size: &str, method: &str, wall: f64) -> Row {
+        Row {
+            size: size.into(),
+            dofs: 0,
+            method: method.into(),
+            per_increment: vec![],
+            total: 0,
+            outer: vec![],
+            penetration_over_h: f64::NAN,
+            radius_error: f64::NAN,
+            peak_error: f64::NAN,
+            wall,
+            phases: [f64::NAN; 4],
+            failure: None,
+        }
+    }
+
     fn to_json(&self) -> String {
         serde_json::json!({
             "size": self.size, "dofs": self.dofs, "method": self.method,
@@ -327,18 +332,8 @@ fn run_one(case_text: &str, dir: &Path, size: &str, method: &str) -> Row {
     let h = interface.element_size;
     let dofs = problem.model.num_dofs();
     let mut row = Row {
-        size: size.into(),
         dofs,
-        method: method.into(),
-        per_increment: vec![],
-        total: 0,
-        outer: vec![],
-        penetration_over_h: f64::NAN,
-        radius_error: f64::NAN,
-        peak_error: f64::NAN,
-        wall,
-        phases: [f64::NAN; 4],
-        failure: None,
+        ..Row::empty(size, method, wall)
     };
     let outcome = match result {
         Ok(outcome) => outcome,
@@ -369,16 +364,12 @@ fn run_one(case_text: &str, dir: &Path, size: &str, method: &str) -> Row {
     let (_, reports) = problem
         .residual_in(1.0, x, &outcome.contact, None)
         .expect("the residual at the solution");
-    let nodes: Vec<(f64, f64)> = interface
-        .nodes
-        .iter()
-        .zip(&reports[0])
-        .map(|(&s, r)| {
-            let p = case.mesh.nodes[s];
-            let (xs, ys) = (p[0] + x[3 * s], p[1] + x[3 * s + 1]);
-            ((xs * xs + ys * ys).sqrt(), r.pressure)
-        })
-        .collect();
+    let nodes = radial_pressures(
+        &interface.nodes,
+        &case.mesh.nodes,
+        x,
+        reports[0].iter().map(|r| r.pressure),
+    );
     let peak = nodes.iter().map(|n| n.1).fold(0.0, f64::max);
     row.peak_error = (peak - p0) / p0;
     let a_fit = fitted_contact_radius(&nodes, 0.2 * p0);

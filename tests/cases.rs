@@ -1,7 +1,7 @@
 //! Every shipped example, run end to end through the library as the CLI
 //! runs it, and compared with the reference stated in its README.
 
-use signorini::contact::hertz::{fitted_contact_radius, Hertz};
+use signorini::contact::hertz::{fitted_contact_radius, radial_pressures, Hertz};
 use signorini::run::{run, RunOptions};
 use std::path::Path;
 
@@ -141,16 +141,12 @@ fn assert_hertz(
     let e_star = 1000.0 / (1.0 - 0.09);
     let reference = Hertz::new(4.0 * force.abs(), 1.0, e_star); // quarter model
     let (a, p0) = (reference.radius, reference.peak_pressure);
-    let nodes: Vec<(f64, f64)> = interface
-        .nodes
-        .iter()
-        .zip(&reports[0])
-        .map(|(&s, r)| {
-            let p = case.mesh.nodes[s];
-            let (xs, ys) = (p[0] + x[3 * s], p[1] + x[3 * s + 1]);
-            ((xs * xs + ys * ys).sqrt(), r.pressure)
-        })
-        .collect();
+    let nodes = radial_pressures(
+        &interface.nodes,
+        &case.mesh.nodes,
+        x,
+        reports[0].iter().map(|r| r.pressure),
+    );
     let peak = nodes.iter().map(|n| n.1).fold(0.0, f64::max);
     assert!((peak - p0).abs() < 0.03 * p0, "peak {peak} vs Hertz {p0}");
     let a_fit = fitted_contact_radius(&nodes, 0.2 * p0);

@@ -6,7 +6,9 @@
 
 mod common;
 
-use common::{assert_tangent_matches_fd, fix, interface, perturbed_state, problem, run};
+use common::{
+    assert_tangent_matches_fd, every_method, fix, interface, perturbed_state, problem, run,
+};
 use nalgebra::Vector3;
 use signorini::contact::interface::Primary;
 use signorini::contact::laws::NormalLaw;
@@ -19,17 +21,6 @@ use std::sync::Arc;
 
 const E: f64 = 100.0;
 const H: f64 = 0.25; // cell size of the test blocks
-
-/// Every method, with parameters from the automatic rule `p = k = ε = E/h`.
-fn methods() -> Vec<(&'static str, NormalLaw)> {
-    let e = E / H;
-    vec![
-        ("penalty", NormalLaw::Penalty { epsilon: e }),
-        ("uzawa", NormalLaw::Uzawa { epsilon: e }),
-        ("rockafellar", NormalLaw::Rockafellar { p: e, k: e }),
-        ("slack", NormalLaw::Slack { p: e, k: e }),
-    ]
-}
 
 /// A block on a rigid plane (its bottom face on z = 0), symmetry planes
 /// x = 0 and y = 0, uniform dead pressure `p` on top.
@@ -63,7 +54,7 @@ fn pressed_block(kind: ElementKind, law: NormalLaw, p: f64) -> Problem {
 fn contact_patch_test_and_exactness() {
     let p = 2.0;
     for kind in [ElementKind::Tet4, ElementKind::Hex8] {
-        for (name, law) in methods() {
+        for (name, law) in every_method(E / H) {
             let mut pr = pressed_block(kind, law, p);
             let last = run(&mut pr);
             let c = &pr.contacts[0];
@@ -104,7 +95,7 @@ fn contact_patch_test_and_exactness() {
 /// law's switch).
 #[test]
 fn lifting_the_obstacle_releases_every_node() {
-    for (name, law) in methods() {
+    for (name, law) in every_method(E / H) {
         let (cells, lengths) = ([3, 3, 2], [0.75, 0.75, 0.5]);
         let mesh = box_mesh(ElementKind::Hex8, cells, lengths);
         let mut pr = problem(mesh, Arc::new(NeoHookean::new(E, 0.3, "m").unwrap()));
@@ -150,7 +141,7 @@ fn lifting_the_obstacle_releases_every_node() {
 /// local unknowns solved for the gap.
 #[test]
 fn assembled_contact_tangent_matches_finite_difference() {
-    for (name, law) in methods() {
+    for (name, law) in every_method(E / H) {
         let mesh = box_mesh(ElementKind::Hex8, [2, 2, 1], [1.0, 1.0, 0.5]);
         let mut pr = problem(mesh, Arc::new(NeoHookean::new(E, 0.3, "m").unwrap()));
         let sphere = RigidObstacle::sphere(Vector3::new(0.4, 0.6, -1.0), 1.02).unwrap();

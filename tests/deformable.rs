@@ -7,8 +7,8 @@
 mod common;
 
 use common::{
-    assert_quadratic, assert_tangent_matches_fd, fix, problem, run, support_stacked_blocks,
-    surface_interface, two_bodies, write_stacked_blocks_case,
+    assert_quadratic, assert_tangent_matches_fd, every_method, fix, problem, run,
+    support_stacked_blocks, surface_interface, two_bodies, write_stacked_blocks_case,
 };
 use signorini::contact::laws::NormalLaw;
 use signorini::material::{LinearElastic, NeoHookean};
@@ -19,16 +19,6 @@ use std::sync::Arc;
 
 const E: f64 = 100.0;
 const P: f64 = 2.0;
-
-fn methods(h: f64) -> Vec<(&'static str, NormalLaw)> {
-    let e = E / h;
-    vec![
-        ("penalty", NormalLaw::Penalty { epsilon: e }),
-        ("uzawa", NormalLaw::Uzawa { epsilon: e }),
-        ("rockafellar", NormalLaw::Rockafellar { p: e, k: e }),
-        ("slack", NormalLaw::Slack { p: e, k: e }),
-    ]
-}
 
 /// A 1 × 1 × 0.5 block (`lower`, 4 × 4 × 2 Hex8) under another (`upper`,
 /// 3 × 3 × 2 Hex8: the meshes do not match at z = 0.5), symmetry planes
@@ -75,7 +65,8 @@ fn contact_force_on(pr: &Problem, x: &[f64], surface: &str) -> [f64; 3] {
 /// internal forces, balances the secondary's to 1e-8 (along the normal).
 #[test]
 fn stacked_blocks_patch_test_and_action_reaction() {
-    for (name, law) in methods(1.0 / 3.0) {
+    // E/h with h = 1/3, the upper block's cell
+    for (name, law) in every_method(3.0 * E) {
         let mut pr = stacked_blocks(law, [0.0, 0.0, 0.5]);
         let last = run(&mut pr);
         let (_, reports) = pr.residual_in(1.0, &last.x, &last.contact, None).unwrap();
@@ -114,7 +105,8 @@ fn stacked_blocks_patch_test_and_action_reaction() {
 /// point and the normal.
 #[test]
 fn deformable_contact_tangent_matches_finite_differences() {
-    for (name, law) in methods(1.0 / 3.0) {
+    // E/h with h = 1/3, the upper block's cell
+    for (name, law) in every_method(3.0 * E) {
         let mesh_lower = box_mesh(ElementKind::Hex8, [2, 2, 1], [1.0, 1.0, 0.5]);
         let mesh_upper = box_mesh(ElementKind::Hex8, [2, 2, 1], [0.8, 0.8, 0.5]);
         let mesh = two_bodies(mesh_lower, "lower", mesh_upper, "upper", [0.07, 0.11, 0.5]);
@@ -154,7 +146,8 @@ fn deformable_contact_tangent_matches_finite_differences() {
 /// toward the symmetry plane y = 0.
 #[test]
 fn newton_is_quadratic_with_a_deformable_primary() {
-    for (name, law) in methods(0.8 / 3.0) {
+    // E/h with h = 0.8/3, the upper block's cell
+    for (name, law) in every_method(3.75 * E) {
         let lower = box_mesh(ElementKind::Hex8, [4, 4, 2], [1.0, 1.0, 0.5]);
         let upper = box_mesh(ElementKind::Hex8, [3, 3, 2], [0.8, 0.8, 0.5]);
         let mesh = two_bodies(lower, "lower", upper, "upper", [0.0, 0.0, 0.5]);

@@ -9,8 +9,8 @@
 mod common;
 
 use common::{
-    assert_quadratic, assert_tangent_matches_fd, fix, interface, perturbed_state, problem, run,
-    Last,
+    assert_quadratic, assert_tangent_matches_fd, every_method, fix, interface, perturbed_state,
+    problem, run, Last,
 };
 use nalgebra::Vector3;
 use signorini::contact::friction::{ContactStatus, Coulomb};
@@ -26,17 +26,6 @@ const E: f64 = 100.0;
 const H: f64 = 0.25; // cell size of the test blocks
 const MU: f64 = 0.3;
 const PRESSURE: f64 = 2.0; // on the top face (area 1): normal force 2
-
-/// Every normal method, parameters `E/h`.
-fn methods() -> Vec<(&'static str, NormalLaw)> {
-    let e = E / H;
-    vec![
-        ("penalty", NormalLaw::Penalty { epsilon: e }),
-        ("uzawa", NormalLaw::Uzawa { epsilon: e }),
-        ("rockafellar", NormalLaw::Rockafellar { p: e, k: e }),
-        ("slack", NormalLaw::Slack { p: e, k: e }),
-    ]
-}
 
 fn coulomb() -> Coulomb {
     Coulomb {
@@ -137,7 +126,7 @@ fn totals(pr: &Problem, t: f64, last: &Last) -> Totals {
 /// quadratically in the sliding increments.
 #[test]
 fn sliding_block_transmits_mu_times_the_normal_force() {
-    for (name, law) in methods() {
+    for (name, law) in every_method(E / H) {
         let mut pr = block_on_plane(law, Some(0.05), 0.0);
         let last = run(&mut pr);
         let t = totals(&pr, 2.0, &last);
@@ -184,7 +173,7 @@ fn sliding_block_transmits_mu_times_the_normal_force() {
 /// pull phase, once the residual is below 1e-4, `r_{k+1} ≤ 100 r_k²`.
 #[test]
 fn newton_is_quadratic_while_sliding() {
-    for (name, law) in methods() {
+    for (name, law) in every_method(E / H) {
         let mut pr = block_on_plane(law, Some(0.1), 0.3);
         let material = Arc::new(NeoHookean::new(E, 0.3, "m").unwrap());
         pr.model.materials = vec![material];
@@ -209,7 +198,7 @@ fn newton_is_quadratic_while_sliding() {
 /// press alone does not slip the edges).
 #[test]
 fn gentle_pull_leaves_every_node_stuck() {
-    for (name, law) in methods() {
+    for (name, law) in every_method(E / H) {
         let mut pr = block_on_plane(law, Some(0.002), 0.0);
         let last = run(&mut pr);
         let t = totals(&pr, 2.0, &last);
@@ -240,7 +229,7 @@ fn gentle_pull_leaves_every_node_stuck() {
 /// displacement field up to the rigid translation, to 1e-8.
 #[test]
 fn dragging_the_plane_equals_pulling_the_block() {
-    for (name, law) in methods() {
+    for (name, law) in every_method(E / H) {
         let mut pulled = block_on_plane(law, Some(0.05), 0.3);
         let mut dragged = block_on_plane(law, Some(0.0), 0.3);
         dragged.contacts[0].motion = Vector3::new(-0.05, 0.0, 0.0);
@@ -274,7 +263,7 @@ fn dragging_the_plane_equals_pulling_the_block() {
 /// pressed-only state (friction dissipated the work of the slip).
 #[test]
 fn pull_and_release_leaves_residual_slip_where_nodes_slipped() {
-    for (name, law) in methods() {
+    for (name, law) in every_method(E / H) {
         let mut pr = block_on_plane(law, None, 0.3);
         pr.steps.push(Step {
             name: "release".into(),
@@ -366,7 +355,7 @@ fn pull_and_release_leaves_residual_slip_where_nodes_slipped() {
 /// the coupling `μ m ⊗ ∂t_N/∂(u, λ)` that the paper's eq. 51 leaves out.
 #[test]
 fn frictional_tangent_matches_finite_differences_in_stick_and_slip() {
-    for (name, law) in methods() {
+    for (name, law) in every_method(E / H) {
         let mesh = box_mesh(ElementKind::Hex8, [2, 2, 1], [1.0, 1.0, 0.5]);
         let mut pr = problem(mesh, Arc::new(NeoHookean::new(E, 0.3, "m").unwrap()));
         let sphere = RigidObstacle::sphere(Vector3::new(0.4, 0.6, -2.96), 3.0).unwrap();

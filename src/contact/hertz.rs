@@ -29,6 +29,26 @@ impl Hertz {
     }
 }
 
+/// The nodal pressures of an axisymmetric contact about the z axis as
+/// `(r, p)`: `r` the current distance of secondary node `nodes[i]` from the
+/// axis (reference position `reference` plus displacement `x`), `p` its
+/// `pressures[i]`.
+pub fn radial_pressures(
+    nodes: &[usize],
+    reference: &[[f64; 3]],
+    x: &[f64],
+    pressures: impl IntoIterator<Item = f64>,
+) -> Vec<(f64, f64)> {
+    nodes
+        .iter()
+        .zip(pressures)
+        .map(|(&s, p)| {
+            let (xs, ys) = (reference[s][0] + x[3 * s], reference[s][1] + x[3 * s + 1]);
+            (xs.hypot(ys), p)
+        })
+        .collect()
+}
+
 /// The contact radius of measured nodal pressures `(r, p)`: a least-squares
 /// fit of Hertz's `p² = p₀² (1 − r²/a²)` (a line in `r²`) over the nodes with
 /// `p > threshold`, `a = √(−c₀/c₁)`.

@@ -569,3 +569,14 @@ pub fn support_stacked_blocks(pr: &mut Problem, pressure: f64) {
         amplitude: Amplitude::ramp(),
     });
 }
+
+/// Every normal-contact method, all with the same parameter `e`
+/// (`ε`, or `p = k`), named as in the case file.
+pub fn every_method(e: f64) -> Vec<(&'static str, NormalLaw)> {
+    vec![
+        ("penalty", NormalLaw::Penalty { epsilon: e }),
+        ("uzawa", NormalLaw::Uzawa { epsilon: e }),
+        ("rockafellar", NormalLaw::Rockafellar { p: e, k: e }),
+        ("slack", NormalLaw::Slack { p: e, k: e }),
+    ]
+}

@@ -464,9 +464,10 @@ impl ContactFields {
 
 impl ContactFields {
     /// Force and status on the nodes of a deformable primary surface: each
-    /// secondary node's force `A_s t_N n` goes to its triangle's nodes with
-    /// the weights `N_i(ξ)` (divided by the primary node's tributary area
-    /// for `pressure`). Returns the total force on the primary surface.
+    /// secondary node's force `A_s (t_N n + t_T)` goes, opposite, to its
+    /// triangle's nodes with the weights `N_i(ξ)` (divided by the primary
+    /// node's tributary area for `pressure` and `contact_traction`).
+    /// Returns the total force on the primary surface.
     fn add_primary_side(
         &mut self,
         problem: &Problem,
@@ -477,27 +478,36 @@ impl ContactFields {
     ) -> [f64; 3] {
         let mesh = &problem.model.mesh;
         let reference = &mesh.nodes;
-        let mut nodal = vec![0.0; mesh.num_nodes()];
+        let mut normal = vec![0.0; mesh.num_nodes()];
+        let mut forces = vec![[0.0; 3]; mesh.num_nodes()];
         let mut total = [0.0; 3];
         for (i, &area) in c.areas.iter().enumerate() {
             let state = c.node_state(states, x, problem.model.num_dofs(), i);
             let Some(node) = c.surface_node(primary, reference, x, i, &state) else {
                 continue;
             };
-            let force = area * node.law.pressure;
+            // the committed tangential traction, as on the secondary side
+            let traction = state.friction.traction;
+            let force = -area * (node.law.pressure * node.gap.normal + traction);
             for (k, &n) in node.nodes[1..].iter().enumerate() {
-                nodal[n] += force * node.gap.shape[k];
+                normal[n] += area * node.law.pressure * node.gap.shape[k];
+                for d in 0..3 {
+                    forces[n][d] += force[d] * node.gap.shape[k];
+                }
             }
-            for (d, t) in total.iter_mut().enumerate() {
-                *t -= force * node.gap.normal[d];
+            for (t, f) in total.iter_mut().zip(force.iter()) {
+                *t += f;
             }
         }
         let set = mesh.surface(&primary.surface).expect("validated");
         let (nodes, areas) = crate::contact::tributary_areas(mesh, set);
         for (&n, &a) in nodes.iter().zip(&areas) {
-            self.nodal_force[n] += nodal[n];
+            self.nodal_force[n] += normal[n];
             self.nodal_area[n] = a;
-            if nodal[n] > 0.0 {
+            for (t, f) in self.traction[3 * n..3 * n + 3].iter_mut().zip(forces[n]) {
+                *t += f / a;
+            }
+            if normal[n] > 0.0 {
                 self.status[n] = self.status[n].max(1.0);
             }
         }

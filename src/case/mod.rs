@@ -533,12 +533,6 @@ impl Case {
                             "{key}.primary = '{name}' is the secondary surface itself; name the surface of the other body"
                         )));
                     }
-                    if c.friction_coefficient.is_some() || c.tangential_penalty.is_some() {
-                        return Err(self.err(format!(
-                            "{key}.friction_coefficient: friction between deformable bodies is not supported yet; \
-                             remove it (frictionless) or use a rigid [[obstacle]]"
-                        )));
-                    }
                     Target::Surface(PrimarySurface::from_mesh(mesh, name).expect("checked above"))
                 }
                 _ => {

@@ -45,7 +45,7 @@
 //! iteration (as the paper says) breaks path independence.
 
 use super::laws::GapGeometry;
-use nalgebra::{Matrix3, Vector3};
+use nalgebra::{Matrix3, SMatrix, SVector, Vector3};
 
 /// Coulomb's law with its regularising tangential penalty.
 #[derive(Clone, Copy, Debug, PartialEq)]
@@ -93,6 +93,22 @@ pub struct FrictionHistory {
     pub slip: Vector3<f64>,
     /// Status at the last converged increment.
     pub status: ContactStatus,
+    /// Between deformable bodies: the primary material point the node was
+    /// over at the last converged increment, where its slip is measured
+    /// from (`None` against a rigid obstacle, or when the node had no
+    /// primary triangle).
+    pub material_point: Option<MaterialPoint>,
+}
+
+/// A material point of a primary surface: a triangle and the weights
+/// `N_i(ξ)` of its three nodes. Its current position `Σ N_i x_i` follows
+/// the primary body's deformation.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct MaterialPoint {
+    /// Index of the primary triangle.
+    pub triangle: usize,
+    /// Shape functions `N = (1 − ξ1 − ξ2, ξ1, ξ2)` of the point.
+    pub shape: [f64; 3],
 }
 
 impl FrictionHistory {
@@ -106,59 +122,86 @@ impl FrictionHistory {
 }
 
 /// The normal pressure the friction law is bounded by, with its derivatives
-/// (from the normal law's [`NodeContribution`](super::laws::NodeContribution)).
+/// (from the normal law's [`NodeContribution`](super::laws::NodeContribution))
+/// with respect to the `K` unknowns of the node's kinematics (`x_s` alone
+/// against a rigid obstacle, `K = 3`).
 #[derive(Clone, Copy, Debug, PartialEq)]
-pub struct NormalPressure {
+pub struct NormalPressure<const K: usize = 3> {
     /// `t_N > 0`.
     pub value: f64,
-    /// `∂t_N/∂x_s`.
-    pub gradient: Vector3<f64>,
+    /// `∂t_N/∂q`.
+    pub gradient: SVector<f64, K>,
     /// `∂t_N/∂λ` (zero without a multiplier dof).
     pub multiplier_derivative: f64,
 }
 
-/// The tangential response of one closed node.
+/// Where a node is relative to the point it slips from, and the tangent
+/// plane, with their derivatives with respect to `K` unknowns `q`.
 #[derive(Clone, Copy, Debug, PartialEq)]
-pub struct TangentialResponse {
+pub struct SlipKinematics<const K: usize> {
+    /// `d`: the node's position relative to its anchor (against a rigid
+    /// obstacle `(x_s − c(t)) − (x_s − c)ₙ`; between bodies `x_s − x̄ₙ`, the
+    /// current position of the primary material point `x̄ₙ` the node was
+    /// over at the last converged increment).
+    pub offset: Vector3<f64>,
+    /// `∂d/∂q`.
+    pub offset_gradient: SMatrix<f64, 3, K>,
+    /// Unit normal `n` of the tangent plane.
+    pub normal: Vector3<f64>,
+    /// `∂n/∂q` (the gap Hessian `H` against a rigid obstacle).
+    pub normal_gradient: SMatrix<f64, 3, K>,
+}
+
+/// The tangential response of one closed node, with derivatives with
+/// respect to the `K` unknowns of its kinematics.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct TangentialResponse<const K: usize = 3> {
     /// `t_T`.
     pub traction: Vector3<f64>,
     /// [`ContactStatus::Stick`] or [`ContactStatus::Slip`].
     pub status: ContactStatus,
-    /// `∂t_T/∂x_s` (not symmetric in slip or on a curved obstacle).
-    pub traction_gradient: Matrix3<f64>,
+    /// `∂t_T/∂q` (not symmetric in slip or on a curved obstacle).
+    pub traction_gradient: SMatrix<f64, 3, K>,
     /// `∂t_T/∂λ`.
     pub traction_multiplier_derivative: Vector3<f64>,
-    /// `J* = ∂t_T*/∂x_s`, the trial (stick) derivative, whatever the
+    /// `J* = ∂t_T*/∂q`, the trial (stick) derivative, whatever the
     /// status: the tangential stiffness a preconditioner may use in slip.
-    pub trial_gradient: Matrix3<f64>,
+    pub trial_gradient: SMatrix<f64, 3, K>,
     /// Slip part of the increment, `Δg_T + (t_T − T t_T,n)/ε_T`
     /// (`−(|t_T*| − μ t_N) m / ε_T` in slip, exactly zero in stick).
     pub slip_increment: Vector3<f64>,
 }
 
-impl TangentialResponse {
+impl<const K: usize> TangentialResponse<K> {
     /// No tangential traction and no stiffness (an open node, status
     /// [`ContactStatus::Open`]).
     pub fn none() -> Self {
         Self {
             traction: Vector3::zeros(),
             status: ContactStatus::Open,
-            traction_gradient: Matrix3::zeros(),
+            traction_gradient: SMatrix::zeros(),
             traction_multiplier_derivative: Vector3::zeros(),
-            trial_gradient: Matrix3::zeros(),
+            trial_gradient: SMatrix::zeros(),
             slip_increment: Vector3::zeros(),
         }
     }
 }
 
-/// Derivative of the projection `T v = v − n (n·v)` of a fixed vector `v`
-/// with respect to `x_s`: `−(n·v) H − n (H v)ᵀ`.
-fn projection_derivative(gap: &GapGeometry, v: &Vector3<f64>) -> Matrix3<f64> {
-    -gap.normal.dot(v) * gap.hessian - gap.normal * (gap.hessian * v).transpose()
+/// Derivative of the projection `T v = v − n (n·v)` of a fixed vector `v`:
+/// `−(n·v) ∂n/∂q − n (vᵀ ∂n/∂q)` (with `∂n/∂x_s = H` symmetric against a
+/// rigid obstacle: `−(n·v) H − n (H v)ᵀ`).
+fn projection_derivative<const K: usize>(
+    kinematics: &SlipKinematics<K>,
+    v: &Vector3<f64>,
+) -> SMatrix<f64, 3, K> {
+    let n_prime = &kinematics.normal_gradient;
+    -kinematics.normal.dot(v) * n_prime - kinematics.normal * (v.transpose() * n_prime)
 }
 
-/// The return mapping of one closed node (`t_N > 0`) at its current
-/// `relative_position = x_s − c(t)`, from the committed `history`.
+/// The return mapping of one closed node (`t_N ≥ 0`) against a rigid
+/// obstacle, at its current `relative_position = x_s − c(t)`, from the
+/// committed `history` ([`return_map_on`] with `q = x_s`, `∂d/∂x_s = I`,
+/// `∂n/∂x_s = H`).
 pub fn return_map(
     law: &Coulomb,
     history: &FrictionHistory,
@@ -166,15 +209,33 @@ pub fn return_map(
     gap: &GapGeometry,
     pressure: &NormalPressure,
 ) -> TangentialResponse {
-    let n = gap.normal;
+    let kinematics = SlipKinematics {
+        offset: relative_position - history.anchor,
+        offset_gradient: Matrix3::identity(),
+        normal: gap.normal,
+        normal_gradient: gap.hessian,
+    };
+    return_map_on(law, &history.traction, &kinematics, pressure)
+}
+
+/// The return mapping (see the module docs) of one closed node with the
+/// committed traction `old_traction`, its slip `kinematics` and normal
+/// `pressure`, differentiated with respect to the `K` unknowns both depend on.
+pub fn return_map_on<const K: usize>(
+    law: &Coulomb,
+    old_traction: &Vector3<f64>,
+    kinematics: &SlipKinematics<K>,
+    pressure: &NormalPressure<K>,
+) -> TangentialResponse<K> {
+    let n = kinematics.normal;
     let projector = Matrix3::identity() - n * n.transpose();
     let eps = law.tangential_penalty;
-    let d = relative_position - history.anchor;
-    let old = projector * history.traction;
+    let d = kinematics.offset;
+    let old = projector * old_traction;
     let slip = projector * d;
     let trial = old - eps * slip;
-    let trial_gradient = projection_derivative(gap, &history.traction)
-        - eps * (projector + projection_derivative(gap, &d));
+    let trial_gradient = projection_derivative(kinematics, old_traction)
+        - eps * (projector * kinematics.offset_gradient + projection_derivative(kinematics, &d));
     let bound = law.coefficient * pressure.value;
     let size = trial.norm();
     if size <= bound {
@@ -204,10 +265,11 @@ pub fn return_map(
 }
 
 /// The history after an increment converged with the node in `response`
-/// (`None`: the node is open) at `relative_position`.
-pub fn commit(
+/// (`None`: the node is open) at `relative_position` (the caller of a
+/// deformable interface then records the node's new material point).
+pub fn commit<const K: usize>(
     history: &FrictionHistory,
-    response: Option<&TangentialResponse>,
+    response: Option<&TangentialResponse<K>>,
     relative_position: Vector3<f64>,
 ) -> FrictionHistory {
     match response {
@@ -216,12 +278,14 @@ pub fn commit(
             anchor: relative_position,
             slip: history.slip + r.slip_increment,
             status: r.status,
+            material_point: None,
         },
         None => FrictionHistory {
             traction: Vector3::zeros(),
             anchor: relative_position,
             slip: history.slip,
             status: ContactStatus::Open,
+            material_point: None,
         },
     }
 }
@@ -367,8 +431,9 @@ mod tests {
             anchor: Vector3::zeros(),
             slip: Vector3::new(0.1, 0.0, 0.0),
             status: ContactStatus::Slip,
+            material_point: None,
         };
-        let c = commit(&h, None, Vector3::new(1.0, 1.0, 1.0));
+        let c = commit::<3>(&h, None, Vector3::new(1.0, 1.0, 1.0));
         assert_eq!(c.traction, Vector3::zeros());
         assert_eq!(c.slip, h.slip);
         assert_eq!(c.status, ContactStatus::Open);

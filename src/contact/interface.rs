@@ -430,10 +430,20 @@ impl ContactInterface {
         pattern: &SparsityPattern,
         values: &mut [f64],
     ) {
-        // friction lives on rigid interfaces only (the case file refuses it
-        // on a deformable one)
-        if self.friction.is_none() || !matches!(self.primary, Primary::Rigid(_)) {
+        if self.friction.is_none() {
             return;
+        }
+        if let Primary::Surface(p) = &self.primary {
+            return self.shift_surface_to_stick(
+                p,
+                reference,
+                x,
+                states,
+                first_multiplier,
+                constrained,
+                pattern,
+                values,
+            );
         }
         let translation = self.translation_at(t);
         for (i, (&s, &area)) in self.nodes.iter().zip(&self.areas).enumerate() {

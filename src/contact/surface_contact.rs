@@ -25,16 +25,46 @@
 //! which includes the change of the projection point and of the normal
 //! (both inside `∇²g`): Newton keeps its quadratic rate.
 //!
-//! Friction between bodies is not implemented yet (the case file refuses
-//! it with a message).
+//! ## Friction between bodies
+//! Slip is measured against the *material point* of the primary surface the
+//! node was over at the last converged increment ([`MaterialPoint`]: a
+//! triangle `(y1, y2, y3)` and its weights `N̄_j`), which moves with the
+//! primary body: the return mapping of [`friction`] gets
+//! ```text
+//! d = x_s − Σ N̄_j y_j,     n, ∂n/∂q from the current triangle,
+//! ∂t_N/∂q = (∂t_N/∂g) ∇g
+//! ```
+//! over the 21 unknowns `q = (x_s, x1, x2, x3, y1, y2, y3)` (the anchor's
+//! triangle may be the current one: its blocks then add up). The traction
+//! acts on the secondary node and, opposite, on the current projection
+//! point: `r = −A_s Bᵀ t_T` with `B = (I, −N1 I, −N2 I, −N3 I, 0, 0, 0)`
+//! (`B = ∂(x_s − x̄)/∂q` at fixed `ξ`), so that
+//! ```text
+//! K_qq += −A_s Bᵀ ∂t_T/∂q + A_s Σ_i e_iᵀ t_T ⊗ ∂N_i/∂q      (e_i: block row of x_i)
+//! K_qλ += −A_s Bᵀ ∂t_T/∂λ
+//! ```
+//! After an increment converges the node's new material point is its
+//! current projection ([`ContactInterface::commit_surface_history`]; at the
+//! start, [`ContactInterface::initial_surface_states`]). A node without one
+//! (it had no primary triangle at the last commit, or that triangle left
+//! its candidates) measures the increment's slip from its own committed
+//! position `x_s,n`, as against a fixed surface: `d = x_s − x_s,n`; the
+//! search margin makes this rare.
 
-use super::friction::{ContactStatus, TangentialResponse};
+use super::friction::{
+    self, ContactStatus, FrictionHistory, MaterialPoint, NormalPressure, SlipKinematics,
+    TangentialResponse,
+};
 use super::interface::{ContactInterface, NodeReport};
 use super::laws::{GapGeometry, NodeContactState, NodeContribution, NormalLaw};
 use super::primary::{best_triangle, PrimarySurface};
 use super::triangle_gap::{triangle_gap, TriangleGap};
 use crate::assembly::pattern::SparsityPattern;
-use nalgebra::{Matrix3, Vector3};
+use nalgebra::{Matrix3, SMatrix, SVector, Vector3};
+
+/// Unknowns of one node's contribution: `q = (x_s, x1, x2, x3, y1, y2, y3)`,
+/// the secondary node, its triangle and its friction anchor's triangle.
+const Q: usize = 21;
 
 /// One secondary node evaluated against its primary triangle.
 pub struct SurfaceNode {
@@ -146,12 +176,169 @@ impl ContactInterface {
             .map(|i| {
                 let law = self.law_at(i);
                 let blank = NodeContactState::initial(&law, primary.margin);
-                let g = self
-                    .surface_node(primary, reference, x, i, &blank)
-                    .map_or(primary.margin, |n| n.gap.gap);
-                NodeContactState::initial(&law, g)
+                let node = self.surface_node(primary, reference, x, i, &blank);
+                let g = node.as_ref().map_or(primary.margin, |n| n.gap.gap);
+                let mut state = NodeContactState::initial(&law, g);
+                state.friction =
+                    FrictionHistory::at(PrimarySurface::position(reference, x, self.nodes[i]));
+                state.friction.material_point = node.map(|n| MaterialPoint {
+                    triangle: n.triangle,
+                    shape: n.gap.shape,
+                });
+                state
             })
             .collect()
+    }
+
+    /// The primary material point node `i` measures its slip from: the one
+    /// stored in `state` while its triangle is among the node's candidates
+    /// (`None` otherwise, see the module docs).
+    fn material_point(
+        &self,
+        primary: &PrimarySurface,
+        i: usize,
+        state: &NodeContactState,
+    ) -> Option<MaterialPoint> {
+        state
+            .friction
+            .material_point
+            .filter(|m| primary.candidates[i].contains(&m.triangle))
+    }
+
+    /// The tangential response of closed node `i` (`None` when open; zero
+    /// traction in stick without friction) over the unknowns `q` of
+    /// [`Q`], with the nodes of the anchor's triangle (the current
+    /// triangle's when the node has no material point).
+    fn surface_tangential(
+        &self,
+        primary: &PrimarySurface,
+        reference: &[[f64; 3]],
+        x: &[f64],
+        i: usize,
+        node: &SurfaceNode,
+        state: &NodeContactState,
+    ) -> Option<(TangentialResponse<Q>, [usize; 3])> {
+        if !node.law.active {
+            return None;
+        }
+        let point = self.material_point(primary, i, state);
+        let anchor_nodes = point.map_or_else(
+            || [node.nodes[1], node.nodes[2], node.nodes[3]],
+            |m| primary.triangles[m.triangle],
+        );
+        let Some(coulomb) = self.friction_at(i) else {
+            let stick = TangentialResponse {
+                status: ContactStatus::Stick,
+                ..TangentialResponse::none()
+            };
+            return Some((stick, anchor_nodes));
+        };
+        let mut offset = PrimarySurface::position(reference, x, node.nodes[0]);
+        let mut offset_gradient = SMatrix::<f64, 3, Q>::zeros();
+        offset_gradient
+            .fixed_view_mut::<3, 3>(0, 0)
+            .copy_from(&Matrix3::identity());
+        match point {
+            Some(m) => {
+                for (j, (&y, &weight)) in anchor_nodes.iter().zip(&m.shape).enumerate() {
+                    offset -= weight * PrimarySurface::position(reference, x, y);
+                    offset_gradient
+                        .fixed_view_mut::<3, 3>(0, 12 + 3 * j)
+                        .copy_from(&(-weight * Matrix3::identity()));
+                }
+            }
+            // no material point: slip from the node's own committed position
+            None => offset -= state.friction.anchor,
+        }
+        let mut normal_gradient = SMatrix::<f64, 3, Q>::zeros();
+        normal_gradient
+            .fixed_view_mut::<3, 12>(0, 0)
+            .copy_from(&node.gap.normal_gradient);
+        // the law on the scalar geometry: ∂t_N/∂g is its gradient's first entry
+        let mut pressure_gradient = SVector::<f64, Q>::zeros();
+        pressure_gradient
+            .fixed_rows_mut::<12>(0)
+            .copy_from(&(node.law.pressure_gradient[0] * node.gap.gradient));
+        let kinematics = SlipKinematics {
+            offset,
+            offset_gradient,
+            normal: node.gap.normal,
+            normal_gradient,
+        };
+        let pressure = NormalPressure {
+            value: node.law.pressure,
+            gradient: pressure_gradient,
+            multiplier_derivative: node.law.pressure_multiplier_derivative,
+        };
+        let response =
+            friction::return_map_on(&coulomb, &state.friction.traction, &kinematics, &pressure);
+        Some((response, anchor_nodes))
+    }
+
+    /// Everything node `i` adds to the residual and tangent (see the module
+    /// docs); `None` when the node has no usable primary triangle.
+    fn surface_contribution(
+        &self,
+        primary: &PrimarySurface,
+        reference: &[[f64; 3]],
+        x: &[f64],
+        i: usize,
+        state: &NodeContactState,
+    ) -> Option<SurfaceContribution> {
+        let node = self.surface_node(primary, reference, x, i, state)?;
+        let tangential = self.surface_tangential(primary, reference, x, i, &node, state);
+        let c = &node.law;
+        let (f, df_dg, df_dlambda) = (c.r_u[0], c.k_uu[(0, 0)], c.k_ulambda[0]);
+        let grad = node.gap.gradient;
+        let mut residual = SVector::<f64, Q>::zeros();
+        let mut stiffness = SMatrix::<f64, Q, Q>::zeros();
+        let mut constraint_gradient = SVector::<f64, Q>::zeros();
+        residual.fixed_rows_mut::<12>(0).copy_from(&(f * grad));
+        stiffness
+            .fixed_view_mut::<12, 12>(0, 0)
+            .copy_from(&(df_dg * grad * grad.transpose() + f * node.gap.hessian));
+        constraint_gradient
+            .fixed_rows_mut::<12>(0)
+            .copy_from(&(df_dlambda * grad));
+        let mut multiplier_column = constraint_gradient;
+        let mut nodes = [node.nodes[0]; 7];
+        nodes[..4].copy_from_slice(&node.nodes);
+        let mut used = 4;
+        let mut friction_lever = None;
+        if let Some((t, anchor_nodes)) = &tangential {
+            if self.friction.is_some() {
+                nodes[4..].copy_from_slice(anchor_nodes);
+                used = 7;
+                let area = self.areas[i];
+                let lever = contact_point_lever(&node.gap);
+                residual -= area * lever.transpose() * t.traction;
+                stiffness -= area * lever.transpose() * t.traction_gradient;
+                // the weights N_i(ξ) of the reaction move with ξ
+                let xi = &node.gap.xi_gradient;
+                let shape_gradients = [
+                    -(xi.row(0) + xi.row(1)),
+                    xi.row(0).into_owned(),
+                    xi.row(1).into_owned(),
+                ];
+                for (k, dn) in shape_gradients.iter().enumerate() {
+                    let mut rows = stiffness.fixed_view_mut::<3, 12>(3 + 3 * k, 0);
+                    rows += area * t.traction * dn;
+                }
+                multiplier_column -= area * lever.transpose() * t.traction_multiplier_derivative;
+                friction_lever = Some(lever);
+            }
+        }
+        Some(SurfaceContribution {
+            nodes,
+            used,
+            residual,
+            stiffness,
+            multiplier_column,
+            multiplier_row: constraint_gradient,
+            node,
+            tangential: tangential.map(|(t, _)| t),
+            friction_lever,
+        })
     }
 
     /// Residual and tangent of every secondary node against `primary` (see
@@ -174,7 +361,8 @@ impl ContactInterface {
                 .law
                 .has_multiplier_dof()
                 .then_some(first_multiplier + self.multiplier_offset + i);
-            let Some(node) = self.surface_node(primary, reference, x, i, &state) else {
+            let Some(contribution) = self.surface_contribution(primary, reference, x, i, &state)
+            else {
                 // no primary triangle within the search margin: open, at a
                 // gap of the margin (an inactive multiplier row)
                 let open = self.law_at(i).contribution(
@@ -194,64 +382,94 @@ impl ContactInterface {
                 });
                 continue;
             };
-            let c = &node.law;
-            let (f, df_dg, df_dlambda) = (c.r_u[0], c.k_uu[(0, 0)], c.k_ulambda[0]);
-            let grad = &node.gap.gradient;
-            for (a, &n) in node.nodes.iter().enumerate() {
+            let SurfaceContribution {
+                nodes,
+                used,
+                node,
+                tangential,
+                ..
+            } = &contribution;
+            let nodes = &nodes[..*used];
+            for (a, &n) in nodes.iter().enumerate() {
                 for d in 0..3 {
-                    residual[3 * n + d] += f * grad[3 * a + d];
+                    residual[3 * n + d] += contribution.residual[3 * a + d];
                 }
             }
             if let Some(m) = multiplier {
-                residual[m] += c.r_lambda;
+                residual[m] += node.law.r_lambda;
             }
             if let Some((pattern, k)) = tangent.as_mut() {
-                let k_qq = df_dg * grad * grad.transpose() + f * node.gap.hessian;
-                for (a, &na) in node.nodes.iter().enumerate() {
-                    for (b, &nb) in node.nodes.iter().enumerate() {
-                        let Some(columns) = pattern.block_columns(na, nb) else {
-                            continue;
-                        };
-                        for (j, col) in columns.iter().enumerate() {
-                            for r in 0..3 {
-                                k[col + r] += k_qq[(3 * a + r, 3 * b + j)];
-                            }
-                        }
-                    }
-                }
+                add_node_block(pattern, k, nodes, &contribution.stiffness, |_| true);
                 if multiplier.is_some() {
                     let m = self.multiplier_offset + i;
-                    for (a, &na) in node.nodes.iter().enumerate() {
-                        if let Some(e) = pattern.multiplier_entries(m, na) {
-                            for d in 0..3 {
-                                k[e.node_rows[d]] += df_dlambda * grad[3 * a + d];
-                                k[e.multiplier_row[d]] += df_dlambda * grad[3 * a + d];
-                            }
-                        }
-                    }
-                    k[pattern.multiplier_diagonal(m)] += c.k_lambdalambda;
+                    add_multiplier_block(
+                        pattern,
+                        k,
+                        m,
+                        nodes,
+                        &contribution.multiplier_column,
+                        &contribution.multiplier_row,
+                        |_| true,
+                    );
+                    k[pattern.multiplier_diagonal(m)] += node.law.k_lambdalambda;
                 }
             }
-            let force = node.gap.normal * (self.areas[i] * c.pressure);
+            let force = node.gap.normal * (self.areas[i] * node.law.pressure);
+            let t = tangential.unwrap_or_else(TangentialResponse::none);
             reports.push(NodeReport {
                 gap: node.gap.gap,
-                pressure: c.pressure,
-                active: c.active,
-                status: if c.active {
-                    ContactStatus::Stick
-                } else {
-                    ContactStatus::Open
-                },
+                pressure: node.law.pressure,
+                active: node.law.active,
+                status: t.status,
                 force: force.into(),
-                tangential_traction: [0.0; 3],
+                tangential_traction: t.traction.into(),
                 facet: Some(node.triangle),
             });
         }
         reports
     }
 
-    /// The status of every node after an increment converged (frictionless:
-    /// stick = closed), for output.
+    /// The stick preconditioner's shift of the deformable interface (see
+    /// [`ContactInterface::shift_to_stick_preconditioner`]): at every
+    /// closed node, `sym(−A_s Bᵀ (J* − ∂t_T/∂q))` and the removal of the
+    /// symmetrised `−A_s Bᵀ ∂t_T/∂λ`; entries of `constrained` dofs skipped.
+    #[allow(clippy::too_many_arguments)]
+    pub(crate) fn shift_surface_to_stick(
+        &self,
+        primary: &PrimarySurface,
+        reference: &[[f64; 3]],
+        x: &[f64],
+        states: &[NodeContactState],
+        first_multiplier: usize,
+        constrained: &[bool],
+        pattern: &SparsityPattern,
+        values: &mut [f64],
+    ) {
+        let keep = |dof: usize| !constrained[dof];
+        for i in 0..self.nodes.len() {
+            let state = self.node_state(states, x, first_multiplier, i);
+            let Some(c) = self.surface_contribution(primary, reference, x, i, &state) else {
+                continue;
+            };
+            let (Some(t), Some(lever)) = (c.tangential, c.friction_lever) else {
+                continue;
+            };
+            let area = self.areas[i];
+            let shift = -area * lever.transpose() * (t.trial_gradient - t.traction_gradient);
+            let shift = 0.5 * (shift + shift.transpose());
+            let nodes = &c.nodes[..c.used];
+            add_node_block(pattern, values, nodes, &shift, keep);
+            if self.law.has_multiplier_dof() {
+                // sym added ½(−A_s Bᵀ ∂t_T/∂λ) to both entries: remove it
+                let half = -0.5 * area * lever.transpose() * t.traction_multiplier_derivative;
+                let m = self.multiplier_offset + i;
+                add_multiplier_block(pattern, values, m, nodes, &-half, &-half, keep);
+            }
+        }
+    }
+
+    /// The status and friction history of every node after an increment
+    /// converged (frictionless: stick = closed), and its new material point.
     pub(crate) fn commit_surface_history(
         &self,
         primary: &PrimarySurface,
@@ -264,16 +482,19 @@ impl ContactInterface {
             let state = self.node_state(states, x, first_multiplier, i);
             let node = self.surface_node(primary, reference, x, i, &state);
             states[i].facet = node.as_ref().map(|n| n.triangle);
-            let closed = node.is_some_and(|n| n.law.active);
-            let response = closed.then(|| TangentialResponse {
-                status: ContactStatus::Stick,
-                ..TangentialResponse::none()
+            let response = node.as_ref().and_then(|n| {
+                self.surface_tangential(primary, reference, x, i, n, &state)
+                    .map(|(t, _)| t)
             });
-            states[i].friction = super::friction::commit(
+            states[i].friction = friction::commit(
                 &state.friction,
                 response.as_ref(),
                 PrimarySurface::position(reference, x, self.nodes[i]),
             );
+            states[i].friction.material_point = node.map(|n| MaterialPoint {
+                triangle: n.triangle,
+                shape: n.gap.shape,
+            });
         }
     }
 
@@ -322,6 +543,96 @@ impl ContactInterface {
                 dlambda,
             );
             states[i] = state;
+        }
+    }
+}
+
+/// Everything one secondary node adds, on its nodes
+/// `(s, x1, x2, x3, y1, y2, y3)` (the unknowns `q`).
+struct SurfaceContribution {
+    /// Mesh nodes of `q`.
+    nodes: [usize; 7],
+    /// How many of `nodes` carry terms: 4 without friction, 7 with.
+    used: usize,
+    /// `r_q`.
+    residual: SVector<f64, Q>,
+    /// `∂r_q/∂q` (nonsymmetric with friction).
+    stiffness: SMatrix<f64, Q, Q>,
+    /// `∂r_q/∂λ`.
+    multiplier_column: SVector<f64, Q>,
+    /// `∂r_λ/∂q`.
+    multiplier_row: SVector<f64, Q>,
+    node: SurfaceNode,
+    /// `None` when the node is open.
+    tangential: Option<TangentialResponse<Q>>,
+    /// `B` where the interface has friction.
+    friction_lever: Option<SMatrix<f64, 3, Q>>,
+}
+
+/// `B = ∂(x_s − x̄)/∂q` at fixed `ξ`: `(I, −N1 I, −N2 I, −N3 I, 0, 0, 0)`,
+/// which carries the tangential traction to the secondary node and,
+/// opposite, to the current projection point.
+fn contact_point_lever(gap: &TriangleGap) -> SMatrix<f64, 3, Q> {
+    let mut lever = SMatrix::<f64, 3, Q>::zeros();
+    lever
+        .fixed_view_mut::<3, 3>(0, 0)
+        .copy_from(&Matrix3::identity());
+    for (k, &n) in gap.shape.iter().enumerate() {
+        lever
+            .fixed_view_mut::<3, 3>(0, 3 + 3 * k)
+            .copy_from(&(-n * Matrix3::identity()));
+    }
+    lever
+}
+
+/// Add the `3 nodes.len()` leading rows and columns of `block` over
+/// `nodes` into the pattern's values, skipping rows and columns whose dof
+/// `keep` refuses. Blocks outside the pattern are skipped.
+fn add_node_block(
+    pattern: &SparsityPattern,
+    values: &mut [f64],
+    nodes: &[usize],
+    block: &SMatrix<f64, Q, Q>,
+    keep: impl Fn(usize) -> bool,
+) {
+    for (a, &na) in nodes.iter().enumerate() {
+        for (b, &nb) in nodes.iter().enumerate() {
+            let Some(columns) = pattern.block_columns(na, nb) else {
+                continue;
+            };
+            for (j, col) in columns.iter().enumerate() {
+                if !keep(3 * nb + j) {
+                    continue;
+                }
+                for r in 0..3 {
+                    if keep(3 * na + r) {
+                        values[col + r] += block[(3 * a + r, 3 * b + j)];
+                    }
+                }
+            }
+        }
+    }
+}
+
+/// Add multiplier `m`'s column `∂r_q/∂λ` and row `∂r_λ/∂q` over `nodes`
+/// (entries of dofs `keep` refuses skipped).
+fn add_multiplier_block(
+    pattern: &SparsityPattern,
+    values: &mut [f64],
+    m: usize,
+    nodes: &[usize],
+    column: &SVector<f64, Q>,
+    row: &SVector<f64, Q>,
+    keep: impl Fn(usize) -> bool,
+) {
+    for (a, &na) in nodes.iter().enumerate() {
+        if let Some(e) = pattern.multiplier_entries(m, na) {
+            for d in 0..3 {
+                if keep(3 * na + d) {
+                    values[e.node_rows[d]] += column[3 * a + d];
+                    values[e.multiplier_row[d]] += row[3 * a + d];
+                }
+            }
         }
     }
 }

@@ -70,8 +70,8 @@ pub struct InterfaceSummary {
     /// Largest penetration `max(0, −g)` over the secondary nodes.
     pub largest_penetration: f64,
     /// With a deformable primary surface: the total contact force on it,
-    /// `−Σ A_s t_N N_i(ξ) n` over its nodes (minus `force`: action and
-    /// reaction); absent for a rigid obstacle.
+    /// `−Σ A_s (t_N n + t_T) N_i(ξ)` over its nodes (minus `force +
+    /// tangential_force`: action and reaction); absent for a rigid obstacle.
     #[serde(skip_serializing_if = "Option::is_none")]
     pub primary_force: Option<[f64; 3]>,
 }

@@ -7,10 +7,11 @@
 mod common;
 
 use common::{
-    assert_quadratic, assert_tangent_matches_fd, every_method, fix, perturbed_state, problem, run,
-    support_stacked_blocks, surface_interface, two_bodies, write_stacked_blocks_case,
+    assert_open_stick_and_slip, assert_quadratic, assert_tangent_matches_fd, every_method, fix,
+    perturbed_state, problem, run, support_stacked_blocks, surface_interface, two_bodies,
+    write_stacked_blocks_case,
 };
-use signorini::contact::friction::{ContactStatus, Coulomb};
+use signorini::contact::friction::Coulomb;
 use signorini::contact::laws::NormalLaw;
 use signorini::material::{LinearElastic, NeoHookean};
 use signorini::mesh::structured::box_mesh;
@@ -188,14 +189,7 @@ fn frictional_deformable_tangent_matches_finite_differences() {
             [0.004 * (0.9 * k).cos() * (k % 3.0), 0.004 * (0.9 * k).sin()]
         });
         let (_, reports) = pr.residual_in(0.5, &x, &state, None).unwrap();
-        let count = |s: ContactStatus| reports[0].iter().filter(|r| r.status == s).count();
-        assert!(
-            count(ContactStatus::Open) > 0
-                && count(ContactStatus::Stick) > 0
-                && count(ContactStatus::Slip) > 0,
-            "{name}: want open, stick and slip nodes: {:?}",
-            reports[0].iter().map(|r| r.status).collect::<Vec<_>>()
-        );
+        assert_open_stick_and_slip(&reports[0], name);
         assert_tangent_matches_fd(&pr, 0.5, &x, &state, name);
     }
 }
@@ -383,6 +377,19 @@ struct Drag {
     imbalance: f64,
 }
 
+impl Drag {
+    /// Action and reaction (1e-8) and at most 2 cuts.
+    fn assert_balanced_without_snagging(&self) {
+        let t = self.record.time;
+        assert!(
+            self.imbalance < 1e-8,
+            "t = {t}: action and reaction off by {}",
+            self.imbalance
+        );
+        assert!(self.record.cuts <= 2, "t = {t}: {} cuts", self.record.cuts);
+    }
+}
+
 /// A 0.5 × 0.5 × 0.5 block pressed 0.02 into a 3 × 1 × 0.5 base (both
 /// neo-Hookean) and then dragged 2.0 along it by its top face (8 element
 /// lengths of the base, 6 of its own), in 20 increments, with `friction`
@@ -473,23 +480,9 @@ fn drag_block(friction: Option<Coulomb>) -> (f64, Vec<Drag>) {
 #[test]
 fn block_slides_across_facets_without_snagging() {
     let (pressed, drag) = drag_block(None);
-    for Drag {
-        record,
-        force: f,
-        imbalance,
-    } in &drag
-    {
-        assert!(
-            *imbalance < 1e-8,
-            "t = {}: action and reaction off by {imbalance}",
-            record.time
-        );
-        assert!(
-            record.cuts <= 2,
-            "t = {}: {} cuts",
-            record.time,
-            record.cuts
-        );
+    for d in &drag {
+        d.assert_balanced_without_snagging();
+        let (record, f) = (&d.record, d.force);
         assert!(
             (f[2] - pressed).abs() < 0.02 * pressed.abs(),
             "t = {}: normal force {} against {pressed} after the press",
@@ -528,23 +521,9 @@ fn block_slides_across_facets_with_friction() {
         tangential_penalty: 4.0 * E,
     }));
     let mut ratios = Vec::new();
-    for Drag {
-        record,
-        force: f,
-        imbalance,
-    } in &drag
-    {
-        assert!(
-            *imbalance < 1e-8,
-            "t = {}: action and reaction off by {imbalance}",
-            record.time
-        );
-        assert!(
-            record.cuts <= 2,
-            "t = {}: {} cuts",
-            record.time,
-            record.cuts
-        );
+    for d in &drag {
+        d.assert_balanced_without_snagging();
+        let (record, f) = (&d.record, d.force);
         let ratio = f[0].hypot(f[1]) / f[2].abs();
         assert!(
             (f[2] - pressed).abs() < 0.05 * pressed.abs(),

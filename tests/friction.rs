@@ -9,8 +9,8 @@
 mod common;
 
 use common::{
-    assert_quadratic, assert_tangent_matches_fd, every_method, fix, interface, perturbed_state,
-    problem, run, Last,
+    assert_open_stick_and_slip, assert_quadratic, assert_tangent_matches_fd, every_method, fix,
+    interface, perturbed_state, problem, run, Last,
 };
 use nalgebra::Vector3;
 use signorini::contact::friction::{ContactStatus, Coulomb};
@@ -380,14 +380,7 @@ fn frictional_tangent_matches_finite_differences_in_stick_and_slip() {
             s.friction.anchor = here - offset;
         }
         let (_, reports) = pr.residual_in(t, &x, &state, None).unwrap();
-        let count = |s: ContactStatus| reports[0].iter().filter(|r| r.status == s).count();
-        assert!(
-            count(ContactStatus::Open) > 0
-                && count(ContactStatus::Stick) > 0
-                && count(ContactStatus::Slip) > 0,
-            "{name}: want open, stick and slip nodes: {:?}",
-            reports[0].iter().map(|r| r.status).collect::<Vec<_>>()
-        );
+        assert_open_stick_and_slip(&reports[0], name);
         assert_tangent_matches_fd(&pr, t, &x, &state, name);
     }
 }

@@ -351,6 +351,24 @@ pub fn assert_tangent_matches_fd(
     }
 }
 
+/// The node reports hold open, sticking and slipping nodes (a state that
+/// exercises every branch of the frictional tangent).
+#[track_caller]
+pub fn assert_open_stick_and_slip(
+    reports: &[signorini::contact::interface::NodeReport],
+    label: &str,
+) {
+    use signorini::contact::friction::ContactStatus;
+    let count = |s: ContactStatus| reports.iter().filter(|r| r.status == s).count();
+    assert!(
+        count(ContactStatus::Open) > 0
+            && count(ContactStatus::Stick) > 0
+            && count(ContactStatus::Slip) > 0,
+        "{label}: want open, stick and slip nodes: {:?}",
+        reports.iter().map(|r| r.status).collect::<Vec<_>>()
+    );
+}
+
 /// Two bodies in one mesh: `b` translated by `offset`, its node and element
 /// numbering after `a`'s; regions renamed `a_name` and `b_name`, surface
 /// sets prefixed `"{a_name}."` and `"{b_name}."` (e.g. `upper.zmin`).

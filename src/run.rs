@@ -15,6 +15,7 @@ use crate::solve::linear::SparseLdlt;
 use crate::solve::stepping::{run_steps, IncrementRecord, StepObserver};
 use crate::{Error, Result};
 use indicatif::{ProgressBar, ProgressStyle};
+use nalgebra::Vector3;
 use std::path::{Path, PathBuf};
 use std::time::Instant;
 
@@ -463,11 +464,15 @@ impl ContactFields {
 }
 
 impl ContactFields {
-    /// Force and status on the nodes of a deformable primary surface: each
-    /// secondary node's force `A_s (t_N n + t_T)` goes, opposite, to its
-    /// triangle's nodes with the weights `N_i(ξ)` (divided by the primary
-    /// node's tributary area for `pressure` and `contact_traction`).
-    /// Returns the total force on the primary surface.
+    /// The output fields on the nodes of a deformable primary surface:
+    /// each secondary node's force `A_s (t_N n + t_T)` goes, opposite, to
+    /// its triangle's nodes with the weights `N_i(ξ)` (divided by the
+    /// primary node's tributary area for `contact_pressure` and
+    /// `contact_traction`); `contact_status` is the largest status of the
+    /// closed secondary nodes over a primary node, `slip` minus their slip
+    /// averaged with the weights `A_s N_i`, and `gap` the primary node's
+    /// distance to the secondary surface (projected on its triangles; NaN
+    /// beyond its edge). Returns the total force on the primary surface.
     fn add_primary_side(
         &mut self,
         problem: &Problem,
@@ -478,40 +483,55 @@ impl ContactFields {
     ) -> [f64; 3] {
         let mesh = &problem.model.mesh;
         let reference = &mesh.nodes;
-        let mut normal = vec![0.0; mesh.num_nodes()];
-        let mut forces = vec![[0.0; 3]; mesh.num_nodes()];
-        let mut total = [0.0; 3];
+        let n_nodes = mesh.num_nodes();
+        let mut normal = vec![0.0; n_nodes];
+        let mut forces = vec![Vector3::zeros(); n_nodes];
+        let mut slip = vec![(Vector3::zeros(), 0.0); n_nodes];
+        let mut status = vec![0u8; n_nodes];
+        let mut total = Vector3::zeros();
         for (i, &area) in c.areas.iter().enumerate() {
             let state = c.node_state(states, x, problem.model.num_dofs(), i);
             let Some(node) = c.surface_node(primary, reference, x, i, &state) else {
                 continue;
             };
             // the committed tangential traction, as on the secondary side
-            let traction = state.friction.traction;
-            let force = -area * (node.law.pressure * node.gap.normal + traction);
-            for (k, &n) in node.nodes[1..].iter().enumerate() {
-                normal[n] += area * node.law.pressure * node.gap.shape[k];
-                for d in 0..3 {
-                    forces[n][d] += force[d] * node.gap.shape[k];
+            let history = &state.friction;
+            let force = -area * (node.law.pressure * node.gap.normal + history.traction);
+            for (&n, &weight) in node.nodes[1..].iter().zip(&node.gap.shape) {
+                normal[n] += area * node.law.pressure * weight;
+                forces[n] += force * weight;
+                slip[n].0 -= history.slip * (area * weight);
+                slip[n].1 += area * weight;
+                if node.law.active && weight > 0.0 {
+                    status[n] = status[n].max(history.status.code());
                 }
             }
-            for (t, f) in total.iter_mut().zip(force.iter()) {
-                *t += f;
-            }
+            total += force;
         }
         let set = mesh.surface(&primary.surface).expect("validated");
         let (nodes, areas) = crate::contact::tributary_areas(mesh, set);
-        for (&n, &a) in nodes.iter().zip(&areas) {
+        // the other way round, for the gap: the primary nodes against the
+        // secondary surface's triangles
+        let mut reverse = PrimarySurface::from_mesh(mesh, &c.surface).expect("validated");
+        reverse.refresh(reference, x, &nodes, reverse.margin);
+        for (k, (&n, &a)) in nodes.iter().zip(&areas).enumerate() {
             self.nodal_force[n] += normal[n];
             self.nodal_area[n] = a;
-            for (t, f) in self.traction[3 * n..3 * n + 3].iter_mut().zip(forces[n]) {
-                *t += f / a;
+            for d in 0..3 {
+                self.traction[3 * n + d] += forces[n][d] / a;
+                if slip[n].1 > 0.0 {
+                    self.slip[3 * n + d] = slip[n].0[d] / slip[n].1;
+                }
             }
-            if normal[n] > 0.0 {
-                self.status[n] = self.status[n].max(1.0);
+            self.status[n] = self.status[n].max(status[n] as f64);
+            if self.gap[n].is_nan() {
+                let here = PrimarySurface::position(reference, x, n);
+                if let Some(g) = reverse.nearest_gap(reference, x, k, &here) {
+                    self.gap[n] = g.gap;
+                }
             }
         }
-        total
+        total.into()
     }
 }
 

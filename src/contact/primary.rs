@@ -22,7 +22,7 @@
 //! smooth within each triangle.
 
 use crate::contact::closest_point_on_triangle;
-use crate::contact::triangle_gap::split_quadrangle;
+use crate::contact::triangle_gap::{split_quadrangle, triangle_gap, TriangleGap};
 use crate::mesh::{FacetKind, Mesh};
 use nalgebra::Vector3;
 use std::collections::HashMap;
@@ -120,6 +120,30 @@ impl PrimarySurface {
         self.candidates = candidates;
         self.margin = margin;
         changed
+    }
+
+    /// The gap of the point `x_p` against the nearest of the candidate
+    /// triangles of secondary node `i` ([`best_triangle`]), `None` without
+    /// candidates, off the triangle by more than 5 % (barycentric: beyond
+    /// the surface's edge) or on a
+    /// degenerate one. For output: the distance of a surface's nodes to the
+    /// other surface.
+    pub fn nearest_gap(
+        &self,
+        reference: &[[f64; 3]],
+        x: &[f64],
+        i: usize,
+        x_p: &Vector3<f64>,
+    ) -> Option<TriangleGap> {
+        let candidates: Vec<(usize, [Vector3<f64>; 3])> = self
+            .candidates
+            .get(i)?
+            .iter()
+            .map(|&t| (t, self.corners(reference, x, t)))
+            .collect();
+        let t = best_triangle(x_p, &candidates)?;
+        let c = candidates.iter().find(|c| c.0 == t)?.1;
+        triangle_gap(x_p, [&c[0], &c[1], &c[2]]).filter(|g| g.shape.iter().all(|&n| n >= -0.05))
     }
 
     /// Every mesh node of the candidates of secondary node `i` (sorted,

@@ -255,6 +255,42 @@ fn data_array<T: Scalar>(
     Ok(())
 }
 
+/// Reads the `Float64` point-data array `name` of a `.vtu` file written by
+/// [`write_vtu`] (for scripts and tests that check results; ParaView and
+/// meshio read every array). Fails, naming the file and the array, if the
+/// file cannot be read or holds no such array.
+pub fn read_point_field(path: &Path, name: &str) -> crate::Result<Vec<f64>> {
+    let fail = |message: String| crate::Error::io("read", path, invalid_input(message));
+    let text = std::fs::read_to_string(path).map_err(|e| crate::Error::io("read", path, e))?;
+    let point_data = text
+        .find("<PointData>")
+        .ok_or_else(|| fail("no <PointData> section".into()))?;
+    let end = text[point_data..]
+        .find("</PointData>")
+        .map_or(text.len(), |e| point_data + e);
+    let section = &text[point_data..end];
+    let tag = format!("<DataArray type=\"Float64\" Name=\"{}\"", xml_escape(name));
+    let start = section
+        .find(&tag)
+        .ok_or_else(|| fail(format!("no Float64 point-data array '{name}'")))?;
+    let open_end = start + section[start..].find('>').unwrap_or(0) + 1;
+    let close = section[open_end..]
+        .find("</DataArray>")
+        .map(|c| open_end + c)
+        .ok_or_else(|| fail(format!("array '{name}' is not closed")))?;
+    use base64::Engine;
+    let bytes = STANDARD
+        .decode(section[open_end..close].trim())
+        .map_err(|e| fail(format!("array '{name}': {e}")))?;
+    if bytes.len() < 8 || (bytes.len() - 8) % 8 != 0 {
+        return Err(fail(format!("array '{name}' has {} bytes", bytes.len())));
+    }
+    Ok(bytes[8..]
+        .chunks_exact(8)
+        .map(|c| f64::from_le_bytes(c.try_into().expect("8 bytes")))
+        .collect())
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;

@@ -517,10 +517,11 @@ impl ContactFields {
         for (k, (&n, &a)) in nodes.iter().zip(&areas).enumerate() {
             self.nodal_force[n] += normal[n];
             self.nodal_area[n] = a;
-            for d in 0..3 {
-                self.traction[3 * n + d] += forces[n][d] / a;
-                if slip[n].1 > 0.0 {
-                    self.slip[3 * n + d] = slip[n].0[d] / slip[n].1;
+            let (slip_sum, weight) = slip[n];
+            for (d, force) in forces[n].iter().enumerate() {
+                self.traction[3 * n + d] += force / a;
+                if weight > 0.0 {
+                    self.slip[3 * n + d] = slip_sum[d] / weight;
                 }
             }
             self.status[n] = self.status[n].max(status[n] as f64);

@@ -324,8 +324,8 @@ impl Problem {
     }
 
     /// Pair the secondary nodes of every deformable interface with the
-    /// primary triangles they may touch at unknowns `x`, with a search
-    /// margin `2h + 2 motion` (`src/contact/primary.rs`, search rule;
+    /// primary triangles they may touch at unknowns `x`, with search
+    /// margins `2h_t + 2 motion` (`src/contact/primary.rs`, search rule;
     /// `motion` the largest nodal displacement expected in the coming
     /// increment), and rebuild the sparsity pattern if a pairing changed.
     /// Returns whether it did.
@@ -333,11 +333,9 @@ impl Problem {
         let reference = &self.model.mesh.nodes;
         let mut changed = false;
         for c in &mut self.contacts {
-            let h = c.element_size;
             let nodes = c.nodes.clone();
             if let Primary::Surface(p) = &mut c.primary {
-                let margin = 2.0 * h.max(p.element_size) + 2.0 * motion;
-                changed |= p.refresh(reference, x, &nodes, margin);
+                changed |= p.refresh(reference, x, &nodes, motion);
             }
         }
         if changed {
@@ -378,12 +376,7 @@ impl Problem {
                     return true;
                 };
                 let mut fresh = p.clone();
-                fresh.refresh(
-                    reference,
-                    x,
-                    &c.nodes,
-                    2.0 * c.element_size.max(p.element_size),
-                );
+                fresh.refresh(reference, x, &c.nodes, 0.0);
                 let mut with_fresh = c.clone();
                 with_fresh.primary = Primary::Surface(fresh);
                 let (used, now) = (

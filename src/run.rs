@@ -513,7 +513,7 @@ impl ContactFields {
         // the other way round, for the gap: the primary nodes against the
         // secondary surface's triangles
         let mut reverse = PrimarySurface::from_mesh(mesh, &c.surface).expect("validated");
-        reverse.refresh(reference, x, &nodes, reverse.margin);
+        reverse.refresh(reference, x, &nodes, 0.0);
         for (k, (&n, &a)) in nodes.iter().zip(&areas).enumerate() {
             self.nodal_force[n] += normal[n];
             self.nodal_area[n] = a;

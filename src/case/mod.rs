@@ -672,8 +672,7 @@ impl Case {
                         // the pairs at the start, for the initial check (the
                         // problem searches again when it installs the interface)
                         let zero = vec![0.0; 3 * mesh.num_nodes()];
-                        let margin = 2.0 * h.max(surface.element_size);
-                        surface.refresh(&mesh.nodes, &zero, &nodes, margin);
+                        surface.refresh(&mesh.nodes, &zero, &nodes, 0.0);
                         let against = format!("primary surface '{}'", surface.surface);
                         (
                             Primary::Surface(surface),

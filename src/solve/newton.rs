@@ -310,15 +310,6 @@ fn solve_linear(
     du: &mut [f64],
 ) -> std::result::Result<(), String> {
     let pattern = blocks.symbolic();
-    let Some(k_sym) = preconditioner else {
-        solver
-            .factorize(pattern, k_values, signs)
-            .map_err(|e| e.to_string())?;
-        solver
-            .solve_refined(pattern, k_values, du, 3)
-            .map_err(|e| e.to_string())?;
-        return Ok(());
-    };
     let lu = |solver: &mut SparseLdlt, du: &mut [f64]| {
         du.copy_from_slice(rhs);
         solver.timings.lu_solves += 1;
@@ -326,6 +317,19 @@ fn solve_linear(
             .lu
             .solve(pattern, k_values, du)
             .map_err(|e| e.to_string())
+    };
+    let Some(k_sym) = preconditioner else {
+        let direct = solver
+            .factorize(pattern, k_values, signs)
+            .and_then(|()| solver.solve_refined(pattern, k_values, du, 3));
+        if let Err(e) = direct {
+            // an indefinite tangent that the LDLᵀ without pivoting cannot
+            // factorise (the curvature term `f ∇²g` of deformable contact
+            // after a large first step, examples/two-spheres): the sparse
+            // LU with partial pivoting solves it, or tells it is singular
+            return lu(solver, du).map_err(|lu_error| format!("{e}; then {lu_error}"));
+        }
+        return Ok(());
     };
     if method == NonsymmetricSolver::Lu {
         return lu(solver, du);

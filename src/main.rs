@@ -132,10 +132,11 @@ fn check(case: PathBuf) -> signorini::Result<()> {
         println!("  {:<20} to t = {}", s.name, s.end_time);
     }
     for h in &requests.histories {
-        let x = mesh.nodes[h.node];
         println!(
-            "history   {}: {} at node {} ({}, {}, {})",
-            h.name, h.label, h.node_id, x[0], x[1], x[2]
+            "history   {}: {} {}",
+            h.name,
+            h.label,
+            h.location(&mesh.nodes)
         );
     }
     for p in &requests.profiles {

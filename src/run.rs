@@ -168,10 +168,11 @@ impl Writer {
     /// Log which node each history reads.
     fn log_requests(&self, problem: &Problem) {
         for h in &self.requests.histories {
-            let x = problem.model.mesh.nodes[h.node];
             self.log(format!(
-                "history '{}': {} at node {} ({}, {}, {})",
-                h.name, h.label, h.node_id, x[0], x[1], x[2]
+                "history '{}': {} {}",
+                h.name,
+                h.label,
+                h.location(&problem.model.mesh.nodes)
             ));
         }
         for p in &self.requests.profiles {
@@ -190,10 +191,11 @@ impl Writer {
         problem: &Problem,
         record: &IncrementRecord,
         u: &[f64],
+        residual: &[f64],
         reports: &[Vec<NodeReport>],
     ) -> Result<()> {
         for h in &mut self.requests.histories {
-            h.record(record.time, u, reports);
+            h.record(record.time, u, residual, reports);
             h.write(&self.dir)?;
         }
         if record.time == problem.steps[record.step].end_time {
@@ -307,7 +309,7 @@ impl StepObserver for Writer {
             ],
         )?;
         self.pvd.add(record.time, &file)?;
-        self.write_requests(problem, record, u, &contact_fields.reports)?;
+        self.write_requests(problem, record, u, residual, &contact_fields.reports)?;
         let reaction_forces = problem.surface_forces(residual).into_iter().collect();
         let now = Instant::now();
         let final_residual = record.newton.last().map(|r| r.residual).unwrap_or(0.0);

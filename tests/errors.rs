@@ -476,6 +476,27 @@ fn history_and_profile_input_errors() {
         &output_case(&history.replace("quantity = \"gap\"", "quantity = \"displacement_z\"")),
         &["output.history[0].interface applies to gap"],
     );
+    // a reaction force needs a surface set, and takes no point
+    let reaction =
+        "[[output.history]]\nname = \"push\"\nquantity = \"reaction_force\"\nsurface = \"zmin\"";
+    let (success, stdout) = check_stdout(&output_case(reaction));
+    assert!(success, "{stdout}");
+    assert!(
+        stdout.contains("history   push: reaction_force on surface 'zmin'"),
+        "{stdout}"
+    );
+    expect_failure(
+        &output_case(&reaction.replace("surface = \"zmin\"", "")),
+        &["output.history[0].surface is required"],
+    );
+    expect_failure(
+        &output_case(&format!("{reaction}\npoint = [0.0, 0.0, 0.0]")),
+        &["output.history[0].point does not apply to reaction_force"],
+    );
+    expect_failure(
+        &output_case(&history.replace("\ninterface", "\nsurface = \"zmin\"\ninterface")),
+        &["output.history[0].surface applies to reaction_force only"],
+    );
     // two outputs with one name
     expect_failure(
         &output_case(&format!(

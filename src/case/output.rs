@@ -83,7 +83,47 @@ impl Case {
         for (i, h) in self.spec.output.history.iter().enumerate() {
             let key = format!("output.history[{i}]");
             self.output_file_stem(&key, &h.name, &mut taken)?;
-            if h.point.iter().any(|v| !v.is_finite()) {
+            if h.quantity == HistoryQuantitySpec::ReactionForce {
+                let name = h.surface.as_ref().ok_or_else(|| {
+                    self.err(format!(
+                        "{key}.surface is required for quantity reaction_force: give a surface set name"
+                    ))
+                })?;
+                for (given, what) in [
+                    (h.point.is_some(), "point"),
+                    (h.interface.is_some(), "interface"),
+                ] {
+                    if given {
+                        return Err(self.err(format!(
+                            "{key}.{what} does not apply to reaction_force (the sum over `surface`); remove it"
+                        )));
+                    }
+                }
+                let nodes = mesh.surface_nodes(self.surface(&format!("{key}.surface"), name)?);
+                out.histories.push(History::new(
+                    h.name.clone(),
+                    nodes[0],
+                    mesh.node_ids[nodes[0]],
+                    HistoryQuantity::ReactionForce {
+                        surface: name.clone(),
+                        nodes,
+                    },
+                    "reaction_force".to_string(),
+                ));
+                continue;
+            }
+            if h.surface.is_some() {
+                return Err(self.err(format!(
+                    "{key}.surface applies to reaction_force only; remove it"
+                )));
+            }
+            let point = h.point.ok_or_else(|| {
+                self.err(format!(
+                    "{key}.point is required for quantity {:?}: the node nearest it is recorded",
+                    h.quantity
+                ))
+            })?;
+            if point.iter().any(|v| !v.is_finite()) {
                 return Err(self.err(format!("{key}.point must be finite")));
             }
             let component = match h.quantity {
@@ -91,10 +131,11 @@ impl Case {
                 HistoryQuantitySpec::DisplacementY => Some(1),
                 HistoryQuantitySpec::DisplacementZ => Some(2),
                 HistoryQuantitySpec::Gap | HistoryQuantitySpec::ContactPressure => None,
+                HistoryQuantitySpec::ReactionForce => unreachable!("handled above"),
             };
             let (node, quantity, label) = match (component, &h.interface) {
                 (Some(c), None) => {
-                    let node = nearest(&mesh.nodes, 0..mesh.num_nodes(), h.point)
+                    let node = nearest(&mesh.nodes, 0..mesh.num_nodes(), point)
                         .ok_or_else(|| self.err(format!("{key}: the mesh has no node")))?;
                     let label = ["displacement_x", "displacement_y", "displacement_z"][c];
                     (node, HistoryQuantity::Displacement(c), label)
@@ -117,7 +158,7 @@ impl Case {
                     let index = nearest(
                         &nodes.iter().map(|&n| mesh.nodes[n]).collect::<Vec<_>>(),
                         0..nodes.len(),
-                        h.point,
+                        point,
                     )
                     .ok_or_else(|| self.err(format!("{key}: interface '{name}' has no node")))?;
                     let (quantity, label) = if h.quantity == HistoryQuantitySpec::Gap {

@@ -291,24 +291,31 @@ pub enum HistoryQuantitySpec {
     Gap,
     /// Contact pressure `t_N` of a secondary node (needs `interface`).
     ContactPressure,
+    /// The reaction force on a surface set, its x, y, z components (needs
+    /// `surface`, no `point`).
+    ReactionForce,
 }
 
 /// `[[output.history]]`: `quantity` at the mesh node nearest `point`
 /// (for `gap` and `contact_pressure`: the nearest secondary node of
-/// `interface`), written as `<name>.csv` and `<name>.svg` after every
+/// `interface`; for `reaction_force`: `Σ (f_int − f_ext)` over the nodes of
+/// `surface`), written as `<name>.csv` and `<name>.svg` after every
 /// converged increment.
 #[derive(Debug, Deserialize)]
 #[serde(deny_unknown_fields)]
 pub struct HistorySpec {
     /// File stem: letters, digits, `-`, `_`, `.`.
     pub name: String,
-    /// Reference-configuration point; the nearest node is used.
-    pub point: [f64; 3],
-    /// `displacement_x`, `displacement_y`, `displacement_z`, `gap` or
-    /// `contact_pressure`.
+    /// Reference-configuration point; the nearest node is used (every
+    /// quantity but `reaction_force`).
+    pub point: Option<[f64; 3]>,
+    /// `displacement_x`, `displacement_y`, `displacement_z`, `gap`,
+    /// `contact_pressure` or `reaction_force`.
     pub quantity: HistoryQuantitySpec,
     /// A `[[contact]]` name (required for `gap` and `contact_pressure`).
     pub interface: Option<String>,
+    /// A surface set (required for `reaction_force`, and only there).
+    pub surface: Option<String>,
 }
 
 /// `[[output.profile]]`: the secondary nodes of `interface` within `width`

@@ -1,6 +1,7 @@
-//! Time histories (`[[output.history]]`): one nodal quantity recorded after
-//! every converged increment, written as `<name>.csv` (time, value) and
-//! `<name>.svg` (value against pseudo-time, i.e. the load factor of a ramp).
+//! Time histories (`[[output.history]]`): one nodal quantity, or the
+//! reaction force on a surface set, recorded after every converged
+//! increment, written as `<name>.csv` (time, value or x, y, z components)
+//! and `<name>.svg` (against pseudo-time, i.e. the load factor of a ramp).
 
 use std::path::Path;
 
@@ -8,8 +9,8 @@ use super::line_plot::{write_line_plot, Curve, LinePlot};
 use super::table::write_csv;
 use crate::contact::interface::NodeReport;
 
-/// What a history records at its node.
-#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+/// What a history records at its node (or on its surface).
+#[derive(Clone, Debug, PartialEq, Eq)]
 pub enum HistoryQuantity {
     /// Displacement component `u_i` (0, 1, 2 for x, y, z).
     Displacement(usize),
@@ -18,21 +19,28 @@ pub enum HistoryQuantity {
     Gap { interface: usize, index: usize },
     /// Contact pressure `t_N ≥ 0` of a secondary node.
     ContactPressure { interface: usize, index: usize },
+    /// `Σ (f_int − f_ext)` over the nodes of a surface set, its three
+    /// components: the reaction force where displacements are prescribed
+    /// (as `reaction_forces` in `summary.json`).
+    ReactionForce { surface: String, nodes: Vec<usize> },
 }
 
-/// A quantity at one node over the run.
+/// A quantity at one node (or a surface set's reaction force) over the run.
 #[derive(Clone, Debug, PartialEq)]
 pub struct History {
     /// File stem and plot title.
     pub name: String,
-    /// Mesh node index and the node's id in the mesh file.
+    /// Mesh node index and the node's id in the mesh file (a reaction
+    /// force: the surface's first node).
     pub node: usize,
     pub node_id: u64,
     pub quantity: HistoryQuantity,
-    /// Column header and axis label, e.g. `displacement_z`.
+    /// Axis label, e.g. `displacement_z`; the column header of a scalar
+    /// quantity (a reaction force's columns: `reaction_x`, `_y`, `_z`).
     pub label: String,
-    /// `(time, value)` of every converged increment so far.
-    pub samples: Vec<(f64, f64)>,
+    /// `(time, values)` of every converged increment so far: one value, or
+    /// the x, y, z components of a reaction force.
+    pub samples: Vec<(f64, Vec<f64>)>,
 }
 
 impl History {
@@ -54,49 +62,98 @@ impl History {
         }
     }
 
-    /// The quantity in state `u` (displacements first) with the contact
-    /// reports `contact[interface][index]` of that state.
-    pub fn value(&self, u: &[f64], contact: &[Vec<NodeReport>]) -> f64 {
+    /// The column headers after `time`.
+    pub fn columns(&self) -> Vec<String> {
         match self.quantity {
-            HistoryQuantity::Displacement(i) => u[3 * self.node + i],
-            HistoryQuantity::Gap { interface, index } => contact[interface][index].gap,
-            HistoryQuantity::ContactPressure { interface, index } => {
-                contact[interface][index].pressure
+            HistoryQuantity::ReactionForce { .. } => ["reaction_x", "reaction_y", "reaction_z"]
+                .map(String::from)
+                .to_vec(),
+            _ => vec![self.label.clone()],
+        }
+    }
+
+    /// Where the history reads, for the logs: `at node <id> (x, y, z)` or
+    /// `on surface '<name>' (<n> nodes)`.
+    pub fn location(&self, nodes: &[[f64; 3]]) -> String {
+        match &self.quantity {
+            HistoryQuantity::ReactionForce { surface, nodes } => {
+                format!("on surface '{surface}' ({} nodes)", nodes.len())
+            }
+            _ => {
+                let x = nodes[self.node];
+                format!("at node {} ({}, {}, {})", self.node_id, x[0], x[1], x[2])
             }
         }
     }
 
+    /// The quantity in state `u` (displacements first) with the residual
+    /// `f_int − f_ext` and the contact reports `contact[interface][index]`
+    /// of that state.
+    pub fn value(&self, u: &[f64], residual: &[f64], contact: &[Vec<NodeReport>]) -> Vec<f64> {
+        match &self.quantity {
+            HistoryQuantity::Displacement(i) => vec![u[3 * self.node + i]],
+            HistoryQuantity::Gap { interface, index } => vec![contact[*interface][*index].gap],
+            HistoryQuantity::ContactPressure { interface, index } => {
+                vec![contact[*interface][*index].pressure]
+            }
+            HistoryQuantity::ReactionForce { nodes, .. } => (0..3)
+                .map(|d| nodes.iter().map(|&n| residual[3 * n + d]).sum())
+                .collect(),
+        }
+    }
+
     /// Add the sample of a converged increment at pseudo-time `time`.
-    pub fn record(&mut self, time: f64, u: &[f64], contact: &[Vec<NodeReport>]) {
-        let value = self.value(u, contact);
+    pub fn record(&mut self, time: f64, u: &[f64], residual: &[f64], contact: &[Vec<NodeReport>]) {
+        let value = self.value(u, residual, contact);
         self.samples.push((time, value));
     }
 
     /// Write `<name>.csv` and `<name>.svg` into `dir`, atomically; the
     /// plot starts from `(0, 0)`, the unloaded reference state, for
-    /// displacements.
+    /// displacements and reaction forces (one curve per column).
     pub fn write(&self, dir: &Path) -> crate::Result<()> {
-        let rows: Vec<Vec<f64>> = self.samples.iter().map(|&(t, v)| vec![t, v]).collect();
-        write_csv(
-            &dir.join(format!("{}.csv", self.name)),
-            &["time", &self.label],
-            &rows,
-        )?;
-        let mut points = Vec::with_capacity(self.samples.len() + 1);
-        if matches!(self.quantity, HistoryQuantity::Displacement(_)) {
-            points.push((0.0, 0.0));
-        }
-        points.extend(&self.samples);
+        let columns = self.columns();
+        let rows: Vec<Vec<f64>> = self
+            .samples
+            .iter()
+            .map(|(t, v)| std::iter::once(*t).chain(v.iter().copied()).collect())
+            .collect();
+        let header: Vec<&str> = std::iter::once("time")
+            .chain(columns.iter().map(String::as_str))
+            .collect();
+        write_csv(&dir.join(format!("{}.csv", self.name)), &header, &rows)?;
+        let from_origin = matches!(
+            self.quantity,
+            HistoryQuantity::Displacement(_) | HistoryQuantity::ReactionForce { .. }
+        );
+        let curves = columns
+            .iter()
+            .enumerate()
+            .map(|(c, label)| {
+                let mut points = Vec::with_capacity(self.samples.len() + 1);
+                if from_origin {
+                    points.push((0.0, 0.0));
+                }
+                points.extend(self.samples.iter().map(|(t, v)| (*t, v[c])));
+                Curve {
+                    label: label.clone(),
+                    points,
+                    colour: c,
+                    style: Default::default(),
+                }
+            })
+            .collect();
+        let title = match &self.quantity {
+            HistoryQuantity::ReactionForce { surface, .. } => {
+                format!("{}: {} on surface {surface}", self.name, self.label)
+            }
+            _ => format!("{}: {} at node {}", self.name, self.label, self.node_id),
+        };
         let plot = LinePlot {
-            title: format!("{}: {} at node {}", self.name, self.label, self.node_id),
+            title,
             x_label: "pseudo-time t (load factor)".into(),
             y_label: self.label.clone(),
-            curves: vec![Curve {
-                label: self.label.clone(),
-                points,
-                colour: 0,
-                style: Default::default(),
-            }],
+            curves,
         };
         write_line_plot(&dir.join(format!("{}.svg", self.name)), &plot)
     }
@@ -133,12 +190,13 @@ mod tests {
         );
         let u = [0.0, 0.0, 0.0, 0.1, 0.2, 0.3];
         let contact = vec![vec![report(0.0, 2.0), report(0.25, 0.0)]];
+        let residual = [0.0; 6];
         for h in [&mut lift, &mut gap] {
-            h.record(0.5, &u, &contact);
-            h.record(1.0, &u, &contact);
+            h.record(0.5, &u, &residual, &contact);
+            h.record(1.0, &u, &residual, &contact);
         }
-        assert_eq!(lift.samples, vec![(0.5, 0.3), (1.0, 0.3)]);
-        assert_eq!(gap.samples, vec![(0.5, 0.25), (1.0, 0.25)]);
+        assert_eq!(lift.samples, vec![(0.5, vec![0.3]), (1.0, vec![0.3])]);
+        assert_eq!(gap.samples, vec![(0.5, vec![0.25]), (1.0, vec![0.25])]);
         let dir = tempfile::tempdir().unwrap();
         lift.write(dir.path()).unwrap();
         let csv = std::fs::read_to_string(dir.path().join("lift.csv")).unwrap();
@@ -147,5 +205,34 @@ mod tests {
         // the origin and the two samples
         assert_eq!(svg.matches("<circle").count(), 3);
         assert!(svg.contains("node 7"));
+    }
+
+    #[test]
+    fn records_and_writes_a_reaction_force() {
+        let mut reaction = History::new(
+            "push".into(),
+            0,
+            1,
+            HistoryQuantity::ReactionForce {
+                surface: "top".into(),
+                nodes: vec![0, 2],
+            },
+            "reaction_force".into(),
+        );
+        let residual = [1.0, 2.0, 3.0, 100.0, 100.0, 100.0, 0.5, 0.25, -1.0];
+        reaction.record(1.0, &[0.0; 9], &residual, &[]);
+        assert_eq!(reaction.samples, vec![(1.0, vec![1.5, 2.25, 2.0])]);
+        let nodes = [[0.0; 3]; 3];
+        assert_eq!(reaction.location(&nodes), "on surface 'top' (2 nodes)");
+        let dir = tempfile::tempdir().unwrap();
+        reaction.write(dir.path()).unwrap();
+        let csv = std::fs::read_to_string(dir.path().join("push.csv")).unwrap();
+        assert_eq!(
+            csv,
+            "time,reaction_x,reaction_y,reaction_z\n1,1.5e0,2.25e0,2\n"
+        );
+        let svg = std::fs::read_to_string(dir.path().join("push.svg")).unwrap();
+        // three curves from the origin: 2 points each
+        assert_eq!(svg.matches("<circle").count(), 6);
     }
 }

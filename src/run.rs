@@ -366,8 +366,12 @@ struct ContactFields {
     /// 0 open, 1 stick (closed, without friction), 2 slip (0 away from
     /// contact surfaces).
     status: Vec<f64>,
-    /// Traction on the body, `t_N n + t_T` (3 per node, 0 elsewhere).
+    /// Traction on the body, `t_N n + t_T` (3 per node, 0 elsewhere):
+    /// the nodal contact force of every pass until divided by `nodal_area`.
     traction: Vec<f64>,
+    /// Whether the node is a secondary node of some interface (its own
+    /// gap and slip then win over those seen from a primary side).
+    secondary: Vec<bool>,
     /// Accumulated slip vector (3 per node, 0 elsewhere).
     slip: Vec<f64>,
     summaries: std::collections::BTreeMap<String, InterfaceSummary>,
@@ -385,6 +389,7 @@ impl ContactFields {
             gap: vec![f64::NAN; n],
             status: vec![0.0; n],
             traction: vec![0.0; 3 * n],
+            secondary: vec![false; n],
             slip: vec![0.0; 3 * n],
             summaries: Default::default(),
             reports: Vec::new(),
@@ -427,11 +432,13 @@ impl ContactFields {
                 fields.nodal_force[s] += area * r.pressure;
                 fields.nodal_area[s] = whole;
                 fields.gap[s] = r.gap;
+                fields.secondary[s] = true;
                 fields.status[s] = fields.status[s].max(history.status.code() as f64);
                 for d in 0..3 {
                     summary.force[d] += r.force[d];
                     summary.tangential_force[d] += area * history.traction[d];
-                    fields.traction[3 * s + d] = r.force[d] / area + history.traction[d];
+                    // a force here, a traction once every pass has added its share
+                    fields.traction[3 * s + d] += r.force[d] + area * history.traction[d];
                     fields.slip[3 * s + d] = history.slip[d];
                 }
                 match history.status {
@@ -450,14 +457,16 @@ impl ContactFields {
             }
             fields.summaries.insert(c.name.clone(), summary);
         }
-        for ((p, f), a) in fields
+        for (((p, f), t), a) in fields
             .pressure
             .iter_mut()
             .zip(&fields.nodal_force)
+            .zip(fields.traction.chunks_exact_mut(3))
             .zip(&fields.nodal_area)
         {
             if *a > 0.0 {
                 *p = f / a;
+                t.iter_mut().for_each(|t| *t /= a);
             }
         }
         fields.reports = reports;
@@ -474,7 +483,9 @@ impl ContactFields {
     /// closed secondary nodes over a primary node, `slip` minus their slip
     /// averaged with the weights `A_s N_i`, and `gap` the primary node's
     /// distance to the secondary surface (projected on its triangles; NaN
-    /// beyond its edge). Returns the total force on the primary surface.
+    /// beyond its edge); a node that is itself secondary in another pass
+    /// keeps its own gap and slip. Returns the total force on the primary
+    /// surface.
     fn add_primary_side(
         &mut self,
         problem: &Problem,
@@ -502,9 +513,11 @@ impl ContactFields {
             for (&n, &weight) in node.nodes[1..].iter().zip(&node.gap.shape) {
                 normal[n] += area * node.law.pressure * weight;
                 forces[n] += force * weight;
-                slip[n].0 -= history.slip * (area * weight);
-                slip[n].1 += area * weight;
+                // the closed nodes over the primary node, by their weights
+                // (clamped: a node just off its triangle has one below 0)
                 if node.law.active && weight > 0.0 {
+                    slip[n].0 -= history.slip * (area * weight);
+                    slip[n].1 += area * weight;
                     status[n] = status[n].max(history.status.code());
                 }
             }
@@ -521,15 +534,15 @@ impl ContactFields {
             self.nodal_area[n] = a;
             let (slip_sum, weight) = slip[n];
             for (d, force) in forces[n].iter().enumerate() {
-                self.traction[3 * n + d] += force / a;
-                if weight > 0.0 {
+                self.traction[3 * n + d] += force;
+                if weight > 0.0 && !self.secondary[n] {
                     self.slip[3 * n + d] = slip_sum[d] / weight;
                 }
             }
             self.status[n] = self.status[n].max(status[n] as f64);
-            if self.gap[n].is_nan() {
+            if !self.secondary[n] {
                 let here = PrimarySurface::position(reference, x, n);
-                if let Some(g) = reverse.nearest_gap(reference, x, k, &here) {
+                if let Some((_, g)) = reverse.nearest_gap(reference, x, k, &here) {
                     self.gap[n] = g.gap;
                 }
             }

@@ -8,8 +8,8 @@ mod common;
 
 use common::{
     assert_open_stick_and_slip, assert_quadratic, assert_tangent_matches_fd, every_method, fix,
-    perturbed_state, problem, run, support_stacked_blocks, surface_interface, two_bodies,
-    write_stacked_blocks_case,
+    frictional_blocks, problem, run, support_stacked_blocks, surface_interface, two_bodies,
+    write_stacked_blocks_case, CaseRun,
 };
 use signorini::contact::friction::Coulomb;
 use signorini::contact::laws::NormalLaw;
@@ -154,29 +154,11 @@ fn deformable_contact_tangent_matches_finite_differences() {
 #[test]
 fn frictional_deformable_tangent_matches_finite_differences() {
     for (name, law) in every_method(3.0 * E) {
-        let mesh_lower = box_mesh(ElementKind::Hex8, [2, 2, 1], [1.0, 1.0, 0.5]);
-        let mesh_upper = box_mesh(ElementKind::Hex8, [2, 2, 1], [0.8, 0.8, 0.5]);
-        let lower_nodes = mesh_lower.nodes.len();
-        let mesh = two_bodies(mesh_lower, "lower", mesh_upper, "upper", [0.07, 0.11, 0.5]);
-        let mut pr = problem(mesh, Arc::new(NeoHookean::new(E, 0.3, "m").unwrap()));
-        let mut c = surface_interface(&pr, "upper.zmin", "lower.zmax", law);
-        c.friction = Some(Coulomb {
-            coefficient: 0.3,
-            tangential_penalty: 3.0 * E,
-        });
-        pr.set_contacts(vec![c]);
-        let dofs = pr.model.num_dofs();
-        let slack = name == "slack";
-        let mut x = perturbed_state(&pr, 0.02, slack);
-        if !slack {
-            for (m, v) in x.iter_mut().enumerate().skip(dofs) {
-                *v = 0.02 * ((m as f64) * 1.3).cos();
-            }
-        }
+        let (pr, upper, mut x) = frictional_blocks(E, name, law, 2, [0.07, 0.11, 0.5]);
         let mut state = pr.initial_contact_state(&x);
         pr.commit_contact_history(0.5, &x, &mut state);
         let slide = |x: &mut Vec<f64>, amount: &dyn Fn(usize) -> [f64; 2]| {
-            for n in lower_nodes..dofs / 3 {
+            for n in upper.clone() {
                 let [a, b] = amount(n);
                 x[3 * n] += a;
                 x[3 * n + 1] += b;
@@ -190,6 +172,74 @@ fn frictional_deformable_tangent_matches_finite_differences() {
         });
         let (_, reports) = pr.residual_in(0.5, &x, &state, None).unwrap();
         assert_open_stick_and_slip(&reports[0], name);
+        assert_tangent_matches_fd(&pr, 0.5, &x, &state, name);
+    }
+}
+
+/// The frictional tangent where a node's anchor is on another triangle
+/// than the one it is over now (among them nodes that were beyond the
+/// primary surface's edge at the last commit, anchored at its closest
+/// point), and where a node has no material point (as after a commit
+/// without candidate triangles; set by hand on every fifth node): it slips
+/// from its own committed position. A 3 × 3 upper block overhanging the
+/// lower one, committed twice, then most of its nodes slid −0.17 along x
+/// (a third of a primary cell). Asserts that both cases occur among the
+/// closed nodes and that the tangent matches central differences, for
+/// every method (with a fault in the anchor columns, e.g. the anchor's
+/// weights written into the current triangle's columns, the check
+/// `frictional_deformable_tangent_matches_finite_differences` passes but
+/// this one fails).
+#[test]
+fn frictional_tangent_with_anchors_on_other_triangles() {
+    for (name, law) in every_method(3.0 * E) {
+        let (pr, upper, mut x) = frictional_blocks(E, name, law, 3, [0.33, 0.11, 0.5]);
+        // the upper block a little lower, so that most of its nodes close
+        for n in upper.clone() {
+            x[3 * n + 2] -= 0.03;
+        }
+        let mut state = pr.initial_contact_state(&x);
+        pr.commit_contact_history(0.5, &x, &mut state);
+        for n in upper.clone() {
+            x[3 * n] += 0.002;
+            x[3 * n + 1] += 0.001;
+        }
+        pr.commit_contact_history(0.5, &x, &mut state);
+        // every fifth node as if it had had no candidate triangle at the
+        // last commit: it slips from its own committed position
+        for s in state.interfaces[0].iter_mut().step_by(5) {
+            s.friction.material_point = None;
+        }
+        for n in upper {
+            let k = n as f64;
+            let [a, b] = if n % 4 == 0 {
+                [0.001 * k.cos(), 0.0]
+            } else {
+                [-0.17 - 0.01 * (k % 3.0), 0.03 * k.sin()]
+            };
+            x[3 * n] += a;
+            x[3 * n + 1] += b;
+        }
+        let (_, reports) = pr.residual_in(0.5, &x, &state, None).unwrap();
+        let closed = || {
+            reports[0]
+                .iter()
+                .zip(&state.interfaces[0])
+                .filter(|(r, _)| r.active)
+        };
+        let elsewhere = closed()
+            .filter(|(r, s)| {
+                s.friction
+                    .material_point
+                    .is_some_and(|m| Some(m.triangle) != r.facet)
+            })
+            .count();
+        let without = closed()
+            .filter(|(_, s)| s.friction.material_point.is_none())
+            .count();
+        assert!(
+            elsewhere > 0 && without > 0,
+            "{name}: {elsewhere} anchors on other triangles, {without} without one"
+        );
         assert_tangent_matches_fd(&pr, 0.5, &x, &state, name);
     }
 }
@@ -258,29 +308,15 @@ fn stacked_blocks_through_the_case_file() {
     // one, friction holds it back): action and reaction in summary.json,
     // normal and tangential, in every converged increment (1e-8)
     let friction_dir = tempfile::tempdir().unwrap();
-    let path = write_stacked_blocks_case(friction_dir.path(), upper, "friction_coefficient = 0.3");
-    let outcome = signorini::run::run(
-        &path,
-        &signorini::run::RunOptions {
-            output: Some(friction_dir.path().join("out")),
-            quiet: true,
-        },
-    )
-    .expect("the frictional case runs");
+    let frictional =
+        CaseRun::stacked_blocks(friction_dir.path(), upper, "friction_coefficient = 0.3");
+    let outcome = &frictional.outcome;
     // the output fields on the primary surface's nodes (the last increment)
-    let built = signorini::case::load(&path)
-        .unwrap()
-        .build_problem()
-        .unwrap();
-    let mesh = &built.model.mesh;
-    let vtu = outcome
-        .output_dir
-        .join(&outcome.summary.increments.last().unwrap().file);
-    let field = |name: &str| signorini::output::vtu::read_point_field(&vtu, name).unwrap();
+    let mesh = &frictional.problem.model.mesh;
     let (pressure, gap, status) = (
-        field("contact_pressure"),
-        field("gap"),
-        field("contact_status"),
+        frictional.last_field("contact_pressure"),
+        frictional.last_field("gap"),
+        frictional.last_field("contact_status"),
     );
     let normal_force = |surface: &str| -> f64 {
         let (nodes, areas) =

@@ -8,7 +8,7 @@ mod common;
 
 use common::{
     problem, run, stacked_blocks_case, stacked_blocks_mesh, two_pass_interfaces,
-    write_stacked_blocks_case,
+    write_stacked_blocks_case, CaseRun,
 };
 use nalgebra::{DMatrix, DVector};
 use signorini::contact::laws::NormalLaw;
@@ -247,14 +247,7 @@ fn two_pass_constraints_cannot_produce_a_uniform_pressure() {
 fn two_pass_through_the_case_file() {
     let dir = tempfile::tempdir().unwrap();
     let path = write_stacked_blocks_case(dir.path(), LINEAR, "method = \"uzawa\"\ntwo_pass = true");
-    let outcome = signorini::run::run(
-        &path,
-        &signorini::run::RunOptions {
-            output: Some(dir.path().join("out")),
-            quiet: true,
-        },
-    )
-    .expect("the case runs");
+    let outcome = CaseRun::new(&path, &dir.path().join("out")).outcome;
     let contact = &outcome.summary.increments.last().unwrap().contact;
     let (forward, reverse) = (&contact["interface"], &contact["interface.reverse"]);
     let on_upper = forward.force[2] - reverse.force[2];
@@ -310,4 +303,58 @@ fn two_pass_through_the_case_file() {
         &format!("{obstacle}\n[[contact]]\nname = \"interface.reverse\"\nsurface = \"upper.xmax\"\nobstacle = \"floor\"\n"),
         &["contact[0].two_pass", "'interface.reverse'", "contact[1]"],
     );
+}
+
+/// The output fields of a two-pass interface through the case file (penalty,
+/// frictionless and with μ = 0.3): on each surface, whose nodes are
+/// secondary in one pass and primary in the other, `contact_pressure` and
+/// `contact_traction` add both passes' forces over the node's tributary
+/// area, so that `Σ p A` is the same on both surfaces (1e-10) and
+/// `Σ t A` is the contact force each body receives: +z on the upper
+/// block, −z on the lower one, equal and opposite (1e-10), equal to the
+/// applied load in z (1e-6).
+#[test]
+fn two_pass_output_fields_add_both_passes() {
+    for extra in ["", "\nfriction_coefficient = 0.3"] {
+        let dir = tempfile::tempdir().unwrap();
+        let upper = "model = \"neo_hookean\"\nyoungs_modulus = 50.0\npoisson_ratio = 0.3";
+        let contact = format!("two_pass = true\nmethod = \"penalty\"{extra}");
+        let run = CaseRun::stacked_blocks(dir.path(), upper, &contact);
+        let mesh = &run.problem.model.mesh;
+        let (pressure, traction) = (
+            run.last_field("contact_pressure"),
+            run.last_field("contact_traction"),
+        );
+        let totals = |surface: &str| -> (f64, [f64; 3]) {
+            let set = mesh.surface(surface).unwrap();
+            let (nodes, areas) = signorini::contact::tributary_areas(mesh, set);
+            let mut force = [0.0; 3];
+            let mut normal = 0.0;
+            for (&n, &a) in nodes.iter().zip(&areas) {
+                normal += pressure[n] * a;
+                for d in 0..3 {
+                    force[d] += traction[3 * n + d] * a;
+                }
+            }
+            (normal, force)
+        };
+        let (upper_p, upper_f) = totals("upper.zmin");
+        let (lower_p, lower_f) = totals("lower.zmax");
+        // pressure P on the 1 × 1 top
+        let load = P;
+        assert!(
+            (upper_p - lower_p).abs() < 1e-10 * upper_p,
+            "{extra}: Σ p A {upper_p} vs {lower_p}"
+        );
+        for d in 0..3 {
+            assert!(
+                (upper_f[d] + lower_f[d]).abs() < 1e-10 * upper_p,
+                "{extra}: Σ t A {upper_f:?} vs {lower_f:?}"
+            );
+        }
+        assert!(
+            (upper_f[2] - load).abs() < 1e-6 * load,
+            "{extra}: force on the upper block {upper_f:?}, load {load}"
+        );
+    }
 }

@@ -27,6 +27,9 @@
 //! smooth within each triangle.
 
 use crate::contact::closest_point_on_triangle;
+use crate::contact::friction::MaterialPoint;
+use crate::contact::surface_contact::STICKY_BAND;
+use crate::contact::triangle::TriangleProjection;
 use crate::contact::triangle_gap::{split_quadrangle, triangle_gap, TriangleGap};
 use crate::mesh::{FacetKind, Mesh};
 use nalgebra::Vector3;
@@ -134,28 +137,65 @@ impl PrimarySurface {
         changed
     }
 
-    /// The gap of the point `x_p` against the nearest of the candidate
-    /// triangles of secondary node `i` ([`best_triangle`]), `None` without
-    /// candidates, off the triangle by more than 5 % (barycentric: beyond
-    /// the surface's edge) or on a
-    /// degenerate one. For output: the distance of a surface's nodes to the
-    /// other surface.
+    /// The nearest of the candidate triangles of secondary node `i`
+    /// ([`best_triangle`]) to the point `x_p`, with the point's gap against
+    /// it; `None` without
+    /// usable candidates (degenerate triangles are skipped), or off the
+    /// triangle by more than the band of the triangle choice (beyond the
+    /// surface's edge).
     pub fn nearest_gap(
         &self,
         reference: &[[f64; 3]],
         x: &[f64],
         i: usize,
         x_p: &Vector3<f64>,
-    ) -> Option<TriangleGap> {
-        let candidates: Vec<(usize, [Vector3<f64>; 3])> = self
+    ) -> Option<(usize, TriangleGap)> {
+        // the candidates that are not degenerate, the nearest of them
+        let usable: Vec<(usize, [Vector3<f64>; 3], TriangleGap)> = self
             .candidates
             .get(i)?
             .iter()
-            .map(|&t| (t, self.corners(reference, x, t)))
+            .filter_map(|&t| {
+                let c = self.corners(reference, x, t);
+                triangle_gap(x_p, [&c[0], &c[1], &c[2]]).map(|g| (t, c, g))
+            })
             .collect();
-        let t = best_triangle(x_p, &candidates)?;
-        let c = candidates.iter().find(|c| c.0 == t)?.1;
-        triangle_gap(x_p, [&c[0], &c[1], &c[2]]).filter(|g| g.shape.iter().all(|&n| n >= -0.05))
+        let corners: Vec<(usize, [Vector3<f64>; 3])> =
+            usable.iter().map(|(t, c, _)| (*t, *c)).collect();
+        let t = best_triangle(x_p, &corners)?;
+        let gap = usable.into_iter().find(|u| u.0 == t)?.2;
+        gap.shape
+            .iter()
+            .all(|&n| n >= -STICKY_BAND)
+            .then_some((t, gap))
+    }
+
+    /// The point of the candidate triangles of secondary node `i` closest
+    /// to `x_p`, as a material point (triangle and barycentric weights,
+    /// each in `[0, 1]`); `None` without candidates. Where a node over no
+    /// triangle (beyond the surface's edge) anchors its friction.
+    pub fn closest_material_point(
+        &self,
+        reference: &[[f64; 3]],
+        x: &[f64],
+        i: usize,
+        x_p: &Vector3<f64>,
+    ) -> Option<MaterialPoint> {
+        self.candidates
+            .get(i)?
+            .iter()
+            .map(|&t| {
+                let c = self.corners(reference, x, t);
+                (t, closest_point_on_triangle(x_p, &c[0], &c[1], &c[2]))
+            })
+            .min_by(|a, b| {
+                let d = |p: &TriangleProjection| (x_p - p.point).norm_squared();
+                d(&a.1).total_cmp(&d(&b.1))
+            })
+            .map(|(triangle, p)| MaterialPoint {
+                triangle,
+                shape: p.barycentric,
+            })
     }
 
     /// Every mesh node of the candidates of secondary node `i` (sorted,

@@ -45,11 +45,12 @@
 //! ```
 //! After an increment converges the node's new material point is its
 //! current projection ([`ContactInterface::commit_surface_history`]; at the
-//! start, [`ContactInterface::initial_surface_states`]). A node without one
-//! (it had no primary triangle at the last commit, or that triangle left
-//! its candidates) measures the increment's slip from its own committed
-//! position `x_s,n`, as against a fixed surface: `d = x_s − x_s,n`; the
-//! search margin makes this rare.
+//! start, [`ContactInterface::initial_surface_states`]); a node beyond the
+//! primary surface's edge gets the surface's point closest to it. A node
+//! without one (it had no candidate triangle at the last commit, or that
+//! triangle left its candidates) measures the increment's slip from its own
+//! committed position `x_s,n`, as against a fixed surface:
+//! `d = x_s − x_s,n`; the search margin makes this rare.
 
 use super::friction::{
     self, ContactStatus, FrictionHistory, MaterialPoint, NormalPressure, SlipKinematics,
@@ -57,7 +58,7 @@ use super::friction::{
 };
 use super::interface::{ContactInterface, NodeReport};
 use super::laws::{GapGeometry, NodeContactState, NodeContribution, NormalLaw};
-use super::primary::{best_triangle, PrimarySurface};
+use super::primary::PrimarySurface;
 use super::triangle_gap::{triangle_gap, TriangleGap};
 use crate::assembly::pattern::SparsityPattern;
 use nalgebra::{Matrix3, SMatrix, SVector, Vector3};
@@ -87,7 +88,7 @@ pub struct SurfaceNode {
 /// of the triangle beyond it. The price: the converged state depends a
 /// little on the path (measured: ~5e-4 relative in the patch test's
 /// pressures between Uzawa and Rockafellar).
-const STICKY_BAND: f64 = 0.05;
+pub(crate) const STICKY_BAND: f64 = 0.05;
 
 /// The one-dimensional geometry of a scalar gap `g`.
 fn scalar_geometry(g: f64) -> GapGeometry {
@@ -113,16 +114,11 @@ impl ContactInterface {
     ) -> Option<SurfaceNode> {
         let s = self.nodes[i];
         let x_s = PrimarySurface::position(reference, x, s);
-        let candidates: Vec<(usize, [Vector3<f64>; 3])> = primary
-            .candidates
-            .get(i)?
-            .iter()
-            .map(|&t| (t, primary.corners(reference, x, t)))
-            .collect();
         // the last triangle while the node stays over it (within the
         // band), else the nearest candidate
         let kept = state.facet.and_then(|t| {
-            let corners = candidates.iter().find(|c| c.0 == t)?.1;
+            primary.candidates.get(i)?.contains(&t).then_some(())?;
+            let corners = primary.corners(reference, x, t);
             let gap = triangle_gap(&x_s, [&corners[0], &corners[1], &corners[2]])?;
             gap.shape
                 .iter()
@@ -131,25 +127,11 @@ impl ContactInterface {
         });
         let (t, gap) = match kept {
             Some(k) => k,
-            None => {
-                // the nearest candidate that is not degenerate
-                let usable: Vec<(usize, [Vector3<f64>; 3])> = candidates
-                    .iter()
-                    .filter(|(_, c)| triangle_gap(&x_s, [&c[0], &c[1], &c[2]]).is_some())
-                    .cloned()
-                    .collect();
-                let t = best_triangle(&x_s, &usable)?;
-                let corners = usable.iter().find(|c| c.0 == t)?.1;
-                let gap = triangle_gap(&x_s, [&corners[0], &corners[1], &corners[2]])?;
-                // a node whose projection misses even its nearest triangle
-                // is beyond the primary surface's edge: open (its extended
-                // plane would otherwise push it, with negative weights on
-                // the primary nodes)
-                if gap.shape.iter().any(|&n| n < -STICKY_BAND) {
-                    return None;
-                }
-                (t, gap)
-            }
+            // the nearest usable candidate; a node whose projection misses
+            // even that triangle is beyond the primary surface's edge: open
+            // (its extended plane would otherwise push it, with negative
+            // weights on the primary nodes)
+            None => primary.nearest_gap(reference, x, i, &x_s)?,
         };
         let law = self
             .law_at(i)
@@ -181,13 +163,35 @@ impl ContactInterface {
                 let mut state = NodeContactState::initial(&law, g);
                 state.friction =
                     FrictionHistory::at(PrimarySurface::position(reference, x, self.nodes[i]));
-                state.friction.material_point = node.map(|n| MaterialPoint {
-                    triangle: n.triangle,
-                    shape: n.gap.shape,
-                });
+                state.friction.material_point =
+                    self.anchor_at(primary, reference, x, i, node.as_ref());
                 state
             })
             .collect()
+    }
+
+    /// The material point node `i` anchors its friction to after an
+    /// increment converged at `x` (or at the start), `node` its evaluation
+    /// there: where the node is over the primary surface; beyond its edge,
+    /// the surface's point closest to it.
+    fn anchor_at(
+        &self,
+        primary: &PrimarySurface,
+        reference: &[[f64; 3]],
+        x: &[f64],
+        i: usize,
+        node: Option<&SurfaceNode>,
+    ) -> Option<MaterialPoint> {
+        match node {
+            Some(n) => Some(MaterialPoint {
+                triangle: n.triangle,
+                shape: n.gap.shape,
+            }),
+            None => {
+                let x_s = PrimarySurface::position(reference, x, self.nodes[i]);
+                primary.closest_material_point(reference, x, i, &x_s)
+            }
+        }
     }
 
     /// The primary material point node `i` measures its slip from: the one
@@ -199,10 +203,12 @@ impl ContactInterface {
         i: usize,
         state: &NodeContactState,
     ) -> Option<MaterialPoint> {
-        state
-            .friction
-            .material_point
-            .filter(|m| primary.candidates[i].contains(&m.triangle))
+        state.friction.material_point.filter(|m| {
+            primary
+                .candidates
+                .get(i)
+                .is_some_and(|c| c.contains(&m.triangle))
+        })
     }
 
     /// The tangential response of closed node `i` (`None` when open; zero
@@ -431,8 +437,10 @@ impl ContactInterface {
 
     /// The stick preconditioner's shift of the deformable interface (see
     /// [`ContactInterface::shift_to_stick_preconditioner`]): at every
-    /// closed node, `sym(−A_s Bᵀ (J* − ∂t_T/∂q))` and the removal of the
-    /// symmetrised `−A_s Bᵀ ∂t_T/∂λ`; entries of `constrained` dofs skipped.
+    /// closed node, the symmetrised friction block `−A_s Bᵀ ∂t_T/∂q`
+    /// replaced by the stick stiffness at the current projection,
+    /// `A_s ε_T Bᵀ T B`, and the symmetrised `−A_s Bᵀ ∂t_T/∂λ` removed;
+    /// entries of `constrained` dofs skipped.
     #[allow(clippy::too_many_arguments)]
     pub(crate) fn shift_surface_to_stick(
         &self,
@@ -455,7 +463,15 @@ impl ContactInterface {
                 continue;
             };
             let area = self.areas[i];
-            let shift = -area * lever.transpose() * (t.trial_gradient - t.traction_gradient);
+            // the stick stiffness at the current projection, `A_s ε_T Bᵀ T B`
+            // (positive semi-definite; the trial derivative `J*` is not
+            // when the anchor lies on another triangle), for the tangent's
+            // `−A_s Bᵀ ∂t_T/∂q`
+            let n = c.node.gap.normal;
+            let projector = Matrix3::identity() - n * n.transpose();
+            let eps = self.friction_at(i).map_or(0.0, |f| f.tangential_penalty);
+            let stick = area * eps * lever.transpose() * projector * lever;
+            let shift = stick + area * lever.transpose() * t.traction_gradient;
             let shift = 0.5 * (shift + shift.transpose());
             let nodes = &c.nodes[..c.used];
             add_node_block(pattern, values, nodes, &shift, keep);
@@ -491,10 +507,8 @@ impl ContactInterface {
                 response.as_ref(),
                 PrimarySurface::position(reference, x, self.nodes[i]),
             );
-            states[i].friction.material_point = node.map(|n| MaterialPoint {
-                triangle: n.triangle,
-                shape: n.gap.shape,
-            });
+            states[i].friction.material_point =
+                self.anchor_at(primary, reference, x, i, node.as_ref());
         }
     }
 

@@ -4,10 +4,13 @@
 
 use nalgebra::Vector3;
 use signorini::assembly::Model;
+use signorini::contact::friction::Coulomb;
 use signorini::contact::interface::{ContactInterface, Primary};
 use signorini::contact::laws::NormalLaw;
 use signorini::contact::{tributary_areas, RigidObstacle};
-use signorini::material::Material;
+use signorini::material::{Material, NeoHookean};
+use signorini::mesh::structured::box_mesh;
+use signorini::mesh::ElementKind;
 use signorini::mesh::Mesh;
 use signorini::problem::{
     Amplitude, ContactState, PrescribedDisplacement, Problem, SolverSettings, Step,
@@ -597,4 +600,83 @@ pub fn every_method(e: f64) -> Vec<(&'static str, NormalLaw)> {
         ("rockafellar", NormalLaw::Rockafellar { p: e, k: e }),
         ("slack", NormalLaw::Slack { p: e, k: e }),
     ]
+}
+
+/// A case run through the CLI's `run`, with the problem it built (for its
+/// mesh) and its output folder.
+pub struct CaseRun {
+    pub outcome: signorini::run::RunOutcome,
+    pub problem: Problem,
+}
+
+impl CaseRun {
+    /// Run the case file `path`, writing into `output`.
+    pub fn new(path: &Path, output: &Path) -> Self {
+        let outcome = signorini::run::run(
+            path,
+            &signorini::run::RunOptions {
+                output: Some(output.to_path_buf()),
+                quiet: true,
+            },
+        )
+        .expect("the case runs");
+        let problem = signorini::case::load(path)
+            .unwrap()
+            .build_problem()
+            .unwrap();
+        Self { outcome, problem }
+    }
+
+    /// The stacked blocks as a case file in `dir` (see
+    /// [`stacked_blocks_case`]), run.
+    pub fn stacked_blocks(dir: &Path, upper_material: &str, contact: &str) -> Self {
+        let path = write_stacked_blocks_case(dir, upper_material, contact);
+        Self::new(&path, &dir.join("out"))
+    }
+
+    /// Point field `name` of the last converged increment's VTU.
+    pub fn last_field(&self, name: &str) -> Vec<f64> {
+        let file = &self.outcome.summary.increments.last().unwrap().file;
+        signorini::output::vtu::read_point_field(&self.outcome.output_dir.join(file), name).unwrap()
+    }
+}
+
+/// Two neo-Hookean blocks (`lower` 1 × 1 × 0.5 of 2 × 2 × 1 Hex8, `upper`
+/// 0.8 × 0.8 × 0.5 of `upper_cells` × `upper_cells` × 1, shifted by
+/// `offset`) with Coulomb friction (μ = 0.3, ε_T = 3E) between the upper
+/// bottom and the lower top under `law`, at a perturbed state
+/// ([`perturbed_state`], amplitude 0.02; multipliers `0.02 cos(1.3 i)`
+/// except the slack law's). Returns the problem, the upper block's node
+/// range and the state.
+pub fn frictional_blocks(
+    e: f64,
+    name: &str,
+    law: NormalLaw,
+    upper_cells: usize,
+    offset: [f64; 3],
+) -> (Problem, std::ops::Range<usize>, Vec<f64>) {
+    let mesh_lower = box_mesh(ElementKind::Hex8, [2, 2, 1], [1.0, 1.0, 0.5]);
+    let mesh_upper = box_mesh(
+        ElementKind::Hex8,
+        [upper_cells, upper_cells, 1],
+        [0.8, 0.8, 0.5],
+    );
+    let lower_nodes = mesh_lower.nodes.len();
+    let mesh = two_bodies(mesh_lower, "lower", mesh_upper, "upper", offset);
+    let mut pr = problem(mesh, Arc::new(NeoHookean::new(e, 0.3, "m").unwrap()));
+    let mut c = surface_interface(&pr, "upper.zmin", "lower.zmax", law);
+    c.friction = Some(Coulomb {
+        coefficient: 0.3,
+        tangential_penalty: 3.0 * e,
+    });
+    pr.set_contacts(vec![c]);
+    let dofs = pr.model.num_dofs();
+    let slack = name == "slack";
+    let mut x = perturbed_state(&pr, 0.02, slack);
+    if !slack {
+        for (m, v) in x.iter_mut().enumerate().skip(dofs) {
+            *v = 0.02 * ((m as f64) * 1.3).cos();
+        }
+    }
+    (pr, lower_nodes..dofs / 3, x)
 }

@@ -244,6 +244,62 @@ fn frictional_tangent_with_anchors_on_other_triangles() {
     }
 }
 
+/// Objectivity of the committed friction traction: two blocks in contact
+/// with friction, committed twice (the second time after a small slide, so
+/// that the sticking nodes carry a traction), then both bodies turned
+/// rigidly by 30° about an axis through the contact. Gaps, pressures and
+/// slips are unchanged by a rigid motion, so every node must report its
+/// traction turned by the same rotation, `t' = R t`, with its status (to
+/// 1e-10 of the largest traction). Holds because the traction is stored on
+/// the anchor triangle's edges and carried with the primary surface; a
+/// traction kept in global components loses a factor cos 30° or points out
+/// of the tangent plane.
+#[test]
+fn committed_friction_traction_turns_with_the_bodies() {
+    let law = NormalLaw::Rockafellar {
+        p: 3.0 * E,
+        k: 3.0 * E,
+    };
+    let (pr, upper, mut x) = frictional_blocks(E, "rockafellar", law, 2, [0.07, 0.11, 0.5]);
+    let mut state = pr.initial_contact_state(&x);
+    pr.commit_contact_history(0.5, &x, &mut state);
+    for n in upper {
+        x[3 * n] += 0.002;
+        x[3 * n + 1] += 0.001;
+    }
+    pr.commit_contact_history(0.5, &x, &mut state);
+    let (_, before) = pr.residual_in(0.5, &x, &state, None).unwrap();
+    let rotation = nalgebra::Rotation3::from_axis_angle(
+        &nalgebra::Unit::new_normalize(nalgebra::Vector3::new(1.0, 2.0, 0.5)),
+        30f64.to_radians(),
+    );
+    let centre = nalgebra::Vector3::new(0.5, 0.5, 0.5);
+    let reference = &pr.model.mesh.nodes;
+    let mut turned = x.clone();
+    for (n, p) in reference.iter().enumerate() {
+        let now = nalgebra::Vector3::new(p[0] + x[3 * n], p[1] + x[3 * n + 1], p[2] + x[3 * n + 2]);
+        let moved = centre + rotation * (now - centre);
+        for d in 0..3 {
+            turned[3 * n + d] = moved[d] - p[d];
+        }
+    }
+    let (_, after) = pr.residual_in(0.5, &turned, &state, None).unwrap();
+    let largest = before[0]
+        .iter()
+        .map(|r| nalgebra::Vector3::from(r.tangential_traction).norm())
+        .fold(0.0, f64::max);
+    assert!(largest > 0.0, "the sticking nodes carry a traction");
+    for (b, a) in before[0].iter().zip(&after[0]) {
+        assert_eq!(a.status, b.status);
+        let expected = rotation * nalgebra::Vector3::from(b.tangential_traction);
+        let got = nalgebra::Vector3::from(a.tangential_traction);
+        assert!(
+            (got - expected).norm() < 1e-10 * largest,
+            "traction {got:?}, want {expected:?} (R t)"
+        );
+    }
+}
+
 /// Newton's quadratic rate with a deformable primary: neo-Hookean
 /// blocks, a 0.8 × 0.8 one (3 × 3 × 2) on a 1 × 1 one (4 × 4 × 2, so every
 /// secondary node stays over the primary surface), the upper one pressed

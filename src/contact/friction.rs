@@ -109,6 +109,12 @@ pub struct MaterialPoint {
     pub triangle: usize,
     /// Shape functions `N = (1 − ξ1 − ξ2, ξ1, ξ2)` of the point.
     pub shape: [f64; 3],
+    /// The committed tangential traction's components `τ^α` on the
+    /// triangle's edges `a1 = y2 − y1`, `a2 = y3 − y1`: the traction is
+    /// carried (rotated and stretched) with the primary surface,
+    /// `t_T,n = τ^α a_α`, so that a sticking pair that turns as a whole
+    /// keeps its traction in the tangent plane.
+    pub traction: [f64; 2],
 }
 
 impl FrictionHistory {
@@ -139,6 +145,12 @@ pub struct NormalPressure<const K: usize = 3> {
 /// plane, with their derivatives with respect to `K` unknowns `q`.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct SlipKinematics<const K: usize> {
+    /// The committed traction `t_T,n` as it is now: a fixed vector against
+    /// a rigid obstacle; between bodies carried by the primary surface
+    /// (`τ^α a_α`, its components on the anchor triangle's edges).
+    pub traction: Vector3<f64>,
+    /// `∂t_T,n/∂q` (zero against a rigid obstacle).
+    pub traction_gradient: SMatrix<f64, 3, K>,
     /// `d`: the node's position relative to its anchor (against a rigid
     /// obstacle `(x_s − c(t)) − (x_s − c)ₙ`; between bodies `x_s − x̄ₙ`, the
     /// current position of the primary material point `x̄ₙ` the node was
@@ -210,20 +222,21 @@ pub fn return_map(
     pressure: &NormalPressure,
 ) -> TangentialResponse {
     let kinematics = SlipKinematics {
+        traction: history.traction,
+        traction_gradient: Matrix3::zeros(),
         offset: relative_position - history.anchor,
         offset_gradient: Matrix3::identity(),
         normal: gap.normal,
         normal_gradient: gap.hessian,
     };
-    return_map_on(law, &history.traction, &kinematics, pressure)
+    return_map_on(law, &kinematics, pressure)
 }
 
 /// The return mapping (see the module docs) of one closed node with the
-/// committed traction `old_traction`, its slip `kinematics` and normal
-/// `pressure`, differentiated with respect to the `K` unknowns both depend on.
+/// committed traction and slip of `kinematics` and normal `pressure`,
+/// differentiated with respect to the `K` unknowns they depend on.
 pub fn return_map_on<const K: usize>(
     law: &Coulomb,
-    old_traction: &Vector3<f64>,
     kinematics: &SlipKinematics<K>,
     pressure: &NormalPressure<K>,
 ) -> TangentialResponse<K> {
@@ -231,10 +244,12 @@ pub fn return_map_on<const K: usize>(
     let projector = Matrix3::identity() - n * n.transpose();
     let eps = law.tangential_penalty;
     let d = kinematics.offset;
+    let old_traction = &kinematics.traction;
     let old = projector * old_traction;
     let slip = projector * d;
     let trial = old - eps * slip;
     let trial_gradient = projection_derivative(kinematics, old_traction)
+        + projector * kinematics.traction_gradient
         - eps * (projector * kinematics.offset_gradient + projection_derivative(kinematics, &d));
     let bound = law.coefficient * pressure.value;
     let size = trial.norm();

@@ -195,6 +195,7 @@ impl PrimarySurface {
             .map(|(triangle, p)| MaterialPoint {
                 triangle,
                 shape: p.barycentric,
+                traction: [0.0; 2],
             })
     }
 

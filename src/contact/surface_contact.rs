@@ -43,6 +43,13 @@
 //! K_qq += −A_s Bᵀ ∂t_T/∂q + A_s Σ_i e_iᵀ t_T ⊗ ∂N_i/∂q      (e_i: block row of x_i)
 //! K_qλ += −A_s Bᵀ ∂t_T/∂λ
 //! ```
+//! The committed traction travels with the primary surface too: it is
+//! stored as its components `τ^α` on the anchor triangle's edges and
+//! rebuilt as `t_T,n = τ^α a_α(y)` (derivative in the `y` columns), so that
+//! a sticking pair that turns as a whole keeps its traction (objectivity;
+//! a traction kept in global components would lose `cos θ` of it and leave
+//! the tangent plane).
+//!
 //! After an increment converges the node's new material point is its
 //! current projection ([`ContactInterface::commit_surface_history`]; at the
 //! start, [`ContactInterface::initial_surface_states`]); a node beyond the
@@ -164,7 +171,7 @@ impl ContactInterface {
                 state.friction =
                     FrictionHistory::at(PrimarySurface::position(reference, x, self.nodes[i]));
                 state.friction.material_point =
-                    self.anchor_at(primary, reference, x, i, node.as_ref());
+                    self.anchor_at(primary, reference, x, i, node.as_ref(), &Vector3::zeros());
                 state
             })
             .collect()
@@ -181,17 +188,24 @@ impl ContactInterface {
         x: &[f64],
         i: usize,
         node: Option<&SurfaceNode>,
+        traction: &Vector3<f64>,
     ) -> Option<MaterialPoint> {
-        match node {
-            Some(n) => Some(MaterialPoint {
+        let point = match node {
+            Some(n) => MaterialPoint {
                 triangle: n.triangle,
                 shape: n.gap.shape,
-            }),
+                traction: [0.0; 2],
+            },
             None => {
                 let x_s = PrimarySurface::position(reference, x, self.nodes[i]);
-                primary.closest_material_point(reference, x, i, &x_s)
+                primary.closest_material_point(reference, x, i, &x_s)?
             }
-        }
+        };
+        let y = primary.corners(reference, x, point.triangle);
+        Some(MaterialPoint {
+            traction: edge_components(&(y[1] - y[0]), &(y[2] - y[0]), traction),
+            ..point
+        })
     }
 
     /// The primary material point node `i` measures its slip from: the one
@@ -244,6 +258,8 @@ impl ContactInterface {
         offset_gradient
             .fixed_view_mut::<3, 3>(0, 0)
             .copy_from(&Matrix3::identity());
+        let mut traction = state.friction.traction;
+        let mut traction_gradient = SMatrix::<f64, 3, Q>::zeros();
         match point {
             Some(m) => {
                 for (j, (&y, &weight)) in anchor_nodes.iter().zip(&m.shape).enumerate() {
@@ -252,8 +268,18 @@ impl ContactInterface {
                         .fixed_view_mut::<3, 3>(0, 12 + 3 * j)
                         .copy_from(&(-weight * Matrix3::identity()));
                 }
+                // t_T,n = τ¹ (y2 − y1) + τ² (y3 − y1), carried by the surface
+                let [t1, t2] = m.traction;
+                let y = anchor_nodes.map(|n| PrimarySurface::position(reference, x, n));
+                traction = t1 * (y[1] - y[0]) + t2 * (y[2] - y[0]);
+                for (j, w) in [-(t1 + t2), t1, t2].into_iter().enumerate() {
+                    traction_gradient
+                        .fixed_view_mut::<3, 3>(0, 12 + 3 * j)
+                        .copy_from(&(w * Matrix3::identity()));
+                }
             }
-            // no material point: slip from the node's own committed position
+            // no material point: slip from the node's own committed
+            // position, the committed traction as it was
             None => offset -= state.friction.anchor,
         }
         let mut normal_gradient = SMatrix::<f64, 3, Q>::zeros();
@@ -266,6 +292,8 @@ impl ContactInterface {
             .fixed_rows_mut::<12>(0)
             .copy_from(&(node.law.pressure_gradient[0] * node.gap.gradient));
         let kinematics = SlipKinematics {
+            traction,
+            traction_gradient,
             offset,
             offset_gradient,
             normal: node.gap.normal,
@@ -276,8 +304,7 @@ impl ContactInterface {
             gradient: pressure_gradient,
             multiplier_derivative: node.law.pressure_multiplier_derivative,
         };
-        let response =
-            friction::return_map_on(&coulomb, &state.friction.traction, &kinematics, &pressure);
+        let response = friction::return_map_on(&coulomb, &kinematics, &pressure);
         Some((response, anchor_nodes))
     }
 
@@ -507,8 +534,9 @@ impl ContactInterface {
                 response.as_ref(),
                 PrimarySurface::position(reference, x, self.nodes[i]),
             );
+            let traction = states[i].friction.traction;
             states[i].friction.material_point =
-                self.anchor_at(primary, reference, x, i, node.as_ref());
+                self.anchor_at(primary, reference, x, i, node.as_ref(), &traction);
         }
     }
 
@@ -649,4 +677,17 @@ fn add_multiplier_block(
             }
         }
     }
+}
+
+/// The components `τ = (τ¹, τ²)` of the vector `t` on the edges `a1`, `a2`
+/// (of its projection on their plane: `M τ = (a1·t, a2·t)`, `M_αβ = a_α·a_β`);
+/// zero on a degenerate triangle.
+fn edge_components(a1: &Vector3<f64>, a2: &Vector3<f64>, t: &Vector3<f64>) -> [f64; 2] {
+    let (m11, m12, m22) = (a1.dot(a1), a1.dot(a2), a2.dot(a2));
+    let det = m11 * m22 - m12 * m12;
+    if !(det > 1e-14 * m11.max(m22).powi(2)) {
+        return [0.0; 2];
+    }
+    let (b1, b2) = (a1.dot(t), a2.dot(t));
+    [(m22 * b1 - m12 * b2) / det, (m11 * b2 - m12 * b1) / det]
 }

@@ -370,13 +370,13 @@ fn press_pull_friction_example() {
 /// - steady sliding (after a slide of 0.2, t ≥ 1.2): every node slips, the
 ///   friction force is μ times the normal force (1e-9); the reaction ratio
 ///   `F_x / F_z` on the die stays within 10 % of μ and its mean within 5 %
-///   (measured 0.2995–0.325, mean 0.310: the curved contact adds a
+///   (measured 0.2990–0.325, mean 0.310: the curved contact adds a
 ///   ploughing component of the normal pressure);
 /// - smoothness: the normal reaction stays within 1 % of its mean (measured
 ///   0.37 %), and between consecutive increments (slide 0.02) neither
 ///   component jumps by more than 3 % of the normal reaction (measured
-///   1.9 % for F_x, 0.45 % for F_z); no increment needs more than 2 cuts
-///   and the run at most 5 (measured 3, one each);
+///   1.05 % for F_x, 0.30 % for F_z); no increment needs more than 2 cuts
+///   and the run at most 5 (measured 2, one each);
 /// - penetration below 1e-3 (penalty: p/ε ≈ 0.8/1000; measured 8.1e-4);
 /// - the reaction plot and its CSV are written.
 #[test]

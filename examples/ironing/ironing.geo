@@ -6,9 +6,10 @@
 //   gmsh -3 ironing.geo -format msh41 -o ironing.msh
 //
 // Slab: x ∈ [0, L], z ∈ [0, H], NX × NZ elements.
-// Die: the annular sector between radii R (the contact arc) and R + D
-// (the loaded face), ±A degrees about the downward vertical, its axis at
-// (XC, H + R): the arc touches the slab's top at x = XC.
+// Die: the annular sector between radii R − D (the loaded face) and R
+// (the contact arc), ±A degrees about the downward vertical, its axis at
+// (XC, H + R): the arc touches the slab's top at x = XC, the die lies above
+// it (inside the circle of radius R).
 
 L = 9;  H = 1;  T = 0.125;
 NX = 72;  NZ = 8;
@@ -36,8 +37,8 @@ ZC = H + R;
 Point(10) = {XC, 0, ZC};
 Point(11) = {XC - R * Sin(A), 0, ZC - R * Cos(A)};
 Point(12) = {XC + R * Sin(A), 0, ZC - R * Cos(A)};
-Point(13) = {XC + (R + D) * Sin(A), 0, ZC - (R + D) * Cos(A)};
-Point(14) = {XC - (R + D) * Sin(A), 0, ZC - (R + D) * Cos(A)};
+Point(13) = {XC + (R - D) * Sin(A), 0, ZC - (R - D) * Cos(A)};
+Point(14) = {XC - (R - D) * Sin(A), 0, ZC - (R - D) * Cos(A)};
 Circle(11) = {11, 10, 12};
 Line(12) = {12, 13};
 Circle(13) = {13, 10, 14};

@@ -396,7 +396,7 @@ impl Case {
             line_search: sv.line_search.unwrap_or(d.line_search),
             max_cuts: sv.max_cuts.unwrap_or(d.max_cuts),
             growth_factor: sv.growth_factor.unwrap_or(d.growth_factor),
-            easy_iterations: d.easy_iterations,
+            easy_iterations: sv.easy_iterations.unwrap_or(d.easy_iterations),
             nonsymmetric: sv.nonsymmetric.unwrap_or(d.nonsymmetric),
         };
         for (name, v) in [

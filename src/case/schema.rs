@@ -256,6 +256,9 @@ pub struct SolverSpec {
     pub max_cuts: Option<usize>,
     /// Increment growth after an easy increment (default 1.5).
     pub growth_factor: Option<f64>,
+    /// An increment converged in at most this many Newton iterations, without
+    /// a cut, is easy: the next one grows (default 5).
+    pub easy_iterations: Option<usize>,
     /// Solver of nonsymmetric tangents (friction, follower pressure):
     /// `gmres` (default; preconditioned by an LDLᵀ, falls back to `lu`) or
     /// `lu`.

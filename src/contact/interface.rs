@@ -417,7 +417,11 @@ impl ContactInterface {
     /// and an indefinite coupling to the normal: the preconditioner stays a
     /// quasi-definite saddle matrix that the sign-aware LDLᵀ factorises, and
     /// differs from the tangent only in the contact blocks (so GMRES has
-    /// little left to resolve). Entries of `constrained` dofs are skipped.
+    /// little left to resolve; should its LDLᵀ still break down, Newton
+    /// solves with the sparse LU). A deformable interface shifts to
+    /// `A_s ε_T Bᵀ T B` at the current projection
+    /// (`ContactInterface::shift_surface_to_stick`). Entries of
+    /// `constrained` dofs are skipped.
     #[allow(clippy::too_many_arguments)]
     pub fn shift_to_stick_preconditioner(
         &self,

@@ -51,8 +51,8 @@
 //! the tangent plane).
 //!
 //! After an increment converges the node's new material point is its
-//! current projection ([`ContactInterface::commit_surface_history`]; at the
-//! start, [`ContactInterface::initial_surface_states`]); a node beyond the
+//! current projection (`ContactInterface::commit_surface_history`; at the
+//! start, `ContactInterface::initial_surface_states`); a node beyond the
 //! primary surface's edge gets the surface's point closest to it. A node
 //! without one (it had no candidate triangle at the last commit, or that
 //! triangle left its candidates) measures the increment's slip from its own

@@ -520,4 +520,32 @@ mod tests {
         }
         assert_eq!(solver.timings.lu_solves, 1);
     }
+
+    /// A symmetric tangent the LDLᵀ without pivoting cannot factorise (an
+    /// indefinite one with a zero leading pivot) is solved by the LU.
+    #[test]
+    fn a_symmetric_tangent_the_ldlt_cannot_factorise_falls_back_to_the_lu() {
+        let nodes = [0usize];
+        let blocks = SparsityPattern::from_elements(1, std::iter::once(&nodes[..]));
+        // [[0, 1, 0], [1, 0, 0], [0, 0, 1]]: regular, but its first pivot is 0
+        let k = [0.0, 1.0, 0.0, 1.0, 0.0, 0.0, 0.0, 0.0, 1.0];
+        let mut solver = SparseLdlt::new(super::super::linear::Ordering::Amd, 1);
+        let rhs = [1.0, 4.0, 3.0];
+        let mut du = rhs;
+        solve_linear(
+            &mut solver,
+            &blocks,
+            &k,
+            None,
+            NonsymmetricSolver::Gmres,
+            &rhs,
+            None,
+            &mut du,
+        )
+        .unwrap();
+        for (d, e) in du.iter().zip([4.0, 1.0, 3.0]) {
+            assert!((d - e).abs() < 1e-14, "{du:?}");
+        }
+        assert_eq!(solver.timings.lu_solves, 1);
+    }
 }

@@ -489,63 +489,65 @@ mod tests {
     use super::*;
     use crate::assembly::pattern::SparsityPattern;
 
-    /// A nonsymmetric tangent whose symmetric preconditioner the LDLᵀ
-    /// without pivoting cannot factorise (zero pivots) is solved by the LU.
-    #[test]
-    fn a_preconditioner_the_ldlt_cannot_factorise_falls_back_to_the_lu() {
-        // one node: a dense 3 × 3 block (column-major, full pattern)
+    /// Solve `K du = rhs` for one node (a dense 3 × 3 block, column-major,
+    /// full pattern) with `preconditioner` as [`solve_linear`] does, and
+    /// assert `du = expected` (1e-14) reached through one LU solve.
+    fn assert_solved_by_the_lu(
+        k: &[f64; 9],
+        preconditioner: Option<&[f64]>,
+        rhs: [f64; 3],
+        expected: [f64; 3],
+    ) {
         let nodes = [0usize];
         let blocks = SparsityPattern::from_elements(1, std::iter::once(&nodes[..]));
         assert_eq!(blocks.nnz(), 9);
-        let k = [0.0, 2.0, 0.0, 1.0, 0.0, 0.0, 0.0, 0.0, 1.0];
-        let p = [0.0, 1.0, 0.0, 1.0, 0.0, 0.0, 0.0, 0.0, 1.0];
         let mut solver = SparseLdlt::new(super::super::linear::Ordering::Amd, 1);
-        assert!(solver.factorize(blocks.symbolic(), &p, None).is_err());
-        let rhs = [1.0, 4.0, 3.0];
         let mut du = rhs;
         solve_linear(
             &mut solver,
             &blocks,
-            &k,
-            Some(&p),
+            k,
+            preconditioner,
             NonsymmetricSolver::Gmres,
             &rhs,
             None,
             &mut du,
         )
         .unwrap();
-        // K du = rhs: du₁ = 1, 2 du₀ = 4, du₂ = 3
-        for (d, e) in du.iter().zip([2.0, 1.0, 3.0]) {
+        for (d, e) in du.iter().zip(expected) {
             assert!((d - e).abs() < 1e-14, "{du:?}");
         }
         assert_eq!(solver.timings.lu_solves, 1);
+    }
+
+    /// `[[0, 1, 0], [1, 0, 0], [0, 0, 1]]`: regular, symmetric, but its
+    /// first pivot is 0, which the LDLᵀ without pivoting cannot take.
+    const ZERO_FIRST_PIVOT: [f64; 9] = [0.0, 1.0, 0.0, 1.0, 0.0, 0.0, 0.0, 0.0, 1.0];
+
+    /// A nonsymmetric tangent whose symmetric preconditioner the LDLᵀ
+    /// without pivoting cannot factorise (zero pivots) is solved by the LU.
+    #[test]
+    fn a_preconditioner_the_ldlt_cannot_factorise_falls_back_to_the_lu() {
+        let nodes = [0usize];
+        let blocks = SparsityPattern::from_elements(1, std::iter::once(&nodes[..]));
+        let mut solver = SparseLdlt::new(super::super::linear::Ordering::Amd, 1);
+        assert!(solver
+            .factorize(blocks.symbolic(), &ZERO_FIRST_PIVOT, None)
+            .is_err());
+        // K du = rhs: du₁ = 1, 2 du₀ = 4, du₂ = 3
+        let k = [0.0, 2.0, 0.0, 1.0, 0.0, 0.0, 0.0, 0.0, 1.0];
+        assert_solved_by_the_lu(
+            &k,
+            Some(&ZERO_FIRST_PIVOT),
+            [1.0, 4.0, 3.0],
+            [2.0, 1.0, 3.0],
+        );
     }
 
     /// A symmetric tangent the LDLᵀ without pivoting cannot factorise (an
     /// indefinite one with a zero leading pivot) is solved by the LU.
     #[test]
     fn a_symmetric_tangent_the_ldlt_cannot_factorise_falls_back_to_the_lu() {
-        let nodes = [0usize];
-        let blocks = SparsityPattern::from_elements(1, std::iter::once(&nodes[..]));
-        // [[0, 1, 0], [1, 0, 0], [0, 0, 1]]: regular, but its first pivot is 0
-        let k = [0.0, 1.0, 0.0, 1.0, 0.0, 0.0, 0.0, 0.0, 1.0];
-        let mut solver = SparseLdlt::new(super::super::linear::Ordering::Amd, 1);
-        let rhs = [1.0, 4.0, 3.0];
-        let mut du = rhs;
-        solve_linear(
-            &mut solver,
-            &blocks,
-            &k,
-            None,
-            NonsymmetricSolver::Gmres,
-            &rhs,
-            None,
-            &mut du,
-        )
-        .unwrap();
-        for (d, e) in du.iter().zip([4.0, 1.0, 3.0]) {
-            assert!((d - e).abs() < 1e-14, "{du:?}");
-        }
-        assert_eq!(solver.timings.lu_solves, 1);
+        assert_solved_by_the_lu(&ZERO_FIRST_PIVOT, None, [1.0, 4.0, 3.0], [4.0, 1.0, 3.0]);
     }
 }

@@ -483,7 +483,7 @@ impl ContactFields {
     /// closed secondary nodes over a primary node, `slip` minus their slip
     /// averaged with the weights `A_s N_i`, and `gap` the primary node's
     /// distance to the secondary surface (projected on its triangles; NaN
-    /// beyond its edge); a node that is itself secondary in another pass
+    /// beyond its edge or farther than the search margin); a node that is itself secondary in another pass
     /// keeps its own gap and slip. Returns the total force on the primary
     /// surface.
     fn add_primary_side(

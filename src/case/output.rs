@@ -100,10 +100,15 @@ impl Case {
                     }
                 }
                 let nodes = mesh.surface_nodes(self.surface(&format!("{key}.surface"), name)?);
+                let &first = nodes.first().ok_or_else(|| {
+                    self.err(format!(
+                        "{key}.surface = '{name}' has no nodes; name a surface set with facets"
+                    ))
+                })?;
                 out.histories.push(History::new(
                     h.name.clone(),
-                    nodes[0],
-                    mesh.node_ids[nodes[0]],
+                    first,
+                    mesh.node_ids[first],
                     HistoryQuantity::ReactionForce {
                         surface: name.clone(),
                         nodes,
@@ -119,8 +124,8 @@ impl Case {
             }
             let point = h.point.ok_or_else(|| {
                 self.err(format!(
-                    "{key}.point is required for quantity {:?}: the node nearest it is recorded",
-                    h.quantity
+                    "{key}.point is required for quantity \"{}\": the node nearest it is recorded",
+                    h.quantity.name()
                 ))
             })?;
             if point.iter().any(|v| !v.is_finite()) {

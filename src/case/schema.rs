@@ -299,6 +299,20 @@ pub enum HistoryQuantitySpec {
     ReactionForce,
 }
 
+impl HistoryQuantitySpec {
+    /// The name as written in the case file.
+    pub fn name(self) -> &'static str {
+        match self {
+            Self::DisplacementX => "displacement_x",
+            Self::DisplacementY => "displacement_y",
+            Self::DisplacementZ => "displacement_z",
+            Self::Gap => "gap",
+            Self::ContactPressure => "contact_pressure",
+            Self::ReactionForce => "reaction_force",
+        }
+    }
+}
+
 /// `[[output.history]]`: `quantity` at the mesh node nearest `point`
 /// (for `gap` and `contact_pressure`: the nearest secondary node of
 /// `interface`; for `reaction_force`: `Σ (f_int − f_ext)` over the nodes of

@@ -118,7 +118,9 @@ impl PrimarySurface {
                 // √(2 A_t): the side of a square split in two such triangles
                 let size = (c[1] - c[0]).cross(&(c[2] - c[0])).norm().sqrt();
                 let margin = 2.0 * size + 2.0 * motion;
-                smallest = smallest.min(margin);
+                if size > 0.0 {
+                    smallest = smallest.min(margin);
+                }
                 let lo = c[0].inf(&c[1]).inf(&c[2]).add_scalar(-margin);
                 let hi = c[0].sup(&c[1]).sup(&c[2]).add_scalar(margin);
                 (lo, hi)
@@ -131,8 +133,10 @@ impl PrimarySurface {
         let candidates = boxes_containing(&boxes, &points);
         let changed = candidates != self.candidates;
         self.candidates = candidates;
+        // the gap reported for a node without candidates (it is at least
+        // this far): positive, also with degenerate triangles and no motion
         if smallest.is_finite() {
-            self.margin = smallest;
+            self.margin = smallest.max(1e-3 * self.element_size);
         }
         changed
     }

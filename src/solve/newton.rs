@@ -322,7 +322,15 @@ fn solve_linear(
     let Some(k_sym) = preconditioner else {
         let direct = solver
             .factorize(pattern, k_values, signs)
-            .and_then(|()| solver.solve_refined(pattern, k_values, du, 3));
+            .and_then(|()| solver.solve_refined(pattern, k_values, du, 3))
+            .and_then(|relative| {
+                // digits lost beyond what refinement recovers
+                (relative <= 1e-8).then_some(()).ok_or_else(|| {
+                    crate::Error::LinearSolver(format!(
+                        "the LDLᵀ solve left a relative residual of {relative:.1e}"
+                    ))
+                })
+            });
         if let Err(e) = direct {
             // an indefinite tangent that the LDLᵀ without pivoting cannot
             // factorise (the curvature term `f ∇²g` of deformable contact
@@ -345,7 +353,7 @@ fn solve_linear(
         return lu(solver, du).map_err(|lu_error| format!("{e}; then {lu_error}"));
     }
     du.iter_mut().for_each(|x| *x = 0.0);
-    let report = super::gmres::gmres(
+    let report = match super::gmres::gmres(
         |v, y| super::linear::multiply(pattern, k_values, v, y),
         |z| solver.solve_in_place(z),
         rhs,
@@ -353,8 +361,11 @@ fn solve_linear(
         KRYLOV_TOLERANCE,
         50,
         200,
-    )
-    .map_err(|e| e.to_string())?;
+    ) {
+        Ok(report) => report,
+        // the preconditioner's solve overflowed: solve directly
+        Err(e) => return lu(solver, du).map_err(|lu_error| format!("{e}; then {lu_error}")),
+    };
     solver.timings.krylov_solves += 1;
     solver.timings.krylov_iterations += report.iterations;
     if !(report.relative_residual <= 1e3 * KRYLOV_TOLERANCE) {

@@ -7,9 +7,9 @@
 mod common;
 
 use common::{
-    assert_open_stick_and_slip, assert_quadratic, assert_tangent_matches_fd, every_method, fix,
-    frictional_blocks, problem, run, support_stacked_blocks, surface_interface, two_bodies,
-    write_stacked_blocks_case, CaseRun,
+    assert_case_error, assert_open_stick_and_slip, assert_quadratic, assert_tangent_matches_fd,
+    every_method, fix, frictional_blocks, problem, run, support_stacked_blocks, surface_interface,
+    two_bodies, write_stacked_blocks_case, CaseRun,
 };
 use signorini::contact::friction::Coulomb;
 use signorini::contact::laws::NormalLaw;
@@ -416,16 +416,7 @@ fn stacked_blocks_through_the_case_file() {
         }
     }
     // input errors
-    let check = |text: &str, expect: &[&str]| {
-        std::fs::write(dir.path().join("bad.toml"), text).unwrap();
-        let err = signorini::case::load(&dir.path().join("bad.toml"))
-            .and_then(|c| c.build_problem().map(|_| ()))
-            .expect_err("a bad case");
-        let message = err.to_string();
-        for e in expect {
-            assert!(message.contains(e), "{message}\nlacks: {e}");
-        }
-    };
+    let check = |text: &str, expect: &[&str]| assert_case_error(dir.path(), text, expect);
     check(
         &case.replace("primary = \"lower.zmax\"", "primary = \"lower.top\""),
         &["contact[0].primary", "lower.top", "lower.zmax"],

@@ -7,7 +7,7 @@
 mod common;
 
 use common::{
-    problem, run, stacked_blocks_case, stacked_blocks_mesh, two_pass_interfaces,
+    assert_case_error, problem, run, stacked_blocks_case, stacked_blocks_mesh, two_pass_interfaces,
     write_stacked_blocks_case, CaseRun,
 };
 use nalgebra::{DMatrix, DVector};
@@ -261,14 +261,7 @@ fn two_pass_through_the_case_file() {
     let check = |contact: &str, extra: &str, expect: &[&str]| {
         let text =
             stacked_blocks_case(LINEAR, contact).replace("[[step]]", &format!("{extra}\n[[step]]"));
-        std::fs::write(dir.path().join("bad.toml"), text).unwrap();
-        let err = signorini::case::load(&dir.path().join("bad.toml"))
-            .and_then(|c| c.build_problem().map(|_| ()))
-            .expect_err("a bad case");
-        let message = err.to_string();
-        for e in expect {
-            assert!(message.contains(e), "{message}\nlacks: {e}");
-        }
+        assert_case_error(dir.path(), &text, expect);
     };
     let obstacle = "[[obstacle]]\nname = \"floor\"\nshape = \"plane\"\npoint = [0.0, 0.0, 0.0]\nnormal = [0.0, 0.0, 1.0]\n";
     let mut with_obstacle = stacked_blocks_case(LINEAR, "method = \"uzawa\"\ntwo_pass = true")

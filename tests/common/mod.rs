@@ -680,3 +680,17 @@ pub fn frictional_blocks(
     }
     (pr, lower_nodes..dofs / 3, x)
 }
+
+/// Write the case `text` to `dir/bad.toml`, load and build it, and assert
+/// that it fails with a message containing every string of `expect`.
+#[track_caller]
+pub fn assert_case_error(dir: &Path, text: &str, expect: &[&str]) {
+    std::fs::write(dir.join("bad.toml"), text).unwrap();
+    let err = signorini::case::load(&dir.join("bad.toml"))
+        .and_then(|c| c.build_problem().map(|_| ()))
+        .expect_err("a bad case");
+    let message = err.to_string();
+    for e in expect {
+        assert!(message.contains(e), "{message}\nlacks: {e}");
+    }
+}

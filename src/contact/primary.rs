@@ -30,7 +30,7 @@ use crate::contact::closest_point_on_triangle;
 use crate::contact::friction::MaterialPoint;
 use crate::contact::surface_contact::STICKY_BAND;
 use crate::contact::triangle::TriangleProjection;
-use crate::contact::triangle_gap::{split_quadrangle, triangle_gap, TriangleGap};
+use crate::contact::triangle_gap::{is_degenerate, split_quadrangle, triangle_gap, TriangleGap};
 use crate::mesh::{FacetKind, Mesh};
 use nalgebra::Vector3;
 use std::collections::HashMap;
@@ -154,20 +154,11 @@ impl PrimarySurface {
         i: usize,
         x_p: &Vector3<f64>,
     ) -> Option<(usize, TriangleGap)> {
-        // the candidates that are not degenerate, the nearest of them
-        let usable: Vec<(usize, [Vector3<f64>; 3], TriangleGap)> = self
-            .candidates
-            .get(i)?
-            .iter()
-            .filter_map(|&t| {
-                let c = self.corners(reference, x, t);
-                triangle_gap(x_p, [&c[0], &c[1], &c[2]]).map(|g| (t, c, g))
-            })
-            .collect();
-        let corners: Vec<(usize, [Vector3<f64>; 3])> =
-            usable.iter().map(|(t, c, _)| (*t, *c)).collect();
-        let t = best_triangle(x_p, &corners)?;
-        let gap = usable.into_iter().find(|u| u.0 == t)?.2;
+        let mut usable = self.candidate_corners(reference, x, i)?;
+        usable.retain(|(_, c)| !is_degenerate([&c[0], &c[1], &c[2]]));
+        let (t, _) = best_triangle(x_p, &usable)?;
+        let c = self.corners(reference, x, t);
+        let gap = triangle_gap(x_p, [&c[0], &c[1], &c[2]])?;
         gap.shape
             .iter()
             .all(|&n| n >= -STICKY_BAND)
@@ -185,22 +176,29 @@ impl PrimarySurface {
         i: usize,
         x_p: &Vector3<f64>,
     ) -> Option<MaterialPoint> {
-        self.candidates
-            .get(i)?
-            .iter()
-            .map(|&t| {
-                let c = self.corners(reference, x, t);
-                (t, closest_point_on_triangle(x_p, &c[0], &c[1], &c[2]))
-            })
-            .min_by(|a, b| {
-                let d = |p: &TriangleProjection| (x_p - p.point).norm_squared();
-                d(&a.1).total_cmp(&d(&b.1))
-            })
-            .map(|(triangle, p)| MaterialPoint {
-                triangle,
-                shape: p.barycentric,
-                traction: [0.0; 2],
-            })
+        let (triangle, p) = best_triangle(x_p, &self.candidate_corners(reference, x, i)?)?;
+        Some(MaterialPoint {
+            triangle,
+            shape: p.barycentric,
+            traction: [0.0; 2],
+        })
+    }
+
+    /// The candidate triangles of secondary node `i` with their current
+    /// corners; `None` before a search.
+    fn candidate_corners(
+        &self,
+        reference: &[[f64; 3]],
+        x: &[f64],
+        i: usize,
+    ) -> Option<Vec<(usize, [Vector3<f64>; 3])>> {
+        Some(
+            self.candidates
+                .get(i)?
+                .iter()
+                .map(|&t| (t, self.corners(reference, x, t)))
+                .collect(),
+        )
     }
 
     /// Every mesh node of the candidates of secondary node `i` (sorted,
@@ -266,20 +264,21 @@ pub fn boxes_containing(
 /// `x_s` is nearest, the first. A node over the interior of a triangle
 /// gets that triangle; a node over an edge or a vertex between triangles
 /// gets one of them (its plane's gap is then used: the usual node-to-surface
-/// choice, exact on flat surfaces). `None` without candidates.
+/// choice, exact on flat surfaces), with that closest point. `None`
+/// without candidates.
 pub fn best_triangle(
     x_s: &Vector3<f64>,
     candidates: &[(usize, [Vector3<f64>; 3])],
-) -> Option<usize> {
-    let mut best: Option<(usize, f64)> = None;
+) -> Option<(usize, TriangleProjection)> {
+    let mut best: Option<(usize, TriangleProjection, f64)> = None;
     for (t, c) in candidates {
         let p = closest_point_on_triangle(x_s, &c[0], &c[1], &c[2]);
         let d = (x_s - p.point).norm_squared();
-        if best.is_none_or(|(_, b)| d < b) {
-            best = Some((*t, d));
+        if best.is_none_or(|(_, _, b)| d < b) {
+            best = Some((*t, p, d));
         }
     }
-    best.map(|b| b.0)
+    best.map(|(t, p, _)| (t, p))
 }
 
 #[cfg(test)]
@@ -322,8 +321,14 @@ mod tests {
         let a = [Vector3::zeros(), Vector3::x(), Vector3::y()];
         let b = [Vector3::x(), Vector3::new(1.0, 1.0, 0.0), Vector3::y()];
         let c = [(4, a), (7, b)];
-        assert_eq!(best_triangle(&Vector3::new(0.2, 0.2, 0.3), &c), Some(4));
-        assert_eq!(best_triangle(&Vector3::new(0.8, 0.7, -0.2), &c), Some(7));
-        assert_eq!(best_triangle(&Vector3::zeros(), &[]), None);
+        assert_eq!(
+            best_triangle(&Vector3::new(0.2, 0.2, 0.3), &c).map(|b| b.0),
+            Some(4)
+        );
+        assert_eq!(
+            best_triangle(&Vector3::new(0.8, 0.7, -0.2), &c).map(|b| b.0),
+            Some(7)
+        );
+        assert!(best_triangle(&Vector3::zeros(), &[]).is_none());
     }
 }

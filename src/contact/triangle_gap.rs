@@ -92,6 +92,19 @@ fn block_row(blocks: [Matrix3<f64>; 4]) -> SMatrix<f64, 3, 12> {
     m
 }
 
+/// Whether the triangle `x` is degenerate for [`triangle_gap`]:
+/// `|a1 × a2| ≤` [`DEGENERACY`] `· (longest edge)²`, or not finite.
+pub fn is_degenerate(x: [&Vector3<f64>; 3]) -> bool {
+    let [x1, x2, x3] = x;
+    let (a1, a2) = (x2 - x1, x3 - x1);
+    let longest2 = a1
+        .norm_squared()
+        .max(a2.norm_squared())
+        .max((x3 - x2).norm_squared());
+    // written so that NaN counts as degenerate
+    !(a1.cross(&a2).norm() > DEGENERACY * longest2)
+}
+
 /// The gap of the secondary node `x_s` against the primary triangle
 /// `x = [x1, x2, x3]` (current positions), with the derivatives listed in
 /// [`TriangleGap`]. `None` if the triangle is degenerate
@@ -99,18 +112,13 @@ fn block_row(blocks: [Matrix3<f64>; 4]) -> SMatrix<f64, 3, 12> {
 /// not finite.
 pub fn triangle_gap(x_s: &Vector3<f64>, x: [&Vector3<f64>; 3]) -> Option<TriangleGap> {
     let [x1, x2, x3] = x;
+    if is_degenerate(x) || !x_s.iter().all(|v| v.is_finite()) {
+        return None;
+    }
     let a1 = x2 - x1;
     let a2 = x3 - x1;
     let c = a1.cross(&a2);
     let l = c.norm();
-    let longest2 = a1
-        .norm_squared()
-        .max(a2.norm_squared())
-        .max((x3 - x2).norm_squared());
-    // written so that NaN lands in the degenerate branch
-    if !(l > DEGENERACY * longest2) || !x_s.iter().all(|v| v.is_finite()) {
-        return None;
-    }
     let n = c / l;
     let w = x_s - x1;
     let g = w.dot(&n);

@@ -322,7 +322,7 @@ fn run_one(case_text: &str, dir: &Path, size: &str, method: &str) -> Row {
         &case_path,
         &RunOptions {
             output: Some(out.clone()),
-            quiet: true,
+            threads: None,
         },
     );
     let wall = start.elapsed().as_secs_f64();

@@ -78,7 +78,7 @@ fn main() {
                 &case_path,
                 &RunOptions {
                     output: Some(dir.join(format!("out-{solver}"))),
-                    quiet: true,
+                    threads: None,
                 },
             );
             let wall = start.elapsed().as_secs_f64();

@@ -2,6 +2,8 @@
 //! to exit codes (0 success, 1 error in the input or the solve, 2 usage).
 
 use clap::{Parser, Subcommand};
+use indicatif::{ProgressBar, ProgressStyle};
+use signorini::output::{ConvergedIncrement, Cut, StepObserver, Summary};
 use std::path::PathBuf;
 use std::process::ExitCode;
 
@@ -67,14 +69,13 @@ fn run(
     threads: Option<u32>,
     quiet: bool,
 ) -> signorini::Result<()> {
-    if let Some(t) = threads {
-        // Only fails if a pool already exists, which cannot happen here.
-        let _ = rayon::ThreadPoolBuilder::new()
-            .num_threads(t as usize)
-            .build_global();
-    }
-    let options = signorini::run::RunOptions { output, quiet };
-    let outcome = signorini::run::run(&case, &options)?;
+    let options = signorini::run::RunOptions {
+        output,
+        threads: threads.map(|t| t as usize),
+    };
+    let mut progress = Progress::new(quiet);
+    let outcome = signorini::run::run_observed(&case, &options, &mut progress)?;
+    progress.bar.finish_and_clear();
     if !quiet {
         let s = &outcome.summary;
         println!(
@@ -86,6 +87,83 @@ fn run(
         );
     }
     Ok(())
+}
+
+/// The terminal's view of a run: a progress bar over pseudo-time and a
+/// line per converged (or cut) increment.
+struct Progress {
+    bar: ProgressBar,
+    quiet: bool,
+    /// The end time of the last step (the bar's full length).
+    end: f64,
+}
+
+impl Progress {
+    fn new(quiet: bool) -> Self {
+        let bar = if quiet {
+            ProgressBar::hidden()
+        } else {
+            let bar = ProgressBar::new(1000);
+            if let Ok(style) =
+                ProgressStyle::with_template("{spinner} [{elapsed_precise}] {bar:40} t = {msg}")
+            {
+                bar.set_style(style);
+            }
+            bar
+        };
+        Progress {
+            bar,
+            quiet,
+            end: 1.0,
+        }
+    }
+
+    fn log(&self, line: &str) {
+        if self.quiet {
+            return;
+        }
+        if self.bar.is_hidden() {
+            eprintln!("{line}");
+        } else {
+            self.bar.println(line);
+        }
+    }
+}
+
+impl StepObserver for Progress {
+    fn on_start(&mut self, _: &Summary) -> signorini::Result<()> {
+        Ok(())
+    }
+
+    fn on_increment(
+        &mut self,
+        increment: &ConvergedIncrement,
+        _: &Summary,
+    ) -> signorini::Result<()> {
+        let record = increment.record;
+        self.end = increment.problem.steps.last().map_or(1.0, |s| s.end_time);
+        self.bar
+            .set_position((1000.0 * record.time / self.end) as u64);
+        self.bar
+            .set_message(format!("{:.4} ({})", record.time, record.step_name));
+        let final_residual = record.newton.last().map_or(0.0, |r| r.residual);
+        self.log(&format!(
+            "step '{}'  t = {:.6}  Δt = {:.3e}  iterations {:2}  residual {:.2e}",
+            record.step_name, record.time, record.increment, record.iterations, final_residual
+        ));
+        Ok(())
+    }
+
+    fn on_cut(&mut self, cut: &Cut) {
+        self.log(&format!(
+            "step '{}'  t = {:.6}  Δt = {:.3e}  not converged ({}): cutting the increment",
+            cut.step, cut.time, cut.increment, cut.reason
+        ));
+    }
+
+    fn on_message(&mut self, line: &str) {
+        self.log(line);
+    }
 }
 
 fn check(case: PathBuf) -> signorini::Result<()> {

@@ -15,7 +15,7 @@ fn run_example(name: &str) -> (tempfile::TempDir, signorini::run::RunOutcome) {
         &case,
         &RunOptions {
             output: Some(out.path().to_path_buf()),
-            quiet: true,
+            threads: None,
         },
     )
     .expect("the example runs");

@@ -323,7 +323,7 @@ end_time = 1.0
         &dir.path().join("case.toml"),
         &signorini::run::RunOptions {
             output: None,
-            quiet: true,
+            threads: None,
         },
     )
     .unwrap();

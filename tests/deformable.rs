@@ -349,7 +349,7 @@ fn stacked_blocks_through_the_case_file() {
         &path,
         &signorini::run::RunOptions {
             output: Some(dir.path().join("out")),
-            quiet: true,
+            threads: None,
         },
     )
     .expect("the case runs");

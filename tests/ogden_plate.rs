@@ -38,7 +38,7 @@ fn run_case(
         &case,
         &RunOptions {
             output: Some(dir.path().join("results")),
-            quiet: true,
+            threads: None,
         },
     )
     .expect("the plate converges");

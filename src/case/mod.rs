@@ -62,7 +62,19 @@ pub fn parse(path: &Path, text: &str) -> Result<CaseFile> {
 /// Read the case file and its mesh.
 pub fn load(path: &Path) -> Result<Case> {
     let text = std::fs::read_to_string(path).map_err(|e| Error::io("read case file", path, e))?;
-    let spec = parse(path, &text)?;
+    from_text(path, &text)
+}
+
+/// A case from the text of a case file; its paths (the mesh, the output
+/// folder) are relative to `base_dir`.
+pub fn from_toml(text: &str, base_dir: &Path) -> Result<Case> {
+    from_text(&base_dir.join("case"), text)
+}
+
+/// A case from the text of the case file at `path` (which names it in
+/// messages; its folder resolves the mesh path).
+fn from_text(path: &Path, text: &str) -> Result<Case> {
+    let spec = parse(path, text)?;
     let mesh_path = path
         .parent()
         .unwrap_or(Path::new("."))
@@ -96,6 +108,36 @@ impl Case {
                 .dir()
                 .join(self.spec.output.folder.as_deref().unwrap_or("results")),
         }
+    }
+
+    /// The nodal and cell fields the VTU files hold: `[output] fields`, or
+    /// all of them.
+    pub fn output_fields(
+        &self,
+    ) -> (
+        Vec<crate::output::NodalField>,
+        Vec<crate::output::CellField>,
+    ) {
+        use crate::output::OutputField;
+        let chosen: Vec<OutputField> = match &self.spec.output.fields {
+            Some(f) => f.clone(),
+            None => OutputField::all().collect(),
+        };
+        let nodal = chosen
+            .iter()
+            .filter_map(|f| match f {
+                OutputField::Nodal(n) => Some(*n),
+                OutputField::Cell(_) => None,
+            })
+            .collect();
+        let cells = chosen
+            .iter()
+            .filter_map(|f| match f {
+                OutputField::Cell(c) => Some(*c),
+                OutputField::Nodal(_) => None,
+            })
+            .collect();
+        (nodal, cells)
     }
 
     /// File-name stem for the VTU series.

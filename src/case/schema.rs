@@ -274,6 +274,8 @@ pub struct OutputSpec {
     pub folder: Option<String>,
     /// File-name stem of the VTU series (default: the case file's stem).
     pub name: Option<String>,
+    /// The fields of the VTU files, by name (default: all of them).
+    pub fields: Option<Vec<crate::output::OutputField>>,
     /// `[[output.history]]`: a nodal quantity after every increment.
     #[serde(default)]
     pub history: Vec<HistorySpec>,

@@ -10,24 +10,38 @@
 //! - [`profile`]: contact quantities along a line of an interface at the end
 //!   of every load step (`.csv` per step, one `.svg`).
 //! - [`line_plot`], [`table`]: the x–y plots and CSV tables they write.
+//! - [`fields`]: the result fields by name ([`NodalField`], [`CellField`])
+//!   and a converged increment in memory ([`ConvergedIncrement`]);
+//!   [`contact_fields`] builds its contact fields.
+//! - [`observer`]: [`StepObserver`], what a run tells as it goes;
+//!   [`writer`]: the observer that writes all of the above.
 //!
 //! Every file is written to a temporary file in the target's folder and then
 //! renamed over the target ([`write_atomically`]), so an interrupted run never
 //! leaves a half-written file behind: a reader sees either the old file or the
 //! complete new one.
 
+pub mod contact_fields;
+pub mod fields;
 pub mod history;
 pub mod line_plot;
+pub mod observer;
 pub mod plot;
 pub mod profile;
 pub mod pvd;
 pub mod summary;
 pub mod table;
 pub mod vtu;
+pub mod writer;
 
+pub use contact_fields::ContactFields;
+pub use fields::{CellField, ConvergedIncrement, NodalField, OutputField};
+pub use observer::{Cut, Observers, StepObserver};
 pub use plot::{write_convergence_plot, StepResiduals};
 pub use pvd::PvdCollection;
+pub use summary::Summary;
 pub use vtu::{write_vtu, Field};
+pub use writer::ResultWriter;
 
 use std::fs::File;
 use std::io::{BufWriter, Write};

@@ -152,9 +152,33 @@ impl Summary {
         self.steps = steps;
     }
 
+    /// A summary of a run that starts: the model's sizes, no increment yet.
+    pub fn start(case: &str, problem: &crate::problem::Problem) -> Self {
+        let mesh = &problem.model.mesh;
+        Summary {
+            case: case.to_string(),
+            status: "running".into(),
+            error: None,
+            nodes: mesh.num_nodes(),
+            elements: mesh.elements.len(),
+            dofs: problem.model.num_dofs(),
+            constrained_dofs: problem.constrained_dofs().iter().filter(|&&c| c).count(),
+            threads: rayon::current_num_threads(),
+            wall_time: 0.0,
+            symbolic_analyses: 0,
+            matrix_nnz: problem.model.pattern.nnz(),
+            factor_nnz: 0,
+            phase_times: Default::default(),
+            krylov_solves: 0,
+            krylov_iterations: 0,
+            lu_solves: 0,
+            steps: Vec::new(),
+            increments: Vec::new(),
+        }
+    }
+
     /// Write as pretty JSON, atomically (temporary file + rename).
-    pub fn write(&mut self, path: &Path) -> crate::Result<()> {
-        self.update_step_totals();
+    pub fn write(&self, path: &Path) -> crate::Result<()> {
         let text = serde_json::to_string_pretty(self).expect("the summary serialises");
         super::write_atomically(path, |w| std::io::Write::write_all(w, text.as_bytes()))
     }

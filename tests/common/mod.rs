@@ -616,7 +616,7 @@ impl CaseRun {
             path,
             &signorini::run::RunOptions {
                 output: Some(output.to_path_buf()),
-                quiet: true,
+                threads: None,
             },
         )
         .expect("the case runs");

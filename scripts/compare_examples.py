@@ -1,0 +1,169 @@
+#!/usr/bin/env python3
+"""Run every example with two signorini binaries and compare their answers.
+
+    scripts/compare_examples.py OLD_BINARY NEW_BINARY [EXAMPLE ...]
+
+A behaviour-preserving change (a refactoring, a new backend that must give
+the same numbers) is checked with it: both binaries run each
+`examples/*/case.toml` (with `--threads 1`, so that the parallel
+factorisation sums in one order) into temporary folders, and the script
+compares, increment by increment, what `summary.json` reports — the status,
+the increment times and sizes, Newton iterations, cuts, every interface's
+contact force, tangential force, closed/stick/slip counts, contact area and
+largest penetration, the reaction forces of every surface set — and the
+`displacement` field of the last VTU. Numbers must agree within 1e-10
+relative to the largest magnitude of that quantity in the run (absolute
+below it: a penetration of 1e-27 against 1e-26 is the same zero); counts
+must be equal. Exit status 1 lists every difference.
+
+Only the standard library is needed (the VTU reader decodes the inline
+base64 arrays that `src/output/vtu.rs` writes, compressed or not).
+"""
+
+import base64
+import json
+import pathlib
+import re
+import subprocess
+import sys
+import tempfile
+import zlib
+
+RELATIVE = 1e-10
+ROOT = pathlib.Path(__file__).resolve().parent.parent
+
+
+def run(binary, case, out):
+    proc = subprocess.run(
+        [binary, "run", str(case), "--output", str(out), "--threads", "1", "--quiet"],
+        capture_output=True,
+        text=True,
+    )
+    return proc.returncode, proc.stderr
+
+
+def read_point_field(path, name):
+    """The values of point array `name` of a VTU written by signorini."""
+    text = pathlib.Path(path).read_text()
+    header_type = re.search(r'header_type="(\w+)"', text).group(1)
+    compressed = 'compressor="vtkZLibDataCompressor"' in text
+    m = re.search(
+        r'<DataArray type="Float64" Name="%s"[^>]*format="binary">\s*([A-Za-z0-9+/=\s]+?)\s*</DataArray>'
+        % re.escape(name),
+        text,
+    )
+    if m is None:
+        return None
+    data = base64.b64decode("".join(m.group(1).split()))
+    size = 8 if header_type == "UInt64" else 4
+    if compressed:
+        import struct
+
+        count = struct.unpack("<Q" if size == 8 else "<I", data[:size])[0]
+        sizes = struct.unpack(
+            ("<%dQ" if size == 8 else "<%dI") % count, data[3 * size : (3 + count) * size]
+        )
+        raw = data[(3 + count) * size :]
+        out = b""
+        for s in sizes:
+            out += zlib.decompress(raw[:s])
+            raw = raw[s:]
+        payload = out
+    else:
+        payload = data[size:]
+    import array
+
+    values = array.array("d")
+    values.frombytes(payload)
+    return list(values)
+
+
+def numbers(summary):
+    """Flatten what the two runs must agree on into (key, value) pairs."""
+    out = [("status", summary["status"]), ("increments", len(summary["increments"]))]
+    for k, inc in enumerate(summary["increments"]):
+        p = f"increment {k + 1}"
+        for key in ("step_name", "iterations", "cuts"):
+            out.append((f"{p} {key}", inc[key]))
+        for key in ("time", "increment"):
+            out.append((f"{p} {key}", float(inc[key])))
+        for name, c in sorted(inc.get("contact", {}).items()):
+            for key in ("stick_nodes", "slip_nodes", "closed_nodes"):
+                out.append((f"{p} contact {name} {key}", c[key]))
+            for key in ("force", "tangential_force", "primary_force"):
+                for d, v in enumerate(c.get(key) or []):
+                    out.append((f"{p} contact {name} {key}[{d}]", float(v)))
+            for key in ("area", "largest_penetration"):
+                out.append((f"{p} contact {name} {key}", float(c[key])))
+        for name, f in sorted(inc.get("reaction_forces", {}).items()):
+            for d, v in enumerate(f):
+                out.append((f"{p} reaction {name}[{d}]", float(v)))
+    return out
+
+
+def scale_of(key, pairs):
+    """The largest magnitude of the same quantity over the run."""
+    kind = re.sub(r"^increment \d+ ", "", key)
+    return max(
+        (abs(v) for k, v in pairs if isinstance(v, float) and re.sub(r"^increment \d+ ", "", k) == kind),
+        default=0.0,
+    )
+
+
+def compare(old_dir, new_dir):
+    diffs = []
+    old = json.loads((old_dir / "summary.json").read_text())
+    new = json.loads((new_dir / "summary.json").read_text())
+    a, b = numbers(old), numbers(new)
+    if [k for k, _ in a] != [k for k, _ in b]:
+        only = sorted(set(k for k, _ in a) ^ set(k for k, _ in b))
+        return [f"different quantities: {only[:5]}"]
+    for (key, x), (_, y) in zip(a, b):
+        if isinstance(x, float):
+            tolerance = RELATIVE * max(scale_of(key, a), scale_of(key, b), 1e-300)
+            if not abs(x - y) <= tolerance:
+                diffs.append(f"{key}: {x!r} vs {y!r}")
+        elif x != y:
+            diffs.append(f"{key}: {x!r} vs {y!r}")
+    if old["increments"] and new["increments"]:
+        u0 = read_point_field(old_dir / old["increments"][-1]["file"], "displacement")
+        u1 = read_point_field(new_dir / new["increments"][-1]["file"], "displacement")
+        if u0 is None or u1 is None:
+            return diffs + ["no displacement field in the last VTU"]
+        largest = max(map(abs, u0 + u1), default=0.0)
+        worst = max((abs(p - q) for p, q in zip(u0, u1)), default=0.0)
+        if len(u0) != len(u1) or worst > RELATIVE * largest:
+            diffs.append(f"final displacement differs by {worst:.3e} (largest {largest:.3e})")
+    return diffs
+
+
+def main():
+    if len(sys.argv) < 3:
+        print(__doc__)
+        return 2
+    old_bin, new_bin = sys.argv[1], sys.argv[2]
+    names = sys.argv[3:] or sorted(
+        p.parent.name for p in (ROOT / "examples").glob("*/case.toml")
+    )
+    failed = False
+    with tempfile.TemporaryDirectory() as tmp:
+        for name in names:
+            case = ROOT / "examples" / name / "case.toml"
+            dirs = []
+            for tag, binary in (("old", old_bin), ("new", new_bin)):
+                out = pathlib.Path(tmp) / f"{name}-{tag}"
+                code, err = run(binary, case, out)
+                dirs.append(out)
+                if code != 0:
+                    print(f"{name}: {tag} binary failed ({code}): {err.strip()[:300]}")
+            diffs = compare(*dirs)
+            status = "same" if not diffs else f"{len(diffs)} differences"
+            print(f"{name}: {status}")
+            for d in diffs[:20]:
+                print(f"    {d}")
+            failed |= bool(diffs)
+    return 1 if failed else 0
+
+
+if __name__ == "__main__":
+    sys.exit(main())

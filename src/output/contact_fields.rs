@@ -1,0 +1,215 @@
+//! The contact fields of one converged increment, on every node of the
+//! mesh: what the VTU files show (`contact_pressure`, `gap`,
+//! `contact_status`, `contact_traction`, `slip`) and the per-interface
+//! totals of `summary.json`, built from the committed contact states and the
+//! node reports of the converged evaluation.
+
+use crate::contact::friction::ContactStatus;
+use crate::contact::interface::{ContactInterface, NodeReport, Primary};
+use crate::contact::laws::NodeContactState;
+use crate::contact::primary::PrimarySurface;
+use crate::output::summary::InterfaceSummary;
+use crate::problem::{ContactState, Problem};
+use nalgebra::Vector3;
+
+/// Nodal contact output of every interface, and its totals.
+pub struct ContactFields {
+    /// Contact pressure: at a node of a contact surface, the normal force
+    /// that every interface puts on it (`A_s t_N` as a secondary node, the
+    /// shares `N_i(ξ) A_s t_N` as a primary node) over its tributary area;
+    /// `t_N` at the secondary nodes of one pass, the sum of the two passes'
+    /// shares with `two_pass`. 0 elsewhere.
+    pub pressure: Vec<f64>,
+    /// The normal force and tributary area behind `pressure`.
+    pub nodal_force: Vec<f64>,
+    pub nodal_area: Vec<f64>,
+    /// Signed gap at secondary nodes, NaN elsewhere.
+    pub gap: Vec<f64>,
+    /// 0 open, 1 stick (closed, without friction), 2 slip (0 away from
+    /// contact surfaces).
+    pub status: Vec<f64>,
+    /// Traction on the body, `t_N n + t_T` (3 per node, 0 elsewhere):
+    /// the nodal contact force of every pass until divided by `nodal_area`.
+    pub traction: Vec<f64>,
+    /// Whether the node is a secondary node of some interface (its own
+    /// gap and slip then win over those seen from a primary side).
+    pub secondary: Vec<bool>,
+    /// Accumulated slip vector (3 per node, 0 elsewhere).
+    pub slip: Vec<f64>,
+    pub summaries: std::collections::BTreeMap<String, InterfaceSummary>,
+    /// Every secondary node of every interface.
+    pub reports: Vec<Vec<NodeReport>>,
+}
+
+impl ContactFields {
+    /// The fields at unknowns `x` with the committed states `contact` and
+    /// the node `reports` of the converged evaluation there (one list per
+    /// interface).
+    pub fn new(
+        problem: &Problem,
+        x: &[f64],
+        contact: &ContactState,
+        mut reports: Vec<Vec<NodeReport>>,
+    ) -> Self {
+        let n = problem.model.mesh.num_nodes();
+        let mut fields = ContactFields {
+            pressure: vec![0.0; n],
+            nodal_force: vec![0.0; n],
+            nodal_area: vec![0.0; n],
+            gap: vec![f64::NAN; n],
+            status: vec![0.0; n],
+            traction: vec![0.0; 3 * n],
+            secondary: vec![false; n],
+            slip: vec![0.0; 3 * n],
+            summaries: Default::default(),
+            reports: Vec::new(),
+        };
+        if problem.contacts.is_empty() {
+            return fields;
+        }
+        for ((c, nodes), states) in problem
+            .contacts
+            .iter()
+            .zip(&mut reports)
+            .zip(&contact.interfaces)
+        {
+            let mut summary = InterfaceSummary::default();
+            let mesh = &problem.model.mesh;
+            let set = mesh.surface(&c.surface).expect("validated");
+            let (_, whole) = crate::contact::tributary_areas(mesh, set);
+            for ((((&s, &area), r), state), &whole) in c
+                .nodes
+                .iter()
+                .zip(&c.areas)
+                .zip(nodes)
+                .zip(states)
+                .zip(&whole)
+            {
+                // status and tangential traction as committed for this
+                // increment (re-evaluated from the committed history, a
+                // slipping node would sit exactly on the Coulomb cone and
+                // may read as stick), for every consumer of the reports
+                let history = &state.friction;
+                r.status = history.status;
+                r.tangential_traction = history.traction.into();
+                fields.nodal_force[s] += area * r.pressure;
+                fields.nodal_area[s] = whole;
+                fields.gap[s] = r.gap;
+                fields.secondary[s] = true;
+                fields.status[s] = fields.status[s].max(history.status.code() as f64);
+                for d in 0..3 {
+                    summary.force[d] += r.force[d];
+                    summary.tangential_force[d] += area * history.traction[d];
+                    // a force here, a traction once every pass has added its share
+                    fields.traction[3 * s + d] += r.force[d] + area * history.traction[d];
+                    fields.slip[3 * s + d] = history.slip[d];
+                }
+                match history.status {
+                    ContactStatus::Open => {}
+                    ContactStatus::Stick => summary.stick_nodes += 1,
+                    ContactStatus::Slip => summary.slip_nodes += 1,
+                }
+                if r.active {
+                    summary.closed_nodes += 1;
+                    summary.area += area;
+                }
+                summary.largest_penetration = summary.largest_penetration.max(-r.gap);
+            }
+            if let Primary::Surface(p) = &c.primary {
+                summary.primary_force = Some(fields.add_primary_side(problem, c, p, x, states));
+            }
+            fields.summaries.insert(c.name.clone(), summary);
+        }
+        for (((p, f), t), a) in fields
+            .pressure
+            .iter_mut()
+            .zip(&fields.nodal_force)
+            .zip(fields.traction.chunks_exact_mut(3))
+            .zip(&fields.nodal_area)
+        {
+            if *a > 0.0 {
+                *p = f / a;
+                t.iter_mut().for_each(|t| *t /= a);
+            }
+        }
+        fields.reports = reports;
+        fields
+    }
+}
+
+impl ContactFields {
+    /// The output fields on the nodes of a deformable primary surface:
+    /// each secondary node's force `A_s (t_N n + t_T)` goes, opposite, to
+    /// its triangle's nodes with the weights `N_i(ξ)` (divided by the
+    /// primary node's tributary area for `contact_pressure` and
+    /// `contact_traction`); `contact_status` is the largest status of the
+    /// closed secondary nodes over a primary node, `slip` minus their slip
+    /// averaged with the weights `A_s N_i`, and `gap` the primary node's
+    /// distance to the secondary surface (projected on its triangles; NaN
+    /// beyond its edge or farther than the search margin); a node that is itself secondary in another pass
+    /// keeps its own gap and slip. Returns the total force on the primary
+    /// surface.
+    fn add_primary_side(
+        &mut self,
+        problem: &Problem,
+        c: &ContactInterface,
+        primary: &PrimarySurface,
+        x: &[f64],
+        states: &[NodeContactState],
+    ) -> [f64; 3] {
+        let mesh = &problem.model.mesh;
+        let reference = &mesh.nodes;
+        let n_nodes = mesh.num_nodes();
+        let mut normal = vec![0.0; n_nodes];
+        let mut forces = vec![Vector3::zeros(); n_nodes];
+        let mut slip = vec![(Vector3::zeros(), 0.0); n_nodes];
+        let mut status = vec![0u8; n_nodes];
+        let mut total = Vector3::zeros();
+        for (i, &area) in c.areas.iter().enumerate() {
+            let state = c.node_state(states, x, problem.model.num_dofs(), i);
+            let Some(node) = c.surface_node(primary, reference, x, i, &state) else {
+                continue;
+            };
+            // the committed tangential traction, as on the secondary side
+            let history = &state.friction;
+            let force = -area * (node.law.pressure * node.gap.normal + history.traction);
+            for (&n, &weight) in node.nodes[1..].iter().zip(&node.gap.shape) {
+                normal[n] += area * node.law.pressure * weight;
+                forces[n] += force * weight;
+                // the closed nodes over the primary node, by their weights
+                // (clamped: a node just off its triangle has one below 0)
+                if node.law.active && weight > 0.0 {
+                    slip[n].0 -= history.slip * (area * weight);
+                    slip[n].1 += area * weight;
+                    status[n] = status[n].max(history.status.code());
+                }
+            }
+            total += force;
+        }
+        let set = mesh.surface(&primary.surface).expect("validated");
+        let (nodes, areas) = crate::contact::tributary_areas(mesh, set);
+        // the other way round, for the gap: the primary nodes against the
+        // secondary surface's triangles
+        let mut reverse = PrimarySurface::from_mesh(mesh, &c.surface).expect("validated");
+        reverse.refresh(reference, x, &nodes, 0.0);
+        for (k, (&n, &a)) in nodes.iter().zip(&areas).enumerate() {
+            self.nodal_force[n] += normal[n];
+            self.nodal_area[n] = a;
+            let (slip_sum, weight) = slip[n];
+            for (d, force) in forces[n].iter().enumerate() {
+                self.traction[3 * n + d] += force;
+                if weight > 0.0 && !self.secondary[n] {
+                    self.slip[3 * n + d] = slip_sum[d] / weight;
+                }
+            }
+            self.status[n] = self.status[n].max(status[n] as f64);
+            if !self.secondary[n] {
+                let here = PrimarySurface::position(reference, x, n);
+                if let Some((_, g)) = reverse.nearest_gap(reference, x, k, &here) {
+                    self.gap[n] = g.gap;
+                }
+            }
+        }
+        total.into()
+    }
+}

@@ -1,0 +1,211 @@
+//! The result fields of a converged increment, by name: what the VTU files
+//! hold and what an observer of a run reads in memory.
+//!
+//! A new field is one arm of [`NodalField`] or [`CellField`] (its name,
+//! components and whether it needs contact) and one arm of
+//! [`ConvergedIncrement::nodal`] or [`ConvergedIncrement::cells`].
+
+use std::borrow::Cow;
+
+use super::contact_fields::ContactFields;
+use crate::problem::{ContactState, Problem};
+use crate::solve::stepping::IncrementRecord;
+
+/// A field with values at the nodes (VTU point data).
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash, serde::Deserialize, serde::Serialize)]
+#[serde(rename_all = "snake_case")]
+pub enum NodalField {
+    /// Displacement `u` (3 per node).
+    Displacement,
+    /// Contact pressure `t_N ≥ 0` (compressive), 0 off the contact surfaces.
+    ContactPressure,
+    /// Signed gap `g` (open > 0), NaN off the contact surfaces.
+    Gap,
+    /// 0 open, 1 stick (closed, frictionless included), 2 slip.
+    ContactStatus,
+    /// Contact traction on the body, `t_N n + t_T` (3 per node).
+    ContactTraction,
+    /// Accumulated slip vector (3 per node).
+    Slip,
+}
+
+/// A field with values per element (VTU cell data).
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash, serde::Deserialize, serde::Serialize)]
+#[serde(rename_all = "snake_case")]
+pub enum CellField {
+    /// Cauchy stress `σ = J⁻¹ F S Fᵀ`, averaged over the element's
+    /// quadrature points (9 per element, row-major).
+    CauchyStress,
+    /// Von Mises stress of that average.
+    VonMises,
+}
+
+impl NodalField {
+    /// Every nodal field, in the order the VTU files list them.
+    pub const ALL: [NodalField; 6] = [
+        NodalField::Displacement,
+        NodalField::ContactPressure,
+        NodalField::Gap,
+        NodalField::ContactStatus,
+        NodalField::ContactTraction,
+        NodalField::Slip,
+    ];
+
+    /// The array name in the VTU files (a contract with users' scripts).
+    pub fn name(self) -> &'static str {
+        match self {
+            NodalField::Displacement => "displacement",
+            NodalField::ContactPressure => "contact_pressure",
+            NodalField::Gap => "gap",
+            NodalField::ContactStatus => "contact_status",
+            NodalField::ContactTraction => "contact_traction",
+            NodalField::Slip => "slip",
+        }
+    }
+
+    /// Numbers per node.
+    pub fn components(self) -> usize {
+        match self {
+            NodalField::Displacement | NodalField::ContactTraction | NodalField::Slip => 3,
+            NodalField::ContactPressure | NodalField::Gap | NodalField::ContactStatus => 1,
+        }
+    }
+
+    /// Whether the field exists only in a problem with contact.
+    pub fn needs_contact(self) -> bool {
+        self != NodalField::Displacement
+    }
+}
+
+impl CellField {
+    /// Every cell field, in the order the VTU files list them.
+    pub const ALL: [CellField; 2] = [CellField::CauchyStress, CellField::VonMises];
+
+    /// The array name in the VTU files.
+    pub fn name(self) -> &'static str {
+        match self {
+            CellField::CauchyStress => "cauchy_stress",
+            CellField::VonMises => "von_mises",
+        }
+    }
+
+    /// Numbers per element.
+    pub fn components(self) -> usize {
+        match self {
+            CellField::CauchyStress => 9,
+            CellField::VonMises => 1,
+        }
+    }
+}
+
+/// A field of either kind, as the case file names it
+/// (`[output] fields = ["displacement", "von_mises"]`).
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
+pub enum OutputField {
+    Nodal(NodalField),
+    Cell(CellField),
+}
+
+impl OutputField {
+    /// Every field, nodal ones first.
+    pub fn all() -> impl Iterator<Item = OutputField> {
+        NodalField::ALL
+            .into_iter()
+            .map(OutputField::Nodal)
+            .chain(CellField::ALL.into_iter().map(OutputField::Cell))
+    }
+
+    /// The array name in the VTU files.
+    pub fn name(self) -> &'static str {
+        match self {
+            OutputField::Nodal(f) => f.name(),
+            OutputField::Cell(f) => f.name(),
+        }
+    }
+}
+
+impl std::str::FromStr for OutputField {
+    type Err = String;
+    /// By its VTU name; the error lists the names.
+    fn from_str(name: &str) -> Result<Self, String> {
+        OutputField::all()
+            .find(|f| f.name() == name)
+            .ok_or_else(|| {
+                let names: Vec<&str> = OutputField::all().map(OutputField::name).collect();
+                format!(
+                    "unknown output field '{}'; the fields are: {}",
+                    name.chars().take(60).collect::<String>(),
+                    names.join(", ")
+                )
+            })
+    }
+}
+
+impl<'de> serde::Deserialize<'de> for OutputField {
+    fn deserialize<D: serde::Deserializer<'de>>(d: D) -> Result<Self, D::Error> {
+        let name = String::deserialize(d)?;
+        name.parse().map_err(serde::de::Error::custom)
+    }
+}
+
+/// One converged increment, in memory: what every observer of a run
+/// receives.
+pub struct ConvergedIncrement<'a> {
+    pub problem: &'a Problem,
+    /// Step, time, increment size, Newton iterations and residuals.
+    pub record: &'a IncrementRecord,
+    /// The unknowns: displacements (3 per node), then contact multipliers.
+    pub unknowns: &'a [f64],
+    /// `r = f_int − f_ext − f_contact` over every dof: the reactions where
+    /// displacements are prescribed.
+    pub residual: &'a [f64],
+    /// The contact history committed with this increment.
+    pub contact: &'a ContactState,
+    /// The contact fields and per-interface totals.
+    pub contact_fields: ContactFields,
+}
+
+impl ConvergedIncrement<'_> {
+    /// The displacement of every node (3 per node).
+    pub fn displacement(&self) -> &[f64] {
+        &self.unknowns[..self.problem.model.num_dofs()]
+    }
+
+    /// The values of a nodal field, `field.components()` per node.
+    pub fn nodal(&self, field: NodalField) -> Cow<'_, [f64]> {
+        let c = &self.contact_fields;
+        Cow::Borrowed(match field {
+            NodalField::Displacement => self.displacement(),
+            NodalField::ContactPressure => &c.pressure,
+            NodalField::Gap => &c.gap,
+            NodalField::ContactStatus => &c.status,
+            NodalField::ContactTraction => &c.traction,
+            NodalField::Slip => &c.slip,
+        })
+    }
+
+    /// The values of each cell field of `fields`, `components()` per
+    /// element (the stresses computed once for all of them).
+    pub fn cells(&self, fields: &[CellField]) -> Vec<Vec<f64>> {
+        if fields.is_empty() {
+            return Vec::new();
+        }
+        let stresses = self.problem.model.cauchy_stresses(self.unknowns);
+        fields
+            .iter()
+            .map(|field| match field {
+                CellField::CauchyStress => stresses
+                    .iter()
+                    .flat_map(|s| s.transpose().iter().copied().collect::<Vec<_>>())
+                    .collect(),
+                CellField::VonMises => stresses.iter().map(crate::material::von_mises).collect(),
+            })
+            .collect()
+    }
+
+    /// The total of `r` over the nodes of each surface set: the reaction
+    /// force where displacements are prescribed.
+    pub fn reaction_forces(&self) -> Vec<(String, [f64; 3])> {
+        self.problem.surface_forces(self.residual)
+    }
+}

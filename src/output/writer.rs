@@ -1,0 +1,156 @@
+//! The result files of a run, as an observer: one VTU per converged
+//! increment, the PVD collection listing them, the histories and profiles
+//! asked for, `summary.json` (rewritten after every increment) and the
+//! convergence plot at the end.
+
+use std::path::{Path, PathBuf};
+
+use super::fields::{CellField, ConvergedIncrement, NodalField};
+use super::history::History;
+use super::observer::StepObserver;
+use super::profile::Profile;
+use super::summary::Summary;
+use super::{plot, pvd::PvdCollection, vtu};
+use crate::{Error, Result};
+
+/// Writes a run's results into one folder.
+pub struct ResultWriter {
+    dir: PathBuf,
+    pvd: PvdCollection,
+    /// The fields each VTU holds.
+    nodal: Vec<NodalField>,
+    cells: Vec<CellField>,
+    histories: Vec<History>,
+    profiles: Vec<Profile>,
+}
+
+impl ResultWriter {
+    /// A writer into `dir` (created if needed) for the series `name`: the
+    /// VTU files of an earlier run with that name are removed and an empty
+    /// `.pvd` written at once, so the folder never lists files that are
+    /// gone. `nodal` and `cells` choose the fields of the VTU files
+    /// (contact fields are left out of a problem without contact).
+    pub fn new(
+        dir: &Path,
+        name: &str,
+        nodal: Vec<NodalField>,
+        cells: Vec<CellField>,
+        histories: Vec<History>,
+        profiles: Vec<Profile>,
+    ) -> Result<Self> {
+        std::fs::create_dir_all(dir).map_err(|e| Error::io("create output folder", dir, e))?;
+        remove_old_series(dir, name)?;
+        let pvd = PvdCollection::new(dir.join(format!("{name}.pvd")));
+        pvd.write()?;
+        Ok(ResultWriter {
+            dir: dir.to_path_buf(),
+            pvd,
+            nodal,
+            cells,
+            histories,
+            profiles,
+        })
+    }
+
+    /// The output folder.
+    pub fn dir(&self) -> &Path {
+        &self.dir
+    }
+
+    /// Histories after every increment; profiles at the end of a step.
+    fn write_requests(&mut self, increment: &ConvergedIncrement) -> Result<()> {
+        let record = increment.record;
+        let reports = &increment.contact_fields.reports;
+        for h in &mut self.histories {
+            h.record(record.time, increment.unknowns, increment.residual, reports);
+            h.write(&self.dir)?;
+        }
+        if record.time == increment.problem.steps[record.step].end_time {
+            for p in &mut self.profiles {
+                p.record(&record.step_name, record.time, &reports[p.interface]);
+                p.write(&self.dir)?;
+            }
+        }
+        Ok(())
+    }
+}
+
+impl StepObserver for ResultWriter {
+    fn on_start(&mut self, summary: &Summary) -> Result<()> {
+        summary.write(&self.dir.join("summary.json"))
+    }
+
+    fn on_increment(&mut self, increment: &ConvergedIncrement, summary: &Summary) -> Result<()> {
+        let has_contact = !increment.problem.contacts.is_empty();
+        let nodal: Vec<(NodalField, _)> = self
+            .nodal
+            .iter()
+            .filter(|f| has_contact || !f.needs_contact())
+            .map(|&f| (f, increment.nodal(f)))
+            .collect();
+        let cells = increment.cells(&self.cells);
+        let point_data: Vec<vtu::Field> = nodal
+            .iter()
+            .map(|(f, v)| vtu::Field {
+                name: f.name(),
+                components: f.components(),
+                values: v,
+            })
+            .collect();
+        let cell_data: Vec<vtu::Field> = self
+            .cells
+            .iter()
+            .zip(&cells)
+            .map(|(f, v)| vtu::Field {
+                name: f.name(),
+                components: f.components(),
+                values: v,
+            })
+            .collect();
+        let file = summary
+            .increments
+            .last()
+            .map(|i| i.file.clone())
+            .unwrap_or_default();
+        vtu::write_vtu(
+            &self.dir.join(&file),
+            &increment.problem.model.mesh,
+            &point_data,
+            &cell_data,
+        )?;
+        self.pvd.add(increment.record.time, &file)?;
+        self.write_requests(increment)?;
+        summary.write(&self.dir.join("summary.json"))
+    }
+
+    fn on_finish(&mut self, summary: &Summary) -> Result<()> {
+        summary.write(&self.dir.join("summary.json"))?;
+        let steps: Vec<plot::StepResiduals> = summary
+            .increments
+            .iter()
+            .map(|i| plot::StepResiduals {
+                label: format!("{} t={:.4}", i.step_name, i.time),
+                residuals: i.residuals.clone(),
+            })
+            .collect();
+        plot::write_convergence_plot(&self.dir.join("convergence.svg"), &steps)
+    }
+}
+
+/// Remove VTU files of an earlier run with the same name, so the folder
+/// holds one consistent series.
+fn remove_old_series(dir: &Path, name: &str) -> Result<()> {
+    let entries = std::fs::read_dir(dir).map_err(|e| Error::io("list output folder", dir, e))?;
+    for entry in entries.flatten() {
+        let file = entry.file_name().to_string_lossy().into_owned();
+        let ours = file
+            .strip_prefix(&format!("{name}_"))
+            .and_then(|rest| rest.strip_suffix(".vtu"))
+            .is_some_and(|n| n.chars().all(|c| c.is_ascii_digit()));
+        if ours {
+            std::fs::remove_file(entry.path())
+                .map_err(|e| Error::io("remove old result", entry.path(), e))?;
+        }
+    }
+    Ok(())
+}

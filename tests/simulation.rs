@@ -162,3 +162,60 @@ fn a_run_without_output_folder_writes_nothing() {
         written.summary.increments.len()
     );
 }
+
+/// `[output] fields` chooses the VTU arrays; an unknown name is an error
+/// naming its line and the fields there are.
+#[test]
+fn output_fields_choose_the_vtu_arrays() {
+    let example = Path::new(env!("CARGO_MANIFEST_DIR")).join("examples/rubber-tension");
+    let text = std::fs::read_to_string(example.join("case.toml")).unwrap();
+    let chosen = text.replace(
+        "[output]\nname = \"rubber\"",
+        "[output]\nname = \"rubber\"\nfields = [\"displacement\", \"von_mises\"]",
+    );
+    assert_ne!(chosen, text);
+    let tmp = tempfile::tempdir().unwrap();
+    let mut simulation = Simulation::from_toml(&chosen, &example).unwrap();
+    let options = RunOptions {
+        output: Some(tmp.path().to_path_buf()),
+        threads: Some(1),
+    };
+    let outcome = simulation.run(&options, &mut Kept::default()).unwrap();
+    let vtu =
+        std::fs::read_to_string(tmp.path().join(&outcome.summary.increments[0].file)).unwrap();
+    let arrays: Vec<&str> = vtu
+        .split("Name=\"")
+        .skip(1)
+        .map(|s| &s[..s.find('"').unwrap()])
+        .collect();
+    assert_eq!(
+        arrays,
+        [
+            "Points",
+            "connectivity",
+            "offsets",
+            "types",
+            "displacement",
+            "von_mises"
+        ]
+    );
+
+    let bad = text.replace(
+        "[output]\nname = \"rubber\"",
+        "[output]\nname = \"rubber\"\nfields = [\"stress\"]",
+    );
+    let error = Simulation::from_toml(&bad, &example)
+        .err()
+        .unwrap()
+        .to_string();
+    let line = bad.lines().position(|l| l.starts_with("fields")).unwrap() + 1;
+    for word in [
+        &format!("line {line}"),
+        "output.fields",
+        "'stress'",
+        "cauchy_stress",
+        "contact_pressure",
+    ] {
+        assert!(error.contains(word), "{word} not in: {error}");
+    }
+}

@@ -43,39 +43,39 @@ def run(binary, case, out):
 
 
 def read_point_field(path, name):
-    """The values of point array `name` of a VTU written by signorini."""
+    """The values of point array `name` (Float64 or Int64) of a VTU written
+    by signorini, compressed (zlib) or not; None if there is no such array."""
+    import array
+    import struct
+
     text = pathlib.Path(path).read_text()
     header_type = re.search(r'header_type="(\w+)"', text).group(1)
     compressed = 'compressor="vtkZLibDataCompressor"' in text
     m = re.search(
-        r'<DataArray type="Float64" Name="%s"[^>]*format="binary">\s*([A-Za-z0-9+/=\s]+?)\s*</DataArray>'
+        r'<DataArray type="(Float64|Int64)" Name="%s"[^>]*format="binary">\s*([A-Za-z0-9+/=\s]+?)\s*</DataArray>'
         % re.escape(name),
         text,
     )
     if m is None:
         return None
-    data = base64.b64decode("".join(m.group(1).split()))
-    size = 8 if header_type == "UInt64" else 4
+    kind, body = m.group(1), "".join(m.group(2).split())
+    size, word = (8, "Q") if header_type == "UInt64" else (4, "I")
     if compressed:
-        import struct
-
-        count = struct.unpack("<Q" if size == 8 else "<I", data[:size])[0]
-        sizes = struct.unpack(
-            ("<%dQ" if size == 8 else "<%dI") % count, data[3 * size : (3 + count) * size]
-        )
-        raw = data[(3 + count) * size :]
-        out = b""
-        for s in sizes:
-            out += zlib.decompress(raw[:s])
-            raw = raw[s:]
-        payload = out
+        # two base64 runs: the header [blocks, block size, last size,
+        # compressed sizes...], then the compressed blocks
+        blocks = struct.unpack("<" + word, base64.b64decode(body[:12])[:size])[0]
+        header_len = -(-size * (3 + blocks) // 3) * 4
+        header = struct.unpack("<%d%s" % (3 + blocks, word), base64.b64decode(body[:header_len]))
+        data = base64.b64decode(body[header_len:])
+        payload, at = b"", 0
+        for s in header[3:]:
+            payload += zlib.decompress(data[at : at + s])
+            at += s
     else:
-        payload = data[size:]
-    import array
-
-    values = array.array("d")
+        payload = base64.b64decode(body)[size:]
+    values = array.array("d" if kind == "Float64" else "q")
     values.frombytes(payload)
-    return list(values)
+    return [float(v) for v in values]
 
 
 def numbers(summary):

@@ -79,6 +79,10 @@ pub struct Simulation {
     requests: OutputRequests,
     nodal_fields: Vec<NodalField>,
     cell_fields: Vec<CellField>,
+    /// A VTU file every this many increments (and at the end of each step).
+    every: usize,
+    /// zlib compression of the VTU arrays.
+    compress: bool,
 }
 
 impl Simulation {
@@ -87,6 +91,7 @@ impl Simulation {
         let problem = case.build_problem()?;
         let requests = case.output_requests(&problem)?;
         let (nodal_fields, cell_fields) = case.output_fields();
+        let every = case.output_every()?;
         Ok(Simulation {
             problem,
             case_label: case.path.display().to_string(),
@@ -95,6 +100,8 @@ impl Simulation {
             requests,
             nodal_fields,
             cell_fields,
+            every,
+            compress: case.spec.output.compress.unwrap_or(true),
         })
     }
 
@@ -147,14 +154,17 @@ impl Simulation {
     ) -> Result<RunOutcome> {
         let start = Instant::now();
         let mut writer = match &options.output {
-            Some(dir) => Some(ResultWriter::new(
-                dir,
-                &self.name,
-                self.nodal_fields.clone(),
-                self.cell_fields.clone(),
-                self.requests.histories.clone(),
-                self.requests.profiles.clone(),
-            )?),
+            Some(dir) => Some(
+                ResultWriter::new(
+                    dir,
+                    &self.name,
+                    self.nodal_fields.clone(),
+                    self.cell_fields.clone(),
+                    self.requests.histories.clone(),
+                    self.requests.profiles.clone(),
+                )?
+                .compress(self.compress),
+            ),
             None => None,
         };
         let mut observers = Observers(vec![observer]);
@@ -168,6 +178,7 @@ impl Simulation {
             summary: Summary::start(&self.case_label, &self.problem),
             observers,
             name: &self.name,
+            every: self.every,
             last: start,
             start,
             contact: ContactState::default(),
@@ -268,6 +279,7 @@ struct Recorder<'a> {
     summary: Summary,
     observers: Observers<'a>,
     name: &'a str,
+    every: usize,
     last: Instant,
     start: Instant,
     contact: ContactState,
@@ -306,6 +318,12 @@ impl stepping::StepObserver for Recorder<'_> {
         // deformable contact may have rebuilt the pattern with new pairs
         self.summary.matrix_nnz = problem.model.pattern.nnz();
         let index = self.summary.increments.len() + 1;
+        let end_of_step = record.time == problem.steps[record.step].end_time;
+        let file = if index.is_multiple_of(self.every) || end_of_step {
+            format!("{}_{index:04}.vtu", self.name)
+        } else {
+            String::new()
+        };
         self.summary.increments.push(IncrementSummary {
             step: record.step,
             step_name: record.step_name.clone(),
@@ -318,7 +336,7 @@ impl stepping::StepObserver for Recorder<'_> {
             wall_time: (now - self.last).as_secs_f64(),
             switched: record.newton.iter().map(|r| r.switched).collect(),
             contact: increment.contact_fields.summaries.clone(),
-            file: format!("{}_{index:04}.vtu", self.name),
+            file,
             reaction_forces: increment.reaction_forces().into_iter().collect(),
         });
         self.summary.update_step_totals();

@@ -140,6 +140,17 @@ impl Case {
         (nodal, cells)
     }
 
+    /// `[output] every`: a VTU file every this many increments (≥ 1).
+    pub fn output_every(&self) -> Result<usize> {
+        match self.spec.output.every {
+            None => Ok(1),
+            Some(n) if n >= 1 => Ok(n as usize),
+            Some(n) => Err(self.err(format!(
+                "output.every = {n}: write every N ≥ 1 increments (1 writes them all; the last increment of each step is always written)"
+            ))),
+        }
+    }
+
     /// File-name stem for the VTU series.
     pub fn output_name(&self) -> String {
         self.spec.output.name.clone().unwrap_or_else(|| {

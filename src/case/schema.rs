@@ -276,6 +276,11 @@ pub struct OutputSpec {
     pub name: Option<String>,
     /// The fields of the VTU files, by name (default: all of them).
     pub fields: Option<Vec<crate::output::OutputField>>,
+    /// Write a VTU file every this many converged increments (≥ 1,
+    /// default 1), and always at the end of each step.
+    pub every: Option<i64>,
+    /// zlib compression of the VTU arrays (default true).
+    pub compress: Option<bool>,
     /// `[[output.history]]`: a nodal quantity after every increment.
     #[serde(default)]
     pub history: Vec<HistorySpec>,

@@ -8,6 +8,7 @@
 use std::borrow::Cow;
 
 use super::contact_fields::ContactFields;
+use super::vtu::ArrayKind;
 use crate::problem::{ContactState, Problem};
 use crate::solve::stepping::IncrementRecord;
 
@@ -27,6 +28,9 @@ pub enum NodalField {
     ContactTraction,
     /// Accumulated slip vector (3 per node).
     Slip,
+    /// The mesh file's id (tag) of the node, to find the nodes that
+    /// messages, histories and profiles name.
+    NodeId,
 }
 
 /// A field with values per element (VTU cell data).
@@ -38,17 +42,21 @@ pub enum CellField {
     CauchyStress,
     /// Von Mises stress of that average.
     VonMises,
+    /// The index of the element's region, in the order `signorini check`
+    /// lists the regions (0-based).
+    Region,
 }
 
 impl NodalField {
     /// Every nodal field, in the order the VTU files list them.
-    pub const ALL: [NodalField; 6] = [
+    pub const ALL: [NodalField; 7] = [
         NodalField::Displacement,
         NodalField::ContactPressure,
         NodalField::Gap,
         NodalField::ContactStatus,
         NodalField::ContactTraction,
         NodalField::Slip,
+        NodalField::NodeId,
     ];
 
     /// The array name in the VTU files (a contract with users' scripts).
@@ -60,6 +68,15 @@ impl NodalField {
             NodalField::ContactStatus => "contact_status",
             NodalField::ContactTraction => "contact_traction",
             NodalField::Slip => "slip",
+            NodalField::NodeId => "node_id",
+        }
+    }
+
+    /// The number type of its array.
+    pub fn kind(self) -> ArrayKind {
+        match self {
+            NodalField::ContactStatus | NodalField::NodeId => ArrayKind::Int64,
+            _ => ArrayKind::Float64,
         }
     }
 
@@ -67,25 +84,41 @@ impl NodalField {
     pub fn components(self) -> usize {
         match self {
             NodalField::Displacement | NodalField::ContactTraction | NodalField::Slip => 3,
-            NodalField::ContactPressure | NodalField::Gap | NodalField::ContactStatus => 1,
+            NodalField::ContactPressure
+            | NodalField::Gap
+            | NodalField::ContactStatus
+            | NodalField::NodeId => 1,
         }
     }
 
     /// Whether the field exists only in a problem with contact.
     pub fn needs_contact(self) -> bool {
-        self != NodalField::Displacement
+        !matches!(self, NodalField::Displacement | NodalField::NodeId)
     }
 }
 
 impl CellField {
     /// Every cell field, in the order the VTU files list them.
-    pub const ALL: [CellField; 2] = [CellField::CauchyStress, CellField::VonMises];
+    pub const ALL: [CellField; 3] = [
+        CellField::CauchyStress,
+        CellField::VonMises,
+        CellField::Region,
+    ];
 
     /// The array name in the VTU files.
     pub fn name(self) -> &'static str {
         match self {
             CellField::CauchyStress => "cauchy_stress",
             CellField::VonMises => "von_mises",
+            CellField::Region => "region",
+        }
+    }
+
+    /// The number type of its array.
+    pub fn kind(self) -> ArrayKind {
+        match self {
+            CellField::Region => ArrayKind::Int64,
+            _ => ArrayKind::Float64,
         }
     }
 
@@ -93,7 +126,7 @@ impl CellField {
     pub fn components(self) -> usize {
         match self {
             CellField::CauchyStress => 9,
-            CellField::VonMises => 1,
+            CellField::VonMises | CellField::Region => 1,
         }
     }
 }
@@ -174,6 +207,10 @@ impl ConvergedIncrement<'_> {
     /// The values of a nodal field, `field.components()` per node.
     pub fn nodal(&self, field: NodalField) -> Cow<'_, [f64]> {
         let c = &self.contact_fields;
+        if field == NodalField::NodeId {
+            let ids = &self.problem.model.mesh.node_ids;
+            return Cow::Owned(ids.iter().map(|&id| id as f64).collect());
+        }
         Cow::Borrowed(match field {
             NodalField::Displacement => self.displacement(),
             NodalField::ContactPressure => &c.pressure,
@@ -181,6 +218,7 @@ impl ConvergedIncrement<'_> {
             NodalField::ContactStatus => &c.status,
             NodalField::ContactTraction => &c.traction,
             NodalField::Slip => &c.slip,
+            NodalField::NodeId => &[],
         })
     }
 
@@ -190,10 +228,25 @@ impl ConvergedIncrement<'_> {
         if fields.is_empty() {
             return Vec::new();
         }
-        let stresses = self.problem.model.cauchy_stresses(self.unknowns);
+        let mesh = &self.problem.model.mesh;
+        let needs_stress = fields.iter().any(|f| f != &CellField::Region);
+        let stresses = if needs_stress {
+            self.problem.model.cauchy_stresses(self.unknowns)
+        } else {
+            Vec::new()
+        };
         fields
             .iter()
             .map(|field| match field {
+                CellField::Region => {
+                    let mut region = vec![0.0; mesh.elements.len()];
+                    for (r, set) in mesh.regions.iter().enumerate() {
+                        for &e in &set.elements {
+                            region[e] = r as f64;
+                        }
+                    }
+                    region
+                }
                 CellField::CauchyStress => stresses
                     .iter()
                     .flat_map(|s| s.transpose().iter().copied().collect::<Vec<_>>())

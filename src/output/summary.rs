@@ -30,7 +30,8 @@ pub struct IncrementSummary {
     pub switched: Vec<usize>,
     /// Per contact interface: totals at the end of the increment.
     pub contact: BTreeMap<String, InterfaceSummary>,
-    /// VTU file of the increment (relative to the output folder).
+    /// VTU file of the increment (relative to the output folder); empty
+    /// when `[output] every` skipped it.
     pub file: String,
     /// `Σ (f_int − f_ext)` over the nodes of each surface set: the reaction
     /// force where displacements are prescribed.

@@ -5,8 +5,14 @@
 //! the displacement are point data (ParaView: *Warp By Vector* with the
 //! `displacement` field shows the deformed configuration). Every array is
 //! written as inline base64 binary (`format="binary"`, `header_type="UInt64"`,
-//! little endian, uncompressed): each array's base64 text encodes an 8-byte
-//! byte count followed by the raw values. Readers: ParaView/VTK, meshio.
+//! little endian). Uncompressed, each array's base64 text encodes an 8-byte
+//! byte count followed by the raw values. Compressed (zlib, VTK's
+//! `vtkZLibDataCompressor`, what runs write by default), each array is cut
+//! into blocks of 32 KiB, each block deflated, and the text is the base64
+//! of the header `[blocks, block size, last partial block size (0 if
+//! full), compressed size of each block]` followed by the base64 of the
+//! compressed blocks (two base64 runs, as VTK writes them). Readers:
+//! ParaView/VTK, meshio.
 //!
 //! Arrays with 9 components are full 3×3 tensors in row-major order
 //! (`T11 T12 T13 T21 … T33`), which ParaView recognises as tensors.
@@ -31,6 +37,24 @@ pub struct Field<'a> {
     pub components: usize,
     /// `components × count` values.
     pub values: &'a [f64],
+    /// The array's type in the file (integer arrays hold whole numbers).
+    pub kind: ArrayKind,
+}
+
+/// The number type of an array in the file.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+pub enum ArrayKind {
+    #[default]
+    Float64,
+    /// Whole numbers (node ids, region indices, status codes).
+    Int64,
+}
+
+/// How the file is written.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+pub struct VtuOptions {
+    /// zlib compression of every array.
+    pub compress: bool,
 }
 
 /// Writes `mesh` (reference configuration, every volume element) with the
@@ -45,6 +69,17 @@ pub fn write_vtu(
     mesh: &Mesh,
     point_data: &[Field],
     cell_data: &[Field],
+) -> crate::Result<()> {
+    write_vtu_with(path, mesh, point_data, cell_data, VtuOptions::default())
+}
+
+/// [`write_vtu`], compressed or not as `options` says.
+pub fn write_vtu_with(
+    path: &Path,
+    mesh: &Mesh,
+    point_data: &[Field],
+    cell_data: &[Field],
+    options: VtuOptions,
 ) -> crate::Result<()> {
     let num_points = mesh.nodes.len();
     let num_cells = mesh.elements.len();
@@ -71,11 +106,17 @@ pub fn write_vtu(
         }
     }
 
+    let compress = options.compress;
     write_atomically(path, |w| {
         writeln!(w, r#"<?xml version="1.0"?>"#)?;
+        let compressor = if compress {
+            r#" compressor="vtkZLibDataCompressor""#
+        } else {
+            ""
+        };
         writeln!(
             w,
-            r#"<VTKFile type="UnstructuredGrid" version="1.0" byte_order="LittleEndian" header_type="UInt64">"#
+            r#"<VTKFile type="UnstructuredGrid" version="1.0" byte_order="LittleEndian" header_type="UInt64"{compressor}>"#
         )?;
         writeln!(w, "  <UnstructuredGrid>")?;
         writeln!(
@@ -86,9 +127,8 @@ pub fn write_vtu(
         writeln!(w, "      <Points>")?;
         data_array(
             w,
-            "Float64",
-            "Points",
-            3,
+            compress,
+            ("Float64", "Points", 3),
             mesh.nodes.iter().flat_map(|x| x.iter().copied()),
             3 * num_points,
         )?;
@@ -98,9 +138,8 @@ pub fn write_vtu(
         let connectivity_len: usize = mesh.elements.iter().map(|e| e.nodes.len()).sum();
         data_array(
             w,
-            "Int64",
-            "connectivity",
-            1,
+            compress,
+            ("Int64", "connectivity", 1),
             mesh.elements
                 .iter()
                 .flat_map(|e| e.nodes.iter().map(|&n| n as i64)),
@@ -108,9 +147,8 @@ pub fn write_vtu(
         )?;
         data_array(
             w,
-            "Int64",
-            "offsets",
-            1,
+            compress,
+            ("Int64", "offsets", 1),
             mesh.elements.iter().scan(0i64, |end, e| {
                 *end += e.nodes.len() as i64;
                 Some(*end)
@@ -119,9 +157,8 @@ pub fn write_vtu(
         )?;
         data_array(
             w,
-            "UInt8",
-            "types",
-            1,
+            compress,
+            ("UInt8", "types", 1),
             mesh.elements.iter().map(|e| e.kind.vtk_type()),
             num_cells,
         )?;
@@ -133,14 +170,22 @@ pub fn write_vtu(
             }
             writeln!(w, "      <{tag}>")?;
             for field in fields {
-                data_array(
-                    w,
-                    "Float64",
-                    field.name,
-                    field.components,
-                    field.values.iter().copied(),
-                    field.values.len(),
-                )?;
+                match field.kind {
+                    ArrayKind::Float64 => data_array(
+                        w,
+                        compress,
+                        ("Float64", field.name, field.components),
+                        field.values.iter().copied(),
+                        field.values.len(),
+                    )?,
+                    ArrayKind::Int64 => data_array(
+                        w,
+                        compress,
+                        ("Int64", field.name, field.components),
+                        field.values.iter().map(|&v| v as i64),
+                        field.values.len(),
+                    )?,
+                }
             }
             writeln!(w, "      </{tag}>")?;
         }
@@ -170,6 +215,17 @@ fn validate(path: &Path, kind: &str, fields: &[Field], count: usize) -> crate::R
                 field.values.len(),
                 field.components,
                 expected.map_or_else(|| "too many".to_string(), |n| n.to_string()),
+            ));
+        }
+        if field.kind == ArrayKind::Int64
+            && !field
+                .values
+                .iter()
+                .all(|v| v.fract() == 0.0 && v.abs() < 9.0e15)
+        {
+            return fail(format!(
+                "{kind} field '{}' is an integer array but holds a value that is not a whole number",
+                field.name
             ));
         }
         if fields[..i].iter().any(|f| f.name == field.name) {
@@ -206,13 +262,13 @@ impl Scalar for u8 {
     }
 }
 
-/// Writes one `<DataArray>` of `len` values: base64 of the UInt64 byte count
-/// followed by the values, as one base64 stream.
+/// Writes one `<DataArray>` of `len` values: uncompressed, base64 of the
+/// UInt64 byte count followed by the values, as one base64 stream;
+/// compressed, see the module docs.
 fn data_array<T: Scalar>(
     w: &mut dyn Write,
-    vtk_type: &str,
-    name: &str,
-    components: usize,
+    compress: bool,
+    (vtk_type, name, components): (&str, &str, usize),
     values: impl Iterator<Item = T>,
     len: usize,
 ) -> io::Result<()> {
@@ -228,15 +284,17 @@ fn data_array<T: Scalar>(
         "        <DataArray type=\"{vtk_type}\" Name=\"{}\"{components} format=\"binary\">\n          ",
         xml_escape(name)
     )?;
-    {
+    let mut written = 0usize;
+    let mut counted = values.inspect(|_| written += 1);
+    if compress {
+        write_compressed(w, &mut counted, len * T::SIZE)?;
+    } else {
         const CHUNK: usize = 3 * 16 * 1024;
         let mut encoder = EncoderWriter::new(&mut *w, &STANDARD);
         let mut buffer = Vec::with_capacity(CHUNK + 8);
         buffer.extend_from_slice(&((len * T::SIZE) as u64).to_le_bytes());
-        let mut written = 0usize;
-        for value in values {
+        for value in counted.by_ref() {
             value.push_le(&mut buffer);
-            written += 1;
             if buffer.len() >= CHUNK {
                 encoder.write_all(&buffer)?;
                 buffer.clear();
@@ -244,24 +302,78 @@ fn data_array<T: Scalar>(
         }
         encoder.write_all(&buffer)?;
         encoder.finish()?;
-        if written != len {
-            return Err(io::Error::other(format!(
-                "internal error: array '{name}' has {written} values, announced {len}"
-            )));
-        }
+    }
+    drop(counted);
+    if written != len {
+        return Err(io::Error::other(format!(
+            "internal error: array '{name}' has {written} values, announced {len}"
+        )));
     }
     writeln!(w)?;
     writeln!(w, "        </DataArray>")?;
     Ok(())
 }
 
-/// Reads the `Float64` point-data array `name` of a `.vtu` file written by
-/// [`write_vtu`] (for scripts and tests that check results; ParaView and
-/// meshio read every array). Fails, naming the file and the array, if the
-/// file cannot be read or holds no such array.
+/// Uncompressed bytes per block of a compressed array (VTK's default).
+const BLOCK: usize = 32 * 1024;
+
+/// The compressed form of an array of `bytes` bytes (module docs): the
+/// blocks deflated one by one, then the header and the blocks written as
+/// two base64 runs.
+fn write_compressed<T: Scalar>(
+    w: &mut dyn Write,
+    values: &mut dyn Iterator<Item = T>,
+    bytes: usize,
+) -> io::Result<()> {
+    use flate2::{write::ZlibEncoder, Compression};
+    let mut blocks: Vec<Vec<u8>> = Vec::with_capacity(bytes.div_ceil(BLOCK));
+    let mut raw = Vec::with_capacity(BLOCK + 8);
+    let mut flush = |raw: &mut Vec<u8>| -> io::Result<()> {
+        let mut z = ZlibEncoder::new(Vec::new(), Compression::fast());
+        z.write_all(raw)?;
+        blocks.push(z.finish()?);
+        raw.clear();
+        Ok(())
+    };
+    for value in values {
+        value.push_le(&mut raw);
+        if raw.len() >= BLOCK {
+            let rest = raw.split_off(BLOCK);
+            flush(&mut raw)?;
+            raw = rest;
+        }
+    }
+    if !raw.is_empty() {
+        flush(&mut raw)?;
+    }
+    let mut header: Vec<u8> = Vec::with_capacity(8 * (3 + blocks.len()));
+    for n in [blocks.len(), BLOCK, bytes % BLOCK]
+        .into_iter()
+        .chain(blocks.iter().map(Vec::len))
+    {
+        header.extend_from_slice(&(n as u64).to_le_bytes());
+    }
+    let mut encoder = EncoderWriter::new(&mut *w, &STANDARD);
+    encoder.write_all(&header)?;
+    encoder.finish()?;
+    drop(encoder);
+    let mut encoder = EncoderWriter::new(&mut *w, &STANDARD);
+    for block in &blocks {
+        encoder.write_all(block)?;
+    }
+    encoder.finish()?;
+    Ok(())
+}
+
+/// Reads the point-data array `name` of a `.vtu` file written by
+/// [`write_vtu_with`], compressed or not, `Float64` or `Int64` (as `f64`),
+/// for scripts and tests that check results (ParaView and meshio read
+/// every array). Fails, naming the file and the array, if the file cannot
+/// be read or holds no such array.
 pub fn read_point_field(path: &Path, name: &str) -> crate::Result<Vec<f64>> {
     let fail = |message: String| crate::Error::io("read", path, invalid_input(message));
     let text = std::fs::read_to_string(path).map_err(|e| crate::Error::io("read", path, e))?;
+    let compressed = text.contains(r#"compressor="vtkZLibDataCompressor""#);
     let point_data = text
         .find("<PointData>")
         .ok_or_else(|| fail("no <PointData> section".into()))?;
@@ -269,26 +381,73 @@ pub fn read_point_field(path: &Path, name: &str) -> crate::Result<Vec<f64>> {
         .find("</PointData>")
         .map_or(text.len(), |e| point_data + e);
     let section = &text[point_data..end];
-    let tag = format!("<DataArray type=\"Float64\" Name=\"{}\"", xml_escape(name));
-    let start = section
-        .find(&tag)
-        .ok_or_else(|| fail(format!("no Float64 point-data array '{name}'")))?;
+    let (start, integer) = [("Float64", false), ("Int64", true)]
+        .iter()
+        .find_map(|(t, integer)| {
+            let tag = format!("<DataArray type=\"{t}\" Name=\"{}\"", xml_escape(name));
+            section.find(&tag).map(|s| (s, *integer))
+        })
+        .ok_or_else(|| fail(format!("no Float64 or Int64 point-data array '{name}'")))?;
     let open_end = start + section[start..].find('>').unwrap_or(0) + 1;
     let close = section[open_end..]
         .find("</DataArray>")
         .map(|c| open_end + c)
         .ok_or_else(|| fail(format!("array '{name}' is not closed")))?;
-    use base64::Engine;
-    let bytes = STANDARD
-        .decode(section[open_end..close].trim())
+    let bytes = decode_array(section[open_end..close].trim(), compressed)
         .map_err(|e| fail(format!("array '{name}': {e}")))?;
-    if bytes.len() < 8 || (bytes.len() - 8) % 8 != 0 {
-        return Err(fail(format!("array '{name}' has {} bytes", bytes.len())));
-    }
-    Ok(bytes[8..]
+    Ok(bytes
         .chunks_exact(8)
-        .map(|c| f64::from_le_bytes(c.try_into().expect("8 bytes")))
+        .map(|c| {
+            let b: [u8; 8] = c.try_into().unwrap_or_default();
+            if integer {
+                i64::from_le_bytes(b) as f64
+            } else {
+                f64::from_le_bytes(b)
+            }
+        })
         .collect())
+}
+
+/// The raw bytes of an array's base64 text (module docs for both forms).
+fn decode_array(text: &str, compressed: bool) -> Result<Vec<u8>, String> {
+    use base64::Engine;
+    let text: String = text.split_whitespace().collect();
+    if !compressed {
+        let bytes = STANDARD.decode(&text).map_err(|e| e.to_string())?;
+        if bytes.len() < 8 || (bytes.len() - 8) % 8 != 0 {
+            return Err(format!("{} bytes", bytes.len()));
+        }
+        return Ok(bytes[8..].to_vec());
+    }
+    let word = |bytes: &[u8], i: usize| -> Result<usize, String> {
+        bytes
+            .get(8 * i..8 * i + 8)
+            .and_then(|b| b.try_into().ok())
+            .map(|b| u64::from_le_bytes(b) as usize)
+            .ok_or_else(|| "a truncated header".to_string())
+    };
+    // the header's own base64 run: first its block count, then all of it
+    let first = STANDARD
+        .decode(text.get(..12).ok_or("a truncated header")?)
+        .map_err(|e| e.to_string())?;
+    let blocks = word(&first, 0)?;
+    let header_len = (8 * (3 + blocks)).div_ceil(3) * 4;
+    let header = STANDARD
+        .decode(text.get(..header_len).ok_or("a truncated header")?)
+        .map_err(|e| e.to_string())?;
+    let data = STANDARD
+        .decode(&text[header_len..])
+        .map_err(|e| e.to_string())?;
+    let mut out = Vec::new();
+    let mut at = 0;
+    for b in 0..blocks {
+        let size = word(&header, 3 + b)?;
+        let block = data.get(at..at + size).ok_or("a truncated block")?;
+        let mut z = flate2::read::ZlibDecoder::new(block);
+        std::io::Read::read_to_end(&mut z, &mut out).map_err(|e| e.to_string())?;
+        at += size;
+    }
+    Ok(out)
 }
 
 #[cfg(test)]
@@ -406,17 +565,20 @@ mod tests {
                 name: "displacement",
                 components: 3,
                 values: &displacement,
+                kind: ArrayKind::Float64,
             }],
             &[
                 Field {
                     name: "stress",
                     components: 9,
                     values: &stress,
+                    kind: ArrayKind::Float64,
                 },
                 Field {
                     name: "element id",
                     components: 1,
                     values: &id,
+                    kind: ArrayKind::Float64,
                 },
             ],
         )
@@ -499,11 +661,13 @@ mod tests {
                 name: "displacement",
                 components: 3,
                 values: &good,
+                kind: ArrayKind::Float64,
             }],
             &[Field {
                 name: "cauchy_stress",
                 components: 9,
                 values: &short,
+                kind: ArrayKind::Float64,
             }],
         )
         .unwrap_err();
@@ -522,6 +686,7 @@ mod tests {
                 name: "pressure",
                 components: 1,
                 values: &[0.0; 8],
+                kind: ArrayKind::Float64,
             }],
             &[],
         )
@@ -536,6 +701,7 @@ mod tests {
                 name: "z",
                 components: 0,
                 values: &[],
+                kind: ArrayKind::Float64,
             }],
             &[],
         )
@@ -545,6 +711,7 @@ mod tests {
             name: "u",
             components: 3,
             values: &good,
+            kind: ArrayKind::Float64,
         };
         let err = write_vtu(&path, &mesh, &[f, f], &[]).unwrap_err();
         assert!(err.to_string().contains("'u'"), "{err}");
@@ -573,6 +740,7 @@ mod tests {
                 name: "a<\"b\">&c",
                 components: 1,
                 values: &values,
+                kind: ArrayKind::Float64,
             }],
             &[],
         )

@@ -22,6 +22,8 @@ pub struct ResultWriter {
     cells: Vec<CellField>,
     histories: Vec<History>,
     profiles: Vec<Profile>,
+    /// zlib compression of the VTU arrays.
+    vtu: vtu::VtuOptions,
 }
 
 impl ResultWriter {
@@ -49,12 +51,58 @@ impl ResultWriter {
             cells,
             histories,
             profiles,
+            vtu: vtu::VtuOptions { compress: true },
         })
+    }
+
+    /// Write the VTU arrays compressed (the default) or not.
+    pub fn compress(mut self, compress: bool) -> Self {
+        self.vtu.compress = compress;
+        self
     }
 
     /// The output folder.
     pub fn dir(&self) -> &Path {
         &self.dir
+    }
+
+    /// The VTU file of an increment, with the chosen fields.
+    fn write_vtu(&self, increment: &ConvergedIncrement, file: &str) -> Result<()> {
+        let has_contact = !increment.problem.contacts.is_empty();
+        let nodal: Vec<(NodalField, _)> = self
+            .nodal
+            .iter()
+            .filter(|f| has_contact || !f.needs_contact())
+            .map(|&f| (f, increment.nodal(f)))
+            .collect();
+        let cells = increment.cells(&self.cells);
+        let point_data: Vec<vtu::Field> = nodal
+            .iter()
+            .map(|(f, v)| vtu::Field {
+                name: f.name(),
+                components: f.components(),
+                values: v,
+                kind: f.kind(),
+            })
+            .collect();
+        let cell_data: Vec<vtu::Field> = self
+            .cells
+            .iter()
+            .zip(&cells)
+            .map(|(f, v)| vtu::Field {
+                name: f.name(),
+                components: f.components(),
+                values: v,
+                kind: f.kind(),
+            })
+            .collect();
+        vtu::write_vtu_with(
+            &self.dir.join(file),
+            &increment.problem.model.mesh,
+            &point_data,
+            &cell_data,
+            self.vtu,
+        )
     }
 
     /// Histories after every increment; profiles at the end of a step.
@@ -81,44 +129,16 @@ impl StepObserver for ResultWriter {
     }
 
     fn on_increment(&mut self, increment: &ConvergedIncrement, summary: &Summary) -> Result<()> {
-        let has_contact = !increment.problem.contacts.is_empty();
-        let nodal: Vec<(NodalField, _)> = self
-            .nodal
-            .iter()
-            .filter(|f| has_contact || !f.needs_contact())
-            .map(|&f| (f, increment.nodal(f)))
-            .collect();
-        let cells = increment.cells(&self.cells);
-        let point_data: Vec<vtu::Field> = nodal
-            .iter()
-            .map(|(f, v)| vtu::Field {
-                name: f.name(),
-                components: f.components(),
-                values: v,
-            })
-            .collect();
-        let cell_data: Vec<vtu::Field> = self
-            .cells
-            .iter()
-            .zip(&cells)
-            .map(|(f, v)| vtu::Field {
-                name: f.name(),
-                components: f.components(),
-                values: v,
-            })
-            .collect();
         let file = summary
             .increments
             .last()
             .map(|i| i.file.clone())
             .unwrap_or_default();
-        vtu::write_vtu(
-            &self.dir.join(&file),
-            &increment.problem.model.mesh,
-            &point_data,
-            &cell_data,
-        )?;
-        self.pvd.add(increment.record.time, &file)?;
+        // `[output] every` leaves some increments without a file
+        if !file.is_empty() {
+            self.write_vtu(increment, &file)?;
+            self.pvd.add(increment.record.time, &file)?;
+        }
         self.write_requests(increment)?;
         summary.write(&self.dir.join("summary.json"))
     }

@@ -4,6 +4,7 @@
 
 pub mod output;
 pub mod schema;
+mod tagged;
 
 use crate::assembly::Model;
 use crate::contact::friction::Coulomb;
@@ -43,12 +44,13 @@ pub fn parse(path: &Path, text: &str) -> Result<CaseFile> {
         let key = e.path().to_string();
         let inner = e.into_inner();
         let msg = inner.message().to_string();
+        let line = |offset: usize| text[..offset.min(text.len())].matches('\n').count() + 1;
+        if let Some((offset, message)) = tagged::refine(text, &key, &msg) {
+            return case_error(path, format!("line {}: {message}", line(offset)));
+        }
         let location = inner
             .span()
-            .map(|s| {
-                let line = text[..s.start.min(text.len())].matches('\n').count() + 1;
-                format!("line {line}: ")
-            })
+            .map(|s| format!("line {}: ", line(s.start)))
             .unwrap_or_default();
         let key = if key == "." {
             String::new()
@@ -171,57 +173,27 @@ impl Case {
     }
 
     fn material(&self, i: usize) -> Result<Arc<dyn Material>> {
-        let m = &self.spec.material[i];
         let key = format!("material[{i}]");
-        let need = |v: Option<f64>, name: &str| {
-            v.ok_or_else(|| self.err(format!("{key}.{name} is required for model {:?}", m.model)))
-        };
-        let forbid = |present: bool, name: &str| {
-            if present {
-                Err(self.err(format!(
-                    "{key}.{name} does not apply to model {:?}; remove it",
-                    m.model
-                )))
-            } else {
-                Ok(())
-            }
-        };
-        Ok(match m.model {
-            MaterialModel::Ogden => {
-                forbid(m.youngs_modulus.is_some(), "youngs_modulus")?;
-                forbid(m.poisson_ratio.is_some(), "poisson_ratio")?;
-                let mu =
-                    m.mu.clone()
-                        .ok_or_else(|| self.err(format!("{key}.mu is required for model Ogden")))?;
-                let alpha = m
-                    .alpha
-                    .clone()
-                    .ok_or_else(|| self.err(format!("{key}.alpha is required for model Ogden")))?;
-                Arc::new(material::Ogden::new(
-                    mu,
-                    alpha,
-                    need(m.bulk_modulus, "bulk_modulus")?,
-                    &key,
-                )?)
-            }
-            model => {
-                forbid(m.mu.is_some(), "mu")?;
-                forbid(m.alpha.is_some(), "alpha")?;
-                forbid(m.bulk_modulus.is_some(), "bulk_modulus")?;
-                let (e, nu) = (
-                    need(m.youngs_modulus, "youngs_modulus")?,
-                    need(m.poisson_ratio, "poisson_ratio")?,
-                );
-                match model {
-                    MaterialModel::LinearElastic => {
-                        Arc::new(material::LinearElastic::new(e, nu, &key)?)
-                    }
-                    MaterialModel::SaintVenantKirchhoff => {
-                        Arc::new(material::SaintVenantKirchhoff::new(e, nu, &key)?)
-                    }
-                    _ => Arc::new(material::NeoHookean::new(e, nu, &key)?),
-                }
-            }
+        Ok(match &self.spec.material[i].model {
+            MaterialModel::Ogden(c) => Arc::new(material::Ogden::new(
+                c.mu.clone(),
+                c.alpha.clone(),
+                c.bulk_modulus,
+                &key,
+            )?),
+            MaterialModel::LinearElastic(c) => Arc::new(material::LinearElastic::new(
+                c.youngs_modulus,
+                c.poisson_ratio,
+                &key,
+            )?),
+            MaterialModel::SaintVenantKirchhoff(c) => Arc::new(
+                material::SaintVenantKirchhoff::new(c.youngs_modulus, c.poisson_ratio, &key)?,
+            ),
+            MaterialModel::NeoHookean(c) => Arc::new(material::NeoHookean::new(
+                c.youngs_modulus,
+                c.poisson_ratio,
+                &key,
+            )?),
         })
     }
 
@@ -436,48 +408,24 @@ impl Case {
     /// The `[[obstacle]]` at index `i`, validated.
     fn obstacle(&self, i: usize) -> Result<RigidObstacle> {
         let o = &self.spec.obstacle[i];
-        let key = format!("obstacle[{i}]");
-        let vector = |v: Option<[f64; 3]>, name: &str| {
-            v.map(Vector3::from).ok_or_else(|| {
-                self.err(format!("{key}.{name} is required for shape {:?}", o.shape))
-            })
-        };
-        let radius = || {
-            o.radius.ok_or_else(|| {
-                self.err(format!("{key}.radius is required for shape {:?}", o.shape))
-            })
-        };
-        let with_key = |e: Error| self.err(format!("{key} ('{}'): {e}", o.name));
-        Ok(match o.shape {
-            ObstacleShape::Plane => {
-                RigidObstacle::plane(vector(o.point, "point")?, vector(o.normal, "normal")?)
-                    .map_err(with_key)?
+        let with_key = |e: Error| self.err(format!("obstacle[{i}] ('{}'): {e}", o.name));
+        let v = Vector3::from;
+        Ok(match &o.shape {
+            ObstacleShape::Plane { point, normal } => {
+                RigidObstacle::plane(v(*point), v(*normal)).map_err(with_key)?
             }
-            ObstacleShape::Sphere => {
-                RigidObstacle::sphere(vector(o.center, "center")?, radius()?).map_err(with_key)?
+            ObstacleShape::Sphere { center, radius } => {
+                RigidObstacle::sphere(v(*center), *radius).map_err(with_key)?
             }
-            ObstacleShape::Cylinder => RigidObstacle::cylinder(
-                vector(o.point, "point")?,
-                vector(o.axis, "axis")?,
-                radius()?,
-            )
-            .map_err(with_key)?,
-            ObstacleShape::Stl => {
-                let file = o
-                    .file
-                    .as_ref()
-                    .ok_or_else(|| self.err(format!("{key}.file is required for shape Stl")))?;
+            ObstacleShape::Cylinder {
+                point,
+                axis,
+                radius,
+            } => RigidObstacle::cylinder(v(*point), v(*axis), *radius).map_err(with_key)?,
+            ObstacleShape::Stl { file } => {
                 RigidObstacle::Triangulated(TriangulatedSurface::from_stl(&self.dir().join(file))?)
             }
-            ObstacleShape::Gmsh => {
-                let file = o
-                    .file
-                    .as_ref()
-                    .ok_or_else(|| self.err(format!("{key}.file is required for shape Gmsh")))?;
-                let surface = o
-                    .surface
-                    .as_ref()
-                    .ok_or_else(|| self.err(format!("{key}.surface is required for shape Gmsh")))?;
+            ObstacleShape::Gmsh { file, surface } => {
                 let mesh = crate::mesh::gmsh::read_surface_msh(&self.dir().join(file))?;
                 RigidObstacle::Triangulated(TriangulatedSurface::from_surface_facets(
                     &mesh, surface,

@@ -51,34 +51,61 @@ pub struct MeshSpec {
     pub file: String,
 }
 
-/// Constitutive models.
-#[derive(Clone, Copy, Debug, Deserialize, PartialEq, Eq)]
-#[serde(rename_all = "snake_case")]
-pub enum MaterialModel {
-    LinearElastic,
-    SaintVenantKirchhoff,
-    NeoHookean,
-    Ogden,
-}
-
-/// `[[material]]`
+/// `[[material]]`: a region and its constitutive model. The `model` key
+/// chooses the variant, and each variant rejects the keys of the others
+/// (an Ogden material with `youngs_modulus` is an error naming the key).
 #[derive(Debug, Deserialize)]
-#[serde(deny_unknown_fields)]
 pub struct MaterialSpec {
     /// Volume region (3D physical group) name.
     pub region: String,
-    /// `linear_elastic`, `saint_venant_kirchhoff`, `neo_hookean` or `ogden`.
+    /// `model = "linear_elastic"`, `"saint_venant_kirchhoff"`,
+    /// `"neo_hookean"` or `"ogden"`, with that model's constants.
+    #[serde(flatten)]
     pub model: MaterialModel,
-    /// Young's modulus `E > 0` (all but Ogden).
-    pub youngs_modulus: Option<f64>,
-    /// Poisson's ratio `−1 < ν < 0.5` (all but Ogden).
-    pub poisson_ratio: Option<f64>,
-    /// Ogden shear moduli `μ_p` (initial shear modulus `Σ μ_p`).
-    pub mu: Option<Vec<f64>>,
-    /// Ogden exponents `α_p` (`μ_p α_p > 0`).
-    pub alpha: Option<Vec<f64>>,
-    /// Ogden bulk modulus `κ > 0`.
-    pub bulk_modulus: Option<f64>,
+}
+
+/// Constitutive models, tagged by the case file's `model` key.
+#[derive(Clone, Debug, Deserialize, PartialEq)]
+#[serde(tag = "model", rename_all = "snake_case")]
+pub enum MaterialModel {
+    LinearElastic(ElasticConstants),
+    SaintVenantKirchhoff(ElasticConstants),
+    NeoHookean(ElasticConstants),
+    Ogden(OgdenConstants),
+}
+
+/// Constants of the models given by Young's modulus and Poisson's ratio.
+#[derive(Clone, Copy, Debug, Deserialize, PartialEq)]
+#[serde(deny_unknown_fields)]
+pub struct ElasticConstants {
+    /// Young's modulus `E > 0`.
+    pub youngs_modulus: f64,
+    /// Poisson's ratio `−1 < ν < 0.5`.
+    pub poisson_ratio: f64,
+}
+
+/// Constants of the Ogden model.
+#[derive(Clone, Debug, Deserialize, PartialEq)]
+#[serde(deny_unknown_fields)]
+pub struct OgdenConstants {
+    /// Shear moduli `μ_p` (initial shear modulus `Σ μ_p`).
+    pub mu: Vec<f64>,
+    /// Exponents `α_p` (`μ_p α_p > 0`).
+    pub alpha: Vec<f64>,
+    /// Bulk modulus `κ > 0`.
+    pub bulk_modulus: f64,
+}
+
+impl MaterialModel {
+    /// The model's name as messages print it (`NeoHookean`, `Ogden`, …).
+    pub fn name(&self) -> &'static str {
+        match self {
+            Self::LinearElastic(_) => "LinearElastic",
+            Self::SaintVenantKirchhoff(_) => "SaintVenantKirchhoff",
+            Self::NeoHookean(_) => "NeoHookean",
+            Self::Ogden(_) => "Ogden",
+        }
+    }
 }
 
 /// An amplitude: the name of one in `[amplitudes]`, or inline points.
@@ -129,46 +156,65 @@ pub struct BodyForceSpec {
     pub amplitude: Option<AmplitudeRef>,
 }
 
-/// Obstacle shapes.
-#[derive(Clone, Copy, Debug, Deserialize, PartialEq, Eq)]
-#[serde(rename_all = "snake_case")]
-pub enum ObstacleShape {
-    Plane,
-    Sphere,
-    Cylinder,
-    /// A triangulated surface read from an STL file.
-    Stl,
-    /// A triangulated surface: a surface set of a Gmsh mesh (quadrangles
-    /// split in two).
-    Gmsh,
-}
-
 /// `[[obstacle]]`: a rigid obstacle. Its outward normal points toward the
-/// body (for an STL surface: the triangles' right-hand normals).
+/// body (for an STL surface: the triangles' right-hand normals). The
+/// `shape` key chooses the geometry, and each shape rejects the keys of the
+/// others (a plane with a `radius` is an error naming the key).
 #[derive(Debug, Deserialize)]
-#[serde(deny_unknown_fields)]
 pub struct ObstacleSpec {
     /// Name that `[[contact]]` refers to.
     pub name: String,
-    /// `plane`, `sphere`, `cylinder`, `stl` or `gmsh`.
+    /// `shape = "plane"`, `"sphere"`, `"cylinder"`, `"stl"` or `"gmsh"`,
+    /// with that shape's keys.
+    #[serde(flatten)]
     pub shape: ObstacleShape,
-    /// Plane: a point on it; cylinder: a point on the axis.
-    pub point: Option<[f64; 3]>,
-    /// Plane: the outward normal (toward the body); need not be unit.
-    pub normal: Option<[f64; 3]>,
-    /// Sphere: centre.
-    pub center: Option<[f64; 3]>,
-    /// Sphere, cylinder: radius > 0.
-    pub radius: Option<f64>,
-    /// Cylinder: axis direction.
-    pub axis: Option<[f64; 3]>,
-    /// STL or Gmsh: the file, relative to the case file.
-    pub file: Option<String>,
-    /// Gmsh: the surface set (2D physical group) that is the obstacle.
-    pub surface: Option<String>,
     /// Rigid translation, scaled by `amplitude` (default none).
     pub motion: Option<[f64; 3]>,
     pub amplitude: Option<AmplitudeRef>,
+}
+
+/// Obstacle shapes, tagged by the case file's `shape` key.
+#[derive(Clone, Debug, Deserialize, PartialEq)]
+#[serde(tag = "shape", rename_all = "snake_case", deny_unknown_fields)]
+pub enum ObstacleShape {
+    Plane {
+        /// A point on the plane.
+        point: [f64; 3],
+        /// The outward normal (toward the body); need not be unit.
+        normal: [f64; 3],
+    },
+    Sphere {
+        center: [f64; 3],
+        /// Radius > 0.
+        radius: f64,
+    },
+    Cylinder {
+        /// A point on the axis.
+        point: [f64; 3],
+        /// Axis direction; need not be unit.
+        axis: [f64; 3],
+        /// Radius > 0.
+        radius: f64,
+    },
+    /// A triangulated surface read from an STL file, relative to the case
+    /// file.
+    Stl { file: String },
+    /// A triangulated surface: the surface set (2D physical group)
+    /// `surface` of a Gmsh mesh `file` (quadrangles split in two).
+    Gmsh { file: String, surface: String },
+}
+
+impl ObstacleShape {
+    /// The shape's name as the case file writes it.
+    pub fn name(&self) -> &'static str {
+        match self {
+            Self::Plane { .. } => "plane",
+            Self::Sphere { .. } => "sphere",
+            Self::Cylinder { .. } => "cylinder",
+            Self::Stl { .. } => "stl",
+            Self::Gmsh { .. } => "gmsh",
+        }
+    }
 }
 
 /// Enforcement methods of the normal contact constraint.

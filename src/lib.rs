@@ -29,6 +29,7 @@
 
 pub mod error;
 pub mod fem;
+pub mod input;
 pub mod material;
 pub mod mesh;
 pub mod output;

@@ -2,6 +2,7 @@
 //! Every check of the user's input lives here, with the key path in the
 //! message.
 
+pub mod limits;
 pub mod output;
 pub mod schema;
 mod tagged;
@@ -30,6 +31,39 @@ pub struct Case {
     pub mesh: Arc<Mesh>,
 }
 
+/// `{key} = {value} must be positive`, or, for an infinite or NaN value,
+/// that it is not a finite number (not that it is not positive).
+pub(crate) fn not_positive(key: &str, value: f64) -> String {
+    if value.is_finite() {
+        format!("{key} = {value} must be positive")
+    } else {
+        format!("{key} = {value} is not a finite number; give a positive value")
+    }
+}
+
+/// `name` is a file stem that stays in the output folder: not empty, not
+/// hidden, letters, digits, `-`, `_` and `.` only (no `/`, no `..`).
+pub(crate) fn is_file_stem(name: &str) -> bool {
+    !name.is_empty()
+        && !name.starts_with('.')
+        && name
+            .chars()
+            .all(|c| c.is_ascii_alphanumeric() || matches!(c, '-' | '_' | '.'))
+}
+
+/// The first name in `names` that an earlier one already has, with the
+/// indices of both.
+fn first_duplicate<'a>(names: impl Iterator<Item = &'a str>) -> Option<(usize, usize, &'a str)> {
+    let mut seen = std::collections::HashMap::new();
+    for (i, name) in names.enumerate() {
+        if let Some(&j) = seen.get(name) {
+            return Some((j, i, name));
+        }
+        seen.insert(name, i);
+    }
+    None
+}
+
 fn case_error(path: &Path, message: impl Into<String>) -> Error {
     Error::Case {
         path: path.to_path_buf(),
@@ -39,6 +73,19 @@ fn case_error(path: &Path, message: impl Into<String>) -> Error {
 
 /// Parse a case file's text. Errors name the line and the key path.
 pub fn parse(path: &Path, text: &str) -> Result<CaseFile> {
+    let line = |offset: usize| text[..offset.min(text.len())].matches('\n').count() + 1;
+    let spec = deserialize(path, text)?;
+    if let Some((offset, message)) = limits::check(text) {
+        return Err(case_error(
+            path,
+            format!("line {}: {message}", line(offset)),
+        ));
+    }
+    Ok(spec)
+}
+
+/// The schema read from the text, or an error naming the line and the key.
+fn deserialize(path: &Path, text: &str) -> Result<CaseFile> {
     let de = toml::Deserializer::new(text);
     serde_path_to_error::deserialize(de).map_err(|e| {
         let key = e.path().to_string();
@@ -63,7 +110,7 @@ pub fn parse(path: &Path, text: &str) -> Result<CaseFile> {
 
 /// Read the case file and its mesh.
 pub fn load(path: &Path) -> Result<Case> {
-    let text = std::fs::read_to_string(path).map_err(|e| Error::io("read case file", path, e))?;
+    let text = crate::input::read_text(path, "read case file", crate::input::MAX_CASE_FILE)?;
     let spec = parse(path, &text)?;
     let mesh_path = path
         .parent()
@@ -138,6 +185,12 @@ impl Case {
                 "{key}: an amplitude needs at least one [time, value] point"
             )));
         }
+        if let Some((k, p)) = points.iter().enumerate().find(|(_, p)| p.len() != 2) {
+            return Err(self.err(format!(
+                "{key}: point {k} has {} numbers; an amplitude point is [time, value]",
+                p.len()
+            )));
+        }
         for w in points.windows(2) {
             if !(w[1][0] > w[0][0]) {
                 return Err(self.err(format!(
@@ -197,10 +250,52 @@ impl Case {
         })
     }
 
+    /// The names that become file names or that others refer to: the output
+    /// name is a file stem, and steps, obstacles and contacts have distinct
+    /// names.
+    fn check_names(&self) -> Result<()> {
+        let spec = &self.spec;
+        if let Some(name) = &spec.output.name {
+            if !is_file_stem(name) {
+                return Err(self.err(format!(
+                    "output.name = '{}': it names the output files, so use letters, digits, '-', '_' \
+                     and '.', not first (no folder: set output.folder for that)",
+                    crate::input::shorten(name)
+                )));
+            }
+        }
+        let duplicate = |table: &str, names: Vec<&str>| match first_duplicate(names.into_iter()) {
+            Some((j, i, name)) => Err(self.err(format!(
+                "{table}[{i}] has the name '{}' of {table}[{j}]; give each a name of its own",
+                crate::input::shorten(name)
+            ))),
+            None => Ok(()),
+        };
+        duplicate("step", spec.step.iter().map(|s| s.name.as_str()).collect())?;
+        duplicate(
+            "obstacle",
+            spec.obstacle.iter().map(|o| o.name.as_str()).collect(),
+        )?;
+        duplicate(
+            "contact",
+            spec.contact
+                .iter()
+                .map(|c| c.name.as_deref().unwrap_or(&c.surface))
+                .collect(),
+        )
+    }
+
     /// Validate everything and build the problem.
     pub fn build_problem(&self) -> Result<Problem> {
         let spec = &self.spec;
         let mesh = &self.mesh;
+        self.check_names()?;
+        for name in spec.amplitudes.keys() {
+            self.amplitude(
+                &format!("amplitudes.{name}"),
+                &Some(AmplitudeRef::Named(name.clone())),
+            )?;
+        }
         // materials: exactly one per element
         let mut materials: Vec<Arc<dyn Material>> = Vec::new();
         let mut element_material: Vec<Option<usize>> = vec![None; mesh.elements.len()];
@@ -325,7 +420,10 @@ impl Case {
         for (i, s) in spec.step.iter().enumerate() {
             let key = format!("step[{i}]");
             let length = s.end_time - t0;
-            if !(length > 0.0) || !s.end_time.is_finite() {
+            if !s.end_time.is_finite() {
+                return Err(self.err(not_positive(&format!("{key}.end_time"), s.end_time)));
+            }
+            if !(length > 0.0) {
                 return Err(self.err(format!(
                     "{key}.end_time = {} must be greater than the previous step's end ({t0})",
                     s.end_time
@@ -340,8 +438,14 @@ impl Case {
                 ("min_increment", min),
             ] {
                 if !(v > 0.0) || !v.is_finite() {
-                    return Err(self.err(format!("{key}.{name} = {v} must be positive")));
+                    return Err(self.err(not_positive(&format!("{key}.{name}"), v)));
                 }
+            }
+            if max < min {
+                return Err(self.err(format!(
+                    "{key}.max_increment = {max} is smaller than min_increment = {min}; \
+                     the increment must be allowed between the two"
+                )));
             }
             if min > initial {
                 return Err(self.err(format!(
@@ -379,7 +483,7 @@ impl Case {
                 return Err(self.err(format!("solver.{name} = {v} must be in (0, 1)")));
             }
         }
-        if !(settings.growth_factor >= 1.0) {
+        if !(settings.growth_factor >= 1.0) || !settings.growth_factor.is_finite() {
             return Err(self.err(format!(
                 "solver.growth_factor = {} must be ≥ 1",
                 settings.growth_factor
@@ -546,6 +650,11 @@ impl Case {
                 if nodes.is_empty() || !(total > 0.0) {
                     return Err(self.err(format!("{key}{pass}: surface '{secondary}' has no area")));
                 }
+                if !total.is_finite() {
+                    return Err(self.err(format!(
+                        "{key}{pass}: the area of surface '{secondary}' is {total}; check the mesh's coordinates"
+                    )));
+                }
                 let h = (total / nodes.len() as f64).sqrt();
                 let (base, _) = automatic_parameters(youngs, h);
                 let auto = if matches!(c.method, ContactMethod::Uzawa) {
@@ -557,7 +666,7 @@ impl Case {
                     match v {
                         None => Ok(auto),
                         Some(x) if x > 0.0 && x.is_finite() => Ok(x),
-                        Some(x) => Err(self.err(format!("{key}.{name} = {x} must be positive"))),
+                        Some(x) => Err(self.err(not_positive(&format!("{key}.{name}"), x))),
                     }
                 };
                 let (p, k) = (
@@ -649,6 +758,12 @@ impl Case {
                 };
                 // a surface that starts inside the obstacle is a set-up error
                 let tolerance = c.initial_penetration_tolerance.unwrap_or(0.01 * h);
+                if !(tolerance >= 0.0 && tolerance.is_finite()) {
+                    return Err(self.err(format!(
+                        "{key}.initial_penetration_tolerance = {tolerance} must be zero or positive \
+                         (the largest initial penetration accepted, a length)"
+                    )));
+                }
                 let zero = vec![0.0; 3 * mesh.num_nodes()];
                 let gaps = interface.gaps(&mesh.nodes, 0.0, &zero, None);
                 for (j, &g) in gaps.iter().enumerate() {

@@ -55,22 +55,50 @@ impl Case {
     /// A history or profile name: a non-empty file stem, unique among all
     /// of them and not `convergence` (the convergence plot's name).
     fn output_file_stem(&self, key: &str, name: &str, taken: &mut Vec<String>) -> Result<()> {
-        let valid = !name.is_empty()
-            && name
-                .chars()
-                .all(|c| c.is_ascii_alphanumeric() || matches!(c, '-' | '_' | '.'))
-            && !name.starts_with('.');
-        if !valid {
+        if !super::is_file_stem(name) {
             return Err(self.err(format!(
-                "{key}.name = '{name}': use letters, digits, '-', '_' and '.' (it names the output files)"
+                "{key}.name = '{}': use letters, digits, '-', '_' and '.', not first (it names the output files)",
+                crate::input::shorten(name)
             )));
         }
         if name == "convergence" || taken.iter().any(|t| t == name) {
             return Err(self.err(format!(
-                "{key}.name = '{name}' is already used by another output file; choose another name"
+                "{key}.name = '{}' is already used by another output file; choose another name",
+                crate::input::shorten(name)
             )));
         }
         taken.push(name.to_string());
+        Ok(())
+    }
+
+    /// A profile writes `<name>_<step>.csv` for every step: the step names
+    /// must be file stems, and no such file may be a history's `<name>.csv`.
+    fn profile_files_collide(&self, problem: &Problem, out: &OutputRequests) -> Result<()> {
+        let Some(profile) = out.profiles.first() else {
+            return Ok(());
+        };
+        for (i, step) in problem.steps.iter().enumerate() {
+            if !super::is_file_stem(&step.name) {
+                return Err(self.err(format!(
+                    "step[{i}].name = '{}': with [[output.profile]] ('{}') the step names name files \
+                     (<profile>_<step>.csv); use letters, digits, '-', '_' and '.'",
+                    crate::input::shorten(&step.name),
+                    profile.name
+                )));
+            }
+        }
+        for p in &out.profiles {
+            for step in &problem.steps {
+                let file = format!("{}_{}", p.name, step.name);
+                if out.histories.iter().any(|h| h.name == file) {
+                    return Err(self.err(format!(
+                        "output.history '{file}' writes {file}.csv, which profile '{}' also writes for step '{}'; \
+                         rename the history or the profile",
+                        p.name, step.name
+                    )));
+                }
+            }
+        }
         Ok(())
     }
 
@@ -204,7 +232,7 @@ impl Case {
                 )));
             }
             if !(p.width > 0.0) || !p.width.is_finite() {
-                return Err(self.err(format!("{key}.width = {} must be positive", p.width)));
+                return Err(self.err(super::not_positive(&format!("{key}.width"), p.width)));
             }
             let contact = &problem.contacts[interface];
             let positions: Vec<[f64; 3]> = contact.nodes.iter().map(|&n| mesh.nodes[n]).collect();
@@ -236,6 +264,7 @@ impl Case {
                 steps: Vec::new(),
             });
         }
+        self.profile_files_collide(problem, &out)?;
         Ok(out)
     }
 }

@@ -29,9 +29,10 @@ pub struct CaseFile {
     #[serde(default)]
     pub contact: Vec<ContactSpec>,
     /// `[amplitudes]`: named piecewise-linear functions of pseudo-time,
-    /// `name = [[t0, v0], [t1, v1], …]`.
+    /// `name = [[t0, v0], [t1, v1], …]` (each point two numbers, checked
+    /// with the key path at validation).
     #[serde(default)]
-    pub amplitudes: std::collections::BTreeMap<String, Vec<[f64; 2]>>,
+    pub amplitudes: std::collections::BTreeMap<String, Vec<Vec<f64>>>,
     /// `[[step]]`: load steps in sequence.
     pub step: Vec<StepSpec>,
     /// `[solver]`: Newton and stepping controls.
@@ -113,7 +114,9 @@ impl MaterialModel {
 #[serde(untagged)]
 pub enum AmplitudeRef {
     Named(String),
-    Points(Vec<[f64; 2]>),
+    /// `[[t0, v0], [t1, v1], …]` (each point two numbers, checked at
+    /// validation: serde would ignore a third).
+    Points(Vec<Vec<f64>>),
 }
 
 /// `[[displacement]]`: any of `x`, `y`, `z` given are prescribed, the others

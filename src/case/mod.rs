@@ -112,6 +112,12 @@ fn deserialize(path: &Path, text: &str) -> Result<CaseFile> {
 pub fn load(path: &Path) -> Result<Case> {
     let text = crate::input::read_text(path, "read case file", crate::input::MAX_CASE_FILE)?;
     let spec = parse(path, &text)?;
+    if spec.mesh.file.trim().is_empty() {
+        return Err(case_error(
+            path,
+            "mesh.file is empty: give the path of the .msh file, relative to the case file",
+        ));
+    }
     let mesh_path = path
         .parent()
         .unwrap_or(Path::new("."))

@@ -2,7 +2,21 @@
 //! misspelled key is an error that names its path. Units are the user's,
 //! consistent throughout (e.g. mm, N, MPa).
 
-use serde::Deserialize;
+use serde::de::Error as _;
+use serde::{Deserialize, Deserializer};
+
+/// `[x, y, z]`: exactly three numbers (serde reads the first three of a
+/// longer array and ignores the rest).
+fn three<'de, D: Deserializer<'de>>(d: D) -> Result<[f64; 3], D::Error> {
+    let v = Vec::<f64>::deserialize(d)?;
+    <[f64; 3]>::try_from(v.as_slice())
+        .map_err(|_| D::Error::invalid_length(v.len(), &"an array of 3 numbers [x, y, z]"))
+}
+
+/// An optional [`three`].
+fn option_three<'de, D: Deserializer<'de>>(d: D) -> Result<Option<[f64; 3]>, D::Error> {
+    three(d).map(Some)
+}
 
 /// A whole case file.
 #[derive(Debug, Deserialize)]
@@ -155,6 +169,7 @@ pub struct BodyForceSpec {
     /// Volume region; all elements if omitted.
     pub region: Option<String>,
     /// Force per unit reference volume (e.g. `ρ g`).
+    #[serde(deserialize_with = "three")]
     pub value: [f64; 3],
     pub amplitude: Option<AmplitudeRef>,
 }
@@ -172,6 +187,7 @@ pub struct ObstacleSpec {
     #[serde(flatten)]
     pub shape: ObstacleShape,
     /// Rigid translation, scaled by `amplitude` (default none).
+    #[serde(default, deserialize_with = "option_three")]
     pub motion: Option<[f64; 3]>,
     pub amplitude: Option<AmplitudeRef>,
 }
@@ -182,19 +198,24 @@ pub struct ObstacleSpec {
 pub enum ObstacleShape {
     Plane {
         /// A point on the plane.
+        #[serde(deserialize_with = "three")]
         point: [f64; 3],
         /// The outward normal (toward the body); need not be unit.
+        #[serde(deserialize_with = "three")]
         normal: [f64; 3],
     },
     Sphere {
+        #[serde(deserialize_with = "three")]
         center: [f64; 3],
         /// Radius > 0.
         radius: f64,
     },
     Cylinder {
         /// A point on the axis.
+        #[serde(deserialize_with = "three")]
         point: [f64; 3],
         /// Axis direction; need not be unit.
+        #[serde(deserialize_with = "three")]
         axis: [f64; 3],
         /// Radius > 0.
         radius: f64,
@@ -374,6 +395,7 @@ pub struct HistorySpec {
     pub name: String,
     /// Reference-configuration point; the nearest node is used (every
     /// quantity but `reaction_force`).
+    #[serde(default, deserialize_with = "option_three")]
     pub point: Option<[f64; 3]>,
     /// `displacement_x`, `displacement_y`, `displacement_z`, `gap`,
     /// `contact_pressure` or `reaction_force`.
@@ -396,7 +418,9 @@ pub struct ProfileSpec {
     /// A `[[contact]]` name.
     pub interface: String,
     /// Segment ends in the reference configuration (distinct).
+    #[serde(deserialize_with = "three")]
     pub from: [f64; 3],
+    #[serde(deserialize_with = "three")]
     pub to: [f64; 3],
     /// Half-width of the band around the segment, > 0 (length unit).
     pub width: f64,

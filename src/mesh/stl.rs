@@ -53,6 +53,13 @@ fn diagnose(data: &[u8]) -> std::result::Result<(), String> {
     let triangles = u32::from_le_bytes(n) as u64;
     let expected = HEADER as u64 + RECORD * triangles;
     let actual = data.len() as u64;
+    if expected > MAX_STL_FILE {
+        return Err(format!(
+            "not an STL file: it does not start with 'solid ' (ASCII), and as binary STL its \
+             header announces {triangles} triangles ({expected} bytes, more than the {MAX_STL_FILE} \
+             bytes read at most) while the file has {actual} bytes"
+        ));
+    }
     if actual < expected {
         return Err(format!(
             "truncated binary STL: its header announces {triangles} triangles \
@@ -86,6 +93,9 @@ mod tests {
     fn each_fault_has_its_message() {
         assert!(diagnose(b"").unwrap_err().contains("empty"));
         assert!(diagnose(b"garbage").unwrap_err().contains("shorter than"));
+        assert!(diagnose(&binary(u32::MAX, 1))
+            .unwrap_err()
+            .contains("not an STL file"));
         assert!(diagnose(&binary(2, 1)).unwrap_err().contains("truncated"));
         assert!(diagnose(&binary(1, 2))
             .unwrap_err()

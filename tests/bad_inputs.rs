@@ -870,9 +870,9 @@ fn steps_amplitudes_and_solver(c: &mut Catalogue) {
         &["step[1] has the name 'load' of step[0]"],
     );
     c.append(
-        "a step name that is a path, with a profile",
-        "[[step]]\nname = \"../up\"\nend_time = 2.0",
-        &["step[1].name = '../up'", "<profile>_<step>.csv"],
+        "two step names giving one profile file",
+        "[[step]]\nname = \"lo/ad\"\nend_time = 2.0\n\n[[step]]\nname = \"lo ad\"\nend_time = 3.0",
+        &["step[2] ('lo ad') and step[1] ('lo/ad')", "line_lo_ad.csv"],
     );
     // amplitudes
     let ramp = "ramp = [[0.0, 0.0], [1.0, 1.0]]";

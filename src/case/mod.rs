@@ -222,6 +222,16 @@ impl Case {
         })
     }
 
+    /// The surface set `name` as a primary surface (its triangles).
+    fn primary_surface(&self, key: &str, name: &str) -> Result<PrimarySurface> {
+        PrimarySurface::from_mesh(&self.mesh, name).ok_or_else(|| Error::UnknownGroup {
+            key: key.to_string(),
+            kind: "surface set (2D physical group)",
+            name: name.to_string(),
+            available: self.mesh.surface_names(),
+        })
+    }
+
     fn region(&self, key: &str, name: &str) -> Result<&crate::mesh::Region> {
         self.mesh.region(name).ok_or_else(|| Error::UnknownGroup {
             key: key.to_string(),
@@ -591,7 +601,7 @@ impl Case {
                             "{key}.primary = '{name}' is the secondary surface itself; name the surface of the other body"
                         )));
                     }
-                    Target::Surface(PrimarySurface::from_mesh(mesh, name).expect("checked above"))
+                    Target::Surface(self.primary_surface(&format!("{key}.primary"), name)?)
                 }
                 _ => {
                     return Err(self.err(format!(
@@ -642,9 +652,7 @@ impl Case {
                 passes.push((
                     reverse,
                     primary.clone(),
-                    Target::Surface(
-                        PrimarySurface::from_mesh(mesh, &c.surface).expect("checked above"),
-                    ),
+                    Target::Surface(self.primary_surface(&format!("{key}.surface"), &c.surface)?),
                     " (two_pass: the reverse pass)",
                 ));
             }

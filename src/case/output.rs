@@ -5,7 +5,7 @@
 use super::schema::HistoryQuantitySpec;
 use super::Case;
 use crate::output::history::{History, HistoryQuantity};
-use crate::output::profile::{nodes_in_band, Profile, ProfileNode};
+use crate::output::profile::{file_part, nodes_in_band, Profile, ProfileNode};
 use crate::problem::Problem;
 use crate::Result;
 
@@ -71,25 +71,30 @@ impl Case {
         Ok(())
     }
 
-    /// A profile writes `<name>_<step>.csv` for every step: the step names
-    /// must be file stems, and no such file may be a history's `<name>.csv`.
+    /// A profile writes `<name>_<step>.csv` for every step (the step name
+    /// with characters other than letters, digits, `-` and `_` made `_`):
+    /// no two steps may give the same file, and no such file may be a
+    /// history's `<name>.csv`.
     fn profile_files_collide(&self, problem: &Problem, out: &OutputRequests) -> Result<()> {
         let Some(profile) = out.profiles.first() else {
             return Ok(());
         };
-        for (i, step) in problem.steps.iter().enumerate() {
-            if !super::is_file_stem(&step.name) {
+        let parts: Vec<String> = problem.steps.iter().map(|s| file_part(&s.name)).collect();
+        for (i, part) in parts.iter().enumerate() {
+            if let Some(j) = parts[..i].iter().position(|p| p == part) {
                 return Err(self.err(format!(
-                    "step[{i}].name = '{}': with [[output.profile]] ('{}') the step names name files \
-                     (<profile>_<step>.csv); use letters, digits, '-', '_' and '.'",
-                    crate::input::shorten(&step.name),
+                    "step[{i}] ('{}') and step[{j}] ('{}') give the same file name {}_{part}.csv of profile '{}'; \
+                     rename one of the steps",
+                    crate::input::shorten(&problem.steps[i].name),
+                    crate::input::shorten(&problem.steps[j].name),
+                    profile.name,
                     profile.name
                 )));
             }
         }
         for p in &out.profiles {
-            for step in &problem.steps {
-                let file = format!("{}_{}", p.name, step.name);
+            for (step, part) in problem.steps.iter().zip(&parts) {
+                let file = format!("{}_{part}", p.name);
                 if out.histories.iter().any(|h| h.name == file) {
                     return Err(self.err(format!(
                         "output.history '{file}' writes {file}.csv, which profile '{}' also writes for step '{}'; \

@@ -287,7 +287,11 @@ pub fn read_point_field(path: &Path, name: &str) -> crate::Result<Vec<f64>> {
     }
     Ok(bytes[8..]
         .chunks_exact(8)
-        .map(|c| f64::from_le_bytes(c.try_into().expect("8 bytes")))
+        .map(|c| {
+            let mut b = [0u8; 8];
+            b.copy_from_slice(c); // chunks_exact(8): 8 bytes
+            f64::from_le_bytes(b)
+        })
         .collect())
 }
 

@@ -29,7 +29,8 @@ enum Command {
         /// `results` beside the case file).
         #[arg(long)]
         output: Option<PathBuf>,
-        /// Worker threads for assembly and factorisation (default: all cores).
+        /// Worker threads for assembly and factorisation (default: all cores;
+        /// at most 4 × the cores, and at most 1024).
         #[arg(long, value_parser = clap::value_parser!(u32).range(1..))]
         threads: Option<u32>,
         /// No progress bar and no log lines.
@@ -51,7 +52,18 @@ fn main() -> ExitCode {
             output,
             threads,
             quiet,
-        } => run(case, output, threads, quiet),
+        } => {
+            let limit = max_threads();
+            if let Some(t) = threads.filter(|&t| t as usize > limit) {
+                eprintln!(
+                    "error: --threads {t}: at most {limit} (4 × the {} cores available, and at most \
+                     {MAX_THREADS}); leave --threads out to use every core",
+                    cores()
+                );
+                return ExitCode::from(2);
+            }
+            run(case, output, threads, quiet)
+        }
         Command::Check { case } => check(case),
     };
     match result {
@@ -61,6 +73,21 @@ fn main() -> ExitCode {
             ExitCode::from(1)
         }
     }
+}
+
+/// The most worker threads `--threads` accepts on any machine: more only
+/// adds scheduling overhead (and 100 000 threads load the machine for
+/// minutes before anything is solved).
+const MAX_THREADS: usize = 1024;
+
+/// The cores available to this process.
+fn cores() -> usize {
+    std::thread::available_parallelism().map_or(1, |n| n.get())
+}
+
+/// The largest `--threads` accepted: 4 × the cores, at most [`MAX_THREADS`].
+fn max_threads() -> usize {
+    (4 * cores()).min(MAX_THREADS)
 }
 
 fn run(

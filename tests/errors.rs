@@ -506,3 +506,54 @@ fn history_and_profile_input_errors() {
         &["output.profile[0].name = 'lift' is already used"],
     );
 }
+
+#[test]
+fn keys_of_another_shape_or_model_are_errors() {
+    let plane = "shape = \"plane\"\npoint = [0.0, 0.0, 0.0]\nnormal = [0.0, 0.0, 1.0]";
+    // a plane with a radius: the line of the key, the key path and the fix
+    let case = contact_case(&format!("{plane}\nradius = 1.0"), "zmin");
+    let line = case.lines().position(|l| l.starts_with("radius")).unwrap() + 1;
+    expect_failure(
+        &case,
+        &[
+            &format!("line {line}:"),
+            "obstacle[0].radius does not apply to shape plane",
+            "remove it",
+        ],
+    );
+    // a sphere without its radius
+    expect_failure(
+        &contact_case("shape = \"sphere\"\ncenter = [0.5, 0.5, -2.0]", "zmin"),
+        &["obstacle[0].radius is required for shape sphere"],
+    );
+    // a neo-Hookean material with an Ogden exponent
+    let case = CASE.replace("poisson_ratio = 0.3", "poisson_ratio = 0.3\nalpha = [2.0]");
+    let line = case.lines().position(|l| l.starts_with("alpha")).unwrap() + 1;
+    expect_failure(
+        &case,
+        &[
+            &format!("line {line}:"),
+            "material[0].alpha does not apply to model NeoHookean",
+        ],
+    );
+    // a wrong type inside a tagged table still names its key and line
+    let case = CASE.replace("poisson_ratio = 0.3", "poisson_ratio = \"0.3\"");
+    let line = case.lines().position(|l| l.starts_with("poisson")).unwrap() + 1;
+    expect_failure(
+        &case,
+        &[
+            &format!("line {line}:"),
+            "material[0].poisson_ratio",
+            "expected f64",
+        ],
+    );
+    // an unknown model names the model key
+    expect_failure(
+        &CASE.replace("\"neo_hookean\"", "\"mooney_rivlin\""),
+        &[
+            "material[0].model",
+            "unknown variant `mooney_rivlin`",
+            "ogden",
+        ],
+    );
+}

@@ -60,7 +60,9 @@ impl Model {
                     failure,
                 })
             })
-            .collect::<Result<Vec<_>, _>>()?;
+            .collect::<Vec<_>>()
+            .into_iter()
+            .collect::<Result<Vec<_>, _>>()?; // in order: the first failing element, see `assemble_internal`
         let pattern = SparsityPattern::from_elements(
             mesh.num_nodes(),
             mesh.elements.iter().map(|e| e.nodes.as_slice()),
@@ -131,6 +133,11 @@ impl Model {
                         failure,
                     })
                 })
+                .collect::<Vec<_>>()
+                .into_iter()
+                // in order: a parallel collect into a `Result` returns the
+                // failure some thread met first, which changes from run to
+                // run; the first element (in mesh order) that fails is named
                 .collect::<Result<Vec<_>, _>>()?;
             for (e, out) in (start..end).zip(outputs) {
                 let nodes = &self.mesh.elements[e].nodes;

@@ -109,10 +109,11 @@ impl SparsityPattern {
             .flat_map(|j| (cp[j]..cp[j + 1]).map(move |k| (ri[k], j)))
             .map(|(i, j)| {
                 let column = &ri[cp[i]..cp[i + 1]];
-                cp[i]
-                    + column
-                        .binary_search(&j)
-                        .expect("the pattern is structurally symmetric")
+                #[allow(clippy::expect_used)] // element blocks are square: (i, j) ⇒ (j, i)
+                let k = column
+                    .binary_search(&j)
+                    .expect("the pattern is structurally symmetric");
+                cp[i] + k
             })
             .collect();
         SparsityPattern {
@@ -255,8 +256,11 @@ impl SparsityPattern {
         if d >= first_multiplier {
             return self.multiplier_diagonal(d - first_multiplier);
         }
-        self.block_entry(d / 3, d % 3, d / 3, d % 3)
-            .expect("every node is its own neighbour")
+        #[allow(clippy::expect_used)] // the pattern is built with every node its own neighbour
+        let entry = self
+            .block_entry(d / 3, d % 3, d / 3, d % 3)
+            .expect("every node is its own neighbour");
+        entry
     }
 }
 

@@ -2,8 +2,10 @@
 //! Every check of the user's input lives here, with the key path in the
 //! message.
 
+pub mod limits;
 pub mod output;
 pub mod schema;
+mod tagged;
 
 use crate::assembly::Model;
 use crate::contact::friction::Coulomb;
@@ -29,6 +31,39 @@ pub struct Case {
     pub mesh: Arc<Mesh>,
 }
 
+/// `{key} = {value} must be positive`, or, for an infinite or NaN value,
+/// that it is not a finite number (not that it is not positive).
+pub(crate) fn not_positive(key: &str, value: f64) -> String {
+    if value.is_finite() {
+        format!("{key} = {value} must be positive")
+    } else {
+        format!("{key} = {value} is not a finite number; give a positive value")
+    }
+}
+
+/// `name` is a file stem that stays in the output folder: not empty, not
+/// hidden, letters, digits, `-`, `_` and `.` only (no `/`, no `..`).
+pub(crate) fn is_file_stem(name: &str) -> bool {
+    !name.is_empty()
+        && !name.starts_with('.')
+        && name
+            .chars()
+            .all(|c| c.is_ascii_alphanumeric() || matches!(c, '-' | '_' | '.'))
+}
+
+/// The first name in `names` that an earlier one already has, with the
+/// indices of both.
+fn first_duplicate<'a>(names: impl Iterator<Item = &'a str>) -> Option<(usize, usize, &'a str)> {
+    let mut seen = std::collections::HashMap::new();
+    for (i, name) in names.enumerate() {
+        if let Some(&j) = seen.get(name) {
+            return Some((j, i, name));
+        }
+        seen.insert(name, i);
+    }
+    None
+}
+
 fn case_error(path: &Path, message: impl Into<String>) -> Error {
     Error::Case {
         path: path.to_path_buf(),
@@ -38,17 +73,31 @@ fn case_error(path: &Path, message: impl Into<String>) -> Error {
 
 /// Parse a case file's text. Errors name the line and the key path.
 pub fn parse(path: &Path, text: &str) -> Result<CaseFile> {
+    let line = |offset: usize| text[..offset.min(text.len())].matches('\n').count() + 1;
+    let spec = deserialize(path, text)?;
+    if let Some((offset, message)) = limits::check(text) {
+        return Err(case_error(
+            path,
+            format!("line {}: {message}", line(offset)),
+        ));
+    }
+    Ok(spec)
+}
+
+/// The schema read from the text, or an error naming the line and the key.
+fn deserialize(path: &Path, text: &str) -> Result<CaseFile> {
     let de = toml::Deserializer::new(text);
     serde_path_to_error::deserialize(de).map_err(|e| {
         let key = e.path().to_string();
         let inner = e.into_inner();
         let msg = inner.message().to_string();
+        let line = |offset: usize| text[..offset.min(text.len())].matches('\n').count() + 1;
+        if let Some((offset, message)) = tagged::refine(text, &key, &msg) {
+            return case_error(path, format!("line {}: {message}", line(offset)));
+        }
         let location = inner
             .span()
-            .map(|s| {
-                let line = text[..s.start.min(text.len())].matches('\n').count() + 1;
-                format!("line {line}: ")
-            })
+            .map(|s| format!("line {}: ", line(s.start)))
             .unwrap_or_default();
         let key = if key == "." {
             String::new()
@@ -61,7 +110,7 @@ pub fn parse(path: &Path, text: &str) -> Result<CaseFile> {
 
 /// Read the case file and its mesh.
 pub fn load(path: &Path) -> Result<Case> {
-    let text = std::fs::read_to_string(path).map_err(|e| Error::io("read case file", path, e))?;
+    let text = crate::input::read_text(path, "read case file", crate::input::MAX_CASE_FILE)?;
     from_text(path, &text)
 }
 
@@ -75,6 +124,12 @@ pub fn from_toml(text: &str, base_dir: &Path) -> Result<Case> {
 /// messages; its folder resolves the mesh path).
 fn from_text(path: &Path, text: &str) -> Result<Case> {
     let spec = parse(path, text)?;
+    if spec.mesh.file.trim().is_empty() {
+        return Err(case_error(
+            path,
+            "mesh.file is empty: give the path of the .msh file, relative to the case file",
+        ));
+    }
     let mesh_path = path
         .parent()
         .unwrap_or(Path::new("."))
@@ -189,6 +244,12 @@ impl Case {
                 "{key}: an amplitude needs at least one [time, value] point"
             )));
         }
+        if let Some((k, p)) = points.iter().enumerate().find(|(_, p)| p.len() != 2) {
+            return Err(self.err(format!(
+                "{key}: point {k} has {} numbers; an amplitude point is [time, value]",
+                p.len()
+            )));
+        }
         for w in points.windows(2) {
             if !(w[1][0] > w[0][0]) {
                 return Err(self.err(format!(
@@ -214,6 +275,16 @@ impl Case {
         })
     }
 
+    /// The surface set `name` as a primary surface (its triangles).
+    fn primary_surface(&self, key: &str, name: &str) -> Result<PrimarySurface> {
+        PrimarySurface::from_mesh(&self.mesh, name).ok_or_else(|| Error::UnknownGroup {
+            key: key.to_string(),
+            kind: "surface set (2D physical group)",
+            name: name.to_string(),
+            available: self.mesh.surface_names(),
+        })
+    }
+
     fn region(&self, key: &str, name: &str) -> Result<&crate::mesh::Region> {
         self.mesh.region(name).ok_or_else(|| Error::UnknownGroup {
             key: key.to_string(),
@@ -224,64 +295,76 @@ impl Case {
     }
 
     fn material(&self, i: usize) -> Result<Arc<dyn Material>> {
-        let m = &self.spec.material[i];
         let key = format!("material[{i}]");
-        let need = |v: Option<f64>, name: &str| {
-            v.ok_or_else(|| self.err(format!("{key}.{name} is required for model {:?}", m.model)))
-        };
-        let forbid = |present: bool, name: &str| {
-            if present {
-                Err(self.err(format!(
-                    "{key}.{name} does not apply to model {:?}; remove it",
-                    m.model
-                )))
-            } else {
-                Ok(())
-            }
-        };
-        Ok(match m.model {
-            MaterialModel::Ogden => {
-                forbid(m.youngs_modulus.is_some(), "youngs_modulus")?;
-                forbid(m.poisson_ratio.is_some(), "poisson_ratio")?;
-                let mu =
-                    m.mu.clone()
-                        .ok_or_else(|| self.err(format!("{key}.mu is required for model Ogden")))?;
-                let alpha = m
-                    .alpha
-                    .clone()
-                    .ok_or_else(|| self.err(format!("{key}.alpha is required for model Ogden")))?;
-                Arc::new(material::Ogden::new(
-                    mu,
-                    alpha,
-                    need(m.bulk_modulus, "bulk_modulus")?,
-                    &key,
-                )?)
-            }
-            model => {
-                forbid(m.mu.is_some(), "mu")?;
-                forbid(m.alpha.is_some(), "alpha")?;
-                forbid(m.bulk_modulus.is_some(), "bulk_modulus")?;
-                let (e, nu) = (
-                    need(m.youngs_modulus, "youngs_modulus")?,
-                    need(m.poisson_ratio, "poisson_ratio")?,
-                );
-                match model {
-                    MaterialModel::LinearElastic => {
-                        Arc::new(material::LinearElastic::new(e, nu, &key)?)
-                    }
-                    MaterialModel::SaintVenantKirchhoff => {
-                        Arc::new(material::SaintVenantKirchhoff::new(e, nu, &key)?)
-                    }
-                    _ => Arc::new(material::NeoHookean::new(e, nu, &key)?),
-                }
-            }
+        Ok(match &self.spec.material[i].model {
+            MaterialModel::Ogden(c) => Arc::new(material::Ogden::new(
+                c.mu.clone(),
+                c.alpha.clone(),
+                c.bulk_modulus,
+                &key,
+            )?),
+            MaterialModel::LinearElastic(c) => Arc::new(material::LinearElastic::new(
+                c.youngs_modulus,
+                c.poisson_ratio,
+                &key,
+            )?),
+            MaterialModel::SaintVenantKirchhoff(c) => Arc::new(
+                material::SaintVenantKirchhoff::new(c.youngs_modulus, c.poisson_ratio, &key)?,
+            ),
+            MaterialModel::NeoHookean(c) => Arc::new(material::NeoHookean::new(
+                c.youngs_modulus,
+                c.poisson_ratio,
+                &key,
+            )?),
         })
+    }
+
+    /// The names that become file names or that others refer to: the output
+    /// name is a file stem, and steps, obstacles and contacts have distinct
+    /// names.
+    fn check_names(&self) -> Result<()> {
+        let spec = &self.spec;
+        if let Some(name) = &spec.output.name {
+            if !is_file_stem(name) {
+                return Err(self.err(format!(
+                    "output.name = '{}': it names the output files, so use letters, digits, '-', '_' \
+                     and '.', not first (no folder: set output.folder for that)",
+                    crate::input::shorten(name)
+                )));
+            }
+        }
+        let duplicate = |table: &str, names: Vec<&str>| match first_duplicate(names.into_iter()) {
+            Some((j, i, name)) => Err(self.err(format!(
+                "{table}[{i}] has the name '{}' of {table}[{j}]; give each a name of its own",
+                crate::input::shorten(name)
+            ))),
+            None => Ok(()),
+        };
+        duplicate("step", spec.step.iter().map(|s| s.name.as_str()).collect())?;
+        duplicate(
+            "obstacle",
+            spec.obstacle.iter().map(|o| o.name.as_str()).collect(),
+        )?;
+        duplicate(
+            "contact",
+            spec.contact
+                .iter()
+                .map(|c| c.name.as_deref().unwrap_or(&c.surface))
+                .collect(),
+        )
     }
 
     /// Validate everything and build the problem.
     pub fn build_problem(&self) -> Result<Problem> {
         let spec = &self.spec;
         let mesh = &self.mesh;
+        self.check_names()?;
+        for name in spec.amplitudes.keys() {
+            self.amplitude(
+                &format!("amplitudes.{name}"),
+                &Some(AmplitudeRef::Named(name.clone())),
+            )?;
+        }
         // materials: exactly one per element
         let mut materials: Vec<Arc<dyn Material>> = Vec::new();
         let mut element_material: Vec<Option<usize>> = vec![None; mesh.elements.len()];
@@ -406,7 +489,10 @@ impl Case {
         for (i, s) in spec.step.iter().enumerate() {
             let key = format!("step[{i}]");
             let length = s.end_time - t0;
-            if !(length > 0.0) || !s.end_time.is_finite() {
+            if !s.end_time.is_finite() {
+                return Err(self.err(not_positive(&format!("{key}.end_time"), s.end_time)));
+            }
+            if !(length > 0.0) {
                 return Err(self.err(format!(
                     "{key}.end_time = {} must be greater than the previous step's end ({t0})",
                     s.end_time
@@ -421,8 +507,14 @@ impl Case {
                 ("min_increment", min),
             ] {
                 if !(v > 0.0) || !v.is_finite() {
-                    return Err(self.err(format!("{key}.{name} = {v} must be positive")));
+                    return Err(self.err(not_positive(&format!("{key}.{name}"), v)));
                 }
+            }
+            if max < min {
+                return Err(self.err(format!(
+                    "{key}.max_increment = {max} is smaller than min_increment = {min}; \
+                     the increment must be allowed between the two"
+                )));
             }
             if min > initial {
                 return Err(self.err(format!(
@@ -460,7 +552,7 @@ impl Case {
                 return Err(self.err(format!("solver.{name} = {v} must be in (0, 1)")));
             }
         }
-        if !(settings.growth_factor >= 1.0) {
+        if !(settings.growth_factor >= 1.0) || !settings.growth_factor.is_finite() {
             return Err(self.err(format!(
                 "solver.growth_factor = {} must be ≥ 1",
                 settings.growth_factor
@@ -489,48 +581,24 @@ impl Case {
     /// The `[[obstacle]]` at index `i`, validated.
     fn obstacle(&self, i: usize) -> Result<RigidObstacle> {
         let o = &self.spec.obstacle[i];
-        let key = format!("obstacle[{i}]");
-        let vector = |v: Option<[f64; 3]>, name: &str| {
-            v.map(Vector3::from).ok_or_else(|| {
-                self.err(format!("{key}.{name} is required for shape {:?}", o.shape))
-            })
-        };
-        let radius = || {
-            o.radius.ok_or_else(|| {
-                self.err(format!("{key}.radius is required for shape {:?}", o.shape))
-            })
-        };
-        let with_key = |e: Error| self.err(format!("{key} ('{}'): {e}", o.name));
-        Ok(match o.shape {
-            ObstacleShape::Plane => {
-                RigidObstacle::plane(vector(o.point, "point")?, vector(o.normal, "normal")?)
-                    .map_err(with_key)?
+        let with_key = |e: Error| self.err(format!("obstacle[{i}] ('{}'): {e}", o.name));
+        let v = Vector3::from;
+        Ok(match &o.shape {
+            ObstacleShape::Plane { point, normal } => {
+                RigidObstacle::plane(v(*point), v(*normal)).map_err(with_key)?
             }
-            ObstacleShape::Sphere => {
-                RigidObstacle::sphere(vector(o.center, "center")?, radius()?).map_err(with_key)?
+            ObstacleShape::Sphere { center, radius } => {
+                RigidObstacle::sphere(v(*center), *radius).map_err(with_key)?
             }
-            ObstacleShape::Cylinder => RigidObstacle::cylinder(
-                vector(o.point, "point")?,
-                vector(o.axis, "axis")?,
-                radius()?,
-            )
-            .map_err(with_key)?,
-            ObstacleShape::Stl => {
-                let file = o
-                    .file
-                    .as_ref()
-                    .ok_or_else(|| self.err(format!("{key}.file is required for shape Stl")))?;
+            ObstacleShape::Cylinder {
+                point,
+                axis,
+                radius,
+            } => RigidObstacle::cylinder(v(*point), v(*axis), *radius).map_err(with_key)?,
+            ObstacleShape::Stl { file } => {
                 RigidObstacle::Triangulated(TriangulatedSurface::from_stl(&self.dir().join(file))?)
             }
-            ObstacleShape::Gmsh => {
-                let file = o
-                    .file
-                    .as_ref()
-                    .ok_or_else(|| self.err(format!("{key}.file is required for shape Gmsh")))?;
-                let surface = o
-                    .surface
-                    .as_ref()
-                    .ok_or_else(|| self.err(format!("{key}.surface is required for shape Gmsh")))?;
+            ObstacleShape::Gmsh { file, surface } => {
                 let mesh = crate::mesh::gmsh::read_surface_msh(&self.dir().join(file))?;
                 RigidObstacle::Triangulated(TriangulatedSurface::from_surface_facets(
                     &mesh, surface,
@@ -586,7 +654,7 @@ impl Case {
                             "{key}.primary = '{name}' is the secondary surface itself; name the surface of the other body"
                         )));
                     }
-                    Target::Surface(PrimarySurface::from_mesh(mesh, name).expect("checked above"))
+                    Target::Surface(self.primary_surface(&format!("{key}.primary"), name)?)
                 }
                 _ => {
                     return Err(self.err(format!(
@@ -637,9 +705,7 @@ impl Case {
                 passes.push((
                     reverse,
                     primary.clone(),
-                    Target::Surface(
-                        PrimarySurface::from_mesh(mesh, &c.surface).expect("checked above"),
-                    ),
+                    Target::Surface(self.primary_surface(&format!("{key}.surface"), &c.surface)?),
                     " (two_pass: the reverse pass)",
                 ));
             }
@@ -650,6 +716,11 @@ impl Case {
                 let total: f64 = areas.iter().sum();
                 if nodes.is_empty() || !(total > 0.0) {
                     return Err(self.err(format!("{key}{pass}: surface '{secondary}' has no area")));
+                }
+                if !total.is_finite() {
+                    return Err(self.err(format!(
+                        "{key}{pass}: the area of surface '{secondary}' is {total}; check the mesh's coordinates"
+                    )));
                 }
                 let h = (total / nodes.len() as f64).sqrt();
                 let (base, _) = automatic_parameters(youngs, h);
@@ -662,7 +733,7 @@ impl Case {
                     match v {
                         None => Ok(auto),
                         Some(x) if x > 0.0 && x.is_finite() => Ok(x),
-                        Some(x) => Err(self.err(format!("{key}.{name} = {x} must be positive"))),
+                        Some(x) => Err(self.err(not_positive(&format!("{key}.{name}"), x))),
                     }
                 };
                 let (p, k) = (
@@ -754,6 +825,12 @@ impl Case {
                 };
                 // a surface that starts inside the obstacle is a set-up error
                 let tolerance = c.initial_penetration_tolerance.unwrap_or(0.01 * h);
+                if !(tolerance >= 0.0 && tolerance.is_finite()) {
+                    return Err(self.err(format!(
+                        "{key}.initial_penetration_tolerance = {tolerance} must be zero or positive \
+                         (the largest initial penetration accepted, a length)"
+                    )));
+                }
                 let zero = vec![0.0; 3 * mesh.num_nodes()];
                 let gaps = interface.gaps(&mesh.nodes, 0.0, &zero, None);
                 for (j, &g) in gaps.iter().enumerate() {

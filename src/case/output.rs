@@ -5,7 +5,7 @@
 use super::schema::HistoryQuantitySpec;
 use super::Case;
 use crate::output::history::{History, HistoryQuantity};
-use crate::output::profile::{nodes_in_band, Profile, ProfileNode};
+use crate::output::profile::{file_part, nodes_in_band, Profile, ProfileNode};
 use crate::problem::Problem;
 use crate::Result;
 
@@ -55,22 +55,55 @@ impl Case {
     /// A history or profile name: a non-empty file stem, unique among all
     /// of them and not `convergence` (the convergence plot's name).
     fn output_file_stem(&self, key: &str, name: &str, taken: &mut Vec<String>) -> Result<()> {
-        let valid = !name.is_empty()
-            && name
-                .chars()
-                .all(|c| c.is_ascii_alphanumeric() || matches!(c, '-' | '_' | '.'))
-            && !name.starts_with('.');
-        if !valid {
+        if !super::is_file_stem(name) {
             return Err(self.err(format!(
-                "{key}.name = '{name}': use letters, digits, '-', '_' and '.' (it names the output files)"
+                "{key}.name = '{}': use letters, digits, '-', '_' and '.', not first (it names the output files)",
+                crate::input::shorten(name)
             )));
         }
         if name == "convergence" || taken.iter().any(|t| t == name) {
             return Err(self.err(format!(
-                "{key}.name = '{name}' is already used by another output file; choose another name"
+                "{key}.name = '{}' is already used by another output file; choose another name",
+                crate::input::shorten(name)
             )));
         }
         taken.push(name.to_string());
+        Ok(())
+    }
+
+    /// A profile writes `<name>_<step>.csv` for every step (the step name
+    /// with characters other than letters, digits, `-` and `_` made `_`):
+    /// no two steps may give the same file, and no such file may be a
+    /// history's `<name>.csv`.
+    fn profile_files_collide(&self, problem: &Problem, out: &OutputRequests) -> Result<()> {
+        let Some(profile) = out.profiles.first() else {
+            return Ok(());
+        };
+        let parts: Vec<String> = problem.steps.iter().map(|s| file_part(&s.name)).collect();
+        for (i, part) in parts.iter().enumerate() {
+            if let Some(j) = parts[..i].iter().position(|p| p == part) {
+                return Err(self.err(format!(
+                    "step[{i}] ('{}') and step[{j}] ('{}') give the same file name {}_{part}.csv of profile '{}'; \
+                     rename one of the steps",
+                    crate::input::shorten(&problem.steps[i].name),
+                    crate::input::shorten(&problem.steps[j].name),
+                    profile.name,
+                    profile.name
+                )));
+            }
+        }
+        for p in &out.profiles {
+            for (step, part) in problem.steps.iter().zip(&parts) {
+                let file = format!("{}_{part}", p.name);
+                if out.histories.iter().any(|h| h.name == file) {
+                    return Err(self.err(format!(
+                        "output.history '{file}' writes {file}.csv, which profile '{}' also writes for step '{}'; \
+                         rename the history or the profile",
+                        p.name, step.name
+                    )));
+                }
+            }
+        }
         Ok(())
     }
 
@@ -204,7 +237,7 @@ impl Case {
                 )));
             }
             if !(p.width > 0.0) || !p.width.is_finite() {
-                return Err(self.err(format!("{key}.width = {} must be positive", p.width)));
+                return Err(self.err(super::not_positive(&format!("{key}.width"), p.width)));
             }
             let contact = &problem.contacts[interface];
             let positions: Vec<[f64; 3]> = contact.nodes.iter().map(|&n| mesh.nodes[n]).collect();
@@ -236,6 +269,7 @@ impl Case {
                 steps: Vec::new(),
             });
         }
+        self.profile_files_collide(problem, &out)?;
         Ok(out)
     }
 }

@@ -2,7 +2,21 @@
 //! misspelled key is an error that names its path. Units are the user's,
 //! consistent throughout (e.g. mm, N, MPa).
 
-use serde::Deserialize;
+use serde::de::Error as _;
+use serde::{Deserialize, Deserializer};
+
+/// `[x, y, z]`: exactly three numbers (serde reads the first three of a
+/// longer array and ignores the rest).
+fn three<'de, D: Deserializer<'de>>(d: D) -> Result<[f64; 3], D::Error> {
+    let v = Vec::<f64>::deserialize(d)?;
+    <[f64; 3]>::try_from(v.as_slice())
+        .map_err(|_| D::Error::invalid_length(v.len(), &"an array of 3 numbers [x, y, z]"))
+}
+
+/// An optional [`three`].
+fn option_three<'de, D: Deserializer<'de>>(d: D) -> Result<Option<[f64; 3]>, D::Error> {
+    three(d).map(Some)
+}
 
 /// A whole case file.
 #[derive(Debug, Deserialize)]
@@ -29,9 +43,10 @@ pub struct CaseFile {
     #[serde(default)]
     pub contact: Vec<ContactSpec>,
     /// `[amplitudes]`: named piecewise-linear functions of pseudo-time,
-    /// `name = [[t0, v0], [t1, v1], …]`.
+    /// `name = [[t0, v0], [t1, v1], …]` (each point two numbers, checked
+    /// with the key path at validation).
     #[serde(default)]
-    pub amplitudes: std::collections::BTreeMap<String, Vec<[f64; 2]>>,
+    pub amplitudes: std::collections::BTreeMap<String, Vec<Vec<f64>>>,
     /// `[[step]]`: load steps in sequence.
     pub step: Vec<StepSpec>,
     /// `[solver]`: Newton and stepping controls.
@@ -51,34 +66,61 @@ pub struct MeshSpec {
     pub file: String,
 }
 
-/// Constitutive models.
-#[derive(Clone, Copy, Debug, Deserialize, PartialEq, Eq)]
-#[serde(rename_all = "snake_case")]
-pub enum MaterialModel {
-    LinearElastic,
-    SaintVenantKirchhoff,
-    NeoHookean,
-    Ogden,
-}
-
-/// `[[material]]`
+/// `[[material]]`: a region and its constitutive model. The `model` key
+/// chooses the variant, and each variant rejects the keys of the others
+/// (an Ogden material with `youngs_modulus` is an error naming the key).
 #[derive(Debug, Deserialize)]
-#[serde(deny_unknown_fields)]
 pub struct MaterialSpec {
     /// Volume region (3D physical group) name.
     pub region: String,
-    /// `linear_elastic`, `saint_venant_kirchhoff`, `neo_hookean` or `ogden`.
+    /// `model = "linear_elastic"`, `"saint_venant_kirchhoff"`,
+    /// `"neo_hookean"` or `"ogden"`, with that model's constants.
+    #[serde(flatten)]
     pub model: MaterialModel,
-    /// Young's modulus `E > 0` (all but Ogden).
-    pub youngs_modulus: Option<f64>,
-    /// Poisson's ratio `−1 < ν < 0.5` (all but Ogden).
-    pub poisson_ratio: Option<f64>,
-    /// Ogden shear moduli `μ_p` (initial shear modulus `Σ μ_p`).
-    pub mu: Option<Vec<f64>>,
-    /// Ogden exponents `α_p` (`μ_p α_p > 0`).
-    pub alpha: Option<Vec<f64>>,
-    /// Ogden bulk modulus `κ > 0`.
-    pub bulk_modulus: Option<f64>,
+}
+
+/// Constitutive models, tagged by the case file's `model` key.
+#[derive(Clone, Debug, Deserialize, PartialEq)]
+#[serde(tag = "model", rename_all = "snake_case")]
+pub enum MaterialModel {
+    LinearElastic(ElasticConstants),
+    SaintVenantKirchhoff(ElasticConstants),
+    NeoHookean(ElasticConstants),
+    Ogden(OgdenConstants),
+}
+
+/// Constants of the models given by Young's modulus and Poisson's ratio.
+#[derive(Clone, Copy, Debug, Deserialize, PartialEq)]
+#[serde(deny_unknown_fields)]
+pub struct ElasticConstants {
+    /// Young's modulus `E > 0`.
+    pub youngs_modulus: f64,
+    /// Poisson's ratio `−1 < ν < 0.5`.
+    pub poisson_ratio: f64,
+}
+
+/// Constants of the Ogden model.
+#[derive(Clone, Debug, Deserialize, PartialEq)]
+#[serde(deny_unknown_fields)]
+pub struct OgdenConstants {
+    /// Shear moduli `μ_p` (initial shear modulus `Σ μ_p`).
+    pub mu: Vec<f64>,
+    /// Exponents `α_p` (`μ_p α_p > 0`).
+    pub alpha: Vec<f64>,
+    /// Bulk modulus `κ > 0`.
+    pub bulk_modulus: f64,
+}
+
+impl MaterialModel {
+    /// The model's name as messages print it (`NeoHookean`, `Ogden`, …).
+    pub fn name(&self) -> &'static str {
+        match self {
+            Self::LinearElastic(_) => "LinearElastic",
+            Self::SaintVenantKirchhoff(_) => "SaintVenantKirchhoff",
+            Self::NeoHookean(_) => "NeoHookean",
+            Self::Ogden(_) => "Ogden",
+        }
+    }
 }
 
 /// An amplitude: the name of one in `[amplitudes]`, or inline points.
@@ -86,7 +128,9 @@ pub struct MaterialSpec {
 #[serde(untagged)]
 pub enum AmplitudeRef {
     Named(String),
-    Points(Vec<[f64; 2]>),
+    /// `[[t0, v0], [t1, v1], …]` (each point two numbers, checked at
+    /// validation: serde would ignore a third).
+    Points(Vec<Vec<f64>>),
 }
 
 /// `[[displacement]]`: any of `x`, `y`, `z` given are prescribed, the others
@@ -125,50 +169,76 @@ pub struct BodyForceSpec {
     /// Volume region; all elements if omitted.
     pub region: Option<String>,
     /// Force per unit reference volume (e.g. `ρ g`).
+    #[serde(deserialize_with = "three")]
     pub value: [f64; 3],
     pub amplitude: Option<AmplitudeRef>,
 }
 
-/// Obstacle shapes.
-#[derive(Clone, Copy, Debug, Deserialize, PartialEq, Eq)]
-#[serde(rename_all = "snake_case")]
-pub enum ObstacleShape {
-    Plane,
-    Sphere,
-    Cylinder,
-    /// A triangulated surface read from an STL file.
-    Stl,
-    /// A triangulated surface: a surface set of a Gmsh mesh (quadrangles
-    /// split in two).
-    Gmsh,
-}
-
 /// `[[obstacle]]`: a rigid obstacle. Its outward normal points toward the
-/// body (for an STL surface: the triangles' right-hand normals).
+/// body (for an STL surface: the triangles' right-hand normals). The
+/// `shape` key chooses the geometry, and each shape rejects the keys of the
+/// others (a plane with a `radius` is an error naming the key).
 #[derive(Debug, Deserialize)]
-#[serde(deny_unknown_fields)]
 pub struct ObstacleSpec {
     /// Name that `[[contact]]` refers to.
     pub name: String,
-    /// `plane`, `sphere`, `cylinder`, `stl` or `gmsh`.
+    /// `shape = "plane"`, `"sphere"`, `"cylinder"`, `"stl"` or `"gmsh"`,
+    /// with that shape's keys.
+    #[serde(flatten)]
     pub shape: ObstacleShape,
-    /// Plane: a point on it; cylinder: a point on the axis.
-    pub point: Option<[f64; 3]>,
-    /// Plane: the outward normal (toward the body); need not be unit.
-    pub normal: Option<[f64; 3]>,
-    /// Sphere: centre.
-    pub center: Option<[f64; 3]>,
-    /// Sphere, cylinder: radius > 0.
-    pub radius: Option<f64>,
-    /// Cylinder: axis direction.
-    pub axis: Option<[f64; 3]>,
-    /// STL or Gmsh: the file, relative to the case file.
-    pub file: Option<String>,
-    /// Gmsh: the surface set (2D physical group) that is the obstacle.
-    pub surface: Option<String>,
     /// Rigid translation, scaled by `amplitude` (default none).
+    #[serde(default, deserialize_with = "option_three")]
     pub motion: Option<[f64; 3]>,
     pub amplitude: Option<AmplitudeRef>,
+}
+
+/// Obstacle shapes, tagged by the case file's `shape` key.
+#[derive(Clone, Debug, Deserialize, PartialEq)]
+#[serde(tag = "shape", rename_all = "snake_case", deny_unknown_fields)]
+pub enum ObstacleShape {
+    Plane {
+        /// A point on the plane.
+        #[serde(deserialize_with = "three")]
+        point: [f64; 3],
+        /// The outward normal (toward the body); need not be unit.
+        #[serde(deserialize_with = "three")]
+        normal: [f64; 3],
+    },
+    Sphere {
+        #[serde(deserialize_with = "three")]
+        center: [f64; 3],
+        /// Radius > 0.
+        radius: f64,
+    },
+    Cylinder {
+        /// A point on the axis.
+        #[serde(deserialize_with = "three")]
+        point: [f64; 3],
+        /// Axis direction; need not be unit.
+        #[serde(deserialize_with = "three")]
+        axis: [f64; 3],
+        /// Radius > 0.
+        radius: f64,
+    },
+    /// A triangulated surface read from an STL file, relative to the case
+    /// file.
+    Stl { file: String },
+    /// A triangulated surface: the surface set (2D physical group)
+    /// `surface` of a Gmsh mesh `file` (quadrangles split in two).
+    Gmsh { file: String, surface: String },
+}
+
+impl ObstacleShape {
+    /// The shape's name as the case file writes it.
+    pub fn name(&self) -> &'static str {
+        match self {
+            Self::Plane { .. } => "plane",
+            Self::Sphere { .. } => "sphere",
+            Self::Cylinder { .. } => "cylinder",
+            Self::Stl { .. } => "stl",
+            Self::Gmsh { .. } => "gmsh",
+        }
+    }
 }
 
 /// Enforcement methods of the normal contact constraint.
@@ -332,6 +402,7 @@ pub struct HistorySpec {
     pub name: String,
     /// Reference-configuration point; the nearest node is used (every
     /// quantity but `reaction_force`).
+    #[serde(default, deserialize_with = "option_three")]
     pub point: Option<[f64; 3]>,
     /// `displacement_x`, `displacement_y`, `displacement_z`, `gap`,
     /// `contact_pressure` or `reaction_force`.
@@ -354,7 +425,9 @@ pub struct ProfileSpec {
     /// A `[[contact]]` name.
     pub interface: String,
     /// Segment ends in the reference configuration (distinct).
+    #[serde(deserialize_with = "three")]
     pub from: [f64; 3],
+    #[serde(deserialize_with = "three")]
     pub to: [f64; 3],
     /// Half-width of the band around the segment, > 0 (length unit).
     pub width: f64,

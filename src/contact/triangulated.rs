@@ -214,9 +214,7 @@ impl TriangulatedSurface {
     /// seen from outside) defines the normal. Errors name the file.
     pub fn from_stl(path: &Path) -> Result<Self> {
         let what = format!("STL file '{}'", path.display());
-        let mut file = std::fs::File::open(path).map_err(|e| Error::io("open", path, e))?;
-        let mesh = stl_io::read_stl(&mut file)
-            .map_err(|e| invalid(&what, format!("cannot be read as STL: {e}")))?;
+        let mesh = crate::mesh::stl::read_stl(path)?;
         let vertices = mesh
             .vertices
             .iter()

@@ -14,6 +14,7 @@ pub fn gauss_legendre(n: usize) -> (Vec<f64>, Vec<f64>) {
             let a = (3.0f64 / 5.0).sqrt();
             (vec![-a, 0.0, a], vec![5.0 / 9.0, 8.0 / 9.0, 5.0 / 9.0])
         }
+        #[allow(clippy::panic)] // the rules are chosen in code (per element kind), not by input
         _ => panic!("gauss_legendre: {n} points not tabulated (1‥3)"),
     }
 }
@@ -61,6 +62,7 @@ pub fn tetrahedron(n: usize) -> (Vec<[f64; 3]>, Vec<f64>) {
                 vec![1.0 / 24.0; 4],
             )
         }
+        #[allow(clippy::panic)] // the rules are chosen in code (per element kind), not by input
         _ => panic!("tetrahedron rule with {n} points not tabulated (1, 4)"),
     }
 }
@@ -78,6 +80,7 @@ pub fn triangle(n: usize) -> (Vec<[f64; 2]>, Vec<f64>) {
             ],
             vec![1.0 / 6.0; 3],
         ),
+        #[allow(clippy::panic)] // the rules are chosen in code (per element kind), not by input
         _ => panic!("triangle rule with {n} points not tabulated (1, 3)"),
     }
 }

@@ -8,6 +8,7 @@
 
 pub mod boundary;
 pub mod gmsh;
+pub mod stl;
 pub mod structured;
 
 /// Volume element types. Adding a type (Tet10, Hex20) means a variant here,

@@ -190,7 +190,7 @@ pub fn nodes_in_band(
 
 /// A step name as a file-name part: letters, digits, `-` and `_` kept,
 /// anything else `_`.
-fn file_part(step_name: &str) -> String {
+pub fn file_part(step_name: &str) -> String {
     step_name
         .chars()
         .map(|c| {
@@ -236,6 +236,7 @@ impl Profile {
         let file = format!("{}_{}.csv", self.name, file_part(&last.step_name));
         write_csv(&dir.join(file), &header, &last.rows)?;
         let column = |name: &str| COLUMNS.iter().position(|c| c.header == name);
+        #[allow(clippy::expect_used)] // a constant of this file: COLUMNS has an abscissa
         let x = column("abscissa").expect("the abscissa is a column");
         let mut curves = Vec::new();
         // series with no finite value (friction's, on a frictionless

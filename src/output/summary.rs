@@ -143,6 +143,7 @@ impl Summary {
                     wall_time: 0.0,
                 });
             }
+            #[allow(clippy::expect_used)] // a step is pushed just above when there is none
             let s = steps.last_mut().expect("pushed above");
             s.time = inc.time;
             s.increments += 1;
@@ -180,7 +181,8 @@ impl Summary {
 
     /// Write as pretty JSON, atomically (temporary file + rename).
     pub fn write(&self, path: &Path) -> crate::Result<()> {
-        let text = serde_json::to_string_pretty(self).expect("the summary serialises");
+        let text = serde_json::to_string_pretty(self)
+            .map_err(|e| crate::Error::io("write", path, e.into()))?;
         super::write_atomically(path, |w| std::io::Write::write_all(w, text.as_bytes()))
     }
 }

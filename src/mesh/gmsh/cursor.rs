@@ -4,6 +4,10 @@
 use crate::{Error, Result};
 use std::path::Path;
 
+/// The largest coordinate magnitude read: volumes (length³) and
+/// stiffnesses stay finite below it.
+pub(super) const MAX_COORDINATE: f64 = 1e100;
+
 /// A position in the file. ASCII is read as whitespace-separated tokens and
 /// errors give the 1-based line (computed from the offset only when an error
 /// is reported); binary payloads are read as fixed-size values and errors
@@ -348,14 +352,15 @@ impl<'a> Cursor<'a> {
 
     /// A finite coordinate of node `tag` (the message is built only on error).
     pub(super) fn coordinate(&mut self, axis: &str, tag: u64) -> Result<f64> {
-        let at = self.pos;
         let what = "a node coordinate";
-        let value = if self.binary {
-            f64::from_le_bytes(self.array(what)?)
+        // where the value starts (ASCII: the token, not the whitespace before)
+        let (value, at) = if self.binary {
+            let at = self.pos;
+            (f64::from_le_bytes(self.array(what)?), at)
         } else {
             let (tok, at) = self.token(what)?;
             match parse_float(tok) {
-                Some(v) => v,
+                Some(v) => (v, at),
                 None => {
                     return Err(self.syntax(
                         at,
@@ -367,13 +372,21 @@ impl<'a> Cursor<'a> {
                 }
             }
         };
-        if value.is_finite() {
-            Ok(value)
-        } else {
+        if !value.is_finite() {
             Err(self.syntax(
                 at,
                 format!("the {axis} coordinate of node {tag} is {value}"),
             ))
+        } else if value.abs() > MAX_COORDINATE {
+            Err(self.syntax(
+                at,
+                format!(
+                    "the {axis} coordinate of node {tag} is {value:e}, beyond ±{MAX_COORDINATE:e}: \
+                     areas and volumes would overflow; check the mesh's length unit"
+                ),
+            ))
+        } else {
+            Ok(value)
         }
     }
 

@@ -52,7 +52,7 @@ mod v22;
 mod v41;
 
 use super::Mesh;
-use crate::{Error, Result};
+use crate::Result;
 use builder::Builder;
 use cursor::{show, Cursor};
 use std::path::Path;
@@ -60,7 +60,7 @@ use std::path::Path;
 /// Reads a Gmsh MSH file (4.1 or 2.2, ASCII or binary) into a [`Mesh`] with
 /// outward-oriented surface sets.
 pub fn read_msh(path: &Path) -> Result<Mesh> {
-    let data = std::fs::read(path).map_err(|e| Error::io("read", path, e))?;
+    let data = crate::input::read_bounded(path, "read", crate::input::MAX_MESH_FILE)?;
     parse_msh(&data, path)
 }
 
@@ -68,7 +68,7 @@ pub fn read_msh(path: &Path) -> Result<Mesh> {
 /// no volume elements are required, and facets keep the orientation the
 /// file gives them (right-hand normals must point toward the body).
 pub fn read_surface_msh(path: &Path) -> Result<Mesh> {
-    let data = std::fs::read(path).map_err(|e| Error::io("read", path, e))?;
+    let data = crate::input::read_bounded(path, "read", crate::input::MAX_MESH_FILE)?;
     parse(&data, path, true)
 }
 

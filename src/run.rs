@@ -11,7 +11,9 @@ use crate::output::summary::{IncrementSummary, Summary};
 use crate::output::summary::{InterfaceSummary, PhaseTimes};
 use crate::output::{plot, pvd::PvdCollection, vtu};
 use crate::problem::{ContactState, Problem};
-use crate::solve::linear::SparseLdlt;
+use crate::solve::backend::linear_solver;
+use crate::solve::failure::IncrementFailure;
+use crate::solve::nonlinear::Evaluation;
 use crate::solve::stepping::{run_steps, IncrementRecord, StepObserver};
 use crate::{Error, Result};
 use indicatif::{ProgressBar, ProgressStyle};
@@ -51,21 +53,22 @@ pub fn run(case_path: &Path, options: &RunOptions) -> Result<RunOutcome> {
     let output_dir = case.output_dir(options.output.as_deref());
     let mut writer = Writer::new(&case, &problem, &output_dir, options.quiet, start)?;
     writer.log_requests(&problem);
-    let mut solver = SparseLdlt::new(fill_reducing_ordering(&problem)?, 0);
-    let result = run_steps(&mut problem, &mut solver, &mut writer, output_dir.clone());
+    let mut solver = linear_solver(&problem.settings, fill_reducing_ordering(&problem)?, 0);
+    let result = run_steps(&mut problem, &mut *solver, &mut writer, output_dir.clone());
     writer.progress.finish_and_clear();
-    writer.summary.symbolic_analyses = solver.timings.analyses;
+    let statistics = solver.statistics();
+    writer.summary.symbolic_analyses = statistics.analyses;
     writer.summary.phase_times = PhaseTimes {
         assembly: problem.timings.assembly(),
         contact: problem.timings.contact(),
-        symbolic: solver.timings.symbolic_total.as_secs_f64(),
-        factorisation: (solver.timings.numeric_total + solver.lu.total).as_secs_f64(),
-        solve: solver.timings.solve_total.as_secs_f64(),
+        symbolic: statistics.symbolic.as_secs_f64(),
+        factorisation: statistics.factorisation.as_secs_f64(),
+        solve: statistics.solve.as_secs_f64(),
     };
-    writer.summary.factor_nnz = solver.factor_nnz();
-    writer.summary.krylov_solves = solver.timings.krylov_solves;
-    writer.summary.krylov_iterations = solver.timings.krylov_iterations;
-    writer.summary.lu_solves = solver.timings.lu_solves;
+    writer.summary.factor_nnz = statistics.factor_nnz;
+    writer.summary.krylov_solves = statistics.krylov_solves;
+    writer.summary.krylov_iterations = statistics.krylov_iterations;
+    writer.summary.lu_solves = statistics.lu_solves;
     writer.summary.wall_time = start.elapsed().as_secs_f64();
     match result {
         Ok(displacement) => {
@@ -235,15 +238,16 @@ impl Writer {
     }
 }
 
-impl StepObserver for Writer {
+impl StepObserver<Problem> for Writer {
     fn on_converged(
         &mut self,
         problem: &Problem,
         record: &IncrementRecord,
         u: &[f64],
-        residual: &[f64],
+        evaluation: &Evaluation<Vec<Vec<NodeReport>>>,
         contact: &ContactState,
     ) -> Result<()> {
+        let residual = &evaluation.residual;
         self.contact.clone_from(contact);
         // deformable contact may have rebuilt the pattern with new pairs
         self.summary.matrix_nnz = problem.model.pattern.nnz();
@@ -256,7 +260,7 @@ impl StepObserver for Writer {
             .collect();
         let von_mises: Vec<f64> = stresses.iter().map(crate::material::von_mises).collect();
         let displacement = &u[..problem.model.num_dofs()];
-        let contact_fields = ContactFields::new(problem, record.time, u, contact)?;
+        let contact_fields = ContactFields::new(problem, u, contact, &evaluation.reports);
         let mut point_data = vec![vtu::Field {
             name: "displacement",
             components: 3,
@@ -343,7 +347,7 @@ impl StepObserver for Writer {
         Ok(())
     }
 
-    fn on_cut(&mut self, step: &str, time: f64, increment: f64, reason: &str) {
+    fn on_cut(&mut self, step: &str, time: f64, increment: f64, reason: &IncrementFailure) {
         self.log(format!(
             "step '{step}'  t = {time:.6}  Δt = {increment:.3e}  not converged ({reason}): cutting the increment"
         ));
@@ -380,7 +384,14 @@ struct ContactFields {
 }
 
 impl ContactFields {
-    fn new(problem: &Problem, t: f64, x: &[f64], contact: &ContactState) -> Result<Self> {
+    /// From the converged evaluation's `reports`, with the status and
+    /// tangential traction of the committed history `contact`.
+    fn new(
+        problem: &Problem,
+        x: &[f64],
+        contact: &ContactState,
+        reports: &[Vec<NodeReport>],
+    ) -> Self {
         let n = problem.model.mesh.num_nodes();
         let mut fields = ContactFields {
             pressure: vec![0.0; n],
@@ -395,15 +406,9 @@ impl ContactFields {
             reports: Vec::new(),
         };
         if problem.contacts.is_empty() {
-            return Ok(fields);
+            return fields;
         }
-        let (_, mut reports) =
-            problem
-                .residual_in(t, x, contact, None)
-                .map_err(|f| Error::Case {
-                    path: PathBuf::new(),
-                    message: problem.describe_failure(&f),
-                })?;
+        let mut reports = reports.to_vec();
         for ((c, nodes), states) in problem
             .contacts
             .iter()
@@ -470,7 +475,7 @@ impl ContactFields {
             }
         }
         fields.reports = reports;
-        Ok(fields)
+        fields
     }
 }
 
@@ -551,7 +556,11 @@ impl ContactFields {
     }
 }
 
-pub use crate::solve::ordering::fill_reducing_ordering;
+/// The fill-reducing ordering of `problem`'s pattern
+/// ([`crate::solve::ordering::fill_reducing_ordering`]).
+pub fn fill_reducing_ordering(problem: &Problem) -> Result<crate::solve::linear::Ordering> {
+    crate::solve::ordering::fill_reducing_ordering(&problem.model.pattern, problem.model.num_dofs())
+}
 
 /// Remove VTU files of an earlier run with the same name, so the folder
 /// holds one consistent series.

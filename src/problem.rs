@@ -5,13 +5,15 @@
 //! Everything here is already resolved against the mesh (node and facet
 //! lists); [`crate::case`] builds it from the case file.
 
-use crate::assembly::kernel::KernelFailure;
 use crate::assembly::loads::pressure_facet;
 use crate::assembly::{ElementFailure, Model};
 use crate::contact::interface::Primary;
 use crate::contact::interface::{ContactInterface, NodeReport};
 use crate::contact::laws::NodeContactState;
 use crate::mesh::Facet;
+pub use crate::solve::settings::{LinearMethod, NonsymmetricSolver, SolverSettings, Step};
+
+mod nonlinear;
 
 /// A piecewise-linear function of pseudo-time, constant beyond its first
 /// and last points.
@@ -80,66 +82,6 @@ pub struct BodyForce {
     pub nodal_volumes: Vec<f64>,
     pub force: [f64; 3],
     pub amplitude: Amplitude,
-}
-
-/// One load step: pseudo-time runs from the end of the previous step to
-/// `end_time` in increments chosen adaptively.
-#[derive(Clone, Debug)]
-pub struct Step {
-    pub name: String,
-    pub end_time: f64,
-    pub initial_increment: f64,
-    pub min_increment: f64,
-    pub max_increment: f64,
-}
-
-/// Newton and stepping controls.
-#[derive(Clone, Debug)]
-pub struct SolverSettings {
-    /// Newton iterations before an increment is cut.
-    pub max_iterations: usize,
-    /// Converged when `‖r‖ ≤ residual_tolerance · max(‖f_ext‖, ‖f_int‖)`…
-    pub residual_tolerance: f64,
-    /// …and `‖δu‖ ≤ displacement_tolerance · ‖Δu‖` (increment of the step).
-    pub displacement_tolerance: f64,
-    /// Backtracking line search on the residual norm.
-    pub line_search: bool,
-    /// Consecutive cuts of one increment before giving up.
-    pub max_cuts: usize,
-    /// Increment growth factor after an easy increment.
-    pub growth_factor: f64,
-    /// An increment that converged in at most this many iterations is easy.
-    pub easy_iterations: usize,
-    /// Linear solver of nonsymmetric tangents (friction, follower loads).
-    pub nonsymmetric: NonsymmetricSolver,
-}
-
-/// How a nonsymmetric tangent is solved.
-#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, serde::Deserialize)]
-#[serde(rename_all = "lowercase")]
-pub enum NonsymmetricSolver {
-    /// GMRES preconditioned by the LDLᵀ of a symmetric neighbour of the
-    /// tangent (its symmetric part, friction in stick), with the sparse LU
-    /// as the fallback when it does not converge.
-    #[default]
-    Gmres,
-    /// Sparse LU with partial pivoting, every time.
-    Lu,
-}
-
-impl Default for SolverSettings {
-    fn default() -> Self {
-        SolverSettings {
-            max_iterations: 20,
-            residual_tolerance: 1e-8,
-            displacement_tolerance: 1e-6,
-            line_search: true,
-            max_cuts: 8,
-            growth_factor: 1.5,
-            easy_iterations: 5,
-            nonsymmetric: NonsymmetricSolver::Gmres,
-        }
-    }
 }
 
 /// The resolved problem.
@@ -578,17 +520,7 @@ impl Problem {
 
     /// A message for an element failure, with the element's mesh id.
     pub fn describe_failure(&self, f: &ElementFailure) -> String {
-        let id = self.model.mesh.elements[f.element].id;
-        match f.failure {
-            KernelFailure::Inverted {
-                quadrature_point,
-                det_f,
-            } => format!("element {id} inverted (det F = {det_f:.3e} at quadrature point {quadrature_point})"),
-            KernelFailure::ReferenceInverted {
-                quadrature_point,
-                det_j,
-            } => format!("element {id} degenerate in the reference configuration (det J = {det_j:.3e} at quadrature point {quadrature_point})"),
-        }
+        self.element_failure(f).to_string()
     }
 }
 

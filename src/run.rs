@@ -29,14 +29,16 @@
 //! ```
 
 use crate::case::{self, output::OutputRequests, Case};
+use crate::contact::interface::NodeReport;
 use crate::output::contact_fields::ContactFields;
 use crate::output::fields::{CellField, ConvergedIncrement, NodalField};
 use crate::output::observer::{Cut, Observers, StepObserver};
 use crate::output::summary::{IncrementSummary, PhaseTimes, Summary};
 use crate::output::writer::ResultWriter;
 use crate::problem::{ContactState, Problem};
-use crate::solve::linear::SparseLdlt;
-pub use crate::solve::ordering::fill_reducing_ordering;
+use crate::solve::backend::linear_solver;
+use crate::solve::failure::IncrementFailure;
+use crate::solve::nonlinear::Evaluation;
 use crate::solve::stepping::{self, run_steps, IncrementRecord};
 use crate::{Error, Result};
 use std::path::{Path, PathBuf};
@@ -184,27 +186,29 @@ impl Simulation {
             contact: ContactState::default(),
         };
         recorder.observers.on_start(&recorder.summary)?;
-        let mut solver = SparseLdlt::new(fill_reducing_ordering(&self.problem)?, 0);
+        let ordering = fill_reducing_ordering(&self.problem)?;
+        let mut solver = linear_solver(&self.problem.settings, ordering, 0);
         let output = options.output.clone().unwrap_or_default();
         let result = run_steps(
             &mut self.problem,
-            &mut solver,
+            &mut *solver,
             &mut recorder,
             output.clone(),
         );
+        let statistics = solver.statistics();
         let summary = &mut recorder.summary;
-        summary.symbolic_analyses = solver.timings.analyses;
+        summary.symbolic_analyses = statistics.analyses;
         summary.phase_times = PhaseTimes {
             assembly: self.problem.timings.assembly(),
             contact: self.problem.timings.contact(),
-            symbolic: solver.timings.symbolic_total.as_secs_f64(),
-            factorisation: (solver.timings.numeric_total + solver.lu.total).as_secs_f64(),
-            solve: solver.timings.solve_total.as_secs_f64(),
+            symbolic: statistics.symbolic.as_secs_f64(),
+            factorisation: statistics.factorisation.as_secs_f64(),
+            solve: statistics.solve.as_secs_f64(),
         };
-        summary.factor_nnz = solver.factor_nnz();
-        summary.krylov_solves = solver.timings.krylov_solves;
-        summary.krylov_iterations = solver.timings.krylov_iterations;
-        summary.lu_solves = solver.timings.lu_solves;
+        summary.factor_nnz = statistics.factor_nnz;
+        summary.krylov_solves = statistics.krylov_solves;
+        summary.krylov_iterations = statistics.krylov_iterations;
+        summary.lu_solves = statistics.lu_solves;
         summary.wall_time = start.elapsed().as_secs_f64();
         match result {
             Ok(displacement) => {
@@ -248,6 +252,12 @@ impl Simulation {
     }
 }
 
+/// The fill-reducing ordering of `problem`'s pattern
+/// ([`crate::solve::ordering::fill_reducing_ordering`]).
+pub fn fill_reducing_ordering(problem: &Problem) -> Result<crate::solve::linear::Ordering> {
+    crate::solve::ordering::fill_reducing_ordering(&problem.model.pattern, problem.model.num_dofs())
+}
+
 /// Run a case file end to end, writing the results into `options.output`
 /// or, without one, into the case's own output folder.
 pub fn run(case_path: &Path, options: &RunOptions) -> Result<RunOutcome> {
@@ -285,34 +295,23 @@ struct Recorder<'a> {
     contact: ContactState,
 }
 
-impl stepping::StepObserver for Recorder<'_> {
+impl stepping::StepObserver<Problem> for Recorder<'_> {
     fn on_converged(
         &mut self,
         problem: &Problem,
         record: &IncrementRecord,
         u: &[f64],
-        residual: &[f64],
+        evaluation: &Evaluation<Vec<Vec<NodeReport>>>,
         contact: &ContactState,
     ) -> Result<()> {
         self.contact.clone_from(contact);
-        let reports = if problem.contacts.is_empty() {
-            Vec::new()
-        } else {
-            let (_, reports) = problem
-                .residual_in(record.time, u, contact, None)
-                .map_err(|f| Error::Case {
-                    path: PathBuf::new(),
-                    message: problem.describe_failure(&f),
-                })?;
-            reports
-        };
         let increment = ConvergedIncrement {
             problem,
             record,
             unknowns: u,
-            residual,
+            residual: &evaluation.residual,
             contact,
-            contact_fields: ContactFields::new(problem, u, contact, reports),
+            contact_fields: ContactFields::new(problem, u, contact, evaluation.reports.clone()),
         };
         let now = Instant::now();
         // deformable contact may have rebuilt the pattern with new pairs
@@ -345,7 +344,7 @@ impl stepping::StepObserver for Recorder<'_> {
         self.observers.on_increment(&increment, &self.summary)
     }
 
-    fn on_cut(&mut self, step: &str, time: f64, increment: f64, reason: &str) {
+    fn on_cut(&mut self, step: &str, time: f64, increment: f64, reason: &IncrementFailure) {
         self.observers.on_cut(&Cut {
             step,
             time,

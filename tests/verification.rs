@@ -465,14 +465,15 @@ fn solution_is_independent_of_thread_count() {
             .build()
             .unwrap()
             .install(|| {
-                let mut solver = signorini::solve::linear::SparseLdlt::new(
+                let mut solver = signorini::solve::backend::linear_solver(
+                    &p.settings,
                     signorini::solve::linear::Ordering::Custom(perm.clone()),
                     threads,
                 );
                 let mut rec = common::Recorder::default();
                 signorini::solve::stepping::run_steps(
                     &mut p,
-                    &mut solver,
+                    &mut *solver,
                     &mut rec,
                     "unused".into(),
                 )

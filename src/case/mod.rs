@@ -543,6 +543,7 @@ impl Case {
             growth_factor: sv.growth_factor.unwrap_or(d.growth_factor),
             easy_iterations: sv.easy_iterations.unwrap_or(d.easy_iterations),
             nonsymmetric: sv.nonsymmetric.unwrap_or(d.nonsymmetric),
+            linear: sv.linear.unwrap_or(d.linear),
         };
         for (name, v) in [
             ("residual_tolerance", settings.residual_tolerance),

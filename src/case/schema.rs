@@ -333,6 +333,9 @@ pub struct SolverSpec {
     /// `gmres` (default; preconditioned by an LDLᵀ, falls back to `lu`) or
     /// `lu`.
     pub nonsymmetric: Option<crate::problem::NonsymmetricSolver>,
+    /// The linear solver: `auto` (default: LDLᵀ for a symmetric tangent,
+    /// `nonsymmetric` for the others), `ldlt`, `gmres` or `lu`.
+    pub linear: Option<crate::problem::LinearMethod>,
 }
 
 /// `[output]`

@@ -16,7 +16,7 @@ pub struct Cut<'a> {
     pub time: f64,
     pub increment: f64,
     /// Why Newton failed.
-    pub reason: &'a str,
+    pub reason: &'a crate::solve::failure::IncrementFailure,
 }
 
 /// Receives a run's events. Every method but [`on_increment`](Self::on_increment)

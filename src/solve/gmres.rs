@@ -123,11 +123,13 @@ pub fn gmres<E>(
     }
 }
 
-fn dot(a: &[f64], b: &[f64]) -> f64 {
+/// `a · b`.
+pub fn dot(a: &[f64], b: &[f64]) -> f64 {
     a.iter().zip(b).map(|(x, y)| x * y).sum()
 }
 
-fn norm(a: &[f64]) -> f64 {
+/// `‖a‖₂`.
+pub fn norm(a: &[f64]) -> f64 {
     dot(a, a).sqrt()
 }
 

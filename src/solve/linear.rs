@@ -42,11 +42,6 @@ pub struct SolverTimings {
     pub symbolic_total: Duration,
     pub numeric_total: Duration,
     pub solve_total: Duration,
-    /// Nonsymmetric solves by GMRES, their Krylov iterations in total, and
-    /// the solves that fell back to (or chose) the sparse LU.
-    pub krylov_solves: usize,
-    pub krylov_iterations: usize,
-    pub lu_solves: usize,
 }
 
 /// A reusable sparse LDLᵀ solver for symmetric matrices given by their
@@ -59,8 +54,6 @@ pub struct SparseLdlt {
     factor: Vec<f64>,
     par: Par,
     pub timings: SolverTimings,
-    /// The sparse LU for nonsymmetric tangents that GMRES cannot solve.
-    pub lu: super::lu::SparseLu,
 }
 
 impl SparseLdlt {
@@ -86,7 +79,6 @@ impl SparseLdlt {
             factor: Vec::new(),
             par,
             timings: SolverTimings::default(),
-            lu: Default::default(),
         }
     }
 
@@ -264,7 +256,7 @@ impl SparseLdlt {
 
 /// A hash of a pattern's structure (FNV-1a over its dimensions, column
 /// pointers and row indices).
-pub(super) fn pattern_fingerprint(pattern: &SymbolicSparseColMat<usize>) -> u64 {
+pub fn pattern_fingerprint(pattern: &SymbolicSparseColMat<usize>) -> u64 {
     let mut h: u64 = 0xcbf2_9ce4_8422_2325;
     let mut eat = |v: usize| {
         h ^= v as u64;

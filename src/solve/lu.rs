@@ -1,13 +1,16 @@
 //! Sparse LU with partial pivoting (faer's supernodal LU, COLAMD column
 //! ordering) for nonsymmetric tangents: the fallback when GMRES
-//! preconditioned by an LDLᵀ does not converge, and an option of the
-//! `[solver]` section (`nonsymmetric = "lu"`) for comparisons.
+//! preconditioned by an LDLᵀ does not converge or an LDLᵀ breaks down, and
+//! a [`LinearSolver`] of its own (`[solver] nonsymmetric = "lu"` or
+//! `linear = "lu"`) for comparisons.
 //!
 //! faer's LU takes no custom ordering, and on 3D meshes COLAMD fills far
 //! more than nested dissection: it was measured about 20 times slower and
 //! with 10 times the memory of the LDLᵀ at 150 k dofs (see BENCHMARKS.md),
 //! which is why it is not the default.
 
+use super::linear::{pattern_fingerprint, Ordering};
+use super::linear_solver::{LinearSolver, LinearSystem, SolverStatistics};
 use crate::{Error, Result};
 use faer::linalg::solvers::Solve;
 use faer::sparse::linalg::solvers::{Lu, SymbolicLu};
@@ -27,19 +30,21 @@ pub struct SparseLu {
     pub total: Duration,
     /// Factorisations so far.
     pub factorisations: usize,
+    /// Solves asked for so far (those that failed too).
+    pub solves: usize,
 }
 
 impl SparseLu {
     /// Factorise `A` (full CSC pattern and values) and solve `A x = b` in
     /// place.
-    pub fn solve(
+    pub fn factor_and_solve(
         &mut self,
         pattern: &SymbolicSparseColMat<usize>,
         values: &[f64],
         rhs: &mut [f64],
     ) -> Result<()> {
         let start = Instant::now();
-        let key = super::linear::pattern_fingerprint(pattern);
+        let key = pattern_fingerprint(pattern);
         let symbolic = match &self.symbolic {
             Some((s, k)) if *k == key => s.clone(),
             _ => {
@@ -66,6 +71,43 @@ impl SparseLu {
             ));
         }
         Ok(())
+    }
+
+    /// Solve `K x = rhs` after another solver failed with `cause`; the
+    /// error names both failures.
+    pub fn solve_after(
+        &mut self,
+        cause: &dyn std::fmt::Display,
+        system: &LinearSystem<'_>,
+        rhs: &[f64],
+        x: &mut [f64],
+    ) -> std::result::Result<(), String> {
+        LinearSolver::solve(self, system, rhs, x).map_err(|e| format!("{cause}; then {e}"))
+    }
+}
+
+impl LinearSolver for SparseLu {
+    /// The LU orders its columns itself (COLAMD).
+    fn set_ordering(&mut self, _ordering: Ordering) {}
+
+    fn solve(
+        &mut self,
+        system: &LinearSystem<'_>,
+        rhs: &[f64],
+        x: &mut [f64],
+    ) -> std::result::Result<(), String> {
+        x.copy_from_slice(rhs);
+        self.solves += 1;
+        self.factor_and_solve(system.pattern, system.matrix, x)
+            .map_err(|e| e.to_string())
+    }
+
+    fn statistics(&self) -> SolverStatistics {
+        SolverStatistics {
+            factorisation: self.total,
+            lu_solves: self.solves,
+            ..Default::default()
+        }
     }
 }
 
@@ -98,7 +140,7 @@ mod tests {
             3.0 * x[1] + 6.0 * x[2],
         ];
         let mut lu = SparseLu::default();
-        lu.solve(&a.symbolic().to_owned().unwrap(), a.val(), &mut b)
+        lu.factor_and_solve(&a.symbolic().to_owned().unwrap(), a.val(), &mut b)
             .unwrap();
         for i in 0..3 {
             assert!((b[i] - x[i]).abs() < 1e-14, "{b:?}");

@@ -1,10 +1,18 @@
-//! The nonlinear solve: sparse direct linear solves, Newton–Raphson with a
-//! backtracking line search, and adaptive load stepping.
+//! The nonlinear solve: Newton–Raphson with a backtracking line search and
+//! adaptive load stepping over a [`nonlinear::NonlinearProblem`], and the
+//! sparse linear solvers behind [`linear_solver::LinearSolver`].
 
+pub mod backend;
 pub mod chattering;
+pub mod direct;
+pub mod failure;
 pub mod gmres;
+pub mod krylov;
 pub mod linear;
+pub mod linear_solver;
 pub mod lu;
 pub mod newton;
+pub mod nonlinear;
 pub mod ordering;
+pub mod settings;
 pub mod stepping;

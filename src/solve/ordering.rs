@@ -9,6 +9,8 @@
 //! `metis-sys` crate builds METIS from its vendored C sources with `cc`; no
 //! system library is needed.
 
+use super::linear::Ordering;
+use crate::assembly::pattern::SparsityPattern;
 use crate::{Error, Result};
 
 /// Nested-dissection permutation of the nodes of a graph given in CSR form
@@ -55,16 +57,13 @@ pub fn nested_dissection(xadj: &[usize], adjncy: &[usize]) -> Result<Vec<usize>>
 
 /// AMD for small problems, METIS nested dissection above 10 000 dofs
 /// (where it already fills less: 2.4 times fewer factor entries at 28 k
-/// dofs on a Hex8 box).
-pub fn fill_reducing_ordering(
-    problem: &crate::problem::Problem,
-) -> Result<super::linear::Ordering> {
-    use super::linear::Ordering;
+/// dofs on a Hex8 box). `num_dofs` displacement unknowns come first in
+/// `pattern`, the multipliers after them.
+pub fn fill_reducing_ordering(pattern: &SparsityPattern, num_dofs: usize) -> Result<Ordering> {
     // a saddle system needs each multiplier after its node: always ND then
-    if problem.model.num_dofs() <= 10_000 && !problem.has_multipliers() {
+    if num_dofs <= 10_000 && pattern.dimension() <= num_dofs {
         return Ok(Ordering::Amd);
     }
-    let pattern = &problem.model.pattern;
     let (xadj, adjncy) = pattern.node_graph();
     let nodes = nested_dissection(&xadj, &adjncy)?;
     Ok(Ordering::Custom(pattern.dof_ordering(&nodes)))

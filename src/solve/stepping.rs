@@ -5,9 +5,10 @@
 //! increment converged before stays written, since output happens in the
 //! `on_converged` callback as each increment converges.
 
-use super::linear::SparseLdlt;
-use super::newton::{solve_increment, IterationRecord, NewtonOutcome};
-use crate::problem::{ContactState, Problem};
+use super::failure::IncrementFailure;
+use super::linear_solver::LinearSolver;
+use super::newton::{IterationRecord, Newton, NewtonOutcome};
+use super::nonlinear::{Evaluation, NonlinearProblem};
 use crate::{Error, Result};
 use std::path::PathBuf;
 
@@ -30,44 +31,45 @@ pub struct IncrementRecord {
 }
 
 /// What the stepper reports as it goes.
-pub trait StepObserver {
+pub trait StepObserver<P: NonlinearProblem> {
     /// An increment converged; `u` holds the new unknowns (displacements,
-    /// then contact multipliers), `residual` the `f_int − f_ext − f_contact`
-    /// there (the reactions on prescribed dofs) and `contact` the committed
-    /// contact states. Write output here.
+    /// then contact multipliers), `evaluation` the converged evaluation
+    /// (the residual `f_int − f_ext − f_contact`, whose prescribed entries
+    /// are the reactions, and the contact reports) and `state` the
+    /// committed history. Write output here.
     fn on_converged(
         &mut self,
-        problem: &Problem,
+        problem: &P,
         record: &IncrementRecord,
         u: &[f64],
-        residual: &[f64],
-        contact: &ContactState,
+        evaluation: &Evaluation<P::Report>,
+        state: &P::State,
     ) -> Result<()>;
     /// An increment failed and is cut.
-    fn on_cut(&mut self, _step: &str, _time: f64, _increment: f64, _reason: &str) {}
+    fn on_cut(&mut self, _step: &str, _time: f64, _increment: f64, _reason: &IncrementFailure) {}
 }
 
 /// Run every step of `problem` from `u = 0` (except the prescribed values).
 /// Returns the final displacement. `problem` is mutable for the contact
 /// pairs of deformable interfaces, searched again at the start of every
 /// increment attempt (and the sparsity pattern with them).
-pub fn run_steps(
-    problem: &mut Problem,
-    solver: &mut SparseLdlt,
-    observer: &mut dyn StepObserver,
+pub fn run_steps<P: NonlinearProblem>(
+    problem: &mut P,
+    solver: &mut dyn LinearSolver,
+    observer: &mut dyn StepObserver<P>,
     output: PathBuf,
 ) -> Result<Vec<f64>> {
     let constrained = problem.constrained_dofs();
-    let mut u = vec![0.0; problem.num_unknowns()];
+    let mut u = vec![0.0; problem.pattern().dimension()];
     problem.apply_prescribed(0.0, &mut u);
-    let mut contact = problem.initial_contact_state(&u);
+    let mut state = problem.initial_state(&u);
     let mut trial = Vec::with_capacity(u.len());
     let mut t = 0.0;
     let mut force_scale = 0.0f64;
     let mut any_converged = false;
     // largest nodal displacement of the last converged increment, and its length
     let mut last_motion: Option<(f64, f64)> = None;
-    let steps = problem.steps.clone();
+    let steps = problem.steps().to_vec();
     for (s, step) in steps.iter().enumerate() {
         let mut dt = step.initial_increment.min(step.end_time - t);
         let mut cuts = 0;
@@ -83,39 +85,35 @@ pub fn run_steps(
                 t + dt
             };
             let motion = last_motion.map_or(0.0, |(m, last_dt)| m * (t_new - t) / last_dt);
-            if problem.refresh_contact_pairs(&u, motion) {
+            if problem.refresh_pattern(&u, motion) {
                 // new couplings: order them (each multiplier after its nodes)
-                solver.set_ordering(super::ordering::fill_reducing_ordering(problem)?);
+                solver.set_ordering(super::ordering::fill_reducing_ordering(
+                    problem.pattern(),
+                    problem.num_dofs(),
+                )?);
             }
-            let problem: &Problem = problem;
-            let mut trial_contact = contact.clone();
-            let (outcome, newton) = solve_with_augmentation(
+            let problem: &P = problem;
+            let mut trial_state = state.clone();
+            let mut newton = Newton {
                 problem,
-                solver,
-                &constrained,
-                &u,
-                t_new,
+                solver: &mut *solver,
+                constrained: &constrained,
+                t: t_new,
                 force_scale,
-                &mut trial_contact,
-                &mut trial,
-            )?;
-            let outcome = match outcome {
-                NewtonOutcome::Converged { .. } if !problem.contact_pairs_hold(&trial, &trial_contact) => {
-                    NewtonOutcome::Failed(
-                        "a contact node slid beyond the primary triangles it was paired with at the \
-                         start of the increment"
-                            .into(),
-                    )
-                }
-                other => other,
             };
+            let (outcome, iterations) =
+                solve_with_augmentation(&mut newton, &u, &mut trial_state, &mut trial);
+            let outcome = outcome.and_then(|evaluation| {
+                if problem.couplings_hold(&trial, &trial_state) {
+                    Ok(evaluation)
+                } else {
+                    Err(IncrementFailure::PairsMoved)
+                }
+            });
             match outcome {
-                NewtonOutcome::Converged {
-                    residual,
-                    force_scale: scale,
-                } => {
+                Ok(evaluation) => {
                     let moved = problem
-                        .deformable_contact_nodes()
+                        .moving_coupled_nodes()
                         .into_iter()
                         .map(|n| {
                             (0..3)
@@ -126,36 +124,37 @@ pub fn run_steps(
                         .fold(0.0f64, f64::max);
                     last_motion = Some((moved, t_new - t));
                     std::mem::swap(&mut u, &mut trial);
-                    problem.commit_contact_history(t_new, &u, &mut trial_contact);
-                    contact = trial_contact;
-                    force_scale = force_scale.max(scale);
+                    problem.commit(t_new, &u, &mut trial_state);
+                    state = trial_state;
+                    force_scale = force_scale.max(evaluation.force_scale());
                     any_converged = true;
                     let record = IncrementRecord {
                         step: s,
                         step_name: step.name.clone(),
                         time: t_new,
                         increment: t_new - t,
-                        iterations: newton.len() - 1,
-                        newton,
+                        iterations: iterations.len() - 1,
+                        newton: iterations,
                         cuts,
                     };
                     t = t_new;
-                    observer.on_converged(problem, &record, &u, &residual, &contact)?;
-                    if record.iterations <= problem.settings.easy_iterations && cuts == 0 {
-                        dt = (dt * problem.settings.growth_factor).min(step.max_increment);
+                    observer.on_converged(problem, &record, &u, &evaluation, &state)?;
+                    let settings = problem.settings();
+                    if record.iterations <= settings.easy_iterations && cuts == 0 {
+                        dt = (dt * settings.growth_factor).min(step.max_increment);
                     }
                     cuts = 0;
                 }
-                NewtonOutcome::Failed(reason) => {
-                    observer.on_cut(&step.name, t_new, dt, &reason);
+                Err(failure) => {
+                    observer.on_cut(&step.name, t_new, dt, &failure);
                     cuts += 1;
-                    if cuts > problem.settings.max_cuts || 0.5 * dt < step.min_increment {
+                    if cuts > problem.settings().max_cuts || 0.5 * dt < step.min_increment {
                         return Err(Error::NoConvergence {
                             step: step.name.clone(),
                             time: t_new,
                             cuts: cuts - 1,
                             increment: dt,
-                            reason,
+                            reason: failure.to_string(),
                             last_converged_time: any_converged.then_some(t),
                             output,
                         });
@@ -171,58 +170,181 @@ pub fn run_steps(
 /// Most outer (Uzawa) augmentations of one increment.
 const MAX_AUGMENTATIONS: usize = 200;
 
-/// Newton for one increment; for Uzawa interfaces, followed by multiplier
-/// updates and new Newton solves at the same time until the largest
-/// penetration is within tolerance (formulation note §2.1 item 2).
-#[allow(clippy::too_many_arguments)]
-fn solve_with_augmentation(
-    problem: &Problem,
-    solver: &mut SparseLdlt,
-    constrained: &[bool],
+/// Newton for one increment from `u_start`; for Uzawa interfaces, followed
+/// by multiplier updates and new Newton solves at the same time until the
+/// largest penetration is within tolerance (formulation note §2.1 item 2).
+fn solve_with_augmentation<P: NonlinearProblem>(
+    newton: &mut Newton<'_, P>,
     u_start: &[f64],
-    t: f64,
-    force_scale: f64,
-    contact: &mut ContactState,
+    state: &mut P::State,
     u: &mut Vec<f64>,
-) -> Result<(NewtonOutcome, Vec<IterationRecord>)> {
-    let (mut outcome, mut records) = solve_increment(
-        problem,
-        solver,
-        constrained,
-        u_start,
-        u_start,
-        t,
-        force_scale,
-        contact,
-        u,
-    )?;
+) -> NewtonOutcome<P::Report> {
+    let (mut outcome, mut records) = newton.solve(u_start, u_start, state, u);
     let mut augmentations = 0;
-    while matches!(outcome, NewtonOutcome::Converged { .. })
-        && problem.augment_multipliers(t, u, contact)
-    {
+    while outcome.is_ok() && newton.problem.augment(newton.t, u, state) {
         augmentations += 1;
         if augmentations > MAX_AUGMENTATIONS {
-            return Ok((
-                NewtonOutcome::Failed(format!(
-                    "the Uzawa multipliers did not reach the penetration tolerance in {MAX_AUGMENTATIONS} updates"
-                )),
-                records,
-            ));
+            let updates = MAX_AUGMENTATIONS;
+            return (Err(IncrementFailure::OuterLoopLimit { updates }), records);
         }
         let start = u.clone();
-        let (next, more) = solve_increment(
-            problem,
-            solver,
-            constrained,
-            &start,
-            u_start,
-            t,
-            force_scale,
-            contact,
-            u,
-        )?;
+        let (next, more) = newton.solve(&start, u_start, state, u);
         outcome = next;
         records.extend(more);
     }
-    Ok((outcome, records))
+    (outcome, records)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::assembly::pattern::SparsityPattern;
+    use crate::solve::backend::linear_solver;
+    use crate::solve::linear::Ordering;
+    use crate::solve::settings::{SolverSettings, Step};
+
+    /// Three uncoupled hardening springs, `r_i = k x_i + c x_i³ − t f_i`:
+    /// a [`NonlinearProblem`] that is not the finite-element `Problem`, with
+    /// no history.
+    struct Springs {
+        settings: SolverSettings,
+        steps: Vec<Step>,
+        pattern: SparsityPattern,
+        k: f64,
+        c: f64,
+        f: [f64; 3],
+    }
+
+    impl NonlinearProblem for Springs {
+        type State = ();
+        type Report = ();
+        fn settings(&self) -> &SolverSettings {
+            &self.settings
+        }
+        fn steps(&self) -> &[Step] {
+            &self.steps
+        }
+        fn pattern(&self) -> &SparsityPattern {
+            &self.pattern
+        }
+        fn num_dofs(&self) -> usize {
+            3
+        }
+        fn size(&self) -> f64 {
+            1.0
+        }
+        fn has_nonsymmetric_tangent(&self) -> bool {
+            false
+        }
+        fn constrained_dofs(&self) -> Vec<bool> {
+            vec![false; 3]
+        }
+        fn apply_prescribed(&self, _t: f64, _x: &mut [f64]) {}
+        fn initial_state(&self, _x: &[f64]) {}
+        fn evaluate(
+            &self,
+            t: f64,
+            x: &[f64],
+            _state: &(),
+            tangent: Option<&mut [f64]>,
+        ) -> std::result::Result<Evaluation<()>, IncrementFailure> {
+            let (k, c) = (self.k, self.c);
+            let internal: Vec<f64> = x.iter().map(|&xi| k * xi + c * xi.powi(3)).collect();
+            let external: Vec<f64> = self.f.iter().map(|fi| t * fi).collect();
+            if let Some(values) = tangent {
+                values.iter_mut().for_each(|v| *v = 0.0);
+                for (i, xi) in x.iter().enumerate() {
+                    values[self.pattern.diagonal_entry(i)] = k + 3.0 * c * xi * xi;
+                }
+            }
+            Ok(Evaluation {
+                residual: internal.iter().zip(&external).map(|(a, b)| a - b).collect(),
+                internal_norm: super::super::gmres::norm(&internal),
+                external_norm: super::super::gmres::norm(&external),
+                statuses: Vec::new(),
+                reports: (),
+            })
+        }
+        fn symmetric_neighbour(&self, _: f64, _: &[f64], _: &(), _: &[bool], _: &mut [f64]) {}
+        fn advance_state(&self, _: f64, _: &[f64], _: &[f64], _: &mut ()) {}
+        fn augment(&self, _: f64, _: &[f64], _: &mut ()) -> bool {
+            false
+        }
+        fn commit(&self, _: f64, _: &[f64], _: &mut ()) {}
+        fn refresh_pattern(&mut self, _: &[f64], _: f64) -> bool {
+            false
+        }
+        fn couplings_hold(&self, _: &[f64], _: &()) -> bool {
+            true
+        }
+        fn moving_coupled_nodes(&self) -> Vec<usize> {
+            Vec::new()
+        }
+    }
+
+    /// The converged residual of every increment.
+    #[derive(Default)]
+    struct Residuals(Vec<(f64, Vec<f64>)>);
+
+    impl StepObserver<Springs> for Residuals {
+        fn on_converged(
+            &mut self,
+            _p: &Springs,
+            record: &IncrementRecord,
+            _u: &[f64],
+            evaluation: &Evaluation<()>,
+            _state: &(),
+        ) -> Result<()> {
+            self.0.push((record.time, evaluation.residual.clone()));
+            Ok(())
+        }
+    }
+
+    /// Newton and the stepper solve a problem that is not the finite-element
+    /// one: each spring ends at the root of `k x + c x³ = f` (found here by
+    /// bisection to 1e-14), and the observer receives the converged
+    /// evaluation of every increment, whose residual is within tolerance.
+    #[test]
+    fn the_stepper_solves_any_nonlinear_problem() {
+        let nodes = [0usize];
+        let mut springs = Springs {
+            settings: SolverSettings {
+                residual_tolerance: 1e-12,
+                ..SolverSettings::default()
+            },
+            steps: vec![Step {
+                name: "load".into(),
+                end_time: 1.0,
+                initial_increment: 0.5,
+                min_increment: 1e-3,
+                max_increment: 0.5,
+            }],
+            pattern: SparsityPattern::from_elements(1, std::iter::once(&nodes[..])),
+            k: 2.0,
+            c: 5.0,
+            f: [1.0, -3.0, 40.0],
+        };
+        let mut solver = linear_solver(&springs.settings, Ordering::Amd, 1);
+        let mut residuals = Residuals::default();
+        let x = run_steps(&mut springs, &mut *solver, &mut residuals, PathBuf::new()).unwrap();
+        for (xi, fi) in x.iter().zip(springs.f) {
+            let (mut lo, mut hi) = (-10.0f64, 10.0f64);
+            while hi - lo > 1e-14 {
+                let mid = 0.5 * (lo + hi);
+                if springs.k * mid + springs.c * mid.powi(3) < fi {
+                    lo = mid;
+                } else {
+                    hi = mid;
+                }
+            }
+            assert!((xi - lo).abs() < 1e-10, "{xi} vs {lo}");
+        }
+        assert_eq!(
+            residuals.0.iter().map(|r| r.0).collect::<Vec<_>>(),
+            [0.5, 1.0]
+        );
+        for (_, r) in &residuals.0 {
+            assert!(super::super::gmres::norm(r) < 1e-10, "{r:?}");
+        }
+    }
 }

@@ -5,6 +5,7 @@
 use nalgebra::Vector3;
 use signorini::assembly::Model;
 use signorini::contact::friction::Coulomb;
+use signorini::contact::interface::NodeReport;
 use signorini::contact::interface::{ContactInterface, Primary};
 use signorini::contact::laws::NormalLaw;
 use signorini::contact::{tributary_areas, RigidObstacle};
@@ -15,7 +16,9 @@ use signorini::mesh::Mesh;
 use signorini::problem::{
     Amplitude, ContactState, PrescribedDisplacement, Problem, SolverSettings, Step,
 };
-use signorini::solve::linear::{Ordering, SparseLdlt};
+use signorini::solve::backend::linear_solver;
+use signorini::solve::linear::Ordering;
+use signorini::solve::nonlinear::Evaluation;
 use signorini::solve::stepping::{run_steps, IncrementRecord, StepObserver};
 use std::collections::HashMap;
 use std::path::Path;
@@ -64,13 +67,13 @@ pub struct Recorder {
     pub increments: Vec<IncrementRecord>,
 }
 
-impl StepObserver for Recorder {
+impl StepObserver<Problem> for Recorder {
     fn on_converged(
         &mut self,
         _p: &Problem,
         record: &IncrementRecord,
         _u: &[f64],
-        _r: &[f64],
+        _r: &Evaluation<Vec<Vec<NodeReport>>>,
         _c: &signorini::problem::ContactState,
     ) -> signorini::Result<()> {
         self.increments.push(record.clone());
@@ -80,9 +83,9 @@ impl StepObserver for Recorder {
 
 /// Solve all steps; return the displacement and the increments.
 pub fn solve(problem: &mut Problem) -> (Vec<f64>, Vec<IncrementRecord>) {
-    let mut solver = SparseLdlt::new(Ordering::Amd, 1);
+    let mut solver = linear_solver(&problem.settings, Ordering::Amd, 1);
     let mut rec = Recorder::default();
-    let u = run_steps(problem, &mut solver, &mut rec, "unused".into()).expect("converges");
+    let u = run_steps(problem, &mut *solver, &mut rec, "unused".into()).expect("converges");
     (u, rec.increments)
 }
 
@@ -251,15 +254,16 @@ pub struct Last {
     pub snapshots: Vec<Snapshot>,
 }
 
-impl StepObserver for Last {
+impl StepObserver<Problem> for Last {
     fn on_converged(
         &mut self,
         _p: &Problem,
         record: &IncrementRecord,
         u: &[f64],
-        r: &[f64],
+        evaluation: &Evaluation<Vec<Vec<NodeReport>>>,
         c: &ContactState,
     ) -> signorini::Result<()> {
+        let r = &evaluation.residual;
         self.x = u.to_vec();
         self.contact = c.clone();
         self.increments.push(record.clone());
@@ -276,9 +280,10 @@ impl StepObserver for Last {
 /// Run every step with the run's fill-reducing ordering; panics if the
 /// run fails.
 pub fn run(p: &mut Problem) -> Last {
-    let mut solver = SparseLdlt::new(signorini::run::fill_reducing_ordering(p).unwrap(), 1);
+    let ordering = signorini::run::fill_reducing_ordering(p).unwrap();
+    let mut solver = linear_solver(&p.settings, ordering, 1);
     let mut last = Last::default();
-    run_steps(p, &mut solver, &mut last, "unused".into()).expect("converges");
+    run_steps(p, &mut *solver, &mut last, "unused".into()).expect("converges");
     last
 }
 

@@ -1,0 +1,95 @@
+//! Why an increment did not converge. Every [`IncrementFailure`] is mended,
+//! if at all, by a smaller increment: the stepper cuts the increment on
+//! any of them and stops after `max_cuts` consecutive cuts. Errors that no
+//! cut can mend (a failed output write, a bad ordering) are `Err` instead.
+//! `Display` gives the message of the log and of the final error.
+
+use super::chattering::Chatter;
+use crate::assembly::kernel::KernelFailure;
+
+/// A failed increment, by cause.
+#[derive(Clone, Debug, PartialEq)]
+pub enum IncrementFailure {
+    /// An element could not be evaluated: inverted (`det F ≤ 0`) or
+    /// degenerate in the reference configuration. `element` is its mesh id.
+    InvertedElement {
+        element: u64,
+        failure: KernelFailure,
+    },
+    /// The relative residual is NaN or infinite.
+    NotFinite,
+    /// The relative residual grew a thousandfold over that after the
+    /// predictor.
+    Diverging { relative: f64 },
+    /// The contact statuses cycle between iterations.
+    Chattering(Chatter),
+    /// A correction `largest` far beyond the body's `size`: a rigid-body
+    /// mode that the saddle system's regularisation let through.
+    RigidBodyMode { largest: f64, size: f64 },
+    /// The linear solve failed (a singular tangent); the solver's message.
+    LinearSolve(String),
+    /// No convergence in `iterations` Newton iterations.
+    MaxIterations { iterations: usize, relative: f64 },
+    /// A contact node slid beyond the primary triangles it was paired with
+    /// at the start of the increment.
+    PairsMoved,
+    /// The outer (Uzawa) loop did not reach its tolerance in `updates`.
+    OuterLoopLimit { updates: usize },
+}
+
+impl std::fmt::Display for IncrementFailure {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        match self {
+            IncrementFailure::InvertedElement {
+                element: id,
+                failure:
+                    KernelFailure::Inverted {
+                        quadrature_point,
+                        det_f,
+                    },
+            } => write!(
+                f,
+                "element {id} inverted (det F = {det_f:.3e} at quadrature point {quadrature_point})"
+            ),
+            IncrementFailure::InvertedElement {
+                element: id,
+                failure:
+                    KernelFailure::ReferenceInverted {
+                        quadrature_point,
+                        det_j,
+                    },
+            } => write!(
+                f,
+                "element {id} degenerate in the reference configuration (det J = {det_j:.3e} at quadrature point {quadrature_point})"
+            ),
+            IncrementFailure::NotFinite => write!(f, "the residual is not finite"),
+            IncrementFailure::Diverging { relative } => {
+                write!(f, "diverging (relative residual {relative:.3e})")
+            }
+            IncrementFailure::Chattering(chatter) => chatter.fmt(f),
+            IncrementFailure::RigidBodyMode { largest, size } => write!(
+                f,
+                "a correction of {largest:.3e} against a body of size {size:.3e}: a rigid-body mode \
+                 (the body lost contact, every contact node slips so that friction cannot hold a load \
+                 beyond its capacity, or a support is missing)"
+            ),
+            IncrementFailure::LinearSolve(message) => f.write_str(message),
+            IncrementFailure::MaxIterations {
+                iterations,
+                relative,
+            } => write!(
+                f,
+                "no convergence in {iterations} iterations (relative residual {relative:.3e})"
+            ),
+            IncrementFailure::PairsMoved => write!(
+                f,
+                "a contact node slid beyond the primary triangles it was paired with at the \
+                 start of the increment"
+            ),
+            IncrementFailure::OuterLoopLimit { updates } => write!(
+                f,
+                "the Uzawa multipliers did not reach the penetration tolerance in {updates} updates"
+            ),
+        }
+    }
+}

@@ -1,0 +1,96 @@
+//! The [`LinearSolver`] trait: what Newton asks of a linear solver. Each
+//! Newton correction solves `K δu = b` once; a solver analyses the sparsity
+//! pattern once (recognised by its fingerprint) and factorises every time.
+//! The implementations, one file each: [`super::direct::DirectLdlt`],
+//! [`super::krylov::PreconditionedGmres`], [`super::lu::SparseLu`]; the
+//! `[solver] linear` key picks one in [`super::backend::linear_solver`].
+
+use super::linear::{Ordering, SparseLdlt};
+use faer::sparse::SymbolicSparseColMat;
+use std::time::Duration;
+
+/// One linear system `K x = b` of a Newton iteration.
+pub struct LinearSystem<'a> {
+    /// Full (both triangles) CSC pattern of `K`.
+    pub pattern: &'a SymbolicSparseColMat<usize>,
+    /// The values of `K` (prescribed rows and columns already replaced by a
+    /// scaled identity).
+    pub matrix: &'a [f64],
+    /// For a nonsymmetric `K`: a symmetric matrix on the same pattern that
+    /// differs from `K` only in a few blocks (the preconditioner's). `None`
+    /// when `K` is symmetric.
+    pub symmetric_neighbour: Option<&'a [f64]>,
+    /// The expected sign of each pivot (+1 displacement, −1 multiplier) of
+    /// a saddle-point system, for the LDLᵀ's dynamic regularisation.
+    pub pivot_signs: Option<&'a [i8]>,
+}
+
+/// Counts and times of a solver since it was made (summary.json's
+/// `symbolic_analyses`, `phase_times`, `factor_nnz`, `krylov_*`,
+/// `lu_solves`).
+#[derive(Clone, Copy, Debug, Default, PartialEq)]
+pub struct SolverStatistics {
+    /// Symbolic analyses of the LDLᵀ.
+    pub analyses: usize,
+    pub symbolic: Duration,
+    /// Numeric LDLᵀ factorisations and LU factorisations with their solves.
+    pub factorisation: Duration,
+    /// LDLᵀ triangular solves.
+    pub solve: Duration,
+    /// Stored entries of the LDLᵀ factor.
+    pub factor_nnz: usize,
+    /// GMRES solves and their iterations in total.
+    pub krylov_solves: usize,
+    pub krylov_iterations: usize,
+    /// Solves by the sparse LU (chosen, or as a fallback).
+    pub lu_solves: usize,
+}
+
+impl SolverStatistics {
+    /// The analyses, times and factor size of an LDLᵀ.
+    pub fn of_ldlt(ldlt: &SparseLdlt) -> Self {
+        let t = &ldlt.timings;
+        SolverStatistics {
+            analyses: t.analyses,
+            symbolic: t.symbolic_total,
+            factorisation: t.numeric_total,
+            solve: t.solve_total,
+            factor_nnz: ldlt.factor_nnz(),
+            ..Default::default()
+        }
+    }
+}
+
+impl std::ops::Add for SolverStatistics {
+    type Output = Self;
+    fn add(self, o: Self) -> Self {
+        SolverStatistics {
+            analyses: self.analyses + o.analyses,
+            symbolic: self.symbolic + o.symbolic,
+            factorisation: self.factorisation + o.factorisation,
+            solve: self.solve + o.solve,
+            factor_nnz: self.factor_nnz + o.factor_nnz,
+            krylov_solves: self.krylov_solves + o.krylov_solves,
+            krylov_iterations: self.krylov_iterations + o.krylov_iterations,
+            lu_solves: self.lu_solves + o.lu_solves,
+        }
+    }
+}
+
+/// A sparse linear solver for Newton's corrections.
+pub trait LinearSolver {
+    /// Use `ordering` from the next factorisation on (a new symbolic
+    /// analysis): after the pattern changed, e.g. new contact pairs.
+    fn set_ordering(&mut self, ordering: Ordering);
+    /// Solve `K x = rhs` (analysing the pattern if it is new, factorising
+    /// `K` or its symmetric neighbour). The error says why it failed (a
+    /// singular tangent), for the log.
+    fn solve(
+        &mut self,
+        system: &LinearSystem<'_>,
+        rhs: &[f64],
+        x: &mut [f64],
+    ) -> Result<(), String>;
+    /// Counts and times so far.
+    fn statistics(&self) -> SolverStatistics;
+}

@@ -1,0 +1,104 @@
+//! What Newton and the stepper need of a problem: the
+//! [`NonlinearProblem`] trait. `solve/` knows residuals, tangents,
+//! prescribed dofs and an opaque history state; it does not know contact
+//! (the state and the per-node reports are associated types), so the
+//! boundary-value problem of [`crate::problem`] is one implementation and a
+//! test problem or a future binding may be another.
+
+use super::failure::IncrementFailure;
+use super::settings::{SolverSettings, Step};
+use crate::assembly::pattern::SparsityPattern;
+
+/// One evaluation at time `t` and unknowns `x`: the residual
+/// `r = f_int − f_ext − f_contact` over all unknowns (displacements, then
+/// multipliers; its prescribed entries are the reactions), the norms that
+/// scale it, one status code per contact node (for the chattering
+/// detector) and the problem's per-node reports (for output).
+#[derive(Clone, Debug)]
+pub struct Evaluation<R> {
+    pub residual: Vec<f64>,
+    /// `‖f_int + f_contact‖` and `‖f_ext‖`.
+    pub internal_norm: f64,
+    pub external_norm: f64,
+    /// Per contact node: `0` open, `1` stick, `2` slip, plus
+    /// 4 × (1 + the primary triangle) on a deformable interface
+    /// ([`super::chattering::ChatterDetector::observe`]).
+    pub statuses: Vec<u64>,
+    pub reports: R,
+}
+
+impl<R> Evaluation<R> {
+    /// `max(‖f_int‖, ‖f_ext‖)`, the force scale of the residual.
+    pub fn force_scale(&self) -> f64 {
+        self.internal_norm.max(self.external_norm)
+    }
+}
+
+/// A nonlinear problem `r(t, x; state) = 0` solved by Newton in load
+/// increments. `State` is the history carried between increments (contact
+/// multipliers held by an outer loop, friction's committed slip), advanced
+/// along Newton steps, augmented by the outer loop and committed when an
+/// increment converges.
+pub trait NonlinearProblem {
+    /// History state: cloned for every trial increment and line-search step.
+    type State: Clone;
+    /// What an evaluation reports besides the residual (per contact node).
+    type Report;
+
+    /// Newton and stepping controls.
+    fn settings(&self) -> &SolverSettings;
+    /// The load steps.
+    fn steps(&self) -> &[Step];
+    /// The sparsity pattern of the tangent (displacements, then multipliers).
+    fn pattern(&self) -> &SparsityPattern;
+    /// Number of displacement unknowns (the multipliers follow them).
+    fn num_dofs(&self) -> usize;
+    /// A length of the body: a correction beyond 10 × this is a rigid-body mode.
+    fn size(&self) -> f64;
+    /// Whether the tangent is nonsymmetric (a symmetric neighbour is then
+    /// built for the preconditioner).
+    fn has_nonsymmetric_tangent(&self) -> bool;
+    /// Which unknowns are prescribed (in any step).
+    fn constrained_dofs(&self) -> Vec<bool>;
+    /// Write the prescribed values at time `t` into `x`.
+    fn apply_prescribed(&self, t: f64, x: &mut [f64]);
+    /// The history before the first increment, at unknowns `x`.
+    fn initial_state(&self, x: &[f64]) -> Self::State;
+    /// Residual (and the tangent `K = ∂r/∂x` into `tangent`, if given) at
+    /// time `t`, unknowns `x` and history `state`.
+    fn evaluate(
+        &self,
+        t: f64,
+        x: &[f64],
+        state: &Self::State,
+        tangent: Option<&mut [f64]>,
+    ) -> Result<Evaluation<Self::Report>, IncrementFailure>;
+    /// Turn the symmetric part `values` of a nonsymmetric tangent into the
+    /// preconditioner's matrix (e.g. friction's slip blocks by stick blocks);
+    /// entries of `constrained` unknowns are skipped.
+    fn symmetric_neighbour(
+        &self,
+        t: f64,
+        x: &[f64],
+        state: &Self::State,
+        constrained: &[bool],
+        values: &mut [f64],
+    );
+    /// Carry `state` along a Newton step `dx` from `x`.
+    fn advance_state(&self, t: f64, x: &[f64], dx: &[f64], state: &mut Self::State);
+    /// After a converged Newton solve: update the outer-loop unknowns
+    /// (Uzawa multipliers) and return `true` to solve again, `false` when
+    /// within tolerance.
+    fn augment(&self, t: f64, x: &[f64], state: &mut Self::State) -> bool;
+    /// Commit the history once an increment converged at `t`, `x`.
+    fn commit(&self, t: f64, x: &[f64], state: &mut Self::State);
+    /// Update couplings (contact pairs) at `x` for an increment expected to
+    /// move nodes by up to `motion`; `true` if the pattern changed.
+    fn refresh_pattern(&mut self, x: &[f64], motion: f64) -> bool;
+    /// Whether the couplings used for the increment still hold at the
+    /// converged `x` (else the increment is cut).
+    fn couplings_hold(&self, x: &[f64], state: &Self::State) -> bool;
+    /// The nodes whose motion sets the search margin of
+    /// [`NonlinearProblem::refresh_pattern`].
+    fn moving_coupled_nodes(&self) -> Vec<usize>;
+}

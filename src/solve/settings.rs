@@ -1,0 +1,86 @@
+//! What the nonlinear solve is told: Newton and stepping controls, the
+//! linear solver to use, and the load steps (the `[solver]` and `[[step]]`
+//! sections of the case file, once resolved).
+
+/// One load step: pseudo-time runs from the end of the previous step to
+/// `end_time` in increments chosen adaptively.
+#[derive(Clone, Debug)]
+pub struct Step {
+    pub name: String,
+    pub end_time: f64,
+    pub initial_increment: f64,
+    pub min_increment: f64,
+    pub max_increment: f64,
+}
+
+/// Newton and stepping controls.
+#[derive(Clone, Debug)]
+pub struct SolverSettings {
+    /// Newton iterations before an increment is cut.
+    pub max_iterations: usize,
+    /// Converged when `‖r‖ ≤ residual_tolerance · max(‖f_ext‖, ‖f_int‖)`…
+    pub residual_tolerance: f64,
+    /// …and `‖δu‖ ≤ displacement_tolerance · ‖Δu‖` (increment of the step).
+    pub displacement_tolerance: f64,
+    /// Backtracking line search on the residual norm.
+    pub line_search: bool,
+    /// Consecutive cuts of one increment before giving up.
+    pub max_cuts: usize,
+    /// Increment growth factor after an easy increment.
+    pub growth_factor: f64,
+    /// An increment that converged in at most this many iterations is easy.
+    pub easy_iterations: usize,
+    /// Linear solver of nonsymmetric tangents (friction, follower loads)
+    /// under [`LinearMethod::Auto`].
+    pub nonsymmetric: NonsymmetricSolver,
+    /// The linear solver ([`crate::solve::linear_solver`]).
+    pub linear: LinearMethod,
+}
+
+/// How a nonsymmetric tangent is solved.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, serde::Deserialize)]
+#[serde(rename_all = "lowercase")]
+pub enum NonsymmetricSolver {
+    /// GMRES preconditioned by the LDLᵀ of a symmetric neighbour of the
+    /// tangent (its symmetric part, friction in stick), with the sparse LU
+    /// as the fallback when it does not converge.
+    #[default]
+    Gmres,
+    /// Sparse LU with partial pivoting, every time.
+    Lu,
+}
+
+/// The linear solver of every Newton correction (`[solver] linear`).
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, serde::Deserialize)]
+#[serde(rename_all = "lowercase")]
+pub enum LinearMethod {
+    /// A symmetric tangent by the direct LDLᵀ, a nonsymmetric one as
+    /// `[solver] nonsymmetric` says (GMRES or the LU).
+    #[default]
+    Auto,
+    /// The direct LDLᵀ of the tangent with iterative refinement; the sparse
+    /// LU when it breaks down or leaves a relative residual above 1e-8.
+    Ldlt,
+    /// GMRES preconditioned by the LDLᵀ of the tangent's symmetric
+    /// neighbour (of the tangent itself when it is symmetric); the sparse
+    /// LU when it does not converge.
+    Gmres,
+    /// The sparse LU with partial pivoting, every time.
+    Lu,
+}
+
+impl Default for SolverSettings {
+    fn default() -> Self {
+        SolverSettings {
+            max_iterations: 20,
+            residual_tolerance: 1e-8,
+            displacement_tolerance: 1e-6,
+            line_search: true,
+            max_cuts: 8,
+            growth_factor: 1.5,
+            easy_iterations: 5,
+            nonsymmetric: NonsymmetricSolver::Gmres,
+            linear: LinearMethod::Auto,
+        }
+    }
+}

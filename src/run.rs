@@ -47,6 +47,9 @@ pub struct RunOutcome {
 pub fn run(case_path: &Path, options: &RunOptions) -> Result<RunOutcome> {
     let start = Instant::now();
     let case = case::load(case_path)?;
+    if !options.quiet {
+        case.notes.iter().for_each(|note| eprintln!("note: {note}"));
+    }
     let mut problem = case.build_problem()?;
     let output_dir = case.output_dir(options.output.as_deref());
     let mut writer = Writer::new(&case, &problem, &output_dir, options.quiet, start)?;

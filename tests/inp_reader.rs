@@ -4,6 +4,7 @@
 //! numbering of C3D4, and malformed decks whose errors name the file and
 //! line.
 
+use nalgebra::Vector3;
 use signorini::mesh::inp::read_inp;
 use signorini::mesh::{Mesh, SurfaceSet};
 use signorini::run::{run, RunOptions};
@@ -24,34 +25,19 @@ fn ids(mesh: &Mesh, nodes: &[usize]) -> BTreeSet<u64> {
 /// A surface set's facets as sets of node ids, with the facets' outward
 /// normals (right-hand rule, area-weighted) summed.
 fn facets(mesh: &Mesh, s: &SurfaceSet) -> (BTreeSet<BTreeSet<u64>>, [f64; 3]) {
-    let mut total = [0.0; 3];
+    let mut total = Vector3::zeros();
     for f in &s.facets {
-        let x: Vec<[f64; 3]> = f.nodes.iter().map(|&n| mesh.nodes[n]).collect();
+        let x: Vec<Vector3<f64>> = f.nodes.iter().map(|&n| mesh.nodes[n].into()).collect();
         // (x2 − x0) × (x3 − x1) / 2 for a quadrangle, (x1 − x0) × (x2 − x0) / 2 for a triangle
         let (a, b) = if x.len() == 4 {
-            (sub(x[2], x[0]), sub(x[3], x[1]))
+            (x[2] - x[0], x[3] - x[1])
         } else {
-            (sub(x[1], x[0]), sub(x[2], x[0]))
+            (x[1] - x[0], x[2] - x[0])
         };
-        let c = cross(a, b);
-        for i in 0..3 {
-            total[i] += 0.5 * c[i];
-        }
+        total += 0.5 * a.cross(&b);
     }
     let sets = s.facets.iter().map(|f| ids(mesh, &f.nodes)).collect();
-    (sets, total)
-}
-
-fn sub(a: [f64; 3], b: [f64; 3]) -> [f64; 3] {
-    [a[0] - b[0], a[1] - b[1], a[2] - b[2]]
-}
-
-fn cross(a: [f64; 3], b: [f64; 3]) -> [f64; 3] {
-    [
-        a[1] * b[2] - a[2] * b[1],
-        a[2] * b[0] - a[0] * b[2],
-        a[0] * b[1] - a[1] * b[0],
-    ]
+    (sets, total.into())
 }
 
 /// Gmsh wrote the same mesh as `bar_tet.msh` and `bar_tet.inp`: the same
@@ -176,13 +162,8 @@ fn c3d4_face_numbering() {
             s + 1
         );
         // outward: the normal points from the element's centroid to the face
-        let x = m.nodes[surface.facets[0].nodes[0]];
-        let d = sub(x, centroid);
-        assert!(
-            d[0] * normal[0] + d[1] * normal[1] + d[2] * normal[2] > 0.0,
-            "S{}",
-            s + 1
-        );
+        let d = Vector3::from(m.nodes[surface.facets[0].nodes[0]]) - Vector3::from(centroid);
+        assert!(d.dot(&Vector3::from(normal)) > 0.0, "S{}", s + 1);
     }
 }
 
@@ -242,7 +223,7 @@ fn malformed_decks_give_file_and_line() {
             format!("{NODES}{element}*ELSET, ELSET=e\nbody, missing\n"),
             "unknown_set.inp",
             9,
-            "'missing', which is neither an element id nor an element set",
+            "'missing', which is neither a defined element id nor the name of an earlier element set",
         ),
         (
             "short_element.inp",
@@ -250,6 +231,27 @@ fn malformed_decks_give_file_and_line() {
             "short_element.inp",
             7,
             "'id' and 8 node ids; found 5 fields",
+        ),
+        (
+            "generate_backwards.inp",
+            format!("{NODES}*NSET, NSET=n, GENERATE\n5, 1\n"),
+            "generate_backwards.inp",
+            7,
+            "GENERATE from 5 to 1: the last id must not be smaller than the first",
+        ),
+        (
+            "generate_empty.inp",
+            format!("{NODES}*NSET, NSET=n, GENERATE\n10, 20, 2\n"),
+            "generate_empty.inp",
+            6,
+            "*NSET 'n': the GENERATE ranges hold no defined id",
+        ),
+        (
+            "unknown_type.inp",
+            format!("{NODES}*ELEMENT, TYPE=SPRINGA\n1, 1, 2\n"),
+            "unknown_type.inp",
+            6,
+            "element type SPRINGA is not supported",
         ),
         (
             "data_first.inp",

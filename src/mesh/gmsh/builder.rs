@@ -107,6 +107,17 @@ impl Builder {
         Ok(())
     }
 
+    /// The index of node tag `node`, which element `tag` at offset `at`
+    /// refers to.
+    fn node_index(&self, cur: &Cursor, at: usize, tag: u64, node: u64) -> Result<usize> {
+        self.node_map.get(node).ok_or_else(|| {
+            cur.syntax(
+                at,
+                format!("element {tag} refers to node tag {node}, which is not in $Nodes"),
+            )
+        })
+    }
+
     /// Adds one element read at offset `at`: a volume element to
     /// [`Mesh::elements`] and its regions, a facet of a 2D physical group to
     /// its surface sets, the nodes of a point or line of a 0D or 1D physical
@@ -129,12 +140,7 @@ impl Builder {
         }
         if info.dim < 2 {
             for &node in node_tags {
-                let index = self.node_map.get(node).ok_or_else(|| {
-                    cur.syntax(
-                        at,
-                        format!("element {tag} refers to node tag {node}, which is not in $Nodes"),
-                    )
-                })?;
+                let index = self.node_index(cur, at, tag, node)?;
                 for &p in physicals {
                     let group = self.node_groups.entry((info.dim as i64, p)).or_default();
                     group.push(index);
@@ -163,12 +169,7 @@ impl Builder {
         };
         self.scratch.clear();
         for &node in node_tags {
-            let index = self.node_map.get(node).ok_or_else(|| {
-                cur.syntax(
-                    at,
-                    format!("element {tag} refers to node tag {node}, which is not in $Nodes"),
-                )
-            })?;
+            let index = self.node_index(cur, at, tag, node)?;
             if self.scratch.contains(&index) {
                 return Err(cur.invalid(format!(
                     "{}: element {tag} has node {node} more than once",

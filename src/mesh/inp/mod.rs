@@ -62,6 +62,10 @@ use deck::{split_fields, unquote, Deck, Keyword, Line};
 use element_type::{element_type, face_count, outward_face, Shape};
 use std::path::Path;
 
+/// The most ids one `GENERATE` line may list (a guard against a typo
+/// such as `1, 1000000000000`).
+const MAX_GENERATED: u64 = 100_000_000;
+
 /// A mesh read from a deck, and notes for the user (the keywords skipped,
 /// element types read as another).
 pub struct InpMesh {
@@ -279,15 +283,24 @@ impl Reader<'_> {
         Ok(())
     }
 
-    /// The ids listed by a set's data lines: explicit ids (`Ok`) and names of
-    /// other sets (`Err`), or with `GENERATE` the ranges `first, last[, step]`.
-    fn set_items(
+    /// The members a set's data lines list: ids (`by_id`) and names of sets
+    /// of the same kind defined before (`by_name`), or with `GENERATE` the
+    /// ranges `first, last[, step]` (ids that nothing has are skipped, but a
+    /// range must hold one). `what` is the keyword and the kind of item,
+    /// e.g. `("*NSET", "node")`.
+    #[allow(clippy::too_many_arguments)]
+    fn set_members<'b, T: Clone + 'b>(
         &self,
+        line: &Line,
         keyword: &Keyword,
         data: &[Line],
-        mut item: impl FnMut(&Line, Result<u64, &str>) -> Result<()>,
-    ) -> Result<()> {
+        name: &str,
+        (what, item): (&str, &str),
+        by_id: impl Fn(u64) -> Option<T>,
+        by_name: impl Fn(&str) -> Option<&'b [T]>,
+    ) -> Result<Vec<T>> {
         let generate = keyword.has("GENERATE");
+        let mut members = Vec::new();
         for l in data {
             let fields = data_fields(l);
             if generate {
@@ -312,53 +325,57 @@ impl Reader<'_> {
                         format!("GENERATE from {first} to {last}: the last id must not be smaller than the first"),
                     ));
                 }
-                let mut id = first;
-                while id <= last {
-                    item(l, Ok(id))?;
-                    id += step;
+                if (last - first) / step > MAX_GENERATED {
+                    return Err(self.err(
+                        l,
+                        format!("GENERATE from {first} to {last} by {step} lists more than {MAX_GENERATED} ids"),
+                    ));
                 }
-            } else {
-                for f in fields.iter().filter(|f| !f.is_empty()) {
-                    match f.parse::<u64>() {
-                        Ok(id) => item(l, Ok(id))?,
-                        Err(_) => item(l, Err(unquote(f)))?,
+                members.extend((first..=last).step_by(step as usize).filter_map(&by_id));
+                continue;
+            }
+            for f in fields.iter().filter(|f| !f.is_empty()) {
+                match f.parse::<u64>() {
+                    Ok(id) => members.push(by_id(id).ok_or_else(|| {
+                        self.err(
+                            l,
+                            format!("{what} '{name}' lists {item} {id}, which no *{} defines (before it)", item.to_ascii_uppercase()),
+                        )
+                    })?),
+                    Err(_) => {
+                        let set = unquote(f);
+                        members.extend_from_slice(by_name(set).ok_or_else(|| {
+                            self.err(
+                                l,
+                                format!("{what} '{name}' lists '{set}', which is neither a defined {item} id nor the name of an earlier {item} set"),
+                            )
+                        })?)
                     }
                 }
             }
         }
-        Ok(())
+        if generate && members.is_empty() {
+            return Err(self.err(
+                line,
+                format!("{what} '{name}': the GENERATE ranges hold no defined id"),
+            ));
+        }
+        Ok(members)
     }
 
     /// `*ELSET, ELSET=name[, GENERATE]`.
     fn element_set(&mut self, line: &Line, keyword: &Keyword, data: &[Line]) -> Result<()> {
         let name = self.required(line, keyword, "ELSET")?.to_string();
-        let generate = keyword.has("GENERATE");
-        let mut members = Vec::new();
-        self.set_items(keyword, data, |l, item| {
-            match item {
-                Ok(id) => match self.builder.element(id) {
-                    Some(m) => members.push(m),
-                    None if generate => {}
-                    None => {
-                        return Err(self.err(
-                            l,
-                            format!("*ELSET '{name}' lists element {id}, which no *ELEMENT defines (before it)"),
-                        ))
-                    }
-                },
-                Err(set) => match self.builder.element_sets.get(set) {
-                    Some(m) => members.extend_from_slice(m),
-                    None => {
-                        return Err(self.err(
-                            l,
-                            format!("*ELSET '{name}' lists '{set}', which is neither an element id nor an element set defined before"),
-                        ))
-                    }
-                },
-            }
-            Ok(())
-        })?;
-        self.nonempty(line, "*ELSET", &name, generate, members.is_empty())?;
+        let b = &self.builder;
+        let members = self.set_members(
+            line,
+            keyword,
+            data,
+            &name,
+            ("*ELSET", "element"),
+            |id| b.element(id),
+            |set| b.element_sets.get(set).map(Vec::as_slice),
+        )?;
         self.builder.element_sets.entry(&name).extend(members);
         Ok(())
     }
@@ -366,61 +383,27 @@ impl Reader<'_> {
     /// `*NSET, NSET=name[, GENERATE]` or `*NSET, NSET=name, ELSET=set`.
     fn node_set(&mut self, line: &Line, keyword: &Keyword, data: &[Line]) -> Result<()> {
         let name = self.required(line, keyword, "NSET")?.to_string();
-        let generate = keyword.has("GENERATE");
+        let b = &self.builder;
         let mut nodes = Vec::new();
         if let Some(elset) = keyword.param("ELSET") {
-            let members = self.builder.element_sets.get(elset).ok_or_else(|| {
+            let members = b.element_sets.get(elset).ok_or_else(|| {
                 self.err(
                     line,
                     format!("*NSET '{name}': no element set '{elset}' is defined before"),
                 )
             })?;
-            nodes = self.builder.member_nodes(members);
+            nodes = b.member_nodes(members);
         }
-        self.set_items(keyword, data, |l, item| {
-            match item {
-                Ok(id) => match self.builder.node(id) {
-                    Some(n) => nodes.push(n),
-                    None if generate => {}
-                    None => {
-                        return Err(self.err(
-                            l,
-                            format!("*NSET '{name}' lists node {id}, which no *NODE defines (before it)"),
-                        ))
-                    }
-                },
-                Err(set) => match self.builder.node_sets.get(set) {
-                    Some(n) => nodes.extend_from_slice(n),
-                    None => {
-                        return Err(self.err(
-                            l,
-                            format!("*NSET '{name}' lists '{set}', which is neither a node id nor a node set defined before"),
-                        ))
-                    }
-                },
-            }
-            Ok(())
-        })?;
-        self.nonempty(line, "*NSET", &name, generate, nodes.is_empty())?;
+        nodes.extend(self.set_members(
+            line,
+            keyword,
+            data,
+            &name,
+            ("*NSET", "node"),
+            |id| b.node(id),
+            |set| b.node_sets.get(set).map(Vec::as_slice),
+        )?);
         self.builder.node_sets.entry(&name).extend(nodes);
-        Ok(())
-    }
-
-    /// A GENERATE range that matched nothing is an error.
-    fn nonempty(
-        &self,
-        line: &Line,
-        what: &str,
-        name: &str,
-        generate: bool,
-        empty: bool,
-    ) -> Result<()> {
-        if generate && empty {
-            return Err(self.err(
-                line,
-                format!("{what} '{name}': the GENERATE ranges hold no defined id"),
-            ));
-        }
         Ok(())
     }
 

@@ -254,6 +254,13 @@ fn malformed_decks_give_file_and_line() {
             "element type SPRINGA is not supported",
         ),
         (
+            "surface_of_shells.inp",
+            format!("{NODES}{element}*ELEMENT, TYPE=S3, ELSET=skin\n2, 1, 2, 3\n*SURFACE, NAME=s\nskin, S1\n"),
+            "surface_of_shells.inp",
+            11,
+            "*SURFACE 's': 'skin' holds no C3D4 or C3D8 element",
+        ),
+        (
             "data_first.inp",
             "1, 0, 0, 0\n".into(),
             "data_first.inp",

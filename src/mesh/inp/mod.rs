@@ -460,6 +460,15 @@ impl Reader<'_> {
                 None => None,
                 Some(f) => Some(self.face_number(l, f)?),
             };
+            if !members.iter().any(|m| matches!(m, Member::Volume(_))) {
+                return Err(self.err(
+                    l,
+                    format!(
+                        "*SURFACE '{name}': '{}' holds no C3D4 or C3D8 element, so no face to take",
+                        fields[0]
+                    ),
+                ));
+            }
             for m in members {
                 let Member::Volume(e) = m else {
                     continue; // surface or line elements have no solid faces

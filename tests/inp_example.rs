@@ -57,3 +57,32 @@ fn inp_import_block_matches_uniaxial_compression() {
         assert!(r.iter().all(|v| v.abs() < 1e-9 * p * area), "{set}: {r:?}");
     }
 }
+
+/// `signorini check` on the example prints the ignored keywords of the deck
+/// in one note line, and the node sets it read.
+#[test]
+fn check_lists_ignored_keywords_and_node_sets() {
+    let case = Path::new(env!("CARGO_MANIFEST_DIR")).join("examples/inp-import/case.toml");
+    let out = std::process::Command::new(env!("CARGO_BIN_EXE_signorini"))
+        .arg("check")
+        .arg(&case)
+        .output()
+        .unwrap();
+    assert!(out.status.success());
+    let stdout = String::from_utf8_lossy(&out.stdout);
+    let notes: Vec<&str> = stdout.lines().filter(|l| l.starts_with("note: ")).collect();
+    assert_eq!(notes.len(), 1, "{stdout}");
+    assert!(
+        notes[0].ends_with(
+            "block.inp: ignored keywords (the case file gives materials, loads, boundary conditions \
+             and steps): *MATERIAL, *ELASTIC, *SOLID SECTION, *STEP, *STATIC, *BOUNDARY, *DSLOAD, \
+             *END STEP"
+        ),
+        "{}",
+        notes[0]
+    );
+    assert!(
+        stdout.contains("  SYMMETRY_X           15 nodes"),
+        "{stdout}"
+    );
+}

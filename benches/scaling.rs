@@ -539,6 +539,7 @@ fn run_case(spec: &Spec) -> Value {
         prescribed: Vec::new(),
         pressures: Vec::new(),
         body_forces: Vec::new(),
+        nodal_forces: Vec::new(),
         contacts: Vec::new(),
         timings: Default::default(),
         steps: vec![Step {

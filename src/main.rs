@@ -198,6 +198,9 @@ fn check(case: PathBuf) -> signorini::Result<()> {
     let problem = loaded.build_problem()?;
     let requests = loaded.output_requests(&problem)?;
     let mesh = &problem.model.mesh;
+    for note in &loaded.notes {
+        println!("note: {note}");
+    }
     println!("case      {}", case.display());
     println!("nodes     {}", mesh.num_nodes());
     println!("elements  {}", mesh.elements.len());
@@ -217,6 +220,20 @@ fn check(case: PathBuf) -> signorini::Result<()> {
             s.name,
             s.facets.len(),
             mesh.surface_nodes(s).len()
+        );
+    }
+    if !mesh.node_sets.is_empty() {
+        println!("node sets:");
+        for s in &mesh.node_sets {
+            println!("  {:<20} {} nodes", s.name, s.nodes.len());
+        }
+    }
+    for f in &problem.nodal_forces {
+        println!(
+            "nodal force on '{}': {:?} on each of its {} nodes",
+            f.set,
+            f.force,
+            f.nodes.len()
         );
     }
     if !problem.contacts.is_empty() {

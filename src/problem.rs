@@ -51,10 +51,11 @@ impl Amplitude {
     }
 }
 
-/// Prescribed displacement components on the nodes of a surface set:
-/// `u_i = value_i · amplitude(t)`.
+/// Prescribed displacement components on the nodes of a surface set or a
+/// node set: `u_i = value_i · amplitude(t)`.
 #[derive(Clone, Debug)]
 pub struct PrescribedDisplacement {
+    /// The set's name.
     pub surface: String,
     pub nodes: Vec<usize>,
     /// `(component 0‥2, value)`.
@@ -84,6 +85,19 @@ pub struct BodyForce {
     pub amplitude: Amplitude,
 }
 
+/// Point loads on the nodes of a node set: `f_a = force · amplitude(t)` on
+/// each node `a` (a dead load).
+#[derive(Clone, Debug)]
+pub struct NodalForce {
+    /// The node set's name.
+    pub set: String,
+    pub nodes: Vec<usize>,
+    /// The force on each node (the case file's total divided by the number
+    /// of nodes).
+    pub force: [f64; 3],
+    pub amplitude: Amplitude,
+}
+
 /// The resolved problem.
 pub struct Problem {
     /// The mesh, materials and the sparsity pattern (which holds the
@@ -92,6 +106,7 @@ pub struct Problem {
     pub prescribed: Vec<PrescribedDisplacement>,
     pub pressures: Vec<PressureLoad>,
     pub body_forces: Vec<BodyForce>,
+    pub nodal_forces: Vec<NodalForce>,
     /// Contact interfaces with rigid obstacles.
     pub contacts: Vec<ContactInterface>,
     pub steps: Vec<Step>,
@@ -184,6 +199,14 @@ impl Problem {
             for (n, w) in b.nodal_volumes.iter().enumerate() {
                 for i in 0..3 {
                     f[3 * n + i] += w * b.force[i] * a;
+                }
+            }
+        }
+        for p in &self.nodal_forces {
+            let a = p.amplitude.value(t);
+            for &n in &p.nodes {
+                for i in 0..3 {
+                    f[3 * n + i] += p.force[i] * a;
                 }
             }
         }
@@ -499,23 +522,31 @@ impl Problem {
         ))
     }
 
-    /// Total of `r = f_int − f_ext` over the nodes of each surface set: the
-    /// reaction force where displacements are prescribed (zero, to the
-    /// tolerance, on a free surface).
+    /// Total of `r = f_int − f_ext` over the nodes of each surface set, then
+    /// of each node set whose name no surface set has: the reaction force
+    /// where displacements are prescribed (zero, to the tolerance, on a free
+    /// surface).
     pub fn surface_forces(&self, r: &[f64]) -> Vec<(String, [f64; 3])> {
         let mesh = &self.model.mesh;
-        mesh.surfaces
-            .iter()
-            .map(|s| {
-                let mut total = [0.0; 3];
-                for n in mesh.surface_nodes(s) {
-                    for i in 0..3 {
-                        total[i] += r[3 * n + i];
-                    }
+        let total = |nodes: &[usize]| {
+            let mut total = [0.0; 3];
+            for &n in nodes {
+                for i in 0..3 {
+                    total[i] += r[3 * n + i];
                 }
-                (s.name.clone(), total)
-            })
-            .collect()
+            }
+            total
+        };
+        let surfaces = mesh
+            .surfaces
+            .iter()
+            .map(|s| (s.name.clone(), total(&mesh.surface_nodes(s))));
+        let node_sets = mesh
+            .node_sets
+            .iter()
+            .filter(|s| mesh.surface(&s.name).is_none())
+            .map(|s| (s.name.clone(), total(&s.nodes)));
+        surfaces.chain(node_sets).collect()
     }
 
     /// A message for an element failure, with the element's mesh id.

@@ -85,6 +85,9 @@ pub struct Simulation {
     every: usize,
     /// zlib compression of the VTU arrays.
     compress: bool,
+    /// Notes on reading the case for the user (the ignored keywords of an
+    /// `.inp` deck), told to the observers at the start of a run.
+    notes: Vec<String>,
 }
 
 impl Simulation {
@@ -104,6 +107,7 @@ impl Simulation {
             cell_fields,
             every,
             compress: case.spec.output.compress.unwrap_or(true),
+            notes: case.notes.clone(),
         })
     }
 
@@ -172,6 +176,9 @@ impl Simulation {
         let mut observers = Observers(vec![observer]);
         if let Some(w) = writer.as_mut() {
             observers.0.insert(0, w);
+        }
+        for note in &self.notes {
+            observers.on_message(&format!("note: {note}"));
         }
         for line in self.request_lines() {
             observers.on_message(&line);

@@ -16,7 +16,8 @@ use crate::contact::{tributary_areas, RigidObstacle, TriangulatedSurface};
 use crate::material::{self, Material};
 use crate::mesh::Mesh;
 use crate::problem::{
-    Amplitude, BodyForce, PrescribedDisplacement, PressureLoad, Problem, SolverSettings, Step,
+    Amplitude, BodyForce, NodalForce, PrescribedDisplacement, PressureLoad, Problem,
+    SolverSettings, Step,
 };
 use crate::{Error, Result};
 use nalgebra::Vector3;
@@ -29,6 +30,9 @@ pub struct Case {
     pub path: PathBuf,
     pub spec: CaseFile,
     pub mesh: Arc<Mesh>,
+    /// Notes on reading the mesh for the user (e.g. the `.inp` keywords
+    /// that were ignored).
+    pub notes: Vec<String>,
 }
 
 /// `{key} = {value} must be positive`, or, for an infinite or NaN value,
@@ -134,7 +138,7 @@ fn from_text(path: &Path, text: &str) -> Result<Case> {
         .parent()
         .unwrap_or(Path::new("."))
         .join(&spec.mesh.file);
-    let mesh = crate::mesh::gmsh::read_msh(&mesh_path)?;
+    let (mesh, notes) = crate::mesh::read_mesh(&mesh_path)?;
     if mesh.elements.is_empty() {
         return Err(Error::Mesh {
             path: mesh_path,
@@ -145,6 +149,7 @@ fn from_text(path: &Path, text: &str) -> Result<Case> {
         path: path.to_path_buf(),
         spec,
         mesh: Arc::new(mesh),
+        notes,
     })
 }
 
@@ -283,6 +288,35 @@ impl Case {
             name: name.to_string(),
             available: self.mesh.surface_names(),
         })
+    }
+
+    fn node_set(&self, key: &str, name: &str) -> Result<&crate::mesh::NodeSet> {
+        self.mesh.node_set(name).ok_or_else(|| Error::UnknownGroup {
+            key: key.to_string(),
+            kind: "node set (0D/1D physical group, .inp *NSET)",
+            name: name.to_string(),
+            available: self.mesh.node_set_names(),
+        })
+    }
+
+    /// The nodes of `[[displacement]]` `i`: its `surface` or its `nodes`.
+    fn displacement_nodes(&self, i: usize) -> Result<(String, Vec<usize>)> {
+        let d = &self.spec.displacement[i];
+        let key = format!("displacement[{i}]");
+        match (&d.surface, &d.nodes) {
+            (Some(name), None) => {
+                let surface = self.surface(&format!("{key}.surface"), name)?;
+                Ok((name.clone(), self.mesh.surface_nodes(surface)))
+            }
+            (None, Some(name)) => {
+                let set = self.node_set(&format!("{key}.nodes"), name)?;
+                Ok((name.clone(), set.nodes.clone()))
+            }
+            (s, _) => Err(self.err(format!(
+                "{key}: give either `surface` (a surface set) or `nodes` (a node set), not {}",
+                if s.is_some() { "both" } else { "neither" }
+            ))),
+        }
     }
 
     fn region(&self, key: &str, name: &str) -> Result<&crate::mesh::Region> {
@@ -430,7 +464,7 @@ impl Case {
         let mut prescribed = Vec::new();
         for (i, d) in spec.displacement.iter().enumerate() {
             let key = format!("displacement[{i}]");
-            let surface = self.surface(&format!("{key}.surface"), &d.surface)?;
+            let (set, nodes) = self.displacement_nodes(i)?;
             let components: Vec<(usize, f64)> = [d.x, d.y, d.z]
                 .iter()
                 .enumerate()
@@ -443,8 +477,8 @@ impl Case {
                 return Err(self.err(format!("{key}: displacement values must be finite")));
             }
             prescribed.push(PrescribedDisplacement {
-                surface: d.surface.clone(),
-                nodes: mesh.surface_nodes(surface),
+                surface: set,
+                nodes,
                 components,
                 amplitude: self.amplitude(&format!("{key}.amplitude"), &d.amplitude)?,
             });
@@ -479,6 +513,24 @@ impl Case {
                 nodal_volumes: model.nodal_volumes(&elements),
                 force: b.value,
                 amplitude: self.amplitude(&format!("{key}.amplitude"), &b.amplitude)?,
+            });
+        }
+        let mut nodal_forces = Vec::new();
+        for (i, p) in spec.nodal_force.iter().enumerate() {
+            let key = format!("nodal_force[{i}]");
+            let set = self.node_set(&format!("{key}.nodes"), &p.nodes)?;
+            if set.nodes.is_empty() {
+                return Err(self.err(format!("{key}.nodes: node set '{}' is empty", p.nodes)));
+            }
+            if p.value.iter().any(|v| !v.is_finite()) {
+                return Err(self.err(format!("{key}.value must be finite")));
+            }
+            let share = 1.0 / set.nodes.len() as f64;
+            nodal_forces.push(NodalForce {
+                set: p.nodes.clone(),
+                nodes: set.nodes.clone(),
+                force: p.value.map(|v| v * share),
+                amplitude: self.amplitude(&format!("{key}.amplitude"), &p.amplitude)?,
             });
         }
         if spec.step.is_empty() {
@@ -567,6 +619,7 @@ impl Case {
             prescribed,
             pressures,
             body_forces,
+            nodal_forces,
             contacts: Vec::new(),
             steps,
             settings,

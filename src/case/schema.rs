@@ -36,6 +36,9 @@ pub struct CaseFile {
     /// `[[body_force]]`: force per unit reference volume.
     #[serde(default)]
     pub body_force: Vec<BodyForceSpec>,
+    /// `[[nodal_force]]`: a total force spread over a node set.
+    #[serde(default)]
+    pub nodal_force: Vec<NodalForceSpec>,
     /// `[[obstacle]]`: rigid obstacles.
     #[serde(default)]
     pub obstacle: Vec<ObstacleSpec>,
@@ -61,8 +64,8 @@ pub struct CaseFile {
 #[derive(Debug, Deserialize)]
 #[serde(deny_unknown_fields)]
 pub struct MeshSpec {
-    /// Gmsh `.msh` file (MSH 2.2 or 4.1, ASCII or binary), relative to the
-    /// case file.
+    /// Gmsh `.msh` file (MSH 2.2 or 4.1, ASCII or binary) or, by the
+    /// extension `.inp`, an Abaqus/CalculiX deck; relative to the case file.
     pub file: String,
 }
 
@@ -134,12 +137,14 @@ pub enum AmplitudeRef {
 }
 
 /// `[[displacement]]`: any of `x`, `y`, `z` given are prescribed, the others
-/// are free.
+/// are free, on the nodes of `surface` or of `nodes` (one of the two).
 #[derive(Debug, Deserialize)]
 #[serde(deny_unknown_fields)]
 pub struct DisplacementSpec {
-    /// Surface set (2D physical group) name.
-    pub surface: String,
+    /// Surface set (2D physical group, `.inp` surface) name.
+    pub surface: Option<String>,
+    /// Node set (0D/1D physical group, `.inp` `*NSET`) name.
+    pub nodes: Option<String>,
     pub x: Option<f64>,
     pub y: Option<f64>,
     pub z: Option<f64>,
@@ -170,6 +175,18 @@ pub struct BodyForceSpec {
     pub region: Option<String>,
     /// Force per unit reference volume (e.g. `ρ g`).
     #[serde(deserialize_with = "three")]
+    pub value: [f64; 3],
+    pub amplitude: Option<AmplitudeRef>,
+}
+
+/// `[[nodal_force]]`: the total force `value` split equally over the nodes
+/// of a node set (`value / n` on each of its `n` nodes).
+#[derive(Debug, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct NodalForceSpec {
+    /// Node set (0D/1D physical group, `.inp` `*NSET`) name.
+    pub nodes: String,
+    /// Total force on the set (force unit), fixed in direction.
     pub value: [f64; 3],
     pub amplitude: Option<AmplitudeRef>,
 }

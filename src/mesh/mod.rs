@@ -1,5 +1,6 @@
 //! The mesh: reference node coordinates, volume elements grouped into named
-//! regions, and named boundary surface sets, as Gmsh physical groups give them.
+//! regions, named boundary surface sets and named node sets, as Gmsh
+//! physical groups or Abaqus/CalculiX `.inp` sets give them.
 //!
 //! Node numbering inside an element follows Gmsh (which, for the linear
 //! elements, is also VTK's): Tet4 `0‥3`; Hex8 bottom face `0‥3`
@@ -8,8 +9,28 @@
 
 pub mod boundary;
 pub mod gmsh;
+pub mod inp;
 pub mod stl;
 pub mod structured;
+
+use crate::Result;
+use std::path::Path;
+
+/// Reads the mesh file of a case, by its extension: `.inp` (any case) is an
+/// Abaqus/CalculiX deck ([`inp::read_inp`]), anything else a Gmsh MSH file
+/// ([`gmsh::read_msh`]). Returns the mesh and notes for the user (e.g. the
+/// `.inp` keywords that were ignored).
+pub fn read_mesh(path: &Path) -> Result<(Mesh, Vec<String>)> {
+    let is_inp = path
+        .extension()
+        .is_some_and(|e| e.eq_ignore_ascii_case("inp"));
+    if is_inp {
+        let deck = inp::read_inp(path)?;
+        Ok((deck.mesh, deck.notes))
+    } else {
+        Ok((gmsh::read_msh(path)?, Vec::new()))
+    }
+}
 
 /// Volume element types. Adding a type (Tet10, Hex20) means a variant here,
 /// its shape functions and quadrature rule in [`crate::fem`], and its Gmsh/VTK
@@ -120,6 +141,14 @@ pub struct SurfaceSet {
     pub facets: Vec<Facet>,
 }
 
+/// A named node set (a 0D or 1D Gmsh physical group, an `.inp` `*NSET`):
+/// sorted, distinct indices into [`Mesh::nodes`].
+#[derive(Clone, Debug, PartialEq)]
+pub struct NodeSet {
+    pub name: String,
+    pub nodes: Vec<usize>,
+}
+
 /// A mesh in the reference configuration.
 #[derive(Clone, Debug, Default, PartialEq)]
 pub struct Mesh {
@@ -134,6 +163,8 @@ pub struct Mesh {
     pub regions: Vec<Region>,
     /// Named boundary surface sets.
     pub surfaces: Vec<SurfaceSet>,
+    /// Named node sets.
+    pub node_sets: Vec<NodeSet>,
 }
 
 impl Mesh {
@@ -148,6 +179,14 @@ impl Mesh {
     /// The surface set called `name`.
     pub fn surface(&self, name: &str) -> Option<&SurfaceSet> {
         self.surfaces.iter().find(|s| s.name == name)
+    }
+    /// The node set called `name`.
+    pub fn node_set(&self, name: &str) -> Option<&NodeSet> {
+        self.node_sets.iter().find(|s| s.name == name)
+    }
+    /// Names of all node sets, for error messages.
+    pub fn node_set_names(&self) -> Vec<String> {
+        self.node_sets.iter().map(|s| s.name.clone()).collect()
     }
     /// Names of all regions, for error messages.
     pub fn region_names(&self) -> Vec<String> {

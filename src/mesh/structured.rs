@@ -67,6 +67,7 @@ pub fn box_mesh(kind: ElementKind, cells: [usize; 3], lengths: [f64; 3]) -> Mesh
         }],
         elements,
         surfaces: Vec::new(),
+        node_sets: Vec::new(),
     };
     let names = ["xmin", "xmax", "ymin", "ymax", "zmin", "zmax"];
     let mut sets: Vec<SurfaceSet> = names

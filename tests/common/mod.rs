@@ -33,6 +33,7 @@ pub fn problem(mesh: Mesh, material: Arc<dyn Material>) -> Problem {
         prescribed: Vec::new(),
         pressures: Vec::new(),
         body_forces: Vec::new(),
+        nodal_forces: Vec::new(),
         contacts: Vec::new(),
         timings: Default::default(),
         steps: vec![Step {
@@ -398,6 +399,7 @@ pub fn two_bodies(a: Mesh, a_name: &str, b: Mesh, b_name: &str, offset: [f64; 3]
                 facets: s.facets.clone(),
             })
             .collect(),
+        node_sets: Vec::new(),
     };
     m.nodes.extend(
         b.nodes

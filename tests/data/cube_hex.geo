@@ -1,5 +1,6 @@
 // Unit cube, structured trilinear hexahedra (3 x 3 x 3).
 // gmsh -3 cube_hex.geo -format msh41 -o cube_hex_41_ascii.msh   (and msh22, -bin)
+// gmsh -3 cube_hex.geo -format inp -o cube_hex.inp   (tests/inp_reader.rs)
 SetFactory("OpenCASCADE");
 Box(1) = {0, 0, 0, 1, 1, 1};
 Transfinite Curve{:} = 4;

@@ -1,7 +1,7 @@
 //! Turning what the sections tell into a [`Mesh`]: the node-tag index, the
 //! volume elements and their regions, the facets of the surface sets.
 
-use super::super::{Element, ElementKind, Facet, FacetKind, Mesh, Region, SurfaceSet};
+use super::super::{Element, ElementKind, Facet, FacetKind, Mesh, NodeSet, Region, SurfaceSet};
 use super::cursor::Cursor;
 use super::element_type::ElementInfo;
 use crate::Result;
@@ -57,6 +57,8 @@ pub(super) struct Builder {
     default_region: Vec<usize>,
     /// 2D physical tag → facets.
     surfaces: BTreeMap<i64, Vec<Facet>>,
+    /// `(dimension 0 or 1, physical tag)` → nodes of its points and lines.
+    node_groups: BTreeMap<(i64, i64), Vec<usize>>,
     scratch: Vec<usize>,
 }
 
@@ -105,9 +107,21 @@ impl Builder {
         Ok(())
     }
 
+    /// The index of node tag `node`, which element `tag` at offset `at`
+    /// refers to.
+    fn node_index(&self, cur: &Cursor, at: usize, tag: u64, node: u64) -> Result<usize> {
+        self.node_map.get(node).ok_or_else(|| {
+            cur.syntax(
+                at,
+                format!("element {tag} refers to node tag {node}, which is not in $Nodes"),
+            )
+        })
+    }
+
     /// Adds one element read at offset `at`: a volume element to
     /// [`Mesh::elements`] and its regions, a facet of a 2D physical group to
-    /// its surface sets; points, lines and unassigned 2D elements are
+    /// its surface sets, the nodes of a point or line of a 0D or 1D physical
+    /// group to its node sets; other points, lines and 2D elements are
     /// dropped.
     #[allow(clippy::too_many_arguments)]
     pub(super) fn add_element(
@@ -121,7 +135,17 @@ impl Builder {
         entity: i64,
         node_tags: &[u64],
     ) -> Result<()> {
-        if info.dim < 2 || (info.dim == 2 && physicals.is_empty()) {
+        if info.dim < 3 && physicals.is_empty() {
+            return Ok(());
+        }
+        if info.dim < 2 {
+            for &node in node_tags {
+                let index = self.node_index(cur, at, tag, node)?;
+                for &p in physicals {
+                    let group = self.node_groups.entry((info.dim as i64, p)).or_default();
+                    group.push(index);
+                }
+            }
             return Ok(());
         }
         let target = match element_type {
@@ -145,12 +169,7 @@ impl Builder {
         };
         self.scratch.clear();
         for &node in node_tags {
-            let index = self.node_map.get(node).ok_or_else(|| {
-                cur.syntax(
-                    at,
-                    format!("element {tag} refers to node tag {node}, which is not in $Nodes"),
-                )
-            })?;
+            let index = self.node_index(cur, at, tag, node)?;
             if self.scratch.contains(&index) {
                 return Err(cur.invalid(format!(
                     "{}: element {tag} has node {node} more than once",
@@ -235,12 +254,25 @@ impl Builder {
                 None => surfaces.push(SurfaceSet { name, facets }),
             }
         }
+        let mut node_sets: Vec<NodeSet> = Vec::new();
+        for ((dim, tag), nodes) in self.node_groups {
+            let name = name(dim, tag);
+            match node_sets.iter_mut().find(|s| s.name == name) {
+                Some(s) => s.nodes.extend(nodes),
+                None => node_sets.push(NodeSet { name, nodes }),
+            }
+        }
+        for set in &mut node_sets {
+            set.nodes.sort_unstable();
+            set.nodes.dedup();
+        }
         let mut mesh = Mesh {
             nodes: self.nodes,
             node_ids: self.node_ids,
             elements: self.elements,
             regions,
             surfaces,
+            node_sets,
         };
         let orphans = if surface_only {
             Vec::new()

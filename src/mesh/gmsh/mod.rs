@@ -27,9 +27,12 @@
 //! per 3D physical group (elements in none go to the region `"default"`).
 //! Triangles (2) and quadrangles (3) in a 2D physical group become
 //! [`Facet`](super::Facet)s of the [`SurfaceSet`](super::SurfaceSet) of that
-//! group. Points and lines are ignored. Other 3D element types are rejected,
+//! group. The nodes of points and lines (any order) in a 0D or 1D physical
+//! group become the [`NodeSet`](super::NodeSet) of that group; points and
+//! lines in none are ignored. Other 3D element types are rejected,
 //! as are other 2D types in a physical group. Regions and surface sets are
-//! ordered by physical tag; groups with the same name are merged.
+//! ordered by physical tag (node sets by dimension, then tag); groups with
+//! the same name are merged.
 //!
 //! MSH 2.2 writes an element once per physical group it belongs to (with a
 //! new element tag each time); a volume element repeated with the same nodes

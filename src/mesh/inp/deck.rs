@@ -1,0 +1,194 @@
+//! The lines of a deck: every file read, `*INCLUDE` followed where it
+//! stands, comments (`**`) and blank lines dropped, a keyword line
+//! continued by a trailing comma joined with its continuation; each line
+//! keeps its file and 1-based line number for the errors.
+
+use crate::{Error, Result};
+use std::path::{Path, PathBuf};
+
+/// How deep `*INCLUDE`s may nest (a guard against runaway recursion; a
+/// cycle is reported as such before this is reached).
+const MAX_INCLUDE_DEPTH: usize = 32;
+
+/// One significant line of the deck.
+pub(super) struct Line {
+    /// Index into [`Deck::files`].
+    file: usize,
+    /// 1-based line number in that file.
+    pub(super) number: usize,
+    pub(super) text: String,
+}
+
+impl Line {
+    pub(super) fn is_keyword(&self) -> bool {
+        self.text.starts_with('*')
+    }
+}
+
+/// A keyword line: `*NAME, KEY=VALUE, FLAG, …`, the name and keys upper
+/// case with single spaces (`*SOLID SECTION`), values as written without
+/// quotes.
+pub(super) struct Keyword {
+    pub(super) name: String,
+    params: Vec<(String, Option<String>)>,
+}
+
+impl Keyword {
+    /// The value of `KEY=value`.
+    pub(super) fn param(&self, key: &str) -> Option<&str> {
+        self.params
+            .iter()
+            .find(|(k, _)| k == key)
+            .and_then(|(_, v)| v.as_deref())
+    }
+    /// Whether the parameter `key` is present (with or without a value).
+    pub(super) fn has(&self, key: &str) -> bool {
+        self.params.iter().any(|(k, _)| k == key)
+    }
+}
+
+/// All the lines of a deck and its included files.
+pub(super) struct Deck {
+    files: Vec<PathBuf>,
+    pub(super) lines: Vec<Line>,
+}
+
+impl Deck {
+    /// Reads `path` and, recursively, the files it includes (`*INCLUDE,
+    /// INPUT=file`, relative to the including file's folder).
+    pub(super) fn read(path: &Path) -> Result<Deck> {
+        let mut deck = Deck {
+            files: Vec::new(),
+            lines: Vec::new(),
+        };
+        let text = std::fs::read(path).map_err(|e| Error::io("read", path, e))?;
+        deck.read_file(path, &text, &mut Vec::new())?;
+        Ok(deck)
+    }
+
+    fn read_file(&mut self, path: &Path, bytes: &[u8], stack: &mut Vec<PathBuf>) -> Result<()> {
+        let file = self.files.len();
+        self.files.push(path.to_path_buf());
+        stack.push(path.canonicalize().unwrap_or_else(|_| path.to_path_buf()));
+        let text = String::from_utf8_lossy(bytes);
+        let mut raw = text
+            .lines()
+            .enumerate()
+            .map(|(i, l)| (i + 1, l.trim()))
+            .filter(|(_, l)| !l.is_empty() && !l.starts_with("**"))
+            .peekable();
+        while let Some((number, first)) = raw.next() {
+            let mut text = first.to_string();
+            // a keyword line ending with a comma continues on the next line
+            while text.starts_with('*') && text.ends_with(',') {
+                match raw.peek() {
+                    Some((_, next)) if !next.starts_with('*') => {
+                        text.push_str(next);
+                        raw.next();
+                    }
+                    _ => break,
+                }
+            }
+            let line = Line { file, number, text };
+            if line.is_keyword() && self.keyword(&line)?.name == "INCLUDE" {
+                self.include(&line, stack)?;
+            } else {
+                self.lines.push(line);
+            }
+        }
+        stack.pop();
+        Ok(())
+    }
+
+    /// Follows `*INCLUDE, INPUT=file` at `line`.
+    fn include(&mut self, line: &Line, stack: &mut Vec<PathBuf>) -> Result<()> {
+        let keyword = self.keyword(line)?;
+        let input = keyword
+            .param("INPUT")
+            .ok_or_else(|| self.error(line, "*INCLUDE needs INPUT=<file>".into()))?;
+        let dir = self.files[line.file]
+            .parent()
+            .unwrap_or(Path::new("."))
+            .to_path_buf();
+        let path = dir.join(input);
+        let bytes = std::fs::read(&path).map_err(|e| {
+            self.error(
+                line,
+                format!("cannot read the included file '{}': {e}", path.display()),
+            )
+        })?;
+        let canonical = path.canonicalize().unwrap_or_else(|_| path.clone());
+        if stack.contains(&canonical) {
+            return Err(self.error(
+                line,
+                format!("'{}' includes itself (through *INCLUDE)", path.display()),
+            ));
+        }
+        if stack.len() >= MAX_INCLUDE_DEPTH {
+            return Err(self.error(
+                line,
+                format!("*INCLUDE nested more than {MAX_INCLUDE_DEPTH} deep"),
+            ));
+        }
+        self.read_file(&path, &bytes, stack)
+    }
+
+    /// An error at `line`, naming its file and line number.
+    pub(super) fn error(&self, line: &Line, message: String) -> Error {
+        Error::MeshSyntax {
+            path: self.files[line.file].clone(),
+            line: line.number,
+            message,
+        }
+    }
+
+    /// Parses the keyword line `line`.
+    pub(super) fn keyword(&self, line: &Line) -> Result<Keyword> {
+        let mut fields = split_fields(&line.text[1..]).into_iter();
+        let name = fields
+            .next()
+            .unwrap_or_default()
+            .split_whitespace()
+            .collect::<Vec<_>>()
+            .join(" ")
+            .to_ascii_uppercase();
+        if name.is_empty() {
+            return Err(self.error(line, "a '*' with no keyword after it".into()));
+        }
+        let mut params = Vec::new();
+        for field in fields.filter(|f| !f.is_empty()) {
+            let (key, value) = match field.split_once('=') {
+                Some((k, v)) => (k.trim(), Some(unquote(v.trim()).to_string())),
+                None => (field.as_str(), None),
+            };
+            params.push((key.to_ascii_uppercase(), value));
+        }
+        Ok(Keyword { name, params })
+    }
+}
+
+/// Splits a line at commas outside double quotes; fields trimmed.
+pub(super) fn split_fields(text: &str) -> Vec<String> {
+    let mut fields = Vec::new();
+    let mut current = String::new();
+    let mut quoted = false;
+    for c in text.chars() {
+        match c {
+            '"' => {
+                quoted = !quoted;
+                current.push(c);
+            }
+            ',' if !quoted => fields.push(std::mem::take(&mut current).trim().to_string()),
+            _ => current.push(c),
+        }
+    }
+    fields.push(current.trim().to_string());
+    fields
+}
+
+/// A name without its surrounding double quotes, if any.
+pub(super) fn unquote(s: &str) -> &str {
+    s.strip_prefix('"')
+        .and_then(|s| s.strip_suffix('"'))
+        .unwrap_or(s)
+}

@@ -3,7 +3,7 @@
 
 use clap::{Parser, Subcommand};
 use indicatif::{ProgressBar, ProgressStyle};
-use signorini::output::{ConvergedIncrement, Cut, StepObserver, Summary};
+use signorini::output::{ConvergedIncrement, Cut, Iteration, StepObserver, Summary};
 use std::path::PathBuf;
 use std::process::ExitCode;
 
@@ -123,6 +123,8 @@ struct Progress {
     quiet: bool,
     /// The end time of the last step (the bar's full length).
     end: f64,
+    /// Newton iterations of the increment under way.
+    iteration: usize,
 }
 
 impl Progress {
@@ -136,12 +138,15 @@ impl Progress {
             {
                 bar.set_style(style);
             }
+            // the clock keeps running while an increment iterates
+            bar.enable_steady_tick(std::time::Duration::from_millis(250));
             bar
         };
         Progress {
             bar,
             quiet,
             end: 1.0,
+            iteration: 0,
         }
     }
 
@@ -182,6 +187,7 @@ impl StepObserver for Progress {
     }
 
     fn on_cut(&mut self, cut: &Cut) {
+        self.iteration = 0;
         self.log(&format!(
             "step '{}'  t = {:.6}  Δt = {:.3e}  not converged ({}): cutting the increment",
             cut.step, cut.time, cut.increment, cut.reason
@@ -190,6 +196,14 @@ impl StepObserver for Progress {
 
     fn on_message(&mut self, line: &str) {
         self.log(line);
+    }
+
+    fn on_iteration(&mut self, it: &Iteration) {
+        self.iteration += 1;
+        self.bar.set_message(format!(
+            "{:.4} ({}), Newton iteration {}: residual {:.2e}",
+            it.time, it.step, self.iteration, it.record.residual
+        ));
     }
 }
 
@@ -209,49 +223,9 @@ fn check(case: PathBuf) -> signorini::Result<()> {
         problem.model.num_dofs(),
         problem.constrained_dofs().iter().filter(|&&c| c).count()
     );
-    println!("regions:");
-    for r in &mesh.regions {
-        println!("  {:<20} {} elements", r.name, r.elements.len());
-    }
-    println!("surface sets:");
-    for s in &mesh.surfaces {
-        println!(
-            "  {:<20} {} facets, {} nodes",
-            s.name,
-            s.facets.len(),
-            mesh.surface_nodes(s).len()
-        );
-    }
-    if !mesh.node_sets.is_empty() {
-        println!("node sets:");
-        for s in &mesh.node_sets {
-            println!("  {:<20} {} nodes", s.name, s.nodes.len());
-        }
-    }
-    for f in &problem.nodal_forces {
-        println!(
-            "nodal force on '{}': {:?} on each of its {} nodes",
-            f.set,
-            f.force,
-            f.nodes.len()
-        );
-    }
-    if !problem.contacts.is_empty() {
-        println!("contacts:");
-        for c in &problem.contacts {
-            println!(
-                "  {:<20} surface '{}' ({} secondary nodes), {:?}, h = {:.3e}",
-                c.name,
-                c.surface,
-                c.nodes.len(),
-                c.law,
-                c.element_size
-            );
-        }
-    }
-    println!("steps:");
-    for s in &problem.steps {
-        println!("  {:<20} to t = {}", s.name, s.end_time);
+    println!("the model in words:");
+    for line in signorini::output::describe::describe_model(&problem) {
+        println!("  {line}");
     }
     for h in &requests.histories {
         println!(

@@ -31,13 +31,17 @@
 use crate::case::{self, output::OutputRequests, Case};
 use crate::contact::interface::NodeReport;
 use crate::output::contact_fields::ContactFields;
+use crate::output::describe::describe_model;
 use crate::output::fields::{CellField, ConvergedIncrement, NodalField};
+use crate::output::log::LogWriter;
+use crate::output::observer::Iteration;
 use crate::output::observer::{Cut, Observers, StepObserver};
 use crate::output::summary::{IncrementSummary, PhaseTimes, Summary};
 use crate::output::writer::ResultWriter;
 use crate::problem::{ContactState, Problem};
 use crate::solve::backend::linear_solver;
 use crate::solve::failure::IncrementFailure;
+use crate::solve::newton::IterationRecord;
 use crate::solve::nonlinear::Evaluation;
 use crate::solve::stepping::{self, run_steps, IncrementRecord};
 use crate::{Error, Result};
@@ -173,9 +177,19 @@ impl Simulation {
             ),
             None => None,
         };
+        let mut log = match &options.output {
+            Some(dir) => Some(LogWriter::new(dir, &self.name)?),
+            None => None,
+        };
         let mut observers = Observers(vec![observer]);
         if let Some(w) = writer.as_mut() {
             observers.0.insert(0, w);
+        }
+        if let Some(l) = log.as_mut() {
+            observers.0.insert(0, l);
+        }
+        for line in describe_model(&self.problem) {
+            observers.on_message(&line);
         }
         for note in &self.notes {
             observers.on_message(&format!("note: {note}"));
@@ -349,6 +363,11 @@ impl stepping::StepObserver<Problem> for Recorder<'_> {
         self.last = now;
         self.summary.wall_time = self.start.elapsed().as_secs_f64();
         self.observers.on_increment(&increment, &self.summary)
+    }
+
+    fn on_iteration(&mut self, step: &str, time: f64, record: &IterationRecord) {
+        self.observers
+            .on_iteration(&Iteration { step, time, record });
     }
 
     fn on_cut(&mut self, step: &str, time: f64, increment: f64, reason: &IncrementFailure) {

@@ -82,7 +82,7 @@ fn check_lists_ignored_keywords_and_node_sets() {
         notes[0]
     );
     assert!(
-        stdout.contains("  SYMMETRY_X           15 nodes"),
+        stdout.contains("node set 'SYMMETRY_X': 15 nodes"),
         "{stdout}"
     );
 }

@@ -197,3 +197,54 @@ fn every_zero_is_refused() {
         "{error}"
     );
 }
+
+/// `NAME.log` (issue 15 item 5): the model in words, a line per Newton
+/// iteration (as many as the summary counts), a line per increment with
+/// its contact totals, and the final line with the run's figures.
+#[test]
+fn the_log_tells_the_model_every_iteration_and_the_end() {
+    let tmp = tempfile::tempdir().unwrap();
+    let summary = run_with("press-pull", "[output]", "", tmp.path());
+    let log = std::fs::read_to_string(tmp.path().join("press-pull.log")).unwrap();
+    let lines: Vec<&str> = log.lines().collect();
+    let nodes = summary["nodes"].as_u64().unwrap();
+    assert!(
+        lines[0].starts_with(&format!("model: {nodes} nodes")),
+        "{}",
+        lines[0]
+    );
+    assert!(log.contains(
+        "region 'block': 6368 elements, linear elastic (small strain) (E = 1000, ν = 0.3)"
+    ));
+    assert!(log.contains("contact 'base': 221 secondary nodes of 'bottom' against a rigid plane; monolithic Rockafellar augmented Lagrangian"));
+    assert!(log.contains("Coulomb friction μ = 0.3"));
+    let increments = summary["increments"].as_array().unwrap();
+    let iterations: u64 = increments
+        .iter()
+        .map(|i| i["iterations"].as_u64().unwrap())
+        .sum();
+    let iteration_lines = lines
+        .iter()
+        .filter(|l| l.starts_with("  step '") && l.contains("correction"))
+        .count();
+    assert_eq!(iteration_lines as u64, iterations);
+    let converged = lines.iter().filter(|l| l.contains("converged in")).count();
+    assert_eq!(converged, increments.len());
+    let last = lines
+        .iter()
+        .rev()
+        .find(|l| l.starts_with("completed:"))
+        .unwrap();
+    assert!(
+        last.contains(&format!(
+            "{} increments, {iterations} Newton iterations",
+            increments.len()
+        )),
+        "{last}"
+    );
+    // the contact force of the last increment, as the summary has it
+    let force = increments.last().unwrap()["contact"]["base"]["force"][2]
+        .as_f64()
+        .unwrap();
+    assert!(log.contains(&format!("{force:.6e}]")), "{force}");
+}

@@ -32,6 +32,11 @@ impl IsotropicParameters {
         })
     }
 
+    /// `"E = …, ν = …"`.
+    pub(crate) fn describe(&self) -> String {
+        format!("E = {}, ν = {}", self.youngs_modulus, self.poisson_ratio)
+    }
+
     /// Young's modulus `E`.
     pub(crate) fn youngs_modulus(&self) -> f64 {
         self.youngs_modulus

@@ -82,6 +82,10 @@ pub trait Material: Send + Sync + std::fmt::Debug {
     /// A representative Young's modulus (initial stiffness), used for
     /// automatic penalty and scaling parameters.
     fn reference_youngs_modulus(&self) -> f64;
+
+    /// The parameters in words, for logs and `signorini check`
+    /// (`"E = 10, ν = 0.3"`).
+    fn parameters(&self) -> String;
 }
 
 /// Lamé parameters `(λ, μ)` from Young's modulus `E` and Poisson's ratio `ν`:

@@ -82,6 +82,10 @@ impl Material for NeoHookean {
     fn reference_youngs_modulus(&self) -> f64 {
         self.params.youngs_modulus()
     }
+
+    fn parameters(&self) -> String {
+        self.params.describe()
+    }
 }
 
 #[cfg(test)]

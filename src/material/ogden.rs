@@ -291,6 +291,13 @@ impl Material for Ogden {
         let (kappa, mu) = (self.bulk_modulus, self.shear_modulus);
         9.0 * kappa * mu / (3.0 * kappa + mu)
     }
+
+    fn parameters(&self) -> String {
+        format!(
+            "μ = {:?}, α = {:?}, κ = {} (initial shear modulus {})",
+            self.mu, self.alpha, self.bulk_modulus, self.shear_modulus
+        )
+    }
 }
 
 #[cfg(test)]
@@ -342,6 +349,10 @@ mod tests {
         }
         fn reference_youngs_modulus(&self) -> f64 {
             9.0 * self.kappa * self.mu / (3.0 * self.kappa + self.mu)
+        }
+
+        fn parameters(&self) -> String {
+            String::new()
         }
     }
 

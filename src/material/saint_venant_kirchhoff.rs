@@ -62,6 +62,10 @@ impl Material for SaintVenantKirchhoff {
     fn reference_youngs_modulus(&self) -> f64 {
         self.params.youngs_modulus()
     }
+
+    fn parameters(&self) -> String {
+        self.params.describe()
+    }
 }
 
 #[cfg(test)]

@@ -75,6 +75,8 @@ impl ContactFields {
         {
             let mut summary = InterfaceSummary::default();
             let mesh = &problem.model.mesh;
+            #[allow(clippy::expect_used)]
+            // an interface is built from this surface set of this mesh
             let set = mesh.surface(&c.surface).expect("validated");
             let (_, whole) = crate::contact::tributary_areas(mesh, set);
             for ((((&s, &area), r), state), &whole) in c
@@ -186,10 +188,13 @@ impl ContactFields {
             }
             total += force;
         }
+        #[allow(clippy::expect_used)]
+        // a primary surface is built from this surface set of this mesh
         let set = mesh.surface(&primary.surface).expect("validated");
         let (nodes, areas) = crate::contact::tributary_areas(mesh, set);
         // the other way round, for the gap: the primary nodes against the
         // secondary surface's triangles
+        #[allow(clippy::expect_used)] // the secondary surface set exists (as above)
         let mut reverse = PrimarySurface::from_mesh(mesh, &c.surface).expect("validated");
         reverse.refresh(reference, x, &nodes, 0.0);
         for (k, (&n, &a)) in nodes.iter().zip(&areas).enumerate() {

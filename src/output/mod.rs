@@ -14,7 +14,8 @@
 //!   and a converged increment in memory ([`ConvergedIncrement`]);
 //!   [`contact_fields`] builds its contact fields.
 //! - [`observer`]: [`StepObserver`], what a run tells as it goes;
-//!   [`writer`]: the observer that writes all of the above.
+//!   [`writer`]: the observer that writes all of the above; [`log`]: the
+//!   observer that writes `NAME.log`; [`describe`]: the model in words.
 //!
 //! Every file is written to a temporary file in the target's folder and then
 //! renamed over the target ([`write_atomically`]), so an interrupted run never
@@ -22,9 +23,11 @@
 //! complete new one.
 
 pub mod contact_fields;
+pub mod describe;
 pub mod fields;
 pub mod history;
 pub mod line_plot;
+pub mod log;
 pub mod observer;
 pub mod plot;
 pub mod profile;
@@ -36,7 +39,8 @@ pub mod writer;
 
 pub use contact_fields::ContactFields;
 pub use fields::{CellField, ConvergedIncrement, NodalField, OutputField};
-pub use observer::{Cut, Observers, StepObserver};
+pub use log::LogWriter;
+pub use observer::{Cut, Iteration, Observers, StepObserver};
 pub use plot::{write_convergence_plot, StepResiduals};
 pub use pvd::PvdCollection;
 pub use summary::Summary;

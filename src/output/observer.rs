@@ -6,6 +6,7 @@
 
 use super::fields::ConvergedIncrement;
 use super::summary::Summary;
+use crate::solve::newton::IterationRecord;
 use crate::Result;
 
 /// An increment that failed and is cut (or, after `max_cuts`, ends the run).
@@ -17,6 +18,16 @@ pub struct Cut<'a> {
     pub increment: f64,
     /// Why Newton failed.
     pub reason: &'a crate::solve::failure::IncrementFailure,
+}
+
+/// A Newton iteration that took its correction.
+#[derive(Clone, Debug)]
+pub struct Iteration<'a> {
+    pub step: &'a str,
+    /// The time the increment aims at.
+    pub time: f64,
+    /// Its residual (at the start), correction, step length and switches.
+    pub record: &'a IterationRecord,
 }
 
 /// Receives a run's events. Every method but [`on_increment`](Self::on_increment)
@@ -31,6 +42,8 @@ pub trait StepObserver {
     fn on_increment(&mut self, increment: &ConvergedIncrement, summary: &Summary) -> Result<()>;
     /// An increment failed and is cut.
     fn on_cut(&mut self, _cut: &Cut) {}
+    /// A Newton iteration took its correction (the increment goes on).
+    fn on_iteration(&mut self, _iteration: &Iteration) {}
     /// A line of information for a log (what a history reads, …).
     fn on_message(&mut self, _line: &str) {}
     /// The run ended (`summary.status` says how), its totals filled in.
@@ -56,6 +69,9 @@ impl StepObserver for Observers<'_> {
     }
     fn on_message(&mut self, line: &str) {
         self.0.iter_mut().for_each(|o| o.on_message(line));
+    }
+    fn on_iteration(&mut self, iteration: &Iteration) {
+        self.0.iter_mut().for_each(|o| o.on_iteration(iteration));
     }
     /// Every observer hears the end, even when an earlier one fails; the
     /// first error is returned.

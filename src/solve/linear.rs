@@ -156,6 +156,7 @@ impl SparseLdlt {
     ) -> Result<()> {
         self.analyse(pattern)?;
         let start = Instant::now();
+        #[allow(clippy::expect_used)] // `analyse` succeeded just above, so the analysis is there
         let symbolic = self.symbolic.as_ref().expect("analysed above");
         let a = SparseColMatRef::new(pattern.as_ref(), values);
         let params: Spec<LdltParams, f64> = Default::default();

@@ -45,6 +45,9 @@ pub struct Newton<'a, P: NonlinearProblem> {
     /// far: residuals are measured relative to it too, so that a state of
     /// vanishing load (unloading to zero) can converge.
     pub force_scale: f64,
+    /// Told of every iteration once its correction is taken (progress,
+    /// logs).
+    pub on_iteration: Option<&'a mut dyn FnMut(&IterationRecord)>,
 }
 
 impl<P: NonlinearProblem> Newton<'_, P> {
@@ -239,9 +242,13 @@ impl<P: NonlinearProblem> Newton<'_, P> {
             }
             let total: Vec<f64> = u.iter().zip(increment_start).map(|(a, b)| a - b).collect();
             last_correction = step_length * norm(&du) / norm(&total).max(f64::MIN_POSITIVE);
-            let rec = records.last_mut().expect("pushed above");
-            rec.correction = last_correction;
-            rec.step_length = step_length;
+            if let Some(rec) = records.last_mut() {
+                rec.correction = last_correction;
+                rec.step_length = step_length;
+                if let Some(tell) = self.on_iteration.as_mut() {
+                    tell(rec);
+                }
+            }
         }
         let relative = records.last().map(|r| r.residual).unwrap_or(f64::NAN);
         let iterations = settings.max_iterations;

@@ -47,6 +47,9 @@ pub trait StepObserver<P: NonlinearProblem> {
     ) -> Result<()>;
     /// An increment failed and is cut.
     fn on_cut(&mut self, _step: &str, _time: f64, _increment: f64, _reason: &IncrementFailure) {}
+    /// A Newton iteration of the increment aiming at `time` took its
+    /// correction.
+    fn on_iteration(&mut self, _step: &str, _time: f64, _record: &IterationRecord) {}
 }
 
 /// Run every step of `problem` from `u = 0` (except the prescribed values).
@@ -94,12 +97,15 @@ pub fn run_steps<P: NonlinearProblem>(
             }
             let problem: &P = problem;
             let mut trial_state = state.clone();
+            let mut tell =
+                |record: &IterationRecord| observer.on_iteration(&step.name, t_new, record);
             let mut newton = Newton {
                 problem,
                 solver: &mut *solver,
                 constrained: &constrained,
                 t: t_new,
                 force_scale,
+                on_iteration: Some(&mut tell),
             };
             let (outcome, iterations) =
                 solve_with_augmentation(&mut newton, &u, &mut trial_state, &mut trial);

@@ -1,0 +1,111 @@
+//! `NAME.log`: a run's log in the output folder — the model in words, one
+//! line per Newton iteration, every increment and every cut with its
+//! reason, and the final summary. Appended and flushed line by line, so a
+//! run that dies leaves its log up to that moment.
+
+use std::fs::File;
+use std::io::{BufWriter, Write};
+use std::path::{Path, PathBuf};
+
+use super::fields::ConvergedIncrement;
+use super::observer::{Cut, Iteration, StepObserver};
+use super::summary::Summary;
+use crate::{Error, Result};
+
+/// Writes the log of a run.
+pub struct LogWriter {
+    path: PathBuf,
+    file: BufWriter<File>,
+    /// The first write error, reported at the end (a log line that cannot
+    /// be written must not stop the solve).
+    failed: Option<std::io::Error>,
+}
+
+impl LogWriter {
+    /// A new log `dir/NAME.log` (an earlier one is replaced).
+    pub fn new(dir: &Path, name: &str) -> Result<Self> {
+        let path = dir.join(format!("{name}.log"));
+        let file = File::create(&path).map_err(|e| Error::io("create", &path, e))?;
+        Ok(LogWriter {
+            path,
+            file: BufWriter::new(file),
+            failed: None,
+        })
+    }
+
+    fn line(&mut self, text: &str) {
+        if self.failed.is_some() {
+            return;
+        }
+        if let Err(e) = writeln!(self.file, "{text}").and_then(|()| self.file.flush()) {
+            self.failed = Some(e);
+        }
+    }
+}
+
+impl StepObserver for LogWriter {
+    fn on_message(&mut self, line: &str) {
+        self.line(line);
+    }
+
+    fn on_iteration(&mut self, it: &Iteration) {
+        let r = it.record;
+        self.line(&format!(
+            "  step '{}' t = {:.6}  residual {:.3e}  correction {:.3e}  step length {:.3}  switched {}",
+            it.step, it.time, r.residual, r.correction, r.step_length, r.switched
+        ));
+    }
+
+    fn on_increment(&mut self, increment: &ConvergedIncrement, _: &Summary) -> Result<()> {
+        let record = increment.record;
+        let residual = record.newton.last().map_or(0.0, |r| r.residual);
+        self.line(&format!(
+            "step '{}'  t = {:.6}  Δt = {:.3e}  converged in {} iterations, residual {:.2e}",
+            record.step_name, record.time, record.increment, record.iterations, residual
+        ));
+        for (name, c) in &increment.contact_fields.summaries {
+            self.line(&format!(
+                "  contact '{name}': force [{:.6e}, {:.6e}, {:.6e}], tangential [{:.6e}, {:.6e}, {:.6e}], {} closed ({} stick, {} slip), largest penetration {:.3e}",
+                c.force[0], c.force[1], c.force[2],
+                c.tangential_force[0], c.tangential_force[1], c.tangential_force[2],
+                c.closed_nodes, c.stick_nodes, c.slip_nodes, c.largest_penetration
+            ));
+        }
+        Ok(())
+    }
+
+    fn on_cut(&mut self, cut: &Cut) {
+        self.line(&format!(
+            "step '{}'  t = {:.6}  Δt = {:.3e}  not converged ({}): cutting the increment",
+            cut.step, cut.time, cut.increment, cut.reason
+        ));
+    }
+
+    fn on_finish(&mut self, s: &Summary) -> Result<()> {
+        let iterations: usize = s.increments.iter().map(|i| i.iterations).sum();
+        let cuts: usize = s.increments.iter().map(|i| i.cuts).sum();
+        self.line(&format!(
+            "{}: {} increments, {iterations} Newton iterations, {cuts} cuts, {:.2} s on {} threads",
+            s.status,
+            s.increments.len(),
+            s.wall_time,
+            s.threads
+        ));
+        if let Some(e) = &s.error {
+            self.line(&format!("error: {e}"));
+        }
+        let t = &s.phase_times;
+        self.line(&format!(
+            "time: assembly {:.2} s, contact {:.2} s, symbolic analysis {:.2} s, factorisation {:.2} s, solve {:.2} s",
+            t.assembly, t.contact, t.symbolic, t.factorisation, t.solve
+        ));
+        self.line(&format!(
+            "linear solver: {} symbolic analyses, {} matrix entries, {} factor entries, {} GMRES solves ({} iterations), {} LU solves",
+            s.symbolic_analyses, s.matrix_nnz, s.factor_nnz, s.krylov_solves, s.krylov_iterations, s.lu_solves
+        ));
+        match self.failed.take() {
+            Some(e) => Err(Error::io("write", &self.path, e)),
+            None => Ok(()),
+        }
+    }
+}

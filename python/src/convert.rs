@@ -51,10 +51,7 @@ fn to_indices(values: Vec<i64>, what: &str) -> PyResult<Vec<usize>> {
 }
 
 /// A (m, K) integer array as rows of indices.
-pub fn index_rows<const K: usize>(
-    obj: &Bound<'_, PyAny>,
-    what: &str,
-) -> PyResult<Vec<[usize; K]>> {
+pub fn index_rows<const K: usize>(obj: &Bound<'_, PyAny>, what: &str) -> PyResult<Vec<[usize; K]>> {
     let (values, shape) = numpy_array::<i64>(obj, "int64", what)?;
     if shape.len() != 2 || shape[1] != K {
         return Err(MeshError::new_err(format!(

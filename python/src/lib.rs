@@ -198,7 +198,11 @@ impl Case {
                 mesh.surface_names().join(", ")
             ))
         })?;
-        let nodes: Vec<i64> = mesh.surface_nodes(surface).iter().map(|&n| n as i64).collect();
+        let nodes: Vec<i64> = mesh
+            .surface_nodes(surface)
+            .iter()
+            .map(|&n| n as i64)
+            .collect();
         Ok(PyArray1::from_vec(py, nodes).into_any())
     }
 
@@ -226,7 +230,9 @@ impl NativeSimulation {
     #[pyo3(signature = (case, threads = None, output = None))]
     fn new(case: &Case, threads: Option<usize>, output: Option<PathBuf>) -> PyResult<Self> {
         if threads == Some(0) {
-            return Err(CaseError::new_err("threads must be at least 1 (or None: one per core)"));
+            return Err(CaseError::new_err(
+                "threads must be at least 1 (or None: one per core)",
+            ));
         }
         let inner = RustSimulation::from_case(&case.inner).map_err(to_py)?;
         Ok(NativeSimulation {

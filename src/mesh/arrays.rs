@@ -183,15 +183,16 @@ mod tests {
     use super::*;
     use crate::mesh::structured::box_mesh;
 
-    /// The arrays of a box mesh, its facets given inside out.
-    fn arrays(
-        mesh: &Mesh,
-    ) -> (
+    /// Nodes, elements, regions and surface sets, as `from_arrays` takes them.
+    type Arrays = (
         Vec<[f64; 3]>,
         Vec<(ElementKind, Vec<usize>)>,
         Vec<(String, Vec<usize>)>,
         Vec<(String, Vec<Vec<usize>>)>,
-    ) {
+    );
+
+    /// The arrays of a box mesh, its facets given inside out.
+    fn arrays(mesh: &Mesh) -> Arrays {
         let elements = mesh
             .elements
             .iter()

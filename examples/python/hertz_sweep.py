@@ -36,18 +36,6 @@ E, NU, R = 1000.0, 0.3, 1.0  # examples/hertz/case.toml and hemisphere.geo
 E_STAR = E / (1.0 - NU * NU)
 
 
-def fitted_contact_radius(case, inc, threshold):
-    """a from the fit of p² = p0² (1 − r²/a²) (a line in r²) over the
-    secondary nodes with p > threshold, r measured in the deformed state."""
-    secondary = np.isfinite(inc.gap)
-    x = case.nodes + inc.displacement
-    r = np.hypot(x[:, 0], x[:, 1])[secondary]
-    p = inc.contact_pressure[secondary]
-    keep = p > threshold
-    slope, intercept = np.polyfit(r[keep] ** 2, p[keep] ** 2, 1)
-    return math.sqrt(-intercept / slope)
-
-
 def hertz_sweep(depths=(0.005, 0.0065, 0.008, 0.0095, 0.0115)):
     folder = EXAMPLES / "hertz"
     text = (folder / "case.toml").read_text()
@@ -58,7 +46,7 @@ def hertz_sweep(depths=(0.005, 0.0065, 0.008, 0.0095, 0.0115)):
         force = 4.0 * result.contact["pole"]["force"][2]  # quarter model
         a_hertz = (3.0 * force * R / (4.0 * E_STAR)) ** (1.0 / 3.0)
         p0 = 3.0 * force / (2.0 * math.pi * a_hertz**2)
-        a_fit = fitted_contact_radius(case, result.last, 0.2 * p0)
+        a_fit = signorini.contact_radius(case, result.last, 0.2 * p0)
         rows.append((depth, force, a_fit, a_hertz))
         print(f"depth {depth:.4f}: F = {force:.4f}, a = {a_fit:.5f}, Hertz {a_hertz:.5f} "
               f"({100 * (a_fit / a_hertz - 1):+.2f} %)")

@@ -34,6 +34,7 @@ from ._signorini import (
     NativeSimulation as _NativeSimulation,
     SignoriniError,
     dict_to_toml,
+    fitted_contact_radius,
 )
 
 __all__ = [
@@ -45,7 +46,9 @@ __all__ = [
     "Result",
     "SignoriniError",
     "Simulation",
+    "contact_radius",
     "dict_to_toml",
+    "fitted_contact_radius",
 ]
 
 #: The nodal fields of every :class:`Increment` (the VTU point-data names).
@@ -237,3 +240,15 @@ class Result:
         import pyvista
 
         return pyvista.from_meshio(self.to_meshio(increment))
+
+
+def contact_radius(case: Case, increment: Increment, threshold: float) -> float:
+    """The radius of a contact patch about the z axis (Hertz's a): the fit
+    of ``p² = p0² (1 − r²/a²)`` over the secondary nodes (finite gap) with
+    ``p > threshold``, r their distance from the axis in the deformed state
+    (:func:`fitted_contact_radius`; examples/hertz/README.md)."""
+    secondary = np.isfinite(increment.gap)
+    x = case.nodes + increment.displacement
+    r = np.hypot(x[:, 0], x[:, 1])[secondary]
+    p = increment.contact_pressure[secondary]
+    return fitted_contact_radius(r, p, threshold)

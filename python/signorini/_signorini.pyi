@@ -115,3 +115,7 @@ class NativeSimulation:
 
 def dict_to_toml(spec: Mapping[str, Any]) -> str:
     """A case table (a dict) as the TOML text of a case file."""
+
+def fitted_contact_radius(r: npt.ArrayLike, p: npt.ArrayLike, threshold: float) -> float:
+    """Hertz's contact radius from nodal pressures p at distances r from the
+    axis: the least-squares fit of p² = p0² (1 − r²/a²) over p > threshold."""

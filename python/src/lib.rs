@@ -261,6 +261,25 @@ fn dict_to_toml(spec: &Bound<'_, PyAny>) -> PyResult<String> {
     convert::spec_text(spec)
 }
 
+/// Hertz's contact radius from nodal pressures `p` at distances `r` from
+/// the axis: the least-squares fit of `p² = p₀² (1 − r²/a²)` (a line in
+/// `r²`) over the nodes with `p > threshold`, `a = √(−c₀/c₁)`
+/// (`signorini::contact::hertz::fitted_contact_radius`).
+#[pyfunction]
+fn fitted_contact_radius(r: Vec<f64>, p: Vec<f64>, threshold: f64) -> PyResult<f64> {
+    if r.len() != p.len() {
+        return Err(pyo3::exceptions::PyValueError::new_err(format!(
+            "r has {} values and p {}; give one pressure per radius",
+            r.len(),
+            p.len()
+        )));
+    }
+    let nodes: Vec<(f64, f64)> = r.into_iter().zip(p).collect();
+    Ok(signorini::contact::hertz::fitted_contact_radius(
+        &nodes, threshold,
+    ))
+}
+
 #[pymodule]
 fn _signorini(m: &Bound<'_, PyModule>) -> PyResult<()> {
     let py = m.py();
@@ -268,6 +287,7 @@ fn _signorini(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_class::<NativeSimulation>()?;
     m.add_class::<observer::Increment>()?;
     m.add_function(wrap_pyfunction!(dict_to_toml, m)?)?;
+    m.add_function(wrap_pyfunction!(fitted_contact_radius, m)?)?;
     m.add("SignoriniError", py.get_type::<SignoriniError>())?;
     m.add("CaseError", py.get_type::<CaseError>())?;
     m.add("MeshError", py.get_type::<MeshError>())?;

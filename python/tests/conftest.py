@@ -1,18 +1,17 @@
 """Shared fixtures: the repository, the command line's binary, a reader of
 the VTU files it writes, and a structured hexahedral cube as arrays."""
 
-import base64
 import os
 import pathlib
-import re
-import struct
 import subprocess
-import zlib
+import sys
 
 import numpy as np
 import pytest
 
 REPO = pathlib.Path(__file__).resolve().parents[2]
+sys.path.insert(0, str(REPO / "scripts"))
+import compare_examples  # noqa: E402
 
 
 @pytest.fixture(scope="session")
@@ -44,34 +43,10 @@ def run_cli(cli, case_file, output, threads=2):
 
 
 def read_vtu_point_field(path, name):
-    """Point array `name` of a VTU written by signorini (inline base64,
-    raw or zlib-compressed; after scripts/compare_examples.py)."""
-    text = pathlib.Path(path).read_text()
-    header_type = re.search(r'header_type="(\w+)"', text).group(1)
-    compressed = 'compressor="vtkZLibDataCompressor"' in text
-    m = re.search(
-        r'<DataArray type="Float64" Name="%s"[^>]*format="binary">\s*([A-Za-z0-9+/=\s]+?)\s*</DataArray>'
-        % re.escape(name),
-        text,
-    )
-    if m is None:
-        return None
-    data = base64.b64decode("".join(m.group(1).split()))
-    size = 8 if header_type == "UInt64" else 4
-    fmt = "<Q" if size == 8 else "<I"
-    if compressed:
-        count = struct.unpack(fmt, data[:size])[0]
-        sizes = struct.unpack(
-            ("<%dQ" if size == 8 else "<%dI") % count, data[3 * size: (3 + count) * size]
-        )
-        raw = data[(3 + count) * size:]
-        payload = b""
-        for s in sizes:
-            payload += zlib.decompress(raw[:s])
-            raw = raw[s:]
-    else:
-        payload = data[size:]
-    return np.frombuffer(payload, dtype="<f8")
+    """Array `name` of a VTU written by signorini, as numpy (the stdlib
+    reader of scripts/compare_examples.py)."""
+    values = compare_examples.read_point_field(path, name)
+    return None if values is None else np.array(values)
 
 
 def hex_cube(n=3, length=1.0):

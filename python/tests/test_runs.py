@@ -112,16 +112,6 @@ def test_hertz_contact_radius_within_one_percent(repo):
     e_star = E / (1.0 - nu**2)
     a = (3.0 * force * R / (4.0 * e_star)) ** (1.0 / 3.0)
     p0 = 3.0 * force / (2.0 * math.pi * a * a)
-    a_fit = fitted_contact_radius(case, result.last, 0.2 * p0)
+    a_fit = signorini.contact_radius(case, result.last, 0.2 * p0)
     assert force == pytest.approx(1.9696, rel=1e-4)  # the README's run
     assert abs(a_fit / a - 1.0) < 0.01, (a_fit, a)
-
-
-def fitted_contact_radius(case, inc, threshold):
-    secondary = np.isfinite(inc.gap)
-    x = case.nodes + inc.displacement
-    r = np.hypot(x[:, 0], x[:, 1])[secondary]
-    p = inc.contact_pressure[secondary]
-    keep = p > threshold
-    slope, intercept = np.polyfit(r[keep] ** 2, p[keep] ** 2, 1)
-    return math.sqrt(-intercept / slope)

@@ -84,6 +84,13 @@ pub enum Error {
         last_converged_time: Option<f64>,
         output: PathBuf,
     },
+
+    /// The run was stopped from outside between two increments (an
+    /// observer asked for it: a script's callback, Ctrl-C). The increments
+    /// converged before stay with the observers and, with an output folder,
+    /// on disk; `summary.json` says `"status": "interrupted"`.
+    #[error("the run was stopped: {reason}")]
+    Interrupted { reason: String },
 }
 
 /// Result with the crate's [`Error`].

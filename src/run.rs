@@ -140,7 +140,8 @@ impl Simulation {
     /// Run every step: each converged increment goes to `observer` (and,
     /// with an output folder, to the result files). On failure the
     /// increments converged before stay written and `summary.json` says
-    /// `"status": "failed"` with the error.
+    /// `"status": "failed"` with the error (`"interrupted"` when an
+    /// observer stopped the run with [`Error::Interrupted`]).
     pub fn run(
         &mut self,
         options: &RunOptions,
@@ -243,7 +244,11 @@ impl Simulation {
                 })
             }
             Err(e) => {
-                summary.status = "failed".into();
+                summary.status = match e {
+                    Error::Interrupted { .. } => "interrupted",
+                    _ => "failed",
+                }
+                .into();
                 summary.error = Some(e.to_string());
                 // keep what converged; the original error matters more than a
                 // failure to write the failure report

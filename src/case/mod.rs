@@ -124,6 +124,37 @@ pub fn from_toml(text: &str, base_dir: &Path) -> Result<Case> {
     from_text(&base_dir.join("case"), text)
 }
 
+/// A case from the text of a case file without its `[mesh]` table and a
+/// mesh built in code ([`Mesh::from_arrays`]); the text's other paths (the
+/// output folder) are relative to `base_dir`. Errors are those of a case
+/// file, with the same line numbers and key paths.
+pub fn from_mesh(text: &str, base_dir: &Path, mesh: Mesh) -> Result<Case> {
+    let path = base_dir.join("case");
+    if text
+        .parse::<toml::Table>()
+        .is_ok_and(|t| t.contains_key("mesh"))
+    {
+        return Err(case_error(
+            &path,
+            "[mesh]: the mesh is given as arrays; remove the [mesh] table",
+        ));
+    }
+    // the schema's [mesh] table, after the text so that its line numbers hold
+    let spec = parse(
+        &path,
+        &format!(
+            "{text}\n[mesh]\nfile = \"{}\"\n",
+            crate::mesh::arrays::ARRAYS
+        ),
+    )?;
+    Ok(Case {
+        path,
+        spec,
+        mesh: Arc::new(mesh),
+        notes: Vec::new(),
+    })
+}
+
 /// A case from the text of the case file at `path` (which names it in
 /// messages; its folder resolves the mesh path).
 fn from_text(path: &Path, text: &str) -> Result<Case> {

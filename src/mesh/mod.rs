@@ -7,6 +7,7 @@
 //! counter-clockwise seen from outside… i.e. from below, top face `4‥7`
 //! above them.
 
+pub mod arrays;
 pub mod boundary;
 pub mod gmsh;
 pub mod inp;

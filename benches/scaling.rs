@@ -539,7 +539,7 @@ fn run_case(spec: &Spec) -> Value {
         prescribed: Vec::new(),
         pressures: Vec::new(),
         body_forces: Vec::new(),
-        contacts: Vec::new(),
+        contacts: Default::default(),
         timings: Default::default(),
         steps: vec![Step {
             name: "load".into(),

@@ -502,20 +502,21 @@ impl ContactFields {
         let mut slip = vec![(Vector3::zeros(), 0.0); n_nodes];
         let mut status = vec![0u8; n_nodes];
         let mut total = Vector3::zeros();
-        for (i, &area) in c.areas.iter().enumerate() {
-            let state = c.node_state(states, x, problem.model.num_dofs(), i);
-            let Some(node) = c.surface_node(primary, reference, x, i, &state) else {
+        let ctx = problem.contact_context(0.0, x);
+        let contacts = c.primary_contacts(&ctx, states);
+        for ((node, &area), state) in contacts.iter().zip(&c.areas).zip(states) {
+            let Some(node) = node else {
                 continue;
             };
             // the committed tangential traction, as on the secondary side
             let history = &state.friction;
-            let force = -area * (node.law.pressure * node.gap.normal + history.traction);
-            for (&n, &weight) in node.nodes[1..].iter().zip(&node.gap.shape) {
-                normal[n] += area * node.law.pressure * weight;
+            let force = -area * (node.pressure * node.normal + history.traction);
+            for (&n, &weight) in node.nodes.iter().zip(&node.shape) {
+                normal[n] += area * node.pressure * weight;
                 forces[n] += force * weight;
                 // the closed nodes over the primary node, by their weights
                 // (clamped: a node just off its triangle has one below 0)
-                if node.law.active && weight > 0.0 {
+                if node.active && weight > 0.0 {
                     slip[n].0 -= history.slip * (area * weight);
                     slip[n].1 += area * weight;
                     status[n] = status[n].max(history.status.code());

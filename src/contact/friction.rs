@@ -44,7 +44,7 @@
 //! committed once the increment has converged ([`commit`]). Updating it per
 //! iteration (as the paper says) breaks path independence.
 
-use super::laws::GapGeometry;
+use super::gap::GapGeometry;
 use nalgebra::{Matrix3, SMatrix, SVector, Vector3};
 
 /// Coulomb's law with its regularising tangential penalty.
@@ -221,15 +221,29 @@ pub fn return_map(
     gap: &GapGeometry,
     pressure: &NormalPressure,
 ) -> TangentialResponse {
-    let kinematics = SlipKinematics {
-        traction: history.traction,
-        traction_gradient: Matrix3::zeros(),
-        offset: relative_position - history.anchor,
-        offset_gradient: Matrix3::identity(),
-        normal: gap.normal,
-        normal_gradient: gap.hessian,
-    };
+    let kinematics = SlipKinematics::rigid(history, relative_position, &gap.normal, &gap.hessian);
     return_map_on(law, &kinematics, pressure)
+}
+
+impl SlipKinematics<3> {
+    /// Against a rigid obstacle, `q = x_s`: the committed traction fixed,
+    /// `d = (x_s − c(t)) − (x_s − c)ₙ` from the node's `relative_position`
+    /// and the `history`'s anchor, `∂d/∂x_s = I`, `∂n/∂x_s = H`.
+    pub fn rigid(
+        history: &FrictionHistory,
+        relative_position: &Vector3<f64>,
+        normal: &Vector3<f64>,
+        hessian: &Matrix3<f64>,
+    ) -> Self {
+        SlipKinematics {
+            traction: history.traction,
+            traction_gradient: Matrix3::zeros(),
+            offset: relative_position - history.anchor,
+            offset_gradient: Matrix3::identity(),
+            normal: *normal,
+            normal_gradient: *hessian,
+        }
+    }
 }
 
 /// The return mapping (see the module docs) of one closed node with the

@@ -239,10 +239,9 @@ impl Problem {
         f
     }
 
-    /// Install contact interfaces: number their multipliers one after the
-    /// other, pair secondary nodes with primary surfaces at the reference
-    /// configuration, and rebuild the sparsity pattern with them (every
-    /// secondary node keeps its multiplier, active or not, so the number of
+    /// Install contact interfaces ([`ContactSet::install`]), pair them at the
+    /// reference configuration and rebuild the sparsity pattern (every
+    /// secondary node keeps its multiplier, active or not: the number of
     /// unknowns is fixed for the run).
     pub fn set_contacts(&mut self, contacts: Vec<ContactInterface>) {
         self.contacts.install(contacts);
@@ -266,12 +265,10 @@ impl Problem {
         );
     }
 
-    /// Pair the secondary nodes of every deformable interface with the
-    /// primary triangles they may touch at unknowns `x`, with search
-    /// margins `2h_t + 2 motion` (`src/contact/primary.rs`, search rule;
-    /// `motion` the largest nodal displacement expected in the coming
-    /// increment), and rebuild the sparsity pattern if a pairing changed.
-    /// Returns whether it did.
+    /// Pair the secondary nodes with the primary triangles they may touch
+    /// at `x` ([`ContactSet::refresh_pairs`]; `motion` the largest nodal
+    /// displacement expected in the coming increment) and rebuild the
+    /// sparsity pattern if a pairing changed. Returns whether it did.
     pub fn refresh_contact_pairs(&mut self, x: &[f64], motion: f64) -> bool {
         let changed = self
             .contacts
@@ -288,11 +285,9 @@ impl Problem {
         self.contacts.deformable_nodes()
     }
 
-    /// Whether every secondary node of the deformable interfaces found, at
-    /// unknowns `x`, the primary triangle a fresh search would give it: the
-    /// check, after an increment converged, that no node slid out of the
-    /// candidates it was paired with at the increment's start (then the
-    /// increment is cut, which shrinks the motion per increment).
+    /// Whether no secondary node slid, by `x`, out of the candidates it was
+    /// paired with at the increment's start ([`ContactSet::pairs_hold`];
+    /// otherwise the increment is cut, which shrinks the motion per increment).
     pub fn contact_pairs_hold(&self, x: &[f64], contact: &ContactState) -> bool {
         self.contacts.pairs_hold(&self.model.mesh.nodes, x, contact)
     }
@@ -323,24 +318,20 @@ impl Problem {
         self.contacts.initial_state(&self.model.mesh.nodes, x)
     }
 
-    /// Commit the contact history (friction's traction, slip and anchor;
-    /// every node's status) once an increment has converged at time `t`
-    /// and unknowns `x` (formulation note §3).
+    /// Commit the contact history once an increment has converged at `t`,
+    /// `x` ([`ContactSet::commit`]).
     pub fn commit_contact_history(&self, t: f64, x: &[f64], contact: &mut ContactState) {
         self.contacts.commit(&self.contact_context(t, x), contact);
     }
 
-    /// After a converged Newton solve: the outer loop of every interface
-    /// whose law has one (Uzawa: where the largest penetration exceeds its
-    /// tolerance, 1e-9 of its element size, `λ ← ⟨λ − ε g⟩`); `true` when a
-    /// multiplier changed (solve again).
+    /// After a converged Newton solve, the outer loop of the laws that have
+    /// one ([`ContactSet::augment`]); `true`: solve again.
     pub fn augment_multipliers(&self, t: f64, x: &[f64], contact: &mut ContactState) -> bool {
         self.contacts.augment(&self.contact_context(t, x), contact)
     }
 
     /// The preconditioner of a nonsymmetric solve from the symmetric part
-    /// `values` of the tangent: friction's slip blocks replaced by stick
-    /// blocks ([`ContactInterface::shift_to_stick_preconditioner`]).
+    /// `values` of the tangent ([`ContactSet::precondition`]).
     pub fn stick_preconditioner(
         &self,
         t: f64,

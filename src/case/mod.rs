@@ -618,11 +618,15 @@ impl Case {
             // nodes against the secondary surface's triangles, each pass on
             // half of every node's tributary area
             let reverse_pass = " (two_pass: the reverse pass)";
-            let setup = |e: SetupError| match e {
-                SetupError::NoArea(s) | SetupError::UnknownSurface(s) => self.err(format!(
-                    "{key}{}: surface '{s}' has no area",
-                    if s == c.surface { "" } else { reverse_pass }
-                )),
+            let setup = |e: SetupError| {
+                let (SetupError::NoArea(s) | SetupError::UnknownSurface(s)) = &e;
+                let pass = if *s == c.surface { "" } else { reverse_pass };
+                self.err(match e {
+                    SetupError::NoArea(_) => format!("{key}{pass}: surface '{s}' has no area"),
+                    SetupError::UnknownSurface(_) => {
+                        format!("{key}{pass}: the mesh has no surface set '{s}'")
+                    }
+                })
             };
             let passes = match target {
                 Target::Obstacle(index) => {

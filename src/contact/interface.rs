@@ -23,7 +23,7 @@
 use super::friction::{self, ContactStatus, Coulomb, FrictionHistory, TangentialResponse};
 use super::gap::GapGeometry;
 use super::kinematics::{self, GapKinematics, GapProducer, NodeEvaluation, SecondaryNode};
-use super::laws::{NodeContactState, NormalLaw};
+use super::laws::{uzawa, NodeContactState, NormalLaw};
 use super::obstacle::RigidObstacle;
 use super::primary::PrimarySurface;
 use super::rigid::RigidGap;
@@ -89,8 +89,10 @@ pub struct NodeReport {
     /// Tangential traction `t_T` (zero without friction).
     pub tangential_traction: [f64; 3],
     /// The primary triangle the node is projected on (deformable
-    /// interfaces only).
+    /// interfaces only)…
     pub facet: Option<usize>,
+    /// …and the weights `N_i(ξ)` of its nodes at the projection.
+    pub weights: [f64; 3],
 }
 
 /// Where the contact operations are evaluated: the mesh's reference
@@ -102,16 +104,6 @@ pub struct ContactContext<'a> {
     pub t: f64,
     pub x: &'a [f64],
     pub first_multiplier: usize,
-}
-
-/// A secondary node's force on the primary surface, for output: the
-/// triangle's nodes and weights `N_i(ξ)`, the normal, and the pressure.
-pub struct PrimaryContact {
-    pub nodes: [usize; 3],
-    pub shape: [f64; 3],
-    pub normal: Vector3<f64>,
-    pub pressure: f64,
-    pub active: bool,
 }
 
 /// Run `$body` with `$p` bound to the gap producer of `$iface` at time
@@ -394,6 +386,7 @@ impl ContactInterface {
                     force: force.into(),
                     tangential_traction: t.traction.into(),
                     facet: e.kinematics.facet,
+                    weights: e.kinematics.weights,
                 });
             });
         });
@@ -522,44 +515,12 @@ impl ContactInterface {
             return false;
         }
         let gaps = self.gaps(ctx.reference, ctx.t, ctx.x, Some(states));
-        let penetration = gaps.iter().fold(0.0f64, |m, &g| m.max(-g));
-        if penetration <= 1e-9 * self.element_size {
+        if uzawa::penetration_converged(gaps.iter().copied(), 1e-9 * self.element_size) {
             return false;
         }
         for (i, (state, g)) in states.iter_mut().zip(&gaps).enumerate() {
             state.lambda = self.law_at(i).augmented_multiplier(state.lambda, *g);
         }
         true
-    }
-
-    /// Each secondary node's force on the primary surface at `ctx` (between
-    /// bodies; `None` for a node without a primary triangle, and for every
-    /// node against a rigid obstacle).
-    pub fn primary_contacts(
-        &self,
-        ctx: &ContactContext,
-        states: &[NodeContactState],
-    ) -> Vec<Option<PrimaryContact>> {
-        let mut out = Vec::with_capacity(self.nodes.len());
-        let Primary::Surface(primary) = &self.primary else {
-            out.resize_with(self.nodes.len(), || None);
-            return out;
-        };
-        let p = &SurfaceGap { primary };
-        let state_of = |i| self.node_state(ctx, states, i);
-        self.for_each_node(p, ctx, state_of, |node, state, k| {
-            out.push(k.map(|k| {
-                let (i, [_, a, b, c, ..]) = (node.index, k.nodes);
-                let response = k.normal_response(&self.law_at(i), self.areas[i], &state);
-                PrimaryContact {
-                    nodes: [a, b, c],
-                    shape: k.point.shape,
-                    normal: k.normal,
-                    pressure: response.pressure.value,
-                    active: response.active,
-                }
-            }));
-        });
-        out
     }
 }

@@ -80,8 +80,9 @@ pub struct GapKinematics<const Q: usize, P = ()> {
     /// `∂n/∂q`.
     pub normal_gradient: SMatrix<f64, 3, Q>,
     /// The primary triangle the node is projected on (deformable primary
-    /// surfaces only).
+    /// surfaces only) and the weights `N_i(ξ)` of its nodes there.
     pub facet: Option<usize>,
+    pub weights: [f64; 3],
     /// What the producer keeps of the projection beyond that.
     pub point: P,
 }

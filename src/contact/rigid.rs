@@ -39,6 +39,7 @@ impl GapProducer<3> for RigidGap<'_> {
             normal: p.normal,
             normal_gradient: p.curvature,
             facet: None,
+            weights: [0.0; 3],
             point: (),
         })
     }

@@ -121,6 +121,7 @@ impl GapProducer<Q> for SurfaceGap<'_> {
             normal: gap.normal,
             normal_gradient,
             facet: Some(t),
+            weights: gap.shape,
             point: gap,
         })
     }
@@ -254,8 +255,8 @@ impl GapProducer<Q> for SurfaceGap<'_> {
     ) -> Option<MaterialPoint> {
         let point = match kinematics {
             Some(k) => MaterialPoint {
-                triangle: k.facet.expect("a surface projection has a facet"),
-                shape: k.point.shape,
+                triangle: k.facet?,
+                shape: k.weights,
                 traction: [0.0; 2],
             },
             None => self.primary.closest_material_point(

@@ -293,6 +293,44 @@ pub fn return_map_on<const K: usize>(
     }
 }
 
+/// First-contact anchoring: the slip of a node that was open at the last
+/// converged increment (committed gap `g_n > 0`, no traction) counts from
+/// where its path meets the surface, not from where it was. Along the
+/// straight path from its committed position the gap falls from `g_n` to
+/// `g`; it meets the surface at the fraction `α = g_n/(g_n − g)` (`α = 1`
+/// while `g ≥ 0`: not through yet), so the offset after first contact is
+/// ```text
+/// d' = (1 − α) d,     ∂d'/∂q = (1 − α) ∂d/∂q − d ⊗ ∂α/∂q,
+/// ∂α/∂q = g_n/(g_n − g)² ∇g   (g < 0 < g_n; zero otherwise)
+/// ```
+/// With an exact normal constraint (`g = 0` at convergence) a closing node
+/// carries no tangential traction and no slip from its approach; with a
+/// penalty it slips only along the part of its path beyond the surface.
+/// A node that touched at the last commit (`g_n ≤ 0`) keeps `d`.
+pub fn first_contact<const K: usize>(
+    kinematics: &mut SlipKinematics<K>,
+    committed_gap: f64,
+    gap: f64,
+    gap_gradient: &SVector<f64, K>,
+) {
+    if !(committed_gap > 0.0) {
+        return;
+    }
+    let d = kinematics.offset;
+    let (alpha, alpha_gradient) = if gap < 0.0 {
+        let denominator = committed_gap - gap;
+        (
+            committed_gap / denominator,
+            (committed_gap / (denominator * denominator)) * gap_gradient,
+        )
+    } else {
+        (1.0, SVector::zeros())
+    };
+    kinematics.offset = (1.0 - alpha) * d;
+    kinematics.offset_gradient =
+        (1.0 - alpha) * kinematics.offset_gradient - d * alpha_gradient.transpose();
+}
+
 /// The history after an increment converged with the node in `response`
 /// (`None`: the node is open) at `relative_position` (the caller of a
 /// deformable interface then records the node's new material point).

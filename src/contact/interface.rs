@@ -404,17 +404,19 @@ impl ContactInterface {
             let state_of = |i| self.node_state(ctx, states, i);
             self.for_each_node(p, ctx, state_of, |node, state, k| {
                 let facet = k.as_ref().and_then(|k| k.facet);
+                let gap = k.as_ref().map_or(p.open_gap(), |k| k.gap);
                 let e = k.map(|k| self.evaluate(p, node, k, &state));
                 let response = e.as_ref().and_then(|e| e.tangential.as_ref());
                 let mut history =
                     friction::commit(&state.friction, response, p.relative_position(node));
                 history.material_point =
                     p.anchor(node, e.as_ref().map(|e| &e.kinematics), &history.traction);
-                committed.push((facet, history));
+                committed.push((facet, gap, history));
             });
         });
-        for (state, (facet, history)) in states.iter_mut().zip(committed) {
+        for (state, (facet, gap, history)) in states.iter_mut().zip(committed) {
             state.facet = facet;
+            state.gap = gap;
             state.friction = history;
         }
     }

@@ -262,7 +262,11 @@ pub fn evaluate<const Q: usize, G: GapProducer<Q>>(
             (Some(stick), None)
         }
         (true, Some(coulomb)) => {
-            let frame = producer.slip(node, &mut kinematics, &state.friction);
+            let mut frame = producer.slip(node, &mut kinematics, &state.friction);
+            if state.friction.status == ContactStatus::Open {
+                let (g, grad) = (kinematics.gap, &kinematics.gradient);
+                friction::first_contact(&mut frame.kinematics, state.gap, g, grad);
+            }
             let t = friction::return_map_on(&coulomb, &frame.kinematics, &response.pressure);
             let lever_t = frame.lever.transpose();
             response.residual -= area * lever_t * t.traction;

@@ -108,6 +108,10 @@ pub struct NodeContactState {
     /// a shared edge does not flip between two triangles from one Newton
     /// iteration to the next.
     pub facet: Option<usize>,
+    /// Signed gap at the last converged increment (at the start: the
+    /// initial gap): where a node that was open finds its first contact
+    /// ([`friction::first_contact`](crate::contact::friction::first_contact)).
+    pub gap: f64,
 }
 
 impl NodeContactState {
@@ -130,6 +134,7 @@ impl NodeContactState {
             slack,
             friction: Default::default(),
             facet: None,
+            gap: signed_gap,
         }
     }
 }

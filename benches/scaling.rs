@@ -540,7 +540,7 @@ fn run_case(spec: &Spec) -> Value {
         pressures: Vec::new(),
         body_forces: Vec::new(),
         nodal_forces: Vec::new(),
-        contacts: Vec::new(),
+        contacts: Default::default(),
         timings: Default::default(),
         steps: vec![Step {
             name: "load".into(),

@@ -7,49 +7,16 @@
 
 use crate::assembly::loads::pressure_facet;
 use crate::assembly::{ElementFailure, Model};
-use crate::contact::interface::Primary;
-use crate::contact::interface::{ContactInterface, NodeReport};
-use crate::contact::laws::NodeContactState;
+use crate::contact::interface::{ContactContext, ContactInterface, NodeReport};
+use crate::contact::set::ContactSet;
 use crate::mesh::Facet;
 pub use crate::solve::settings::{LinearMethod, NonsymmetricSolver, SolverSettings, Step};
 
 mod nonlinear;
 
-/// A piecewise-linear function of pseudo-time, constant beyond its first
-/// and last points.
-#[derive(Clone, Debug, PartialEq)]
-pub struct Amplitude {
-    points: Vec<(f64, f64)>,
-}
+pub use crate::contact::set::ContactState;
 
-impl Amplitude {
-    /// From `(time, value)` points with strictly increasing times. The
-    /// caller validates the input (see [`crate::case`]).
-    pub fn new(points: Vec<(f64, f64)>) -> Self {
-        Amplitude { points }
-    }
-    /// The default: 0 at time 0, 1 at time 1 and after.
-    pub fn ramp() -> Self {
-        Amplitude::new(vec![(0.0, 0.0), (1.0, 1.0)])
-    }
-    /// Value at time `t`.
-    pub fn value(&self, t: f64) -> f64 {
-        let p = &self.points;
-        if p.is_empty() {
-            return 1.0;
-        }
-        if t <= p[0].0 {
-            return p[0].1;
-        }
-        for w in p.windows(2) {
-            let ((t0, v0), (t1, v1)) = (w[0], w[1]);
-            if t <= t1 {
-                return v0 + (v1 - v0) * (t - t0) / (t1 - t0);
-            }
-        }
-        p[p.len() - 1].1
-    }
-}
+pub use crate::assembly::amplitude::Amplitude;
 
 /// Prescribed displacement components on the nodes of a surface set or a
 /// node set: `u_i = value_i · amplitude(t)`.
@@ -107,8 +74,8 @@ pub struct Problem {
     pub pressures: Vec<PressureLoad>,
     pub body_forces: Vec<BodyForce>,
     pub nodal_forces: Vec<NodalForce>,
-    /// Contact interfaces with rigid obstacles.
-    pub contacts: Vec<ContactInterface>,
+    /// Contact interfaces (with rigid obstacles or between bodies).
+    pub contacts: ContactSet,
     pub steps: Vec<Step>,
     pub settings: SolverSettings,
     /// Time spent in assembly and contact, for reports and benchmarks.
@@ -138,14 +105,6 @@ impl PhaseTimings {
     pub fn contact(&self) -> f64 {
         self.contact_ns.load(std::sync::atomic::Ordering::Relaxed) as f64 * 1e-9
     }
-}
-
-/// The per-node contact states of every interface (multipliers held fixed
-/// by Uzawa, local slack unknowns): history that Newton reads and the
-/// stepper commits when an increment converges.
-#[derive(Clone, Debug, Default, PartialEq)]
-pub struct ContactState {
-    pub interfaces: Vec<Vec<NodeContactState>>,
 }
 
 /// Residual `r = f_int − f_ext − f_contact` over all unknowns (displacements,
@@ -186,7 +145,7 @@ impl Problem {
     /// Whether the tangent is nonsymmetric (follower pressure on a
     /// surface, Coulomb friction).
     pub fn has_nonsymmetric_tangent(&self) -> bool {
-        self.pressures.iter().any(|p| p.follower) || self.contacts.iter().any(|c| c.has_friction())
+        self.pressures.iter().any(|p| p.follower) || self.contacts.has_friction()
     }
 
     /// External force at time `t` and displacement `u`; if `tangent` is
@@ -230,11 +189,7 @@ impl Problem {
                     .collect();
                 let with_tangent = p.follower && tangent.is_some();
                 let (fe, ke) = pressure_facet(facet.kind, &coords, value, with_tangent);
-                for (a, &n) in facet.nodes.iter().enumerate() {
-                    for i in 0..3 {
-                        f[3 * n + i] += fe[3 * a + i];
-                    }
-                }
+                crate::assembly::scatter::add_nodal(&mut f, &facet.nodes, |k| fe[k]);
                 if let (true, Some(k)) = (with_tangent, tangent.as_deref_mut()) {
                     crate::assembly::scatter_block_matrix(
                         &self.model.pattern,
@@ -249,18 +204,12 @@ impl Problem {
         f
     }
 
-    /// Install contact interfaces: number their multipliers one after the
-    /// other, pair secondary nodes with primary surfaces at the reference
-    /// configuration, and rebuild the sparsity pattern with them (every
-    /// secondary node keeps its multiplier, active or not, so the number of
+    /// Install contact interfaces ([`ContactSet::install`]), pair them at the
+    /// reference configuration and rebuild the sparsity pattern (every
+    /// secondary node keeps its multiplier, active or not: the number of
     /// unknowns is fixed for the run).
-    pub fn set_contacts(&mut self, mut contacts: Vec<ContactInterface>) {
-        let mut offset = 0;
-        for c in &mut contacts {
-            c.multiplier_offset = offset;
-            offset += c.num_multipliers();
-        }
-        self.contacts = contacts;
+    pub fn set_contacts(&mut self, contacts: Vec<ContactInterface>) {
+        self.contacts.install(contacts);
         let zero = vec![0.0; self.model.num_dofs()];
         self.refresh_contact_pairs(&zero, 0.0);
         self.rebuild_pattern();
@@ -269,40 +218,26 @@ impl Problem {
     /// The sparsity pattern of the elements, of each secondary node with the
     /// primary nodes it may touch, and of the multipliers.
     fn rebuild_pattern(&mut self) {
-        let mut couplings = Vec::new();
-        let mut groups = Vec::new();
-        for c in &self.contacts {
-            couplings.extend(c.multiplier_couplings());
-            if matches!(c.primary, Primary::Surface(_)) {
-                groups.extend((0..c.nodes.len()).map(|i| c.coupled_nodes(i)));
-            }
-        }
+        let couplings = self.contacts.couplings();
         let mesh = &self.model.mesh;
         self.model.pattern = crate::assembly::pattern::SparsityPattern::with_multipliers(
             mesh.num_nodes(),
             mesh.elements
                 .iter()
                 .map(|e| e.nodes.as_slice())
-                .chain(groups.iter().map(|g| g.as_slice())),
-            &couplings,
+                .chain(couplings.groups.iter().map(|g| g.as_slice())),
+            &couplings.multipliers,
         );
     }
 
-    /// Pair the secondary nodes of every deformable interface with the
-    /// primary triangles they may touch at unknowns `x`, with search
-    /// margins `2h_t + 2 motion` (`src/contact/primary.rs`, search rule;
-    /// `motion` the largest nodal displacement expected in the coming
-    /// increment), and rebuild the sparsity pattern if a pairing changed.
-    /// Returns whether it did.
+    /// Pair the secondary nodes with the primary triangles they may touch
+    /// at `x` ([`ContactSet::refresh_pairs`]; `motion` the largest nodal
+    /// displacement expected in the coming increment) and rebuild the
+    /// sparsity pattern if a pairing changed. Returns whether it did.
     pub fn refresh_contact_pairs(&mut self, x: &[f64], motion: f64) -> bool {
-        let reference = &self.model.mesh.nodes;
-        let mut changed = false;
-        for c in &mut self.contacts {
-            let nodes = c.nodes.clone();
-            if let Primary::Surface(p) = &mut c.primary {
-                changed |= p.refresh(reference, x, &nodes, motion);
-            }
-        }
+        let changed = self
+            .contacts
+            .refresh_pairs(&self.model.mesh.nodes, x, motion);
         if changed {
             self.rebuild_pattern();
         }
@@ -312,48 +247,14 @@ impl Problem {
     /// The nodes of every deformable interface (secondary and primary), whose
     /// motion sets the search margin.
     pub fn deformable_contact_nodes(&self) -> Vec<usize> {
-        let mut nodes: Vec<usize> = self
-            .contacts
-            .iter()
-            .filter_map(|c| match &c.primary {
-                Primary::Surface(p) => Some(c.nodes.iter().chain(&p.nodes).copied()),
-                Primary::Rigid(_) => None,
-            })
-            .flatten()
-            .collect();
-        nodes.sort_unstable();
-        nodes.dedup();
-        nodes
+        self.contacts.deformable_nodes()
     }
 
-    /// Whether every secondary node of the deformable interfaces found, at
-    /// unknowns `x`, the primary triangle a fresh search would give it: the
-    /// check, after an increment converged, that no node slid out of the
-    /// candidates it was paired with at the increment's start (then the
-    /// increment is cut, which shrinks the motion per increment).
+    /// Whether no secondary node slid, by `x`, out of the candidates it was
+    /// paired with at the increment's start ([`ContactSet::pairs_hold`];
+    /// otherwise the increment is cut, which shrinks the motion per increment).
     pub fn contact_pairs_hold(&self, x: &[f64], contact: &ContactState) -> bool {
-        let reference = &self.model.mesh.nodes;
-        self.contacts
-            .iter()
-            .zip(&contact.interfaces)
-            .all(|(c, states)| {
-                let Primary::Surface(p) = &c.primary else {
-                    return true;
-                };
-                let mut fresh = p.clone();
-                fresh.refresh(reference, x, &c.nodes, 0.0);
-                let mut with_fresh = c.clone();
-                with_fresh.primary = Primary::Surface(fresh);
-                let (used, now) = (
-                    c.gaps(reference, 0.0, x, Some(states)),
-                    with_fresh.gaps(reference, 0.0, x, Some(states)),
-                );
-                let tolerance = 1e-9 * c.element_size;
-                used.iter()
-                    .zip(&now)
-                    // the same gap, or open either way (no force)
-                    .all(|(a, b)| (a - b).abs() <= tolerance || (*a > 0.0 && *b > 0.0))
-            })
+        self.contacts.pairs_hold(&self.model.mesh.nodes, x, contact)
     }
 
     /// Number of unknowns: 3 displacements per node, then the contact
@@ -367,57 +268,35 @@ impl Problem {
         self.num_unknowns() > self.model.num_dofs()
     }
 
+    /// Where the contact operations are evaluated: time `t`, unknowns `x`.
+    pub fn contact_context<'a>(&'a self, t: f64, x: &'a [f64]) -> ContactContext<'a> {
+        ContactContext {
+            reference: &self.model.mesh.nodes,
+            t,
+            x,
+            first_multiplier: self.model.num_dofs(),
+        }
+    }
+
     /// The contact states before the first increment (gaps at `x`, time 0).
     pub fn initial_contact_state(&self, x: &[f64]) -> ContactState {
-        ContactState {
-            interfaces: self
-                .contacts
-                .iter()
-                .map(|c| c.initial_states(&self.model.mesh.nodes, x))
-                .collect(),
-        }
+        self.contacts.initial_state(&self.model.mesh.nodes, x)
     }
 
-    /// Commit the contact history (friction's traction, slip and anchor;
-    /// every node's status) once an increment has converged at time `t`
-    /// and unknowns `x` (formulation note §3).
+    /// Commit the contact history once an increment has converged at `t`,
+    /// `x` ([`ContactSet::commit`]).
     pub fn commit_contact_history(&self, t: f64, x: &[f64], contact: &mut ContactState) {
-        for (c, states) in self.contacts.iter().zip(&mut contact.interfaces) {
-            c.commit_history(&self.model.mesh.nodes, t, x, self.model.num_dofs(), states);
-        }
+        self.contacts.commit(&self.contact_context(t, x), contact);
     }
 
-    /// After a converged Newton solve: for every Uzawa interface whose
-    /// largest penetration exceeds its tolerance (1e-9 of its element size),
-    /// update the multipliers `λ ← ⟨λ − ε g⟩` and return `true` (solve
-    /// again); `false` when every interface is within tolerance.
+    /// After a converged Newton solve, the outer loop of the laws that have
+    /// one ([`ContactSet::augment`]); `true`: solve again.
     pub fn augment_multipliers(&self, t: f64, x: &[f64], contact: &mut ContactState) -> bool {
-        let mut again = false;
-        for (c, states) in self.contacts.iter().zip(&mut contact.interfaces) {
-            if !matches!(c.law, crate::contact::laws::NormalLaw::Uzawa { .. }) {
-                continue;
-            }
-            let gaps = c.gaps(&self.model.mesh.nodes, t, x, Some(states));
-            let penetration = gaps.iter().fold(0.0f64, |m, &g| m.max(-g));
-            if penetration > 1e-9 * c.element_size {
-                again = true;
-                for (i, (state, g)) in states.iter_mut().zip(&gaps).enumerate() {
-                    if let crate::contact::laws::NormalLaw::Uzawa { epsilon } = c.law_at(i) {
-                        state.lambda = crate::contact::laws::uzawa::update_multiplier(
-                            state.lambda,
-                            *g,
-                            epsilon,
-                        );
-                    }
-                }
-            }
-        }
-        again
+        self.contacts.augment(&self.contact_context(t, x), contact)
     }
 
     /// The preconditioner of a nonsymmetric solve from the symmetric part
-    /// `values` of the tangent: friction's slip blocks replaced by stick
-    /// blocks ([`ContactInterface::shift_to_stick_preconditioner`]).
+    /// `values` of the tangent ([`ContactSet::precondition`]).
     pub fn stick_preconditioner(
         &self,
         t: f64,
@@ -426,18 +305,10 @@ impl Problem {
         constrained: &[bool],
         values: &mut [f64],
     ) {
-        for (c, states) in self.contacts.iter().zip(&contact.interfaces) {
-            c.shift_to_stick_preconditioner(
-                &self.model.mesh.nodes,
-                t,
-                x,
-                states,
-                self.model.num_dofs(),
-                constrained,
-                &self.model.pattern,
-                values,
-            );
-        }
+        let ctx = self.contact_context(t, x);
+        let pattern = &self.model.pattern;
+        self.contacts
+            .precondition(&ctx, contact, constrained, pattern, values);
     }
 
     /// Carry the contact states along a Newton step `dx` from `x`.
@@ -448,16 +319,8 @@ impl Problem {
         dx: &[f64],
         contact: &mut ContactState,
     ) {
-        for (c, states) in self.contacts.iter().zip(&mut contact.interfaces) {
-            c.advance_states(
-                &self.model.mesh.nodes,
-                t,
-                x,
-                dx,
-                self.model.num_dofs(),
-                states,
-            );
-        }
+        self.contacts
+            .advance(&self.contact_context(t, x), dx, contact);
     }
 
     /// Residual at time `t` and unknowns `x` for a problem without contact
@@ -487,23 +350,13 @@ impl Problem {
             .assemble_internal(x, &mut r, tangent.as_deref_mut())?;
         PhaseTimings::add(&self.timings.assembly_ns, start);
         let start = std::time::Instant::now();
-        let first_multiplier = self.model.num_dofs();
-        let reports = self
-            .contacts
-            .iter()
-            .zip(&contact.interfaces)
-            .map(|(c, states)| {
-                c.assemble(
-                    &self.model.mesh.nodes,
-                    t,
-                    x,
-                    states,
-                    first_multiplier,
-                    &mut r,
-                    tangent.as_deref_mut().map(|k| (&self.model.pattern, k)),
-                )
-            })
-            .collect();
+        let pattern = &self.model.pattern;
+        let reports = self.contacts.assemble(
+            &self.contact_context(t, x),
+            contact,
+            &mut r,
+            tangent.as_deref_mut().map(|k| (pattern, k)),
+        );
         PhaseTimings::add(&self.timings.contact_ns, start);
         let start = std::time::Instant::now();
         let internal_norm = norm(&r);
@@ -558,18 +411,4 @@ impl Problem {
 /// Euclidean norm.
 pub fn norm(v: &[f64]) -> f64 {
     v.iter().map(|x| x * x).sum::<f64>().sqrt()
-}
-
-#[cfg(test)]
-mod tests {
-    use super::*;
-
-    #[test]
-    fn amplitude_interpolates_and_holds() {
-        let a = Amplitude::new(vec![(0.0, 0.0), (1.0, 2.0), (3.0, -2.0)]);
-        assert_eq!(a.value(-1.0), 0.0);
-        assert!((a.value(0.5) - 1.0).abs() < 1e-15);
-        assert!((a.value(2.0) - 0.0).abs() < 1e-15);
-        assert_eq!(a.value(10.0), -2.0);
-    }
 }

@@ -190,7 +190,7 @@ fn triangulated_plane_matches_the_analytic_plane() {
         })
         .collect();
     let surface = signorini::contact::TriangulatedSurface::new(vertices, triangles).unwrap();
-    let mut contacts = pr.contacts.clone();
+    let mut contacts = pr.contacts.to_vec();
     contacts[0].primary = Primary::Rigid(RigidObstacle::Triangulated(surface));
     pr.set_contacts(contacts);
     let last = run(&mut pr);

@@ -6,9 +6,11 @@
 //! Every global entry is therefore summed in the same order whatever the
 //! number of threads, and results are bitwise independent of it.
 
+pub mod amplitude;
 pub mod kernel;
 pub mod loads;
 pub mod pattern;
+pub mod scatter;
 
 use crate::material::{Mat3, Material};
 use crate::mesh::Mesh;
@@ -141,13 +143,9 @@ impl Model {
                 .collect::<Result<Vec<_>, _>>()?;
             for (e, out) in (start..end).zip(outputs) {
                 let nodes = &self.mesh.elements[e].nodes;
-                let dofs = 3 * nodes.len();
-                for (a, &na) in nodes.iter().enumerate() {
-                    for i in 0..3 {
-                        force[3 * na + i] += out.force[3 * a + i];
-                    }
-                }
+                scatter::add_nodal(force, nodes, |k| out.force[k]);
                 if let Some(k) = tangent.as_deref_mut() {
+                    let dofs = 3 * nodes.len();
                     scatter_block_matrix(&self.pattern, nodes, &out.stiffness, dofs, k);
                 }
             }
@@ -195,7 +193,7 @@ impl Model {
 }
 
 /// Add a dense element matrix (row-major, `dofs × dofs`, node-major dofs)
-/// into the global values.
+/// into the global values ([`scatter::add_block`]).
 pub fn scatter_block_matrix(
     pattern: &SparsityPattern,
     nodes: &[usize],
@@ -203,16 +201,11 @@ pub fn scatter_block_matrix(
     dofs: usize,
     values: &mut [f64],
 ) {
-    for (a, &na) in nodes.iter().enumerate() {
-        for (b, &nb) in nodes.iter().enumerate() {
-            let Some(columns) = pattern.block_columns(na, nb) else {
-                continue;
-            };
-            for (j, col) in columns.iter().enumerate() {
-                for i in 0..3 {
-                    values[col + i] += matrix[(3 * a + i) * dofs + 3 * b + j];
-                }
-            }
-        }
-    }
+    scatter::add_block(
+        pattern,
+        values,
+        nodes,
+        |i, j| matrix[i * dofs + j],
+        |_| true,
+    );
 }

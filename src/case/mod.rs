@@ -8,11 +8,9 @@ pub mod schema;
 mod tagged;
 
 use crate::assembly::Model;
-use crate::contact::friction::Coulomb;
-use crate::contact::interface::{ContactInterface, Primary};
-use crate::contact::laws::{automatic_parameters, NormalLaw};
-use crate::contact::primary::PrimarySurface;
-use crate::contact::{tributary_areas, RigidObstacle, TriangulatedSurface};
+use crate::contact::interface::ContactInterface;
+use crate::contact::setup::{Enforcement, Method, SetupError};
+use crate::contact::{RigidObstacle, TriangulatedSurface};
 use crate::material::{self, Material};
 use crate::mesh::Mesh;
 use crate::problem::{
@@ -312,12 +310,18 @@ impl Case {
     }
 
     /// The surface set `name` as a primary surface (its triangles).
-    fn primary_surface(&self, key: &str, name: &str) -> Result<PrimarySurface> {
-        PrimarySurface::from_mesh(&self.mesh, name).ok_or_else(|| Error::UnknownGroup {
-            key: key.to_string(),
-            kind: "surface set (2D physical group)",
-            name: name.to_string(),
-            available: self.mesh.surface_names(),
+    fn primary_surface(
+        &self,
+        key: &str,
+        name: &str,
+    ) -> Result<crate::contact::primary::PrimarySurface> {
+        crate::contact::primary::PrimarySurface::from_mesh(&self.mesh, name).ok_or_else(|| {
+            Error::UnknownGroup {
+                key: key.to_string(),
+                kind: "surface set (2D physical group)",
+                name: name.to_string(),
+                available: self.mesh.surface_names(),
+            }
         })
     }
 
@@ -651,7 +655,7 @@ impl Case {
             pressures,
             body_forces,
             nodal_forces,
-            contacts: Vec::new(),
+            contacts: Default::default(),
             steps,
             settings,
             timings: Default::default(),
@@ -708,9 +712,9 @@ impl Case {
             let key = format!("contact[{i}]");
             self.surface(&format!("{key}.surface"), &c.surface)?;
             // what the secondary nodes touch
-            enum Target {
+            enum Target<'a> {
                 Obstacle(usize),
-                Surface(PrimarySurface),
+                Surface(&'a str),
             }
             let target = match (&c.obstacle, &c.primary) {
                 (Some(name), None) => {
@@ -739,7 +743,9 @@ impl Case {
                             "{key}.primary = '{name}' is the secondary surface itself; name the surface of the other body"
                         )));
                     }
-                    Target::Surface(self.primary_surface(&format!("{key}.primary"), name)?)
+                    // validated as a primary surface (triangles) here, built by the constructors
+                    self.primary_surface(&format!("{key}.primary"), name)?;
+                    Target::Surface(name)
                 }
                 _ => {
                     return Err(self.err(format!(
@@ -775,9 +781,8 @@ impl Case {
                 )));
             }
             let name = c.name.clone().unwrap_or_else(|| c.surface.clone());
-            let mut passes = vec![(name.clone(), c.surface.clone(), target, "")];
-            if let (true, Some(primary)) = (c.two_pass, &c.primary) {
-                let reverse = format!("{name}.reverse");
+            let reverse = format!("{name}.reverse");
+            if c.two_pass {
                 if let Some(j) = spec
                     .contact
                     .iter()
@@ -787,129 +792,106 @@ impl Case {
                         "{key}.two_pass names its reverse pass '{reverse}', which is the name of contact[{j}]; rename one of them"
                     )));
                 }
-                passes.push((
-                    reverse,
-                    primary.clone(),
-                    Target::Surface(self.primary_surface(&format!("{key}.surface"), &c.surface)?),
-                    " (two_pass: the reverse pass)",
-                ));
             }
-            let share = if c.two_pass { 0.5 } else { 1.0 };
-            for (name, secondary, target, pass) in passes {
-                let surface = self.surface(&format!("{key}.surface"), &secondary)?;
-                let (nodes, areas) = tributary_areas(mesh, surface);
-                let total: f64 = areas.iter().sum();
-                if nodes.is_empty() || !(total > 0.0) {
-                    return Err(self.err(format!("{key}{pass}: surface '{secondary}' has no area")));
+            let positive = |v: Option<f64>, name: &str| -> Result<Option<f64>> {
+                match v {
+                    Some(x) if !(x > 0.0 && x.is_finite()) => {
+                        Err(self.err(not_positive(&format!("{key}.{name}"), x)))
+                    }
+                    v => Ok(v),
                 }
-                if !total.is_finite() {
+            };
+            let friction_coefficient = match (c.friction_coefficient, c.tangential_penalty) {
+                (None, Some(_)) => {
                     return Err(self.err(format!(
-                        "{key}{pass}: the area of surface '{secondary}' is {total}; check the mesh's coordinates"
-                    )));
+                        "{key}.tangential_penalty is given without {key}.friction_coefficient; \
+                         add the friction coefficient or remove the tangential penalty"
+                    )))
                 }
-                let h = (total / nodes.len() as f64).sqrt();
-                let (base, _) = automatic_parameters(youngs, h);
-                let auto = if matches!(c.method, ContactMethod::Uzawa) {
-                    base * crate::contact::laws::uzawa::AUTOMATIC_FACTOR
-                } else {
-                    base
-                };
-                let positive = |v: Option<f64>, name: &str| -> Result<f64> {
-                    match v {
-                        None => Ok(auto),
-                        Some(x) if x > 0.0 && x.is_finite() => Ok(x),
-                        Some(x) => Err(self.err(not_positive(&format!("{key}.{name}"), x))),
+                (Some(mu), _) if !(mu >= 0.0 && mu.is_finite()) => {
+                    return Err(self.err(format!(
+                        "{key}.friction_coefficient = {mu} must be zero or positive"
+                    )))
+                }
+                (mu, _) => mu,
+            };
+            let enforcement = Enforcement {
+                method: match c.method {
+                    ContactMethod::Penalty => Method::Penalty,
+                    ContactMethod::Uzawa => Method::Uzawa,
+                    ContactMethod::Rockafellar => Method::Rockafellar,
+                    ContactMethod::Slack => Method::Slack,
+                },
+                penalty: positive(c.penalty, "penalty")?,
+                scaling: positive(c.scaling, "scaling")?,
+                youngs_modulus: youngs,
+                friction_coefficient,
+                tangential_penalty: positive(c.tangential_penalty, "tangential_penalty")?,
+            };
+            // the passes: one, or with `two_pass` also the primary surface's
+            // nodes against the secondary surface's triangles, each pass on
+            // half of every node's tributary area
+            let reverse_pass = " (two_pass: the reverse pass)";
+            let setup = |e: SetupError| {
+                let (SetupError::NoArea(s) | SetupError::UnknownSurface(s)) = &e;
+                let pass = if *s == c.surface { "" } else { reverse_pass };
+                self.err(match e {
+                    SetupError::NoArea(_) => format!("{key}{pass}: surface '{s}' has no area"),
+                    SetupError::UnknownSurface(_) => {
+                        format!("{key}{pass}: the mesh has no surface set '{s}'")
                     }
-                };
-                let (p, k) = (
-                    positive(c.penalty, "penalty")?,
-                    positive(c.scaling, "scaling")?,
-                );
-                let law = match c.method {
-                    ContactMethod::Penalty => NormalLaw::Penalty { epsilon: p },
-                    ContactMethod::Uzawa => NormalLaw::Uzawa { epsilon: p },
-                    ContactMethod::Rockafellar => NormalLaw::Rockafellar { p, k },
-                    ContactMethod::Slack => NormalLaw::Slack { p, k },
-                };
-                // automatic parameters follow the local mesh size: E/h_s, h_s = √A_s
-                let automatic = c.penalty.is_none() && c.scaling.is_none();
-                let node_scale = if automatic {
-                    areas.iter().map(|a| h / a.sqrt().max(1e-300)).collect()
-                } else {
-                    Vec::new()
-                };
-                let friction = match (c.friction_coefficient, c.tangential_penalty) {
-                    (None, Some(_)) => {
-                        return Err(self.err(format!(
-                            "{key}.tangential_penalty is given without {key}.friction_coefficient; \
-                             add the friction coefficient or remove the tangential penalty"
-                        )))
-                    }
-                    (None, None) => None,
-                    (Some(mu), _) if !(mu >= 0.0 && mu.is_finite()) => {
-                        return Err(self.err(format!(
-                            "{key}.friction_coefficient = {mu} must be zero or positive"
-                        )))
-                    }
-                    (Some(mu), eps) => Some(Coulomb {
-                        coefficient: mu,
-                        // default: the user's normal penalty, else E/h_s (also
-                        // for Uzawa, whose larger automatic ε is for its outer loop)
-                        tangential_penalty: match (eps, c.penalty) {
-                            (None, Some(_)) => p,
-                            (None, None) => base,
-                            (Some(_), _) => positive(eps, "tangential_penalty")?,
-                        },
-                    }),
-                };
-                let tangential_scale = if c.tangential_penalty.is_none() {
-                    node_scale.clone()
-                } else {
-                    Vec::new()
-                };
-                let (primary, motion, amplitude, against) = match target {
-                    Target::Obstacle(index) => {
-                        let o = &spec.obstacle[index];
+                })
+            };
+            let passes = match target {
+                Target::Obstacle(index) => {
+                    let o = &spec.obstacle[index];
+                    let motion = o.motion.map(Vector3::from).unwrap_or_else(Vector3::zeros);
+                    let amplitude =
+                        self.amplitude(&format!("obstacle[{index}].amplitude"), &o.amplitude)?;
+                    let obstacle = self.obstacle(index)?;
+                    let interface =
+                        ContactInterface::rigid(mesh, &c.surface, obstacle, &enforcement)
+                            .map_err(setup)?;
+                    vec![(
+                        interface.named(&name).moving(motion, amplitude),
+                        "",
+                        format!("obstacle '{}'", o.name),
+                    )]
+                }
+                Target::Surface(primary) if c.two_pass => {
+                    let [forward, back] =
+                        ContactInterface::two_pass(mesh, &c.surface, primary, &enforcement)
+                            .map_err(setup)?;
+                    vec![
                         (
-                            Primary::Rigid(self.obstacle(index)?),
-                            o.motion.map(Vector3::from).unwrap_or_else(Vector3::zeros),
-                            self.amplitude(&format!("obstacle[{index}].amplitude"), &o.amplitude)?,
-                            format!("obstacle '{}'", o.name),
-                        )
-                    }
-                    Target::Surface(mut surface) => {
-                        // the pairs at the start, for the initial check (the
-                        // problem searches again when it installs the interface)
-                        let zero = vec![0.0; 3 * mesh.num_nodes()];
-                        surface.refresh(&mesh.nodes, &zero, &nodes, 0.0);
-                        let against = format!("primary surface '{}'", surface.surface);
+                            forward.named(&name),
+                            "",
+                            format!("primary surface '{primary}'"),
+                        ),
                         (
-                            Primary::Surface(surface),
-                            Vector3::zeros(),
-                            crate::problem::Amplitude::ramp(),
-                            against,
-                        )
-                    }
-                };
-                let interface = ContactInterface {
-                    friction,
-                    tangential_scale,
-                    node_scale,
-                    name,
-                    surface: secondary.clone(),
-                    nodes,
-                    // the parameters above (E/h_s) are those of the whole
-                    // tributary area; two passes share it
-                    areas: areas.iter().map(|a| share * a).collect(),
-                    primary,
-                    motion,
-                    amplitude,
-                    law,
-                    multiplier_offset: 0,
-                    element_size: h,
-                };
+                            back.named(&reverse),
+                            reverse_pass,
+                            format!("primary surface '{}'", c.surface),
+                        ),
+                    ]
+                }
+                Target::Surface(primary) => {
+                    let interface =
+                        ContactInterface::between_bodies(mesh, &c.surface, primary, &enforcement)
+                            .map_err(setup)?;
+                    vec![(
+                        interface.named(&name),
+                        "",
+                        format!("primary surface '{primary}'"),
+                    )]
+                }
+            };
+            for (interface, pass, against) in passes {
                 // a surface that starts inside the obstacle is a set-up error
-                let tolerance = c.initial_penetration_tolerance.unwrap_or(0.01 * h);
+                let secondary = &interface.surface;
+                let tolerance = c
+                    .initial_penetration_tolerance
+                    .unwrap_or(0.01 * interface.element_size);
                 if !(tolerance >= 0.0 && tolerance.is_finite()) {
                     return Err(self.err(format!(
                         "{key}.initial_penetration_tolerance = {tolerance} must be zero or positive \

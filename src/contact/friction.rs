@@ -44,7 +44,7 @@
 //! committed once the increment has converged ([`commit`]). Updating it per
 //! iteration (as the paper says) breaks path independence.
 
-use super::laws::GapGeometry;
+use super::gap::GapGeometry;
 use nalgebra::{Matrix3, SMatrix, SVector, Vector3};
 
 /// Coulomb's law with its regularising tangential penalty.
@@ -221,15 +221,29 @@ pub fn return_map(
     gap: &GapGeometry,
     pressure: &NormalPressure,
 ) -> TangentialResponse {
-    let kinematics = SlipKinematics {
-        traction: history.traction,
-        traction_gradient: Matrix3::zeros(),
-        offset: relative_position - history.anchor,
-        offset_gradient: Matrix3::identity(),
-        normal: gap.normal,
-        normal_gradient: gap.hessian,
-    };
+    let kinematics = SlipKinematics::rigid(history, relative_position, &gap.normal, &gap.hessian);
     return_map_on(law, &kinematics, pressure)
+}
+
+impl SlipKinematics<3> {
+    /// Against a rigid obstacle, `q = x_s`: the committed traction fixed,
+    /// `d = (x_s − c(t)) − (x_s − c)ₙ` from the node's `relative_position`
+    /// and the `history`'s anchor, `∂d/∂x_s = I`, `∂n/∂x_s = H`.
+    pub fn rigid(
+        history: &FrictionHistory,
+        relative_position: &Vector3<f64>,
+        normal: &Vector3<f64>,
+        hessian: &Matrix3<f64>,
+    ) -> Self {
+        SlipKinematics {
+            traction: history.traction,
+            traction_gradient: Matrix3::zeros(),
+            offset: relative_position - history.anchor,
+            offset_gradient: Matrix3::identity(),
+            normal: *normal,
+            normal_gradient: *hessian,
+        }
+    }
 }
 
 /// The return mapping (see the module docs) of one closed node with the
@@ -277,6 +291,44 @@ pub fn return_map_on<const K: usize>(
         trial_gradient,
         slip_increment: slip + (traction - old) / eps,
     }
+}
+
+/// First-contact anchoring: the slip of a node that was open at the last
+/// converged increment (committed gap `g_n > 0`, no traction) counts from
+/// where its path meets the surface, not from where it was. Along the
+/// straight path from its committed position the gap falls from `g_n` to
+/// `g`; it meets the surface at the fraction `α = g_n/(g_n − g)` (`α = 1`
+/// while `g ≥ 0`: not through yet), so the offset after first contact is
+/// ```text
+/// d' = (1 − α) d,     ∂d'/∂q = (1 − α) ∂d/∂q − d ⊗ ∂α/∂q,
+/// ∂α/∂q = g_n/(g_n − g)² ∇g   (g < 0 < g_n; zero otherwise)
+/// ```
+/// With an exact normal constraint (`g = 0` at convergence) a closing node
+/// carries no tangential traction and no slip from its approach; with a
+/// penalty it slips only along the part of its path beyond the surface.
+/// A node that touched at the last commit (`g_n ≤ 0`) keeps `d`.
+pub fn first_contact<const K: usize>(
+    kinematics: &mut SlipKinematics<K>,
+    committed_gap: f64,
+    gap: f64,
+    gap_gradient: &SVector<f64, K>,
+) {
+    if !(committed_gap > 0.0) {
+        return;
+    }
+    let d = kinematics.offset;
+    let (alpha, alpha_gradient) = if gap < 0.0 {
+        let denominator = committed_gap - gap;
+        (
+            committed_gap / denominator,
+            (committed_gap / (denominator * denominator)) * gap_gradient,
+        )
+    } else {
+        (1.0, SVector::zeros())
+    };
+    kinematics.offset = (1.0 - alpha) * d;
+    kinematics.offset_gradient =
+        (1.0 - alpha) * kinematics.offset_gradient - d * alpha_gradient.transpose();
 }
 
 /// The history after an increment converged with the node in `response`

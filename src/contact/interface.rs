@@ -1,23 +1,36 @@
-//! A contact interface between a surface of the body (its nodes are the
-//! secondary nodes) and a rigid obstacle that may translate with an
-//! amplitude: the node-to-surface assembly of the contact residual and
-//! tangent through a [`NormalLaw`].
+//! A contact interface: a surface of the body (its nodes are the secondary
+//! nodes) against a rigid obstacle that may translate with an amplitude, or
+//! against a primary surface of another body; and the node driver that
+//! assembles it through a [`NormalLaw`] and Coulomb [`friction`].
 //!
-//! Unknowns: the displacement of each secondary node and, for the laws with
-//! a multiplier ([`NormalLaw::has_multiplier_dof`]), one scaled multiplier
-//! `λ` per node, numbered after all displacements (global index
-//! `3N + multiplier_offset + i`). Per node the contribution is
-//! `r_u += ∂(A_s Φ)/∂x_s = −A_s t n`, `r_λ += ∂(A_s Φ)/∂λ`, and the 4×4
-//! tangent block of the law (formulation note §2.1). With Coulomb friction
-//! ([`friction`]) a closed node adds `r_u += −A_s t_T` and the
-//! nonsymmetric blocks `−A_s ∂t_T/∂x_s`, `−A_s ∂t_T/∂λ`.
+//! Unknowns: the displacements of the nodes of each secondary node's
+//! contribution and, for the laws with a multiplier
+//! ([`NormalLaw::has_multiplier_dof`]), one scaled multiplier `λ` per node,
+//! numbered after all displacements (global index
+//! `3N + multiplier_offset + i`).
+//!
+//! ## The node driver
+//! One loop ([`ContactInterface::for_each_node`]) visits the secondary
+//! nodes: the node's state (its multiplier taken from the unknowns), then
+//! its [`GapKinematics`] from the interface's [`GapProducer`] (a rigid
+//! obstacle, [`RigidGap`]; a primary surface, [`SurfaceGap`]). Every
+//! operation of the life cycle is that loop with its own visit: assembly
+//! (the chain rule of [`kinematics`](super::kinematics), scattered by
+//! [`crate::assembly::scatter`]), the commit of the friction history, the
+//! stick preconditioner, the slack law's advance, the gaps, the initial
+//! states and Uzawa's augmentation.
 
-use super::friction::{self, ContactStatus, Coulomb, NormalPressure, TangentialResponse};
-use super::laws::{GapGeometry, NodeContactState, NodeContribution, NormalLaw};
+use super::friction::{self, ContactStatus, Coulomb, FrictionHistory, TangentialResponse};
+use super::gap::GapGeometry;
+use super::kinematics::{self, GapKinematics, GapProducer, NodeEvaluation, SecondaryNode};
+use super::laws::{uzawa, NodeContactState, NormalLaw};
 use super::obstacle::RigidObstacle;
 use super::primary::PrimarySurface;
+use super::rigid::RigidGap;
+use super::surface_contact::SurfaceGap;
+use crate::assembly::amplitude::Amplitude;
 use crate::assembly::pattern::SparsityPattern;
-use crate::problem::Amplitude;
+use crate::assembly::scatter::{add_block, add_multiplier_block, add_nodal};
 use nalgebra::Vector3;
 
 /// What the secondary nodes of an interface touch.
@@ -76,35 +89,49 @@ pub struct NodeReport {
     /// Tangential traction `t_T` (zero without friction).
     pub tangential_traction: [f64; 3],
     /// The primary triangle the node is projected on (deformable
-    /// interfaces only).
+    /// interfaces only)…
     pub facet: Option<usize>,
+    /// …and the weights `N_i(ξ)` of its nodes at the projection.
+    pub weights: [f64; 3],
 }
 
-/// One node evaluated in a state: geometry, normal law, tangential response.
-struct NodeEvaluation {
-    gap: GapGeometry,
-    relative_position: Vector3<f64>,
-    normal: NodeContribution,
-    /// `None` when the node is open; a zero traction in stick when the
-    /// interface is frictionless.
-    tangential: Option<TangentialResponse>,
+/// Where the contact operations are evaluated: the mesh's reference
+/// coordinates, pseudo-time `t`, the unknowns `x` and the global index of
+/// the first multiplier (`3N`).
+#[derive(Clone, Copy)]
+pub struct ContactContext<'a> {
+    pub reference: &'a [[f64; 3]],
+    pub t: f64,
+    pub x: &'a [f64],
+    pub first_multiplier: usize,
+}
+
+/// Run `$body` with `$p` bound to the gap producer of `$iface` at time
+/// `$t` (the one dispatch on the primary kind).
+macro_rules! with_producer {
+    ($iface:expr, $t:expr, $p:ident => $body:expr) => {
+        match &$iface.primary {
+            Primary::Rigid(obstacle) => {
+                let $p = &RigidGap {
+                    obstacle,
+                    translation: $iface.translation_at($t),
+                };
+                $body
+            }
+            Primary::Surface(primary) => {
+                let $p = &SurfaceGap { primary };
+                $body
+            }
+        }
+    };
 }
 
 impl ContactInterface {
     /// The law of secondary node `i` (the interface's law with the node's
     /// parameter factor).
     pub fn law_at(&self, i: usize) -> NormalLaw {
-        let f = self.node_scale.get(i).copied().unwrap_or(1.0);
-        match self.law {
-            NormalLaw::Penalty { epsilon } => NormalLaw::Penalty {
-                epsilon: epsilon * f,
-            },
-            NormalLaw::Uzawa { epsilon } => NormalLaw::Uzawa {
-                epsilon: epsilon * f,
-            },
-            NormalLaw::Rockafellar { p, k } => NormalLaw::Rockafellar { p: p * f, k: k * f },
-            NormalLaw::Slack { p, k } => NormalLaw::Slack { p: p * f, k: k * f },
-        }
+        self.law
+            .scaled(self.node_scale.get(i).copied().unwrap_or(1.0))
     }
 
     /// The friction law of secondary node `i` (its tangential penalty
@@ -155,19 +182,91 @@ impl ContactInterface {
         self.motion * self.amplitude.value(t)
     }
 
-    /// Gap geometry of secondary node `i` at unknowns `x` against the
-    /// obstacle translated by `translation`: the point is moved back by the
-    /// translation and projected on the stored obstacle (no copy of a
-    /// triangulated surface and its tree), then the closest point moved
-    /// forward again; gap, normal and curvature are unchanged by it.
-    pub fn gap_geometry(
+    /// Position of secondary node `i` relative to the obstacle's
+    /// translation, `x_s − c(t)`: the point projected on the stored
+    /// obstacle, and where friction measures slip from.
+    pub fn relative_position(
         &self,
         reference: &[[f64; 3]],
         translation: &Vector3<f64>,
         x: &[f64],
         i: usize,
-    ) -> GapGeometry {
-        self.geometry_at(&self.relative_position(reference, translation, x, i))
+    ) -> Vector3<f64> {
+        self.secondary_node(reference, x, i).position() - translation
+    }
+
+    fn secondary_node<'a>(
+        &self,
+        reference: &'a [[f64; 3]],
+        x: &'a [f64],
+        i: usize,
+    ) -> SecondaryNode<'a> {
+        SecondaryNode {
+            reference,
+            x,
+            index: i,
+            mesh_node: self.nodes[i],
+        }
+    }
+
+    /// Global index of node `i`'s multiplier, where the law has one.
+    fn multiplier(&self, ctx: &ContactContext, i: usize) -> Option<usize> {
+        self.law
+            .has_multiplier_dof()
+            .then_some(ctx.first_multiplier + self.multiplier_offset + i)
+    }
+
+    /// The node's state with its multiplier taken from the unknowns
+    /// where the law has a multiplier dof.
+    pub fn node_state(
+        &self,
+        ctx: &ContactContext,
+        states: &[NodeContactState],
+        i: usize,
+    ) -> NodeContactState {
+        let mut state = states[i];
+        if let Some(m) = self.multiplier(ctx, i) {
+            state.lambda = ctx.x[m];
+        }
+        state
+    }
+
+    /// The node loop: for every secondary node `i`, its state
+    /// `state_of(i)` and its gap kinematics (`None`: no primary within the
+    /// search margin) against `producer` at `ctx`, handed to `visit`.
+    fn for_each_node<const Q: usize, G: GapProducer<Q>>(
+        &self,
+        producer: &G,
+        ctx: &ContactContext,
+        state_of: impl Fn(usize) -> NodeContactState,
+        mut visit: impl FnMut(&SecondaryNode, NodeContactState, Option<GapKinematics<Q, G::Point>>),
+    ) {
+        for i in 0..self.nodes.len() {
+            let node = self.secondary_node(ctx.reference, ctx.x, i);
+            let state = state_of(i);
+            let kinematics = producer.kinematics(&node, &state);
+            visit(&node, state, kinematics);
+        }
+    }
+
+    /// Node `i`'s kinematics through its normal and friction laws.
+    fn evaluate<const Q: usize, G: GapProducer<Q>>(
+        &self,
+        producer: &G,
+        node: &SecondaryNode,
+        kinematics: GapKinematics<Q, G::Point>,
+        state: &NodeContactState,
+    ) -> NodeEvaluation<Q, G::Point> {
+        let i = node.index;
+        kinematics::evaluate(
+            producer,
+            node,
+            kinematics,
+            &self.law_at(i),
+            self.friction_at(i),
+            self.areas[i],
+            state,
+        )
     }
 
     /// The signed gap of every secondary node at time `t` and unknowns `x`
@@ -181,255 +280,164 @@ impl ContactInterface {
         x: &[f64],
         states: Option<&[NodeContactState]>,
     ) -> Vec<f64> {
-        let translation = self.translation_at(t);
-        (0..self.nodes.len())
-            .map(|i| match &self.primary {
-                Primary::Rigid(_) => self.gap_geometry(reference, &translation, x, i).signed_gap,
-                Primary::Surface(p) => {
-                    let state = states.map_or_else(
-                        || NodeContactState::initial(&self.law_at(i), p.margin),
-                        |s| s[i],
-                    );
-                    self.surface_node(p, reference, x, i, &state)
-                        .map_or(p.margin, |n| n.gap.gap)
-                }
-            })
-            .collect()
-    }
-
-    /// Position of secondary node `i` relative to the obstacle's
-    /// translation, `x_s − c(t)`: the point projected on the stored
-    /// obstacle, and where friction measures slip from.
-    pub fn relative_position(
-        &self,
-        reference: &[[f64; 3]],
-        translation: &Vector3<f64>,
-        x: &[f64],
-        i: usize,
-    ) -> Vector3<f64> {
-        let s = self.nodes[i];
-        Vector3::from(reference[s]) + Vector3::new(x[3 * s], x[3 * s + 1], x[3 * s + 2])
-            - translation
-    }
-
-    fn geometry_at(&self, relative_position: &Vector3<f64>) -> GapGeometry {
-        let Primary::Rigid(obstacle) = &self.primary else {
-            unreachable!("rigid-obstacle geometry asked of a deformable interface")
+        let ctx = ContactContext {
+            reference,
+            t,
+            x,
+            first_multiplier: 0,
         };
-        let p = obstacle.project(relative_position);
-        GapGeometry {
-            signed_gap: p.gap,
-            normal: p.normal,
-            hessian: p.curvature,
-        }
+        let mut gaps = Vec::with_capacity(self.nodes.len());
+        with_producer!(self, t, p => {
+            let state_of = |i| {
+                states.map_or_else(|| NodeContactState::initial(&self.law_at(i), p.open_gap()), |s| s[i])
+            };
+            self.for_each_node(p, &ctx, state_of, |_, _, k| {
+                gaps.push(k.map_or(p.open_gap(), |k| k.gap));
+            });
+        });
+        gaps
     }
 
     /// The states of the nodes when the interface is set up at unknowns `x`
-    /// (time 0): the normal law's initial state, friction anchored where the
-    /// node is.
+    /// (time 0): the normal law's initial state at the node's gap (open at
+    /// the search margin where a node has no primary candidate), friction
+    /// anchored where the node is (between bodies: at its primary material
+    /// point).
     pub fn initial_states(&self, reference: &[[f64; 3]], x: &[f64]) -> Vec<NodeContactState> {
-        if let Primary::Surface(p) = &self.primary {
-            return self.initial_surface_states(p, reference, x);
-        }
-        let translation = self.translation_at(0.0);
-        (0..self.nodes.len())
-            .map(|i| {
-                let relative = self.relative_position(reference, &translation, x, i);
-                let g = self.geometry_at(&relative).signed_gap;
-                NodeContactState {
-                    friction: friction::FrictionHistory::at(relative),
-                    ..NodeContactState::initial(&self.law_at(i), g)
-                }
-            })
-            .collect()
-    }
-
-    /// Node `i` in state `state` (multiplier already taken from the
-    /// unknowns) at `relative_position`.
-    fn evaluate(
-        &self,
-        i: usize,
-        relative_position: Vector3<f64>,
-        state: &NodeContactState,
-    ) -> NodeEvaluation {
-        let gap = self.geometry_at(&relative_position);
-        let normal = self.law_at(i).contribution(self.areas[i], &gap, state);
-        // a closed node at zero pressure sticks at its anchor (the return
-        // mapping with a zero bound): its tangential stiffness holds a body
-        // whose only tangential support is friction before the load arrives
-        let tangential = normal.active.then(|| match self.friction_at(i) {
-            Some(coulomb) => friction::return_map(
-                &coulomb,
-                &state.friction,
-                &relative_position,
-                &gap,
-                &NormalPressure {
-                    value: normal.pressure,
-                    gradient: normal.pressure_gradient,
-                    multiplier_derivative: normal.pressure_multiplier_derivative,
-                },
-            ),
-            None => TangentialResponse {
-                status: ContactStatus::Stick,
-                ..TangentialResponse::none()
-            },
+        let ctx = ContactContext {
+            reference,
+            t: 0.0,
+            x,
+            first_multiplier: 0,
+        };
+        let mut states = Vec::with_capacity(self.nodes.len());
+        with_producer!(self, 0.0, p => {
+            let blank = |i| NodeContactState::initial(&self.law_at(i), p.open_gap());
+            self.for_each_node(p, &ctx, blank, |node, _, k| {
+                let g = k.as_ref().map_or(p.open_gap(), |k| k.gap);
+                let mut state = NodeContactState::initial(&self.law_at(node.index), g);
+                state.friction = FrictionHistory::at(p.relative_position(node));
+                state.friction.material_point = p.anchor(node, k.as_ref(), &Vector3::zeros());
+                states.push(state);
+            });
         });
-        NodeEvaluation {
-            gap,
-            relative_position,
-            normal,
-            tangential,
-        }
+        states
     }
 
-    /// The node's state with its multiplier taken from the unknowns `x`
-    /// where the law has a multiplier dof.
-    pub fn node_state(
-        &self,
-        states: &[NodeContactState],
-        x: &[f64],
-        first_multiplier: usize,
-        i: usize,
-    ) -> NodeContactState {
-        let mut state = states[i];
-        if self.law.has_multiplier_dof() {
-            state.lambda = x[first_multiplier + self.multiplier_offset + i];
-        }
-        state
-    }
-
-    /// Add the contact residual (and tangent) at pseudo-time `t` and
-    /// unknowns `x`, with the per-node states `states`. `first_multiplier`
-    /// is `3N`. Returns the per-node report.
-    #[allow(clippy::too_many_arguments)]
+    /// Add the contact residual (and tangent) at `ctx` with the per-node
+    /// states `states`; returns the per-node report.
     pub fn assemble(
         &self,
-        reference: &[[f64; 3]],
-        t: f64,
-        x: &[f64],
+        ctx: &ContactContext,
         states: &[NodeContactState],
-        first_multiplier: usize,
         residual: &mut [f64],
         mut tangent: Option<(&SparsityPattern, &mut [f64])>,
     ) -> Vec<NodeReport> {
-        if let Primary::Surface(p) = &self.primary {
-            return self.assemble_on_surface(
-                p,
-                reference,
-                x,
-                states,
-                first_multiplier,
-                residual,
-                tangent,
-            );
-        }
-        let translation = self.translation_at(t);
         let mut reports = Vec::with_capacity(self.nodes.len());
-        for (i, (&s, &area)) in self.nodes.iter().zip(&self.areas).enumerate() {
-            let state = self.node_state(states, x, first_multiplier, i);
-            let relative = self.relative_position(reference, &translation, x, i);
-            let NodeEvaluation {
-                gap,
-                normal: c,
-                tangential,
-                ..
-            } = self.evaluate(i, relative, &state);
-            let t_t = tangential.unwrap_or_else(TangentialResponse::none);
-            // r_u = −A_s (t_N n + t_T); K_uu = K_N − A_s ∂t_T/∂x_s
-            let r_u = c.r_u - area * t_t.traction;
-            let k_uu = c.k_uu - area * t_t.traction_gradient;
-            for d in 0..3 {
-                residual[3 * s + d] += r_u[d];
-            }
-            let multiplier = self
-                .law
-                .has_multiplier_dof()
-                .then_some(first_multiplier + self.multiplier_offset + i);
-            if let Some(m) = multiplier {
-                residual[m] += c.r_lambda;
-            }
-            if let Some((pattern, k)) = tangent.as_mut() {
-                if let Some(columns) = pattern.block_columns(s, s) {
-                    for (j, col) in columns.iter().enumerate() {
-                        for r in 0..3 {
-                            k[col + r] += k_uu[(r, j)];
+        let all = |_| true;
+        with_producer!(self, ctx.t, p => {
+            let state_of = |i| self.node_state(ctx, states, i);
+            self.for_each_node(p, ctx, state_of, |node, state, k| {
+                let i = node.index;
+                let multiplier = self.multiplier(ctx, i);
+                let Some(k) = k else {
+                    // no primary within the search margin: open, at a gap
+                    // of the margin (an inactive multiplier row)
+                    let open = self.law_at(i).contribution(
+                        self.areas[i],
+                        &GapGeometry::scalar(p.open_gap()),
+                        &state,
+                    );
+                    if let Some(m) = multiplier {
+                        residual[m] += open.r_lambda;
+                        if let Some((pattern, values)) = tangent.as_mut() {
+                            values[pattern.multiplier_diagonal(m - ctx.first_multiplier)] +=
+                                open.k_lambdalambda;
                         }
                     }
+                    reports.push(NodeReport {
+                        gap: p.open_gap(),
+                        ..Default::default()
+                    });
+                    return;
+                };
+                let e = self.evaluate(p, node, k, &state);
+                let (nodes, c) = (e.kinematics.nodes(), &e.response);
+                add_nodal(residual, nodes, |a| c.residual[a]);
+                if let Some(m) = multiplier {
+                    residual[m] += c.r_lambda;
                 }
-                if multiplier.is_some() {
-                    let m = self.multiplier_offset + i;
-                    if let Some(e) = pattern.multiplier_entries(m, s) {
-                        for d in 0..3 {
-                            // ∂r_u/∂λ carries friction's coupling; ∂r_λ/∂u does not
-                            k[e.node_rows[d]] +=
-                                c.k_ulambda[d] - area * t_t.traction_multiplier_derivative[d];
-                            k[e.multiplier_row[d]] += c.k_ulambda[d];
-                        }
+                if let Some((pattern, values)) = tangent.as_mut() {
+                    add_block(pattern, values, nodes, |r, s| c.stiffness[(r, s)], all);
+                    if let Some(m) = multiplier {
+                        let m = m - ctx.first_multiplier;
+                        let (column, row) = (&c.multiplier_column, &c.multiplier_row);
+                        add_multiplier_block(pattern, values, m, nodes, |a| column[a], |a| row[a], all);
+                        values[pattern.multiplier_diagonal(m)] += c.k_lambdalambda;
                     }
-                    k[pattern.multiplier_diagonal(m)] += c.k_lambdalambda;
                 }
-            }
-            let f = gap.normal * (area * c.pressure);
-            reports.push(NodeReport {
-                gap: gap.signed_gap,
-                pressure: c.pressure,
-                active: c.active,
-                status: t_t.status,
-                force: [f[0], f[1], f[2]],
-                tangential_traction: [t_t.traction[0], t_t.traction[1], t_t.traction[2]],
-                facet: None,
+                let force = e.kinematics.normal * (self.areas[i] * c.pressure.value);
+                let t = e.tangential.unwrap_or_else(TangentialResponse::none);
+                reports.push(NodeReport {
+                    gap: e.kinematics.gap,
+                    pressure: c.pressure.value,
+                    active: c.active,
+                    status: t.status,
+                    force: force.into(),
+                    tangential_traction: t.traction.into(),
+                    facet: e.kinematics.facet,
+                    weights: e.kinematics.weights,
+                });
             });
-        }
+        });
         reports
     }
 
-    /// Commit the friction history of every node after an increment
-    /// converged at time `t` and unknowns `x` (formulation note §3): the
-    /// traction, status and accumulated slip of the return mapping there,
-    /// and the new anchor. Frictionless nodes record their status only.
-    pub fn commit_history(
-        &self,
-        reference: &[[f64; 3]],
-        t: f64,
-        x: &[f64],
-        first_multiplier: usize,
-        states: &mut [NodeContactState],
-    ) {
-        if let Primary::Surface(p) = &self.primary {
-            return self.commit_surface_history(p, reference, x, first_multiplier, states);
-        }
-        let translation = self.translation_at(t);
-        for i in 0..self.nodes.len() {
-            let state = self.node_state(states, x, first_multiplier, i);
-            let relative = self.relative_position(reference, &translation, x, i);
-            let e = self.evaluate(i, relative, &state);
-            states[i].friction =
-                friction::commit(&state.friction, e.tangential.as_ref(), e.relative_position);
+    /// Commit the history of every node after an increment converged at
+    /// `ctx` (formulation note §3): the traction, status and accumulated
+    /// slip of the return mapping there, the new anchor (between bodies,
+    /// the node's new primary material point) and the node's triangle.
+    /// Frictionless nodes record their status only.
+    pub fn commit_history(&self, ctx: &ContactContext, states: &mut [NodeContactState]) {
+        let mut committed = Vec::with_capacity(self.nodes.len());
+        with_producer!(self, ctx.t, p => {
+            let state_of = |i| self.node_state(ctx, states, i);
+            self.for_each_node(p, ctx, state_of, |node, state, k| {
+                let facet = k.as_ref().and_then(|k| k.facet);
+                let gap = k.as_ref().map_or(p.open_gap(), |k| k.gap);
+                let e = k.map(|k| self.evaluate(p, node, k, &state));
+                let response = e.as_ref().and_then(|e| e.tangential.as_ref());
+                let mut history =
+                    friction::commit(&state.friction, response, p.relative_position(node));
+                history.material_point =
+                    p.anchor(node, e.as_ref().map(|e| &e.kinematics), &history.traction);
+                committed.push((facet, gap, history));
+            });
+        });
+        for (state, (facet, gap, history)) in states.iter_mut().zip(committed) {
+            state.facet = facet;
+            state.gap = gap;
+            state.friction = history;
         }
     }
 
     /// Turn the symmetric part of the assembled tangent, `values`, into the
     /// preconditioner of the nonsymmetric frictional solve: at every
-    /// closed node with friction, replace `sym(−A_s ∂t_T/∂(x_s, λ))` by the
-    /// stick stiffness `sym(−A_s J*)` (the trial derivative, `A_s ε_T T` on
-    /// a plane). Slipping nodes then keep a positive tangential stiffness,
-    /// where the symmetrised slip tangent has none along the slip direction
-    /// and an indefinite coupling to the normal: the preconditioner stays a
+    /// closed node with friction, replace `sym(−A_s Bᵀ ∂t_T/∂(q, λ))` by the
+    /// stick stiffness ([`GapProducer::stick_stiffness`]: `−A_s J*`, the
+    /// trial derivative, against a rigid obstacle, `A_s ε T` on a plane;
+    /// `A_s ε_T Bᵀ T B` at the current projection between bodies).
+    /// Slipping nodes then keep a positive tangential stiffness, where the
+    /// symmetrised slip tangent has none along the slip direction and an
+    /// indefinite coupling to the normal: the preconditioner stays a
     /// quasi-definite saddle matrix that the sign-aware LDLᵀ factorises, and
     /// differs from the tangent only in the contact blocks (so GMRES has
     /// little left to resolve; should its LDLᵀ still break down, Newton
-    /// solves with the sparse LU). A deformable interface shifts to
-    /// `A_s ε_T Bᵀ T B` at the current projection
-    /// (`ContactInterface::shift_surface_to_stick`). Entries of
-    /// `constrained` dofs are skipped.
-    #[allow(clippy::too_many_arguments)]
+    /// solves with the sparse LU). Entries of `constrained` dofs are skipped.
     pub fn shift_to_stick_preconditioner(
         &self,
-        reference: &[[f64; 3]],
-        t: f64,
-        x: &[f64],
+        ctx: &ContactContext,
         states: &[NodeContactState],
-        first_multiplier: usize,
         constrained: &[bool],
         pattern: &SparsityPattern,
         values: &mut [f64],
@@ -437,81 +445,84 @@ impl ContactInterface {
         if self.friction.is_none() {
             return;
         }
-        if let Primary::Surface(p) = &self.primary {
-            return self.shift_surface_to_stick(
-                p,
-                reference,
-                x,
-                states,
-                first_multiplier,
-                constrained,
-                pattern,
-                values,
-            );
-        }
-        let translation = self.translation_at(t);
-        for (i, (&s, &area)) in self.nodes.iter().zip(&self.areas).enumerate() {
-            let state = self.node_state(states, x, first_multiplier, i);
-            let relative = self.relative_position(reference, &translation, x, i);
-            let Some(r) = self.evaluate(i, relative, &state).tangential else {
-                continue;
-            };
-            let consistent = -area * r.traction_gradient;
-            let stick = -area * r.trial_gradient;
-            let shift = 0.5 * ((stick - consistent) + (stick - consistent).transpose());
-            if let Some(columns) = pattern.block_columns(s, s) {
-                for (j, col) in columns.iter().enumerate() {
-                    for q in 0..3 {
-                        if !constrained[3 * s + q] && !constrained[3 * s + j] {
-                            values[col + q] += shift[(q, j)];
-                        }
-                    }
+        let keep = |dof: usize| !constrained[dof];
+        with_producer!(self, ctx.t, p => {
+            let state_of = |i| self.node_state(ctx, states, i);
+            self.for_each_node(p, ctx, state_of, |node, state, k| {
+                let Some(k) = k else { return };
+                let e = self.evaluate(p, node, k, &state);
+                let (Some(t), Some(frame), Some(coulomb)) =
+                    (e.tangential, e.frame, self.friction_at(node.index))
+                else {
+                    return;
+                };
+                let area = self.areas[node.index];
+                let lever_t = frame.lever.transpose();
+                let stick = p.stick_stiffness(&e.kinematics, &frame, &t, &coulomb, area);
+                let shift = stick + area * lever_t * t.traction_gradient;
+                let shift = 0.5 * (shift + shift.transpose());
+                let nodes = e.kinematics.nodes();
+                add_block(pattern, values, nodes, |r, s| shift[(r, s)], keep);
+                if let Some(m) = self.multiplier(ctx, node.index) {
+                    // sym added ½(−A_s Bᵀ ∂t_T/∂λ) to both entries: remove it
+                    let half = -0.5 * area * lever_t * t.traction_multiplier_derivative;
+                    let m = m - ctx.first_multiplier;
+                    add_multiplier_block(pattern, values, m, nodes, |a| -half[a], |a| -half[a], keep);
                 }
-            }
-            if self.law.has_multiplier_dof() {
-                let m = self.multiplier_offset + i;
-                if let Some(e) = pattern.multiplier_entries(m, s) {
-                    for d in 0..3 {
-                        if !constrained[3 * s + d] {
-                            // sym added ½(−A_s ∂t_T/∂λ) to both entries: remove it
-                            let half = -0.5 * area * r.traction_multiplier_derivative[d];
-                            values[e.node_rows[d]] -= half;
-                            values[e.multiplier_row[d]] -= half;
-                        }
-                    }
+            });
+        });
+    }
+
+    /// Record each node's triangle at `ctx` and carry the local unknowns of
+    /// a law that has them (the slack law's) along a Newton step `dx` from
+    /// `x`: the law's one-dimensional increment `Δg = ∇g · Δq`. Nothing
+    /// else: the multipliers live in `x`.
+    pub fn advance_states(
+        &self,
+        ctx: &ContactContext,
+        dx: &[f64],
+        states: &mut [NodeContactState],
+    ) {
+        let mut advanced = Vec::with_capacity(self.nodes.len());
+        with_producer!(self, ctx.t, p => {
+            let state_of = |i| self.node_state(ctx, states, i);
+            self.for_each_node(p, ctx, state_of, |node, mut state, k| {
+                let i = node.index;
+                let law = self.law_at(i);
+                let facet = k.as_ref().and_then(|k| k.facet);
+                if !law.has_local_unknowns() {
+                    advanced.push((facet, None));
+                    return;
                 }
-            }
+                state.facet = facet;
+                let (g, dg) = k.map_or((p.open_gap(), 0.0), |k| (k.gap, k.gap_increment(dx)));
+                let dlambda = self.multiplier(ctx, i).map_or(0.0, |m| dx[m]);
+                let du = Vector3::new(dg, 0.0, 0.0);
+                law.apply_increment(self.areas[i], &GapGeometry::scalar(g), &mut state, &du, dlambda);
+                advanced.push((facet, Some(state)));
+            });
+        });
+        for (state, (facet, new)) in states.iter_mut().zip(advanced) {
+            *state = new.unwrap_or(NodeContactState { facet, ..*state });
         }
     }
 
-    /// Carry the per-node states along a Newton step `dx` taken from `x`
-    /// (the back-substitution of the slack law's local unknowns; nothing
-    /// for the other laws, whose multipliers live in `x`).
-    pub fn advance_states(
-        &self,
-        reference: &[[f64; 3]],
-        t: f64,
-        x: &[f64],
-        dx: &[f64],
-        first_multiplier: usize,
-        states: &mut [NodeContactState],
-    ) {
-        if let Primary::Surface(p) = &self.primary {
-            return self.advance_surface_states(p, reference, x, dx, first_multiplier, states);
+    /// The outer loop of a law that has one (Uzawa's), after a converged
+    /// Newton solve at `ctx`: where the largest penetration exceeds the
+    /// tolerance (1e-9 of the element size), update every multiplier
+    /// ([`NormalLaw::augmented_multiplier`]) and return `true` (solve
+    /// again); `false` otherwise.
+    pub fn augment(&self, ctx: &ContactContext, states: &mut [NodeContactState]) -> bool {
+        if !self.law.has_outer_loop() {
+            return false;
         }
-        if !matches!(self.law, NormalLaw::Slack { .. }) {
-            return;
+        let gaps = self.gaps(ctx.reference, ctx.t, ctx.x, Some(states));
+        if uzawa::penetration_converged(gaps.iter().copied(), 1e-9 * self.element_size) {
+            return false;
         }
-        let translation = self.translation_at(t);
-        for i in 0..self.nodes.len() {
-            let s = self.nodes[i];
-            let gap = self.gap_geometry(reference, &translation, x, i);
-            let mut state = self.node_state(states, x, first_multiplier, i);
-            let du = Vector3::new(dx[3 * s], dx[3 * s + 1], dx[3 * s + 2]);
-            let dlambda = dx[first_multiplier + self.multiplier_offset + i];
-            self.law_at(i)
-                .apply_increment(self.areas[i], &gap, &mut state, &du, dlambda);
-            states[i] = state;
+        for (i, (state, g)) in states.iter_mut().zip(&gaps).enumerate() {
+            state.lambda = self.law_at(i).augmented_multiplier(state.lambda, *g);
         }
+        true
     }
 }

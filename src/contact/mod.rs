@@ -36,11 +36,17 @@
 //! with rigid obstacles").
 
 pub mod friction;
+pub mod gap;
 pub mod hertz;
 pub mod interface;
+pub mod kinematics;
 pub mod laws;
 pub mod obstacle;
 pub mod primary;
+pub mod projection;
+pub mod rigid;
+pub mod set;
+pub mod setup;
 pub mod surface_contact;
 pub mod triangle;
 pub mod triangle_gap;

@@ -45,7 +45,7 @@
 //!
 //! [`Mesh::orient_surfaces`]: crate::mesh::Mesh::orient_surfaces
 
-use crate::contact::obstacle::Projection;
+use crate::contact::projection::Projection;
 use crate::contact::triangle::{closest_point_on_triangle, Feature, TriangleProjection};
 use crate::error::{Error, Result};
 use crate::mesh::{FacetKind, Mesh};

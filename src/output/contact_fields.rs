@@ -83,7 +83,7 @@ impl ContactFields {
                 .nodes
                 .iter()
                 .zip(&c.areas)
-                .zip(nodes)
+                .zip(nodes.iter_mut())
                 .zip(states)
                 .zip(&whole)
             {
@@ -118,7 +118,8 @@ impl ContactFields {
                 summary.largest_penetration = summary.largest_penetration.max(-r.gap);
             }
             if let Primary::Surface(p) = &c.primary {
-                summary.primary_force = Some(fields.add_primary_side(problem, c, p, x, states));
+                summary.primary_force =
+                    Some(fields.add_primary_side(problem, c, p, x, states, nodes));
             }
             fields.summaries.insert(c.name.clone(), summary);
         }
@@ -158,6 +159,7 @@ impl ContactFields {
         primary: &PrimarySurface,
         x: &[f64],
         states: &[NodeContactState],
+        reports: &[NodeReport],
     ) -> [f64; 3] {
         let mesh = &problem.model.mesh;
         let reference = &mesh.nodes;
@@ -167,20 +169,19 @@ impl ContactFields {
         let mut slip = vec![(Vector3::zeros(), 0.0); n_nodes];
         let mut status = vec![0u8; n_nodes];
         let mut total = Vector3::zeros();
-        for (i, &area) in c.areas.iter().enumerate() {
-            let state = c.node_state(states, x, problem.model.num_dofs(), i);
-            let Some(node) = c.surface_node(primary, reference, x, i, &state) else {
+        for ((r, &area), state) in reports.iter().zip(&c.areas).zip(states) {
+            let Some(facet) = r.facet else {
                 continue;
             };
             // the committed tangential traction, as on the secondary side
             let history = &state.friction;
-            let force = -area * (node.law.pressure * node.gap.normal + history.traction);
-            for (&n, &weight) in node.nodes[1..].iter().zip(&node.gap.shape) {
-                normal[n] += area * node.law.pressure * weight;
+            let force = -(Vector3::from(r.force) + area * history.traction);
+            for (&n, &weight) in primary.triangles[facet].iter().zip(&r.weights) {
+                normal[n] += area * r.pressure * weight;
                 forces[n] += force * weight;
                 // the closed nodes over the primary node, by their weights
                 // (clamped: a node just off its triangle has one below 0)
-                if node.law.active && weight > 0.0 {
+                if r.active && weight > 0.0 {
                     slip[n].0 -= history.slip * (area * weight);
                     slip[n].1 += area * weight;
                     status[n] = status[n].max(history.status.code());

@@ -5,10 +5,10 @@
 use nalgebra::Vector3;
 use signorini::assembly::Model;
 use signorini::contact::friction::Coulomb;
+use signorini::contact::interface::ContactInterface;
 use signorini::contact::interface::NodeReport;
-use signorini::contact::interface::{ContactInterface, Primary};
 use signorini::contact::laws::NormalLaw;
-use signorini::contact::{tributary_areas, RigidObstacle};
+use signorini::contact::RigidObstacle;
 use signorini::material::{Material, NeoHookean};
 use signorini::mesh::structured::box_mesh;
 use signorini::mesh::ElementKind;
@@ -34,7 +34,7 @@ pub fn problem(mesh: Mesh, material: Arc<dyn Material>) -> Problem {
         pressures: Vec::new(),
         body_forces: Vec::new(),
         nodal_forces: Vec::new(),
-        contacts: Vec::new(),
+        contacts: Default::default(),
         timings: Default::default(),
         steps: vec![Step {
             name: "load".into(),
@@ -217,23 +217,8 @@ pub fn interface(
     obstacle: RigidObstacle,
     law: NormalLaw,
 ) -> ContactInterface {
-    let mesh = &p.model.mesh;
-    let (nodes, areas) = tributary_areas(mesh, mesh.surface(surface).unwrap());
-    ContactInterface {
-        name: surface.into(),
-        surface: surface.into(),
-        nodes,
-        areas,
-        primary: Primary::Rigid(obstacle),
-        motion: Vector3::zeros(),
-        amplitude: Amplitude::ramp(),
-        law,
-        friction: None,
-        tangential_scale: Vec::new(),
-        node_scale: Vec::new(),
-        multiplier_offset: 0,
-        element_size,
-    }
+    let c = ContactInterface::rigid(&p.model.mesh, surface, obstacle, &law.into()).unwrap();
+    ContactInterface { element_size, ..c }
 }
 
 /// One converged increment: its record, unknowns, residual (reactions on
@@ -438,20 +423,7 @@ pub fn surface_interface(
     primary: &str,
     law: NormalLaw,
 ) -> ContactInterface {
-    let mesh = &p.model.mesh;
-    let surface = signorini::contact::primary::PrimarySurface::from_mesh(mesh, primary).unwrap();
-    let (_, areas) = tributary_areas(mesh, mesh.surface(secondary).unwrap());
-    let h = (areas.iter().sum::<f64>() / areas.len() as f64).sqrt();
-    ContactInterface {
-        primary: Primary::Surface(surface),
-        ..interface(
-            p,
-            h,
-            secondary,
-            RigidObstacle::plane(Vector3::zeros(), Vector3::z()).unwrap(),
-            law,
-        )
-    }
+    ContactInterface::between_bodies(&p.model.mesh, secondary, primary, &law.into()).unwrap()
 }
 
 /// The two passes of a symmetric deformable interface, as the case file's
@@ -465,18 +437,9 @@ pub fn two_pass_interfaces(
     primary: &str,
     law: NormalLaw,
 ) -> Vec<ContactInterface> {
-    [(secondary, primary), (primary, secondary)]
-        .iter()
-        .enumerate()
-        .map(|(k, &(s, m))| {
-            let mut c = surface_interface(p, s, m, law);
-            c.areas.iter_mut().for_each(|a| *a *= 0.5);
-            if k == 1 {
-                c.name = format!("{secondary}.reverse");
-            }
-            c
-        })
-        .collect()
+    ContactInterface::two_pass(&p.model.mesh, secondary, primary, &law.into())
+        .unwrap()
+        .to_vec()
 }
 
 /// The stacked blocks: lower 4 × 4 × 2 Hex8, upper 3 × 3 × 2 Hex8, both

@@ -41,50 +41,8 @@ pub mod uzawa;
 #[cfg(test)]
 pub(crate) mod fd;
 
+pub use crate::contact::gap::GapGeometry;
 pub use slack::SlackState;
-
-/// The gap of one secondary node and its derivatives with respect to the
-/// node's spatial position `x_s`.
-#[derive(Clone, Copy, Debug, PartialEq)]
-pub struct GapGeometry {
-    /// Signed gap `g = (x_s − x̄)·n`; `g > 0` open, `g < 0` penetration.
-    pub signed_gap: f64,
-    /// Unit obstacle normal `n = ∂g/∂x_s`, pointing from the obstacle toward the body.
-    pub normal: Vector3<f64>,
-    /// Gap Hessian `H = ∂²g/∂x_s² = ∂n/∂x_s` (symmetric; zero for a plane).
-    pub hessian: Matrix3<f64>,
-}
-
-impl GapGeometry {
-    /// A plane through `point` with unit normal `normal`: `g = (x − x₀)·n`, `H = 0`.
-    pub fn plane(
-        spatial_point: &Vector3<f64>,
-        point: &Vector3<f64>,
-        normal: &Vector3<f64>,
-    ) -> Self {
-        let n = normal.normalize();
-        Self {
-            signed_gap: (spatial_point - point).dot(&n),
-            normal: n,
-            hessian: Matrix3::zeros(),
-        }
-    }
-
-    /// Outside of a rigid sphere (centre `c`, radius `R`): `g = |x − c| − R`,
-    /// `n = (x − c)/|x − c|`, `H = (I − n nᵀ)/|x − c|`.
-    ///
-    /// Undefined at the centre (the normal has no direction there).
-    pub fn sphere(spatial_point: &Vector3<f64>, centre: &Vector3<f64>, radius: f64) -> Self {
-        let d = spatial_point - centre;
-        let dist = d.norm();
-        let n = d / dist;
-        Self {
-            signed_gap: dist - radius,
-            normal: n,
-            hessian: (Matrix3::identity() - n * n.transpose()) / dist,
-        }
-    }
-}
 
 /// What one secondary node adds to the residual and tangent of the global
 /// `(u, λ)` system.
@@ -150,6 +108,10 @@ pub struct NodeContactState {
     /// a shared edge does not flip between two triangles from one Newton
     /// iteration to the next.
     pub facet: Option<usize>,
+    /// Signed gap at the last converged increment (at the start: the
+    /// initial gap): where a node that was open finds its first contact
+    /// ([`friction::first_contact`](crate::contact::friction::first_contact)).
+    pub gap: f64,
 }
 
 impl NodeContactState {
@@ -172,6 +134,7 @@ impl NodeContactState {
             slack,
             friction: Default::default(),
             facet: None,
+            gap: signed_gap,
         }
     }
 }
@@ -194,6 +157,44 @@ impl NormalLaw {
     /// global system.
     pub fn has_multiplier_dof(&self) -> bool {
         matches!(self, Self::Rockafellar { .. } | Self::Slack { .. })
+    }
+
+    /// The law with its parameters scaled by `f` (a node's factor on the
+    /// interface's parameters).
+    pub fn scaled(&self, f: f64) -> Self {
+        match *self {
+            Self::Penalty { epsilon } => Self::Penalty {
+                epsilon: epsilon * f,
+            },
+            Self::Uzawa { epsilon } => Self::Uzawa {
+                epsilon: epsilon * f,
+            },
+            Self::Rockafellar { p, k } => Self::Rockafellar { p: p * f, k: k * f },
+            Self::Slack { p, k } => Self::Slack { p: p * f, k: k * f },
+        }
+    }
+
+    /// Whether the law keeps local unknowns per node that a Newton step
+    /// carries along ([`apply_increment`](Self::apply_increment)): the
+    /// slack law's `(s, λ₁)`.
+    pub fn has_local_unknowns(&self) -> bool {
+        matches!(self, Self::Slack { .. })
+    }
+
+    /// Whether the law has an outer loop around Newton that updates the
+    /// multipliers ([`augmented_multiplier`](Self::augmented_multiplier)):
+    /// Uzawa's.
+    pub fn has_outer_loop(&self) -> bool {
+        matches!(self, Self::Uzawa { .. })
+    }
+
+    /// The multiplier after an outer-loop update at gap `g`: Uzawa's
+    /// `λ ← ⟨λ − εg⟩`; unchanged for the laws without an outer loop.
+    pub fn augmented_multiplier(&self, lambda: f64, signed_gap: f64) -> f64 {
+        match *self {
+            Self::Uzawa { epsilon } => uzawa::update_multiplier(lambda, signed_gap, epsilon),
+            _ => lambda,
+        }
     }
 
     /// The node's residual and tangent contribution in the current state.

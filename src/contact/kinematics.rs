@@ -1,0 +1,287 @@
+//! The contact node driver's algebra: a secondary node's gap as a function
+//! of the `Q` unknowns `q` of its contribution ([`GapKinematics`], beside
+//! friction's [`SlipKinematics`]), the normal law's chain rule to `q`
+//! ([`GapKinematics::normal_response`]), and what a primary kind supplies
+//! ([`GapProducer`]: a rigid obstacle, `Q = 3`, in [`rigid`](super::rigid);
+//! a deformable primary surface, `Q = 21`, in
+//! [`surface_contact`](super::surface_contact)).
+//!
+//! ## One law, any geometry
+//! Every normal law is a function of the scalar gap (and of the node's
+//! multiplier): evaluated on a one-dimensional geometry
+//! ([`GapGeometry::scalar`]: `n = e₁`, `H = 0`) it returns the force
+//! conjugate to the gap, `f = ∂(A_s Φ)/∂g` (its `r_u[0]`), with `∂f/∂g`
+//! (`K_uu[0,0]`), `∂f/∂λ` (`K_uλ[0]`), `r_λ` and `K_λλ`. The chain rule then
+//! gives the node's contribution on `(q, λ)`:
+//! ```text
+//! r_q  = f ∇g                     K_qq = (∂f/∂g) ∇g ∇gᵀ + f ∇²g
+//! K_qλ = (∂f/∂λ) ∇g               K_λq = (∂r_λ/∂g) ∇gᵀ = (∂f/∂λ) ∇gᵀ
+//! ∂t_N/∂q = (∂t_N/∂g) ∇g
+//! ```
+//! Against a rigid obstacle `q = x_s`, `∇g = n`, `∇²g = H`; against a
+//! primary triangle `q = (x_s, x1, x2, x3, …)` and `∇²g` holds the change of
+//! the projection point and of the normal, so Newton keeps its quadratic
+//! rate.
+//!
+//! ## Friction on the same unknowns
+//! A closed node's tangential traction `t_T` (the return mapping of
+//! [`friction`]) acts through the lever `B = ∂(x_s − x̄)/∂q` at fixed
+//! projection: `r_q −= A_s Bᵀ t_T`, `K_qq −= A_s Bᵀ ∂t_T/∂q` plus the
+//! lever's own change ([`GapProducer::lever_stiffness`]), `K_qλ −= A_s Bᵀ ∂t_T/∂λ`.
+
+use super::friction::{
+    self, ContactStatus, Coulomb, FrictionHistory, MaterialPoint, NormalPressure, SlipKinematics,
+    TangentialResponse,
+};
+use super::gap::GapGeometry;
+use super::laws::{NodeContactState, NormalLaw};
+use nalgebra::{SMatrix, SVector, Vector3};
+
+/// Most mesh nodes in one secondary node's contribution: itself, its
+/// primary triangle, and its friction anchor's triangle.
+pub const MAX_NODES: usize = 7;
+
+/// One secondary node in a configuration: where the producers look.
+pub struct SecondaryNode<'a> {
+    /// Reference coordinates of every mesh node.
+    pub reference: &'a [[f64; 3]],
+    /// The unknowns (displacements first).
+    pub x: &'a [f64],
+    /// Index of the node in its interface.
+    pub index: usize,
+    /// Its mesh node `s`.
+    pub mesh_node: usize,
+}
+
+impl SecondaryNode<'_> {
+    /// Current position `x_s = X_s + u_s`.
+    pub fn position(&self) -> Vector3<f64> {
+        let s = self.mesh_node;
+        Vector3::from(self.reference[s])
+            + Vector3::new(self.x[3 * s], self.x[3 * s + 1], self.x[3 * s + 2])
+    }
+}
+
+/// The gap of one secondary node as a function of the `Q` unknowns `q`
+/// (three coordinates of each of its mesh nodes, node-major).
+#[derive(Clone, Copy, Debug)]
+pub struct GapKinematics<const Q: usize, P = ()> {
+    /// Mesh nodes of `q` (the first `used`; `3 used ≤ Q`).
+    pub nodes: [usize; MAX_NODES],
+    pub used: usize,
+    /// Signed gap `g`.
+    pub gap: f64,
+    /// `∇g = ∂g/∂q`.
+    pub gradient: SVector<f64, Q>,
+    /// `∇²g` (symmetric).
+    pub hessian: SMatrix<f64, Q, Q>,
+    /// Unit normal `n` of the tangent plane.
+    pub normal: Vector3<f64>,
+    /// `∂n/∂q`.
+    pub normal_gradient: SMatrix<f64, 3, Q>,
+    /// The primary triangle the node is projected on (deformable primary
+    /// surfaces only) and the weights `N_i(ξ)` of its nodes there.
+    pub facet: Option<usize>,
+    pub weights: [f64; 3],
+    /// What the producer keeps of the projection beyond that.
+    pub point: P,
+}
+
+impl<const Q: usize, P> GapKinematics<Q, P> {
+    /// The mesh nodes of `q`.
+    pub fn nodes(&self) -> &[usize] {
+        &self.nodes[..self.used]
+    }
+
+    /// The gap's change along a step `dx` of the unknowns, `Δg = ∇g · Δq`.
+    pub fn gap_increment(&self, dx: &[f64]) -> f64 {
+        self.nodes()
+            .iter()
+            .enumerate()
+            .map(|(a, &n)| {
+                (0..3)
+                    .map(|d| self.gradient[3 * a + d] * dx[3 * n + d])
+                    .sum::<f64>()
+            })
+            .sum()
+    }
+
+    /// The normal law `law` of a node of tributary area `area` in `state`,
+    /// carried to `q` by the chain rule (see the module docs).
+    pub fn normal_response(
+        &self,
+        law: &NormalLaw,
+        area: f64,
+        state: &NodeContactState,
+    ) -> NormalResponse<Q> {
+        let c = law.contribution(area, &GapGeometry::scalar(self.gap), state);
+        let (f, df_dg, df_dlambda) = (c.r_u[0], c.k_uu[(0, 0)], c.k_ulambda[0]);
+        let grad = &self.gradient;
+        NormalResponse {
+            residual: f * grad,
+            stiffness: df_dg * grad * grad.transpose() + f * self.hessian,
+            multiplier_column: df_dlambda * grad,
+            multiplier_row: df_dlambda * grad,
+            r_lambda: c.r_lambda,
+            k_lambdalambda: c.k_lambdalambda,
+            pressure: NormalPressure {
+                value: c.pressure,
+                gradient: c.pressure_gradient[0] * grad,
+                multiplier_derivative: c.pressure_multiplier_derivative,
+            },
+            active: c.active,
+        }
+    }
+}
+
+/// What one secondary node adds to the residual and tangent over its
+/// unknowns `(q, λ)`.
+#[derive(Clone, Copy, Debug)]
+pub struct NormalResponse<const Q: usize> {
+    /// `r_q`.
+    pub residual: SVector<f64, Q>,
+    /// `∂r_q/∂q` (nonsymmetric with friction).
+    pub stiffness: SMatrix<f64, Q, Q>,
+    /// `∂r_q/∂λ`.
+    pub multiplier_column: SVector<f64, Q>,
+    /// `∂r_λ/∂q`.
+    pub multiplier_row: SVector<f64, Q>,
+    /// `r_λ` (0 without a multiplier dof).
+    pub r_lambda: f64,
+    /// `∂r_λ/∂λ`.
+    pub k_lambdalambda: f64,
+    /// The contact pressure `t_N` with `∂t_N/∂q`, `∂t_N/∂λ`.
+    pub pressure: NormalPressure<Q>,
+    /// Whether the node transmits force (the law's switch).
+    pub active: bool,
+}
+
+/// A closed node's slip frame from its committed history: the kinematics
+/// of [`friction::return_map_on`] and the lever `B = ∂(x_s − x̄)/∂q` that
+/// carries the traction to the nodes.
+pub struct SlipFrame<const Q: usize> {
+    pub kinematics: SlipKinematics<Q>,
+    pub lever: SMatrix<f64, 3, Q>,
+}
+
+/// What a primary kind supplies to the node driver.
+pub trait GapProducer<const Q: usize> {
+    /// What the producer keeps of a projection beyond [`GapKinematics`].
+    type Point;
+
+    /// The gap kinematics of `node` in `state`; `None` when the node has no
+    /// primary within the search margin (open at [`open_gap`](Self::open_gap)).
+    fn kinematics(
+        &self,
+        node: &SecondaryNode,
+        state: &NodeContactState,
+    ) -> Option<GapKinematics<Q, Self::Point>>;
+
+    /// The gap reported for a node without kinematics.
+    fn open_gap(&self) -> f64;
+
+    /// The node's position in the frame its friction anchor is kept in
+    /// (`x_s − c(t)` against a translating obstacle, `x_s` between bodies).
+    fn relative_position(&self, node: &SecondaryNode) -> Vector3<f64>;
+
+    /// The slip frame of a closed node from its committed `history`; may
+    /// add the anchor's nodes to `kinematics.nodes`.
+    fn slip(
+        &self,
+        node: &SecondaryNode,
+        kinematics: &mut GapKinematics<Q, Self::Point>,
+        history: &FrictionHistory,
+    ) -> SlipFrame<Q>;
+
+    /// `Σ_k (∂B_kᵀ/∂q) t` for a traction `t` at fixed `q`-derivative of `t`:
+    /// the lever's own change (zero for a rigid obstacle).
+    fn lever_stiffness(
+        &self,
+        kinematics: &GapKinematics<Q, Self::Point>,
+        traction: &Vector3<f64>,
+    ) -> Option<SMatrix<f64, Q, Q>>;
+
+    /// The stick stiffness `−A_s ∂t_T/∂q` in stick that the
+    /// preconditioner of the frictional solve uses for every closed node.
+    fn stick_stiffness(
+        &self,
+        kinematics: &GapKinematics<Q, Self::Point>,
+        frame: &SlipFrame<Q>,
+        response: &TangentialResponse<Q>,
+        law: &Coulomb,
+        area: f64,
+    ) -> SMatrix<f64, Q, Q>;
+
+    /// The material point a node anchors its friction to after an increment
+    /// converged (`None` against a rigid obstacle), with the committed
+    /// `traction` carried by it.
+    fn anchor(
+        &self,
+        node: &SecondaryNode,
+        kinematics: Option<&GapKinematics<Q, Self::Point>>,
+        traction: &Vector3<f64>,
+    ) -> Option<MaterialPoint>;
+}
+
+/// One secondary node evaluated: its kinematics, the normal law and the
+/// friction law on its unknowns, and the totals.
+pub struct NodeEvaluation<const Q: usize, P> {
+    pub kinematics: GapKinematics<Q, P>,
+    /// Normal law plus friction on `(q, λ)` (the row `∂r_λ/∂q` is the
+    /// normal law's alone).
+    pub response: NormalResponse<Q>,
+    /// `None` when the node is open; a zero traction in stick without
+    /// friction.
+    pub tangential: Option<TangentialResponse<Q>>,
+    /// The slip frame where the node is closed with friction.
+    pub frame: Option<SlipFrame<Q>>,
+}
+
+/// Evaluate `kinematics` of `node` (area `area`, state `state`) through the
+/// normal `law` and, closed, the friction law `coulomb`.
+pub fn evaluate<const Q: usize, G: GapProducer<Q>>(
+    producer: &G,
+    node: &SecondaryNode,
+    mut kinematics: GapKinematics<Q, G::Point>,
+    law: &NormalLaw,
+    coulomb: Option<Coulomb>,
+    area: f64,
+    state: &NodeContactState,
+) -> NodeEvaluation<Q, G::Point> {
+    let mut response = kinematics.normal_response(law, area, state);
+    // a closed node at zero pressure sticks at its anchor (the return
+    // mapping with a zero bound): its tangential stiffness holds a body
+    // whose only tangential support is friction before the load arrives
+    let (tangential, frame) = match (response.active, coulomb) {
+        (false, _) => (None, None),
+        (true, None) => {
+            let stick = TangentialResponse {
+                status: ContactStatus::Stick,
+                ..TangentialResponse::none()
+            };
+            (Some(stick), None)
+        }
+        (true, Some(coulomb)) => {
+            let mut frame = producer.slip(node, &mut kinematics, &state.friction);
+            if state.friction.status == ContactStatus::Open {
+                let (g, grad) = (kinematics.gap, &kinematics.gradient);
+                friction::first_contact(&mut frame.kinematics, state.gap, g, grad);
+            }
+            let t = friction::return_map_on(&coulomb, &frame.kinematics, &response.pressure);
+            let lever_t = frame.lever.transpose();
+            response.residual -= area * lever_t * t.traction;
+            response.stiffness -= area * lever_t * t.traction_gradient;
+            if let Some(k) = producer.lever_stiffness(&kinematics, &(area * t.traction)) {
+                response.stiffness += k;
+            }
+            response.multiplier_column -= area * lever_t * t.traction_multiplier_derivative;
+            (Some(t), Some(frame))
+        }
+    };
+    NodeEvaluation {
+        kinematics,
+        response,
+        tangential,
+        frame,
+    }
+}

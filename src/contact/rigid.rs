@@ -1,0 +1,96 @@
+//! The gap producer of a rigid obstacle translated by `c(t)`: `q = x_s`
+//! (`Q = 3`), `g` the obstacle's signed gap at `x_s − c(t)`, `∇g = n`,
+//! `∇²g = H` (its curvature), and friction measured relative to the
+//! obstacle, `d = (x_s − c(t)) − (x_s − c)ₙ` with the lever `B = I`.
+//!
+//! The point is moved back by the translation and projected on the stored
+//! obstacle (no copy of a triangulated surface and its tree); gap, normal
+//! and curvature are unchanged by it.
+
+use super::friction::{
+    Coulomb, FrictionHistory, MaterialPoint, SlipKinematics, TangentialResponse,
+};
+use super::kinematics::{GapKinematics, GapProducer, SecondaryNode, SlipFrame, MAX_NODES};
+use super::laws::NodeContactState;
+use super::obstacle::RigidObstacle;
+use nalgebra::{Matrix3, Vector3};
+
+/// A rigid obstacle at translation `c(t)`.
+pub struct RigidGap<'a> {
+    pub obstacle: &'a RigidObstacle,
+    pub translation: Vector3<f64>,
+}
+
+impl GapProducer<3> for RigidGap<'_> {
+    type Point = ();
+
+    fn kinematics(
+        &self,
+        node: &SecondaryNode,
+        _state: &NodeContactState,
+    ) -> Option<GapKinematics<3>> {
+        let p = self.obstacle.project(&self.relative_position(node));
+        Some(GapKinematics {
+            nodes: [node.mesh_node; MAX_NODES],
+            used: 1,
+            gap: p.gap,
+            gradient: p.normal,
+            hessian: p.curvature,
+            normal: p.normal,
+            normal_gradient: p.curvature,
+            facet: None,
+            weights: [0.0; 3],
+            point: (),
+        })
+    }
+
+    fn open_gap(&self) -> f64 {
+        f64::INFINITY
+    }
+
+    fn relative_position(&self, node: &SecondaryNode) -> Vector3<f64> {
+        node.position() - self.translation
+    }
+
+    fn slip(
+        &self,
+        node: &SecondaryNode,
+        kinematics: &mut GapKinematics<3>,
+        history: &FrictionHistory,
+    ) -> SlipFrame<3> {
+        SlipFrame {
+            kinematics: SlipKinematics::rigid(
+                history,
+                &self.relative_position(node),
+                &kinematics.normal,
+                &kinematics.hessian,
+            ),
+            lever: Matrix3::identity(),
+        }
+    }
+
+    fn lever_stiffness(&self, _: &GapKinematics<3>, _: &Vector3<f64>) -> Option<Matrix3<f64>> {
+        None
+    }
+
+    /// `−A_s J*`, the trial derivative (`A_s ε_T T` on a plane).
+    fn stick_stiffness(
+        &self,
+        _: &GapKinematics<3>,
+        _: &SlipFrame<3>,
+        response: &TangentialResponse<3>,
+        _: &Coulomb,
+        area: f64,
+    ) -> Matrix3<f64> {
+        -area * response.trial_gradient
+    }
+
+    fn anchor(
+        &self,
+        _: &SecondaryNode,
+        _: Option<&GapKinematics<3>>,
+        _: &Vector3<f64>,
+    ) -> Option<MaterialPoint> {
+        None
+    }
+}

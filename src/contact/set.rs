@@ -1,0 +1,221 @@
+//! The contact interfaces of a problem and their life cycle:
+//!
+//! 1. **install** ([`ContactSet::install`]): number the multipliers of the
+//!    interfaces one after the other;
+//! 2. **update pairs** ([`ContactSet::refresh_pairs`]): at the start of an
+//!    increment, pair the secondary nodes of every deformable interface with
+//!    the primary triangles they may touch, which fixes the sparsity
+//!    couplings ([`ContactSet::couplings`]) for the increment;
+//! 3. **initial states** ([`ContactSet::initial_state`]);
+//! 4. per Newton iteration: **assemble** ([`ContactSet::assemble`]),
+//!    **precondition** ([`ContactSet::precondition`], friction in stick),
+//!    **advance** ([`ContactSet::advance`], the slack law's local unknowns);
+//! 5. after Newton converged: **check pairs** ([`ContactSet::pairs_hold`]),
+//!    **augment** ([`ContactSet::augment`], the outer loop of a law that
+//!    has one), and once the increment is accepted **commit**
+//!    ([`ContactSet::commit`]).
+//!
+//! The set owns the interfaces (their geometry, laws and pairs); the per-node
+//! history ([`ContactState`]) is the stepper's, which keeps a trial copy per
+//! increment attempt and throws it away on a cut.
+
+use super::interface::{ContactContext, ContactInterface, NodeReport, Primary};
+use super::laws::NodeContactState;
+use crate::assembly::pattern::SparsityPattern;
+use std::ops::{Deref, DerefMut};
+
+/// The per-node contact states of every interface (multipliers held fixed
+/// by Uzawa, local slack unknowns): history that Newton reads and the
+/// stepper commits when an increment converges.
+#[derive(Clone, Debug, Default, PartialEq)]
+pub struct ContactState {
+    pub interfaces: Vec<Vec<NodeContactState>>,
+}
+
+/// The contact interfaces of a problem (a slice of [`ContactInterface`]
+/// by `Deref`).
+#[derive(Clone, Debug, Default)]
+pub struct ContactSet {
+    interfaces: Vec<ContactInterface>,
+}
+
+impl Deref for ContactSet {
+    type Target = [ContactInterface];
+    fn deref(&self) -> &[ContactInterface] {
+        &self.interfaces
+    }
+}
+
+impl DerefMut for ContactSet {
+    fn deref_mut(&mut self) -> &mut [ContactInterface] {
+        &mut self.interfaces
+    }
+}
+
+impl<'a> IntoIterator for &'a ContactSet {
+    type Item = &'a ContactInterface;
+    type IntoIter = std::slice::Iter<'a, ContactInterface>;
+    fn into_iter(self) -> Self::IntoIter {
+        self.interfaces.iter()
+    }
+}
+
+/// The sparsity couplings of the contact interfaces: node groups (each
+/// secondary node of a deformable interface with its candidates' nodes) and
+/// the nodes each multiplier couples to.
+pub struct Couplings {
+    pub groups: Vec<Vec<usize>>,
+    pub multipliers: Vec<Vec<usize>>,
+}
+
+impl ContactSet {
+    /// Install `interfaces`, numbering their multipliers one after the other.
+    pub fn install(&mut self, mut interfaces: Vec<ContactInterface>) {
+        let mut offset = 0;
+        for c in &mut interfaces {
+            c.multiplier_offset = offset;
+            offset += c.num_multipliers();
+        }
+        self.interfaces = interfaces;
+    }
+
+    /// Whether any interface has friction (a nonsymmetric tangent).
+    pub fn has_friction(&self) -> bool {
+        self.iter().any(|c| c.has_friction())
+    }
+
+    /// The sparsity couplings of the interfaces.
+    pub fn couplings(&self) -> Couplings {
+        let mut out = Couplings {
+            groups: Vec::new(),
+            multipliers: Vec::new(),
+        };
+        for c in self.iter() {
+            out.multipliers.extend(c.multiplier_couplings());
+            if matches!(c.primary, Primary::Surface(_)) {
+                out.groups
+                    .extend((0..c.nodes.len()).map(|i| c.coupled_nodes(i)));
+            }
+        }
+        out
+    }
+
+    /// Pair the secondary nodes of every deformable interface with the
+    /// primary triangles they may touch at unknowns `x`, with search margins
+    /// `2h_t + 2 motion` (`src/contact/primary.rs`, search rule). Returns
+    /// whether a pairing changed (then the couplings did).
+    pub fn refresh_pairs(&mut self, reference: &[[f64; 3]], x: &[f64], motion: f64) -> bool {
+        let mut changed = false;
+        for c in &mut self.interfaces {
+            if let Primary::Surface(p) = &mut c.primary {
+                changed |= p.refresh(reference, x, &c.nodes, motion);
+            }
+        }
+        changed
+    }
+
+    /// The nodes of every deformable interface (secondary and primary).
+    pub fn deformable_nodes(&self) -> Vec<usize> {
+        let mut nodes: Vec<usize> = self
+            .iter()
+            .filter_map(|c| match &c.primary {
+                Primary::Surface(p) => Some(c.nodes.iter().chain(&p.nodes).copied()),
+                Primary::Rigid(_) => None,
+            })
+            .flatten()
+            .collect();
+        nodes.sort_unstable();
+        nodes.dedup();
+        nodes
+    }
+
+    /// Whether every secondary node of the deformable interfaces found, at
+    /// unknowns `x`, the primary triangle a fresh search would give it (the
+    /// same gap, or open either way, to 1e-9 of the element size).
+    pub fn pairs_hold(&self, reference: &[[f64; 3]], x: &[f64], contact: &ContactState) -> bool {
+        self.iter().zip(&contact.interfaces).all(|(c, states)| {
+            let Primary::Surface(p) = &c.primary else {
+                return true;
+            };
+            let mut fresh = p.clone();
+            fresh.refresh(reference, x, &c.nodes, 0.0);
+            let mut with_fresh = c.clone();
+            with_fresh.primary = Primary::Surface(fresh);
+            let (used, now) = (
+                c.gaps(reference, 0.0, x, Some(states)),
+                with_fresh.gaps(reference, 0.0, x, Some(states)),
+            );
+            let tolerance = 1e-9 * c.element_size;
+            used.iter()
+                .zip(&now)
+                // the same gap, or open either way (no force)
+                .all(|(a, b)| (a - b).abs() <= tolerance || (*a > 0.0 && *b > 0.0))
+        })
+    }
+
+    /// The states before the first increment (gaps at `x`, time 0).
+    pub fn initial_state(&self, reference: &[[f64; 3]], x: &[f64]) -> ContactState {
+        ContactState {
+            interfaces: self
+                .iter()
+                .map(|c| c.initial_states(reference, x))
+                .collect(),
+        }
+    }
+
+    /// Add every interface's residual (and tangent) at `ctx`; the reports.
+    pub fn assemble(
+        &self,
+        ctx: &ContactContext,
+        contact: &ContactState,
+        residual: &mut [f64],
+        mut tangent: Option<(&SparsityPattern, &mut [f64])>,
+    ) -> Vec<Vec<NodeReport>> {
+        self.iter()
+            .zip(&contact.interfaces)
+            .map(|(c, states)| {
+                let tangent = tangent.as_mut().map(|(p, k)| (*p, &mut **k));
+                c.assemble(ctx, states, residual, tangent)
+            })
+            .collect()
+    }
+
+    /// Commit the history of every interface once an increment converged.
+    pub fn commit(&self, ctx: &ContactContext, contact: &mut ContactState) {
+        for (c, states) in self.iter().zip(&mut contact.interfaces) {
+            c.commit_history(ctx, states);
+        }
+    }
+
+    /// The outer loop of every interface whose law has one; `true` when
+    /// any updated its multipliers (solve again).
+    pub fn augment(&self, ctx: &ContactContext, contact: &mut ContactState) -> bool {
+        let mut again = false;
+        for (c, states) in self.iter().zip(&mut contact.interfaces) {
+            again |= c.augment(ctx, states);
+        }
+        again
+    }
+
+    /// The stick preconditioner's shift of every interface
+    /// ([`ContactInterface::shift_to_stick_preconditioner`]).
+    pub fn precondition(
+        &self,
+        ctx: &ContactContext,
+        contact: &ContactState,
+        constrained: &[bool],
+        pattern: &SparsityPattern,
+        values: &mut [f64],
+    ) {
+        for (c, states) in self.iter().zip(&contact.interfaces) {
+            c.shift_to_stick_preconditioner(ctx, states, constrained, pattern, values);
+        }
+    }
+
+    /// Carry the states along a Newton step `dx` from `ctx.x`.
+    pub fn advance(&self, ctx: &ContactContext, dx: &[f64], contact: &mut ContactState) {
+        for (c, states) in self.iter().zip(&mut contact.interfaces) {
+            c.advance_states(ctx, dx, states);
+        }
+    }
+}

@@ -1,0 +1,221 @@
+//! Building contact interfaces from a mesh: the case file, the tests and a
+//! library user build them the same way, with [`ContactInterface::rigid`],
+//! [`ContactInterface::between_bodies`] and [`ContactInterface::two_pass`]
+//! and an [`Enforcement`] (a method with its parameters given or automatic).
+//!
+//! ## Automatic parameters
+//! Without a penalty and a scaling the law's parameters follow the local
+//! mesh size: `p = k = E/h_s` at each secondary node, `h_s = √A_s` its own
+//! size (the interface's law holds `E/h`, `h = √(mean A_s)`, and each node
+//! the factor `h/h_s`), times [`uzawa::AUTOMATIC_FACTOR`] for Uzawa's `ε`.
+//! The tangential penalty defaults to the normal penalty when one is given,
+//! else to `E/h_s` (also for Uzawa).
+
+use super::friction::Coulomb;
+use super::interface::{ContactInterface, Primary};
+use super::laws::{automatic_parameters, uzawa, NormalLaw};
+use super::obstacle::RigidObstacle;
+use super::primary::PrimarySurface;
+use super::tributary::tributary_areas;
+use crate::assembly::amplitude::Amplitude;
+use crate::mesh::Mesh;
+use nalgebra::Vector3;
+
+/// How the normal constraint is enforced (the parameters are in
+/// [`Enforcement`]).
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum Method {
+    Penalty,
+    Uzawa,
+    Rockafellar,
+    Slack,
+}
+
+/// A normal law and Coulomb friction as a user gives them.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Enforcement {
+    pub method: Method,
+    /// The penalty `p` (`ε` of penalty and Uzawa); `None`: automatic.
+    pub penalty: Option<f64>,
+    /// The scaling `k` of the Rockafellar laws; `None`: automatic.
+    pub scaling: Option<f64>,
+    /// Young's modulus `E` of the automatic parameters.
+    pub youngs_modulus: f64,
+    /// Friction coefficient `μ` (`None`: frictionless).
+    pub friction_coefficient: Option<f64>,
+    /// Tangential penalty `ε_T`; `None`: automatic.
+    pub tangential_penalty: Option<f64>,
+}
+
+impl From<NormalLaw> for Enforcement {
+    /// The law with its parameters given, frictionless.
+    fn from(law: NormalLaw) -> Self {
+        let (method, penalty, scaling) = match law {
+            NormalLaw::Penalty { epsilon } => (Method::Penalty, epsilon, None),
+            NormalLaw::Uzawa { epsilon } => (Method::Uzawa, epsilon, None),
+            NormalLaw::Rockafellar { p, k } => (Method::Rockafellar, p, Some(k)),
+            NormalLaw::Slack { p, k } => (Method::Slack, p, Some(k)),
+        };
+        Enforcement {
+            method,
+            penalty: Some(penalty),
+            scaling,
+            youngs_modulus: 1.0,
+            friction_coefficient: None,
+            tangential_penalty: None,
+        }
+    }
+}
+
+/// Why an interface cannot be built.
+#[derive(Clone, Debug, PartialEq)]
+pub enum SetupError {
+    /// The mesh has no surface set of this name.
+    UnknownSurface(String),
+    /// The secondary surface has no nodes or no area.
+    NoArea(String),
+}
+
+impl Enforcement {
+    /// Set the law, friction and per-node factors of `c` from its
+    /// (whole) tributary areas and element size.
+    fn apply(&self, c: &mut ContactInterface) {
+        let h = c.element_size;
+        let (base, _) = automatic_parameters(self.youngs_modulus, h);
+        let auto = match self.method {
+            Method::Uzawa => base * uzawa::AUTOMATIC_FACTOR,
+            _ => base,
+        };
+        let (p, k) = (self.penalty.unwrap_or(auto), self.scaling.unwrap_or(auto));
+        c.law = match self.method {
+            Method::Penalty => NormalLaw::Penalty { epsilon: p },
+            Method::Uzawa => NormalLaw::Uzawa { epsilon: p },
+            Method::Rockafellar => NormalLaw::Rockafellar { p, k },
+            Method::Slack => NormalLaw::Slack { p, k },
+        };
+        // automatic parameters follow the local mesh size: E/h_s, h_s = √A_s
+        c.node_scale = if self.penalty.is_none() && self.scaling.is_none() {
+            c.areas.iter().map(|a| h / a.sqrt().max(1e-300)).collect()
+        } else {
+            Vec::new()
+        };
+        c.friction = self.friction_coefficient.map(|mu| Coulomb {
+            coefficient: mu,
+            // default: the user's normal penalty, else E/h_s (also for
+            // Uzawa, whose larger automatic ε is for its outer loop)
+            tangential_penalty: match (self.tangential_penalty, self.penalty) {
+                (Some(eps), _) => eps,
+                (None, Some(_)) => p,
+                (None, None) => base,
+            },
+        });
+        c.tangential_scale = if self.tangential_penalty.is_none() {
+            c.node_scale.clone()
+        } else {
+            Vec::new()
+        };
+    }
+}
+
+impl ContactInterface {
+    /// The nodes of surface `secondary` of `mesh` against `primary`,
+    /// enforced by `enforcement`: named after the surface, not moving, each
+    /// node with its tributary area, element size `h = √(mean A_s)`; a
+    /// primary surface paired in the reference configuration.
+    pub fn new(
+        mesh: &Mesh,
+        secondary: &str,
+        primary: Primary,
+        enforcement: &Enforcement,
+    ) -> Result<Self, SetupError> {
+        let set = mesh
+            .surface(secondary)
+            .ok_or_else(|| SetupError::UnknownSurface(secondary.to_string()))?;
+        let (nodes, areas) = tributary_areas(mesh, set);
+        let total: f64 = areas.iter().sum();
+        if nodes.is_empty() || !(total > 0.0) {
+            return Err(SetupError::NoArea(secondary.to_string()));
+        }
+        let mut c = ContactInterface {
+            name: secondary.to_string(),
+            surface: secondary.to_string(),
+            element_size: (total / nodes.len() as f64).sqrt(),
+            nodes,
+            areas,
+            primary,
+            motion: Vector3::zeros(),
+            amplitude: Amplitude::ramp(),
+            law: NormalLaw::Penalty { epsilon: 0.0 },
+            friction: None,
+            tangential_scale: Vec::new(),
+            node_scale: Vec::new(),
+            multiplier_offset: 0,
+        };
+        enforcement.apply(&mut c);
+        if let Primary::Surface(p) = &mut c.primary {
+            let zero = vec![0.0; 3 * mesh.num_nodes()];
+            p.refresh(&mesh.nodes, &zero, &c.nodes, 0.0);
+        }
+        Ok(c)
+    }
+
+    /// Surface `secondary` against a rigid obstacle (fixed: see
+    /// [`moving`](Self::moving)).
+    pub fn rigid(
+        mesh: &Mesh,
+        secondary: &str,
+        obstacle: RigidObstacle,
+        enforcement: &Enforcement,
+    ) -> Result<Self, SetupError> {
+        Self::new(mesh, secondary, Primary::Rigid(obstacle), enforcement)
+    }
+
+    /// Surface `secondary` against surface `primary` of another body of the
+    /// mesh, paired in the reference configuration.
+    pub fn between_bodies(
+        mesh: &Mesh,
+        secondary: &str,
+        primary: &str,
+        enforcement: &Enforcement,
+    ) -> Result<Self, SetupError> {
+        let surface = PrimarySurface::from_mesh(mesh, primary)
+            .ok_or_else(|| SetupError::UnknownSurface(primary.to_string()))?;
+        Self::new(mesh, secondary, Primary::Surface(surface), enforcement)
+    }
+
+    /// The two passes of a symmetric interface between bodies: `secondary`
+    /// against `primary`, and `primary` against `secondary` (named
+    /// `"{secondary}.reverse"`), each node on half its tributary area (the
+    /// parameters are those of the whole area).
+    pub fn two_pass(
+        mesh: &Mesh,
+        secondary: &str,
+        primary: &str,
+        enforcement: &Enforcement,
+    ) -> Result<[Self; 2], SetupError> {
+        let forward = Self::between_bodies(mesh, secondary, primary, enforcement)?;
+        let reverse = Self::between_bodies(mesh, primary, secondary, enforcement)?
+            .named(&format!("{secondary}.reverse"));
+        Ok([forward, reverse].map(|mut c| {
+            c.areas.iter_mut().for_each(|a| *a *= 0.5);
+            c
+        }))
+    }
+
+    /// The interface renamed (reports, output).
+    pub fn named(self, name: &str) -> Self {
+        Self {
+            name: name.to_string(),
+            ..self
+        }
+    }
+
+    /// The obstacle translated by `motion · amplitude(t)`.
+    pub fn moving(self, motion: Vector3<f64>, amplitude: Amplitude) -> Self {
+        Self {
+            motion,
+            amplitude,
+            ..self
+        }
+    }
+}

@@ -36,9 +36,18 @@ enum Target {
     Stl,
     CaseParse,
     Check,
+    /// A mutated mesh read and checked with the cube case (contact
+    /// parameters, element geometry, groups).
+    MeshCheck,
 }
 
-const TARGETS: [Target; 4] = [Target::Msh, Target::Stl, Target::CaseParse, Target::Check];
+const TARGETS: [Target; 5] = [
+    Target::Msh,
+    Target::Stl,
+    Target::CaseParse,
+    Target::Check,
+    Target::MeshCheck,
+];
 
 /// Tokens spliced into inputs: values and keywords that readers must reject
 /// or survive.
@@ -311,23 +320,42 @@ fn execute(target: Target, input: &[u8], f: &Fixture) -> bool {
             let Ok(spec) = parse(&f.case_path, text) else {
                 return false;
             };
-            let case = Case {
-                path: f.case_path.clone(),
-                spec,
-                mesh: f.mesh.clone(),
+            check(f, spec, f.mesh.clone())
+        }
+        Target::MeshCheck => {
+            let Ok(mesh) = signorini::mesh::gmsh::parse_msh(input, path) else {
+                return false;
             };
-            case.build_problem()
-                .is_ok_and(|problem| case.output_requests(&problem).is_ok())
+            let spec = parse(&f.case_path, CUBE_CASE).unwrap();
+            check(f, spec, Arc::new(mesh))
         }
     }
+}
+
+/// `check`: the case validated against `mesh`, its output requests too.
+fn check(
+    f: &Fixture,
+    spec: signorini::case::schema::CaseFile,
+    mesh: Arc<signorini::mesh::Mesh>,
+) -> bool {
+    if mesh.elements.is_empty() {
+        return false; // `case::load` rejects it before
+    }
+    let case = Case {
+        path: f.case_path.clone(),
+        spec,
+        mesh,
+    };
+    case.build_problem()
+        .is_ok_and(|problem| case.output_requests(&problem).is_ok())
 }
 
 /// Counts of one fuzzing run.
 #[derive(Default)]
 struct Counts {
-    executions: [AtomicU64; 4],
+    executions: [AtomicU64; 5],
     /// Executions whose mutated input was still accepted.
-    accepted: [AtomicU64; 4],
+    accepted: [AtomicU64; 5],
     crashes: AtomicU64,
 }
 
@@ -363,7 +391,7 @@ fn fuzz(
                     let k = rng.gen_range(0..TARGETS.len());
                     let target = TARGETS[k];
                     let seeds = match target {
-                        Target::Msh => &corpus.msh[..],
+                        Target::Msh | Target::MeshCheck => &corpus.msh[..],
                         Target::Stl => &corpus.stl[..],
                         Target::CaseParse => &corpus.cases[..],
                         // the cases that pass on the cube mesh
@@ -436,6 +464,9 @@ fn fuzz_smoke() {
     }
     for m in &c.cases[..2] {
         assert!(execute(Target::Check, m, &f));
+    }
+    for m in &c.msh {
+        assert!(execute(Target::MeshCheck, m, &f));
     }
     let start = Instant::now();
     let (counts, crashes) = fuzz(1, 1, Duration::from_secs(120), 3000);

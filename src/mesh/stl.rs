@@ -90,7 +90,7 @@ mod tests {
     fn binary(triangles: u32, records: usize) -> Vec<u8> {
         let mut d = vec![0u8; 80];
         d.extend_from_slice(&triangles.to_le_bytes());
-        d.extend(std::iter::repeat(0u8).take(50 * records));
+        d.extend(std::iter::repeat_n(0u8, 50 * records));
         d
     }
 

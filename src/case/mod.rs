@@ -75,15 +75,19 @@ fn case_error(path: &Path, message: impl Into<String>) -> Error {
 
 /// Parse a case file's text. Errors name the line and the key path.
 pub fn parse(path: &Path, text: &str) -> Result<CaseFile> {
-    let line = |offset: usize| text[..offset.min(text.len())].matches('\n').count() + 1;
     let spec = deserialize(path, text)?;
     if let Some((offset, message)) = limits::check(text) {
         return Err(case_error(
             path,
-            format!("line {}: {message}", line(offset)),
+            format!("line {}: {message}", line_of(text, offset)),
         ));
     }
     Ok(spec)
+}
+
+/// The 1-based line of byte `offset` in `text`.
+fn line_of(text: &str, offset: usize) -> usize {
+    text[..offset.min(text.len())].matches('\n').count() + 1
 }
 
 /// The schema read from the text, or an error naming the line and the key.
@@ -93,7 +97,7 @@ fn deserialize(path: &Path, text: &str) -> Result<CaseFile> {
         let key = e.path().to_string();
         let inner = e.into_inner();
         let msg = inner.message().to_string();
-        let line = |offset: usize| text[..offset.min(text.len())].matches('\n').count() + 1;
+        let line = |offset: usize| line_of(text, offset);
         if let Some((offset, message)) = tagged::refine(text, &key, &msg) {
             return case_error(path, format!("line {}: {message}", line(offset)));
         }
@@ -600,7 +604,7 @@ impl Case {
             if max < min {
                 return Err(self.err(format!(
                     "{key}.max_increment = {max} is smaller than min_increment = {min}; \
-                     the increment must be allowed between the two"
+                     give max_increment ≥ min_increment"
                 )));
             }
             if min > initial {
@@ -640,7 +644,13 @@ impl Case {
                 return Err(self.err(format!("solver.{name} = {v} must be in (0, 1)")));
             }
         }
-        if !(settings.growth_factor >= 1.0) || !settings.growth_factor.is_finite() {
+        if !settings.growth_factor.is_finite() {
+            return Err(self.err(format!(
+                "solver.growth_factor = {} is not a finite number; give a value ≥ 1 (default 1.5)",
+                settings.growth_factor
+            )));
+        }
+        if !(settings.growth_factor >= 1.0) {
             return Err(self.err(format!(
                 "solver.growth_factor = {} must be ≥ 1",
                 settings.growth_factor

@@ -91,7 +91,7 @@ pub(super) fn refine(text: &str, path: &str, message: &str) -> Option<(usize, St
     let tag_value = keys
         .iter()
         .find(|k| k.name == tag)
-        .map(|k| k.value.trim_matches('"'));
+        .map(|k| k.value.trim_matches(|c| c == '"' || c == '\''));
     let chosen = |v: &str| {
         if array == "material" {
             camel(v)

@@ -25,9 +25,14 @@ fn invalid(path: &Path, message: String) -> Error {
 
 /// The triangles of the STL file `path`.
 pub fn read_stl(path: &Path) -> Result<stl_io::IndexedMesh> {
-    let data = read_bounded(path, "read STL file", MAX_STL_FILE)?;
-    diagnose(&data).map_err(|m| invalid(path, m))?;
-    stl_io::read_stl(&mut std::io::Cursor::new(&data))
+    parse_stl(&read_bounded(path, "read STL file", MAX_STL_FILE)?, path)
+}
+
+/// The triangles of the STL file contents `data`; `path` is used only in
+/// error messages.
+pub fn parse_stl(data: &[u8], path: &Path) -> Result<stl_io::IndexedMesh> {
+    diagnose(data).map_err(|m| invalid(path, m))?;
+    stl_io::read_stl(&mut std::io::Cursor::new(data))
         .map_err(|e| invalid(path, format!("cannot be read as STL: {e}")))
 }
 
@@ -85,7 +90,7 @@ mod tests {
     fn binary(triangles: u32, records: usize) -> Vec<u8> {
         let mut d = vec![0u8; 80];
         d.extend_from_slice(&triangles.to_le_bytes());
-        d.extend(std::iter::repeat(0u8).take(50 * records));
+        d.extend(std::iter::repeat_n(0u8, 50 * records));
         d
     }
 

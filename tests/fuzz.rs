@@ -345,6 +345,7 @@ fn check(
         path: f.case_path.clone(),
         spec,
         mesh,
+        notes: Vec::new(),
     };
     case.build_problem()
         .is_ok_and(|problem| case.output_requests(&problem).is_ok())

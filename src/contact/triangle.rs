@@ -174,6 +174,7 @@ fn closest_point_on_degenerate_triangle(
             ));
         }
     }
+    #[allow(clippy::expect_used)] // the loop above visits the three edges, so `best` is set
     best.expect("a triangle has three edges").1
 }
 

@@ -345,6 +345,8 @@ impl TriangulatedSurface {
     /// Projects the spatial point `x` onto the surface: closest point,
     /// normal, signed gap and curvature as in the module documentation.
     pub fn project(&self, x: &Vector3<f64>) -> Projection {
+        #[allow(clippy::expect_used)]
+        // `TriangulatedSurface::new` refuses a surface without triangles
         let (t, p) = self
             .closest_point(x)
             .expect("a TriangulatedSurface has at least one triangle");

@@ -259,6 +259,8 @@ impl SlackState {
         let r_a = SVector::<f64, 4>::from_fn(|i, _| sys.gradient[A[i]]);
         let r_b = Vector2::from_fn(|i, _| sys.gradient[B[i]]);
         // K_bb = A[[p, k], [k, 0]] (clamped) or A[[p, 0], [0, k]] (free): det ≠ 0.
+        #[allow(clippy::expect_used)]
+        // K_bb = A[[p, k], [k, 0]] or A[[p, 0], [0, k]] has det ≠ 0 for p, k, A_s > 0, which the case file validates
         let k_bb_inv = k_bb
             .try_inverse()
             .expect("slack block is invertible for p, k, A_s > 0");

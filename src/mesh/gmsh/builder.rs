@@ -118,23 +118,25 @@ impl Builder {
         })
     }
 
-    /// Adds one element read at offset `at`: a volume element to
+    /// Adds one element (read at offset `at`): a volume element to
     /// [`Mesh::elements`] and its regions, a facet of a 2D physical group to
     /// its surface sets, the nodes of a point or line of a 0D or 1D physical
     /// group to its node sets; other points, lines and 2D elements are
     /// dropped.
-    #[allow(clippy::too_many_arguments)]
     pub(super) fn add_element(
         &mut self,
         cur: &Cursor,
         at: usize,
-        tag: u64,
-        element_type: i64,
-        info: ElementInfo,
-        physicals: &[i64],
-        entity: i64,
-        node_tags: &[u64],
+        element: ElementRead,
     ) -> Result<()> {
+        let ElementRead {
+            tag,
+            element_type,
+            info,
+            physicals,
+            entity,
+            node_tags,
+        } = element;
         if info.dim < 3 && physicals.is_empty() {
             return Ok(());
         }
@@ -291,4 +293,19 @@ impl Builder {
         }
         Ok(mesh)
     }
+}
+
+/// One element as a Gmsh file lists it.
+pub(super) struct ElementRead<'a> {
+    /// The element's tag.
+    pub tag: u64,
+    /// Its Gmsh element type and what that type is.
+    pub element_type: i64,
+    pub info: ElementInfo,
+    /// The physical groups of its entity (2.2: its physical tag).
+    pub physicals: &'a [i64],
+    /// Its elementary entity.
+    pub entity: i64,
+    /// The tags of its nodes.
+    pub node_tags: &'a [u64],
 }

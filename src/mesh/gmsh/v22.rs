@@ -2,6 +2,7 @@
 //! lines, the records ASCII lines or binary values.
 
 use super::builder::Builder;
+use super::builder::ElementRead;
 use super::cursor::Cursor;
 use super::element_type::element_info;
 use crate::Result;
@@ -85,12 +86,14 @@ fn read_elements_ascii(cur: &mut Cursor, b: &mut Builder, count: u64) -> Result<
         b.add_element(
             cur,
             at,
-            tag,
-            element_type,
-            info,
-            physical,
-            entity,
-            &node_tags,
+            ElementRead {
+                tag,
+                element_type,
+                info,
+                physicals: physical,
+                entity,
+                node_tags: &node_tags,
+            },
         )?;
     }
     Ok(())
@@ -131,12 +134,14 @@ fn read_elements_binary(cur: &mut Cursor, b: &mut Builder, count: u64) -> Result
             b.add_element(
                 cur,
                 at,
-                tag,
-                element_type,
-                info,
-                physical,
-                entity,
-                &node_tags,
+                ElementRead {
+                    tag,
+                    element_type,
+                    info,
+                    physicals: physical,
+                    entity,
+                    node_tags: &node_tags,
+                },
             )?;
         }
         read += n as u64;

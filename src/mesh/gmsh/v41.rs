@@ -2,6 +2,7 @@
 //! entity blocks. Every value is ASCII or binary as the file type says.
 
 use super::builder::Builder;
+use super::builder::ElementRead;
 use super::cursor::Cursor;
 use super::element_type::{element_info, ElementInfo};
 use crate::Result;
@@ -131,12 +132,14 @@ pub(super) fn read_elements(cur: &mut Cursor, b: &mut Builder) -> Result<()> {
             b.add_element(
                 cur,
                 at,
-                tag,
-                element_type,
-                info,
-                &physicals,
-                entity_tag,
-                &node_tags,
+                ElementRead {
+                    tag,
+                    element_type,
+                    info,
+                    physicals: &physicals,
+                    entity: entity_tag,
+                    node_tags: &node_tags,
+                },
             )?;
             read += 1;
         }

@@ -288,17 +288,20 @@ impl Reader<'_> {
     /// ranges `first, last[, step]` (ids that nothing has are skipped, but a
     /// range must hold one). `what` is the keyword and the kind of item,
     /// e.g. `("*NSET", "node")`.
-    #[allow(clippy::too_many_arguments)]
     fn set_members<'b, T: Clone + 'b>(
         &self,
-        line: &Line,
-        keyword: &Keyword,
-        data: &[Line],
-        name: &str,
-        (what, item): (&str, &str),
+        set: SetBlock,
         by_id: impl Fn(u64) -> Option<T>,
         by_name: impl Fn(&str) -> Option<&'b [T]>,
     ) -> Result<Vec<T>> {
+        let SetBlock {
+            line,
+            keyword,
+            data,
+            name,
+            what,
+            item,
+        } = set;
         let generate = keyword.has("GENERATE");
         let mut members = Vec::new();
         for l in data {
@@ -368,11 +371,14 @@ impl Reader<'_> {
         let name = self.required(line, keyword, "ELSET")?.to_string();
         let b = &self.builder;
         let members = self.set_members(
-            line,
-            keyword,
-            data,
-            &name,
-            ("*ELSET", "element"),
+            SetBlock {
+                line,
+                keyword,
+                data,
+                name: &name,
+                what: "*ELSET",
+                item: "element",
+            },
             |id| b.element(id),
             |set| b.element_sets.get(set).map(Vec::as_slice),
         )?;
@@ -395,11 +401,14 @@ impl Reader<'_> {
             nodes = b.member_nodes(members);
         }
         nodes.extend(self.set_members(
-            line,
-            keyword,
-            data,
-            &name,
-            ("*NSET", "node"),
+            SetBlock {
+                line,
+                keyword,
+                data,
+                name: &name,
+                what: "*NSET",
+                item: "node",
+            },
             |id| b.node(id),
             |set| b.node_sets.get(set).map(Vec::as_slice),
         )?);
@@ -542,4 +551,18 @@ fn data_fields(line: &Line) -> Vec<String> {
         fields.pop();
     }
     fields
+}
+
+/// The lines of a `*ELSET` or `*NSET` block and what it defines.
+struct SetBlock<'a> {
+    /// The keyword line and its parsed keyword.
+    line: &'a Line,
+    keyword: &'a Keyword,
+    /// The data lines after it.
+    data: &'a [Line],
+    /// The set's name.
+    name: &'a str,
+    /// The keyword and the kind of item, e.g. `"*NSET"` and `"node"`.
+    what: &'a str,
+    item: &'a str,
 }

@@ -142,9 +142,8 @@ fn imports(module: &[String], text: &str) -> Vec<(usize, String, Vec<String>)> {
             .chain((0..inline_mods.len()).map(|_| "{inline}".to_string()))
             .collect();
         let module = &inner[..];
-        let statement;
         let number = i + 1;
-        if (trimmed.starts_with("use ")
+        let statement = if (trimmed.starts_with("use ")
             || trimmed.starts_with("pub use ")
             || trimmed.starts_with("pub(crate) use "))
             && (trimmed.contains("crate::") || trimmed.contains("super::"))
@@ -159,11 +158,11 @@ fn imports(module: &[String], text: &str) -> Vec<(usize, String, Vec<String>)> {
             let body = body[body.find("use ").unwrap() + 4..]
                 .trim_end()
                 .trim_end_matches(';');
-            statement = expand(body);
+            expand(body)
         } else {
             // inline paths
-            statement = inline_paths(line);
-        }
+            inline_paths(line)
+        };
         for path in statement {
             if let Some(resolved) = resolve(module, &path) {
                 out.push((number, path, resolved));
@@ -200,12 +199,12 @@ fn inline_paths(line: &str) -> Vec<String> {
 /// An absolute module path for `path` seen from `module`.
 fn resolve(module: &[String], path: &str) -> Option<Vec<String>> {
     let mut parts: Vec<&str> = path.split("::").filter(|p| !p.is_empty()).collect();
-    let mut base: Vec<String> = match parts.first()? {
-        &"crate" => {
+    let mut base: Vec<String> = match *parts.first()? {
+        "crate" => {
             parts.remove(0);
             Vec::new()
         }
-        &"super" => {
+        "super" => {
             // `super` of `a/b.rs` (module a::b) is a; of `a/b/mod.rs` (a::b) is a too
             let mut base = module.to_vec();
             while parts.first() == Some(&"super") {

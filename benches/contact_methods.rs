@@ -323,6 +323,7 @@ fn run_one(case_text: &str, dir: &Path, size: &str, method: &str) -> Row {
         &RunOptions {
             output: Some(out.clone()),
             threads: None,
+            cancel: None,
         },
     );
     let wall = start.elapsed().as_secs_f64();

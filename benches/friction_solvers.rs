@@ -79,6 +79,7 @@ fn main() {
                 &RunOptions {
                     output: Some(dir.join(format!("out-{solver}"))),
                     threads: None,
+                    cancel: None,
                 },
             );
             let wall = start.elapsed().as_secs_f64();

@@ -6,6 +6,8 @@ use indicatif::{ProgressBar, ProgressStyle};
 use signorini::output::{ConvergedIncrement, Cut, Iteration, StepObserver, Summary};
 use std::path::PathBuf;
 use std::process::ExitCode;
+use std::sync::atomic::{AtomicBool, Ordering};
+use std::sync::Arc;
 
 #[derive(Parser)]
 #[command(
@@ -68,6 +70,11 @@ fn main() -> ExitCode {
     };
     match result {
         Ok(()) => ExitCode::SUCCESS,
+        // stopped by Ctrl-C or SIGTERM: the shell's code for SIGINT
+        Err(e @ signorini::Error::Interrupted { .. }) => {
+            eprintln!("stopped: {e}");
+            ExitCode::from(130)
+        }
         Err(e) => {
             eprintln!("error: {e}");
             ExitCode::from(1)
@@ -96,9 +103,18 @@ fn run(
     threads: Option<u32>,
     quiet: bool,
 ) -> signorini::Result<()> {
+    // Ctrl-C (SIGINT) and SIGTERM stop the run between two Newton
+    // iterations: summary.json says "interrupted", every converged
+    // increment stays written
+    let cancel = Arc::new(AtomicBool::new(false));
+    let flag = Arc::clone(&cancel);
+    // only fails when a handler is already set, which cannot happen here;
+    // without one a signal ends the process as before
+    let _ = ctrlc::set_handler(move || flag.store(true, Ordering::Relaxed));
     let options = signorini::run::RunOptions {
         output,
         threads: threads.map(|t| t as usize),
+        cancel: Some(cancel),
     };
     let mut progress = Progress::new(quiet);
     let outcome = signorini::run::run_observed(&case, &options, &mut progress)?;

@@ -19,7 +19,7 @@
 //! }
 //!
 //! let mut simulation = Simulation::from_file("examples/press-pull/case.toml".as_ref())?;
-//! let options = RunOptions { threads: Some(2), output: None }; // in memory only
+//! let options = RunOptions { threads: Some(2), output: None, cancel: None }; // in memory only
 //! let mut forces = Forces(Vec::new());
 //! let outcome = simulation.run(&options, &mut forces)?;
 //! // the press of 20 (20 on 1 × 2, examples/press-pull/README.md) is carried by contact
@@ -46,6 +46,8 @@ use crate::solve::nonlinear::Evaluation;
 use crate::solve::stepping::{self, run_steps, IncrementRecord};
 use crate::{Error, Result};
 use std::path::{Path, PathBuf};
+use std::sync::atomic::{AtomicBool, Ordering};
+use std::sync::Arc;
 use std::time::Instant;
 
 /// How a simulation runs.
@@ -57,6 +59,11 @@ pub struct RunOptions {
     /// Worker threads of assembly and factorisation, in a thread pool of
     /// the run's own (`None`: one per core).
     pub threads: Option<usize>,
+    /// Set it (from another thread, a signal handler) to stop the run
+    /// between two Newton iterations: the run ends with
+    /// [`Error::Interrupted`], `summary.json` says `"interrupted"`, and
+    /// every converged increment stays written.
+    pub cancel: Option<Arc<AtomicBool>>,
 }
 
 /// What a finished run leaves.
@@ -203,6 +210,7 @@ impl Simulation {
             observers,
             name: &self.name,
             every: self.every,
+            cancel: options.cancel.clone(),
             last: start,
             start,
             contact: ContactState::default(),
@@ -316,6 +324,7 @@ struct Recorder<'a> {
     observers: Observers<'a>,
     name: &'a str,
     every: usize,
+    cancel: Option<Arc<AtomicBool>>,
     last: Instant,
     start: Instant,
     contact: ContactState,
@@ -368,6 +377,12 @@ impl stepping::StepObserver<Problem> for Recorder<'_> {
         self.last = now;
         self.summary.wall_time = self.start.elapsed().as_secs_f64();
         self.observers.on_increment(&increment, &self.summary)
+    }
+
+    fn cancelled(&mut self) -> bool {
+        self.cancel
+            .as_ref()
+            .is_some_and(|c| c.load(Ordering::Relaxed))
     }
 
     fn on_iteration(&mut self, step: &str, time: f64, record: &IterationRecord) {

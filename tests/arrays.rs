@@ -74,6 +74,7 @@ fn run(case: &case::Case, observer: &mut (dyn StepObserver + Send)) -> signorini
     let options = RunOptions {
         output: None,
         threads: Some(1),
+        cancel: None,
     };
     Ok(simulation.run(&options, observer)?.displacement)
 }

@@ -16,6 +16,7 @@ fn run_example(name: &str) -> (tempfile::TempDir, signorini::run::RunOutcome) {
         &RunOptions {
             output: Some(out.path().to_path_buf()),
             threads: None,
+            cancel: None,
         },
     )
     .expect("the example runs");

@@ -324,6 +324,7 @@ end_time = 1.0
         &signorini::run::RunOptions {
             output: None,
             threads: None,
+            cancel: None,
         },
     )
     .unwrap();

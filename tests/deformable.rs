@@ -350,6 +350,7 @@ fn stacked_blocks_through_the_case_file() {
         &signorini::run::RunOptions {
             output: Some(dir.path().join("out")),
             threads: None,
+            cancel: None,
         },
     )
     .expect("the case runs");

@@ -18,6 +18,7 @@ fn inp_import_block_matches_uniaxial_compression() {
         &RunOptions {
             output: Some(out.path().to_path_buf()),
             threads: None,
+            cancel: None,
         },
     )
     .expect("the example runs");

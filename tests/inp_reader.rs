@@ -369,6 +369,7 @@ fn run_case(text: &str) -> (tempfile::TempDir, signorini::run::RunOutcome) {
         &RunOptions {
             output: Some(dir.path().join("results")),
             threads: None,
+            cancel: None,
         },
     )
     .expect("the case runs");

@@ -21,6 +21,7 @@ fn run(method: &str) -> signorini::run::RunOutcome {
         &signorini::run::RunOptions {
             output: Some(dir.path().join("out")),
             threads: None,
+            cancel: None,
         },
     )
     .unwrap_or_else(|e| panic!("linear = {method}: {e}"))

@@ -107,6 +107,7 @@ residual_tolerance = 1e-12
         &RunOptions {
             output: Some(dir.path().join("results")),
             threads: None,
+            cancel: None,
         },
     )
     .expect("the bar runs");

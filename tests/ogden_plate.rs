@@ -39,6 +39,7 @@ fn run_case(
         &RunOptions {
             output: Some(dir.path().join("results")),
             threads: None,
+            cancel: None,
         },
     )
     .expect("the plate converges");

@@ -25,6 +25,7 @@ fn run_with(name: &str, output_table: &str, extra: &str, out: &Path) -> serde_js
     let options = RunOptions {
         output: Some(out.to_path_buf()),
         threads: Some(1),
+        cancel: None,
     };
     simulation
         .run(&options, &mut signorini::output::observer::Silent)

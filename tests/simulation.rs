@@ -44,6 +44,7 @@ fn press_pull(threads: usize) -> (Kept, Summary) {
     let options = RunOptions {
         output: None,
         threads: Some(threads),
+        cancel: None,
     };
     let outcome = simulation.run(&options, &mut kept).unwrap();
     (kept, outcome.summary)
@@ -152,6 +153,7 @@ fn a_run_without_output_folder_writes_nothing() {
     let options = RunOptions {
         output: Some(out.clone()),
         threads: Some(1),
+        cancel: None,
     };
     let written = simulation.run(&options, &mut Kept::default()).unwrap();
     let summary: serde_json::Value =
@@ -179,6 +181,7 @@ fn output_fields_choose_the_vtu_arrays() {
     let options = RunOptions {
         output: Some(tmp.path().to_path_buf()),
         threads: Some(1),
+        cancel: None,
     };
     let outcome = simulation.run(&options, &mut Kept::default()).unwrap();
     let vtu =

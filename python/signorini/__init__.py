@@ -91,7 +91,7 @@ class Simulation:
         :class:`Increment`; returning ``False`` stops the run after it
         (``result.status == "interrupted"``, the increments so far kept).
         The GIL is released while the solver works; Ctrl-C stops the run
-        after the increment in progress and raises ``KeyboardInterrupt``.
+        at its next Newton iteration and raises ``KeyboardInterrupt``.
         An exception from the callback stops the run and is raised.
         ``stresses=True`` keeps the element stresses of every increment.
 

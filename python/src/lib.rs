@@ -237,7 +237,11 @@ impl NativeSimulation {
         let inner = RustSimulation::from_case(&case.inner).map_err(to_py)?;
         Ok(NativeSimulation {
             inner,
-            options: RunOptions { output, threads },
+            options: RunOptions {
+                output,
+                threads,
+                cancel: None,
+            },
         })
     }
 

@@ -3,7 +3,8 @@
 //! thread, which turns it into an [`Increment`] of numpy arrays, calls the
 //! Python callback and answers whether to go on. While it waits, the
 //! calling thread (Python's main thread, where signal handlers run) checks
-//! for Ctrl-C; a stop ends the run after the increment in progress with
+//! for Ctrl-C; Ctrl-C stops the run at its next Newton iteration (the
+//! `cancel` flag of `RunOptions`), a callback after its increment, with
 //! [`Error::Interrupted`], so the results stay consistent.
 
 use crate::{convert, to_py, SignoriniError};
@@ -12,7 +13,9 @@ use pyo3::types::PyList;
 use signorini::output::{CellField, ConvergedIncrement, NodalField, StepObserver, Summary};
 use signorini::run::{RunOptions, Simulation};
 use signorini::Error;
+use std::sync::atomic::{AtomicBool, Ordering};
 use std::sync::mpsc::{self, RecvTimeoutError};
+use std::sync::Arc;
 use std::time::Duration;
 
 /// How often the waiting thread looks for Ctrl-C.
@@ -255,6 +258,12 @@ pub fn run(
 ) -> PyResult<(String, Py<PyList>, String, Option<PyObject>)> {
     let increments = PyList::empty(py).unbind();
     let list = increments.clone_ref(py);
+    // Ctrl-C sets it: the run stops between two Newton iterations
+    let cancel = Arc::new(AtomicBool::new(false));
+    let options = &RunOptions {
+        cancel: Some(Arc::clone(&cancel)),
+        ..options.clone()
+    };
     let (to_python, from_run) = mpsc::channel();
     let (to_run, from_python) = mpsc::channel();
     let (joined, pending) = py.allow_threads(move || {
@@ -282,8 +291,12 @@ pub fn run(
                     }
                     Err(RecvTimeoutError::Timeout) => {
                         if pending.is_none() {
-                            // Ctrl-C during an increment: stop after it
+                            // Ctrl-C during an increment: stop at the next
+                            // Newton iteration
                             pending = Python::with_gil(|py| py.check_signals().err());
+                            if pending.is_some() {
+                                cancel.store(true, Ordering::Relaxed);
+                            }
                         }
                     }
                     Err(RecvTimeoutError::Disconnected) => break,

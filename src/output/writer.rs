@@ -78,23 +78,13 @@ impl ResultWriter {
         let cells = increment.cells(&self.cells);
         let point_data: Vec<vtu::Field> = nodal
             .iter()
-            .map(|(f, v)| vtu::Field {
-                name: f.name(),
-                components: f.components(),
-                values: v,
-                kind: f.kind(),
-            })
+            .map(|(f, v)| field(f.name(), f.components(), f.kind(), v))
             .collect();
         let cell_data: Vec<vtu::Field> = self
             .cells
             .iter()
             .zip(&cells)
-            .map(|(f, v)| vtu::Field {
-                name: f.name(),
-                components: f.components(),
-                values: v,
-                kind: f.kind(),
-            })
+            .map(|(f, v)| field(f.name(), f.components(), f.kind(), v))
             .collect();
         vtu::write_vtu_with(
             &self.dir.join(file),
@@ -154,6 +144,21 @@ impl StepObserver for ResultWriter {
             })
             .collect();
         plot::write_convergence_plot(&self.dir.join("convergence.svg"), &steps)
+    }
+}
+
+/// A VTU array of `values`.
+fn field<'a>(
+    name: &'static str,
+    components: usize,
+    kind: vtu::ArrayKind,
+    values: &'a [f64],
+) -> vtu::Field<'a> {
+    vtu::Field {
+        name,
+        components,
+        values,
+        kind,
     }
 }
 

@@ -35,6 +35,9 @@ pub enum IncrementFailure {
     PairsMoved,
     /// The outer (Uzawa) loop did not reach its tolerance in `updates`.
     OuterLoopLimit { updates: usize },
+    /// The run was cancelled (its cancel flag set) between two Newton
+    /// iterations: not cut, the run ends.
+    Cancelled,
 }
 
 impl std::fmt::Display for IncrementFailure {
@@ -90,6 +93,7 @@ impl std::fmt::Display for IncrementFailure {
                 f,
                 "the Uzawa multipliers did not reach the penetration tolerance in {updates} updates"
             ),
+            IncrementFailure::Cancelled => write!(f, "cancelled between two Newton iterations"),
         }
     }
 }

@@ -46,8 +46,9 @@ pub struct Newton<'a, P: NonlinearProblem> {
     /// vanishing load (unloading to zero) can converge.
     pub force_scale: f64,
     /// Told of every iteration once its correction is taken (progress,
-    /// logs).
-    pub on_iteration: Option<&'a mut dyn FnMut(&IterationRecord)>,
+    /// logs); returns whether to go on (`false`: the run is cancelled, and
+    /// the increment ends with [`IncrementFailure::Cancelled`]).
+    pub on_iteration: Option<&'a mut dyn FnMut(&IterationRecord) -> bool>,
 }
 
 impl<P: NonlinearProblem> Newton<'_, P> {
@@ -246,7 +247,9 @@ impl<P: NonlinearProblem> Newton<'_, P> {
                 rec.correction = last_correction;
                 rec.step_length = step_length;
                 if let Some(tell) = self.on_iteration.as_mut() {
-                    tell(rec);
+                    if !tell(rec) {
+                        return (Err(IncrementFailure::Cancelled), records);
+                    }
                 }
             }
         }

@@ -50,6 +50,12 @@ pub trait StepObserver<P: NonlinearProblem> {
     /// A Newton iteration of the increment aiming at `time` took its
     /// correction.
     fn on_iteration(&mut self, _step: &str, _time: f64, _record: &IterationRecord) {}
+    /// Whether the run is to stop now (asked between Newton iterations and
+    /// before every increment); the run then ends with
+    /// [`Error::Interrupted`], every converged increment kept.
+    fn cancelled(&mut self) -> bool {
+        false
+    }
 }
 
 /// Run every step of `problem` from `u = 0` (except the prescribed values).
@@ -97,8 +103,13 @@ pub fn run_steps<P: NonlinearProblem>(
             }
             let problem: &P = problem;
             let mut trial_state = state.clone();
-            let mut tell =
-                |record: &IterationRecord| observer.on_iteration(&step.name, t_new, record);
+            if observer.cancelled() {
+                return Err(cancelled(t));
+            }
+            let mut tell = |record: &IterationRecord| {
+                observer.on_iteration(&step.name, t_new, record);
+                !observer.cancelled()
+            };
             let mut newton = Newton {
                 problem,
                 solver: &mut *solver,
@@ -151,6 +162,7 @@ pub fn run_steps<P: NonlinearProblem>(
                     }
                     cuts = 0;
                 }
+                Err(IncrementFailure::Cancelled) => return Err(cancelled(t)),
                 Err(failure) => {
                     observer.on_cut(&step.name, t_new, dt, &failure);
                     cuts += 1;
@@ -171,6 +183,13 @@ pub fn run_steps<P: NonlinearProblem>(
         }
     }
     Ok(u)
+}
+
+/// The error of a run cancelled after the increments converged up to `t`.
+fn cancelled(t: f64) -> Error {
+    Error::Interrupted {
+        reason: format!("cancelled; the increments converged up to time {t:.6} are kept"),
+    }
 }
 
 /// Most outer (Uzawa) augmentations of one increment.

@@ -587,6 +587,7 @@ impl CaseRun {
             &signorini::run::RunOptions {
                 output: Some(output.to_path_buf()),
                 threads: None,
+                cancel: None,
             },
         )
         .expect("the case runs");

@@ -54,13 +54,19 @@ pub enum NonsymmetricSolver {
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq, serde::Deserialize)]
 #[serde(rename_all = "lowercase")]
 pub enum LinearMethod {
-    /// A symmetric tangent by the direct LDLᵀ, a nonsymmetric one as
-    /// `[solver] nonsymmetric` says (GMRES or the LU).
+    /// A symmetric tangent by the direct LDLᵀ (in mixed precision from
+    /// [`crate::solve::backend::MIXED_PRECISION_DOFS`] unknowns on), a
+    /// nonsymmetric one as `[solver] nonsymmetric` says (GMRES or the LU).
     #[default]
     Auto,
-    /// The direct LDLᵀ of the tangent with iterative refinement; the sparse
-    /// LU when it breaks down or leaves a relative residual above 1e-8.
+    /// The direct LDLᵀ of the tangent in f64 with iterative refinement; the
+    /// sparse LU when it breaks down or leaves a relative residual above
+    /// 1e-8.
     Ldlt,
+    /// The direct LDLᵀ of the tangent in f32, refined against the f64
+    /// tangent to a relative residual of 1e-13; `ldlt` when the refinement
+    /// stalls (mixed precision, what `auto` does on large systems).
+    Mixed,
     /// GMRES preconditioned by the LDLᵀ of the tangent's symmetric
     /// neighbour (of the tangent itself when it is symmetric); the sparse
     /// LU when it does not converge.

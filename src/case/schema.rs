@@ -353,6 +353,9 @@ pub struct SolverSpec {
     /// The linear solver: `auto` (default: LDLᵀ for a symmetric tangent,
     /// `nonsymmetric` for the others), `ldlt`, `gmres` or `lu`.
     pub linear: Option<crate::problem::LinearMethod>,
+    /// Where Newton starts an increment: `none` (default, the converged
+    /// state) or `secant` (extrapolated from the last increment).
+    pub predictor: Option<crate::solve::settings::Predictor>,
 }
 
 /// `[output]`

@@ -180,7 +180,10 @@ impl SparseLdlt {
     ) -> Result<()> {
         self.analyse(pattern)?;
         let start = Instant::now();
-        let symbolic = self.symbolic.as_ref().expect("analysed above");
+        let symbolic = self
+            .symbolic
+            .as_ref()
+            .ok_or_else(|| Error::LinearSolver("factorisation before analysis".into()))?;
         let scale = max_abs_diagonal(pattern, values);
         numeric_ldlt(
             symbolic,
@@ -212,7 +215,10 @@ impl SparseLdlt {
     ) -> Result<()> {
         self.analyse(pattern)?;
         let start = Instant::now();
-        let symbolic = self.symbolic.as_ref().expect("analysed above");
+        let symbolic = self
+            .symbolic
+            .as_ref()
+            .ok_or_else(|| Error::LinearSolver("factorisation before analysis".into()))?;
         self.factor_single.resize(symbolic.len_val(), 0.0);
         self.values_single.clear();
         self.values_single.extend(values.iter().map(|&v| v as f32));

@@ -178,26 +178,7 @@ impl SparseLdlt {
         values: &[f64],
         signs: Option<&[i8]>,
     ) -> Result<()> {
-        self.analyse(pattern)?;
-        let start = Instant::now();
-        let symbolic = self
-            .symbolic
-            .as_ref()
-            .ok_or_else(|| Error::LinearSolver("factorisation before analysis".into()))?;
-        let scale = max_abs_diagonal(pattern, values);
-        numeric_ldlt(
-            symbolic,
-            &mut self.factor,
-            SparseColMatRef::new(pattern.as_ref(), values),
-            signs,
-            (1e-10 * scale, 1e-13 * scale),
-            self.par,
-        )?;
-        self.precision = Precision::Double;
-        self.timings.factorisations += 1;
-        self.timings.numeric = start.elapsed();
-        self.timings.numeric_total += self.timings.numeric;
-        Ok(())
+        self.factorize_in(Precision::Double, pattern, values, signs)
     }
 
     /// Factorise `Ã = L D Lᵀ` in f32, `Ã` the matrix `values` rounded to
@@ -213,26 +194,56 @@ impl SparseLdlt {
         values: &[f64],
         signs: Option<&[i8]>,
     ) -> Result<()> {
+        self.factorize_in(Precision::Single, pattern, values, signs)
+    }
+
+    /// The numeric LDLᵀ in `precision`, on the pattern's symbolic analysis.
+    fn factorize_in(
+        &mut self,
+        precision: Precision,
+        pattern: &SymbolicSparseColMat<usize>,
+        values: &[f64],
+        signs: Option<&[i8]>,
+    ) -> Result<()> {
         self.analyse(pattern)?;
         let start = Instant::now();
         let symbolic = self
             .symbolic
             .as_ref()
             .ok_or_else(|| Error::LinearSolver("factorisation before analysis".into()))?;
-        self.factor_single.resize(symbolic.len_val(), 0.0);
-        self.values_single.clear();
-        self.values_single.extend(values.iter().map(|&v| v as f32));
-        let scale = max_abs_diagonal(pattern, values) as f32;
-        numeric_ldlt(
-            symbolic,
-            &mut self.factor_single,
-            SparseColMatRef::new(pattern.as_ref(), &self.values_single),
-            signs,
-            (1e-10 * scale, 1e-13 * scale),
-            self.par,
-        )?;
-        self.precision = Precision::Single;
-        self.timings.single_factorisations += 1;
+        let scale = max_abs_diagonal(pattern, values);
+        let (delta, epsilon) = (1e-10 * scale, 1e-13 * scale);
+        match precision {
+            Precision::Double => {
+                let a = SparseColMatRef::new(pattern.as_ref(), values);
+                numeric_ldlt(
+                    symbolic,
+                    &mut self.factor,
+                    a,
+                    signs,
+                    (delta, epsilon),
+                    self.par,
+                )?;
+                self.timings.factorisations += 1;
+            }
+            Precision::Single => {
+                self.factor_single.resize(symbolic.len_val(), 0.0);
+                self.values_single.clear();
+                self.values_single.extend(values.iter().map(|&v| v as f32));
+                let a = SparseColMatRef::new(pattern.as_ref(), &self.values_single[..]);
+                let regularization = (delta as f32, epsilon as f32);
+                numeric_ldlt(
+                    symbolic,
+                    &mut self.factor_single,
+                    a,
+                    signs,
+                    regularization,
+                    self.par,
+                )?;
+                self.timings.single_factorisations += 1;
+            }
+        }
+        self.precision = precision;
         self.timings.numeric = start.elapsed();
         self.timings.numeric_total += self.timings.numeric;
         Ok(())

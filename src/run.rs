@@ -239,6 +239,10 @@ impl Simulation {
         summary.krylov_solves = statistics.krylov_solves;
         summary.krylov_iterations = statistics.krylov_iterations;
         summary.lu_solves = statistics.lu_solves;
+        summary.factorisations = statistics.factorisations + statistics.single_factorisations;
+        summary.single_factorisations = statistics.single_factorisations;
+        summary.refinement_steps = statistics.refinement_steps;
+        summary.mixed_precision_fallbacks = statistics.mixed_precision_fallbacks;
         summary.wall_time = start.elapsed().as_secs_f64();
         match result {
             Ok(displacement) => {

@@ -96,16 +96,20 @@ pub struct ElementOutput {
     pub stiffness: Vec<f64>,
 }
 
+/// Most nodes of an element (Hex8): the size of the kernel's scratch on
+/// the stack.
+pub const MAX_NODES: usize = 8;
+
 /// Internal force and (if `with_tangent`) tangent stiffness of one element.
-/// `geometry` comes from [`reference_geometry`].
+/// `geometry` comes from [`reference_geometry`]. Allocates the two output
+/// vectors; [`internal_force_and_tangent_into`] writes into the caller's.
 pub fn internal_force_and_tangent(
     geometry: &[PointGeometry],
     displacements: &[[f64; 3]],
     material: &dyn Material,
     with_tangent: bool,
 ) -> Result<ElementOutput, KernelFailure> {
-    let n = displacements.len();
-    let dofs = 3 * n;
+    let dofs = 3 * displacements.len();
     let mut out = ElementOutput {
         force: vec![0.0; dofs],
         stiffness: if with_tangent {
@@ -114,8 +118,32 @@ pub fn internal_force_and_tangent(
             Vec::new()
         },
     };
+    let stiffness = with_tangent.then_some(&mut out.stiffness[..]);
+    internal_force_and_tangent_into(geometry, displacements, material, &mut out.force, stiffness)?;
+    Ok(out)
+}
+
+/// [`internal_force_and_tangent`] into `force` (length `3n`) and, if
+/// given, `stiffness` (`3n × 3n`, row-major), both overwritten, without a
+/// heap allocation: the strain operators `B_a` of the at most
+/// [`MAX_NODES`] nodes live in a fixed-size array on the stack.
+pub fn internal_force_and_tangent_into(
+    geometry: &[PointGeometry],
+    displacements: &[[f64; 3]],
+    material: &dyn Material,
+    force: &mut [f64],
+    mut stiffness: Option<&mut [f64]>,
+) -> Result<(), KernelFailure> {
+    let n = displacements.len();
+    let dofs = 3 * n;
+    assert!(n <= MAX_NODES, "an element of {n} nodes");
+    force.iter_mut().for_each(|v| *v = 0.0);
+    if let Some(k) = stiffness.as_deref_mut() {
+        k.iter_mut().for_each(|v| *v = 0.0);
+    }
     let small = material.kinematics() == Kinematics::SmallStrain;
-    let mut b = vec![nalgebra::Matrix6x3::zeros(); n];
+    let mut scratch = [nalgebra::Matrix6x3::zeros(); MAX_NODES];
+    let b = &mut scratch[..n];
     for (q, p) in geometry.iter().enumerate() {
         let f = deformation_gradient(&p.gradients, displacements);
         let det_f = f.determinant();
@@ -133,12 +161,12 @@ pub fn internal_force_and_tangent(
         for a in 0..n {
             let fa = pk1 * p.gradients[a] * p.dv;
             for i in 0..3 {
-                out.force[3 * a + i] += fa[i];
+                force[3 * a + i] += fa[i];
             }
         }
-        if !with_tangent {
+        let Some(k) = stiffness.as_deref_mut() else {
             continue;
-        }
+        };
         for (b_a, g_a) in b.iter_mut().zip(&p.gradients) {
             *b_a = strain_operator(&kin, g_a);
         }
@@ -160,16 +188,16 @@ pub fn internal_force_and_tangent(
                         if i == j {
                             v += geo;
                         }
-                        out.stiffness[(3 * a + i) * dofs + 3 * bb + j] += v;
+                        k[(3 * a + i) * dofs + 3 * bb + j] += v;
                         if bb != a {
-                            out.stiffness[(3 * bb + j) * dofs + 3 * a + i] += v;
+                            k[(3 * bb + j) * dofs + 3 * a + i] += v;
                         }
                     }
                 }
             }
         }
     }
-    Ok(out)
+    Ok(())
 }
 
 /// Cauchy stress `σ = J⁻¹ F S Fᵀ` averaged over the element's quadrature
@@ -194,4 +222,115 @@ pub fn element_cauchy_stress(
         vol += p.dv;
     }
     sum / vol
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::material::{LinearElastic, NeoHookean};
+
+    /// A distorted element of `kind` and a displacement of a few percent.
+    fn element(kind: ElementKind) -> (Vec<PointGeometry>, Vec<[f64; 3]>) {
+        let corners: Vec<[f64; 3]> = match kind {
+            ElementKind::Tet4 => vec![[0.0; 3], [1.0, 0.1, 0.0], [0.2, 0.9, 0.1], [0.1, 0.2, 1.1]],
+            ElementKind::Hex8 => (0..8)
+                .map(|a| {
+                    let (x, y, z) = ((a & 1) ^ (a >> 1 & 1), a >> 1 & 1, a >> 2);
+                    [
+                        x as f64 + 0.05 * a as f64,
+                        y as f64 * 0.9,
+                        z as f64 * 1.1 + 0.02 * x as f64,
+                    ]
+                })
+                .collect(),
+        };
+        let u = (0..corners.len())
+            .map(|a| {
+                [
+                    0.03 * (a as f64).sin(),
+                    -0.02 * (a as f64 * 0.7).cos(),
+                    0.04 * (a as f64 * 1.3).sin(),
+                ]
+            })
+            .collect();
+        (reference_geometry(kind, &corners).unwrap(), u)
+    }
+
+    /// The fixed-size kernel (no heap allocation) against the formula
+    /// evaluated densely: `f = Σ_q P Gₐ dV`, `K = Σ_q (Bᵀ 𝔻 B + (Gₐ·S G_b) I) dV`
+    /// with the full `6 × 3n` operator `B` (nalgebra's dynamic matrices, no
+    /// symmetric half), to 1e-13 relative, for Tet4 and Hex8, small-strain
+    /// and finite-strain materials; and the allocating wrapper gives the
+    /// same numbers.
+    #[test]
+    fn fixed_size_kernel_equals_the_dense_formula() {
+        let materials: [Box<dyn Material>; 2] = [
+            Box::new(LinearElastic::new(1000.0, 0.3, "m").unwrap()),
+            Box::new(NeoHookean::new(100.0, 0.45, "m").unwrap()),
+        ];
+        for kind in [ElementKind::Tet4, ElementKind::Hex8] {
+            let (geometry, u) = element(kind);
+            let n = u.len();
+            for material in &materials {
+                let small = material.kinematics() == Kinematics::SmallStrain;
+                let mut force = vec![1.0; 3 * n];
+                let mut k = vec![1.0; 9 * n * n];
+                internal_force_and_tangent_into(
+                    &geometry,
+                    &u,
+                    material.as_ref(),
+                    &mut force,
+                    Some(&mut k),
+                )
+                .unwrap();
+                let mut f_ref = nalgebra::DVector::<f64>::zeros(3 * n);
+                let mut k_ref = nalgebra::DMatrix::<f64>::zeros(3 * n, 3 * n);
+                for p in &geometry {
+                    let f = deformation_gradient(&p.gradients, &u);
+                    let (s, d) = material.stress_and_tangent(&f);
+                    let kin = if small { Mat3::identity() } else { f };
+                    let mut b = nalgebra::DMatrix::<f64>::zeros(6, 3 * n);
+                    for (a, g) in p.gradients.iter().enumerate() {
+                        b.view_mut((0, 3 * a), (6, 3))
+                            .copy_from(&strain_operator(&kin, g));
+                        let fa = kin * s * g * p.dv;
+                        for i in 0..3 {
+                            f_ref[3 * a + i] += fa[i];
+                        }
+                    }
+                    let d = nalgebra::DMatrix::from_iterator(6, 6, d.iter().copied());
+                    k_ref += b.transpose() * d * &b * p.dv;
+                    if !small {
+                        for (a, ga) in p.gradients.iter().enumerate() {
+                            for (c, gc) in p.gradients.iter().enumerate() {
+                                let geo = ga.dot(&(s * gc)) * p.dv;
+                                for i in 0..3 {
+                                    k_ref[(3 * a + i, 3 * c + i)] += geo;
+                                }
+                            }
+                        }
+                    }
+                }
+                let f_scale = f_ref.amax();
+                let k_scale = k_ref.amax();
+                assert!(f_scale > 0.0 && k_scale > 0.0);
+                for r in 0..3 * n {
+                    assert!(
+                        (force[r] - f_ref[r]).abs() <= 1e-13 * f_scale,
+                        "{kind:?} f[{r}]"
+                    );
+                    for c in 0..3 * n {
+                        let v = k[r * 3 * n + c];
+                        assert!(
+                            (v - k_ref[(r, c)]).abs() <= 1e-13 * k_scale,
+                            "{kind:?} K[{r},{c}]"
+                        );
+                    }
+                }
+                let wrapped =
+                    internal_force_and_tangent(&geometry, &u, material.as_ref(), true).unwrap();
+                assert_eq!((wrapped.force, wrapped.stiffness), (force, k));
+            }
+        }
+    }
 }

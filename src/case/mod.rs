@@ -635,6 +635,7 @@ impl Case {
             easy_iterations: sv.easy_iterations.unwrap_or(d.easy_iterations),
             nonsymmetric: sv.nonsymmetric.unwrap_or(d.nonsymmetric),
             linear: sv.linear.unwrap_or(d.linear),
+            predictor: sv.predictor.unwrap_or(d.predictor),
         };
         for (name, v) in [
             ("residual_tolerance", settings.residual_tolerance),

@@ -351,8 +351,11 @@ pub struct SolverSpec {
     /// `lu`.
     pub nonsymmetric: Option<crate::problem::NonsymmetricSolver>,
     /// The linear solver: `auto` (default: LDLᵀ for a symmetric tangent,
-    /// `nonsymmetric` for the others), `ldlt`, `gmres` or `lu`.
+    /// `nonsymmetric` for the others), `ldlt`, `mixed`, `gmres` or `lu`.
     pub linear: Option<crate::problem::LinearMethod>,
+    /// Where Newton starts an increment: `none` (default, the converged
+    /// state) or `secant` (extrapolated from the last increment).
+    pub predictor: Option<crate::solve::settings::Predictor>,
 }
 
 /// `[output]`

@@ -123,6 +123,14 @@ pub struct Summary {
     pub krylov_solves: usize,
     pub krylov_iterations: usize,
     pub lu_solves: usize,
+    /// Numeric LDLᵀ factorisations (f64 and f32), of them in f32 (mixed
+    /// precision), the iterative refinement steps after their solves, and
+    /// the f32 factorisations whose refinement stalled and that were
+    /// replaced by an f64 one.
+    pub factorisations: usize,
+    pub single_factorisations: usize,
+    pub refinement_steps: usize,
+    pub mixed_precision_fallbacks: usize,
     /// Per load step, totals over its increments.
     pub steps: Vec<StepSummary>,
     pub increments: Vec<IncrementSummary>,
@@ -174,6 +182,10 @@ impl Summary {
             krylov_solves: 0,
             krylov_iterations: 0,
             lu_solves: 0,
+            factorisations: 0,
+            single_factorisations: 0,
+            refinement_steps: 0,
+            mixed_precision_fallbacks: 0,
             steps: Vec::new(),
             increments: Vec::new(),
         }

@@ -3,12 +3,18 @@
 //! tangent directly and a nonsymmetric one as `[solver] nonsymmetric` says.
 //! A new backend is one file implementing [`LinearSolver`] and one arm here.
 
-use super::direct::DirectLdlt;
+use super::direct::{DirectLdlt, MixedPrecision};
 use super::krylov::PreconditionedGmres;
 use super::linear::Ordering;
 use super::linear_solver::{LinearSolver, LinearSystem, SolverStatistics};
 use super::lu::SparseLu;
 use super::settings::{LinearMethod, NonsymmetricSolver, SolverSettings};
+
+/// The size from which `auto` factorises a symmetric tangent in f32 and
+/// refines in f64: below it the factorisation is not the larger part of a
+/// Newton iteration and the refinement steps cost what the f32 factor
+/// saves (measured in BENCHMARKS.md, "Mixed precision").
+pub const MIXED_PRECISION_DOFS: usize = 20_000;
 
 /// The linear solver `settings` ask for, with fill-reducing `ordering` and
 /// `threads` threads (0 = rayon's pool).
@@ -20,11 +26,15 @@ pub fn linear_solver(
     match settings.linear {
         LinearMethod::Auto => Box::new(Auto {
             nonsymmetric: settings.nonsymmetric,
-            direct: DirectLdlt::new(ordering.clone(), threads),
+            direct: DirectLdlt::new(ordering.clone(), threads)
+                .with_mixed_precision(MixedPrecision::FromDofs(MIXED_PRECISION_DOFS)),
             gmres: PreconditionedGmres::new(ordering, threads),
             lu: SparseLu::default(),
         }),
         LinearMethod::Ldlt => Box::new(DirectLdlt::new(ordering, threads)),
+        LinearMethod::Mixed => Box::new(
+            DirectLdlt::new(ordering, threads).with_mixed_precision(MixedPrecision::Always),
+        ),
         LinearMethod::Gmres => Box::new(PreconditionedGmres::new(ordering, threads)),
         LinearMethod::Lu => Box::new(SparseLu::default()),
     }

@@ -1,6 +1,7 @@
 //! The direct solver: the LDLᵀ of `K` (faer's supernodal factorisation
 //! without pivoting, [`SparseLdlt`]) with iterative refinement, and the
-//! sparse LU with partial pivoting where the LDLᵀ breaks down.
+//! sparse LU with partial pivoting where the LDLᵀ breaks down; above a
+//! size, the LDLᵀ in f32 refined against the f64 matrix (mixed precision).
 
 use super::linear::{Ordering, SparseLdlt};
 use super::linear_solver::{LinearSolver, LinearSystem, SolverStatistics};
@@ -14,14 +15,43 @@ const REFINEMENTS: usize = 3;
 /// recovers).
 const LDLT_RESIDUAL: f64 = 1e-8;
 
+/// Refinement steps at most on an f32 factor.
+const MIXED_REFINEMENTS: usize = 10;
+
+/// Largest relative residual the refined f32 solve may leave (a stalled
+/// refinement above it factorises again in f64): within a few units of
+/// the f64 solve's own floor, so the Newton iterates agree with the f64
+/// path to round-off.
+const MIXED_RESIDUAL: f64 = 1e-12;
+
+/// When the LDLᵀ factorises in f32 and refines in f64.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum MixedPrecision {
+    /// Always in f64.
+    Never,
+    /// Always in f32 first.
+    Always,
+    /// In f32 first for systems of at least this many unknowns.
+    FromDofs(usize),
+}
+
 /// `K = L D Lᵀ`, refined; the LU when the factorisation fails or leaves a
 /// relative residual above 1e-8. An indefinite tangent that the LDLᵀ
 /// without pivoting cannot factorise (the curvature term `f ∇²g` of
 /// deformable contact after a large first step, examples/two-spheres) is
 /// solved by the LU with partial pivoting, which also tells a singular one.
+///
+/// With mixed precision, `K` is first factorised in f32 and the solve
+/// refined against the f64 `K` (`x += (L̃D̃L̃ᵀ)⁻¹ (b − K x)`, residuals in
+/// f64) until `‖b − K x‖ / ‖b‖ < 1e-13`; when a step stops halving the
+/// residual above 1e-12 (an indefinite or ill-conditioned tangent, where the
+/// f32 factor's error `κ ε₃₂` is not small), the same `K` is factorised
+/// again in f64 (a fallback, counted) and solved as above.
 pub struct DirectLdlt {
     ldlt: SparseLdlt,
     lu: SparseLu,
+    mixed: MixedPrecision,
+    mixed_fallbacks: usize,
 }
 
 impl DirectLdlt {
@@ -30,7 +60,27 @@ impl DirectLdlt {
         DirectLdlt {
             ldlt: SparseLdlt::new(ordering, threads),
             lu: SparseLu::default(),
+            mixed: MixedPrecision::Never,
+            mixed_fallbacks: 0,
         }
+    }
+
+    /// Factorise in f32 first as `mixed` says.
+    pub fn with_mixed_precision(mut self, mixed: MixedPrecision) -> Self {
+        self.mixed = mixed;
+        self
+    }
+
+    /// Solve `K x = rhs` with the f32 LDLᵀ of `K` refined in f64; `false`
+    /// (and `x` undefined) when the factorisation failed or the refinement
+    /// stalled above [`MIXED_RESIDUAL`].
+    fn solve_mixed(&mut self, system: &LinearSystem<'_>, rhs: &[f64], x: &mut [f64]) -> bool {
+        let (pattern, k) = (system.pattern, system.matrix);
+        x.copy_from_slice(rhs);
+        self.ldlt
+            .factorize_single(pattern, k, system.pivot_signs)
+            .and_then(|()| self.ldlt.refine(pattern, k, x, MIXED_REFINEMENTS, true))
+            .is_ok_and(|relative| relative <= MIXED_RESIDUAL)
     }
 }
 
@@ -45,6 +95,17 @@ impl LinearSolver for DirectLdlt {
         rhs: &[f64],
         x: &mut [f64],
     ) -> Result<(), String> {
+        let mixed = match self.mixed {
+            MixedPrecision::Never => false,
+            MixedPrecision::Always => true,
+            MixedPrecision::FromDofs(n) => rhs.len() >= n,
+        };
+        if mixed {
+            if self.solve_mixed(system, rhs, x) {
+                return Ok(());
+            }
+            self.mixed_fallbacks += 1;
+        }
         let (pattern, k) = (system.pattern, system.matrix);
         x.copy_from_slice(rhs);
         let direct = self
@@ -65,6 +126,61 @@ impl LinearSolver for DirectLdlt {
     }
 
     fn statistics(&self) -> SolverStatistics {
-        SolverStatistics::of_ldlt(&self.ldlt) + self.lu.statistics()
+        SolverStatistics {
+            mixed_precision_fallbacks: self.mixed_fallbacks,
+            ..SolverStatistics::of_ldlt(&self.ldlt)
+        } + self.lu.statistics()
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::assembly::pattern::SparsityPattern;
+    use crate::solve::linear::multiply;
+
+    /// `[[1, 1], [1, 1 − ε]]`, ε = 1e-9: indefinite (pivots 1 and −ε).
+    /// Rounded to f32, `1 − ε` is 1: the f32 LDLᵀ breaks down on a zero second
+    /// pivot, and the
+    /// solver factorises again in f64 (pivot −ε to 7 digits), which solves
+    /// to a relative residual below 1e-13 after refinement. A
+    /// well-conditioned SPD one refines on its f32 factor without a
+    /// fallback.
+    #[test]
+    fn an_f32_factor_that_cannot_be_refined_falls_back_to_f64() {
+        let nodes = [0usize];
+        let blocks = SparsityPattern::from_elements(1, std::iter::once(&nodes[..]));
+        // 3 × 3: the 2 × 2 above and an uncoupled 1 (column-major)
+        let eps = 1e-9;
+        let indefinite = [1.0, 1.0, 0.0, 1.0, 1.0 - eps, 0.0, 0.0, 0.0, 1.0];
+        let spd = [4.0, 1.0, 0.0, 1.0, 3.0, 0.0, 0.0, 0.0, 2.0];
+        let mut solver =
+            DirectLdlt::new(Ordering::Amd, 1).with_mixed_precision(MixedPrecision::Always);
+        let rhs = [1.0, 2.0, 3.0];
+        for (k, fallbacks) in [(&spd, 0), (&indefinite, 1)] {
+            let system = LinearSystem {
+                pattern: blocks.symbolic(),
+                matrix: k,
+                symmetric_neighbour: None,
+                pivot_signs: None,
+            };
+            let mut x = [0.0; 3];
+            solver.solve(&system, &rhs, &mut x).unwrap();
+            let mut kx = [0.0; 3];
+            multiply(blocks.symbolic(), k, &x, &mut kx);
+            let residual = kx
+                .iter()
+                .zip(&rhs)
+                .map(|(a, b)| (a - b).powi(2))
+                .sum::<f64>()
+                .sqrt();
+            assert!(residual < 1e-12 * 3.0f64.sqrt(), "{residual:e}");
+            let s = solver.statistics();
+            assert_eq!(s.mixed_precision_fallbacks, fallbacks);
+            // the f32 factorisation of the indefinite one breaks down (zero
+            // pivot) and is not counted
+            assert_eq!(s.single_factorisations, 1);
+            assert_eq!((s.factorisations, s.lu_solves), (fallbacks, 0));
+        }
     }
 }

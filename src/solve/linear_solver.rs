@@ -27,7 +27,8 @@ pub struct LinearSystem<'a> {
 
 /// Counts and times of a solver since it was made (summary.json's
 /// `symbolic_analyses`, `phase_times`, `factor_nnz`, `krylov_*`,
-/// `lu_solves`).
+/// `lu_solves`, `factorisations`, `single_factorisations`,
+/// `refinement_steps`, `mixed_precision_fallbacks`).
 #[derive(Clone, Copy, Debug, Default, PartialEq)]
 pub struct SolverStatistics {
     /// Symbolic analyses of the LDLᵀ.
@@ -39,6 +40,14 @@ pub struct SolverStatistics {
     pub solve: Duration,
     /// Stored entries of the LDLᵀ factor.
     pub factor_nnz: usize,
+    /// Numeric LDLᵀ factorisations in f64 and in f32 (mixed precision).
+    pub factorisations: usize,
+    pub single_factorisations: usize,
+    /// Iterative refinement steps after LDLᵀ solves.
+    pub refinement_steps: usize,
+    /// f32 factorisations whose refinement stalled (or that failed), solved
+    /// again with an f64 factorisation.
+    pub mixed_precision_fallbacks: usize,
     /// GMRES solves and their iterations in total.
     pub krylov_solves: usize,
     pub krylov_iterations: usize,
@@ -56,6 +65,9 @@ impl SolverStatistics {
             factorisation: t.numeric_total,
             solve: t.solve_total,
             factor_nnz: ldlt.factor_nnz(),
+            factorisations: t.factorisations,
+            single_factorisations: t.single_factorisations,
+            refinement_steps: t.refinement_steps,
             ..Default::default()
         }
     }
@@ -70,6 +82,10 @@ impl std::ops::Add for SolverStatistics {
             factorisation: self.factorisation + o.factorisation,
             solve: self.solve + o.solve,
             factor_nnz: self.factor_nnz + o.factor_nnz,
+            factorisations: self.factorisations + o.factorisations,
+            single_factorisations: self.single_factorisations + o.single_factorisations,
+            refinement_steps: self.refinement_steps + o.refinement_steps,
+            mixed_precision_fallbacks: self.mixed_precision_fallbacks + o.mixed_precision_fallbacks,
             krylov_solves: self.krylov_solves + o.krylov_solves,
             krylov_iterations: self.krylov_iterations + o.krylov_iterations,
             lu_solves: self.lu_solves + o.lu_solves,

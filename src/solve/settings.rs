@@ -35,6 +35,25 @@ pub struct SolverSettings {
     pub nonsymmetric: NonsymmetricSolver,
     /// The linear solver ([`crate::solve::linear_solver`]).
     pub linear: LinearMethod,
+    /// The first Newton iterate of an increment (`[solver] predictor`).
+    pub predictor: Predictor,
+}
+
+/// Where Newton starts an increment (`[solver] predictor`).
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, serde::Deserialize)]
+#[serde(rename_all = "lowercase")]
+pub enum Predictor {
+    /// At the converged state of the last increment (the prescribed values'
+    /// jump is linearised into the first correction).
+    #[default]
+    None,
+    /// At `u + (Δt / Δt_last) Δu_last`: the last converged increment,
+    /// scaled by the ratio of the increments (a secant extrapolation; the
+    /// history carried along it). Fewer Newton iterations on smoothly
+    /// loaded paths (BENCHMARKS.md, "Secant predictor"), the same converged
+    /// states; off by default because it changes Newton's path (one test's
+    /// quadratic-rate constant rises from below 100 to 520).
+    Secant,
 }
 
 /// How a nonsymmetric tangent is solved.
@@ -54,13 +73,19 @@ pub enum NonsymmetricSolver {
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq, serde::Deserialize)]
 #[serde(rename_all = "lowercase")]
 pub enum LinearMethod {
-    /// A symmetric tangent by the direct LDLᵀ, a nonsymmetric one as
-    /// `[solver] nonsymmetric` says (GMRES or the LU).
+    /// A symmetric tangent by the direct LDLᵀ (in mixed precision from
+    /// [`crate::solve::backend::MIXED_PRECISION_DOFS`] unknowns on), a
+    /// nonsymmetric one as `[solver] nonsymmetric` says (GMRES or the LU).
     #[default]
     Auto,
-    /// The direct LDLᵀ of the tangent with iterative refinement; the sparse
-    /// LU when it breaks down or leaves a relative residual above 1e-8.
+    /// The direct LDLᵀ of the tangent in f64 with iterative refinement; the
+    /// sparse LU when it breaks down or leaves a relative residual above
+    /// 1e-8.
     Ldlt,
+    /// The direct LDLᵀ of the tangent in f32, refined against the f64
+    /// tangent to a relative residual of 1e-13; `ldlt` when the refinement
+    /// stalls (mixed precision, what `auto` does on large systems).
+    Mixed,
     /// GMRES preconditioned by the LDLᵀ of the tangent's symmetric
     /// neighbour (of the tangent itself when it is symmetric); the sparse
     /// LU when it does not converge.
@@ -81,6 +106,7 @@ impl Default for SolverSettings {
             easy_iterations: 5,
             nonsymmetric: NonsymmetricSolver::Gmres,
             linear: LinearMethod::Auto,
+            predictor: Predictor::None,
         }
     }
 }

@@ -9,6 +9,7 @@ use super::failure::IncrementFailure;
 use super::linear_solver::LinearSolver;
 use super::newton::{IterationRecord, Newton, NewtonOutcome};
 use super::nonlinear::{Evaluation, NonlinearProblem};
+use super::settings::Predictor;
 use crate::{Error, Result};
 use std::path::PathBuf;
 
@@ -79,6 +80,10 @@ pub fn run_steps<P: NonlinearProblem>(
     // largest nodal displacement of the last converged increment, and its length
     let mut last_motion: Option<(f64, f64)> = None;
     let steps = problem.steps().to_vec();
+    let mut start = Vec::with_capacity(u.len());
+    // the change of the unknowns over the last converged increment, and its
+    // length (the predictor's secant)
+    let mut secant: Option<(Vec<f64>, f64)> = None;
     for (s, step) in steps.iter().enumerate() {
         let mut dt = step.initial_increment.min(step.end_time - t);
         let mut cuts = 0;
@@ -118,8 +123,20 @@ pub fn run_steps<P: NonlinearProblem>(
                 force_scale,
                 on_iteration: Some(&mut tell),
             };
+            let extrapolate = secant
+                .as_ref()
+                .filter(|_| problem.settings().predictor == Predictor::Secant);
+            predict(
+                problem,
+                t_new,
+                &u,
+                extrapolate,
+                t_new - t,
+                &mut trial_state,
+                &mut start,
+            );
             let (outcome, iterations) =
-                solve_with_augmentation(&mut newton, &u, &mut trial_state, &mut trial);
+                solve_with_augmentation(&mut newton, &start, &u, &mut trial_state, &mut trial);
             let outcome = outcome.and_then(|evaluation| {
                 if problem.couplings_hold(&trial, &trial_state) {
                     Ok(evaluation)
@@ -140,6 +157,8 @@ pub fn run_steps<P: NonlinearProblem>(
                         })
                         .fold(0.0f64, f64::max);
                     last_motion = Some((moved, t_new - t));
+                    let change = trial.iter().zip(&u).map(|(a, b)| a - b).collect();
+                    secant = Some((change, t_new - t));
                     std::mem::swap(&mut u, &mut trial);
                     problem.commit(t_new, &u, &mut trial_state);
                     state = trial_state;
@@ -192,19 +211,48 @@ fn cancelled(t: f64) -> Error {
     }
 }
 
+/// The secant predictor ([`Predictor::Secant`]): the first Newton
+/// iterate of an increment of length `dt` from the converged `u` is
+/// `u + (dt / Δt) Δu`, the last converged increment `Δu` (length `Δt`)
+/// scaled by the ratio of the increments (the history `state` carried
+/// along it); `u` itself at the first increment or without `secant`
+/// ([`Predictor::None`]). Newton then starts near the solution of a
+/// smoothly loaded path; the converged state is the same (only Newton's
+/// path changes).
+fn predict<P: NonlinearProblem>(
+    problem: &P,
+    t: f64,
+    u: &[f64],
+    secant: Option<&(Vec<f64>, f64)>,
+    dt: f64,
+    state: &mut P::State,
+    start: &mut Vec<f64>,
+) {
+    start.clear();
+    start.extend_from_slice(u);
+    if let Some((change, last_dt)) = secant {
+        let ratio = dt / last_dt;
+        let step: Vec<f64> = change.iter().map(|c| ratio * c).collect();
+        problem.advance_state(t, u, &step, state);
+        start.iter_mut().zip(&step).for_each(|(x, d)| *x += d);
+    }
+}
+
 /// Most outer (Uzawa) augmentations of one increment.
 const MAX_AUGMENTATIONS: usize = 200;
 
-/// Newton for one increment from `u_start`; for Uzawa interfaces, followed
+/// Newton for one increment from the predicted `start` (the increment
+/// starting at the converged `u_start`); for Uzawa interfaces, followed
 /// by multiplier updates and new Newton solves at the same time until the
 /// largest penetration is within tolerance (formulation note §2.1 item 2).
 fn solve_with_augmentation<P: NonlinearProblem>(
     newton: &mut Newton<'_, P>,
+    start: &[f64],
     u_start: &[f64],
     state: &mut P::State,
     u: &mut Vec<f64>,
 ) -> NewtonOutcome<P::Report> {
-    let (mut outcome, mut records) = newton.solve(u_start, u_start, state, u);
+    let (mut outcome, mut records) = newton.solve(start, u_start, state, u);
     let mut augmentations = 0;
     while outcome.is_ok() && newton.problem.augment(newton.t, u, state) {
         augmentations += 1;
@@ -371,5 +419,63 @@ mod tests {
         for (_, r) in &residuals.0 {
             assert!(super::super::gmres::norm(r) < 1e-10, "{r:?}");
         }
+    }
+
+    /// Newton iterations of every converged increment.
+    #[derive(Default)]
+    struct Iterations(Vec<usize>);
+
+    impl StepObserver<Springs> for Iterations {
+        fn on_converged(
+            &mut self,
+            _p: &Springs,
+            record: &IncrementRecord,
+            _u: &[f64],
+            _evaluation: &Evaluation<()>,
+            _state: &(),
+        ) -> Result<()> {
+            self.0.push(record.iterations);
+            Ok(())
+        }
+    }
+
+    /// The secant predictor changes Newton's path, not the answer: the
+    /// springs `k x + c x³ = t f` in ten increments end at the same roots
+    /// (1e-12) in fewer Newton iterations than from the converged state.
+    #[test]
+    fn the_secant_predictor_saves_iterations_and_keeps_the_solution() {
+        let nodes = [0usize];
+        let solve = |predictor: Predictor| {
+            let mut springs = Springs {
+                settings: SolverSettings {
+                    residual_tolerance: 1e-12,
+                    predictor,
+                    ..SolverSettings::default()
+                },
+                steps: vec![Step {
+                    name: "load".into(),
+                    end_time: 1.0,
+                    initial_increment: 0.1,
+                    min_increment: 1e-3,
+                    max_increment: 0.1,
+                }],
+                pattern: SparsityPattern::from_elements(1, std::iter::once(&nodes[..])),
+                k: 2.0,
+                c: 5.0,
+                f: [1.0, -3.0, 40.0],
+            };
+            let mut solver = linear_solver(&springs.settings, Ordering::Amd, 1);
+            let mut iterations = Iterations::default();
+            let x = run_steps(&mut springs, &mut *solver, &mut iterations, PathBuf::new()).unwrap();
+            (x, iterations.0)
+        };
+        let (x0, plain) = solve(Predictor::None);
+        let (x1, secant) = solve(Predictor::Secant);
+        for (a, b) in x0.iter().zip(&x1) {
+            assert!((a - b).abs() < 1e-12, "{a} vs {b}");
+        }
+        assert_eq!((plain.len(), secant.len()), (10, 10));
+        let (p, q): (usize, usize) = (plain.iter().sum(), secant.iter().sum());
+        assert!(q < p, "secant {secant:?} vs {plain:?}");
     }
 }

@@ -1,0 +1,121 @@
+//! Mixed precision (`[solver] linear = "mixed"`, and `auto` on large
+//! systems): the LDLᵀ factorised in f32 and refined against the f64
+//! tangent gives the f64 solution, and falls back to an f64 factorisation by
+//! itself where the refinement stalls.
+
+use signorini::run::{run, RunOptions, RunOutcome};
+use std::path::Path;
+
+/// `examples/<example>/case.toml` with its mesh replaced by `mesh` (a path
+/// from the crate's root) and `[solver] linear = method`, run in a
+/// temporary folder.
+fn run_with(example: &str, mesh: Option<(&str, &str)>, method: &str) -> RunOutcome {
+    let root = Path::new(env!("CARGO_MANIFEST_DIR"));
+    let folder = root.join("examples").join(example);
+    let mut text = std::fs::read_to_string(folder.join("case.toml")).unwrap();
+    if let Some((old, new)) = mesh {
+        assert!(text.contains(old));
+        text = text.replace(
+            old,
+            &format!("file = {:?}", root.join(new).display().to_string()),
+        );
+    }
+    assert!(!text.contains("[solver]"));
+    text.push_str(&format!("\n[solver]\nlinear = \"{method}\"\n"));
+    let dir = tempfile::tempdir().unwrap();
+    // the example's own mesh, by its relative path
+    for entry in std::fs::read_dir(&folder).unwrap() {
+        let path = entry.unwrap().path();
+        if path.extension().is_some_and(|e| e == "msh") {
+            std::fs::copy(&path, dir.path().join(path.file_name().unwrap())).unwrap();
+        }
+    }
+    let case = dir.path().join("case.toml");
+    std::fs::write(&case, text).unwrap();
+    run(
+        &case,
+        &RunOptions {
+            output: Some(dir.path().join("results")),
+            threads: None,
+            cancel: None,
+        },
+    )
+    .unwrap_or_else(|e| panic!("{example}, linear = {method}: {e}"))
+}
+
+fn max_abs(u: &[f64]) -> f64 {
+    u.iter().fold(0.0, |m, v| m.max(v.abs()))
+}
+
+/// The Hertz hemisphere (examples/hertz's case on the coarse
+/// tests/data/hemisphere_coarse.msh, 2.4 k dofs): a saddle-point system
+/// (the Rockafellar multipliers) factorised in f32 every Newton iteration,
+/// refined in f64, gives the f64 LDLᵀ's displacements and contact force to
+/// 1e-10 relative, in the same Newton iterations, with no fallback and
+/// between 1 and 3 refinement steps per factorisation.
+#[test]
+fn mixed_precision_equals_f64_on_hertz() {
+    let mesh = Some((
+        "file = \"hemisphere.msh\"",
+        "tests/data/hemisphere_coarse.msh",
+    ));
+    let double = run_with("hertz", mesh, "ldlt");
+    let mixed = run_with("hertz", mesh, "mixed");
+    let scale = max_abs(&double.displacement);
+    assert!(scale > 0.01, "{scale}");
+    let difference = double
+        .displacement
+        .iter()
+        .zip(&mixed.displacement)
+        .fold(0.0f64, |m, (a, b)| m.max((a - b).abs()));
+    assert!(difference <= 1e-10 * scale, "{difference:e} of {scale:e}");
+    let force = |o: &RunOutcome| o.summary.increments.last().unwrap().contact["pole"].force[2];
+    let (fd, fm) = (force(&double), force(&mixed));
+    assert!(
+        fd.abs() > 0.0 && (fd - fm).abs() <= 1e-10 * fd.abs(),
+        "{fd} vs {fm}"
+    );
+    let iterations = |o: &RunOutcome| -> Vec<usize> {
+        o.summary.increments.iter().map(|i| i.iterations).collect()
+    };
+    assert_eq!(iterations(&double), iterations(&mixed));
+    let (d, m) = (&double.summary, &mixed.summary);
+    assert_eq!(
+        (d.single_factorisations, d.mixed_precision_fallbacks),
+        (0, 0)
+    );
+    assert_eq!(m.mixed_precision_fallbacks, 0);
+    assert_eq!(m.single_factorisations, m.factorisations);
+    assert_eq!(m.factorisations, d.factorisations);
+    assert!(
+        m.refinement_steps >= m.factorisations && m.refinement_steps <= 3 * m.factorisations,
+        "{} refinement steps for {} factorisations",
+        m.refinement_steps,
+        m.factorisations
+    );
+}
+
+/// examples/ogden-plate (large deformation, an indefinite tangent in its
+/// first Newton iterations, where the LDLᵀ without pivoting breaks down
+/// and the sparse LU solves): the f32 factorisations there fall back to
+/// f64 (counted), and the run ends in the f64 run's state to its Newton
+/// tolerance (1e-8 relative: the two runs' iterates differ from the
+/// first fallback on, at round-off, and stop at different iterations).
+#[test]
+fn mixed_precision_falls_back_on_the_indefinite_ogden_tangent() {
+    let double = run_with("ogden-plate", None, "ldlt");
+    let mixed = run_with("ogden-plate", None, "mixed");
+    let m = &mixed.summary;
+    assert!(m.mixed_precision_fallbacks >= 1, "no fallback");
+    // every fallback ended at the LU (the f64 LDLᵀ breaks down too) as in
+    // the f64 run
+    assert_eq!(m.lu_solves, m.mixed_precision_fallbacks);
+    assert_eq!(double.summary.lu_solves, m.lu_solves);
+    let scale = max_abs(&double.displacement);
+    let difference = double
+        .displacement
+        .iter()
+        .zip(&mixed.displacement)
+        .fold(0.0f64, |m, (a, b)| m.max((a - b).abs()));
+    assert!(difference <= 1e-8 * scale, "{difference:e} of {scale:e}");
+}

@@ -41,6 +41,7 @@ use crate::output::writer::ResultWriter;
 use crate::problem::{ContactState, Problem};
 use crate::solve::backend::linear_solver;
 use crate::solve::failure::IncrementFailure;
+use crate::solve::linear_solver::SolverStatistics;
 use crate::solve::newton::IterationRecord;
 use crate::solve::nonlinear::Evaluation;
 use crate::solve::stepping::{self, run_steps, IncrementRecord};
@@ -171,24 +172,7 @@ impl Simulation {
         observer: &mut (dyn StepObserver + Send),
     ) -> Result<RunOutcome> {
         let start = Instant::now();
-        let mut writer = match &options.output {
-            Some(dir) => Some(
-                ResultWriter::new(
-                    dir,
-                    &self.name,
-                    self.nodal_fields.clone(),
-                    self.cell_fields.clone(),
-                    self.requests.histories.clone(),
-                    self.requests.profiles.clone(),
-                )?
-                .compress(self.compress),
-            ),
-            None => None,
-        };
-        let mut log = match &options.output {
-            Some(dir) => Some(LogWriter::new(dir, &self.name)?),
-            None => None,
-        };
+        let (mut writer, mut log) = self.file_observers(options)?;
         let mut observers = Observers(vec![observer]);
         if let Some(w) = writer.as_mut() {
             observers.0.insert(0, w);
@@ -196,15 +180,7 @@ impl Simulation {
         if let Some(l) = log.as_mut() {
             observers.0.insert(0, l);
         }
-        for line in describe_model(&self.problem) {
-            observers.on_message(&line);
-        }
-        for note in &self.notes {
-            observers.on_message(&format!("note: {note}"));
-        }
-        for line in self.request_lines() {
-            observers.on_message(&line);
-        }
+        self.describe_to(&mut observers);
         let mut recorder = Recorder {
             summary: Summary::start(&self.case_label, &self.problem),
             observers,
@@ -225,48 +201,45 @@ impl Simulation {
             &mut recorder,
             output.clone(),
         );
-        let statistics = solver.statistics();
-        let summary = &mut recorder.summary;
-        summary.symbolic_analyses = statistics.analyses;
-        summary.phase_times = PhaseTimes {
-            assembly: self.problem.timings.assembly(),
-            contact: self.problem.timings.contact(),
-            symbolic: statistics.symbolic.as_secs_f64(),
-            factorisation: statistics.factorisation.as_secs_f64(),
-            solve: statistics.solve.as_secs_f64(),
+        record_totals(
+            &mut recorder.summary,
+            &self.problem,
+            &solver.statistics(),
+            start,
+        );
+        recorder.finish(result, output)
+    }
+
+    /// The result files and the log, when the run has an output folder.
+    fn file_observers(
+        &self,
+        options: &RunOptions,
+    ) -> Result<(Option<ResultWriter>, Option<LogWriter>)> {
+        let Some(dir) = &options.output else {
+            return Ok((None, None));
         };
-        summary.factor_nnz = statistics.factor_nnz;
-        summary.krylov_solves = statistics.krylov_solves;
-        summary.krylov_iterations = statistics.krylov_iterations;
-        summary.lu_solves = statistics.lu_solves;
-        summary.factorisations = statistics.factorisations + statistics.single_factorisations;
-        summary.single_factorisations = statistics.single_factorisations;
-        summary.refinement_steps = statistics.refinement_steps;
-        summary.mixed_precision_fallbacks = statistics.mixed_precision_fallbacks;
-        summary.wall_time = start.elapsed().as_secs_f64();
-        match result {
-            Ok(displacement) => {
-                summary.status = "completed".into();
-                recorder.observers.on_finish(&recorder.summary)?;
-                Ok(RunOutcome {
-                    output_dir: output,
-                    summary: recorder.summary,
-                    displacement,
-                    contact: recorder.contact,
-                })
-            }
-            Err(e) => {
-                summary.status = match e {
-                    Error::Interrupted { .. } => "interrupted",
-                    _ => "failed",
-                }
-                .into();
-                summary.error = Some(e.to_string());
-                // keep what converged; the original error matters more than a
-                // failure to write the failure report
-                let _ = recorder.observers.on_finish(&recorder.summary);
-                Err(e)
-            }
+        let writer = ResultWriter::new(
+            dir,
+            &self.name,
+            self.nodal_fields.clone(),
+            self.cell_fields.clone(),
+            self.requests.histories.clone(),
+            self.requests.profiles.clone(),
+        )?
+        .compress(self.compress);
+        Ok((Some(writer), Some(LogWriter::new(dir, &self.name)?)))
+    }
+
+    /// The model in words, the notes on reading it and what the histories
+    /// and profiles read, for the observers' logs.
+    fn describe_to(&self, observers: &mut Observers) {
+        let notes = self.notes.iter().map(|n| format!("note: {n}"));
+        for line in describe_model(&self.problem)
+            .into_iter()
+            .chain(notes)
+            .chain(self.request_lines())
+        {
+            observers.on_message(&line);
         }
     }
 
@@ -332,6 +305,65 @@ struct Recorder<'a> {
     last: Instant,
     start: Instant,
     contact: ContactState,
+}
+
+impl Recorder<'_> {
+    /// The end of a run: its status in the summary, the observers told,
+    /// the outcome (or the error that ended the run, every converged
+    /// increment kept).
+    fn finish(mut self, result: Result<Vec<f64>>, output: PathBuf) -> Result<RunOutcome> {
+        match result {
+            Ok(displacement) => {
+                self.summary.status = "completed".into();
+                self.observers.on_finish(&self.summary)?;
+                Ok(RunOutcome {
+                    output_dir: output,
+                    summary: self.summary,
+                    displacement,
+                    contact: self.contact,
+                })
+            }
+            Err(e) => {
+                self.summary.status = match e {
+                    Error::Interrupted { .. } => "interrupted",
+                    _ => "failed",
+                }
+                .into();
+                self.summary.error = Some(e.to_string());
+                // keep what converged; the original error matters more than a
+                // failure to write the failure report
+                let _ = self.observers.on_finish(&self.summary);
+                Err(e)
+            }
+        }
+    }
+}
+
+/// The run's totals in the summary: where the time went and what the
+/// linear solver did.
+fn record_totals(
+    summary: &mut Summary,
+    problem: &Problem,
+    statistics: &SolverStatistics,
+    start: Instant,
+) {
+    summary.symbolic_analyses = statistics.analyses;
+    summary.phase_times = PhaseTimes {
+        assembly: problem.timings.assembly(),
+        contact: problem.timings.contact(),
+        symbolic: statistics.symbolic.as_secs_f64(),
+        factorisation: statistics.factorisation.as_secs_f64(),
+        solve: statistics.solve.as_secs_f64(),
+    };
+    summary.factor_nnz = statistics.factor_nnz;
+    summary.krylov_solves = statistics.krylov_solves;
+    summary.krylov_iterations = statistics.krylov_iterations;
+    summary.lu_solves = statistics.lu_solves;
+    summary.factorisations = statistics.factorisations + statistics.single_factorisations;
+    summary.single_factorisations = statistics.single_factorisations;
+    summary.refinement_steps = statistics.refinement_steps;
+    summary.mixed_precision_fallbacks = statistics.mixed_precision_fallbacks;
+    summary.wall_time = start.elapsed().as_secs_f64();
 }
 
 impl stepping::StepObserver<Problem> for Recorder<'_> {

@@ -1,13 +1,17 @@
 //! # signorini — nonlinear 3D contact mechanics by the finite-element method
 //!
-//! The crate reads like the method: [`mesh`] → [`fem`] (shape functions,
-//! quadrature) → [`material`] (hyperelastic laws) → [`assembly`] (element
-//! kernels, parallel assembly into a fixed sparsity pattern) → [`solve`]
-//! (Newton, line search, adaptive load stepping, sparse LDLᵀ) → [`output`]
-//! (VTU/PVD, `summary.json`, convergence plot). [`case`] is the TOML case
-//! file; [`run`] ties it all together. [`contact`] holds the geometric
-//! kernels of contact (obstacles, projection, search, tributary areas), not
-//! yet wired into Newton.
+//! The crate reads like the method, and its imports point one way in this
+//! order (`tests/layering.rs`): [`error`] → [`input`] (bounded reads of
+//! user files) → [`mesh`] (Gmsh and `.inp` readers, sets), [`material`]
+//! (hyperelastic laws) → [`fem`] (shape functions, quadrature) →
+//! [`assembly`] (element kernels, one scatter, parallel assembly into a
+//! fixed sparsity pattern) → [`contact`] (obstacles, search, the node
+//! driver, normal laws, friction, the `ContactSet` life cycle) → [`solve`]
+//! (the `NonlinearProblem` and `LinearSolver` traits, Newton, load
+//! stepping) → [`problem`] (loads, steps; implements `NonlinearProblem`) →
+//! [`output`] (fields by name, observers, VTU/PVD, `summary.json`, log,
+//! plots) → [`case`] (the TOML case file) → [`run`] (the library's
+//! `Simulation`).
 //!
 //! ## Conventions (fixed once, used everywhere)
 //! - Total Lagrangian: reference position `X`, displacement `u`, current

@@ -15,7 +15,8 @@
 //!   [`contact_fields`] builds its contact fields.
 //! - [`observer`]: [`StepObserver`], what a run tells as it goes;
 //!   [`writer`]: the observer that writes all of the above; [`log`]: the
-//!   observer that writes `NAME.log`; [`describe`]: the model in words.
+//!   observer that writes `NAME.log`; [`describe`]: the model in words;
+//!   [`manifest`]: `NAME.manifest`, the files of a run, removed by the next.
 //!
 //! Every file is written to a temporary file in the target's folder and then
 //! renamed over the target ([`write_atomically`]), so an interrupted run never
@@ -28,6 +29,7 @@ pub mod fields;
 pub mod history;
 pub mod line_plot;
 pub mod log;
+pub mod manifest;
 pub mod observer;
 pub mod plot;
 pub mod profile;

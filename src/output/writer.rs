@@ -7,8 +7,9 @@ use std::path::{Path, PathBuf};
 
 use super::fields::{CellField, ConvergedIncrement, NodalField};
 use super::history::History;
+use super::manifest::Manifest;
 use super::observer::StepObserver;
-use super::profile::Profile;
+use super::profile::{file_part, Profile};
 use super::summary::Summary;
 use super::{plot, pvd::PvdCollection, vtu};
 use crate::{Error, Result};
@@ -16,6 +17,8 @@ use crate::{Error, Result};
 /// Writes a run's results into one folder.
 pub struct ResultWriter {
     dir: PathBuf,
+    /// Every file of the run, claimed before it is first written.
+    manifest: Manifest,
     pvd: PvdCollection,
     /// The fields each VTU holds.
     nodal: Vec<NodalField>,
@@ -28,9 +31,12 @@ pub struct ResultWriter {
 
 impl ResultWriter {
     /// A writer into `dir` (created if needed) for the series `name`: the
-    /// VTU files of an earlier run with that name are removed and an empty
-    /// `.pvd` written at once, so the folder never lists files that are
-    /// gone. `nodal` and `cells` choose the fields of the VTU files
+    /// files of an earlier run with that name (its `NAME.manifest`) and
+    /// leftover temporary files are removed, `summary.json` and the `.pvd`
+    /// first, so the folder never lists files that are gone
+    /// ([`Manifest::take_over`]); then an empty `.pvd` is written. The
+    /// manifest also claims `NAME.log`, which [`LogWriter`](super::LogWriter)
+    /// writes. `nodal` and `cells` choose the fields of the VTU files
     /// (contact fields are left out of a problem without contact).
     pub fn new(
         dir: &Path,
@@ -41,11 +47,15 @@ impl ResultWriter {
         profiles: Vec<Profile>,
     ) -> Result<Self> {
         std::fs::create_dir_all(dir).map_err(|e| Error::io("create output folder", dir, e))?;
-        remove_old_series(dir, name)?;
-        let pvd = PvdCollection::new(dir.join(format!("{name}.pvd")));
+        let mut manifest = Manifest::take_over(dir, name)?;
+        manifest.claim(&format!("{name}.log"))?;
+        let pvd_file = format!("{name}.pvd");
+        manifest.claim(&pvd_file)?;
+        let pvd = PvdCollection::new(dir.join(pvd_file));
         pvd.write()?;
         Ok(ResultWriter {
             dir: dir.to_path_buf(),
+            manifest,
             pvd,
             nodal,
             cells,
@@ -67,7 +77,7 @@ impl ResultWriter {
     }
 
     /// The VTU file of an increment, with the chosen fields.
-    fn write_vtu(&self, increment: &ConvergedIncrement, file: &str) -> Result<()> {
+    fn write_vtu(&mut self, increment: &ConvergedIncrement, file: &str) -> Result<()> {
         let has_contact = !increment.problem.contacts.is_empty();
         let nodal: Vec<(NodalField, _)> = self
             .nodal
@@ -76,6 +86,7 @@ impl ResultWriter {
             .map(|&f| (f, increment.nodal(f)))
             .collect();
         let cells = increment.cells(&self.cells);
+        self.manifest.claim(file)?;
         let point_data: Vec<vtu::Field> = nodal
             .iter()
             .map(|(f, v)| field(f.name(), f.components(), f.kind(), v))
@@ -100,11 +111,16 @@ impl ResultWriter {
         let record = increment.record;
         let reports = &increment.contact_fields.reports;
         for h in &mut self.histories {
+            self.manifest.claim(&format!("{}.csv", h.name))?;
+            self.manifest.claim(&format!("{}.svg", h.name))?;
             h.record(record.time, increment.unknowns, increment.residual, reports);
             h.write(&self.dir)?;
         }
         if record.time == increment.problem.steps[record.step].end_time {
             for p in &mut self.profiles {
+                let csv = format!("{}_{}.csv", p.name, file_part(&record.step_name));
+                self.manifest.claim(&csv)?;
+                self.manifest.claim(&format!("{}.svg", p.name))?;
                 p.record(&record.step_name, record.time, &reports[p.interface]);
                 p.write(&self.dir)?;
             }
@@ -115,6 +131,7 @@ impl ResultWriter {
 
 impl StepObserver for ResultWriter {
     fn on_start(&mut self, summary: &Summary) -> Result<()> {
+        self.manifest.claim("summary.json")?;
         summary.write(&self.dir.join("summary.json"))
     }
 
@@ -143,6 +160,7 @@ impl StepObserver for ResultWriter {
                 residuals: i.residuals.clone(),
             })
             .collect();
+        self.manifest.claim("convergence.svg")?;
         plot::write_convergence_plot(&self.dir.join("convergence.svg"), &steps)
     }
 }
@@ -160,22 +178,4 @@ fn field<'a>(
         values,
         kind,
     }
-}
-
-/// Remove VTU files of an earlier run with the same name, so the folder
-/// holds one consistent series.
-fn remove_old_series(dir: &Path, name: &str) -> Result<()> {
-    let entries = std::fs::read_dir(dir).map_err(|e| Error::io("list output folder", dir, e))?;
-    for entry in entries.flatten() {
-        let file = entry.file_name().to_string_lossy().into_owned();
-        let ours = file
-            .strip_prefix(&format!("{name}_"))
-            .and_then(|rest| rest.strip_suffix(".vtu"))
-            .is_some_and(|n| n.chars().all(|c| c.is_ascii_digit()));
-        if ours {
-            std::fs::remove_file(entry.path())
-                .map_err(|e| Error::io("remove old result", entry.path(), e))?;
-        }
-    }
-    Ok(())
 }

@@ -1,0 +1,176 @@
+//! `NAME.manifest`: the files a run of the case `NAME` wrote into its
+//! output folder, one name a line, so that the next run of the same case
+//! can remove them before it writes its own.
+//!
+//! A file is added to the manifest (rewritten atomically) *before* it is
+//! first written, so the manifest on disk always lists at least every file
+//! of the run, whenever the run is killed. At the start of a run
+//! ([`Manifest::take_over`]) the earlier run's files are removed in an
+//! order that never leaves a listing of a missing file: first
+//! `summary.json` and `NAME.pvd` (which name the VTU files), then the VTU
+//! files, histories, profiles, plots and log, then the leftover temporary
+//! files `.FILE.PID-N.tmp` of [`write_atomically`](super::write_atomically).
+
+use std::collections::BTreeSet;
+use std::path::{Path, PathBuf};
+
+use super::write_atomically;
+use crate::{Error, Result};
+
+/// The manifest of the current run.
+pub struct Manifest {
+    path: PathBuf,
+    files: BTreeSet<String>,
+}
+
+impl Manifest {
+    /// Take over `dir` for the case `name`: remove what an earlier run of
+    /// it wrote (its manifest's files, and for folders written before
+    /// manifests existed `summary.json`, `NAME.pvd` and `NAME_NNNN.vtu`) and
+    /// every leftover temporary file, then start a new manifest listing
+    /// itself.
+    pub fn take_over(dir: &Path, name: &str) -> Result<Self> {
+        let path = dir.join(format!("{name}.manifest"));
+        let mut old: BTreeSet<String> = match std::fs::read_to_string(&path) {
+            Ok(text) => text
+                .lines()
+                .map(str::trim)
+                .filter(|l| is_plain_name(l))
+                .map(str::to_string)
+                .collect(),
+            Err(e) if e.kind() == std::io::ErrorKind::NotFound => BTreeSet::new(),
+            Err(e) => return Err(Error::io("read", &path, e)),
+        };
+        let pvd = format!("{name}.pvd");
+        let listings = ["summary.json".to_string(), pvd];
+        // the listings go first, so no file on disk names a removed file
+        for file in &listings {
+            remove(&dir.join(file))?;
+            old.remove(file);
+        }
+        let entries =
+            std::fs::read_dir(dir).map_err(|e| Error::io("list output folder", dir, e))?;
+        let mut temporaries = Vec::new();
+        for entry in entries.flatten() {
+            let file = entry.file_name().to_string_lossy().into_owned();
+            if is_series_file(&file, name) {
+                old.insert(file);
+            } else if is_temporary(&file) {
+                temporaries.push(file);
+            }
+        }
+        old.remove(&format!("{name}.manifest"));
+        for file in old.iter().chain(&temporaries) {
+            remove(&dir.join(file))?;
+        }
+        let mut manifest = Manifest {
+            path,
+            files: BTreeSet::new(),
+        };
+        manifest.claim(&format!("{name}.manifest"))?;
+        Ok(manifest)
+    }
+
+    /// Add `file` (a name in the output folder) to the manifest before it
+    /// is written; the manifest is rewritten only for a new name.
+    pub fn claim(&mut self, file: &str) -> Result<()> {
+        if self.files.insert(file.to_string()) {
+            let files = &self.files;
+            write_atomically(&self.path, |w| {
+                for f in files {
+                    writeln!(w, "{f}")?;
+                }
+                Ok(())
+            })?;
+        }
+        Ok(())
+    }
+}
+
+/// Remove `path`; a file already gone is fine.
+fn remove(path: &Path) -> Result<()> {
+    match std::fs::remove_file(path) {
+        Ok(()) => Ok(()),
+        Err(e) if e.kind() == std::io::ErrorKind::NotFound => Ok(()),
+        Err(e) => Err(Error::io("remove old result", path, e)),
+    }
+}
+
+/// A name of a file directly in the folder (a manifest line that would
+/// reach outside it, or is empty, is ignored).
+fn is_plain_name(line: &str) -> bool {
+    !line.is_empty()
+        && line != "."
+        && line != ".."
+        && !line.contains(['/', '\\'])
+        && !Path::new(line).is_absolute()
+}
+
+/// `NAME_NNNN.vtu`, a VTU file of the series `name`.
+fn is_series_file(file: &str, name: &str) -> bool {
+    file.strip_prefix(&format!("{name}_"))
+        .and_then(|rest| rest.strip_suffix(".vtu"))
+        .is_some_and(|n| !n.is_empty() && n.chars().all(|c| c.is_ascii_digit()))
+}
+
+/// `.FILE.PID-N.tmp`, a temporary file of [`write_atomically`] left by a
+/// run that was killed while writing.
+fn is_temporary(file: &str) -> bool {
+    let Some(rest) = file.strip_prefix('.').and_then(|r| r.strip_suffix(".tmp")) else {
+        return false;
+    };
+    let Some((target, tag)) = rest.rsplit_once('.') else {
+        return false;
+    };
+    let digits = |s: &str| !s.is_empty() && s.chars().all(|c| c.is_ascii_digit());
+    !target.is_empty()
+        && tag
+            .split_once('-')
+            .is_some_and(|(pid, n)| digits(pid) && digits(n))
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn recognises_temporary_and_series_files() {
+        assert!(is_temporary(".case_0003.vtu.1234-7.tmp"));
+        assert!(is_temporary(".summary.json.1-0.tmp"));
+        assert!(!is_temporary("case.tmp"));
+        assert!(!is_temporary(".case.vtu.12a-7.tmp"));
+        assert!(is_series_file("case_0012.vtu", "case"));
+        assert!(!is_series_file("case_x.vtu", "case"));
+        assert!(!is_series_file("other_0012.vtu", "case"));
+        assert!(!is_plain_name("../x"));
+        assert!(!is_plain_name("/etc/passwd"));
+        assert!(is_plain_name("tip.csv"));
+    }
+
+    #[test]
+    fn removes_the_files_of_the_earlier_run() {
+        let dir = tempfile::tempdir().unwrap();
+        let d = dir.path();
+        for f in [
+            "case.pvd",
+            "summary.json",
+            "case_0001.vtu",
+            "old_history.csv",
+            ".case_0002.vtu.99-3.tmp",
+            "keep.txt",
+        ] {
+            std::fs::write(d.join(f), "x").unwrap();
+        }
+        std::fs::write(d.join("case.manifest"), "old_history.csv\n../keep.txt\n").unwrap();
+        let mut m = Manifest::take_over(d, "case").unwrap();
+        m.claim("case_0001.vtu").unwrap();
+        let mut left: Vec<String> = std::fs::read_dir(d)
+            .unwrap()
+            .map(|e| e.unwrap().file_name().to_string_lossy().into_owned())
+            .collect();
+        left.sort();
+        assert_eq!(left, ["case.manifest", "keep.txt"]);
+        let text = std::fs::read_to_string(d.join("case.manifest")).unwrap();
+        assert_eq!(text, "case.manifest\ncase_0001.vtu\n");
+    }
+}

@@ -65,10 +65,10 @@ name = "cube"
         threads: None,
         cancel: None,
     };
-    let message = run(&case, &options)
-        .err()
-        .expect("no increment cut allowed")
-        .to_string();
+    let Err(error) = run(&case, &options) else {
+        panic!("the run succeeded although no increment cut is allowed");
+    };
+    let message = error.to_string();
     assert!(
         message.contains("a prescribed displacement of 1.000e2"),
         "{message}"

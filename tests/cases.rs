@@ -5,6 +5,8 @@ use signorini::contact::hertz::{fitted_contact_radius, radial_pressures, Hertz};
 use signorini::run::{run, RunOptions};
 use std::path::Path;
 
+mod common;
+
 fn run_example(name: &str) -> (tempfile::TempDir, signorini::run::RunOutcome) {
     let out = tempfile::tempdir().unwrap();
     let case = Path::new(env!("CARGO_MANIFEST_DIR"))
@@ -133,6 +135,7 @@ fn assert_hertz(
     hertz: (f64, f64),
 ) -> signorini::output::summary::Summary {
     let (_out, outcome) = run_example(example);
+    assert!(common::assert_contact_pressure_nonnegative(&outcome) > 0.0);
     let case = signorini::case::load(
         &Path::new(env!("CARGO_MANIFEST_DIR"))
             .join("examples")
@@ -280,6 +283,7 @@ fn rigid_sphere_indenting_a_block() {
 #[test]
 fn press_pull_friction_example() {
     let (out, outcome) = run_example("press-pull");
+    assert!(common::assert_contact_pressure_nonnegative(&outcome) > 0.0);
     let (n_force, pull, mu) = (20.0, 4.8, 0.3);
     for inc in &outcome.summary.increments {
         let c = &inc.contact["base"];
@@ -383,6 +387,7 @@ fn press_pull_friction_example() {
 #[test]
 fn ironing_slides_smoothly_with_friction() {
     let (out, outcome) = run_example("ironing");
+    assert!(common::assert_contact_pressure_nonnegative(&outcome) > 0.0);
     let mu = 0.3;
     let incs = &outcome.summary.increments;
     assert!(incs.iter().all(|i| i.cuts <= 2));

@@ -4,6 +4,8 @@
 use signorini::run::{run, RunOptions};
 use std::path::Path;
 
+mod common;
+
 /// A block from an Abaqus deck (`*SURFACE` face sets, `*NSET` symmetry
 /// planes) pressed by `p` on a frictionless rigid plane: uniaxial uniform
 /// stress `σ_zz = −p`, which Hex8 elements represent exactly, so
@@ -22,6 +24,7 @@ fn inp_import_block_matches_uniaxial_compression() {
         },
     )
     .expect("the example runs");
+    assert!(common::assert_contact_pressure_nonnegative(&outcome) > 0.0);
     let (p, e, nu, area) = (10.0, 1000.0, 0.3, 4.0);
     let loaded = signorini::case::load(&case).unwrap();
     assert!(

@@ -9,6 +9,8 @@ use nalgebra::{Matrix3, Vector3};
 use signorini::run::{run, RunOptions, RunOutcome};
 use std::path::{Path, PathBuf};
 
+mod common;
+
 /// Total pressure load on the quarter model: `p · A`, `p = 0.45`, strip
 /// `1.5 × 2` (a dead load on the reference area, so exact).
 const EDGE_LOAD: f64 = 0.45 * 1.5 * 2.0;
@@ -85,6 +87,7 @@ fn deformation_extremes(mesh: &signorini::mesh::Mesh, u: &[f64]) -> (f64, f64, f
 #[test]
 fn plate_lifts_off_in_the_middle() {
     let (dir, case_path, outcome) = run_case("plate.msh", |t| t);
+    assert!(common::assert_contact_pressure_nonnegative(&outcome) > 0.0);
     let case = signorini::case::load(&case_path).unwrap();
     let problem = case.build_problem().unwrap();
     let u = &outcome.displacement;

@@ -40,6 +40,9 @@ impl NonlinearProblem for Problem {
     fn size(&self) -> f64 {
         self.model.size()
     }
+    fn has_contact(&self) -> bool {
+        !self.contacts.is_empty()
+    }
     fn has_nonsymmetric_tangent(&self) -> bool {
         Problem::has_nonsymmetric_tangent(self)
     }

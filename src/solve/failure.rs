@@ -23,9 +23,18 @@ pub enum IncrementFailure {
     Diverging { relative: f64 },
     /// The contact statuses cycle between iterations.
     Chattering(Chatter),
-    /// A correction `largest` far beyond the body's `size`: a rigid-body
-    /// mode that the saddle system's regularisation let through.
-    RigidBodyMode { largest: f64, size: f64 },
+    /// A correction `largest` far beyond the body's `size`: if it is a
+    /// `prescribed` displacement's jump, the increment is too large for the
+    /// prescribed motion; else with `contact`, a rigid-body mode that the
+    /// saddle system's regularisation let through; without, the tangent is
+    /// near singular (an element near inversion, a load beyond the
+    /// material's range, a missing support).
+    RigidBodyMode {
+        largest: f64,
+        size: f64,
+        contact: bool,
+        prescribed: bool,
+    },
     /// The linear solve failed (a singular tangent); the solver's message.
     LinearSolve(String),
     /// No convergence in `iterations` Newton iterations.
@@ -70,11 +79,37 @@ impl std::fmt::Display for IncrementFailure {
                 write!(f, "diverging (relative residual {relative:.3e})")
             }
             IncrementFailure::Chattering(chatter) => chatter.fmt(f),
-            IncrementFailure::RigidBodyMode { largest, size } => write!(
+            IncrementFailure::RigidBodyMode {
+                largest,
+                size,
+                prescribed: true,
+                ..
+            } => write!(
+                f,
+                "a prescribed displacement of {largest:.3e} in one increment, far larger than the \
+                 body (size {size:.3e}): take smaller increments (initial_increment, max_increment)"
+            ),
+            IncrementFailure::RigidBodyMode {
+                largest,
+                size,
+                contact: true,
+                ..
+            } => write!(
                 f,
                 "a correction of {largest:.3e} against a body of size {size:.3e}: a rigid-body mode \
                  (the body lost contact, every contact node slips so that friction cannot hold a load \
                  beyond its capacity, or a support is missing)"
+            ),
+            IncrementFailure::RigidBodyMode {
+                largest,
+                size,
+                contact: false,
+                ..
+            } => write!(
+                f,
+                "a correction of {largest:.3e}, far larger than the body (size {size:.3e}): \
+                 an element near inversion, a load far beyond the material's range, \
+                 or a missing support"
             ),
             IncrementFailure::LinearSolve(message) => f.write_str(message),
             IncrementFailure::MaxIterations {
@@ -94,6 +129,40 @@ impl std::fmt::Display for IncrementFailure {
                 "the Uzawa multipliers did not reach the penetration tolerance in {updates} updates"
             ),
             IncrementFailure::Cancelled => write!(f, "cancelled between two Newton iterations"),
+        }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::IncrementFailure;
+
+    /// A correction far beyond the body names the cause the problem can
+    /// have: a prescribed jump, a lost contact, or (without contact) a
+    /// near-singular body.
+    #[test]
+    fn rigid_body_mode_message_follows_the_cause() {
+        let message = |contact, prescribed| {
+            IncrementFailure::RigidBodyMode {
+                largest: 50.0,
+                size: 1.0,
+                contact,
+                prescribed,
+            }
+            .to_string()
+        };
+        let free = message(false, false);
+        assert!(free.contains("far larger than the body"), "{free}");
+        assert!(free.contains("element near inversion"), "{free}");
+        assert!(!free.contains("contact"), "{free}");
+        let contact = message(true, false);
+        assert!(contact.contains("the body lost contact"), "{contact}");
+        for contact in [false, true] {
+            let jump = message(contact, true);
+            assert!(
+                jump.contains("a prescribed displacement of 5.000e1"),
+                "{jump}"
+            );
         }
     }
 }

@@ -216,14 +216,27 @@ impl<P: NonlinearProblem> Newton<'_, P> {
             }
             // a correction far larger than the body: a rigid-body mode that the
             // saddle system's regularisation let through (the body lost contact,
-            // slides as a whole, or supports are missing)
-            let largest = du[..problem.num_dofs()]
-                .iter()
-                .fold(0.0f64, |m, d| m.max(d.abs()));
+            // slides as a whole, or supports are missing), or without contact a
+            // near-singular tangent (an element near inversion, a huge load)
+            let (largest, prescribed) = du[..problem.num_dofs()].iter().zip(constrained).fold(
+                (0.0f64, false),
+                |m, (d, &c)| {
+                    if d.abs() > m.0 {
+                        (d.abs(), c)
+                    } else {
+                        m
+                    }
+                },
+            );
             if largest > 10.0 * problem.size() {
                 let size = problem.size();
                 return (
-                    Err(IncrementFailure::RigidBodyMode { largest, size }),
+                    Err(IncrementFailure::RigidBodyMode {
+                        largest,
+                        size,
+                        contact: problem.has_contact(),
+                        prescribed,
+                    }),
                     records,
                 );
             }

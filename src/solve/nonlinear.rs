@@ -55,6 +55,12 @@ pub trait NonlinearProblem {
     fn num_dofs(&self) -> usize;
     /// A length of the body: a correction beyond 10 × this is a rigid-body mode.
     fn size(&self) -> f64;
+    /// Whether the problem has contact (a correction far beyond
+    /// [`size`](Self::size) is then read as a lost contact rather than a
+    /// near-singular tangent of the body alone).
+    fn has_contact(&self) -> bool {
+        true
+    }
     /// Whether the tangent is nonsymmetric (a symmetric neighbour is then
     /// built for the preconditioner).
     fn has_nonsymmetric_tangent(&self) -> bool;

@@ -665,3 +665,41 @@ pub fn assert_case_error(dir: &Path, text: &str, expect: &[&str]) {
         assert!(message.contains(e), "{message}\nlacks: {e}");
     }
 }
+
+/// Signorini's `t_N ≥ 0` on the output: at every node of every written
+/// increment of `outcome`, `contact_pressure ≥ −1e-10 p_max`, with `p_max`
+/// that increment's largest pressure (on both sides of every interface:
+/// a primary node's pressure is the sum of the shares of the secondary
+/// nodes' forces). Returns the largest pressure of the run, so that a
+/// caller can check that contact happened.
+pub fn assert_contact_pressure_nonnegative(outcome: &signorini::run::RunOutcome) -> f64 {
+    let mut largest = 0.0_f64;
+    let mut written = 0;
+    for inc in outcome
+        .summary
+        .increments
+        .iter()
+        .filter(|i| !i.file.is_empty())
+    {
+        let path = outcome.output_dir.join(&inc.file);
+        let p = signorini::output::vtu::read_point_field(&path, "contact_pressure").unwrap();
+        let p_max = p.iter().copied().fold(0.0, f64::max);
+        let (node, lowest) = p
+            .iter()
+            .copied()
+            .enumerate()
+            .fold(
+                (0, f64::INFINITY),
+                |a, (i, v)| if v < a.1 { (i, v) } else { a },
+            );
+        assert!(
+            lowest >= -1e-10 * p_max,
+            "{}: contact_pressure {lowest} at node index {node} (largest {p_max})",
+            inc.file
+        );
+        largest = largest.max(p_max);
+        written += 1;
+    }
+    assert!(written > 0, "no increment written");
+    largest
+}

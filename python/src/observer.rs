@@ -158,9 +158,16 @@ impl Increment {
         let json = py.import("json")?;
         let mut nodal = data.nodal.into_iter();
         let mut next = |expected: NodalField| -> PyResult<PyObject> {
-            let (field, values) = nodal.next().expect("every nodal field, in order");
-            debug_assert_eq!(field, expected);
-            Ok(convert::array(py, values, field.components())?.unbind())
+            // the relay sends every nodal field in `NodalField::ALL` order
+            match nodal.next() {
+                Some((field, values)) if field == expected => {
+                    Ok(convert::array(py, values, field.components())?.unbind())
+                }
+                _ => Err(SignoriniError::new_err(format!(
+                    "internal error: the nodal field {} is missing from an increment (please report it)",
+                    expected.name()
+                ))),
+            }
         };
         let displacement = next(NodalField::Displacement)?;
         let contact_pressure = next(NodalField::ContactPressure)?;

@@ -19,8 +19,8 @@
 //! before). The candidates fix the sparsity pattern of
 //! the increment (each secondary node is coupled with the nodes of its
 //! candidates); within the increment each Newton iteration projects the
-//! node on its best candidate ([`best_triangle`]). The search is a uniform
-//! grid over the grown boxes, linear in the number of triangles and nodes.
+//! node on its best candidate ([`best_triangle`]). The search is an R*-tree
+//! over the grown boxes (the `rstar` crate), `O(log n)` per node.
 //!
 //! Quadrangle facets (Hex8 faces) are split into two triangles
 //! (`(q0, q1, q2)`, `(q0, q2, q3)`), so the projection is exact and the gap
@@ -32,7 +32,8 @@ use crate::contact::triangle::TriangleProjection;
 use crate::contact::triangle_gap::{is_degenerate, split_quadrangle, triangle_gap, TriangleGap};
 use crate::mesh::{FacetKind, Mesh};
 use nalgebra::Vector3;
-use std::collections::HashMap;
+use rstar::primitives::{GeomWithData, Rectangle};
+use rstar::RTree;
 
 /// How far outside its triangle (in barycentric coordinates) a node keeps
 /// the triangle it was projected on before. The plane-extended gap jumps
@@ -262,44 +263,31 @@ impl PrimarySurface {
     }
 }
 
-/// For each point, the boxes (`(lo, hi)`) that contain it, by a uniform
-/// grid whose cell is the mean box extent: each box is entered in the cells
-/// it overlaps, each point looks in its own cell.
+/// For each point, the boxes (`(lo, hi)`) that contain it, in increasing
+/// box index, from an R*-tree over the boxes (the `rstar` crate).
 pub fn boxes_containing(
     boxes: &[(Vector3<f64>, Vector3<f64>)],
     points: &[Vector3<f64>],
 ) -> Vec<Vec<usize>> {
-    if boxes.is_empty() {
-        return vec![Vec::new(); points.len()];
-    }
-    let mean_extent =
-        boxes.iter().map(|(lo, hi)| (hi - lo).max()).sum::<f64>() / boxes.len() as f64;
-    let cell = mean_extent.max(f64::MIN_POSITIVE);
-    let index = |v: f64| (v / cell).floor() as i64;
-    let key = |p: &Vector3<f64>| (index(p.x), index(p.y), index(p.z));
-    let mut grid: HashMap<(i64, i64, i64), Vec<usize>> = HashMap::new();
-    for (b, (lo, hi)) in boxes.iter().enumerate() {
-        let (l, h) = (key(lo), key(hi));
-        for i in l.0..=h.0 {
-            for j in l.1..=h.1 {
-                for k in l.2..=h.2 {
-                    grid.entry((i, j, k)).or_default().push(b);
-                }
-            }
-        }
-    }
+    let corner = |v: &Vector3<f64>| [v.x, v.y, v.z];
+    let tree = RTree::bulk_load(
+        boxes
+            .iter()
+            .enumerate()
+            .map(|(b, (lo, hi))| {
+                GeomWithData::new(Rectangle::from_corners(corner(lo), corner(hi)), b)
+            })
+            .collect(),
+    );
     points
         .iter()
         .map(|p| {
-            grid.get(&key(p))
-                .into_iter()
-                .flatten()
-                .copied()
-                .filter(|&b| {
-                    let (lo, hi) = &boxes[b];
-                    (0..3).all(|d| lo[d] <= p[d] && p[d] <= hi[d])
-                })
-                .collect()
+            let mut found: Vec<usize> = tree
+                .locate_all_at_point(corner(p))
+                .map(|b| b.data)
+                .collect();
+            found.sort_unstable();
+            found
         })
         .collect()
 }

@@ -1,5 +1,5 @@
 //! A triangulated surface as a rigid obstacle (or, later, as a primary
-//! surface): closest-point search through a bounding-volume hierarchy and a
+//! surface): closest-point search through an R*-tree and a
 //! signed gap that does not jump at edges and vertices.
 //!
 //! ## Orientation
@@ -36,26 +36,23 @@
 //! and `0` when `d ≤ 10⁻¹⁰ L`, where the gap is not differentiable.
 //!
 //! ## Search
-//! An axis-aligned bounding-box tree (median split along the longest axis of
-//! the triangle centroids, at most [`LEAF_SIZE`] triangles per leaf) is built
-//! once. A query visits boxes best first, ordered by the squared distance
-//! from `x` to the box, and stops when the nearest unvisited box is farther
-//! than the best triangle found (branch and bound). The result is exactly
-//! the brute-force minimum over all triangles.
+//! The triangles are bulk-loaded once into an R*-tree (the `rstar` crate,
+//! the georust spatial index); a query is its exact nearest-neighbour
+//! search with the point-to-triangle distance (branch and bound on the
+//! boxes' distances), so the result is the brute-force minimum over all
+//! triangles.
 //!
 //! [`Mesh::orient_surfaces`]: crate::mesh::Mesh::orient_surfaces
 
 use crate::contact::projection::Projection;
 use crate::contact::triangle::{closest_point_on_triangle, Feature, TriangleProjection};
+use crate::contact::triangle_gap::split_quadrangle;
 use crate::error::{Error, Result};
 use crate::mesh::{FacetKind, Mesh};
 use nalgebra::{Matrix3, Vector3};
-use std::cmp::Ordering;
-use std::collections::{BinaryHeap, HashMap};
+use rstar::{PointDistance, RTree, RTreeObject, AABB};
+use std::collections::HashMap;
 use std::path::Path;
-
-/// Largest number of triangles in a leaf of the bounding-box tree.
-pub const LEAF_SIZE: usize = 4;
 
 /// Distance below which `x − x̄` gives no reliable direction, relative to
 /// the diagonal of the surface's bounding box.
@@ -73,7 +70,8 @@ pub struct TriangulatedSurface {
     edge_normals: Vec<[Vector3<f64>; 3]>,
     /// Unit angle-weighted pseudo-normal of each vertex.
     vertex_normals: Vec<Vector3<f64>>,
-    bvh: Bvh,
+    /// Search tree over the triangles.
+    tree: RTree<SearchTriangle>,
     /// Below this distance `x − x̄` gives no direction.
     tiny: f64,
 }
@@ -194,8 +192,9 @@ impl TriangulatedSurface {
             .map(|(s, f)| s.try_normalize(1e-12).unwrap_or(*f))
             .collect();
 
-        let bvh = Bvh::build(&vertices, &triangles);
-        let diagonal = (bvh.nodes[0].bounds.hi - bvh.nodes[0].bounds.lo).norm();
+        let tree = search_tree(&vertices, &triangles);
+        let bounds = tree.root().envelope();
+        let diagonal = (Vector3::from(bounds.upper()) - Vector3::from(bounds.lower())).norm();
         Ok(TriangulatedSurface {
             tiny: DIRECTION_TOLERANCE * diagonal,
             vertices,
@@ -203,7 +202,7 @@ impl TriangulatedSurface {
             face_normals,
             edge_normals,
             vertex_normals,
-            bvh,
+            tree,
         })
     }
 
@@ -248,10 +247,7 @@ impl TriangulatedSurface {
             let v: Vec<usize> = f.nodes.iter().map(|n| local[n]).collect();
             match f.kind {
                 FacetKind::Tri3 => triangles.push([v[0], v[1], v[2]]),
-                FacetKind::Quad4 => {
-                    triangles.push([v[0], v[1], v[2]]);
-                    triangles.push([v[0], v[2], v[3]]);
-                }
+                FacetKind::Quad4 => triangles.extend(split_quadrangle([v[0], v[1], v[2], v[3]])),
             }
         }
         Self::build(vertices, triangles, &format!("surface set '{surface}'"))
@@ -277,16 +273,13 @@ impl TriangulatedSurface {
         self.vertex_normals[v]
     }
 
-    /// The surface moved rigidly by `d` (the search tree moves with it).
+    /// The surface moved rigidly by `d` (the search tree is built again).
     pub fn translated(&self, d: &Vector3<f64>) -> Self {
         let mut moved = self.clone();
         for v in &mut moved.vertices {
             *v += d;
         }
-        for node in &mut moved.bvh.nodes {
-            node.bounds.lo += d;
-            node.bounds.hi += d;
-        }
+        moved.tree = search_tree(&moved.vertices, &moved.triangles);
         moved
     }
 
@@ -294,52 +287,8 @@ impl TriangulatedSurface {
     /// projection onto it. `None` only for a surface without triangles,
     /// which the constructors do not make.
     pub fn closest_point(&self, x: &Vector3<f64>) -> Option<(usize, TriangleProjection)> {
-        self.closest_point_counted(x).0
-    }
-
-    /// [`closest_point`](Self::closest_point), also returning how many
-    /// triangles were tested (the cost of the search).
-    pub fn closest_point_counted(
-        &self,
-        x: &Vector3<f64>,
-    ) -> (Option<(usize, TriangleProjection)>, usize) {
-        let mut best: Option<(f64, usize, TriangleProjection)> = None;
-        let mut tests = 0;
-        let mut queue = BinaryHeap::new();
-        queue.push(Candidate {
-            distance2: self.bvh.nodes[0].bounds.distance2(x),
-            node: 0,
-        });
-        while let Some(Candidate { distance2, node }) = queue.pop() {
-            if best.as_ref().is_some_and(|b| distance2 >= b.0) {
-                break; // every box left is at least as far
-            }
-            match self.bvh.nodes[node].kind {
-                NodeKind::Leaf { first, count } => {
-                    for &t in &self.bvh.order[first..first + count] {
-                        tests += 1;
-                        let [a, b, c] = self.triangles[t].map(|i| &self.vertices[i]);
-                        let p = closest_point_on_triangle(x, a, b, c);
-                        let d2 = (x - p.point).norm_squared();
-                        if best.as_ref().is_none_or(|b| d2 < b.0) {
-                            best = Some((d2, t, p));
-                        }
-                    }
-                }
-                NodeKind::Inner { left, right } => {
-                    for child in [left, right] {
-                        let d2 = self.bvh.nodes[child].bounds.distance2(x);
-                        if best.as_ref().is_none_or(|b| d2 < b.0) {
-                            queue.push(Candidate {
-                                distance2: d2,
-                                node: child,
-                            });
-                        }
-                    }
-                }
-            }
-        }
-        (best.map(|(_, t, p)| (t, p)), tests)
+        let t = self.tree.nearest_neighbor([x.x, x.y, x.z])?;
+        Some((t.index, t.project(x)))
     }
 
     /// Projects the spatial point `x` onto the surface: closest point,
@@ -390,138 +339,48 @@ impl TriangulatedSurface {
     }
 }
 
-/// An axis-aligned bounding box.
-#[derive(Clone, Copy, Debug)]
-struct Aabb {
-    lo: Vector3<f64>,
-    hi: Vector3<f64>,
-}
-
-impl Aabb {
-    fn empty() -> Self {
-        Aabb {
-            lo: Vector3::repeat(f64::INFINITY),
-            hi: Vector3::repeat(f64::NEG_INFINITY),
-        }
-    }
-    fn grow(&mut self, p: &Vector3<f64>) {
-        self.lo = self.lo.inf(p);
-        self.hi = self.hi.sup(p);
-    }
-    /// Squared distance from `x` to the box (0 inside).
-    fn distance2(&self, x: &Vector3<f64>) -> f64 {
-        (0..3)
-            .map(|k| {
-                let d = (self.lo[k] - x[k]).max(x[k] - self.hi[k]).max(0.0);
-                d * d
-            })
-            .sum()
-    }
-}
-
-#[derive(Clone, Copy, Debug)]
-enum NodeKind {
-    /// Triangles `order[first..first + count]`.
-    Leaf {
-        first: usize,
-        count: usize,
-    },
-    Inner {
-        left: usize,
-        right: usize,
-    },
-}
-
-#[derive(Clone, Copy, Debug)]
-struct BvhNode {
-    bounds: Aabb,
-    kind: NodeKind,
-}
-
-/// Bounding-box tree; node 0 is the root.
+/// A triangle in the search tree: its index and corners.
 #[derive(Clone, Debug)]
-struct Bvh {
-    nodes: Vec<BvhNode>,
-    /// Triangle indices, permuted so that each leaf owns a contiguous range.
-    order: Vec<usize>,
+struct SearchTriangle {
+    index: usize,
+    corners: [Vector3<f64>; 3],
 }
 
-impl Bvh {
-    fn build(vertices: &[Vector3<f64>], triangles: &[[usize; 3]]) -> Self {
-        let centroids: Vec<Vector3<f64>> = triangles
+impl SearchTriangle {
+    fn project(&self, x: &Vector3<f64>) -> TriangleProjection {
+        let [a, b, c] = &self.corners;
+        closest_point_on_triangle(x, a, b, c)
+    }
+}
+
+impl RTreeObject for SearchTriangle {
+    type Envelope = AABB<[f64; 3]>;
+    fn envelope(&self) -> Self::Envelope {
+        let corners = self.corners.map(|c| [c.x, c.y, c.z]);
+        AABB::from_points(corners.iter())
+    }
+}
+
+impl PointDistance for SearchTriangle {
+    /// Squared distance from `x` to the triangle (to its closest point).
+    fn distance_2(&self, x: &[f64; 3]) -> f64 {
+        let x = Vector3::from(*x);
+        (x - self.project(&x).point).norm_squared()
+    }
+}
+
+/// The R*-tree over the triangles of a surface at the given vertex positions.
+fn search_tree(vertices: &[Vector3<f64>], triangles: &[[usize; 3]]) -> RTree<SearchTriangle> {
+    RTree::bulk_load(
+        triangles
             .iter()
-            .map(|t| (vertices[t[0]] + vertices[t[1]] + vertices[t[2]]) / 3.0)
-            .collect();
-        let mut bvh = Bvh {
-            nodes: Vec::with_capacity(2 * triangles.len() / LEAF_SIZE + 1),
-            order: (0..triangles.len()).collect(),
-        };
-        bvh.build_node(0, triangles.len(), vertices, triangles, &centroids);
-        bvh
-    }
-
-    /// Builds the node over `order[first..first + count]`; returns its index.
-    fn build_node(
-        &mut self,
-        first: usize,
-        count: usize,
-        vertices: &[Vector3<f64>],
-        triangles: &[[usize; 3]],
-        centroids: &[Vector3<f64>],
-    ) -> usize {
-        let range = first..first + count;
-        let mut bounds = Aabb::empty();
-        let mut centre_bounds = Aabb::empty();
-        for &t in &self.order[range.clone()] {
-            for &v in &triangles[t] {
-                bounds.grow(&vertices[v]);
-            }
-            centre_bounds.grow(&centroids[t]);
-        }
-        let index = self.nodes.len();
-        self.nodes.push(BvhNode {
-            bounds,
-            kind: NodeKind::Leaf { first, count },
-        });
-        if count <= LEAF_SIZE {
-            return index;
-        }
-        let extent = centre_bounds.hi - centre_bounds.lo;
-        let axis = extent.imax();
-        let half = count / 2;
-        self.order[range].select_nth_unstable_by(half, |&a, &b| {
-            centroids[a][axis].total_cmp(&centroids[b][axis])
-        });
-        let left = self.build_node(first, half, vertices, triangles, centroids);
-        let right = self.build_node(first + half, count - half, vertices, triangles, centroids);
-        self.nodes[index].kind = NodeKind::Inner { left, right };
-        index
-    }
-}
-
-/// A box in the best-first queue, nearest first.
-#[derive(Clone, Copy, Debug, PartialEq)]
-struct Candidate {
-    distance2: f64,
-    node: usize,
-}
-
-impl Eq for Candidate {}
-
-impl Ord for Candidate {
-    fn cmp(&self, other: &Self) -> Ordering {
-        // BinaryHeap is a max-heap: reverse for nearest first
-        other
-            .distance2
-            .total_cmp(&self.distance2)
-            .then(other.node.cmp(&self.node))
-    }
-}
-
-impl PartialOrd for Candidate {
-    fn partial_cmp(&self, other: &Self) -> Option<Ordering> {
-        Some(self.cmp(other))
-    }
+            .enumerate()
+            .map(|(index, t)| SearchTriangle {
+                index,
+                corners: t.map(|i| vertices[i]),
+            })
+            .collect(),
+    )
 }
 
 #[cfg(test)]

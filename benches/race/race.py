@@ -500,13 +500,21 @@ def self_check(binary, work, mesh, ccx_nodes):
         f = line.split()
         if len(f) >= 2 and f[0] in ("nodes", "elements"):
             read[f[0]] = int(f[1])
-    want = {"nodes": len(mesh.nodes), "elements": len(mesh.tets)}
+        elif line.strip().startswith("surface set 'CONTACT':"):
+            read["contact facets"], read["contact nodes"] = int(f[3]), int(f[5])
+    want = {
+        "nodes": len(mesh.nodes),
+        "elements": len(mesh.tets),
+        "contact facets": len(mesh.surfaces["contact"]),
+        "contact nodes": len(contact_nodes(mesh)),
+    }
     if read != want:
         sys.exit(f"error: signorini check read {read} from {work / 'case.toml'}, mesh.inp holds {want}")
     if ccx_nodes != len(mesh.nodes) + 8:
         sys.exit("error: ccx.inp does not hold mesh.inp + 8 slab nodes")
     print(f"  same mesh: {len(mesh.nodes)} nodes ({3 * len(mesh.nodes)} dofs), {len(mesh.tets)} C3D4, "
-          f"{len(mesh.surfaces['contact'])} contact faces; ccx adds the 8 fixed slab nodes")
+          f"{len(mesh.surfaces['contact'])} contact faces on {len(contact_nodes(mesh))} nodes "
+          "(signorini check reads the same); ccx adds the 8 fixed slab nodes")
 
 
 def fmt_row(label, runs, res, h, hmin):

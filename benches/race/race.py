@@ -570,6 +570,8 @@ def main():
         med = {k: statistics.median(r[0] for r in v) for k, v in runs.items()}
         pairs = [c[0] / s[0] for c, s in zip(runs["ccx"], runs["signorini"])]
         print()
+        commit = subprocess.run(["git", "rev-parse", "--short", "HEAD"], cwd=ROOT, capture_output=True, text=True).stdout.strip()
+        print(f"{time.strftime('%Y-%m-%d %H:%M', time.gmtime())} UTC, commit {commit or '?'}, {args.signorini}")
         print(f"{size}: {len(mesh.nodes)} nodes, {3 * len(mesh.nodes)} dofs, {len(mesh.tets)} Tet4, "
               f"h = {hmin} at the pole; {args.threads} threads; {args.repeat} runs each, alternating; "
               f"1-min load {min(loads):.1f}-{max(loads):.1f}")

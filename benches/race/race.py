@@ -33,21 +33,22 @@ See README.md beside this file for the settings and why.
 """
 
 import argparse
-import base64
 import math
 import os
 import shutil
 import statistics
-import struct
 import subprocess
 import sys
 import time
-import xml.etree.ElementTree as ET
-import zlib
 from pathlib import Path
 
 HERE = Path(__file__).resolve().parent
 ROOT = HERE.parent.parent
+
+# signorini's VTU reader (standard library) from scripts/compare_examples.py
+sys.dont_write_bytecode = True
+sys.path.insert(0, str(ROOT / "scripts"))
+from compare_examples import read_point_field  # noqa: E402
 
 # The model (as examples/hertz/case.toml).
 E, NU, R, DEPTH = 1000.0, 0.3, 1.0, 0.0115
@@ -346,43 +347,14 @@ def run_signorini(binary, work, threads, timeout):
 # ---------------------------------------------------------------- results
 
 
-def vtu_arrays(path, names):
-    """Point-data arrays of a signorini VTU (inline base64 binary, UInt64
-    headers, zlib-compressed or not), as lists of floats (vectors flat)."""
-    root = ET.parse(path).getroot()
-    compressed = root.get("compressor") is not None
-    out = {}
-    for arr in root.iter("DataArray"):
-        name = arr.get("Name")
-        if name not in names:
-            continue
-        text = "".join(arr.text.split())
-        if compressed:
-            head = base64.b64decode(text[:32])
-            blocks = struct.unpack("<Q", head[:8])[0]
-            hlen = 4 * math.ceil((3 + blocks) * 8 / 3)
-            header = struct.unpack(f"<{3 + blocks}Q", base64.b64decode(text[:hlen]))
-            body = base64.b64decode(text[hlen:])
-            raw, pos = b"", 0
-            for size in header[3:]:
-                raw += zlib.decompress(body[pos:pos + size])
-                pos += size
-        else:
-            data = base64.b64decode(text)
-            raw = data[8:8 + struct.unpack("<Q", data[:8])[0]]
-        fmt = {"Float64": "d", "Float32": "f", "Int64": "q"}[arr.get("type")]
-        out[name] = list(struct.unpack(f"<{len(raw) // struct.calcsize(fmt)}{fmt}", raw))
-    return out
-
-
 def signorini_results(work, mesh):
     import json
 
     summary = json.loads((work / "results" / "summary.json").read_text())
     incs = summary["increments"]
     last = incs[-1]
-    vtu = vtu_arrays(work / "results" / last["file"], {"displacement", "contact_pressure", "gap"})
-    u, p = vtu["displacement"], vtu["contact_pressure"]
+    vtu = work / "results" / last["file"]
+    u, p = read_point_field(vtu, "displacement"), read_point_field(vtu, "contact_pressure")
     # VTU points are the mesh's nodes in order (ids 1..N here)
     nodes = []
     for n in contact_nodes(mesh):

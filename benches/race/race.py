@@ -33,6 +33,7 @@ See README.md beside this file for the settings and why.
 """
 
 import argparse
+import json
 import math
 import os
 import shutil
@@ -59,8 +60,9 @@ E_STAR = E / (1.0 - NU * NU)
 # (108 447 dofs); another gmsh version may give slightly other counts.
 SIZES = {"small": (0.0068, 0.17), "large": (0.0036, 0.09)}
 
-# CalculiX contact settings (README.md, "CalculiX settings").
-CCX_SLOPE_FACTOR = 100.0  # penalty slope K = factor * E / hmin (pressure per length); README.md
+# CalculiX's penalty slope K = CCX_SLOPE_FACTOR * E / hmin (pressure per length):
+# README.md, "The model and the CalculiX settings", says why.
+CCX_SLOPE_FACTOR = 100.0
 
 
 # ---------------------------------------------------------------- mesh
@@ -348,19 +350,17 @@ def run_signorini(binary, work, threads, timeout):
 
 
 def signorini_results(work, mesh):
-    import json
-
     summary = json.loads((work / "results" / "summary.json").read_text())
     incs = summary["increments"]
     last = incs[-1]
     vtu = work / "results" / last["file"]
     u, p = read_point_field(vtu, "displacement"), read_point_field(vtu, "contact_pressure")
-    # VTU points are the mesh's nodes in order (ids 1..N here)
+    point = {int(n): k for k, n in enumerate(read_point_field(vtu, "node_id"))}  # mesh.inp id -> VTU point
     nodes = []
     for n in contact_nodes(mesh):
         x, y, z = mesh.nodes[n]
-        k = 3 * (n - 1)
-        nodes.append((math.hypot(x + u[k], y + u[k + 1]), p[n - 1], z + u[k + 2]))
+        k = point[n]
+        nodes.append((math.hypot(x + u[3 * k], y + u[3 * k + 1]), p[k], z + u[3 * k + 2]))
     return {
         "iterations": sum(i["iterations"] for i in incs),
         "increments": len(incs),

@@ -170,3 +170,32 @@ fn condensed_final_state_is_independent_of_the_increments() {
         assert_eq!(run.summary.factorisations, 1);
     }
 }
+
+/// The other laws the condensed path takes: penalty (`t_N = ε⟨−g⟩`, the
+/// flexibility `W + diag(1/(A ε))`, the same penetration as Newton's) and
+/// the slack Lagrangian (exact, as Rockafellar) give Newton's displacements
+/// and nodal contact forces to 1e-10.
+#[test]
+fn condensed_equals_monolithic_for_penalty_and_slack() {
+    for method in ["penalty", "slack"] {
+        let law = [("method = \"rockafellar\"", format!("method = \"{method}\""))];
+        let (mono, mono_forces) = hertz(
+            "strategy = \"monolithic\"\nresidual_tolerance = 1e-11",
+            &law,
+        );
+        let (cond, cond_forces) = hertz("strategy = \"auto\"", &law);
+        assert_eq!(cond.summary.strategy, "condensed", "{method}");
+        let du = relative_difference(&cond.displacement, &mono.displacement);
+        let df = relative_difference(cond_forces.0.last().unwrap(), mono_forces.0.last().unwrap());
+        eprintln!("{method}: displacements {du:.1e}, nodal contact forces {df:.1e}");
+        assert!(du < 1e-10 && df < 1e-10, "{method}: {du:e} {df:e}");
+        let penetration =
+            cond.summary.increments.last().unwrap().contact["pole"].largest_penetration;
+        if method == "penalty" {
+            // penalty lets the body in, as Newton's penalty does
+            assert!(penetration > 1e-6, "{penetration}");
+        } else {
+            assert!(penetration < 1e-12, "{penetration}");
+        }
+    }
+}

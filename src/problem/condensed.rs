@@ -285,6 +285,14 @@ struct Condensation {
 /// and of the residual's assembly (2e-12 measured on Hertz).
 const RESIDUAL_FLOOR: f64 = 1e-10;
 
+/// The nodes that join the candidates in one round penetrate by at least
+/// this fraction of the deepest penetration ([`Condensation::entering`]).
+/// On examples/hertz (335 closed nodes at the end) 0 gives 621 candidates,
+/// 0.3 gives 530, 0.5 gives 431 and 0.8 the 335 closed nodes exactly but in
+/// 68 active-set steps instead of 13 and more rounds of small solves:
+/// 0.5 was the fastest.
+const ENTERING_FRACTION: f64 = 0.5;
+
 /// Columns solved together when `W` grows.
 const BLOCK: usize = 64;
 
@@ -398,6 +406,23 @@ impl Condensation {
         Ok(())
     }
 
+    /// The nodes that join the candidates at gaps `g`: those outside them
+    /// that penetrate by more than `tolerance` and by at least
+    /// [`ENTERING_FRACTION`] of the deepest such penetration (the deepest
+    /// first: a node that penetrates only a little without contact is
+    /// often lifted off by its neighbours' forces, and every candidate
+    /// costs a solve).
+    fn entering(&self, g: &[f64], tolerance: f64) -> Vec<usize> {
+        let outside = |a: &usize| !self.is_candidate[*a] && g[*a] < -tolerance;
+        let deepest = (0..self.nodes.len())
+            .filter(outside)
+            .map(|a| g[a])
+            .fold(0.0f64, f64::min);
+        (0..self.nodes.len())
+            .filter(|a| outside(a) && g[*a] <= ENTERING_FRACTION * deepest)
+            .collect()
+    }
+
     /// `K̃ u = rhs`, refined.
     fn solve(&mut self, problem: &Problem, rhs: &mut [f64]) -> Result<()> {
         let pattern = problem.model.pattern.symbolic();
@@ -459,9 +484,7 @@ impl Condensation {
         self.solve(problem, &mut u0)?;
         let g0 = self.gaps(problem, t, &u0);
         let tolerance = 1e-12 * problem.model.size();
-        let entering: Vec<usize> = (0..self.nodes.len())
-            .filter(|&a| !self.is_candidate[a] && g0[a] < 0.0)
-            .collect();
+        let entering = self.entering(&g0, tolerance);
         self.grow(&entering)?;
         loop {
             let q: Vec<f64> = self.candidates.iter().map(|&a| g0[a]).collect();
@@ -488,9 +511,7 @@ impl Condensation {
             }
             self.solve(problem, &mut u)?;
             let g = self.gaps(problem, t, &u);
-            let entering: Vec<usize> = (0..self.nodes.len())
-                .filter(|&a| !self.is_candidate[a] && g[a] < -tolerance)
-                .collect();
+            let entering = self.entering(&g, tolerance);
             if entering.is_empty() {
                 return Ok((u, forces));
             }

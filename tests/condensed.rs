@@ -107,9 +107,9 @@ fn condensed_equals_monolithic_on_frictionless_hertz() {
 
 /// `auto` takes the condensed path on Hertz (linear elastic, a rigid
 /// plane, frictionless, Rockafellar) and says why; it takes the monolithic
-/// one for friction (examples/press-pull), a finite-strain material and a
-/// sphere obstacle, naming the reason; `condensed` asked for where it does
-/// not apply is an error naming the reason.
+/// one for friction (examples/press-pull) and a finite-strain material,
+/// naming the reason; `condensed` asked for where it does not apply is an
+/// error naming the reason.
 #[test]
 fn auto_takes_the_condensed_path_exactly_where_it_applies() {
     let (auto, _) = hertz("strategy = \"auto\"", &[]);

@@ -63,7 +63,7 @@ use crate::solve::linear_solver::SolverStatistics;
 use crate::solve::newton::{apply_identity_rows, IterationRecord};
 use crate::solve::nonlinear::NonlinearProblem;
 use crate::solve::settings::{Step, Strategy};
-use crate::solve::stepping::{IncrementRecord, StepObserver};
+use crate::solve::stepping::{next_increment, IncrementRecord, StepObserver};
 use crate::{Error, Result};
 use nalgebra::{DMatrix, Matrix6, Vector3, Vector6};
 use std::path::PathBuf;
@@ -557,16 +557,8 @@ fn run_increments(
     for (s, step) in steps.iter().enumerate() {
         let mut dt = step.initial_increment.min(step.end_time - t);
         while t < step.end_time - 1e-12 * step.end_time.abs().max(1.0) {
-            // the stepper's rule (stepping::run_steps): no sliver at the end
-            dt = dt.min(step.end_time - t);
-            if step.end_time - (t + dt) < 0.25 * dt {
-                dt = step.end_time - t;
-            }
-            let t_new = if dt >= step.end_time - t {
-                step.end_time
-            } else {
-                t + dt
-            };
+            let t_new;
+            (dt, t_new) = next_increment(step, t, dt);
             if observer.cancelled() {
                 return Err(Error::Interrupted {
                     reason: format!(

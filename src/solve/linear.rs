@@ -297,7 +297,8 @@ impl SparseLdlt {
             .symbolic
             .as_ref()
             .ok_or_else(|| Error::LinearSolver("solve before factorisation".into()))?;
-        if self.precision != Precision::Double || columns == 0 || rhs.len() % columns != 0 {
+        if self.precision != Precision::Double || columns == 0 || !rhs.len().is_multiple_of(columns)
+        {
             return Err(Error::LinearSolver(
                 "a block solve needs an f64 factorisation and whole columns".into(),
             ));

@@ -199,3 +199,28 @@ fn condensed_equals_monolithic_for_penalty_and_slack() {
         }
     }
 }
+
+/// A body held only by contact has a singular stiffness, which the
+/// condensed path cannot factorise: Hertz with the top pushed by a
+/// pressure instead of a prescribed displacement (nothing holds the body
+/// in z) is not condensed, and the reason names the rigid-body motion;
+/// with the displacement it is.
+#[test]
+fn a_body_held_only_by_contact_is_not_condensed() {
+    let root = Path::new(env!("CARGO_MANIFEST_DIR"));
+    let folder = root.join("examples/hertz");
+    let text = std::fs::read_to_string(folder.join("case.toml")).unwrap();
+    let held = Simulation::from_toml(&text, &folder).unwrap();
+    assert_eq!(
+        signorini::problem::condensed::not_applicable(held.problem()),
+        None
+    );
+    let pushed = text.replace(
+        "[[displacement]]\nsurface = \"top\"\nz = -0.0115",
+        "[[pressure]]\nsurface = \"top\"\nvalue = 1.0",
+    );
+    assert_ne!(pushed, text);
+    let free = Simulation::from_toml(&pushed, &folder).unwrap();
+    let why = signorini::problem::condensed::not_applicable(free.problem()).unwrap();
+    assert!(why.contains("held only by contact"), "{why}");
+}

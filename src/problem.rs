@@ -12,6 +12,7 @@ use crate::contact::set::ContactSet;
 use crate::mesh::Facet;
 pub use crate::solve::settings::{LinearMethod, NonsymmetricSolver, SolverSettings, Step};
 
+pub mod condensed;
 mod nonlinear;
 
 pub use crate::contact::set::ContactState;

@@ -38,6 +38,7 @@ use crate::output::observer::Iteration;
 use crate::output::observer::{Cut, Observers, StepObserver};
 use crate::output::summary::{IncrementSummary, PhaseTimes, Summary};
 use crate::output::writer::ResultWriter;
+use crate::problem::condensed::{self, Path as SolvePath};
 use crate::problem::{ContactState, Problem};
 use crate::solve::backend::linear_solver;
 use crate::solve::failure::IncrementFailure;
@@ -100,6 +101,8 @@ pub struct Simulation {
     /// Notes on reading the case for the user (the ignored keywords of an
     /// `.inp` deck), told to the observers at the start of a run.
     notes: Vec<String>,
+    /// Monolithic or condensed (`[solver] strategy`), and why.
+    strategy: condensed::Choice,
 }
 
 impl Simulation {
@@ -109,6 +112,10 @@ impl Simulation {
         let requests = case.output_requests(&problem)?;
         let (nodal_fields, cell_fields) = case.output_fields();
         let every = case.output_every()?;
+        let strategy = condensed::choose(&problem).map_err(|message| Error::Case {
+            path: case.path.clone(),
+            message,
+        })?;
         Ok(Simulation {
             problem,
             case_label: case.path.display().to_string(),
@@ -120,6 +127,7 @@ impl Simulation {
             every,
             compress: case.spec.output.compress.unwrap_or(true),
             notes: case.notes.clone(),
+            strategy,
         })
     }
 
@@ -191,22 +199,35 @@ impl Simulation {
             start,
             contact: ContactState::default(),
         };
+        recorder.summary.strategy = self.strategy.path.name().into();
+        recorder.summary.strategy_reason = self.strategy.reason.clone();
+        recorder.observers.on_message(&format!(
+            "strategy: {} ({})",
+            self.strategy.path.name(),
+            self.strategy.reason
+        ));
         recorder.observers.on_start(&recorder.summary)?;
-        let ordering = fill_reducing_ordering(&self.problem)?;
-        let mut solver = linear_solver(&self.problem.settings, ordering, 0);
         let output = options.output.clone().unwrap_or_default();
-        let result = run_steps(
-            &mut self.problem,
-            &mut *solver,
-            &mut recorder,
-            output.clone(),
-        );
-        record_totals(
-            &mut recorder.summary,
-            &self.problem,
-            &solver.statistics(),
-            start,
-        );
+        let (result, statistics) = match self.strategy.path {
+            SolvePath::Monolithic => {
+                let ordering = fill_reducing_ordering(&self.problem)?;
+                let mut solver = linear_solver(&self.problem.settings, ordering, 0);
+                let result = run_steps(
+                    &mut self.problem,
+                    &mut *solver,
+                    &mut recorder,
+                    output.clone(),
+                );
+                (result, solver.statistics())
+            }
+            SolvePath::Condensed => {
+                let (result, statistics, steps) =
+                    condensed::run_steps(&mut self.problem, &mut recorder, output.clone());
+                recorder.summary.active_set_iterations = steps;
+                (result, statistics)
+            }
+        };
+        record_totals(&mut recorder.summary, &self.problem, &statistics, start);
         recorder.finish(result, output)
     }
 

@@ -219,14 +219,39 @@ fn assert_hertz(
     outcome.summary
 }
 
+/// `examples/<name>` with `[solver]` set to `solver`, run into a temporary
+/// folder (the example's mesh read where it is).
+fn run_example_with(name: &str, solver: &str) -> signorini::run::RunOutcome {
+    let folder = Path::new(env!("CARGO_MANIFEST_DIR"))
+        .join("examples")
+        .join(name);
+    let text = std::fs::read_to_string(folder.join("case.toml")).unwrap();
+    assert!(!text.contains("[solver]"));
+    let mut simulation =
+        signorini::run::Simulation::from_toml(&format!("{text}\n[solver]\n{solver}\n"), &folder)
+            .unwrap();
+    let options = RunOptions {
+        output: None,
+        threads: None,
+        cancel: None,
+    };
+    simulation
+        .run(&options, &mut signorini::output::observer::Silent)
+        .expect("the example runs")
+}
+
 /// `examples/hertz`: an elastic hemisphere pressed on a rigid plane
-/// (Rockafellar augmented Lagrangian), against Hertz (see [`assert_hertz`]);
-/// and Newton, monolithic with no outer loop, takes a handful of iterations
-/// per increment with a quadratic last step (`r_{k+1} ≤ 100 r_k²`, from a
-/// residual already below 0.1).
+/// (Rockafellar augmented Lagrangian), against Hertz (see [`assert_hertz`];
+/// the example as it runs, on the condensed path that `auto` takes);
+/// and Newton (`strategy = "monolithic"`), with no outer loop, takes a
+/// handful of iterations per increment with a quadratic last step
+/// (`r_{k+1} ≤ 100 r_k²`, from a residual already below 0.1).
 #[test]
 fn hertz_hemisphere_on_plane() {
-    let summary = assert_hertz("hertz", "pole", "top", ON_RIGID);
+    let condensed = assert_hertz("hertz", "pole", "top", ON_RIGID);
+    assert_eq!(condensed.strategy, "condensed");
+    let summary = run_example_with("hertz", "strategy = \"monolithic\"").summary;
+    assert_eq!(summary.strategy, "monolithic");
     for inc in &summary.increments {
         assert!(inc.iterations <= 8, "{} iterations", inc.iterations);
         let r = &inc.residuals;

@@ -21,7 +21,10 @@ fn run_with(example: &str, mesh: Option<(&str, &str)>, method: &str) -> RunOutco
         );
     }
     assert!(!text.contains("[solver]"));
-    text.push_str(&format!("\n[solver]\nlinear = \"{method}\"\n"));
+    // the linear solver of Newton's corrections: the monolithic path
+    text.push_str(&format!(
+        "\n[solver]\nlinear = \"{method}\"\nstrategy = \"monolithic\"\n"
+    ));
     let dir = tempfile::tempdir().unwrap();
     // the example's own mesh, by its relative path
     for entry in std::fs::read_dir(&folder).unwrap() {

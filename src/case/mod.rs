@@ -636,6 +636,7 @@ impl Case {
             nonsymmetric: sv.nonsymmetric.unwrap_or(d.nonsymmetric),
             linear: sv.linear.unwrap_or(d.linear),
             predictor: sv.predictor.unwrap_or(d.predictor),
+            strategy: sv.strategy.unwrap_or(d.strategy),
         };
         for (name, v) in [
             ("residual_tolerance", settings.residual_tolerance),

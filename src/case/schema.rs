@@ -356,6 +356,9 @@ pub struct SolverSpec {
     /// Where Newton starts an increment: `none` (default, the converged
     /// state) or `secant` (extrapolated from the last increment).
     pub predictor: Option<crate::solve::settings::Predictor>,
+    /// `auto` (default: the condensed contact path where it applies),
+    /// `monolithic` or `condensed`.
+    pub strategy: Option<crate::solve::settings::Strategy>,
 }
 
 /// `[output]`

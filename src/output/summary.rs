@@ -131,6 +131,15 @@ pub struct Summary {
     pub single_factorisations: usize,
     pub refinement_steps: usize,
     pub mixed_precision_fallbacks: usize,
+    /// Which path solved the run, `monolithic` (Newton on the whole
+    /// system) or `condensed` (one factorisation, the contact problem
+    /// solved on the contact nodes: `crate::problem::condensed`), and why
+    /// the other one was not taken.
+    pub strategy: String,
+    pub strategy_reason: String,
+    /// Condensed path: active-set steps (dense Cholesky solves of the
+    /// contact problem) over the run; 0 on the monolithic path.
+    pub active_set_iterations: usize,
     /// Per load step, totals over its increments.
     pub steps: Vec<StepSummary>,
     pub increments: Vec<IncrementSummary>,
@@ -186,6 +195,9 @@ impl Summary {
             single_factorisations: 0,
             refinement_steps: 0,
             mixed_precision_fallbacks: 0,
+            strategy: String::new(),
+            strategy_reason: String::new(),
+            active_set_iterations: 0,
             steps: Vec::new(),
             increments: Vec::new(),
         }

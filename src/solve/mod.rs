@@ -4,6 +4,7 @@
 
 pub mod backend;
 pub mod chattering;
+pub mod complementarity;
 pub mod direct;
 pub mod failure;
 pub mod gmres;

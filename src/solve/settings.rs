@@ -37,6 +37,25 @@ pub struct SolverSettings {
     pub linear: LinearMethod,
     /// The first Newton iterate of an increment (`[solver] predictor`).
     pub predictor: Predictor,
+    /// Monolithic Newton or the condensed contact path (`[solver] strategy`).
+    pub strategy: Strategy,
+}
+
+/// How a run is solved (`[solver] strategy`).
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, serde::Deserialize)]
+#[serde(rename_all = "lowercase")]
+pub enum Strategy {
+    /// The condensed path where it applies (it reproduces the monolithic
+    /// answer there), else monolithic Newton.
+    #[default]
+    Auto,
+    /// Newton on the whole system of displacements and multipliers, a
+    /// factorisation per iteration.
+    Monolithic,
+    /// One factorisation of the constant stiffness per run, the contact
+    /// problem solved exactly on its condensation `W = Eᵀ K⁻¹ E`
+    /// (`crate::problem::condensed`); an error where it does not apply.
+    Condensed,
 }
 
 /// Where Newton starts an increment (`[solver] predictor`).
@@ -107,6 +126,7 @@ impl Default for SolverSettings {
             nonsymmetric: NonsymmetricSolver::Gmres,
             linear: LinearMethod::Auto,
             predictor: Predictor::None,
+            strategy: Strategy::Auto,
         }
     }
 }

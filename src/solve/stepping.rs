@@ -9,7 +9,7 @@ use super::failure::IncrementFailure;
 use super::linear_solver::LinearSolver;
 use super::newton::{IterationRecord, Newton, NewtonOutcome};
 use super::nonlinear::{Evaluation, NonlinearProblem};
-use super::settings::Predictor;
+use super::settings::{Predictor, Step};
 use crate::{Error, Result};
 use std::path::PathBuf;
 
@@ -88,16 +88,8 @@ pub fn run_steps<P: NonlinearProblem>(
         let mut dt = step.initial_increment.min(step.end_time - t);
         let mut cuts = 0;
         while t < step.end_time - 1e-12 * step.end_time.abs().max(1.0) {
-            dt = dt.min(step.end_time - t);
-            // no sliver of an increment at the end of a step
-            if step.end_time - (t + dt) < 0.25 * dt {
-                dt = step.end_time - t;
-            }
-            let t_new = if dt >= step.end_time - t {
-                step.end_time
-            } else {
-                t + dt
-            };
+            let t_new;
+            (dt, t_new) = next_increment(step, t, dt);
             let motion = last_motion.map_or(0.0, |(m, last_dt)| m * (t_new - t) / last_dt);
             if problem.refresh_pattern(&u, motion) {
                 // new couplings: order them (each multiplier after its nodes)
@@ -202,6 +194,23 @@ pub fn run_steps<P: NonlinearProblem>(
         }
     }
     Ok(u)
+}
+
+/// The next increment of `step` from `t` when `dt` is asked for: `dt`
+/// bounded by the step's end, the whole rest when less than `dt/4` would
+/// remain (no sliver at the end of a step); returns it and its end time
+/// (the step's end exactly when it reaches it).
+pub fn next_increment(step: &Step, t: f64, dt: f64) -> (f64, f64) {
+    let mut dt = dt.min(step.end_time - t);
+    if step.end_time - (t + dt) < 0.25 * dt {
+        dt = step.end_time - t;
+    }
+    let t_new = if dt >= step.end_time - t {
+        step.end_time
+    } else {
+        t + dt
+    };
+    (dt, t_new)
 }
 
 /// The error of a run cancelled after the increments converged up to `t`.

@@ -1,0 +1,226 @@
+//! The condensed contact path (`[solver] strategy = "condensed"`, chosen
+//! by `auto` where it applies): one factorisation of the constant
+//! stiffness per run, the contact problem solved exactly on the contact
+//! nodes. It must give the monolithic Newton answer.
+
+use signorini::output::{ConvergedIncrement, StepObserver, Summary};
+use signorini::run::{RunOptions, RunOutcome, Simulation};
+use std::path::Path;
+
+/// Per converged increment: the nodal contact force (`A_s t_N n`, 3 per
+/// node) of every interface node.
+#[derive(Default)]
+struct Forces(Vec<Vec<f64>>);
+
+impl StepObserver for Forces {
+    fn on_increment(&mut self, inc: &ConvergedIncrement, _: &Summary) -> signorini::Result<()> {
+        self.0.push(inc.contact_fields.nodal_force.clone());
+        Ok(())
+    }
+}
+
+/// `examples/<example>/case.toml` with `replacements` made, `solver` lines
+/// added as its `[solver]` section, run in memory.
+fn run_case(
+    example: &str,
+    replacements: &[(&str, String)],
+    solver: &str,
+) -> Result<(RunOutcome, Forces), signorini::Error> {
+    let root = Path::new(env!("CARGO_MANIFEST_DIR"));
+    let folder = root.join("examples").join(example);
+    let mut text = std::fs::read_to_string(folder.join("case.toml")).unwrap();
+    for (old, new) in replacements {
+        assert!(text.contains(old), "{old}");
+        text = text.replace(old, new);
+    }
+    assert!(!text.contains("[solver]"));
+    text.push_str(&format!("\n[solver]\n{solver}\n"));
+    let mut simulation = Simulation::from_toml(&text, &folder)?;
+    let mut forces = Forces::default();
+    let options = RunOptions {
+        threads: Some(2),
+        output: None,
+        cancel: None,
+    };
+    let outcome = simulation.run(&options, &mut forces)?;
+    Ok((outcome, forces))
+}
+
+/// `max |a − b| / max |b|`.
+fn relative_difference(a: &[f64], b: &[f64]) -> f64 {
+    assert_eq!(a.len(), b.len());
+    let scale = b.iter().fold(0.0f64, |m, v| m.max(v.abs()));
+    a.iter()
+        .zip(b)
+        .fold(0.0f64, |m, (x, y)| m.max((x - y).abs()))
+        / scale
+}
+
+/// The coarse Hertz hemisphere (tests/data/hemisphere_coarse.msh in the
+/// examples/hertz case: 2.4 k dofs, Rockafellar, frictionless, 4
+/// increments).
+fn hertz(solver: &str, extra: &[(&str, String)]) -> (RunOutcome, Forces) {
+    let root = Path::new(env!("CARGO_MANIFEST_DIR"));
+    let mesh = root.join("tests/data/hemisphere_coarse.msh");
+    let mut replacements = vec![(
+        "file = \"hemisphere.msh\"",
+        format!("file = {:?}", mesh.display().to_string()),
+    )];
+    replacements.extend(extra.iter().cloned());
+    run_case("hertz", &replacements, solver).unwrap_or_else(|e| panic!("{solver}: {e}"))
+}
+
+/// Frictionless Hertz: the condensed path and monolithic Newton (residual
+/// tolerance 1e-11, so that Newton's answer is itself accurate to round-off
+/// level) give the same displacements and nodal contact forces to 1e-10
+/// relative at every increment's end (the final one compared here, and
+/// the total force of every increment), the same closed nodes; the
+/// condensed run factorises once, the monolithic one at every iteration.
+#[test]
+fn condensed_equals_monolithic_on_frictionless_hertz() {
+    let (mono, mono_forces) = hertz("strategy = \"monolithic\"\nresidual_tolerance = 1e-11", &[]);
+    let (cond, cond_forces) = hertz("strategy = \"condensed\"", &[]);
+    assert_eq!(cond.summary.strategy, "condensed");
+    assert_eq!(mono.summary.strategy, "monolithic");
+    let du = relative_difference(&cond.displacement, &mono.displacement);
+    eprintln!("hertz: condensed − monolithic displacements {du:.1e}");
+    assert!(du < 1e-10, "displacements differ by {du:e}");
+    assert_eq!(mono_forces.0.len(), cond_forces.0.len());
+    for (c, m) in cond_forces.0.iter().zip(&mono_forces.0) {
+        let df = relative_difference(c, m);
+        eprintln!("hertz: condensed − monolithic nodal contact forces {df:.1e}");
+        assert!(df < 1e-10, "contact forces differ by {df:e}");
+    }
+    for (c, m) in cond.summary.increments.iter().zip(&mono.summary.increments) {
+        assert_eq!(c.time, m.time);
+        let (fc, fm) = (c.contact["pole"].force[2], m.contact["pole"].force[2]);
+        assert!((fc - fm).abs() < 1e-10 * fm.abs(), "{fc} vs {fm}");
+        assert_eq!(
+            c.contact["pole"].closed_nodes,
+            m.contact["pole"].closed_nodes
+        );
+        assert!(c.contact["pole"].largest_penetration < 1e-12);
+    }
+    assert_eq!(cond.summary.factorisations, 1);
+    assert!(mono.summary.factorisations > 4);
+}
+
+/// `auto` takes the condensed path on Hertz (linear elastic, a rigid
+/// plane, frictionless, Rockafellar) and says why; it takes the monolithic
+/// one for friction (examples/press-pull) and a finite-strain material,
+/// naming the reason; `condensed` asked for where it does not apply is an
+/// error naming the reason.
+#[test]
+fn auto_takes_the_condensed_path_exactly_where_it_applies() {
+    let (auto, _) = hertz("strategy = \"auto\"", &[]);
+    assert_eq!(auto.summary.strategy, "condensed");
+    assert!(auto.summary.strategy_reason.contains("rigid plane"));
+    let neo = [(
+        "model = \"linear_elastic\"",
+        "model = \"neo_hookean\"".to_string(),
+    )];
+    let (finite, _) = hertz("strategy = \"auto\"", &neo);
+    assert_eq!(finite.summary.strategy, "monolithic");
+    assert!(
+        finite.summary.strategy_reason.contains("finite-strain"),
+        "{}",
+        finite.summary.strategy_reason
+    );
+    let (press_pull, _) = run_case("press-pull", &[], "strategy = \"auto\"").unwrap();
+    assert_eq!(press_pull.summary.strategy, "monolithic");
+    assert!(
+        press_pull.summary.strategy_reason.contains("friction"),
+        "{}",
+        press_pull.summary.strategy_reason
+    );
+    let Err(e) = run_case("press-pull", &[], "strategy = \"condensed\"") else {
+        panic!("condensed ran with friction");
+    };
+    let message = e.to_string();
+    assert!(
+        message.contains("solver.strategy") && message.contains("friction"),
+        "{message}"
+    );
+}
+
+/// The frictionless condensed answer does not depend on the increments:
+/// Hertz in 1, 4 and 10 equal increments ends at the same displacements and
+/// contact forces to 1e-12 relative.
+#[test]
+fn condensed_final_state_is_independent_of_the_increments() {
+    let runs: Vec<(RunOutcome, Forces)> = [1.0, 0.25, 0.1]
+        .iter()
+        .map(|dt| {
+            let step = [(
+                "initial_increment = 0.25",
+                format!("initial_increment = {dt}\nmax_increment = {dt}"),
+            )];
+            hertz("strategy = \"condensed\"", &step)
+        })
+        .collect();
+    let counts: Vec<usize> = runs.iter().map(|r| r.0.summary.increments.len()).collect();
+    assert_eq!(counts, [1, 4, 10]);
+    let (reference, reference_forces) = &runs[0];
+    for (run, forces) in &runs[1..] {
+        let du = relative_difference(&run.displacement, &reference.displacement);
+        eprintln!("increments: displacements differ from 1 increment's by {du:.1e}");
+        assert!(du < 1e-12, "displacements differ by {du:e}");
+        let df = relative_difference(forces.0.last().unwrap(), reference_forces.0.last().unwrap());
+        assert!(df < 1e-12, "contact forces differ by {df:e}");
+        assert_eq!(run.summary.factorisations, 1);
+    }
+}
+
+/// The other laws the condensed path takes: penalty (`t_N = ε⟨−g⟩`, the
+/// flexibility `W + diag(1/(A ε))`, the same penetration as Newton's) and
+/// the slack Lagrangian (exact, as Rockafellar) give Newton's displacements
+/// and nodal contact forces to 1e-10.
+#[test]
+fn condensed_equals_monolithic_for_penalty_and_slack() {
+    for method in ["penalty", "slack"] {
+        let law = [("method = \"rockafellar\"", format!("method = \"{method}\""))];
+        let (mono, mono_forces) = hertz(
+            "strategy = \"monolithic\"\nresidual_tolerance = 1e-11",
+            &law,
+        );
+        let (cond, cond_forces) = hertz("strategy = \"auto\"", &law);
+        assert_eq!(cond.summary.strategy, "condensed", "{method}");
+        let du = relative_difference(&cond.displacement, &mono.displacement);
+        let df = relative_difference(cond_forces.0.last().unwrap(), mono_forces.0.last().unwrap());
+        eprintln!("{method}: displacements {du:.1e}, nodal contact forces {df:.1e}");
+        assert!(du < 1e-10 && df < 1e-10, "{method}: {du:e} {df:e}");
+        let penetration =
+            cond.summary.increments.last().unwrap().contact["pole"].largest_penetration;
+        if method == "penalty" {
+            // penalty lets the body in, as Newton's penalty does
+            assert!(penetration > 1e-6, "{penetration}");
+        } else {
+            assert!(penetration < 1e-12, "{penetration}");
+        }
+    }
+}
+
+/// A body held only by contact has a singular stiffness, which the
+/// condensed path cannot factorise: Hertz with the top pushed by a
+/// pressure instead of a prescribed displacement (nothing holds the body
+/// in z) is not condensed, and the reason names the rigid-body motion;
+/// with the displacement it is.
+#[test]
+fn a_body_held_only_by_contact_is_not_condensed() {
+    let root = Path::new(env!("CARGO_MANIFEST_DIR"));
+    let folder = root.join("examples/hertz");
+    let text = std::fs::read_to_string(folder.join("case.toml")).unwrap();
+    let held = Simulation::from_toml(&text, &folder).unwrap();
+    assert_eq!(
+        signorini::problem::condensed::not_applicable(held.problem()),
+        None
+    );
+    let pushed = text.replace(
+        "[[displacement]]\nsurface = \"top\"\nz = -0.0115",
+        "[[pressure]]\nsurface = \"top\"\nvalue = 1.0",
+    );
+    assert_ne!(pushed, text);
+    let free = Simulation::from_toml(&pushed, &folder).unwrap();
+    let why = signorini::problem::condensed::not_applicable(free.problem()).unwrap();
+    assert!(why.contains("held only by contact"), "{why}");
+}

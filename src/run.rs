@@ -39,7 +39,7 @@ use crate::output::observer::{Cut, Observers, StepObserver};
 use crate::output::summary::{IncrementSummary, PhaseTimes, Summary};
 use crate::output::writer::ResultWriter;
 use crate::problem::{ContactState, Problem};
-use crate::solve::backend::linear_solver;
+use crate::solve::backend::try_linear_solver;
 use crate::solve::failure::IncrementFailure;
 use crate::solve::linear_solver::SolverStatistics;
 use crate::solve::newton::IterationRecord;
@@ -193,7 +193,22 @@ impl Simulation {
         };
         recorder.observers.on_start(&recorder.summary)?;
         let ordering = fill_reducing_ordering(&self.problem)?;
-        let mut solver = linear_solver(&self.problem.settings, ordering, 0);
+        let coordinates = self
+            .problem
+            .model
+            .mesh
+            .nodes
+            .iter()
+            .flatten()
+            .copied()
+            .collect();
+        let mut solver = try_linear_solver(&self.problem.settings, ordering, 0, Some(coordinates))?;
+        let about_solver = solver.description();
+        if !about_solver.is_empty() {
+            recorder
+                .observers
+                .on_message(&format!("linear solver: {about_solver}"));
+        }
         let output = options.output.clone().unwrap_or_default();
         let result = run_steps(
             &mut self.problem,

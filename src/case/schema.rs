@@ -356,6 +356,18 @@ pub struct SolverSpec {
     /// Where Newton starts an increment: `none` (default, the converged
     /// state) or `secant` (extrapolated from the last increment).
     pub predictor: Option<crate::solve::settings::Predictor>,
+    /// `[solver.petsc]`: options of the PETSc backend (`linear = "petsc"`).
+    pub petsc: Option<PetscSpec>,
+}
+
+/// `[solver.petsc]`
+#[derive(Debug, Deserialize, Default)]
+#[serde(deny_unknown_fields)]
+pub struct PetscSpec {
+    /// A PETSc options string, e.g. `"-ksp_type cg -pc_type gamg"`, read
+    /// after the environment's `PETSC_OPTIONS` (default: none, a direct LU
+    /// by MUMPS).
+    pub options: Option<String>,
 }
 
 /// `[output]`

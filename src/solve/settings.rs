@@ -37,6 +37,9 @@ pub struct SolverSettings {
     pub linear: LinearMethod,
     /// The first Newton iterate of an increment (`[solver] predictor`).
     pub predictor: Predictor,
+    /// PETSc options for [`LinearMethod::Petsc`] (`[solver.petsc] options`),
+    /// read after the environment's `PETSC_OPTIONS`.
+    pub petsc_options: String,
 }
 
 /// Where Newton starts an increment (`[solver] predictor`).
@@ -92,6 +95,9 @@ pub enum LinearMethod {
     Gmres,
     /// The sparse LU with partial pivoting, every time.
     Lu,
+    /// PETSc's KSP and PC from its options database (cargo feature
+    /// `petsc`; default: a direct LU by MUMPS).
+    Petsc,
 }
 
 impl Default for SolverSettings {
@@ -107,6 +113,7 @@ impl Default for SolverSettings {
             nonsymmetric: NonsymmetricSolver::Gmres,
             linear: LinearMethod::Auto,
             predictor: Predictor::None,
+            petsc_options: String::new(),
         }
     }
 }

@@ -40,7 +40,7 @@ use crate::output::summary::{IncrementSummary, PhaseTimes, Summary};
 use crate::output::writer::ResultWriter;
 use crate::problem::condensed::{self, Path as SolvePath};
 use crate::problem::{ContactState, Problem};
-use crate::solve::backend::linear_solver;
+use crate::solve::backend::try_linear_solver;
 use crate::solve::failure::IncrementFailure;
 use crate::solve::linear_solver::SolverStatistics;
 use crate::solve::newton::IterationRecord;
@@ -211,7 +211,23 @@ impl Simulation {
         let (result, statistics) = match self.strategy.path {
             SolvePath::Monolithic => {
                 let ordering = fill_reducing_ordering(&self.problem)?;
-                let mut solver = linear_solver(&self.problem.settings, ordering, 0);
+                let coordinates = self
+                    .problem
+                    .model
+                    .mesh
+                    .nodes
+                    .iter()
+                    .flatten()
+                    .copied()
+                    .collect();
+                let mut solver =
+                    try_linear_solver(&self.problem.settings, ordering, 0, Some(coordinates))?;
+                let about_solver = solver.description();
+                if !about_solver.is_empty() {
+                    recorder
+                        .observers
+                        .on_message(&format!("linear solver: {about_solver}"));
+                }
                 let result = run_steps(
                     &mut self.problem,
                     &mut *solver,

@@ -14,7 +14,7 @@ use crate::contact::{RigidObstacle, TriangulatedSurface};
 use crate::material::{self, Material};
 use crate::mesh::Mesh;
 use crate::problem::{
-    Amplitude, BodyForce, NodalForce, PrescribedDisplacement, PressureLoad, Problem,
+    Amplitude, BodyForce, LinearMethod, NodalForce, PrescribedDisplacement, PressureLoad, Problem,
     SolverSettings, Step,
 };
 use crate::{Error, Result};
@@ -637,7 +637,22 @@ impl Case {
             linear: sv.linear.unwrap_or(d.linear),
             predictor: sv.predictor.unwrap_or(d.predictor),
             strategy: sv.strategy.unwrap_or(d.strategy),
+            petsc_options: sv
+                .petsc
+                .as_ref()
+                .and_then(|p| p.options.clone())
+                .unwrap_or_default(),
         };
+        if sv.petsc.is_some() && settings.linear != LinearMethod::Petsc {
+            return Err(self.err(
+                "[solver.petsc] is set but solver.linear is not \"petsc\": \
+                 add linear = \"petsc\" or remove [solver.petsc]"
+                    .to_string(),
+            ));
+        }
+        if settings.linear == LinearMethod::Petsc && !cfg!(feature = "petsc") {
+            return Err(self.err(crate::solve::backend::PETSC_MISSING.to_string()));
+        }
         for (name, v) in [
             ("residual_tolerance", settings.residual_tolerance),
             ("displacement_tolerance", settings.displacement_tolerance),

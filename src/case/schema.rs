@@ -359,6 +359,18 @@ pub struct SolverSpec {
     /// `auto` (default: the condensed contact path where it applies),
     /// `monolithic` or `condensed`.
     pub strategy: Option<crate::solve::settings::Strategy>,
+    /// `[solver.petsc]`: options of the PETSc backend (`linear = "petsc"`).
+    pub petsc: Option<PetscSpec>,
+}
+
+/// `[solver.petsc]`
+#[derive(Debug, Deserialize, Default)]
+#[serde(deny_unknown_fields)]
+pub struct PetscSpec {
+    /// A PETSc options string, e.g. `"-ksp_type cg -pc_type gamg"`, read
+    /// after the environment's `PETSC_OPTIONS` (default: none, a direct LU
+    /// by MUMPS).
+    pub options: Option<String>,
 }
 
 /// `[output]`

@@ -9,6 +9,7 @@ use super::linear::Ordering;
 use super::linear_solver::{LinearSolver, LinearSystem, SolverStatistics};
 use super::lu::SparseLu;
 use super::settings::{LinearMethod, NonsymmetricSolver, SolverSettings};
+use crate::Result;
 
 /// The size from which `auto` factorises a symmetric tangent in f32 and
 /// refines in f64: below it the factorisation is not the larger part of a
@@ -17,13 +18,28 @@ use super::settings::{LinearMethod, NonsymmetricSolver, SolverSettings};
 pub const MIXED_PRECISION_DOFS: usize = 20_000;
 
 /// The linear solver `settings` ask for, with fill-reducing `ordering` and
-/// `threads` threads (0 = rayon's pool).
+/// `threads` threads (0 = rayon's pool). A backend that cannot start
+/// (PETSc) gives a solver whose every solve fails with the reason; a run
+/// uses [`try_linear_solver`] to stop at once instead.
 pub fn linear_solver(
     settings: &SolverSettings,
     ordering: Ordering,
     threads: usize,
 ) -> Box<dyn LinearSolver> {
-    match settings.linear {
+    try_linear_solver(settings, ordering, threads, None)
+        .unwrap_or_else(|e| Box::new(Unavailable(e.to_string())))
+}
+
+/// [`linear_solver`], or why its backend cannot start. `coordinates`
+/// (reference, 3 per node) give an algebraic multigrid its rigid-body
+/// modes (PETSc's GAMG).
+pub fn try_linear_solver(
+    settings: &SolverSettings,
+    ordering: Ordering,
+    threads: usize,
+    coordinates: Option<Vec<f64>>,
+) -> Result<Box<dyn LinearSolver>> {
+    Ok(match settings.linear {
         LinearMethod::Auto => Box::new(Auto {
             nonsymmetric: settings.nonsymmetric,
             direct: DirectLdlt::new(ordering.clone(), threads)
@@ -37,8 +53,47 @@ pub fn linear_solver(
         ),
         LinearMethod::Gmres => Box::new(PreconditionedGmres::new(ordering, threads)),
         LinearMethod::Lu => Box::new(SparseLu::default()),
+        LinearMethod::Petsc => petsc_solver(settings, coordinates)?,
+    })
+}
+
+#[cfg(feature = "petsc")]
+fn petsc_solver(
+    settings: &SolverSettings,
+    coordinates: Option<Vec<f64>>,
+) -> Result<Box<dyn LinearSolver>> {
+    Ok(Box::new(super::petsc::PetscSolver::new(
+        &settings.petsc_options,
+        coordinates,
+    )?))
+}
+
+#[cfg(not(feature = "petsc"))]
+fn petsc_solver(_: &SolverSettings, _: Option<Vec<f64>>) -> Result<Box<dyn LinearSolver>> {
+    Err(crate::Error::LinearSolver(PETSC_MISSING.into()))
+}
+
+/// A backend that could not start: every solve fails with `.0`.
+struct Unavailable(String);
+
+impl LinearSolver for Unavailable {
+    fn set_ordering(&mut self, _: Ordering) {}
+    fn solve(
+        &mut self,
+        _: &LinearSystem<'_>,
+        _: &[f64],
+        _: &mut [f64],
+    ) -> std::result::Result<(), String> {
+        Err(self.0.clone())
+    }
+    fn statistics(&self) -> SolverStatistics {
+        SolverStatistics::default()
     }
 }
+
+/// Why `linear = "petsc"` is refused by a build without the feature.
+pub const PETSC_MISSING: &str = "solver.linear = \"petsc\" needs signorini built with PETSc: \
+     `cargo build --release --features petsc` (PETSc from `apt-get install petsc-dev`)";
 
 /// A symmetric system by the [`DirectLdlt`], a nonsymmetric one by the
 /// [`PreconditionedGmres`] or the [`SparseLu`] (`nonsymmetric`).

@@ -109,4 +109,9 @@ pub trait LinearSolver {
     ) -> Result<(), String>;
     /// Counts and times so far.
     fn statistics(&self) -> SolverStatistics;
+    /// What the log should say of the solver beyond `[solver] linear`
+    /// (an external library's version and settings); empty by default.
+    fn description(&self) -> String {
+        String::new()
+    }
 }

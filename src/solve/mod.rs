@@ -15,5 +15,7 @@ pub mod lu;
 pub mod newton;
 pub mod nonlinear;
 pub mod ordering;
+#[cfg(feature = "petsc")]
+pub mod petsc;
 pub mod settings;
 pub mod stepping;

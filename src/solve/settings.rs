@@ -39,6 +39,9 @@ pub struct SolverSettings {
     pub predictor: Predictor,
     /// Monolithic Newton or the condensed contact path (`[solver] strategy`).
     pub strategy: Strategy,
+    /// PETSc options for [`LinearMethod::Petsc`] (`[solver.petsc] options`),
+    /// read after the environment's `PETSC_OPTIONS`.
+    pub petsc_options: String,
 }
 
 /// How a run is solved (`[solver] strategy`).
@@ -111,6 +114,9 @@ pub enum LinearMethod {
     Gmres,
     /// The sparse LU with partial pivoting, every time.
     Lu,
+    /// PETSc's KSP and PC from its options database (cargo feature
+    /// `petsc`; default: a direct LU by MUMPS).
+    Petsc,
 }
 
 impl Default for SolverSettings {
@@ -127,6 +133,7 @@ impl Default for SolverSettings {
             linear: LinearMethod::Auto,
             predictor: Predictor::None,
             strategy: Strategy::Auto,
+            petsc_options: String::new(),
         }
     }
 }

@@ -1,0 +1,387 @@
+//! A [`LinearSolver`] on PETSc (`[solver] linear = "petsc"`, cargo feature
+//! `petsc`): the tangent goes to PETSc as a sequential AIJ matrix (block
+//! size 3 when every unknown is a nodal displacement), and a KSP with its
+//! PC solves it, both set from PETSc's options database. The default is a
+//! direct LU by MUMPS (`-ksp_type preonly -pc_type lu
+//! -pc_factor_mat_solver_type mumps`), which also takes the indefinite
+//! saddle-point tangents of the Lagrangian contact methods. Users choose
+//! anything else PETSc offers, e.g. GAMG (`-ksp_type cg -pc_type gamg`,
+//! with the rigid-body near-null space attached from the node coordinates)
+//! or hypre BoomerAMG (`-pc_type hypre`), through
+//! `[solver.petsc] options = "…"` or the environment's `PETSC_OPTIONS`.
+//!
+//! PETSc's interface is partly C macros, so the calls go through a small C
+//! layer (`shim.c`, compiled by `build.rs` against the installed headers);
+//! this module owns the conversion of faer's column-compressed tangent to
+//! PETSc's compressed rows and the bookkeeping of [`LinearSolver`].
+//!
+//! Each solver has an options database of its own (the environment's
+//! `PETSC_OPTIONS`, then the case's options), so two runs in one process
+//! do not share options. PETSc is initialised once per process (MPI as a singleton when the
+//! program was not started by `mpirun`) and finalised at exit. Calls into
+//! it are serialised by a lock: PETSc is not thread-safe.
+
+use super::linear::{pattern_fingerprint, Ordering};
+use super::linear_solver::{LinearSolver, LinearSystem, SolverStatistics};
+use crate::{Error, Result};
+use faer::sparse::SymbolicSparseColMat;
+use std::ffi::{c_char, c_int, c_void, CStr, CString};
+use std::sync::Mutex;
+use std::time::{Duration, Instant};
+
+mod ffi {
+    use std::ffi::{c_char, c_int, c_void};
+    extern "C" {
+        pub fn sg_petsc_initialise(
+            version: *mut c_char,
+            version_len: usize,
+            err: *mut c_char,
+            err_len: usize,
+        ) -> c_int;
+        pub fn sg_petsc_solver_new(
+            out: *mut *mut c_void,
+            options: *const c_char,
+            err: *mut c_char,
+            len: usize,
+        ) -> c_int;
+        pub fn sg_petsc_solver_free(handle: *mut c_void);
+        pub fn sg_petsc_describe(
+            handle: *mut c_void,
+            text: *mut c_char,
+            text_len: usize,
+            err: *mut c_char,
+            err_len: usize,
+        ) -> c_int;
+        #[allow(clippy::too_many_arguments)] // mirrors the C function
+        pub fn sg_petsc_solve(
+            handle: *mut c_void,
+            n: c_int,
+            row_start: *const c_int,
+            columns: *const c_int,
+            values: *const f64,
+            same_pattern: c_int,
+            block_size: c_int,
+            coordinates: *const f64,
+            b: *const f64,
+            x: *mut f64,
+            iterations: *mut c_int,
+            err: *mut c_char,
+            err_len: usize,
+        ) -> c_int;
+    }
+}
+
+/// Serialises every call into PETSc.
+static PETSC: Mutex<()> = Mutex::new(());
+
+const MESSAGE: usize = 1024;
+
+/// A message buffer the C layer writes into, as a Rust string.
+fn message(buffer: &[c_char]) -> String {
+    // SAFETY: the C layer writes a NUL-terminated string (snprintf) into a
+    // zeroed buffer of this length, so there is a NUL within it
+    unsafe { CStr::from_ptr(buffer.as_ptr()) }
+        .to_string_lossy()
+        .into_owned()
+}
+
+/// The column-compressed tangent as compressed rows: `row_start`,
+/// `columns` (sorted in each row) and, per CSC entry, its CSR position.
+struct RowPattern {
+    row_start: Vec<c_int>,
+    columns: Vec<c_int>,
+    position: Vec<usize>,
+    fingerprint: u64,
+}
+
+impl RowPattern {
+    /// The transpose of the CSC structure: walking the columns in order
+    /// fills each row's columns in increasing order.
+    fn new(pattern: &SymbolicSparseColMat<usize>) -> Result<Self> {
+        let n = pattern.nrows();
+        let (col_ptr, row_idx) = (pattern.col_ptr(), pattern.row_idx());
+        let nnz = row_idx.len();
+        if nnz > c_int::MAX as usize {
+            return Err(Error::LinearSolver(format!(
+                "{nnz} matrix entries exceed PETSc's 32-bit indices (this PETSc was \
+                 configured without --with-64-bit-indices)"
+            )));
+        }
+        let mut row_start = vec![0 as c_int; n + 1];
+        for &i in row_idx {
+            row_start[i + 1] += 1;
+        }
+        for i in 0..n {
+            row_start[i + 1] += row_start[i];
+        }
+        let mut next: Vec<usize> = row_start[..n].iter().map(|&s| s as usize).collect();
+        let mut columns = vec![0 as c_int; nnz];
+        let mut position = vec![0; nnz];
+        for j in 0..n {
+            for k in col_ptr[j]..col_ptr[j + 1] {
+                let i = row_idx[k];
+                position[k] = next[i];
+                columns[next[i]] = j as c_int;
+                next[i] += 1;
+            }
+        }
+        Ok(RowPattern {
+            row_start,
+            columns,
+            position,
+            fingerprint: pattern_fingerprint(pattern),
+        })
+    }
+}
+
+/// PETSc's KSP and PC on the tangent.
+pub struct PetscSolver {
+    handle: *mut c_void,
+    rows: Option<RowPattern>,
+    values: Vec<f64>,
+    /// Reference coordinates of the nodes (3 per node) for GAMG's
+    /// rigid-body near-null space, when every unknown is a displacement.
+    coordinates: Option<Vec<f64>>,
+    /// PETSc's version and the KSP/PC in use, for the log.
+    description: String,
+    total: Duration,
+    solves: usize,
+    iterations: usize,
+}
+
+// SAFETY: the handle is only used under the `PETSC` lock, and PETSc's
+// sequential objects do not belong to a thread
+unsafe impl Send for PetscSolver {}
+
+impl PetscSolver {
+    /// Initialise PETSc and make a KSP set from `options` (a PETSc options
+    /// string, read after the environment's `PETSC_OPTIONS`).
+    /// `coordinates` (3 per node, reference) are attached as GAMG's
+    /// rigid-body near-null space when every unknown is a displacement.
+    pub fn new(options: &str, coordinates: Option<Vec<f64>>) -> Result<Self> {
+        let options = CString::new(options).map_err(|_| {
+            Error::LinearSolver("[solver.petsc] options contain a NUL character".into())
+        })?;
+        let _lock = PETSC.lock().unwrap_or_else(|e| e.into_inner());
+        let mut err = [0 as c_char; MESSAGE];
+        let mut version = [0 as c_char; 256];
+        // SAFETY: valid NUL-terminated input, buffers of the lengths given
+        let code = unsafe {
+            ffi::sg_petsc_initialise(
+                version.as_mut_ptr(),
+                version.len(),
+                err.as_mut_ptr(),
+                err.len(),
+            )
+        };
+        if code != 0 {
+            return Err(Error::LinearSolver(message(&err)));
+        }
+        let mut handle = std::ptr::null_mut();
+        // SAFETY: out-pointer, NUL-terminated options and buffer valid
+        let code = unsafe {
+            ffi::sg_petsc_solver_new(&mut handle, options.as_ptr(), err.as_mut_ptr(), err.len())
+        };
+        if code != 0 {
+            // SAFETY: the C layer sets `handle` before anything can fail
+            unsafe { ffi::sg_petsc_solver_free(handle) };
+            return Err(Error::LinearSolver(message(&err)));
+        }
+        let mut text = [0 as c_char; 256];
+        // SAFETY: handle made above, buffers valid
+        let code = unsafe {
+            ffi::sg_petsc_describe(
+                handle,
+                text.as_mut_ptr(),
+                text.len(),
+                err.as_mut_ptr(),
+                err.len(),
+            )
+        };
+        let solver_text = if code == 0 {
+            message(&text)
+        } else {
+            message(&err)
+        };
+        Ok(PetscSolver {
+            handle,
+            rows: None,
+            values: Vec::new(),
+            coordinates,
+            description: format!("{}, {solver_text}", message(&version)),
+            total: Duration::ZERO,
+            solves: 0,
+            iterations: 0,
+        })
+    }
+}
+
+impl Drop for PetscSolver {
+    fn drop(&mut self) {
+        let _lock = PETSC.lock().unwrap_or_else(|e| e.into_inner());
+        // SAFETY: the handle came from sg_petsc_solver_new and is freed once
+        unsafe { ffi::sg_petsc_solver_free(self.handle) };
+    }
+}
+
+impl LinearSolver for PetscSolver {
+    /// PETSc orders the unknowns itself (MUMPS' analysis, or none for an
+    /// iterative method).
+    fn set_ordering(&mut self, _ordering: Ordering) {}
+
+    fn solve(
+        &mut self,
+        system: &LinearSystem<'_>,
+        rhs: &[f64],
+        x: &mut [f64],
+    ) -> std::result::Result<(), String> {
+        let start = Instant::now();
+        let n = rhs.len();
+        let fingerprint = pattern_fingerprint(system.pattern);
+        let same_pattern = self
+            .rows
+            .as_ref()
+            .is_some_and(|r| r.fingerprint == fingerprint);
+        if !same_pattern {
+            self.rows = Some(RowPattern::new(system.pattern).map_err(|e| e.to_string())?);
+        }
+        let Some(rows) = &self.rows else {
+            return Err("no matrix pattern".into());
+        };
+        self.values.resize(rows.columns.len(), 0.0);
+        for (k, &p) in rows.position.iter().enumerate() {
+            self.values[p] = system.matrix[k];
+        }
+        let displacement_only = self.coordinates.as_ref().is_some_and(|c| c.len() == n);
+        let coordinates = match (&self.coordinates, displacement_only) {
+            (Some(c), true) => c.as_ptr(),
+            _ => std::ptr::null(),
+        };
+        let block_size = if displacement_only { 3 } else { 1 };
+        let mut iterations: c_int = 0;
+        let mut err = [0 as c_char; MESSAGE];
+        let _lock = PETSC.lock().unwrap_or_else(|e| e.into_inner());
+        // SAFETY: arrays of the lengths PETSc reads (n + 1 row starts, nnz
+        // columns and values, n right-hand side and solution entries, 3 per
+        // node coordinates when given), all alive for the call
+        let code = unsafe {
+            ffi::sg_petsc_solve(
+                self.handle,
+                n as c_int,
+                rows.row_start.as_ptr(),
+                rows.columns.as_ptr(),
+                self.values.as_ptr(),
+                same_pattern as c_int,
+                block_size,
+                coordinates,
+                rhs.as_ptr(),
+                x.as_mut_ptr(),
+                &mut iterations,
+                err.as_mut_ptr(),
+                err.len(),
+            )
+        };
+        self.solves += 1;
+        self.iterations += iterations.max(0) as usize;
+        self.total += start.elapsed();
+        if code != 0 {
+            return Err(message(&err));
+        }
+        if x.iter().any(|v| !v.is_finite()) {
+            return Err("PETSc's solution is not finite: the tangent is singular".into());
+        }
+        Ok(())
+    }
+
+    fn description(&self) -> String {
+        self.description.clone()
+    }
+
+    fn statistics(&self) -> SolverStatistics {
+        SolverStatistics {
+            factorisation: self.total,
+            krylov_solves: self.solves,
+            krylov_iterations: self.iterations,
+            ..Default::default()
+        }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use faer::sparse::{SparseColMat, Triplet};
+
+    fn system(triplets: &[(usize, usize, f64)], n: usize) -> SparseColMat<usize, f64> {
+        let t: Vec<_> = triplets
+            .iter()
+            .map(|&(i, j, v)| Triplet::new(i, j, v))
+            .collect();
+        SparseColMat::try_new_from_triplets(n, n, &t).unwrap()
+    }
+
+    #[test]
+    fn row_pattern_is_the_transpose() {
+        let a = system(
+            &[
+                (0, 0, 1.0),
+                (2, 0, 2.0),
+                (1, 1, 3.0),
+                (0, 2, 4.0),
+                (2, 2, 5.0),
+            ],
+            3,
+        );
+        let rows = RowPattern::new(&a.symbolic().to_owned().unwrap()).unwrap();
+        assert_eq!(rows.row_start, vec![0, 2, 3, 5]);
+        assert_eq!(rows.columns, vec![0, 2, 1, 0, 2]);
+        let mut values = vec![0.0; 5];
+        for (k, &p) in rows.position.iter().enumerate() {
+            values[p] = a.val()[k];
+        }
+        assert_eq!(values, vec![1.0, 4.0, 3.0, 2.0, 5.0]);
+    }
+
+    #[test]
+    fn mumps_solves_a_nonsymmetric_indefinite_system() {
+        // A = [[4, 1, 0], [2, 0, 1], [0, 3, 6]] (zero pivot at (1, 1)), x = (1, −2, 3)
+        let a = system(
+            &[
+                (0, 0, 4.0),
+                (1, 0, 2.0),
+                (0, 1, 1.0),
+                (2, 1, 3.0),
+                (1, 2, 1.0),
+                (2, 2, 6.0),
+            ],
+            3,
+        );
+        let x_exact = [1.0, -2.0, 3.0];
+        let b = [
+            4.0 * x_exact[0] + x_exact[1],
+            2.0 * x_exact[0] + x_exact[2],
+            3.0 * x_exact[1] + 6.0 * x_exact[2],
+        ];
+        let pattern = a.symbolic().to_owned().unwrap();
+        let mut solver = PetscSolver::new("", None).unwrap();
+        assert!(
+            solver.description().contains("mumps"),
+            "{}",
+            solver.description()
+        );
+        for _ in 0..2 {
+            let mut x = [0.0; 3];
+            let sys = LinearSystem {
+                pattern: &pattern,
+                matrix: a.val(),
+                symmetric_neighbour: None,
+                pivot_signs: None,
+            };
+            solver.solve(&sys, &b, &mut x).unwrap();
+            for i in 0..3 {
+                assert!((x[i] - x_exact[i]).abs() < 1e-14, "{x:?}");
+            }
+        }
+        assert_eq!(solver.statistics().krylov_solves, 2);
+    }
+}

@@ -100,6 +100,10 @@ pub struct Simulation {
     /// Notes on reading the case for the user (the ignored keywords of an
     /// `.inp` deck), told to the observers at the start of a run.
     notes: Vec<String>,
+    /// The model's likely causes of non-convergence
+    /// ([`Case::diagnose`](case::Case::diagnose)), told at the start and
+    /// named in the error of a failed run.
+    warnings: Vec<String>,
 }
 
 impl Simulation {
@@ -110,7 +114,6 @@ impl Simulation {
         let (nodal_fields, cell_fields) = case.output_fields();
         let every = case.output_every()?;
         Ok(Simulation {
-            problem,
             case_label: case.path.display().to_string(),
             name: case.output_name(),
             default_output: case.output_dir(None),
@@ -120,6 +123,8 @@ impl Simulation {
             every,
             compress: case.spec.output.compress.unwrap_or(true),
             notes: case.notes.clone(),
+            warnings: case.diagnose(&problem),
+            problem,
         })
     }
 
@@ -200,7 +205,8 @@ impl Simulation {
             &mut *solver,
             &mut recorder,
             output.clone(),
-        );
+        )
+        .map_err(|e| case::diagnosis::explain_failure(e, &self.warnings));
         record_totals(
             &mut recorder.summary,
             &self.problem,
@@ -234,9 +240,11 @@ impl Simulation {
     /// and profiles read, for the observers' logs.
     fn describe_to(&self, observers: &mut Observers) {
         let notes = self.notes.iter().map(|n| format!("note: {n}"));
+        let warnings = self.warnings.iter().map(|w| format!("warning: {w}"));
         for line in describe_model(&self.problem)
             .into_iter()
             .chain(notes)
+            .chain(warnings)
             .chain(self.request_lines())
         {
             observers.on_message(&line);

@@ -151,7 +151,7 @@ impl Case {
             let (_, poisson, ratio) = initial_constants(m.as_ref());
             let youngs = m.reference_youngs_modulus();
             softest = softest.min(youngs);
-            if !(youngs <= LARGEST_MODULUS && youngs >= 1.0 / LARGEST_MODULUS) {
+            if !(1.0 / LARGEST_MODULUS..=LARGEST_MODULUS).contains(&youngs) {
                 out.push(format!(
                     "implausible material scale: {key} has Young's modulus {youngs:.3e}, outside \
                      {:.0e} … {LARGEST_MODULUS:.0e}, where forces and stiffnesses leave the range of \

@@ -185,9 +185,10 @@ fn a_first_increment_straining_the_body_beyond_one_is_warned() {
     );
 }
 
-/// A plane obstacle whose normal points away from the body: every node of
-/// the contact surface is behind it; an input error naming the flipped
-/// normal.
+/// A plane obstacle whose normal points away from the body: the whole body
+/// is behind it; an input error naming the flipped normal (a plane raised
+/// into the body, with part of it in front, keeps the message of a node
+/// starting inside: `tests/errors.rs`).
 #[test]
 fn an_obstacle_normal_pointing_away_is_an_input_error() {
     let dir = cube_case("normal = [1.0, 0.0, 0.0]", "normal = [-1.0, 0.0, 0.0]");
@@ -198,7 +199,7 @@ fn an_obstacle_normal_pointing_away_is_an_input_error() {
         &[
             "contact[0]",
             "obstacle normal pointing away",
-            "every node of surface 'contact' is behind obstacle 'wall'",
+            "the whole body is behind plane 'wall'",
             "flip it: normal = [1, 0, 0]",
         ],
     );

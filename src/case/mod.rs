@@ -963,35 +963,37 @@ impl Case {
                 }
                 let zero = vec![0.0; 3 * mesh.num_nodes()];
                 let gaps = interface.gaps(&mesh.nodes, 0.0, &zero, None);
-                // every node behind a rigid obstacle: its normal points away
-                if let (Target::Obstacle(index), true) = (
-                    &target,
-                    !gaps.is_empty() && gaps.iter().all(|&g| g < -tolerance),
-                ) {
+                // a plane with the whole body behind it (every node of the
+                // mesh, not only the surface's: a plane raised into the body
+                // leaves some in front): its normal points away
+                if let Target::Obstacle(index) = &target {
                     let o = &spec.obstacle[*index];
-                    let (near, far) = gaps
-                        .iter()
-                        .fold((f64::NEG_INFINITY, f64::INFINITY), |(a, b), &g| {
-                            (a.max(g), b.min(g))
-                        });
-                    let fix = match &o.shape {
-                        ObstacleShape::Plane { normal, .. } => format!(
-                            "flip it: normal = [{}, {}, {}]",
-                            -normal[0] + 0.0,
-                            -normal[1] + 0.0,
-                            -normal[2] + 0.0
-                        ),
-                        ObstacleShape::Stl { .. } | ObstacleShape::Gmsh { .. } => {
-                            "reverse the orientation of its triangles (their right-hand normal must point toward the body)".into()
+                    if let ObstacleShape::Plane { point, normal } = &o.shape {
+                        let length = Vector3::from(*normal).norm();
+                        let height = |x: &[f64; 3]| {
+                            (Vector3::from(*x) - Vector3::from(*point)).dot(&Vector3::from(*normal))
+                                / length
+                        };
+                        if !gaps.is_empty()
+                            && gaps.iter().all(|&g| g < -tolerance)
+                            && mesh.nodes.iter().all(|x| height(x) < -tolerance)
+                        {
+                            let nearest = mesh
+                                .nodes
+                                .iter()
+                                .map(height)
+                                .fold(f64::NEG_INFINITY, f64::max);
+                            return Err(self.err(format!(
+                                "{key}: obstacle normal pointing away: the whole body is behind plane \
+                                 '{}' (every node, the nearest at {nearest:.3e}), so its normal points away \
+                                 from the body; flip it: normal = [{}, {}, {}]",
+                                o.name,
+                                -normal[0] + 0.0,
+                                -normal[1] + 0.0,
+                                -normal[2] + 0.0
+                            )));
                         }
-                        _ => "the body must start outside the obstacle; move one of them".into(),
-                    };
-                    return Err(self.err(format!(
-                        "{key}: obstacle normal pointing away: every node of surface '{secondary}' is \
-                         behind obstacle '{}' (gaps from {near:.3e} to {far:.3e}), so the obstacle's \
-                         normal points away from the body (or the body starts inside it); {fix}",
-                        o.name
-                    )));
+                    }
                 }
                 for (j, &g) in gaps.iter().enumerate() {
                     if g < -tolerance {

@@ -231,6 +231,9 @@ fn check(case: PathBuf) -> signorini::Result<()> {
     for note in &loaded.notes {
         println!("note: {note}");
     }
+    for warning in loaded.diagnose(&problem) {
+        println!("warning: {warning}");
+    }
     println!("case      {}", case.display());
     println!("nodes     {}", mesh.num_nodes());
     println!("elements  {}", mesh.elements.len());

@@ -103,6 +103,10 @@ pub struct Simulation {
     notes: Vec<String>,
     /// Monolithic or condensed (`[solver] strategy`), and why.
     strategy: condensed::Choice,
+    /// The model's likely causes of non-convergence
+    /// ([`Case::diagnose`](case::Case::diagnose)), told at the start and
+    /// named in the error of a failed run.
+    warnings: Vec<String>,
 }
 
 impl Simulation {
@@ -117,7 +121,6 @@ impl Simulation {
             message,
         })?;
         Ok(Simulation {
-            problem,
             case_label: case.path.display().to_string(),
             name: case.output_name(),
             default_output: case.output_dir(None),
@@ -128,6 +131,8 @@ impl Simulation {
             compress: case.spec.output.compress.unwrap_or(true),
             notes: case.notes.clone(),
             strategy,
+            warnings: case.diagnose(&problem),
+            problem,
         })
     }
 
@@ -243,6 +248,7 @@ impl Simulation {
                 (result, statistics)
             }
         };
+        let result = result.map_err(|e| case::diagnosis::explain_failure(e, &self.warnings));
         record_totals(&mut recorder.summary, &self.problem, &statistics, start);
         recorder.finish(result, output)
     }
@@ -271,9 +277,11 @@ impl Simulation {
     /// and profiles read, for the observers' logs.
     fn describe_to(&self, observers: &mut Observers) {
         let notes = self.notes.iter().map(|n| format!("note: {n}"));
+        let warnings = self.warnings.iter().map(|w| format!("warning: {w}"));
         for line in describe_model(&self.problem)
             .into_iter()
             .chain(notes)
+            .chain(warnings)
             .chain(self.request_lines())
         {
             observers.on_message(&line);

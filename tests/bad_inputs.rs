@@ -745,6 +745,15 @@ fn materials_and_obstacles(c: &mut Catalogue) {
         "point = [0.5, 0.0, 0.0]\nnormal = [1.0, 0.0, 0.0]",
         &["starts inside obstacle 'wall'"],
     );
+    c.edit(
+        "obstacle normal pointing away from the body",
+        "normal = [1.0, 0.0, 0.0]",
+        "normal = [-1.0, 0.0, 0.0]",
+        &[
+            "obstacle normal pointing away",
+            "flip it: normal = [1, 0, 0]",
+        ],
+    );
 }
 
 fn steps_amplitudes_and_solver(c: &mut Catalogue) {
@@ -987,6 +996,8 @@ fn contacts_and_output(c: &mut Catalogue) {
         ("neither obstacle nor primary", "surface = \"contact\"", "neither"),
         ("both obstacle and primary", "surface = \"contact\"\nobstacle = \"wall\"\nprimary = \"top\"", "both"),
         ("primary is the surface itself", "surface = \"contact\"\nprimary = \"contact\"", "is the secondary surface itself"),
+        // the cube's 'contact' and 'top' are the same facets (two physical groups)
+        ("primary is the surface itself under another name", "surface = \"contact\"\nprimary = \"top\"", "self-paired surface"),
         ("unknown primary", "surface = \"contact\"\nprimary = \"lid\"", "contact[0].primary"),
         ("two_pass with an obstacle", "surface = \"contact\"\nobstacle = \"wall\"\ntwo_pass = true", "two_pass applies to contact between deformable bodies only"),
         ("two_pass with rockafellar", "surface = \"contact\"\nprimary = \"top\"\ntwo_pass = true", "two_pass needs method"),

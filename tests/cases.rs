@@ -392,22 +392,27 @@ fn press_pull_friction_example() {
 
 /// `examples/ironing` (after Puso & Laursen 2004): a stiff die (E = 1000)
 /// pressed 0.2 into a soft neo-Hookean slab (E = 1), then slid 1.0 along
-/// it with Coulomb friction μ = 0.3 (penalty 1000). References and
-/// tolerances (README):
+/// it with Coulomb friction μ = 0.3 (penalty method, automatic ε: the
+/// harmonic mean of the two sides' E/h, ≈ 16). References and tolerances
+/// (README):
 /// - action and reaction: `primary_force` = −(normal + tangential force of
-///   the die's nodes) and the reaction on the die's loaded face balances
-///   the contact force, both to 1e-8 relative, every increment;
+///   the die's nodes) and, in x and z, the reaction on the die's loaded
+///   face balances the contact force, both to 1e-8 relative, every
+///   increment (the contact force's small y component, up to 1.4e-4 of it
+///   in the stick-to-slip transition, goes to the plane-strain supports
+///   `front` and `back`, which also hold the die);
 /// - steady sliding (after a slide of 0.2, t ≥ 1.2): every node slips, the
 ///   friction force is μ times the normal force (1e-9); the reaction ratio
 ///   `F_x / F_z` on the die stays within 10 % of μ and its mean within 5 %
-///   (measured 0.2990–0.325, mean 0.310: the curved contact adds a
+///   (measured 0.2955–0.3245, mean 0.309: the curved contact adds a
 ///   ploughing component of the normal pressure);
 /// - smoothness: the normal reaction stays within 1 % of its mean (measured
-///   0.37 %), and between consecutive increments (slide 0.02) neither
+///   0.23 %), and between consecutive increments (slide 0.02) neither
 ///   component jumps by more than 3 % of the normal reaction (measured
-///   1.05 % for F_x, 0.30 % for F_z); no increment needs more than 2 cuts
-///   and the run at most 5 (measured 2, one each);
-/// - penetration below 1e-3 (penalty: p/ε ≈ 0.8/1000; measured 8.1e-4);
+///   2.6 % for F_x, 0.26 % for F_z); no increment needs more than 2 cuts
+///   and the run at most 5 (measured none);
+/// - penetration below 0.02 (penalty: t_N/ε with ε ≈ 16; measured 0.016;
+///   8.1e-4 with ε = 1000);
 /// - the reaction plot and its CSV are written.
 #[test]
 fn ironing_slides_smoothly_with_friction() {
@@ -429,6 +434,8 @@ fn ironing_slides_smoothly_with_friction() {
                 "t = {}: primary {primary:?} vs {total:?}",
                 inc.time
             );
+        }
+        for d in [0, 2] {
             assert!(
                 (reaction[d] + total[d]).abs() <= 1e-8 * size,
                 "t = {}: reaction {reaction:?} vs {total:?}",
@@ -436,7 +443,7 @@ fn ironing_slides_smoothly_with_friction() {
             );
         }
         assert!(
-            c.largest_penetration < 1e-3,
+            c.largest_penetration < 0.02,
             "t = {}: {}",
             inc.time,
             c.largest_penetration

@@ -35,10 +35,14 @@ fn a_new_run_removes_the_files_of_the_earlier_run_of_the_same_case() {
     let tmp = tempfile::tempdir().unwrap();
     let out = tmp.path();
     // the earlier run: smaller increments (more VTU files) and a history
-    // under another name
+    // under another name; both runs' pull increments held (max_increment),
+    // so that the counts do not depend on the growth rule
     let earlier = run(out, |t| {
-        t.replace("initial_increment = 0.25", "initial_increment = 0.125")
-            .replace("right_end_displacement", "old_history")
+        t.replace(
+            "initial_increment = 0.25",
+            "initial_increment = 0.125\nmax_increment = 0.125",
+        )
+        .replace("right_end_displacement", "old_history")
     });
     let earlier_files = earlier["increments"].as_array().unwrap().len();
     assert_eq!(earlier_files, 2 + 8);
@@ -48,7 +52,12 @@ fn a_new_run_removes_the_files_of_the_earlier_run_of_the_same_case() {
     std::fs::write(out.join("notes.txt"), "mine").unwrap();
     std::fs::write(out.join(".press-pull_0011.vtu.4242-3.tmp"), "half").unwrap();
 
-    let summary = run(out, |t| t);
+    let summary = run(out, |t| {
+        t.replace(
+            "initial_increment = 0.25",
+            "initial_increment = 0.25\nmax_increment = 0.25",
+        )
+    });
     let increments = summary["increments"].as_array().unwrap();
     assert_eq!(increments.len(), 2 + 4);
     let vtus: BTreeSet<String> = increments

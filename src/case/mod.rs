@@ -2,6 +2,7 @@
 //! Every check of the user's input lives here, with the key path in the
 //! message.
 
+pub mod diagnosis;
 pub mod limits;
 pub mod output;
 pub mod schema;
@@ -728,12 +729,35 @@ impl Case {
     fn contacts(&self, problem: &Problem) -> Result<Vec<ContactInterface>> {
         let spec = &self.spec;
         let mesh = &self.mesh;
-        let youngs = problem
-            .model
-            .materials
-            .iter()
-            .map(|m| m.reference_youngs_modulus())
-            .fold(0.0f64, f64::max);
+        // Young's modulus of the body under a surface set: of the stiffest
+        // material among the elements that hold one of its nodes (of the
+        // stiffest material of all without such elements)
+        let youngs_of = |surface: &str| -> f64 {
+            let model = &problem.model;
+            let stiffest = |e: &mut dyn Iterator<Item = usize>| {
+                e.map(|m| model.materials[m].reference_youngs_modulus())
+                    .fold(0.0f64, f64::max)
+            };
+            let on_surface = mesh.surface(surface).map(|set| {
+                let nodes: std::collections::HashSet<usize> = set
+                    .facets
+                    .iter()
+                    .flat_map(|f| f.nodes.iter().copied())
+                    .collect();
+                stiffest(
+                    &mut mesh
+                        .elements
+                        .iter()
+                        .zip(&model.element_material)
+                        .filter(|(e, _)| e.nodes.iter().any(|n| nodes.contains(n)))
+                        .map(|(_, &m)| m),
+                )
+            });
+            match on_surface {
+                Some(e) if e > 0.0 => e,
+                _ => stiffest(&mut (0..model.materials.len())),
+            }
+        };
         let mut out = Vec::new();
         for (i, c) in spec.contact.iter().enumerate() {
             let key = format!("contact[{i}]");
@@ -851,7 +875,11 @@ impl Case {
                 },
                 penalty: positive(c.penalty, "penalty")?,
                 scaling: positive(c.scaling, "scaling")?,
-                youngs_modulus: youngs,
+                youngs_modulus: youngs_of(&c.surface),
+                primary_youngs_modulus: match &target {
+                    Target::Surface(primary) => Some(youngs_of(primary)),
+                    Target::Obstacle(_) => None,
+                },
                 friction_coefficient,
                 tangential_penalty: positive(c.tangential_penalty, "tangential_penalty")?,
             };
@@ -869,6 +897,30 @@ impl Case {
                     }
                 })
             };
+            // the same surface under another name (or one holding it); after
+            // the checks of the keys, which name the case file's mistake first
+            if let Target::Surface(name) = &target {
+                let nodes_of = |surface: &str| -> std::collections::HashSet<usize> {
+                    mesh.surface(surface)
+                        .map(|set| {
+                            set.facets
+                                .iter()
+                                .flat_map(|f| f.nodes.iter().copied())
+                                .collect()
+                        })
+                        .unwrap_or_default()
+                };
+                let (secondary, primary) = (nodes_of(&c.surface), nodes_of(name));
+                if !secondary.is_empty() && secondary.is_subset(&primary) {
+                    return Err(self.err(format!(
+                        "{key}: self-paired surface: every node of the secondary surface '{}' is also on the \
+                         primary surface '{name}' (the same surface under another name, or one holding it), \
+                         so each node would contact its own facets; name as primary the surface of the other \
+                         body",
+                        c.surface
+                    )));
+                }
+            }
             let passes = match target {
                 Target::Obstacle(index) => {
                     let o = &spec.obstacle[index];
@@ -927,6 +979,38 @@ impl Case {
                 }
                 let zero = vec![0.0; 3 * mesh.num_nodes()];
                 let gaps = interface.gaps(&mesh.nodes, 0.0, &zero, None);
+                // a plane with the whole body behind it (every node of the
+                // mesh, not only the surface's: a plane raised into the body
+                // leaves some in front): its normal points away
+                if let Target::Obstacle(index) = &target {
+                    let o = &spec.obstacle[*index];
+                    if let ObstacleShape::Plane { point, normal } = &o.shape {
+                        let length = Vector3::from(*normal).norm();
+                        let height = |x: &[f64; 3]| {
+                            (Vector3::from(*x) - Vector3::from(*point)).dot(&Vector3::from(*normal))
+                                / length
+                        };
+                        if !gaps.is_empty()
+                            && gaps.iter().all(|&g| g < -tolerance)
+                            && mesh.nodes.iter().all(|x| height(x) < -tolerance)
+                        {
+                            let nearest = mesh
+                                .nodes
+                                .iter()
+                                .map(height)
+                                .fold(f64::NEG_INFINITY, f64::max);
+                            return Err(self.err(format!(
+                                "{key}: obstacle normal pointing away: the whole body is behind plane \
+                                 '{}' (every node, the nearest at {nearest:.3e}), so its normal points away \
+                                 from the body; flip it: normal = [{}, {}, {}]",
+                                o.name,
+                                -normal[0] + 0.0,
+                                -normal[1] + 0.0,
+                                -normal[2] + 0.0
+                            )));
+                        }
+                    }
+                }
                 for (j, &g) in gaps.iter().enumerate() {
                     if g < -tolerance {
                         return Err(self.err(format!(

@@ -290,9 +290,10 @@ pub struct ContactSpec {
     pub method: ContactMethod,
     /// ε (penalty, Uzawa) or p (Rockafellar, slack); default `E/h_s` at each
     /// secondary node (100 `E/h_s` for Uzawa, see
-    /// `contact::laws::uzawa::AUTOMATIC_FACTOR`), `E` the stiffest
-    /// material's Young's modulus, `h_s` the square root of the node's
-    /// tributary area.
+    /// `contact::laws::uzawa::AUTOMATIC_FACTOR`), `E` the Young's modulus
+    /// of the secondary surface's body, `h_s` the square root of the node's
+    /// tributary area; between two bodies the harmonic mean of that and
+    /// the primary side's `E_p/h_p` (`contact::setup::pair_stiffness`).
     pub penalty: Option<f64>,
     /// k (Rockafellar, slack); default `E/h_s` per node.
     pub scaling: Option<f64>,

@@ -26,14 +26,17 @@ pub enum IncrementFailure {
     /// A correction `largest` far beyond the body's `size`: if it is a
     /// `prescribed` displacement's jump, the increment is too large for the
     /// prescribed motion; else with `contact`, a rigid-body mode that the
-    /// saddle system's regularisation let through; without, the tangent is
-    /// near singular (an element near inversion, a load beyond the
-    /// material's range, a missing support).
+    /// saddle system's regularisation let through — with every contact
+    /// node `open`, the body lost contact (or never reached it) and nothing
+    /// else holds it; without contact, the tangent is near singular (an
+    /// element near inversion, a load beyond the material's range, a
+    /// missing support).
     RigidBodyMode {
         largest: f64,
         size: f64,
         contact: bool,
         prescribed: bool,
+        open: bool,
     },
     /// The linear solve failed (a singular tangent); the solver's message.
     LinearSolve(String),
@@ -93,12 +96,27 @@ impl std::fmt::Display for IncrementFailure {
                 largest,
                 size,
                 contact: true,
+                open: true,
+                ..
+            } => write!(
+                f,
+                "loss of contact: every contact node is open and nothing else holds the body, so it \
+                 moves as a rigid body (a correction of {largest:.3e} against a body of size \
+                 {size:.3e}); hold the body with a [[displacement]] until the contact closes, or \
+                 start it touching the obstacle (check the obstacle's position and that its normal \
+                 points toward the body), or load it toward the contact"
+            ),
+            IncrementFailure::RigidBodyMode {
+                largest,
+                size,
+                contact: true,
                 ..
             } => write!(
                 f,
                 "a correction of {largest:.3e} against a body of size {size:.3e}: a rigid-body mode \
-                 (the body lost contact, every contact node slips so that friction cannot hold a load \
-                 beyond its capacity, or a support is missing)"
+                 although some contact nodes are closed (every contact node slips so that friction \
+                 cannot hold a load beyond its capacity, or a support is missing); add a support or \
+                 reduce the tangential load"
             ),
             IncrementFailure::RigidBodyMode {
                 largest,
@@ -142,23 +160,28 @@ mod tests {
     /// near-singular body.
     #[test]
     fn rigid_body_mode_message_follows_the_cause() {
-        let message = |contact, prescribed| {
+        let message = |contact, prescribed, open| {
             IncrementFailure::RigidBodyMode {
                 largest: 50.0,
                 size: 1.0,
                 contact,
                 prescribed,
+                open,
             }
             .to_string()
         };
-        let free = message(false, false);
+        let free = message(false, false, false);
         assert!(free.contains("far larger than the body"), "{free}");
         assert!(free.contains("element near inversion"), "{free}");
         assert!(!free.contains("contact"), "{free}");
-        let contact = message(true, false);
-        assert!(contact.contains("the body lost contact"), "{contact}");
+        let lost = message(true, false, true);
+        assert!(lost.contains("loss of contact"), "{lost}");
+        assert!(lost.contains("every contact node is open"), "{lost}");
+        let held = message(true, false, false);
+        assert!(held.contains("some contact nodes are closed"), "{held}");
+        assert!(!held.contains("loss of contact"), "{held}");
         for contact in [false, true] {
-            let jump = message(contact, true);
+            let jump = message(contact, true, contact);
             assert!(
                 jump.contains("a prescribed displacement of 5.000e1"),
                 "{jump}"

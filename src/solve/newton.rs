@@ -115,6 +115,9 @@ impl<P: NonlinearProblem> Newton<'_, P> {
                     Ok(e) => e,
                     Err(f) => return (Err(f), records),
                 };
+            // every contact node open (status 0 mod 4): nothing but supports holds the body
+            let all_open =
+                !evaluation.statuses.is_empty() && evaluation.statuses.iter().all(|s| s % 4 == 0);
             let (switched, chattering) = chatter.observe(evaluation.statuses.clone());
             let mut r = evaluation.residual.clone();
             zero_constrained(&mut r, constrained);
@@ -236,6 +239,7 @@ impl<P: NonlinearProblem> Newton<'_, P> {
                         size,
                         contact: problem.has_contact(),
                         prescribed,
+                        open: all_open,
                     }),
                     records,
                 );

@@ -168,7 +168,7 @@ pub fn run_steps<P: NonlinearProblem>(
                     t = t_new;
                     observer.on_converged(problem, &record, &u, &evaluation, &state)?;
                     let settings = problem.settings();
-                    if record.iterations <= settings.easy_iterations && cuts == 0 {
+                    if cuts == 0 && converged_well(&record.newton, settings.easy_iterations) {
                         dt = (dt * settings.growth_factor).min(step.max_increment);
                     }
                     cuts = 0;
@@ -211,6 +211,41 @@ pub fn next_increment(step: &Step, t: f64, dt: f64) -> (f64, f64) {
         t + dt
     };
     (dt, t_new)
+}
+
+/// Whether Newton converged well enough over an increment (its
+/// `records`, the last one the converged evaluation) for the next
+/// increment to grow: in at most `easy` iterations, or with the contact
+/// statuses settled and Newton's rate then fast. A contact increment
+/// starts from a large residual whatever its size (the prescribed jump,
+/// the contact set to find), so the iteration count alone would keep an
+/// increment that was cut small for the rest of the step. Settled and
+/// fast: the last status switch (`switched > 0`) at iteration `s ≤ easy`,
+/// at most `easy` iterations after it, every one a full Newton step
+/// (line-search step length 1), and the residual falling from `r_s` to
+/// `r_n` at a mean rate `(r_n / r_s)^(1/(n−s)) ≤ 0.1` per iteration (a
+/// superlinear or steep linear rate: a stagnating or line-searched path
+/// is not easy).
+pub(crate) fn converged_well(records: &[IterationRecord], easy: usize) -> bool {
+    let iterations = records.len().saturating_sub(1);
+    if iterations <= easy {
+        return true;
+    }
+    let settled = records.iter().rposition(|r| r.switched > 0).unwrap_or(0);
+    let after = iterations - settled;
+    if settled > easy || after > easy {
+        return false;
+    }
+    let full_steps = records[settled..iterations]
+        .iter()
+        .all(|r| r.step_length == 1.0);
+    let (first, last) = (records[settled].residual, records[iterations].residual);
+    let rate = if first > 0.0 {
+        (last / first).powf(1.0 / after as f64)
+    } else {
+        0.0
+    };
+    full_steps && rate <= 0.1
 }
 
 /// The error of a run cancelled after the increments converged up to `t`.
@@ -428,6 +463,49 @@ mod tests {
         for (_, r) in &residuals.0 {
             assert!(super::super::gmres::norm(r) < 1e-10, "{r:?}");
         }
+    }
+
+    /// Iteration records from residuals, switch counts and step lengths.
+    fn records(residuals: &[f64], switched: &[usize], steps: &[f64]) -> Vec<IterationRecord> {
+        (0..residuals.len())
+            .map(|k| IterationRecord {
+                residual: residuals[k],
+                correction: 0.0,
+                step_length: steps.get(k).copied().unwrap_or(0.0),
+                switched: switched[k],
+            })
+            .collect()
+    }
+
+    /// An increment grows the next one after at most `easy` iterations, or
+    /// after a contact set that settled early followed by a fast rate —
+    /// not after late switches, a slow rate or line-searched steps.
+    #[test]
+    fn growth_follows_the_rate_once_the_statuses_settle() {
+        let full = [1.0; 8];
+        // 7 iterations: switches in the first two, then quadratic: grows
+        // (the iteration count alone, > 5, would not)
+        let r = [1.0, 0.3, 0.05, 2e-3, 4e-6, 1e-10, 1e-12, 1e-16];
+        let settled = records(&r, &[0, 4, 2, 0, 0, 0, 0, 0], &full);
+        assert!(converged_well(&settled, 5));
+        // the same residuals with a switch at iteration 6: the contact set
+        // was still searched, no growth
+        assert!(!converged_well(
+            &records(&r, &[0, 4, 2, 0, 0, 0, 1, 0], &full),
+            5
+        ));
+        // a line-searched step after settling: no growth
+        let mut damped = full;
+        damped[4] = 0.5;
+        assert!(!converged_well(
+            &records(&r, &[0, 4, 2, 0, 0, 0, 0, 0], &damped),
+            5
+        ));
+        // settled at once but a linear rate of 0.3: no growth
+        let slow: Vec<f64> = (0..8).map(|k| 0.3f64.powi(k)).collect();
+        assert!(!converged_well(&records(&slow, &[0; 8], &full), 5));
+        // five iterations or fewer: easy whatever the rate
+        assert!(converged_well(&records(&slow[..6], &[0; 6], &full), 5));
     }
 
     /// Newton iterations of every converged increment.

@@ -19,6 +19,7 @@ fn run_example(name: &str) -> (tempfile::TempDir, signorini::run::RunOutcome) {
             output: Some(out.path().to_path_buf()),
             threads: None,
             cancel: None,
+            restart: None,
         },
     )
     .expect("the example runs");

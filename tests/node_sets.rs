@@ -108,6 +108,7 @@ residual_tolerance = 1e-12
             output: Some(dir.path().join("results")),
             threads: None,
             cancel: None,
+            restart: None,
         },
     )
     .expect("the bar runs");

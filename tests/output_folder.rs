@@ -25,6 +25,7 @@ fn run(out: &Path, edit: impl Fn(String) -> String) -> serde_json::Value {
         output: Some(out.to_path_buf()),
         threads: Some(1),
         cancel: None,
+        restart: None,
     };
     simulation.run(&options, &mut Silent).unwrap();
     serde_json::from_str(&std::fs::read_to_string(out.join("summary.json")).unwrap()).unwrap()

@@ -59,6 +59,9 @@ pub struct CaseKey {
     pub steps: Vec<(String, f64)>,
 }
 
+/// A history's sample: the time and the values ([`super::history::History::samples`]).
+pub type Sample = (f64, Vec<f64>);
+
 /// The content of a checkpoint (borrowed when written, owned when read).
 #[derive(Clone, Debug, Serialize, Deserialize)]
 pub struct Checkpoint<'a> {
@@ -70,7 +73,7 @@ pub struct Checkpoint<'a> {
     /// `summary.json` as written after this increment.
     pub summary: String,
     /// The samples `(time, values)` of each history, in the case's order.
-    pub histories: Vec<Cow<'a, [(f64, Vec<f64>)]>>,
+    pub histories: Vec<Cow<'a, [Sample]>>,
     /// The tables of the steps ended so far of each profile.
     pub profiles: Vec<Cow<'a, [StepProfile]>>,
 }

@@ -1117,6 +1117,24 @@ fn contacts_and_output(c: &mut Catalogue) {
             "output.history[0].surface is required",
         ),
         (
+            "history reaction on a surface and a node set",
+            "point = [1.0, 1.0, 1.0]\nquantity = \"displacement_z\"",
+            "quantity = \"reaction_force_x\"\nsurface = \"bottom\"\nnodes = \"corner\"",
+            "not both",
+        ),
+        (
+            "history reaction on an unknown node set",
+            "point = [1.0, 1.0, 1.0]\nquantity = \"displacement_z\"",
+            "quantity = \"reaction_force_z\"\nnodes = \"corner\"",
+            "output.history[0].nodes: the mesh has no node set",
+        ),
+        (
+            "history nodes on a displacement",
+            "quantity = \"displacement_z\"",
+            "quantity = \"displacement_z\"\nnodes = \"corner\"",
+            "output.history[0].nodes applies to reaction_force only",
+        ),
+        (
             "history unknown quantity",
             "quantity = \"displacement_z\"",
             "quantity = \"stress\"",

@@ -229,6 +229,7 @@ impl Simulation {
             start,
             contact: ContactState::default(),
             stepping: Stepping::default(),
+            statistics: SolverStatistics::default(),
             earlier: None,
         };
         let resume = restart.map(|r| recorder.restore(r));
@@ -243,15 +244,13 @@ impl Simulation {
             output.clone(),
             resume,
         );
-        record_totals(
+        update_totals(
             &mut recorder.summary,
             &self.problem,
             &solver.statistics(),
             recorder.start,
+            recorder.earlier.as_ref(),
         );
-        if let Some(earlier) = &recorder.earlier {
-            add_earlier_totals(&mut recorder.summary, earlier);
-        }
         recorder.finish(result, output)
     }
 
@@ -461,8 +460,10 @@ struct Recorder<'a> {
     last: Instant,
     start: Instant,
     contact: ContactState,
-    /// The stepper's state after the last converged increment.
+    /// The stepper's state after the last converged increment, and the
+    /// linear solver's figures then.
     stepping: Stepping,
+    statistics: SolverStatistics,
     /// After a restart: the summary of the checkpoint, whose run totals
     /// the resumed run's add to.
     earlier: Option<Summary>,
@@ -528,6 +529,22 @@ impl Recorder<'_> {
                 Err(e)
             }
         }
+    }
+}
+
+/// The run's totals in the summary so far ([`record_totals`]), with those
+/// of the run a restart resumed (`earlier`) added: in `summary.json` after
+/// every increment, and so in the checkpoint.
+fn update_totals(
+    summary: &mut Summary,
+    problem: &Problem,
+    statistics: &SolverStatistics,
+    start: Instant,
+    earlier: Option<&Summary>,
+) {
+    record_totals(summary, problem, statistics, start);
+    if let Some(earlier) = earlier {
+        add_earlier_totals(summary, earlier);
     }
 }
 
@@ -624,13 +641,21 @@ impl stepping::StepObserver<Problem> for Recorder<'_> {
         });
         self.summary.update_step_totals();
         self.last = now;
-        let earlier = self.earlier.as_ref().map_or(0.0, |e| e.wall_time);
-        self.summary.wall_time = earlier + self.start.elapsed().as_secs_f64();
+        // the totals so far (fields apart: `increment` borrows `stepping`)
+        let earlier = self.earlier.as_ref();
+        update_totals(
+            &mut self.summary,
+            problem,
+            &self.statistics,
+            self.start,
+            earlier,
+        );
         self.observers.on_increment(&increment, &self.summary)
     }
 
-    fn on_stepping(&mut self, stepping: &Stepping) {
+    fn on_stepping(&mut self, stepping: &Stepping, statistics: &SolverStatistics) {
         self.stepping.clone_from(stepping);
+        self.statistics = *statistics;
     }
 
     fn cancelled(&mut self) -> bool {

@@ -60,6 +60,8 @@ fn a_new_run_removes_the_files_of_the_earlier_run_of_the_same_case() {
         "press-pull.pvd",
         "press-pull.log",
         "press-pull.manifest",
+        // the state a restart resumes from (issue 15 item 3)
+        "press-pull.checkpoint",
         "summary.json",
         "convergence.svg",
         "contact_line.svg",

@@ -98,6 +98,18 @@ fn csv_numbers(path: &Path) -> Vec<f64> {
         .collect()
 }
 
+/// The GMRES iterations the log's iteration lines report (`, N GMRES
+/// iterations`), in total.
+fn logged_krylov_iterations(lines: &[&str]) -> u64 {
+    lines
+        .iter()
+        .filter_map(|l| {
+            let head = &l[..l.find(" GMRES iterations")?];
+            head.rsplit(' ').next()?.parse::<u64>().ok()
+        })
+        .sum()
+}
+
 /// Runs `case` uninterrupted into one folder and, into another, stopped
 /// after `k` increments then restarted; asserts the two agree and returns
 /// (uninterrupted, resumed, the resumed folder's increments on resuming).
@@ -165,6 +177,15 @@ fn uninterrupted_and_resumed(case: &str, k: usize) -> (RunOutcome, RunOutcome) {
             .collect()
     };
     assert_eq!(times(&s_full), times(&s_cut));
+    // the run totals carry over: the resumed run's add to the checkpoint's
+    for key in [
+        "krylov_solves",
+        "krylov_iterations",
+        "lu_solves",
+        "factorisations",
+    ] {
+        assert_eq!(s_full[key], s_cut[key], "{key}");
+    }
     assert_eq!(pvd_files(full), pvd_files(cut));
     for f in pvd_files(cut) {
         assert!(cut.join(&f).is_file(), "{f}");
@@ -179,6 +200,20 @@ fn uninterrupted_and_resumed(case: &str, k: usize) -> (RunOutcome, RunOutcome) {
     }
     let log = std::fs::read_to_string(cut.join("press-pull.log")).unwrap();
     assert!(log.contains(&format!("after increment {k}")), "{log}");
+    // each Newton iteration line tells its linear solve: the GMRES
+    // iterations of the lines add up to the run's total
+    for (dir, s) in [(full, &s_full), (cut, &s_cut)] {
+        let log = std::fs::read_to_string(dir.join("press-pull.log")).unwrap();
+        let lines: Vec<&str> = log.lines().filter(|l| l.contains("correction")).collect();
+        assert!(!lines.is_empty());
+        assert!(lines
+            .iter()
+            .all(|l| l.contains("linear solve: factorisation")));
+        assert_eq!(
+            logged_krylov_iterations(&lines),
+            s["krylov_iterations"].as_u64().unwrap()
+        );
+    }
     (uninterrupted, resumed)
 }
 

@@ -115,8 +115,9 @@ pub struct Summary {
     /// deformable contact pairs change the pattern) and of its LDLᵀ factor.
     pub matrix_nnz: usize,
     pub factor_nnz: usize,
-    /// Wall time split by phase, seconds (totals of the run, filled when it
-    /// ends).
+    /// Wall time split by phase, seconds (totals of the run so far,
+    /// updated after every increment; after a restart, the interrupted
+    /// run's included, as in the other totals).
     pub phase_times: PhaseTimes,
     /// Nonsymmetric linear solves: by GMRES (with their Krylov iterations
     /// in total) and by the sparse LU (chosen, or the fallback).

@@ -6,7 +6,7 @@
 //! `on_converged` callback as each increment converges.
 
 use super::failure::IncrementFailure;
-use super::linear_solver::LinearSolver;
+use super::linear_solver::{LinearSolver, SolverStatistics};
 use super::newton::{IterationRecord, Newton, NewtonOutcome};
 use super::nonlinear::{Evaluation, NonlinearProblem};
 use super::settings::Predictor;
@@ -90,8 +90,8 @@ pub trait StepObserver<P: NonlinearProblem> {
     }
     /// An increment converged: the stepper's state after it (told just
     /// before [`on_converged`](Self::on_converged), with which a run can
-    /// resume from it).
-    fn on_stepping(&mut self, _stepping: &Stepping) {}
+    /// resume from it) and the linear solver's figures so far.
+    fn on_stepping(&mut self, _stepping: &Stepping, _statistics: &SolverStatistics) {}
 }
 
 /// Run every step of `problem` from `u = 0` (except the prescribed values).
@@ -243,14 +243,15 @@ pub fn resume_steps<P: NonlinearProblem>(
                         dt = (dt * settings.growth_factor).min(step.max_increment);
                     }
                     cuts = 0;
-                    observer.on_stepping(&Stepping {
+                    let stepping = Stepping {
                         step: s,
                         time: t,
                         increment: dt,
                         force_scale,
                         secant: secant.clone(),
                         last_motion,
-                    });
+                    };
+                    observer.on_stepping(&stepping, &solver.statistics());
                     observer.on_converged(problem, &record, &u, &evaluation, &state)?;
                 }
                 Err(IncrementFailure::Cancelled) => return Err(cancelled(t)),

@@ -64,19 +64,10 @@ impl ResultWriter {
     ) -> Result<Self> {
         std::fs::create_dir_all(dir).map_err(|e| Error::io("create output folder", dir, e))?;
         let manifest = Manifest::take_over(dir, name)?;
-        let writer = ResultWriter {
-            dir: dir.to_path_buf(),
-            manifest,
-            pvd: PvdCollection::new(dir.join(format!("{name}.pvd"))),
-            nodal,
-            cells,
-            histories,
-            profiles,
-            vtu: vtu::VtuOptions { compress: true },
-            name: name.to_string(),
-            case_key: None,
-        };
-        writer.started()
+        let files = Vec::new();
+        Self::open(
+            dir, name, manifest, nodal, cells, histories, profiles, files,
+        )
     }
 
     /// A writer that goes on with the series `name` in `dir` after a
@@ -110,11 +101,34 @@ impl ResultWriter {
         for (p, steps) in profiles.iter_mut().zip(restored.profiles) {
             p.steps = steps;
         }
-        let mut pvd = PvdCollection::new(dir.join(format!("{name}.pvd")));
+        Self::open(
+            dir, name, manifest, nodal, cells, histories, profiles, files,
+        )
+    }
+
+    /// The writer of [`new`](Self::new) and [`resume`](Self::resume): it
+    /// claims the log and the `.pvd`, and writes the `.pvd` listing `files`
+    /// (time, VTU file).
+    #[allow(clippy::too_many_arguments)] // the writer's parts, moved in
+    fn open(
+        dir: &Path,
+        name: &str,
+        mut manifest: Manifest,
+        nodal: Vec<NodalField>,
+        cells: Vec<CellField>,
+        histories: Vec<History>,
+        profiles: Vec<Profile>,
+        files: Vec<(f64, String)>,
+    ) -> Result<Self> {
+        manifest.claim(&format!("{name}.log"))?;
+        let pvd_file = format!("{name}.pvd");
+        manifest.claim(&pvd_file)?;
+        let mut pvd = PvdCollection::new(dir.join(pvd_file));
         for (time, file) in files {
             pvd.push(time, file);
         }
-        let writer = ResultWriter {
+        pvd.write()?;
+        Ok(ResultWriter {
             dir: dir.to_path_buf(),
             manifest,
             pvd,
@@ -125,16 +139,7 @@ impl ResultWriter {
             vtu: vtu::VtuOptions { compress: true },
             name: name.to_string(),
             case_key: None,
-        };
-        writer.started()
-    }
-
-    /// Claims the log and the `.pvd` and writes the `.pvd` as it stands.
-    fn started(mut self) -> Result<Self> {
-        self.manifest.claim(&format!("{}.log", self.name))?;
-        self.manifest.claim(&format!("{}.pvd", self.name))?;
-        self.pvd.write()?;
-        Ok(self)
+        })
     }
 
     /// Write `NAME.checkpoint` after every increment, for the case `key`

@@ -324,6 +324,7 @@ fn run_one(case_text: &str, dir: &Path, size: &str, method: &str) -> Row {
             output: Some(out.clone()),
             threads: None,
             cancel: None,
+            restart: None,
         },
     );
     let wall = start.elapsed().as_secs_f64();

@@ -80,6 +80,7 @@ fn main() {
                     output: Some(dir.join(format!("out-{solver}"))),
                     threads: None,
                     cancel: None,
+                    restart: None,
                 },
             );
             let wall = start.elapsed().as_secs_f64();

@@ -91,6 +91,12 @@ pub enum Error {
     /// on disk; `summary.json` says `"status": "interrupted"`.
     #[error("the run was stopped: {reason}")]
     Interrupted { reason: String },
+
+    /// A restart (`--restart DIR`, [`crate::run::RunOptions::restart`])
+    /// cannot resume: the folder or its checkpoint is missing, unreadable,
+    /// of another format version, or of another case.
+    #[error("cannot restart from '{path}': {message}")]
+    Restart { path: PathBuf, message: String },
 }
 
 /// Result with the crate's [`Error`].

@@ -38,6 +38,10 @@ enum Command {
         /// No progress bar and no log lines.
         #[arg(long)]
         quiet: bool,
+        /// Resume from the last converged increment of the run whose output
+        /// folder DIR is (its NAME.checkpoint), writing on into DIR.
+        #[arg(long, value_name = "DIR")]
+        restart: Option<PathBuf>,
     },
     /// Validate the case and its mesh without solving; print what was read.
     Check {
@@ -54,6 +58,7 @@ fn main() -> ExitCode {
             output,
             threads,
             quiet,
+            restart,
         } => {
             let limit = max_threads();
             if let Some(t) = threads.filter(|&t| t as usize > limit) {
@@ -64,7 +69,7 @@ fn main() -> ExitCode {
                 );
                 return ExitCode::from(2);
             }
-            run(case, output, threads, quiet)
+            run(case, output, threads, quiet, restart)
         }
         Command::Check { case } => check(case),
     };
@@ -102,6 +107,7 @@ fn run(
     output: Option<PathBuf>,
     threads: Option<u32>,
     quiet: bool,
+    restart: Option<PathBuf>,
 ) -> signorini::Result<()> {
     // Ctrl-C (SIGINT) and SIGTERM stop the run between two Newton
     // iterations: summary.json says "interrupted", every converged
@@ -115,6 +121,7 @@ fn run(
         output,
         threads: threads.map(|t| t as usize),
         cancel: Some(cancel),
+        restart,
     };
     let mut progress = Progress::new(quiet);
     let outcome = signorini::run::run_observed(&case, &options, &mut progress)?;

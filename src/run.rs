@@ -19,7 +19,7 @@
 //! }
 //!
 //! let mut simulation = Simulation::from_file("examples/press-pull/case.toml".as_ref())?;
-//! let options = RunOptions { threads: Some(2), output: None, cancel: None }; // in memory only
+//! let options = RunOptions { threads: Some(2), ..Default::default() }; // in memory only
 //! let mut forces = Forces(Vec::new());
 //! let outcome = simulation.run(&options, &mut forces)?;
 //! // the press of 20 (20 on 1 × 2, examples/press-pull/README.md) is carried by contact
@@ -30,6 +30,7 @@
 
 use crate::case::{self, output::OutputRequests, Case};
 use crate::contact::interface::NodeReport;
+use crate::output::checkpoint::{self, CaseKey, Fnv1a};
 use crate::output::contact_fields::ContactFields;
 use crate::output::describe::describe_model;
 use crate::output::fields::{CellField, ConvergedIncrement, NodalField};
@@ -37,7 +38,7 @@ use crate::output::log::LogWriter;
 use crate::output::observer::Iteration;
 use crate::output::observer::{Cut, Observers, StepObserver};
 use crate::output::summary::{IncrementSummary, PhaseTimes, Summary};
-use crate::output::writer::ResultWriter;
+use crate::output::writer::{Restored, ResultWriter};
 use crate::problem::condensed::{self, Path as SolvePath};
 use crate::problem::{ContactState, Problem};
 use crate::solve::backend::try_linear_solver;
@@ -45,7 +46,7 @@ use crate::solve::failure::IncrementFailure;
 use crate::solve::linear_solver::SolverStatistics;
 use crate::solve::newton::IterationRecord;
 use crate::solve::nonlinear::Evaluation;
-use crate::solve::stepping::{self, run_steps, IncrementRecord};
+use crate::solve::stepping::{self, resume_steps, IncrementRecord, Resume, Stepping};
 use crate::{Error, Result};
 use std::path::{Path, PathBuf};
 use std::sync::atomic::{AtomicBool, Ordering};
@@ -66,6 +67,14 @@ pub struct RunOptions {
     /// [`Error::Interrupted`], `summary.json` says `"interrupted"`, and
     /// every converged increment stays written.
     pub cancel: Option<Arc<AtomicBool>>,
+    /// Resume from the checkpoint (`NAME.checkpoint`) of the run whose
+    /// output folder this is, instead of starting at `t = 0`: the run goes
+    /// on from its last converged increment to the state an uninterrupted
+    /// run reaches, and its results go on in that folder (the `.pvd` lists
+    /// the earlier VTU files, `summary.json` and the histories keep their
+    /// earlier increments). `output` must then be that folder or `None`
+    /// (in memory only; [`run`] writes into it).
+    pub restart: Option<PathBuf>,
 }
 
 /// What a finished run leaves.
@@ -107,6 +116,19 @@ pub struct Simulation {
     /// ([`Case::diagnose`](case::Case::diagnose)), told at the start and
     /// named in the error of a failed run.
     warnings: Vec<String>,
+    /// What ties a checkpoint to this case.
+    case_key: CaseKey,
+}
+
+/// What a restart resumes from: the checkpoint's state and output.
+struct Restart {
+    resume: Resume<ContactState>,
+    summary: Summary,
+    histories: Vec<Vec<(f64, Vec<f64>)>>,
+    profiles: Vec<Vec<crate::output::profile::StepProfile>>,
+    /// The increments in the checkpoint, and the folder it was read from.
+    increments: usize,
+    dir: PathBuf,
 }
 
 impl Simulation {
@@ -120,6 +142,17 @@ impl Simulation {
             path: case.path.clone(),
             message,
         })?;
+        let case_key = CaseKey {
+            nodes: problem.model.mesh.num_nodes(),
+            dofs: problem.model.num_dofs(),
+            unknowns: problem.num_unknowns(),
+            physics: physics_hash(case),
+            steps: problem
+                .steps
+                .iter()
+                .map(|s| (s.name.clone(), s.end_time))
+                .collect(),
+        };
         Ok(Simulation {
             case_label: case.path.display().to_string(),
             name: case.output_name(),
@@ -132,6 +165,7 @@ impl Simulation {
             notes: case.notes.clone(),
             strategy,
             warnings: case.diagnose(&problem),
+            case_key,
             problem,
         })
     }
@@ -185,7 +219,11 @@ impl Simulation {
         observer: &mut (dyn StepObserver + Send),
     ) -> Result<RunOutcome> {
         let start = Instant::now();
-        let (mut writer, mut log) = self.file_observers(options)?;
+        let restart = match &options.restart {
+            Some(dir) => Some(self.read_restart(dir, options.output.as_deref())?),
+            None => None,
+        };
+        let (mut writer, mut log) = self.file_observers(options, restart.as_ref())?;
         let mut observers = Observers(vec![observer]);
         if let Some(w) = writer.as_mut() {
             observers.0.insert(0, w);
@@ -203,7 +241,11 @@ impl Simulation {
             last: start,
             start,
             contact: ContactState::default(),
+            stepping: Stepping::default(),
+            statistics: SolverStatistics::default(),
+            earlier: None,
         };
+        let resume = restart.map(|r| recorder.restore(r));
         recorder.summary.strategy = self.strategy.path.name().into();
         recorder.summary.strategy_reason = self.strategy.reason.clone();
         recorder.observers.on_message(&format!(
@@ -233,15 +275,27 @@ impl Simulation {
                         .observers
                         .on_message(&format!("linear solver: {about_solver}"));
                 }
-                let result = run_steps(
+                let result = resume_steps(
                     &mut self.problem,
                     &mut *solver,
                     &mut recorder,
                     output.clone(),
+                    resume,
                 );
                 (result, solver.statistics())
             }
             SolvePath::Condensed => {
+                if resume.is_some() {
+                    return Err(Error::Restart {
+                        path: options.restart.clone().unwrap_or_default(),
+                        message: format!(
+                            "a restart resumes Newton's path, and this case runs on the \
+                             condensed contact path ({}); set [solver] strategy = \
+                             \"monolithic\" to restart it",
+                            self.strategy.reason
+                        ),
+                    });
+                }
                 let (result, statistics, steps) =
                     condensed::run_steps(&mut self.problem, &mut recorder, output.clone());
                 recorder.summary.active_set_iterations = steps;
@@ -249,28 +303,100 @@ impl Simulation {
             }
         };
         let result = result.map_err(|e| case::diagnosis::explain_failure(e, &self.warnings));
-        record_totals(&mut recorder.summary, &self.problem, &statistics, start);
+        update_totals(
+            &mut recorder.summary,
+            &self.problem,
+            &statistics,
+            recorder.start,
+            recorder.earlier.as_ref(),
+        );
         recorder.finish(result, output)
     }
 
-    /// The result files and the log, when the run has an output folder.
+    /// The checkpoint in `dir` (`NAME.checkpoint`), checked against this
+    /// case, with the output it restores; `output` must be `dir` or none.
+    fn read_restart(&self, dir: &Path, output: Option<&Path>) -> Result<Restart> {
+        if let Some(out) = output.filter(|out| !same_folder(out, dir)) {
+            return Err(Error::Restart {
+                path: dir.to_path_buf(),
+                message: format!(
+                    "a restart goes on writing into the folder it resumes from, not into '{}'; \
+                     leave out --output (or give the same folder), or copy the folder first \
+                     to keep the interrupted run's files",
+                    out.display()
+                ),
+            });
+        }
+        let c = checkpoint::read(dir, &self.name)?;
+        let path = checkpoint::path(dir, &self.name);
+        c.check_case(&self.case_key, &path)?;
+        let fail = |message: String| Error::Restart {
+            path: path.clone(),
+            message,
+        };
+        let (histories, profiles) = (&self.requests.histories, &self.requests.profiles);
+        if c.histories.len() != histories.len() || c.profiles.len() != profiles.len() {
+            return Err(fail(format!(
+                "the checkpoint has {} histories and {} profiles, the case asks for {} and {}; \
+                 a restart needs the same [[output.history]] and [[output.profile]] tables",
+                c.histories.len(),
+                c.profiles.len(),
+                histories.len(),
+                profiles.len()
+            )));
+        }
+        let summary: Summary = serde_json::from_str(&c.summary)
+            .map_err(|e| fail(format!("corrupted: its summary does not read back ({e})")))?;
+        Ok(Restart {
+            increments: summary.increments.len(),
+            summary,
+            histories: c.histories.into_iter().map(|h| h.into_owned()).collect(),
+            profiles: c.profiles.into_iter().map(|p| p.into_owned()).collect(),
+            resume: Resume {
+                unknowns: c.unknowns.into_owned(),
+                state: c.contact.into_owned(),
+                stepping: c.stepping.into_owned(),
+            },
+            dir: dir.to_path_buf(),
+        })
+    }
+
+    /// The result files and the log, when the run has an output folder
+    /// (going on with the restored ones after a restart).
     fn file_observers(
         &self,
         options: &RunOptions,
+        restart: Option<&Restart>,
     ) -> Result<(Option<ResultWriter>, Option<LogWriter>)> {
         let Some(dir) = &options.output else {
             return Ok((None, None));
         };
-        let writer = ResultWriter::new(
-            dir,
-            &self.name,
-            self.nodal_fields.clone(),
-            self.cell_fields.clone(),
-            self.requests.histories.clone(),
-            self.requests.profiles.clone(),
-        )?
-        .compress(self.compress);
-        Ok((Some(writer), Some(LogWriter::new(dir, &self.name)?)))
+        let (nodal, cells) = (self.nodal_fields.clone(), self.cell_fields.clone());
+        let histories = self.requests.histories.clone();
+        let profiles = self.requests.profiles.clone();
+        let (writer, log) = match restart {
+            None => (
+                ResultWriter::new(dir, &self.name, nodal, cells, histories, profiles)?,
+                LogWriter::new(dir, &self.name)?,
+            ),
+            Some(r) => {
+                let restored = Restored {
+                    summary: &r.summary,
+                    histories: r.histories.clone(),
+                    profiles: r.profiles.clone(),
+                };
+                (
+                    ResultWriter::resume(
+                        dir, &self.name, nodal, cells, histories, profiles, restored,
+                    )?,
+                    LogWriter::append(dir, &self.name)?,
+                )
+            }
+        };
+        let writer = writer
+            .compress(self.compress)
+            .checkpoint(self.case_key.clone());
+        Ok((Some(writer), Some(log)))
     }
 
     /// The model in words, the notes on reading it and what the histories
@@ -308,6 +434,51 @@ impl Simulation {
     }
 }
 
+/// Whether `a` and `b` name the same folder (compared as given when
+/// either does not exist).
+fn same_folder(a: &Path, b: &Path) -> bool {
+    match (a.canonicalize(), b.canonicalize()) {
+        (Ok(a), Ok(b)) => a == b,
+        _ => a == b,
+    }
+}
+
+/// The FNV-1a hash of a case's physics ([`CaseKey::physics`]): the mesh's
+/// coordinates (their bits), elements and sets, and the debug form of the
+/// case's materials, loads, amplitudes, obstacles and contacts.
+fn physics_hash(case: &Case) -> u64 {
+    use std::fmt::Write;
+    use std::hash::Hasher;
+    let mut h = Fnv1a::default();
+    let mesh = &case.mesh;
+    for x in mesh.nodes.iter().flatten() {
+        h.write(&x.to_bits().to_le_bytes());
+    }
+    for e in &mesh.elements {
+        let _ = write!(h, "{:?}", e.kind);
+        for &n in &e.nodes {
+            h.write(&(n as u64).to_le_bytes());
+        }
+    }
+    let s = &case.spec;
+    let _ = write!(
+        h,
+        "{:?}{:?}{:?}{:?}{:?}{:?}{:?}{:?}{:?}{:?}{:?}",
+        mesh.regions,
+        mesh.surfaces,
+        mesh.node_sets,
+        s.material,
+        s.displacement,
+        s.pressure,
+        s.body_force,
+        s.nodal_force,
+        s.obstacle,
+        s.contact,
+        s.amplitudes
+    );
+    h.finish()
+}
+
 /// The fill-reducing ordering of `problem`'s pattern
 /// ([`crate::solve::ordering::fill_reducing_ordering`]).
 pub fn fill_reducing_ordering(problem: &Problem) -> Result<crate::solve::linear::Ordering> {
@@ -327,13 +498,13 @@ pub fn run_observed(
     observer: &mut (dyn StepObserver + Send),
 ) -> Result<RunOutcome> {
     let mut simulation = Simulation::from_file(case_path)?;
+    // a restart goes on in the folder it resumes from
+    let folder = options
+        .restart
+        .clone()
+        .unwrap_or_else(|| simulation.default_output_dir().to_path_buf());
     let options = RunOptions {
-        output: Some(
-            options
-                .output
-                .clone()
-                .unwrap_or_else(|| simulation.default_output_dir().to_path_buf()),
-        ),
+        output: Some(options.output.clone().unwrap_or(folder)),
         ..options.clone()
     };
     simulation.run(&options, observer)
@@ -350,9 +521,47 @@ struct Recorder<'a> {
     last: Instant,
     start: Instant,
     contact: ContactState,
+    /// The stepper's state after the last converged increment, and the
+    /// linear solver's figures then.
+    stepping: Stepping,
+    statistics: SolverStatistics,
+    /// After a restart: the summary of the checkpoint, whose run totals
+    /// the resumed run's add to.
+    earlier: Option<Summary>,
 }
 
 impl Recorder<'_> {
+    /// Take over a restart's summary and state (the run's clock counts the
+    /// earlier run's time too); what the stepper resumes from.
+    fn restore(&mut self, restart: Restart) -> Resume<ContactState> {
+        let Restart {
+            resume,
+            mut summary,
+            increments,
+            dir,
+            ..
+        } = restart;
+        let stepping = &resume.stepping;
+        self.observers.on_message(&format!(
+            "restart: resuming from the checkpoint in {} after increment {increments} \
+             (step '{}', t = {})",
+            dir.display(),
+            summary
+                .increments
+                .last()
+                .map_or("", |i| i.step_name.as_str()),
+            stepping.time
+        ));
+        summary.status = "running".into();
+        summary.error = None;
+        summary.threads = rayon::current_num_threads();
+        self.earlier = Some(summary.clone());
+        self.summary = summary;
+        self.contact.clone_from(&resume.state);
+        self.stepping.clone_from(&resume.stepping);
+        resume
+    }
+
     /// The end of a run: its status in the summary, the observers told,
     /// the outcome (or the error that ended the run, every converged
     /// increment kept).
@@ -382,6 +591,42 @@ impl Recorder<'_> {
             }
         }
     }
+}
+
+/// The run's totals in the summary so far ([`record_totals`]), with those
+/// of the run a restart resumed (`earlier`) added: in `summary.json` after
+/// every increment, and so in the checkpoint.
+fn update_totals(
+    summary: &mut Summary,
+    problem: &Problem,
+    statistics: &SolverStatistics,
+    start: Instant,
+    earlier: Option<&Summary>,
+) {
+    record_totals(summary, problem, statistics, start);
+    if let Some(earlier) = earlier {
+        add_earlier_totals(summary, earlier);
+    }
+}
+
+/// After a restart: the run totals of the earlier run (`earlier`, the
+/// checkpoint's summary) added to the resumed run's (wall time included).
+fn add_earlier_totals(summary: &mut Summary, earlier: &Summary) {
+    summary.symbolic_analyses += earlier.symbolic_analyses;
+    let (t, e) = (&mut summary.phase_times, &earlier.phase_times);
+    t.assembly += e.assembly;
+    t.contact += e.contact;
+    t.symbolic += e.symbolic;
+    t.factorisation += e.factorisation;
+    t.solve += e.solve;
+    summary.krylov_solves += earlier.krylov_solves;
+    summary.krylov_iterations += earlier.krylov_iterations;
+    summary.lu_solves += earlier.lu_solves;
+    summary.factorisations += earlier.factorisations;
+    summary.single_factorisations += earlier.single_factorisations;
+    summary.refinement_steps += earlier.refinement_steps;
+    summary.mixed_precision_fallbacks += earlier.mixed_precision_fallbacks;
+    summary.wall_time += earlier.wall_time;
 }
 
 /// The run's totals in the summary: where the time went and what the
@@ -427,6 +672,7 @@ impl stepping::StepObserver<Problem> for Recorder<'_> {
             unknowns: u,
             residual: &evaluation.residual,
             contact,
+            stepping: &self.stepping,
             contact_fields: ContactFields::new(problem, u, contact, evaluation.reports.clone()),
         };
         let now = Instant::now();
@@ -456,8 +702,21 @@ impl stepping::StepObserver<Problem> for Recorder<'_> {
         });
         self.summary.update_step_totals();
         self.last = now;
-        self.summary.wall_time = self.start.elapsed().as_secs_f64();
+        // the totals so far (fields apart: `increment` borrows `stepping`)
+        let earlier = self.earlier.as_ref();
+        update_totals(
+            &mut self.summary,
+            problem,
+            &self.statistics,
+            self.start,
+            earlier,
+        );
         self.observers.on_increment(&increment, &self.summary)
+    }
+
+    fn on_stepping(&mut self, stepping: &Stepping, statistics: &SolverStatistics) {
+        self.stepping.clone_from(stepping);
+        self.statistics = *statistics;
     }
 
     fn cancelled(&mut self) -> bool {

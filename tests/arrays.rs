@@ -75,6 +75,7 @@ fn run(case: &case::Case, observer: &mut (dyn StepObserver + Send)) -> signorini
         output: None,
         threads: Some(1),
         cancel: None,
+        restart: None,
     };
     Ok(simulation.run(&options, observer)?.displacement)
 }

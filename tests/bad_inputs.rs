@@ -230,6 +230,7 @@ fn every_bad_input_is_rejected_with_a_clear_message() {
     meshes(&mut c);
     stl_files(&mut c);
     command_line_and_paths(&mut c);
+    restarts(&mut c);
     let entries = c.0;
     let mut names: Vec<&str> = entries.iter().map(|e| e.name.as_str()).collect();
     names.sort_unstable();
@@ -1127,6 +1128,24 @@ fn contacts_and_output(c: &mut Catalogue) {
             "output.history[0].surface is required",
         ),
         (
+            "history reaction on a surface and a node set",
+            "point = [1.0, 1.0, 1.0]\nquantity = \"displacement_z\"",
+            "quantity = \"reaction_force_x\"\nsurface = \"bottom\"\nnodes = \"corner\"",
+            "not both",
+        ),
+        (
+            "history reaction on an unknown node set",
+            "point = [1.0, 1.0, 1.0]\nquantity = \"displacement_z\"",
+            "quantity = \"reaction_force_z\"\nnodes = \"corner\"",
+            "output.history[0].nodes: the mesh has no node set",
+        ),
+        (
+            "history nodes on a displacement",
+            "quantity = \"displacement_z\"",
+            "quantity = \"displacement_z\"\nnodes = \"corner\"",
+            "output.history[0].nodes applies to reaction_force only",
+        ),
+        (
             "history unknown quantity",
             "quantity = \"displacement_z\"",
             "quantity = \"stress\"",
@@ -1718,4 +1737,132 @@ fn arrays_of_three(c: &mut Catalogue) {
     ] {
         c.edit(name, from, to, &[kw, "invalid length 4", "3 numbers"]);
     }
+}
+
+/// The checkpoint the base case writes (`results/cube.checkpoint`), run
+/// through the library.
+fn base_checkpoint() -> Vec<u8> {
+    let dir = tempfile::tempdir().unwrap();
+    std::fs::write(dir.path().join("case.toml"), BASE).unwrap();
+    std::fs::write(
+        dir.path().join("cube.msh"),
+        read_data("cube_hex_41_ascii.msh"),
+    )
+    .unwrap();
+    let options = signorini::run::RunOptions {
+        threads: Some(1),
+        ..Default::default()
+    };
+    let outcome = signorini::run::run(&dir.path().join("case.toml"), &options).unwrap();
+    std::fs::read(outcome.output_dir.join("cube.checkpoint")).unwrap()
+}
+
+/// `run --restart old` on the base case (or `case`), the folder `old`
+/// holding `cube.checkpoint` = `checkpoint` (no file: `None`).
+fn restart_entry(
+    c: &mut Catalogue,
+    name: &str,
+    case: String,
+    checkpoint: Option<Vec<u8>>,
+    kw: &[&str],
+) {
+    let mut files = vec![
+        ("case.toml", File::Bytes(case.into_bytes())),
+        ("cube.msh", File::Bytes(read_data("cube_hex_41_ascii.msh"))),
+        ("old", File::Folder),
+    ];
+    if let Some(bytes) = checkpoint {
+        files.push(("old/cube.checkpoint", File::Bytes(bytes)));
+    }
+    c.push(
+        name,
+        files,
+        &["run", "case.toml", "--quiet", "--restart", "old"],
+        1,
+        kw,
+    );
+}
+
+/// `--restart` (issue 15 item 3): no folder, no checkpoint, a file that is
+/// not one, truncated, corrupted, of another version, of another case, and
+/// an output folder other than the restart's.
+fn restarts(c: &mut Catalogue) {
+    let good = base_checkpoint();
+    let base = || BASE.to_string();
+    c.cli(
+        "restart: no such folder",
+        &["run", "case.toml", "--restart", "nowhere"],
+        1,
+        &["cannot restart from", "nowhere", "no such folder"],
+    );
+    restart_entry(
+        c,
+        "restart: no checkpoint",
+        base(),
+        None,
+        &["'old'", "no cube.checkpoint", "no checkpoint in it"],
+    );
+    restart_entry(
+        c,
+        "restart: not a checkpoint",
+        base(),
+        Some(b"<?xml version=\"1.0\"?>".to_vec()),
+        &["cube.checkpoint", "not a signorini checkpoint"],
+    );
+    restart_entry(
+        c,
+        "restart: truncated",
+        base(),
+        Some(good[..good.len() / 2].to_vec()),
+        &["cube.checkpoint", "truncated"],
+    );
+    let mut flipped = good.clone();
+    let middle = flipped.len() / 2;
+    flipped[middle] ^= 0x10;
+    restart_entry(
+        c,
+        "restart: corrupted",
+        base(),
+        Some(flipped),
+        &["cube.checkpoint", "corrupted", "checksum"],
+    );
+    let mut future = good.clone();
+    future[8] = 99;
+    restart_entry(
+        c,
+        "restart: another format version",
+        base(),
+        Some(future),
+        &["format version 99", "reads version 1"],
+    );
+    restart_entry(
+        c,
+        "restart: another case",
+        replaced(BASE, "youngs_modulus = 100.0", "youngs_modulus = 200.0"),
+        Some(good.clone()),
+        &["cube.checkpoint", "physics", "changed", "from the start"],
+    );
+    restart_entry(
+        c,
+        "restart: another step",
+        replaced(BASE, "end_time = 1.0", "end_time = 2.0"),
+        Some(good.clone()),
+        &[
+            "step 1 is 'load' ending at t = 2",
+            "t = 1 in the checkpoint",
+        ],
+    );
+    let mut files = vec![
+        ("case.toml", File::Bytes(BASE.as_bytes().to_vec())),
+        ("cube.msh", File::Bytes(read_data("cube_hex_41_ascii.msh"))),
+        ("old", File::Folder),
+    ];
+    files.push(("old/cube.checkpoint", File::Bytes(good)));
+    c.push(
+        "restart: into another folder",
+        files,
+        &["run", "case.toml", "--restart", "old", "--output", "new"],
+        1,
+        &["'new'", "folder it resumes from", "--output"],
+    );
 }

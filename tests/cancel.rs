@@ -49,6 +49,7 @@ fn a_cancelled_run_stops_between_newton_iterations_and_keeps_what_converged() {
         output: Some(tmp.path().to_path_buf()),
         threads: Some(1),
         cancel: Some(flag),
+        restart: None,
     };
     let mut simulation = Simulation::from_file(&example.join("case.toml")).unwrap();
     let error = simulation.run(&options, &mut observer).unwrap_err();

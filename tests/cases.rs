@@ -19,6 +19,7 @@ fn run_example(name: &str) -> (tempfile::TempDir, signorini::run::RunOutcome) {
             output: Some(out.path().to_path_buf()),
             threads: None,
             cancel: None,
+            restart: None,
         },
     )
     .expect("the example runs");
@@ -230,11 +231,7 @@ fn run_example_with(name: &str, solver: &str) -> signorini::run::RunOutcome {
     let mut simulation =
         signorini::run::Simulation::from_toml(&format!("{text}\n[solver]\n{solver}\n"), &folder)
             .unwrap();
-    let options = RunOptions {
-        output: None,
-        threads: None,
-        cancel: None,
-    };
+    let options = RunOptions::default();
     simulation
         .run(&options, &mut signorini::output::observer::Silent)
         .expect("the example runs")

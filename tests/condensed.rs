@@ -41,6 +41,7 @@ fn run_case(
         threads: Some(2),
         output: None,
         cancel: None,
+        restart: None,
     };
     let outcome = simulation.run(&options, &mut forces)?;
     Ok((outcome, forces))

@@ -325,6 +325,7 @@ end_time = 1.0
             output: None,
             threads: None,
             cancel: None,
+            restart: None,
         },
     )
     .unwrap();

@@ -351,6 +351,7 @@ fn stacked_blocks_through_the_case_file() {
             output: Some(dir.path().join("out")),
             threads: None,
             cancel: None,
+            restart: None,
         },
     )
     .expect("the case runs");

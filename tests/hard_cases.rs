@@ -24,6 +24,7 @@ fn solve(mesh: &Mesh, case: &str) -> RunOutcome {
         output: None,
         threads: None,
         cancel: None,
+        restart: None,
     };
     run(&path, &options).unwrap_or_else(|e| panic!("the case did not run: {e}"))
 }
@@ -262,6 +263,7 @@ fn an_ogden_body_stretched_threefold_at_once() {
         output: None,
         threads: None,
         cancel: None,
+        restart: None,
     };
     let outcome = run(&path, &options).unwrap_or_else(|e| panic!("{e}"));
     let last = outcome.summary.increments.last().unwrap();

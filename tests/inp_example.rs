@@ -21,6 +21,7 @@ fn inp_import_block_matches_uniaxial_compression() {
             output: Some(out.path().to_path_buf()),
             threads: None,
             cancel: None,
+            restart: None,
         },
     )
     .expect("the example runs");

@@ -370,6 +370,7 @@ fn run_case(text: &str) -> (tempfile::TempDir, signorini::run::RunOutcome) {
             output: Some(dir.path().join("results")),
             threads: None,
             cancel: None,
+            restart: None,
         },
     )
     .expect("the case runs");

@@ -22,6 +22,7 @@ fn run(method: &str) -> signorini::run::RunOutcome {
             output: Some(dir.path().join("out")),
             threads: None,
             cancel: None,
+            restart: None,
         },
     )
     .unwrap_or_else(|e| panic!("linear = {method}: {e}"))

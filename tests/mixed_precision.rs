@@ -41,6 +41,7 @@ fn run_with(example: &str, mesh: Option<(&str, &str)>, method: &str) -> RunOutco
             output: Some(dir.path().join("results")),
             threads: None,
             cancel: None,
+            restart: None,
         },
     )
     .unwrap_or_else(|e| panic!("{example}, linear = {method}: {e}"))

@@ -99,6 +99,14 @@ name = "pull"
 end_time = 1.0
 [solver]
 residual_tolerance = 1e-12
+[[output.history]]
+name = "support_x"
+quantity = "reaction_force_x"
+nodes = "clamp"
+[[output.history]]
+name = "support"
+quantity = "reaction_force"
+nodes = "clamp"
 "#
     );
     std::fs::write(dir.path().join("case.toml"), case).unwrap();
@@ -108,10 +116,23 @@ residual_tolerance = 1e-12
             output: Some(dir.path().join("results")),
             threads: None,
             cancel: None,
+            restart: None,
         },
     )
     .expect("the bar runs");
     let reaction = outcome.summary.increments.last().unwrap().reaction_forces["clamp"];
+    // the histories on the node set read the same reaction: `−F` along x
+    let last_row = |file: &str| -> Vec<f64> {
+        let text = std::fs::read_to_string(dir.path().join("results").join(file)).unwrap();
+        let row = text.lines().last().unwrap();
+        row.split(',').map(|v| v.parse().unwrap()).collect()
+    };
+    let (x, all) = (last_row("support_x.csv"), last_row("support.csv"));
+    assert_eq!((x.len(), all.len(), x[0], all[0]), (2, 4, 1.0, 1.0));
+    assert!((x[1] + F).abs() < 1e-10 * F, "{x:?}");
+    for (a, b) in all[1..].iter().zip(reaction) {
+        assert!((a - b).abs() < 1e-12 * F, "{all:?} vs {reaction:?}");
+    }
     (mesh, outcome.displacement, reaction)
 }
 

@@ -42,6 +42,7 @@ fn run_case(
             output: Some(dir.path().join("results")),
             threads: None,
             cancel: None,
+            restart: None,
         },
     )
     .expect("the plate converges");

@@ -26,6 +26,7 @@ fn run_with(name: &str, output_table: &str, extra: &str, out: &Path) -> serde_js
         output: Some(out.to_path_buf()),
         threads: Some(1),
         cancel: None,
+        restart: None,
     };
     simulation
         .run(&options, &mut signorini::output::observer::Silent)

@@ -25,6 +25,7 @@ fn run(out: &Path, edit: impl Fn(String) -> String) -> serde_json::Value {
         output: Some(out.to_path_buf()),
         threads: Some(1),
         cancel: None,
+        restart: None,
     };
     simulation.run(&options, &mut Silent).unwrap();
     serde_json::from_str(&std::fs::read_to_string(out.join("summary.json")).unwrap()).unwrap()
@@ -68,6 +69,8 @@ fn a_new_run_removes_the_files_of_the_earlier_run_of_the_same_case() {
         "press-pull.pvd",
         "press-pull.log",
         "press-pull.manifest",
+        // the state a restart resumes from (issue 15 item 3)
+        "press-pull.checkpoint",
         "summary.json",
         "convergence.svg",
         "contact_line.svg",

@@ -64,6 +64,7 @@ name = "cube"
         output: Some(dir.path().join("out")),
         threads: None,
         cancel: None,
+        restart: None,
     };
     let Err(error) = run(&case, &options) else {
         panic!("the run succeeded although no increment cut is allowed");

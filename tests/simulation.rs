@@ -45,6 +45,7 @@ fn press_pull(threads: usize) -> (Kept, Summary) {
         output: None,
         threads: Some(threads),
         cancel: None,
+        restart: None,
     };
     let outcome = simulation.run(&options, &mut kept).unwrap();
     (kept, outcome.summary)
@@ -154,6 +155,7 @@ fn a_run_without_output_folder_writes_nothing() {
         output: Some(out.clone()),
         threads: Some(1),
         cancel: None,
+        restart: None,
     };
     let written = simulation.run(&options, &mut Kept::default()).unwrap();
     let summary: serde_json::Value =
@@ -182,6 +184,7 @@ fn output_fields_choose_the_vtu_arrays() {
         output: Some(tmp.path().to_path_buf()),
         threads: Some(1),
         cancel: None,
+        restart: None,
     };
     let outcome = simulation.run(&options, &mut Kept::default()).unwrap();
     let vtu =

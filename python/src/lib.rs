@@ -241,6 +241,7 @@ impl NativeSimulation {
                 output,
                 threads,
                 cancel: None,
+                restart: None,
             },
         })
     }

@@ -116,12 +116,35 @@ impl Case {
         for (i, h) in self.spec.output.history.iter().enumerate() {
             let key = format!("output.history[{i}]");
             self.output_file_stem(&key, &h.name, &mut taken)?;
-            if h.quantity == HistoryQuantitySpec::ReactionForce {
-                let name = h.surface.as_ref().ok_or_else(|| {
-                    self.err(format!(
-                        "{key}.surface is required for quantity reaction_force: give a surface set name"
-                    ))
-                })?;
+            let reaction = match h.quantity {
+                HistoryQuantitySpec::ReactionForce => Some(None),
+                HistoryQuantitySpec::ReactionForceX => Some(Some(0)),
+                HistoryQuantitySpec::ReactionForceY => Some(Some(1)),
+                HistoryQuantitySpec::ReactionForceZ => Some(Some(2)),
+                _ => None,
+            };
+            if let Some(component) = reaction {
+                let quantity = h.quantity.name();
+                let (name, nodes) = match (&h.surface, &h.nodes) {
+                    (Some(name), None) => {
+                        let surface = self.surface(&format!("{key}.surface"), name)?;
+                        (name, mesh.surface_nodes(surface))
+                    }
+                    (None, Some(name)) => {
+                        let set = self.node_set(&format!("{key}.nodes"), name)?;
+                        (name, set.nodes.clone())
+                    }
+                    (None, None) => {
+                        return Err(self.err(format!(
+                            "{key}.surface is required for quantity {quantity}: give a surface set name (or `nodes`, a node set)"
+                        )))
+                    }
+                    (Some(_), Some(_)) => {
+                        return Err(self.err(format!(
+                            "{key}: give either `surface` (a surface set) or `nodes` (a node set), not both"
+                        )))
+                    }
+                };
                 for (given, what) in [
                     (h.point.is_some(), "point"),
                     (h.interface.is_some(), "interface"),
@@ -132,28 +155,41 @@ impl Case {
                         )));
                     }
                 }
-                let nodes = mesh.surface_nodes(self.surface(&format!("{key}.surface"), name)?);
                 let &first = nodes.first().ok_or_else(|| {
                     self.err(format!(
                         "{key}.surface = '{name}' has no nodes; name a surface set with facets"
                     ))
                 })?;
+                let (set, quantity) = (name.clone(), quantity.to_string());
+                let history = match component {
+                    None => HistoryQuantity::ReactionForce {
+                        surface: set,
+                        nodes,
+                    },
+                    Some(component) => HistoryQuantity::ReactionComponent {
+                        set,
+                        nodes,
+                        component,
+                    },
+                };
                 out.histories.push(History::new(
                     h.name.clone(),
                     first,
                     mesh.node_ids[first],
-                    HistoryQuantity::ReactionForce {
-                        surface: name.clone(),
-                        nodes,
-                    },
-                    "reaction_force".to_string(),
+                    history,
+                    quantity,
                 ));
                 continue;
             }
-            if h.surface.is_some() {
-                return Err(self.err(format!(
-                    "{key}.surface applies to reaction_force only; remove it"
-                )));
+            for (given, what) in [
+                (h.surface.is_some(), "surface"),
+                (h.nodes.is_some(), "nodes"),
+            ] {
+                if given {
+                    return Err(self.err(format!(
+                        "{key}.{what} applies to reaction_force only (and its components reaction_force_x, _y, _z); remove it"
+                    )));
+                }
             }
             let point = h.point.ok_or_else(|| {
                 self.err(format!(
@@ -169,7 +205,10 @@ impl Case {
                 HistoryQuantitySpec::DisplacementY => Some(1),
                 HistoryQuantitySpec::DisplacementZ => Some(2),
                 HistoryQuantitySpec::Gap | HistoryQuantitySpec::ContactPressure => None,
-                HistoryQuantitySpec::ReactionForce => unreachable!("handled above"),
+                HistoryQuantitySpec::ReactionForce
+                | HistoryQuantitySpec::ReactionForceX
+                | HistoryQuantitySpec::ReactionForceY
+                | HistoryQuantitySpec::ReactionForceZ => unreachable!("handled above"),
             };
             let (node, quantity, label) = match (component, &h.interface) {
                 (Some(c), None) => {

@@ -413,6 +413,10 @@ pub enum HistoryQuantitySpec {
     /// The reaction force on a surface set, its x, y, z components (needs
     /// `surface`, no `point`).
     ReactionForce,
+    /// One component of it (a scalar column `reaction_force_x`, …).
+    ReactionForceX,
+    ReactionForceY,
+    ReactionForceZ,
 }
 
 impl HistoryQuantitySpec {
@@ -425,6 +429,9 @@ impl HistoryQuantitySpec {
             Self::Gap => "gap",
             Self::ContactPressure => "contact_pressure",
             Self::ReactionForce => "reaction_force",
+            Self::ReactionForceX => "reaction_force_x",
+            Self::ReactionForceY => "reaction_force_y",
+            Self::ReactionForceZ => "reaction_force_z",
         }
     }
 }
@@ -448,8 +455,12 @@ pub struct HistorySpec {
     pub quantity: HistoryQuantitySpec,
     /// A `[[contact]]` name (required for `gap` and `contact_pressure`).
     pub interface: Option<String>,
-    /// A surface set (required for `reaction_force`, and only there).
+    /// A surface set (for `reaction_force` and its components, and only
+    /// there; or `nodes`).
     pub surface: Option<String>,
+    /// A node set, instead of `surface`, for `reaction_force` and its
+    /// components.
+    pub nodes: Option<String>,
 }
 
 /// `[[output.profile]]`: the secondary nodes of `interface` within `width`

@@ -58,7 +58,9 @@ pub struct Coulomb {
 
 /// State of a secondary node for output: the integers of the VTU field
 /// `contact_status`.
-#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Hash)]
+#[derive(
+    Clone, Copy, Debug, Default, PartialEq, Eq, Hash, serde::Serialize, serde::Deserialize,
+)]
 pub enum ContactStatus {
     /// Not in contact (`0`).
     #[default]
@@ -82,7 +84,7 @@ impl ContactStatus {
 }
 
 /// What a node remembers from the last converged increment.
-#[derive(Clone, Copy, Debug, Default, PartialEq)]
+#[derive(Clone, Copy, Debug, Default, PartialEq, serde::Serialize, serde::Deserialize)]
 pub struct FrictionHistory {
     /// Tangential traction `t_T,n`.
     pub traction: Vector3<f64>,
@@ -103,7 +105,7 @@ pub struct FrictionHistory {
 /// A material point of a primary surface: a triangle and the weights
 /// `N_i(ξ)` of its three nodes. Its current position `Σ N_i x_i` follows
 /// the primary body's deformation.
-#[derive(Clone, Copy, Debug, PartialEq)]
+#[derive(Clone, Copy, Debug, PartialEq, serde::Serialize, serde::Deserialize)]
 pub struct MaterialPoint {
     /// Index of the primary triangle.
     pub triangle: usize,

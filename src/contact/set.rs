@@ -27,7 +27,7 @@ use std::ops::{Deref, DerefMut};
 /// The per-node contact states of every interface (multipliers held fixed
 /// by Uzawa, local slack unknowns): history that Newton reads and the
 /// stepper commits when an increment converges.
-#[derive(Clone, Debug, Default, PartialEq)]
+#[derive(Clone, Debug, Default, PartialEq, serde::Serialize, serde::Deserialize)]
 pub struct ContactState {
     pub interfaces: Vec<Vec<NodeContactState>>,
 }

@@ -194,6 +194,9 @@ pub struct ConvergedIncrement<'a> {
     pub residual: &'a [f64],
     /// The contact history committed with this increment.
     pub contact: &'a ContactState,
+    /// The stepper's state after it (with `unknowns` and `contact`, what a
+    /// restart resumes from).
+    pub stepping: &'a crate::solve::stepping::Stepping,
     /// The contact fields and per-interface totals.
     pub contact_fields: ContactFields,
 }

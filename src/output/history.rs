@@ -23,6 +23,13 @@ pub enum HistoryQuantity {
     /// components: the reaction force where displacements are prescribed
     /// (as `reaction_forces` in `summary.json`).
     ReactionForce { surface: String, nodes: Vec<usize> },
+    /// Component `component` (0, 1, 2) of that sum over the nodes of the
+    /// surface set or node set `set`: one column.
+    ReactionComponent {
+        set: String,
+        nodes: Vec<usize>,
+        component: usize,
+    },
 }
 
 /// A quantity at one node (or a surface set's reaction force) over the run.
@@ -79,6 +86,9 @@ impl History {
             HistoryQuantity::ReactionForce { surface, nodes } => {
                 format!("on surface '{surface}' ({} nodes)", nodes.len())
             }
+            HistoryQuantity::ReactionComponent { set, nodes, .. } => {
+                format!("on set '{set}' ({} nodes)", nodes.len())
+            }
             _ => {
                 let x = nodes[self.node];
                 format!("at node {} ({}, {}, {})", self.node_id, x[0], x[1], x[2])
@@ -96,9 +106,12 @@ impl History {
             HistoryQuantity::ContactPressure { interface, index } => {
                 vec![contact[*interface][*index].pressure]
             }
-            HistoryQuantity::ReactionForce { nodes, .. } => (0..3)
-                .map(|d| nodes.iter().map(|&n| residual[3 * n + d]).sum())
-                .collect(),
+            HistoryQuantity::ReactionForce { nodes, .. } => {
+                (0..3).map(|d| set_sum(nodes, residual, d)).collect()
+            }
+            HistoryQuantity::ReactionComponent {
+                nodes, component, ..
+            } => vec![set_sum(nodes, residual, *component)],
         }
     }
 
@@ -124,7 +137,9 @@ impl History {
         write_csv(&dir.join(format!("{}.csv", self.name)), &header, &rows)?;
         let from_origin = matches!(
             self.quantity,
-            HistoryQuantity::Displacement(_) | HistoryQuantity::ReactionForce { .. }
+            HistoryQuantity::Displacement(_)
+                | HistoryQuantity::ReactionForce { .. }
+                | HistoryQuantity::ReactionComponent { .. }
         );
         let curves = columns
             .iter()
@@ -147,6 +162,9 @@ impl History {
             HistoryQuantity::ReactionForce { surface, .. } => {
                 format!("{}: {} on surface {surface}", self.name, self.label)
             }
+            HistoryQuantity::ReactionComponent { set, .. } => {
+                format!("{}: {} on {set}", self.name, self.label)
+            }
             _ => format!("{}: {} at node {}", self.name, self.label, self.node_id),
         };
         let plot = LinePlot {
@@ -157,6 +175,12 @@ impl History {
         };
         write_line_plot(&dir.join(format!("{}.svg", self.name)), &plot)
     }
+}
+
+/// `Σ_n r[3n + d]`: component `d` of the residual summed over `nodes`
+/// (the reaction force where they are prescribed).
+fn set_sum(nodes: &[usize], residual: &[f64], d: usize) -> f64 {
+    nodes.iter().map(|&n| residual[3 * n + d]).sum()
 }
 
 #[cfg(test)]

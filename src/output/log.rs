@@ -10,6 +10,7 @@ use std::path::{Path, PathBuf};
 use super::fields::ConvergedIncrement;
 use super::observer::{Cut, Iteration, StepObserver};
 use super::summary::Summary;
+use crate::solve::linear_solver::LinearFigures;
 use crate::{Error, Result};
 
 /// Writes the log of a run.
@@ -26,6 +27,22 @@ impl LogWriter {
     pub fn new(dir: &Path, name: &str) -> Result<Self> {
         let path = dir.join(format!("{name}.log"));
         let file = File::create(&path).map_err(|e| Error::io("create", &path, e))?;
+        Ok(LogWriter {
+            path,
+            file: BufWriter::new(file),
+            failed: None,
+        })
+    }
+
+    /// The log `dir/NAME.log` of a run that resumes (a restart): the
+    /// lines go on after the earlier run's.
+    pub fn append(dir: &Path, name: &str) -> Result<Self> {
+        let path = dir.join(format!("{name}.log"));
+        let file = std::fs::OpenOptions::new()
+            .create(true)
+            .append(true)
+            .open(&path)
+            .map_err(|e| Error::io("open", &path, e))?;
         Ok(LogWriter {
             path,
             file: BufWriter::new(file),
@@ -51,8 +68,14 @@ impl StepObserver for LogWriter {
     fn on_iteration(&mut self, it: &Iteration) {
         let r = it.record;
         self.line(&format!(
-            "  step '{}' t = {:.6}  residual {:.3e}  correction {:.3e}  step length {:.3}  switched {}",
-            it.step, it.time, r.residual, r.correction, r.step_length, r.switched
+            "  step '{}' t = {:.6}  residual {:.3e}  correction {:.3e}  step length {:.3}  switched {}  {}",
+            it.step,
+            it.time,
+            r.residual,
+            r.correction,
+            r.step_length,
+            r.switched,
+            linear_figures(&r.linear)
         ));
     }
 
@@ -108,4 +131,26 @@ impl StepObserver for LogWriter {
             None => Ok(()),
         }
     }
+}
+
+/// The linear solve of one Newton iteration in words: `linear solve:
+/// factorisation 1.2e-3 s, solve 4.0e-4 s` and, where there were any, the
+/// refinement steps, GMRES iterations, LU solves and f32 → f64 fallbacks.
+fn linear_figures(f: &LinearFigures) -> String {
+    let mut text = format!(
+        "linear solve: factorisation {:.1e} s, solve {:.1e} s",
+        f.factorisation, f.solve
+    );
+    let counts = [
+        (f.refinement_steps, "refinement steps"),
+        (f.krylov_iterations, "GMRES iterations"),
+        (f.lu_solves, "LU solves"),
+        (f.mixed_precision_fallbacks, "f32 → f64 fallbacks"),
+    ];
+    for (n, what) in counts {
+        if n > 0 {
+            text.push_str(&format!(", {n} {what}"));
+        }
+    }
+    text
 }

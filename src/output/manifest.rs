@@ -31,16 +31,7 @@ impl Manifest {
     /// itself.
     pub fn take_over(dir: &Path, name: &str) -> Result<Self> {
         let path = dir.join(format!("{name}.manifest"));
-        let mut old: BTreeSet<String> = match std::fs::read_to_string(&path) {
-            Ok(text) => text
-                .lines()
-                .map(str::trim)
-                .filter(|l| is_plain_name(l))
-                .map(str::to_string)
-                .collect(),
-            Err(e) if e.kind() == std::io::ErrorKind::NotFound => BTreeSet::new(),
-            Err(e) => return Err(Error::io("read", &path, e)),
-        };
+        let mut old = read_list(&path)?;
         let pvd = format!("{name}.pvd");
         let listings = ["summary.json".to_string(), pvd];
         // the listings go first, so no file on disk names a removed file
@@ -71,6 +62,32 @@ impl Manifest {
         Ok(manifest)
     }
 
+    /// Go on with the manifest of `dir` for the case `name` (a restart,
+    /// which continues the series in its folder): the files it lists stay
+    /// listed and on disk, except the VTU files of the series that `keep`
+    /// does not name (those of increments after the checkpoint's, which the
+    /// resumed run writes again), which are removed, as are leftover
+    /// temporary files.
+    pub fn resume(dir: &Path, name: &str, keep: &BTreeSet<String>) -> Result<Self> {
+        let path = dir.join(format!("{name}.manifest"));
+        let mut files = read_list(&path)?;
+        let entries =
+            std::fs::read_dir(dir).map_err(|e| Error::io("list output folder", dir, e))?;
+        for entry in entries.flatten() {
+            let file = entry.file_name().to_string_lossy().into_owned();
+            if (is_series_file(&file, name) && !keep.contains(&file)) || is_temporary(&file) {
+                remove(&dir.join(&file))?;
+                files.remove(&file);
+            }
+        }
+        // listing itself last writes the whole list
+        let own = format!("{name}.manifest");
+        files.remove(&own);
+        let mut manifest = Manifest { path, files };
+        manifest.claim(&own)?;
+        Ok(manifest)
+    }
+
     /// Add `file` (a name in the output folder) to the manifest before it
     /// is written; the manifest is rewritten only for a new name.
     pub fn claim(&mut self, file: &str) -> Result<()> {
@@ -84,6 +101,20 @@ impl Manifest {
             })?;
         }
         Ok(())
+    }
+}
+
+/// The file names a manifest at `path` lists (none when there is none).
+fn read_list(path: &Path) -> Result<BTreeSet<String>> {
+    match std::fs::read_to_string(path) {
+        Ok(text) => Ok(text
+            .lines()
+            .map(str::trim)
+            .filter(|l| is_plain_name(l))
+            .map(str::to_string)
+            .collect()),
+        Err(e) if e.kind() == std::io::ErrorKind::NotFound => Ok(BTreeSet::new()),
+        Err(e) => Err(Error::io("read", path, e)),
     }
 }
 
@@ -145,6 +176,41 @@ mod tests {
         assert!(!is_plain_name("../x"));
         assert!(!is_plain_name("/etc/passwd"));
         assert!(is_plain_name("tip.csv"));
+    }
+
+    /// A restart keeps the earlier run's files and list, but not the VTU
+    /// files after its checkpoint nor temporary files.
+    #[test]
+    fn a_resumed_manifest_keeps_the_earlier_files() {
+        let dir = tempfile::tempdir().unwrap();
+        let d = dir.path();
+        for f in [
+            "case_0001.vtu",
+            "case_0002.vtu",
+            "tip.csv",
+            ".case_0003.vtu.99-3.tmp",
+        ] {
+            std::fs::write(d.join(f), "x").unwrap();
+        }
+        std::fs::write(
+            d.join("case.manifest"),
+            "case.manifest\ncase_0001.vtu\ncase_0002.vtu\ntip.csv\n",
+        )
+        .unwrap();
+        let keep = BTreeSet::from(["case_0001.vtu".to_string()]);
+        let mut m = Manifest::resume(d, "case", &keep).unwrap();
+        m.claim("case.checkpoint").unwrap();
+        let mut left: Vec<String> = std::fs::read_dir(d)
+            .unwrap()
+            .map(|e| e.unwrap().file_name().to_string_lossy().into_owned())
+            .collect();
+        left.sort();
+        assert_eq!(left, ["case.manifest", "case_0001.vtu", "tip.csv"]);
+        let text = std::fs::read_to_string(d.join("case.manifest")).unwrap();
+        assert_eq!(
+            text,
+            "case.checkpoint\ncase.manifest\ncase_0001.vtu\ntip.csv\n"
+        );
     }
 
     #[test]

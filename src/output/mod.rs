@@ -16,13 +16,15 @@
 //! - [`observer`]: [`StepObserver`], what a run tells as it goes;
 //!   [`writer`]: the observer that writes all of the above; [`log`]: the
 //!   observer that writes `NAME.log`; [`describe`]: the model in words;
-//!   [`manifest`]: `NAME.manifest`, the files of a run, removed by the next.
+//!   [`manifest`]: `NAME.manifest`, the files of a run, removed by the next;
+//!   [`checkpoint`]: `NAME.checkpoint`, the state a restart resumes from.
 //!
 //! Every file is written to a temporary file in the target's folder and then
 //! renamed over the target ([`write_atomically`]), so an interrupted run never
 //! leaves a half-written file behind: a reader sees either the old file or the
 //! complete new one.
 
+pub mod checkpoint;
 pub mod contact_fields;
 pub mod describe;
 pub mod fields;

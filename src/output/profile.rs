@@ -132,7 +132,7 @@ pub struct ProfileNode {
 }
 
 /// The table of one load step.
-#[derive(Clone, Debug, PartialEq)]
+#[derive(Clone, Debug, PartialEq, serde::Serialize, serde::Deserialize)]
 pub struct StepProfile {
     pub step_name: String,
     pub time: f64,

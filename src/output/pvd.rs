@@ -57,6 +57,12 @@ impl PvdCollection {
         result
     }
 
+    /// Appends the data set `file` at `time` without writing (a restart
+    /// lists the earlier files again, then [`write`](Self::write)s once).
+    pub fn push(&mut self, time: f64, file: impl Into<String>) {
+        self.entries.push((time, file.into()));
+    }
+
     /// Writes the collection with all entries so far.
     pub fn write(&self) -> crate::Result<()> {
         write_atomically(&self.path, |w| {

@@ -2,12 +2,12 @@
 //! (atomically) after every converged increment so that it is valid
 //! whatever happens later.
 
-use serde::Serialize;
+use serde::{Deserialize, Serialize};
 use std::collections::BTreeMap;
 use std::path::Path;
 
 /// One converged increment.
-#[derive(Clone, Debug, Serialize)]
+#[derive(Clone, Debug, Serialize, Deserialize)]
 pub struct IncrementSummary {
     /// Step index (0-based) and name.
     pub step: usize,
@@ -39,7 +39,7 @@ pub struct IncrementSummary {
 }
 
 /// Where the time went, seconds.
-#[derive(Clone, Debug, Default, Serialize)]
+#[derive(Clone, Debug, Default, Serialize, Deserialize)]
 pub struct PhaseTimes {
     /// Element kernels, scatter and loads (every residual evaluation,
     /// line-search trials included).
@@ -55,7 +55,7 @@ pub struct PhaseTimes {
 }
 
 /// One contact interface at the end of an increment.
-#[derive(Clone, Debug, Default, Serialize)]
+#[derive(Clone, Debug, Default, Serialize, Deserialize)]
 pub struct InterfaceSummary {
     /// Total normal contact force on the body, `Σ A_s t_N n`.
     pub force: [f64; 3],
@@ -78,7 +78,7 @@ pub struct InterfaceSummary {
 }
 
 /// Totals of one load step over its converged increments.
-#[derive(Clone, Debug, Serialize)]
+#[derive(Clone, Debug, Serialize, Deserialize)]
 pub struct StepSummary {
     pub name: String,
     /// Pseudo-time reached in the step.
@@ -93,7 +93,7 @@ pub struct StepSummary {
 }
 
 /// The whole run.
-#[derive(Clone, Debug, Serialize)]
+#[derive(Clone, Debug, Serialize, Deserialize)]
 pub struct Summary {
     /// The case file.
     pub case: String,
@@ -115,8 +115,9 @@ pub struct Summary {
     /// deformable contact pairs change the pattern) and of its LDLᵀ factor.
     pub matrix_nnz: usize,
     pub factor_nnz: usize,
-    /// Wall time split by phase, seconds (totals of the run, filled when it
-    /// ends).
+    /// Wall time split by phase, seconds (totals of the run so far,
+    /// updated after every increment; after a restart, the interrupted
+    /// run's included, as in the other totals).
     pub phase_times: PhaseTimes,
     /// Nonsymmetric linear solves: by GMRES (with their Krylov iterations
     /// in total) and by the sparse LU (chosen, or the fallback).

@@ -3,8 +3,11 @@
 //! asked for, `summary.json` (rewritten after every increment) and the
 //! convergence plot at the end.
 
+use std::borrow::Cow;
+use std::collections::BTreeSet;
 use std::path::{Path, PathBuf};
 
+use super::checkpoint::{self, CaseKey, Checkpoint};
 use super::fields::{CellField, ConvergedIncrement, NodalField};
 use super::history::History;
 use super::manifest::Manifest;
@@ -27,6 +30,19 @@ pub struct ResultWriter {
     profiles: Vec<Profile>,
     /// zlib compression of the VTU arrays.
     vtu: vtu::VtuOptions,
+    /// The series' name (`NAME.checkpoint`).
+    name: String,
+    /// The case the checkpoint is written for; `None`: no checkpoint.
+    case_key: Option<CaseKey>,
+}
+
+/// What a restart restores of the result files: the increments so far
+/// (`summary.json`'s, whose VTU files the `.pvd` lists again), the
+/// histories' samples and the profiles' tables.
+pub struct Restored<'a> {
+    pub summary: &'a Summary,
+    pub histories: Vec<Vec<(f64, Vec<f64>)>>,
+    pub profiles: Vec<Vec<super::profile::StepProfile>>,
 }
 
 impl ResultWriter {
@@ -47,11 +63,70 @@ impl ResultWriter {
         profiles: Vec<Profile>,
     ) -> Result<Self> {
         std::fs::create_dir_all(dir).map_err(|e| Error::io("create output folder", dir, e))?;
-        let mut manifest = Manifest::take_over(dir, name)?;
+        let manifest = Manifest::take_over(dir, name)?;
+        let files = Vec::new();
+        Self::open(
+            dir, name, manifest, nodal, cells, histories, profiles, files,
+        )
+    }
+
+    /// A writer that goes on with the series `name` in `dir` after a
+    /// restart ([`Manifest::resume`]): the earlier files stay, the `.pvd`
+    /// lists the VTU files of `restored.summary` again, and the histories
+    /// and profiles start from their restored samples and tables (matched
+    /// to `histories` and `profiles` by position; the caller checks the
+    /// counts).
+    #[allow(clippy::too_many_arguments)] // new's arguments and what is restored
+    pub fn resume(
+        dir: &Path,
+        name: &str,
+        nodal: Vec<NodalField>,
+        cells: Vec<CellField>,
+        mut histories: Vec<History>,
+        mut profiles: Vec<Profile>,
+        restored: Restored,
+    ) -> Result<Self> {
+        let files: Vec<(f64, String)> = restored
+            .summary
+            .increments
+            .iter()
+            .filter(|i| !i.file.is_empty())
+            .map(|i| (i.time, i.file.clone()))
+            .collect();
+        let keep: BTreeSet<String> = files.iter().map(|(_, f)| f.clone()).collect();
+        let manifest = Manifest::resume(dir, name, &keep)?;
+        for (h, samples) in histories.iter_mut().zip(restored.histories) {
+            h.samples = samples;
+        }
+        for (p, steps) in profiles.iter_mut().zip(restored.profiles) {
+            p.steps = steps;
+        }
+        Self::open(
+            dir, name, manifest, nodal, cells, histories, profiles, files,
+        )
+    }
+
+    /// The writer of [`new`](Self::new) and [`resume`](Self::resume): it
+    /// claims the log and the `.pvd`, and writes the `.pvd` listing `files`
+    /// (time, VTU file).
+    #[allow(clippy::too_many_arguments)] // the writer's parts, moved in
+    fn open(
+        dir: &Path,
+        name: &str,
+        mut manifest: Manifest,
+        nodal: Vec<NodalField>,
+        cells: Vec<CellField>,
+        histories: Vec<History>,
+        profiles: Vec<Profile>,
+        files: Vec<(f64, String)>,
+    ) -> Result<Self> {
         manifest.claim(&format!("{name}.log"))?;
         let pvd_file = format!("{name}.pvd");
         manifest.claim(&pvd_file)?;
-        let pvd = PvdCollection::new(dir.join(pvd_file));
+        let mut pvd = PvdCollection::new(dir.join(pvd_file));
+        for (time, file) in files {
+            pvd.push(time, file);
+        }
         pvd.write()?;
         Ok(ResultWriter {
             dir: dir.to_path_buf(),
@@ -62,7 +137,16 @@ impl ResultWriter {
             histories,
             profiles,
             vtu: vtu::VtuOptions { compress: true },
+            name: name.to_string(),
+            case_key: None,
         })
+    }
+
+    /// Write `NAME.checkpoint` after every increment, for the case `key`
+    /// (a restart resumes from it).
+    pub fn checkpoint(mut self, key: CaseKey) -> Self {
+        self.case_key = Some(key);
+        self
     }
 
     /// Write the VTU arrays compressed (the default) or not.
@@ -147,7 +231,8 @@ impl StepObserver for ResultWriter {
             self.pvd.add(increment.record.time, &file)?;
         }
         self.write_requests(increment)?;
-        summary.write(&self.dir.join("summary.json"))
+        summary.write(&self.dir.join("summary.json"))?;
+        self.write_checkpoint(increment, summary)
     }
 
     fn on_finish(&mut self, summary: &Summary) -> Result<()> {
@@ -162,6 +247,43 @@ impl StepObserver for ResultWriter {
             .collect();
         self.manifest.claim("convergence.svg")?;
         plot::write_convergence_plot(&self.dir.join("convergence.svg"), &steps)
+    }
+}
+
+impl ResultWriter {
+    /// `NAME.checkpoint` after the increment's other files: the state to
+    /// resume from ([`checkpoint`]).
+    fn write_checkpoint(
+        &mut self,
+        increment: &ConvergedIncrement,
+        summary: &Summary,
+    ) -> Result<()> {
+        let Some(key) = &self.case_key else {
+            return Ok(());
+        };
+        let file = format!("{}.checkpoint", self.name);
+        self.manifest.claim(&file)?;
+        let path = self.dir.join(file);
+        let summary =
+            serde_json::to_string(summary).map_err(|e| Error::io("write", &path, e.into()))?;
+        let content = Checkpoint {
+            case: Cow::Borrowed(key),
+            unknowns: Cow::Borrowed(increment.unknowns),
+            contact: Cow::Borrowed(increment.contact),
+            stepping: Cow::Borrowed(increment.stepping),
+            summary,
+            histories: self
+                .histories
+                .iter()
+                .map(|h| Cow::Borrowed(&h.samples[..]))
+                .collect(),
+            profiles: self
+                .profiles
+                .iter()
+                .map(|p| Cow::Borrowed(&p.steps[..]))
+                .collect(),
+        };
+        checkpoint::write(&path, &content)
     }
 }
 

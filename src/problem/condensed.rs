@@ -615,6 +615,7 @@ fn run_increments(
                 correction: 0.0,
                 step_length: 1.0,
                 switched: 0,
+                linear: Default::default(),
             }];
             let record = IncrementRecord {
                 step: s,

@@ -93,6 +93,48 @@ impl std::ops::Add for SolverStatistics {
     }
 }
 
+/// What the linear solver did for one Newton correction: the change of
+/// its [`SolverStatistics`] over the solve ([`SolverStatistics::since`]),
+/// for the log's iteration lines.
+#[derive(Clone, Copy, Debug, Default, PartialEq, serde::Serialize)]
+pub struct LinearFigures {
+    /// Seconds in numeric factorisations (LDLᵀ and LU, with the LU's
+    /// solve) and in the LDLᵀ's triangular solves.
+    pub factorisation: f64,
+    pub solve: f64,
+    /// Iterative refinement steps after an f32 LDLᵀ (mixed precision).
+    pub refinement_steps: usize,
+    /// GMRES iterations.
+    pub krylov_iterations: usize,
+    /// Solves by the sparse LU: the fallback when the LDLᵀ or GMRES
+    /// failed, or the chosen nonsymmetric solver.
+    pub lu_solves: usize,
+    /// f32 factorisations replaced by an f64 one.
+    pub mixed_precision_fallbacks: usize,
+}
+
+impl SolverStatistics {
+    /// The figures of the solves since `before` (an earlier snapshot of
+    /// the same solver): `self − before`, counter by counter.
+    pub fn since(&self, before: &SolverStatistics) -> LinearFigures {
+        let seconds = |now: Duration, then: Duration| now.saturating_sub(then).as_secs_f64();
+        LinearFigures {
+            factorisation: seconds(self.factorisation, before.factorisation),
+            solve: seconds(self.solve, before.solve),
+            refinement_steps: self
+                .refinement_steps
+                .saturating_sub(before.refinement_steps),
+            krylov_iterations: self
+                .krylov_iterations
+                .saturating_sub(before.krylov_iterations),
+            lu_solves: self.lu_solves.saturating_sub(before.lu_solves),
+            mixed_precision_fallbacks: self
+                .mixed_precision_fallbacks
+                .saturating_sub(before.mixed_precision_fallbacks),
+        }
+    }
+}
+
 /// A sparse linear solver for Newton's corrections.
 pub trait LinearSolver {
     /// Use `ordering` from the next factorisation on (a new symbolic

@@ -7,7 +7,7 @@
 
 use super::failure::IncrementFailure;
 use super::gmres::{dot, norm};
-use super::linear_solver::{LinearSolver, LinearSystem};
+use super::linear_solver::{LinearFigures, LinearSolver, LinearSystem};
 use super::nonlinear::{Evaluation, NonlinearProblem};
 
 /// One Newton iteration as reported to the user.
@@ -23,6 +23,9 @@ pub struct IterationRecord {
     /// Contact nodes whose status (open/stick/slip) changed since the
     /// previous iteration.
     pub switched: usize,
+    /// What the linear solver did for the correction (zero on the last,
+    /// converged, evaluation).
+    pub linear: LinearFigures,
 }
 
 /// How an increment ended: the converged evaluation (its residual's
@@ -145,6 +148,7 @@ impl<P: NonlinearProblem> Newton<'_, P> {
                 correction: 0.0,
                 step_length: 0.0,
                 switched,
+                linear: LinearFigures::default(),
             });
             if !relative.is_finite() {
                 return (Err(IncrementFailure::NotFinite), records);
@@ -209,7 +213,12 @@ impl<P: NonlinearProblem> Newton<'_, P> {
                 symmetric_neighbour: neighbour.as_deref(),
                 pivot_signs: signs.as_deref(),
             };
-            if let Err(reason) = self.solver.solve(&system, &rhs, &mut du) {
+            let before = self.solver.statistics();
+            let solved = self.solver.solve(&system, &rhs, &mut du);
+            if let Some(rec) = records.last_mut() {
+                rec.linear = self.solver.statistics().since(&before);
+            }
+            if let Err(reason) = solved {
                 return (Err(IncrementFailure::LinearSolve(reason)), records);
             }
             for (i, d) in du.iter_mut().enumerate() {

@@ -6,7 +6,7 @@
 //! `on_converged` callback as each increment converges.
 
 use super::failure::IncrementFailure;
-use super::linear_solver::LinearSolver;
+use super::linear_solver::{LinearSolver, SolverStatistics};
 use super::newton::{IterationRecord, Newton, NewtonOutcome};
 use super::nonlinear::{Evaluation, NonlinearProblem};
 use super::settings::{Predictor, Step};
@@ -29,6 +29,37 @@ pub struct IncrementRecord {
     pub newton: Vec<IterationRecord>,
     /// Cuts suffered before this increment converged.
     pub cuts: usize,
+}
+
+/// What the stepper carries from one converged increment to the next
+/// besides the unknowns and the history state: with those, a run resumes
+/// from here exactly as it would have gone on ([`resume_steps`], the
+/// restart checkpoint of `src/output/checkpoint.rs`).
+#[derive(Clone, Debug, Default, PartialEq, serde::Serialize, serde::Deserialize)]
+pub struct Stepping {
+    /// Index of the step of the last converged increment, and the time it
+    /// reached.
+    pub step: usize,
+    pub time: f64,
+    /// The size of the next increment within that step (after growth).
+    pub increment: f64,
+    /// The largest `max(‖f_int‖, ‖f_ext‖)` of the converged increments.
+    pub force_scale: f64,
+    /// The change of the unknowns over the last increment and its length
+    /// (the secant predictor's).
+    pub secant: Option<(Vec<f64>, f64)>,
+    /// The largest nodal motion of the coupled nodes over the last
+    /// increment and its length (the pair search's margin).
+    pub last_motion: Option<(f64, f64)>,
+}
+
+/// A converged state to resume a run from: the unknowns, the committed
+/// history and the stepper's own state.
+#[derive(Clone, Debug)]
+pub struct Resume<S> {
+    pub unknowns: Vec<f64>,
+    pub state: S,
+    pub stepping: Stepping,
 }
 
 /// What the stepper reports as it goes.
@@ -57,6 +88,10 @@ pub trait StepObserver<P: NonlinearProblem> {
     fn cancelled(&mut self) -> bool {
         false
     }
+    /// An increment converged: the stepper's state after it (told just
+    /// before [`on_converged`](Self::on_converged), with which a run can
+    /// resume from it) and the linear solver's figures so far.
+    fn on_stepping(&mut self, _stepping: &Stepping, _statistics: &SolverStatistics) {}
 }
 
 /// Run every step of `problem` from `u = 0` (except the prescribed values).
@@ -69,23 +104,52 @@ pub fn run_steps<P: NonlinearProblem>(
     observer: &mut dyn StepObserver<P>,
     output: PathBuf,
 ) -> Result<Vec<f64>> {
+    resume_steps(problem, solver, observer, output, None)
+}
+
+/// [`run_steps`] from a converged increment `from` (`None`: from the
+/// start): the steps before `from.stepping.step` are skipped, the step in
+/// progress goes on from its time with its next increment size, and every
+/// later increment is the one an uninterrupted run would have taken.
+/// `from.unknowns` has the pattern's dimension (the caller checks it).
+pub fn resume_steps<P: NonlinearProblem>(
+    problem: &mut P,
+    solver: &mut dyn LinearSolver,
+    observer: &mut dyn StepObserver<P>,
+    output: PathBuf,
+    from: Option<Resume<P::State>>,
+) -> Result<Vec<f64>> {
     let constrained = problem.constrained_dofs();
-    let mut u = vec![0.0; problem.pattern().dimension()];
-    problem.apply_prescribed(0.0, &mut u);
-    let mut state = problem.initial_state(&u);
+    let resuming = from.is_some();
+    let (mut u, mut state, resumed) = match from {
+        Some(r) => (r.unknowns, r.state, r.stepping),
+        None => {
+            let mut u = vec![0.0; problem.pattern().dimension()];
+            problem.apply_prescribed(0.0, &mut u);
+            let state = problem.initial_state(&u);
+            (u, state, Stepping::default())
+        }
+    };
+    let mut any_converged = resuming;
     let mut trial = Vec::with_capacity(u.len());
-    let mut t = 0.0;
-    let mut force_scale = 0.0f64;
-    let mut any_converged = false;
+    let mut t = resumed.time;
+    let mut force_scale = resumed.force_scale;
     // largest nodal displacement of the last converged increment, and its length
-    let mut last_motion: Option<(f64, f64)> = None;
+    let mut last_motion: Option<(f64, f64)> = resumed.last_motion;
     let steps = problem.steps().to_vec();
     let mut start = Vec::with_capacity(u.len());
     // the change of the unknowns over the last converged increment, and its
     // length (the predictor's secant)
-    let mut secant: Option<(Vec<f64>, f64)> = None;
+    let mut secant: Option<(Vec<f64>, f64)> = resumed.secant;
     for (s, step) in steps.iter().enumerate() {
-        let mut dt = step.initial_increment.min(step.end_time - t);
+        if resuming && s < resumed.step {
+            continue;
+        }
+        let mut dt = if resuming && s == resumed.step {
+            resumed.increment
+        } else {
+            step.initial_increment.min(step.end_time - t)
+        };
         let mut cuts = 0;
         while t < step.end_time - 1e-12 * step.end_time.abs().max(1.0) {
             let t_new;
@@ -166,12 +230,21 @@ pub fn run_steps<P: NonlinearProblem>(
                         cuts,
                     };
                     t = t_new;
-                    observer.on_converged(problem, &record, &u, &evaluation, &state)?;
                     let settings = problem.settings();
                     if cuts == 0 && converged_well(&record.newton, settings.easy_iterations) {
                         dt = (dt * settings.growth_factor).min(step.max_increment);
                     }
                     cuts = 0;
+                    let stepping = Stepping {
+                        step: s,
+                        time: t,
+                        increment: dt,
+                        force_scale,
+                        secant: secant.clone(),
+                        last_motion,
+                    };
+                    observer.on_stepping(&stepping, &solver.statistics());
+                    observer.on_converged(problem, &record, &u, &evaluation, &state)?;
                 }
                 Err(IncrementFailure::Cancelled) => return Err(cancelled(t)),
                 Err(failure) => {
@@ -473,6 +546,7 @@ mod tests {
                 correction: 0.0,
                 step_length: steps.get(k).copied().unwrap_or(0.0),
                 switched: switched[k],
+                linear: Default::default(),
             })
             .collect()
     }

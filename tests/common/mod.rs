@@ -588,6 +588,7 @@ impl CaseRun {
                 output: Some(output.to_path_buf()),
                 threads: None,
                 cancel: None,
+                restart: None,
             },
         )
         .expect("the case runs");

@@ -91,7 +91,7 @@ impl NodeContribution {
 }
 
 /// Per-node contact state beyond the displacement.
-#[derive(Clone, Copy, Debug, PartialEq)]
+#[derive(Clone, Copy, Debug, PartialEq, serde::Serialize, serde::Deserialize)]
 pub struct NodeContactState {
     /// Multiplier `λ`: a global unknown for [`NormalLaw::Rockafellar`] and
     /// [`NormalLaw::Slack`] (`t_N = kλ` at a converged active node); the

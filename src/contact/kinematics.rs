@@ -201,7 +201,8 @@ pub trait GapProducer<const Q: usize> {
         traction: &Vector3<f64>,
     ) -> Option<SMatrix<f64, Q, Q>>;
 
-    /// The stick stiffness `−A_s ∂t_T/∂q` in stick that the
+    /// The stick stiffness `−A_s ∂t_T/∂q` in stick, scaled by the slip
+    /// ratio [`TangentialResponse::stick_scale`] in slip, that the
     /// preconditioner of the frictional solve uses for every closed node.
     fn stick_stiffness(
         &self,
@@ -219,6 +220,15 @@ pub trait GapProducer<const Q: usize> {
         &self,
         node: &SecondaryNode,
         kinematics: Option<&GapKinematics<Q, Self::Point>>,
+        traction: &Vector3<f64>,
+    ) -> Option<MaterialPoint>;
+
+    /// The material point `point` kept, carrying `traction` instead (the
+    /// augmented tangential multiplier; `None` against a rigid obstacle).
+    fn carry(
+        &self,
+        node: &SecondaryNode,
+        point: Option<MaterialPoint>,
         traction: &Vector3<f64>,
     ) -> Option<MaterialPoint>;
 }

@@ -300,7 +300,7 @@ impl SlipKinematics<3> {
 /// Why: their answer does not depend on `ε_T`, only the outer loop's speed
 /// does (each update leaves about `k_T/(k_T + A_s ε_T)` of the stick
 /// error). Measured on examples/press-pull (2026-11-23, rockafellar):
-/// factors 1, 10, 100, 1000 took 874, 212, 184 (one cut) and 711 (four
+/// factors 1, 10, 100, 1000 took 508, 149, 152 (one cut) and 618 (four
 /// cuts) Newton iterations to the same stick and slip sets; beyond 10 a
 /// stiff `ε_T` makes Newton itself cut increments (DESIGN.md, "A stiff
 /// tangential penalty").

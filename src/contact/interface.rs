@@ -550,9 +550,8 @@ impl ContactInterface {
                 if let Some(r) = response {
                     worst = worst.max(r.multiplier_residual.norm());
                 }
-                let mut history = friction::augment(&state.friction, response);
-                history.material_point = p.carry(node, history.material_point, &history.traction);
-                augmented.push(history);
+                // against a rigid obstacle (exact_stick): no material point
+                augmented.push(friction::augment(&state.friction, response));
             });
         });
         if worst <= tolerance {

@@ -222,15 +222,6 @@ pub trait GapProducer<const Q: usize> {
         kinematics: Option<&GapKinematics<Q, Self::Point>>,
         traction: &Vector3<f64>,
     ) -> Option<MaterialPoint>;
-
-    /// The material point `point` kept, carrying `traction` instead (the
-    /// augmented tangential multiplier; `None` against a rigid obstacle).
-    fn carry(
-        &self,
-        node: &SecondaryNode,
-        point: Option<MaterialPoint>,
-        traction: &Vector3<f64>,
-    ) -> Option<MaterialPoint>;
 }
 
 /// One secondary node evaluated: its kinematics, the normal law and the

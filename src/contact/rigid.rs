@@ -94,13 +94,4 @@ impl GapProducer<3> for RigidGap<'_> {
     ) -> Option<MaterialPoint> {
         None
     }
-
-    fn carry(
-        &self,
-        _: &SecondaryNode,
-        point: Option<MaterialPoint>,
-        _: &Vector3<f64>,
-    ) -> Option<MaterialPoint> {
-        point
-    }
 }

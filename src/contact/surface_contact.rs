@@ -267,18 +267,6 @@ impl GapProducer<Q> for SurfaceGap<'_> {
                 &node.position(),
             )?,
         };
-        self.carry(node, Some(point), traction)
-    }
-
-    /// The traction as its components on the point's triangle's current
-    /// edges.
-    fn carry(
-        &self,
-        node: &SecondaryNode,
-        point: Option<MaterialPoint>,
-        traction: &Vector3<f64>,
-    ) -> Option<MaterialPoint> {
-        let point = point?;
         let y = self.primary.corners(node.reference, node.x, point.triangle);
         Some(MaterialPoint {
             traction: edge_components(&(y[1] - y[0]), &(y[2] - y[0]), traction),

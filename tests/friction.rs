@@ -223,6 +223,88 @@ fn gentle_pull_leaves_every_node_stuck() {
     }
 }
 
+/// Exact stick (issue 18 item 2): with the Lagrangian methods the final
+/// state of a monotonic press-then-shear with partial slip (the top dragged
+/// 0.01 in x after the press, in increments of 0.125: the trailing row of
+/// nodes sticks, the rest slips) changes by less than 1e-6 relative when
+/// ε_T changes 100× — the displacement field and each node's tangential
+/// traction (against μ p_max); measured 1.5e-9 of 1.4e-2 — and the sticking
+/// nodes did not move in the last increment; the penalty law's regularised
+/// answer does depend on ε_T (1.1e-3 of 1.4e-2).
+#[test]
+fn lagrangian_methods_do_not_depend_on_the_tangential_penalty() {
+    let solve = |law: NormalLaw, eps: f64| {
+        let mut pr = block_on_plane(law, Some(0.01), 0.0);
+        for step in &mut pr.steps {
+            (step.initial_increment, step.max_increment) = (0.125, 0.125);
+        }
+        pr.contacts[0].friction = Some(Coulomb {
+            tangential_penalty: eps,
+            ..coulomb()
+        });
+        let last = run(&mut pr);
+        let (_, reports) = pr.residual_in(2.0, &last.x, &last.contact, None).unwrap();
+        (pr, last, reports)
+    };
+    for (name, law) in every_method(E / H) {
+        // Uzawa with its automatic ε = 100 E/h (fewer normal updates)
+        let law = law.scaled(if law.has_outer_loop() { 100.0 } else { 1.0 });
+        let (pr, soft, reports) = solve(law, E / H);
+        let (_, stiff, _) = solve(law, 100.0 * E / H);
+        let n = 3 * pr.model.mesh.num_nodes();
+        let size = soft.x[..n].iter().fold(0.0_f64, |m, v| m.max(v.abs()));
+        let change = soft.x[..n]
+            .iter()
+            .zip(&stiff.x[..n])
+            .fold(0.0_f64, |m, (a, b)| m.max((a - b).abs()));
+        let p_max = reports[0].iter().map(|r| r.pressure).fold(0.0, f64::max);
+        let traction_change = soft.contact.interfaces[0]
+            .iter()
+            .zip(&stiff.contact.interfaces[0])
+            .map(|(a, b)| (a.friction.traction - b.friction.traction).norm())
+            .fold(0.0, f64::max);
+        let statuses: Vec<_> = soft.contact.interfaces[0]
+            .iter()
+            .map(|s| s.friction.status)
+            .collect();
+        assert!(
+            statuses.contains(&ContactStatus::Stick) && statuses.contains(&ContactStatus::Slip),
+            "{name}: not partial slip: {statuses:?}"
+        );
+        if law.augments_friction() {
+            assert!(
+                change < 1e-6 * size,
+                "{name}: displacements change by {change:.3e} of {size:.3e}"
+            );
+            assert!(
+                traction_change < 1e-6 * MU * p_max,
+                "{name}: tractions change by {traction_change:.3e}, μ p_max {:.3e}",
+                MU * p_max
+            );
+            // sticking nodes did not move in the last increment
+            let before = &soft.snapshots[soft.snapshots.len() - 2].x;
+            for (i, state) in soft.contact.interfaces[0].iter().enumerate() {
+                if state.friction.status == ContactStatus::Stick {
+                    let node = pr.contacts[0].nodes[i];
+                    let moved = (0..2)
+                        .map(|d| (soft.x[3 * node + d] - before[3 * node + d]).abs())
+                        .fold(0.0, f64::max);
+                    let tolerance = 1e-9 * pr.contacts[0].element_size;
+                    assert!(
+                        moved < tolerance,
+                        "{name}: stuck node {node} moved {moved:e}"
+                    );
+                }
+            }
+        } else {
+            assert!(
+                change > 1e-4 * size,
+                "{name}: regularised, yet {change:.3e} of {size:.3e}"
+            );
+        }
+    }
+}
+
 /// Moving obstacle: holding the top and dragging the plane by −0.05 in x
 /// gives the same friction force as dragging the top by +0.05 over the
 /// fixed plane (relative sliding is what counts), and the same

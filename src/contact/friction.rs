@@ -38,9 +38,44 @@
 //! slipping. The tangent is nonsymmetric. On a plane (`H = 0`) stick gives
 //! `∂t_T/∂x_s = −ε_T T`, i.e. `+A_s ε_T T` in `K`: positive semi-definite.
 //!
+//! ## Status at the start of an increment (slip predictor)
+//! A trial on the cone to a relative [`ON_THE_CONE`] slips: a node that
+//! slipped at the last commit and has not moved yet (its trial the
+//! committed traction, `|t_T*| = μ t_N` to rounding) starts the increment
+//! with the slip tangent, free along `m`, instead of the stick tangent
+//! `ε_T T`, which held it in place for the first Newton step and made the
+//! next trial overshoot the cone by `ε_T` times its motion (DESIGN.md, "A
+//! stiff tangential penalty").
+//!
+//! ## Exact stick: the augmented Lagrangian (Simo–Laursen)
+//! With a law that enforces the normal constraint exactly
+//! ([`NormalLaw::augments_friction`](super::laws::NormalLaw::augments_friction):
+//! Uzawa, Rockafellar, slack) against a rigid obstacle
+//! ([`ContactInterface::exact_stick`](super::interface::ContactInterface::exact_stick);
+//! between deformable bodies friction stays regularised for now), the old traction of the trial becomes a
+//! tangential multiplier `λ_T`, held fixed during Newton and updated after
+//! each converged Newton solve, nested with Uzawa's normal update when the
+//! law has one (Simo & Laursen, *An augmented Lagrangian treatment of
+//! contact problems involving friction*, Comput. Struct. 42 (1992) 97–116;
+//! Laursen & Simo, IJNME 36 (1993) 3451–3485; Laursen, *Computational
+//! Contact and Impact Mechanics*, 2002, §6.4):
+//! ```text
+//! t_T = P_μt_N(T λ_T − ε_T Δg_T)      (the return mapping above, λ_T for t_T,n)
+//! λ_T ← t_T                           (augment), until max |t_T − T λ_T|/ε_T ≤ 1e-9 h
+//! ```
+//! `λ_T` starts each increment at the committed traction. At the fixed
+//! point a sticking node has `T Δg_T = 0` (it does not move), a slipping
+//! node `t_T = μ t_N m` with `Δg_T` along `−m`: Coulomb's law exactly, and
+//! `ε_T` only sets how fast the outer loop converges (each update leaves
+//! about `k_T/(k_T + A_s ε_T)` of the stick error, `k_T` the structure's
+//! tangential stiffness at the node). Within Newton the law is the return
+//! mapping above with `λ_T` fixed, so its consistent tangent is unchanged.
+//! The penalty law keeps the regularised law (elastic slip `t_T/ε_T`).
+//!
 //! ## History
 //! [`FrictionHistory`] (traction, anchor, accumulated slip, status) is read,
-//! never written, during the Newton iterations of an increment, and
+//! never written, during the Newton iterations of an increment; the outer
+//! loop of exact stick augments its traction ([`augment`]); it is
 //! committed once the increment has converged ([`commit`]). Updating it per
 //! iteration (as the paper says) breaks path independence.
 
@@ -86,7 +121,9 @@ impl ContactStatus {
 /// What a node remembers from the last converged increment.
 #[derive(Clone, Copy, Debug, Default, PartialEq, serde::Serialize, serde::Deserialize)]
 pub struct FrictionHistory {
-    /// Tangential traction `t_T,n`.
+    /// Tangential traction `t_T,n` at the last commit; during an increment
+    /// of a law with exact stick, the tangential multiplier `λ_T` its
+    /// outer loop augments ([`augment`]).
     pub traction: Vector3<f64>,
     /// The node's position relative to the obstacle's translation,
     /// `(x_s − c)ₙ`: where the slip increment is measured from.
@@ -181,6 +218,15 @@ pub struct TangentialResponse<const K: usize = 3> {
     /// `J* = ∂t_T*/∂q`, the trial (stick) derivative, whatever the
     /// status: the tangential stiffness a preconditioner may use in slip.
     pub trial_gradient: SMatrix<f64, 3, K>,
+    /// `β = |t_T|/|t_T*| = μ t_N/|t_T*|` in slip, 1 in stick: the slip
+    /// tangent is `β (I − m mᵀ) J*` plus the normal coupling, so `β J*` is
+    /// the stiffness the preconditioner gives a slipping node (exact across
+    /// the slip direction, where `ε_T` cancels out of `β ε_T`).
+    pub stick_scale: f64,
+    /// Residual of the multiplier equation of the augmented Lagrangian,
+    /// `(t_T − T λ_T)/ε_T` (`λ_T` the multiplier, `t_T,n` in the module
+    /// docs): a length, `−T d` in stick, zero at an exact solution.
+    pub multiplier_residual: Vector3<f64>,
     /// Slip part of the increment, `Δg_T + (t_T − T t_T,n)/ε_T`
     /// (`−(|t_T*| − μ t_N) m / ε_T` in slip, exactly zero in stick).
     pub slip_increment: Vector3<f64>,
@@ -196,6 +242,8 @@ impl<const K: usize> TangentialResponse<K> {
             traction_gradient: SMatrix::zeros(),
             traction_multiplier_derivative: Vector3::zeros(),
             trial_gradient: SMatrix::zeros(),
+            stick_scale: 1.0,
+            multiplier_residual: Vector3::zeros(),
             slip_increment: Vector3::zeros(),
         }
     }
@@ -248,6 +296,25 @@ impl SlipKinematics<3> {
     }
 }
 
+/// Factor on the automatic `E/h_s` for the tangential penalty of the laws
+/// with exact stick ([`NormalLaw::augments_friction`](super::laws::NormalLaw::augments_friction)).
+///
+/// Why: their answer does not depend on `ε_T`, only the outer loop's speed
+/// does (each update leaves about `k_T/(k_T + A_s ε_T)` of the stick
+/// error). Measured on examples/press-pull (2026-11-23, rockafellar):
+/// factors 1, 10, 100, 1000 took 508, 149, 152 (one cut) and 618 (four
+/// cuts) Newton iterations to the same stick and slip sets; beyond 10 a
+/// stiff `ε_T` makes Newton itself cut increments (DESIGN.md, "A stiff
+/// tangential penalty").
+pub const AUGMENTED_FACTOR: f64 = 10.0;
+
+/// Relative distance to the cone within which a trial slips: a node that
+/// slipped at the last commit and has not moved yet (`d = 0`, its trial the
+/// committed traction, on the cone to rounding) takes the slip branch and
+/// its tangent, free along the slip direction (the *slip predictor*: see
+/// the module docs, "Status at the start of an increment").
+pub const ON_THE_CONE: f64 = 1e-9;
+
 /// The return mapping (see the module docs) of one closed node with the
 /// committed traction and slip of `kinematics` and normal `pressure`,
 /// differentiated with respect to the `K` unknowns they depend on.
@@ -269,13 +336,15 @@ pub fn return_map_on<const K: usize>(
         - eps * (projector * kinematics.offset_gradient + projection_derivative(kinematics, &d));
     let bound = law.coefficient * pressure.value;
     let size = trial.norm();
-    if size <= bound {
+    if size == 0.0 || size < (1.0 - ON_THE_CONE) * bound {
         return TangentialResponse {
             traction: trial,
             status: ContactStatus::Stick,
             traction_gradient: trial_gradient,
             traction_multiplier_derivative: Vector3::zeros(),
             trial_gradient,
+            stick_scale: 1.0,
+            multiplier_residual: -slip,
             slip_increment: Vector3::zeros(),
         };
     }
@@ -291,6 +360,8 @@ pub fn return_map_on<const K: usize>(
             + mu * m * pressure.gradient.transpose(),
         traction_multiplier_derivative: mu * pressure.multiplier_derivative * m,
         trial_gradient,
+        stick_scale: bound / size,
+        multiplier_residual: (traction - old) / eps,
         slip_increment: slip + (traction - old) / eps,
     }
 }
@@ -331,6 +402,20 @@ pub fn first_contact<const K: usize>(
     kinematics.offset = (1.0 - alpha) * d;
     kinematics.offset_gradient =
         (1.0 - alpha) * kinematics.offset_gradient - d * alpha_gradient.transpose();
+}
+
+/// The history with its tangential multiplier augmented (Simo–Laursen's
+/// update `λ_T ← t_T`, see the module docs) to the traction of `response`
+/// (`None`: the node is open, `λ_T ← 0`); anchor, slip and status stay
+/// those of the last commit.
+pub fn augment<const K: usize>(
+    history: &FrictionHistory,
+    response: Option<&TangentialResponse<K>>,
+) -> FrictionHistory {
+    FrictionHistory {
+        traction: response.map_or_else(Vector3::zeros, |r| r.traction),
+        ..*history
+    }
 }
 
 /// The history after an increment converged with the node in `response`
@@ -451,6 +536,97 @@ mod tests {
                 ..small
             };
             check_tangent(geometry, x, 0.1, &far, ContactStatus::Slip);
+        }
+    }
+
+    /// Near the cone's tip (`t_N` a thousandth of `|t_T*|/μ`): the slip
+    /// branch with `β = μ t_N/|t_T*| ≈ 1e-3`, whose tangent is dominated by
+    /// the normal coupling `μ m ⊗ ∂t_N/∂(x, λ)`; and a node on the cone to
+    /// rounding, which slips (the slip predictor).
+    #[test]
+    fn tangents_at_the_cone_tip_match_finite_differences() {
+        for geometry in [plane as fn(&Vector3<f64>) -> GapGeometry, sphere] {
+            let x = Vector3::new(0.05, 0.02, -0.003);
+            let g = geometry(&x);
+            let moved = x - Vector3::new(0.01, -0.005, 0.0);
+            let trial = EPS_T * (x - moved - g.normal * g.normal.dot(&(x - moved))).norm();
+            // t_N = K λ − P g = 1e-3 |t*|/μ
+            let lambda = (1e-3 * trial / MU + P * g.signed_gap) / K;
+            let history = FrictionHistory::at(moved);
+            let r = return_map(&law(), &history, &x, &g, &pressure_at(&g, lambda));
+            assert!((r.stick_scale - 1e-3).abs() < 1e-4, "β = {}", r.stick_scale);
+            check_tangent(geometry, x, lambda, &history, ContactStatus::Slip);
+        }
+        // on the cone to rounding: the committed traction of a slipping node
+        let x = Vector3::new(0.0, 0.0, -0.001);
+        let g = plane(&x);
+        let p = pressure_at(&g, 0.01);
+        let n = g.normal;
+        let m = Vector3::new(0.6, 0.8, 0.0);
+        let m = (m - n * n.dot(&m)).normalize();
+        let on_cone = FrictionHistory {
+            traction: MU * p.value * m * (1.0 - 1e-12),
+            ..FrictionHistory::at(x)
+        };
+        let r = return_map(&law(), &on_cone, &x, &g, &p);
+        assert_eq!(r.status, ContactStatus::Slip);
+        assert!((r.traction - on_cone.traction).norm() < 1e-9 * MU * p.value);
+        // free along the slip direction m (the stick tangent holds it with ε_T)
+        assert!((r.traction_gradient * m).norm() < 1e-9 * EPS_T);
+    }
+
+    /// The augmented Lagrangian's outer loop on one node between a
+    /// tangential spring `k_s` (anchored at the origin, loaded by `F` along
+    /// x) and a plane: Newton on `x` with `λ_T` fixed, then `λ_T ← t_T`.
+    /// Stuck (`|F| < μ t_N`), the node ends where it started to 1e-12 and
+    /// carries `t_T = F`, whatever `ε_T`; each update leaves
+    /// `k_s/(k_s + A ε_T)` of the error (here `A = 1`).
+    #[test]
+    fn augmented_stick_is_exact_whatever_the_penalty() {
+        let (k_s, force) = (200.0, 1.5);
+        let p = NormalPressure {
+            value: 10.0,
+            gradient: Vector3::zeros(),
+            multiplier_derivative: 0.0,
+        };
+        for eps in [50.0, 500.0, 5000.0] {
+            let coulomb = Coulomb {
+                coefficient: MU,
+                tangential_penalty: eps,
+            };
+            let mut history = FrictionHistory::default();
+            let mut x = Vector3::zeros();
+            let mut updates = 0;
+            loop {
+                // Newton on k_s x − F e_x − t_T(x) = 0 (linear in stick)
+                for _ in 0..5 {
+                    let g = plane(&x);
+                    let r = return_map(&coulomb, &history, &x, &g, &p);
+                    let residual = k_s * x - Vector3::new(force, 0.0, 0.0) - r.traction;
+                    let tangent = k_s * Matrix3::identity() - r.traction_gradient;
+                    x -= tangent.lu().solve(&residual).unwrap();
+                }
+                let g = plane(&x);
+                let r = return_map(&coulomb, &history, &x, &g, &p);
+                assert_eq!(r.status, ContactStatus::Stick);
+                if r.multiplier_residual.norm() < 1e-13 {
+                    break;
+                }
+                let before = r.multiplier_residual.norm();
+                history = augment(&history, Some(&r));
+                assert_eq!(history.traction, r.traction, "λ_T ← t_T");
+                updates += 1;
+                assert!(updates < 1000, "ε_T = {eps}: {before:e}");
+            }
+            // T x = 0, and the traction balances the load's tangential part
+            let n = plane(&x).normal;
+            let projector = Matrix3::identity() - n * n.transpose();
+            assert!((projector * x).norm() < 1e-12, "ε_T = {eps}: moved {x}");
+            let load = projector * Vector3::new(force, 0.0, 0.0);
+            assert!((history.traction + load).norm() < 1e-9 * force);
+            let rate = k_s / (k_s + eps);
+            let expected = (1e-13_f64.ln() / rate.ln()).ceil() as usize + 3;
+            assert!(updates <= expected, "ε_T = {eps}: {updates} updates");
         }
     }
 

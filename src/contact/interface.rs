@@ -144,6 +144,16 @@ impl ContactInterface {
         })
     }
 
+    /// Whether friction sticks exactly (the augmented Lagrangian of
+    /// [`friction`], "Exact stick"): a law that augments friction
+    /// ([`NormalLaw::augments_friction`]) against a rigid obstacle. Between
+    /// deformable bodies friction stays regularised for now: there the
+    /// outer loop did not converge in 200 updates on `tests/deformable.rs`
+    /// (a block dragged across facets, Uzawa).
+    pub fn exact_stick(&self) -> bool {
+        self.law.augments_friction() && matches!(self.primary, Primary::Rigid(_))
+    }
+
     /// Whether friction makes the tangent nonsymmetric.
     pub fn has_friction(&self) -> bool {
         self.friction.is_some_and(|c| c.coefficient > 0.0)
@@ -424,12 +434,16 @@ impl ContactInterface {
     /// Turn the symmetric part of the assembled tangent, `values`, into the
     /// preconditioner of the nonsymmetric frictional solve: at every
     /// closed node with friction, replace `sym(−A_s Bᵀ ∂t_T/∂(q, λ))` by the
-    /// stick stiffness ([`GapProducer::stick_stiffness`]: `−A_s J*`, the
-    /// trial derivative, against a rigid obstacle, `A_s ε T` on a plane;
-    /// `A_s ε_T Bᵀ T B` at the current projection between bodies).
+    /// stick stiffness scaled by the slip ratio `β = μ t_N/|t_T*|` (1 in
+    /// stick; [`GapProducer::stick_stiffness`]: `−A_s β J*`, the trial
+    /// derivative, against a rigid obstacle, `A_s β ε_T T` on a plane;
+    /// `A_s β ε_T Bᵀ T B` at the current projection between bodies).
     /// Slipping nodes then keep a positive tangential stiffness, where the
     /// symmetrised slip tangent has none along the slip direction and an
-    /// indefinite coupling to the normal: the preconditioner stays a
+    /// indefinite coupling to the normal; across the slip direction it is
+    /// the slip tangent's own, `β ε_T`, whatever `ε_T` (the unscaled `ε_T`
+    /// made GMRES's work grow with `ε_T`: DESIGN.md, "A stiff tangential
+    /// penalty"). The preconditioner stays a
     /// quasi-definite saddle matrix that the sign-aware LDLᵀ factorises, and
     /// differs from the tangent only in the contact blocks (so GMRES has
     /// little left to resolve; should its LDLᵀ still break down, Newton
@@ -507,12 +521,50 @@ impl ContactInterface {
         }
     }
 
-    /// The outer loop of a law that has one (Uzawa's), after a converged
-    /// Newton solve at `ctx`: where the largest penetration exceeds the
-    /// tolerance (1e-9 of the element size), update every multiplier
-    /// ([`NormalLaw::augmented_multiplier`]) and return `true` (solve
-    /// again); `false` otherwise.
+    /// The outer loops of the laws that have one, after a converged Newton
+    /// solve at `ctx`: exact stick's ([`exact_stick`](Self::exact_stick)),
+    /// where the largest `|t_T − T λ_T|/ε_T` exceeds the tolerance (1e-9
+    /// of the element size), updates every tangential multiplier
+    /// ([`friction::augment`]); Uzawa's, where the largest penetration
+    /// exceeds the same tolerance, every normal multiplier
+    /// ([`NormalLaw::augmented_multiplier`]). Returns `true` when either
+    /// updated (solve again), `false` otherwise.
     pub fn augment(&self, ctx: &ContactContext, states: &mut [NodeContactState]) -> bool {
+        let tangential = self.augment_friction(ctx, states);
+        tangential | self.augment_normal(ctx, states)
+    }
+
+    /// Exact stick's outer loop (see [`augment`](Self::augment)).
+    fn augment_friction(&self, ctx: &ContactContext, states: &mut [NodeContactState]) -> bool {
+        if !(self.has_friction() && self.exact_stick()) {
+            return false;
+        }
+        let tolerance = 1e-9 * self.element_size;
+        let mut worst = 0.0_f64;
+        let mut augmented = Vec::with_capacity(self.nodes.len());
+        with_producer!(self, ctx.t, p => {
+            let state_of = |i| self.node_state(ctx, states, i);
+            self.for_each_node(p, ctx, state_of, |node, state, k| {
+                let e = k.map(|k| self.evaluate(p, node, k, &state));
+                let response = e.as_ref().and_then(|e| e.tangential.as_ref());
+                if let Some(r) = response {
+                    worst = worst.max(r.multiplier_residual.norm());
+                }
+                // against a rigid obstacle (exact_stick): no material point
+                augmented.push(friction::augment(&state.friction, response));
+            });
+        });
+        if worst <= tolerance {
+            return false;
+        }
+        for (state, history) in states.iter_mut().zip(augmented) {
+            state.friction = history;
+        }
+        true
+    }
+
+    /// Uzawa's outer loop (see [`augment`](Self::augment)).
+    fn augment_normal(&self, ctx: &ContactContext, states: &mut [NodeContactState]) -> bool {
         if !self.law.has_outer_loop() {
             return false;
         }

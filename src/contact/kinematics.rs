@@ -201,7 +201,8 @@ pub trait GapProducer<const Q: usize> {
         traction: &Vector3<f64>,
     ) -> Option<SMatrix<f64, Q, Q>>;
 
-    /// The stick stiffness `−A_s ∂t_T/∂q` in stick that the
+    /// The stick stiffness `−A_s ∂t_T/∂q` in stick, scaled by the slip
+    /// ratio [`TangentialResponse::stick_scale`] in slip, that the
     /// preconditioner of the frictional solve uses for every closed node.
     fn stick_stiffness(
         &self,

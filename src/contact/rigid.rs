@@ -73,7 +73,8 @@ impl GapProducer<3> for RigidGap<'_> {
         None
     }
 
-    /// `−A_s J*`, the trial derivative (`A_s ε_T T` on a plane).
+    /// `−A_s β J*`, the trial derivative scaled by the slip ratio `β`
+    /// (`A_s β ε_T T` on a plane).
     fn stick_stiffness(
         &self,
         _: &GapKinematics<3>,
@@ -82,7 +83,7 @@ impl GapProducer<3> for RigidGap<'_> {
         _: &Coulomb,
         area: f64,
     ) -> Matrix3<f64> {
-        -area * response.trial_gradient
+        -area * response.stick_scale * response.trial_gradient
     }
 
     fn anchor(

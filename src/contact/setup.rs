@@ -9,7 +9,9 @@
 //! size (the interface's law holds `E/h`, `h = √(mean A_s)`, and each node
 //! the factor `h/h_s`), times [`uzawa::AUTOMATIC_FACTOR`] for Uzawa's `ε`.
 //! The tangential penalty defaults to the normal penalty when one is given,
-//! else to `E/h_s` (also for Uzawa).
+//! else to `E/h_s` for the penalty law and [`friction::AUGMENTED_FACTOR`]
+//! `E/h_s` where friction sticks exactly (Uzawa, Rockafellar, slack
+//! against a rigid obstacle, [`ContactInterface::exact_stick`]).
 //!
 //! `E/h` is the stiffness of one element layer (traction per unit
 //! displacement). Against a rigid obstacle it is the secondary body's,
@@ -33,7 +35,7 @@
 //! body against an obstacle. (The geometric mean `√(k_s k_p)` was tried
 //! too: 1060 iterations and 9 cuts in ironing.)
 
-use super::friction::Coulomb;
+use super::friction::{self, Coulomb};
 use super::interface::{ContactInterface, Primary};
 use super::laws::{automatic_parameters, uzawa, NormalLaw};
 use super::obstacle::RigidObstacle;
@@ -149,11 +151,12 @@ impl Enforcement {
         };
         c.friction = self.friction_coefficient.map(|mu| Coulomb {
             coefficient: mu,
-            // default: the user's normal penalty, else E/h_s (also for
-            // Uzawa, whose larger automatic ε is for its outer loop)
+            // default: the user's normal penalty, else E/h_s (times the
+            // exact-stick factor for the laws whose outer loop it speeds)
             tangential_penalty: match (self.tangential_penalty, self.penalty) {
                 (Some(eps), _) => eps,
                 (None, Some(_)) => p,
+                (None, None) if c.exact_stick() => base * friction::AUGMENTED_FACTOR,
                 (None, None) => base,
             },
         });

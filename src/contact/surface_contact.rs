@@ -227,21 +227,22 @@ impl GapProducer<Q> for SurfaceGap<'_> {
         Some(stiffness)
     }
 
-    /// The stick stiffness at the current projection, `A_s ε_T Bᵀ T B`
-    /// (positive semi-definite; the trial derivative `J*` is not when the
-    /// anchor lies on another triangle).
+    /// The stick stiffness at the current projection scaled by the slip
+    /// ratio `β`, `A_s β ε_T Bᵀ T B` (positive semi-definite; the trial
+    /// derivative `J*` is not when the anchor lies on another triangle).
     fn stick_stiffness(
         &self,
         kinematics: &GapKinematics<Q, TriangleGap>,
         frame: &SlipFrame<Q>,
-        _: &TangentialResponse<Q>,
+        response: &TangentialResponse<Q>,
         law: &Coulomb,
         area: f64,
     ) -> SMatrix<f64, Q, Q> {
         let n = kinematics.normal;
         let projector = Matrix3::identity() - n * n.transpose();
         let lever = &frame.lever;
-        area * law.tangential_penalty * lever.transpose() * projector * lever
+        let stiffness = area * response.stick_scale * law.tangential_penalty;
+        stiffness * lever.transpose() * projector * lever
     }
 
     /// Where the node is over the primary surface; beyond its edge, the

@@ -225,7 +225,10 @@ pub fn resume_steps<P: NonlinearProblem>(
                         step_name: step.name.clone(),
                         time: t_new,
                         increment: t_new - t,
-                        iterations: iterations.len() - 1,
+                        // corrections solved: every record but the converged
+                        // evaluation that ends each Newton solve (one per
+                        // outer-loop update, plus the first)
+                        iterations: iterations.iter().filter(|r| r.correction > 0.0).count(),
                         newton: iterations,
                         cuts,
                     };

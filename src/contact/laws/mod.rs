@@ -188,6 +188,15 @@ impl NormalLaw {
         matches!(self, Self::Uzawa { .. })
     }
 
+    /// Whether Coulomb friction on the law's nodes is the augmented
+    /// Lagrangian (exact stick, an outer loop on the tangential multiplier,
+    /// [`friction`](crate::contact::friction) "Exact stick"): every law
+    /// with an exact normal constraint, Uzawa's, Rockafellar's and the
+    /// slack law; the penalty law keeps the regularised Coulomb law.
+    pub fn augments_friction(&self) -> bool {
+        !matches!(self, Self::Penalty { .. })
+    }
+
     /// The multiplier after an outer-loop update at gap `g`: Uzawa's
     /// `λ ← ⟨λ − εg⟩`; unchanged for the laws without an outer loop.
     pub fn augmented_multiplier(&self, lambda: f64, signed_gap: f64) -> f64 {

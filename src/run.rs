@@ -375,14 +375,20 @@ impl stepping::StepObserver<Problem> for Recorder<'_> {
         evaluation: &Evaluation<Vec<Vec<NodeReport>>>,
         contact: &ContactState,
     ) -> Result<()> {
-        self.contact.clone_from(contact);
+        let previous = std::mem::replace(&mut self.contact, contact.clone());
         let increment = ConvergedIncrement {
             problem,
             record,
             unknowns: u,
             residual: &evaluation.residual,
             contact,
-            contact_fields: ContactFields::new(problem, u, contact, evaluation.reports.clone()),
+            contact_fields: ContactFields::new(
+                problem,
+                u,
+                contact,
+                &previous,
+                evaluation.reports.clone(),
+            ),
         };
         let now = Instant::now();
         // deformable contact may have rebuilt the pattern with new pairs

@@ -31,6 +31,12 @@ pub enum NodalField {
     /// The mesh file's id (tag) of the node, to find the nodes that
     /// messages, histories and profiles name.
     NodeId,
+    /// This increment's slip `Δg_T^slip` (3 per node): the accumulated
+    /// slip now minus at the previous increment.
+    SlipIncrement,
+    /// The accumulated slip `Σ Δg_T^slip` (3 per node): the same values as
+    /// `slip`, under the name that says which of the two it is.
+    AccumulatedSlip,
 }
 
 /// A field with values per element (VTU cell data).
@@ -49,7 +55,8 @@ pub enum CellField {
 
 impl NodalField {
     /// Every nodal field, in the order the VTU files list them.
-    pub const ALL: [NodalField; 7] = [
+    /// (New fields go at the end: the Python relay reads them in this order.)
+    pub const ALL: [NodalField; 9] = [
         NodalField::Displacement,
         NodalField::ContactPressure,
         NodalField::Gap,
@@ -57,6 +64,8 @@ impl NodalField {
         NodalField::ContactTraction,
         NodalField::Slip,
         NodalField::NodeId,
+        NodalField::SlipIncrement,
+        NodalField::AccumulatedSlip,
     ];
 
     /// The array name in the VTU files (a contract with users' scripts).
@@ -69,6 +78,8 @@ impl NodalField {
             NodalField::ContactTraction => "contact_traction",
             NodalField::Slip => "slip",
             NodalField::NodeId => "node_id",
+            NodalField::SlipIncrement => "slip_increment",
+            NodalField::AccumulatedSlip => "accumulated_slip",
         }
     }
 
@@ -83,7 +94,11 @@ impl NodalField {
     /// Numbers per node.
     pub fn components(self) -> usize {
         match self {
-            NodalField::Displacement | NodalField::ContactTraction | NodalField::Slip => 3,
+            NodalField::Displacement
+            | NodalField::ContactTraction
+            | NodalField::Slip
+            | NodalField::SlipIncrement
+            | NodalField::AccumulatedSlip => 3,
             NodalField::ContactPressure
             | NodalField::Gap
             | NodalField::ContactStatus
@@ -217,7 +232,8 @@ impl ConvergedIncrement<'_> {
             NodalField::Gap => &c.gap,
             NodalField::ContactStatus => &c.status,
             NodalField::ContactTraction => &c.traction,
-            NodalField::Slip => &c.slip,
+            NodalField::Slip | NodalField::AccumulatedSlip => &c.slip,
+            NodalField::SlipIncrement => &c.slip_increment,
             NodalField::NodeId => &[],
         })
     }
@@ -254,6 +270,25 @@ impl ConvergedIncrement<'_> {
                 CellField::VonMises => stresses.iter().map(crate::material::von_mises).collect(),
             })
             .collect()
+    }
+
+    /// The increment's linear solves by the sparse LU that were a fallback
+    /// (GMRES that did not converge, an LDLᵀ that broke down): all of its
+    /// LU solves unless `[solver]` chose the LU (`linear = "lu"`, or
+    /// `nonsymmetric = "lu"` under `linear = "auto"`), then none.
+    pub fn lu_fallbacks(&self) -> usize {
+        use crate::solve::settings::{LinearMethod, NonsymmetricSolver};
+        let settings = &self.problem.settings;
+        let chosen = match settings.linear {
+            LinearMethod::Lu => true,
+            LinearMethod::Auto => settings.nonsymmetric == NonsymmetricSolver::Lu,
+            LinearMethod::Ldlt | LinearMethod::Mixed | LinearMethod::Gmres => false,
+        };
+        if chosen {
+            0
+        } else {
+            self.record.lu_solves
+        }
     }
 
     /// The total of `r` over the nodes of each surface set: the reaction

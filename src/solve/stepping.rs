@@ -29,6 +29,10 @@ pub struct IncrementRecord {
     pub newton: Vec<IterationRecord>,
     /// Cuts suffered before this increment converged.
     pub cuts: usize,
+    /// Linear solves by the sparse LU during this increment, its cut
+    /// attempts included (chosen by `[solver]`, or the fallback of GMRES or
+    /// of an LDLᵀ that broke down).
+    pub lu_solves: usize,
 }
 
 /// What the stepper reports as it goes.
@@ -84,6 +88,8 @@ pub fn run_steps<P: NonlinearProblem>(
     // the change of the unknowns over the last converged increment, and its
     // length (the predictor's secant)
     let mut secant: Option<(Vec<f64>, f64)> = None;
+    // the LU solves counted when the last increment converged
+    let mut lu_solves = solver.statistics().lu_solves;
     for (s, step) in steps.iter().enumerate() {
         let mut dt = step.initial_increment.min(step.end_time - t);
         let mut cuts = 0;
@@ -172,7 +178,9 @@ pub fn run_steps<P: NonlinearProblem>(
                         iterations: iterations.len() - 1,
                         newton: iterations,
                         cuts,
+                        lu_solves: solver.statistics().lu_solves - lu_solves,
                     };
+                    lu_solves += record.lu_solves;
                     t = t_new;
                     observer.on_converged(problem, &record, &u, &evaluation, &state)?;
                     let settings = problem.settings();

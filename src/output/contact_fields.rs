@@ -143,15 +143,8 @@ impl ContactFields {
                 summary.largest_penetration = summary.largest_penetration.max(-r.gap);
             }
             if let Primary::Surface(p) = &c.primary {
-                summary.primary_force = Some(fields.add_primary_side(
-                    problem,
-                    c,
-                    p,
-                    x,
-                    states,
-                    &increments,
-                    nodes,
-                ));
+                summary.primary_force =
+                    Some(fields.add_primary_side(problem, c, p, x, states, &increments, nodes));
             }
             fields.summaries.insert(c.name.clone(), summary);
         }

@@ -42,7 +42,7 @@ fn units_label_the_axes() {
     let (history, profile) = plots("[units]\nlength = \"mm\"\nforce = \"N\"");
     assert!(history.contains("displacement_z (mm)"), "history labels");
     for label in [
-        "abscissa along the line (reference configuration) (mm)",
+        "abscissa along the line, reference configuration (mm)",
         "contact pressure t_N (N/mm²)",
         "tangential traction t_T along the line (N/mm²)",
     ] {

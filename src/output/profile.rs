@@ -268,7 +268,7 @@ impl Profile {
         let plot = LinePlot {
             title: format!("{}: interface '{}'", self.name, self.interface_name),
             x_label: units.label(
-                "abscissa along the line (reference configuration)",
+                "abscissa along the line, reference configuration",
                 Dimension::Length,
             ),
             y_label: units.label("contact pressure t_N", Dimension::Stress),

@@ -14,13 +14,15 @@ use signorini::output::{ConvergedIncrement, NodalField, StepObserver, Summary};
 use signorini::run::{run_observed, RunOptions};
 use std::path::Path;
 
+/// `(slip_increment, accumulated_slip, slip, contact_status)` of a node.
+type Slips = ([f64; 3], [f64; 3], [f64; 3], f64);
+
 /// Per increment: the comparison, and the secondary nodes' slip fields.
 #[derive(Default)]
 struct Record {
     comparisons: Vec<Comparison>,
-    /// (slip_increment, accumulated_slip, slip, contact_status) of every
-    /// secondary node, per increment.
-    slips: Vec<Vec<([f64; 3], [f64; 3], [f64; 3], f64)>>,
+    /// The [`Slips`] of every secondary node, per increment.
+    slips: Vec<Vec<Slips>>,
     lu_solves: Vec<usize>,
 }
 

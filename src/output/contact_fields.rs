@@ -143,8 +143,12 @@ impl ContactFields {
                 summary.largest_penetration = summary.largest_penetration.max(-r.gap);
             }
             if let Primary::Surface(p) = &c.primary {
-                summary.primary_force =
-                    Some(fields.add_primary_side(problem, c, p, x, states, &increments, nodes));
+                let secondary = SecondarySide {
+                    states,
+                    increments: &increments,
+                    reports: nodes,
+                };
+                summary.primary_force = Some(fields.add_primary_side(problem, c, p, x, &secondary));
             }
             fields.summaries.insert(c.name.clone(), summary);
         }
@@ -165,6 +169,14 @@ impl ContactFields {
     }
 }
 
+/// What the primary side's fields read of an interface's secondary nodes:
+/// their committed states, slip increments and reports.
+struct SecondarySide<'a> {
+    states: &'a [NodeContactState],
+    increments: &'a [Vector3<f64>],
+    reports: &'a [NodeReport],
+}
+
 impl ContactFields {
     /// The output fields on the nodes of a deformable primary surface:
     /// each secondary node's force `A_s (t_N n + t_T)` goes, opposite, to
@@ -174,7 +186,7 @@ impl ContactFields {
     /// `contact_traction`); `contact_status` is the largest status of the
     /// closed secondary nodes over a primary node, `slip` and
     /// `slip_increment` minus theirs averaged with the weights `A_s N_i`
-    /// (`increments`: each secondary node's slip increment), and `gap` the primary node's
+    /// and `gap` the primary node's
     /// distance to the secondary surface (projected on its triangles; NaN
     /// beyond its edge or farther than the search margin); a node that is itself secondary in another pass
     /// keeps its own gap and slip. Returns the total force on the primary
@@ -185,10 +197,10 @@ impl ContactFields {
         c: &ContactInterface,
         primary: &PrimarySurface,
         x: &[f64],
-        states: &[NodeContactState],
-        increments: &[Vector3<f64>],
-        reports: &[NodeReport],
+        secondary: &SecondarySide,
     ) -> [f64; 3] {
+        let (states, increments, reports) =
+            (secondary.states, secondary.increments, secondary.reports);
         let mesh = &problem.model.mesh;
         let reference = &mesh.nodes;
         let n_nodes = mesh.num_nodes();

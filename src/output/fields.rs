@@ -273,27 +273,62 @@ impl ConvergedIncrement<'_> {
     }
 
     /// The increment's linear solves by the sparse LU that were a fallback
-    /// (GMRES that did not converge, an LDLᵀ that broke down): all of its
-    /// LU solves unless `[solver]` chose the LU (`linear = "lu"`, or
-    /// `nonsymmetric = "lu"` under `linear = "auto"`), then none.
+    /// ([`lu_fallbacks`]).
     pub fn lu_fallbacks(&self) -> usize {
-        use crate::solve::settings::{LinearMethod, NonsymmetricSolver};
-        let settings = &self.problem.settings;
-        let chosen = match settings.linear {
-            LinearMethod::Lu => true,
-            LinearMethod::Auto => settings.nonsymmetric == NonsymmetricSolver::Lu,
-            LinearMethod::Ldlt | LinearMethod::Mixed | LinearMethod::Gmres => false,
-        };
-        if chosen {
-            0
-        } else {
-            self.record.lu_solves
-        }
+        lu_fallbacks(&self.problem.settings, self.record.lu_solves)
     }
 
     /// The total of `r` over the nodes of each surface set: the reaction
     /// force where displacements are prescribed.
     pub fn reaction_forces(&self) -> Vec<(String, [f64; 3])> {
         self.problem.surface_forces(self.residual)
+    }
+}
+
+/// Of `lu_solves` solves by the sparse LU, those that were a fallback
+/// (GMRES that did not converge, an LDLᵀ that broke down): all of them
+/// unless `settings` chose the LU (`linear = "lu"`, or `nonsymmetric = "lu"`
+/// under `linear = "auto"`), then none.
+pub fn lu_fallbacks(settings: &crate::solve::settings::SolverSettings, lu_solves: usize) -> usize {
+    use crate::solve::settings::{LinearMethod, NonsymmetricSolver};
+    let chosen = match settings.linear {
+        LinearMethod::Lu => true,
+        LinearMethod::Auto => settings.nonsymmetric == NonsymmetricSolver::Lu,
+        LinearMethod::Ldlt | LinearMethod::Mixed | LinearMethod::Gmres => false,
+    };
+    if chosen {
+        0
+    } else {
+        lu_solves
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::solve::settings::{LinearMethod, NonsymmetricSolver, SolverSettings};
+
+    /// LU solves are a fallback unless the settings chose the LU.
+    #[test]
+    fn lu_solves_are_fallbacks_unless_chosen() {
+        let with = |linear, nonsymmetric| SolverSettings {
+            linear,
+            nonsymmetric,
+            ..Default::default()
+        };
+        let default = SolverSettings::default();
+        assert_eq!(lu_fallbacks(&default, 3), 3);
+        assert_eq!(lu_fallbacks(&default, 0), 0);
+        assert_eq!(
+            lu_fallbacks(&with(LinearMethod::Auto, NonsymmetricSolver::Lu), 3),
+            0
+        );
+        assert_eq!(
+            lu_fallbacks(&with(LinearMethod::Lu, NonsymmetricSolver::Gmres), 3),
+            0
+        );
+        for linear in [LinearMethod::Ldlt, LinearMethod::Mixed, LinearMethod::Gmres] {
+            assert_eq!(lu_fallbacks(&with(linear, NonsymmetricSolver::Lu), 2), 2);
+        }
     }
 }

@@ -96,6 +96,9 @@ fn axis_range(values: impl Iterator<Item = f64>, include_zero: bool) -> (f64, f6
     }
 }
 
+/// A curve to draw and its finite points.
+type Drawn<'a> = (&'a Curve, Vec<(f64, f64)>);
+
 /// The SVG text of the plot: the title on top, the panels stacked under it
 /// (sharing the x range, the x axis named under the last), each with its
 /// legend in a column on its right, beside the data and never over it.
@@ -107,7 +110,7 @@ fn render_line_plot(plot: &LinePlot) -> Result<String, String> {
     };
     let panels: Vec<&Panel> = std::iter::once(&first).chain(&plot.below).collect();
     // per panel, the curves with a finite point and those points
-    let drawn: Vec<Vec<(&Curve, Vec<(f64, f64)>)>> = panels
+    let drawn: Vec<Vec<Drawn>> = panels
         .iter()
         .map(|panel| {
             panel

@@ -169,8 +169,7 @@ impl Comparison {
             f64::NAN
         };
         let pressures: Vec<(f64, f64)> = nodes.iter().map(|n| (n.r, n.pressure)).collect();
-        let contact_radius =
-            fitted_contact_radius(&pressures, 0.2 * mindlin.hertz.peak_pressure);
+        let contact_radius = fitted_contact_radius(&pressures, 0.2 * mindlin.hertz.peak_pressure);
         let outermost_stick = nodes
             .iter()
             .filter(|n| n.status == ContactStatus::Stick)
@@ -248,7 +247,8 @@ impl Comparison {
             self.stick_radius,
             m.stick_radius,
             100.0 * (self.stick_radius / m.stick_radius - 1.0),
-            100.0 * (self.stick_radius / self.contact_radius / (1.0 - m.ratio).max(0.0).cbrt() - 1.0),
+            100.0
+                * (self.stick_radius / self.contact_radius / (1.0 - m.ratio).max(0.0).cbrt() - 1.0),
             self.outermost_stick,
             self.innermost_slip,
             100.0 * self.worst_ring(),

@@ -203,8 +203,13 @@ impl StepObserver for Progress {
             .set_message(format!("{:.4} ({})", record.time, record.step_name));
         let final_residual = record.newton.last().map_or(0.0, |r| r.residual);
         self.log(&format!(
-            "step '{}'  t = {:.6}  Δt = {:.3e}  iterations {:2}  residual {:.2e}",
-            record.step_name, record.time, record.increment, record.iterations, final_residual
+            "step '{}'  t = {:.6}  Δt = {:.3e}  iterations {:2}  residual {:.2e}{}",
+            record.step_name,
+            record.time,
+            record.increment,
+            record.iterations,
+            final_residual,
+            signorini::output::log::lu_fallback_note(increment)
         ));
         Ok(())
     }

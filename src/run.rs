@@ -665,7 +665,7 @@ impl stepping::StepObserver<Problem> for Recorder<'_> {
         evaluation: &Evaluation<Vec<Vec<NodeReport>>>,
         contact: &ContactState,
     ) -> Result<()> {
-        self.contact.clone_from(contact);
+        let previous = std::mem::replace(&mut self.contact, contact.clone());
         let increment = ConvergedIncrement {
             problem,
             record,
@@ -673,7 +673,13 @@ impl stepping::StepObserver<Problem> for Recorder<'_> {
             residual: &evaluation.residual,
             contact,
             stepping: &self.stepping,
-            contact_fields: ContactFields::new(problem, u, contact, evaluation.reports.clone()),
+            contact_fields: ContactFields::new(
+                problem,
+                u,
+                contact,
+                &previous,
+                evaluation.reports.clone(),
+            ),
         };
         let now = Instant::now();
         // deformable contact may have rebuilt the pattern with new pairs

@@ -334,6 +334,17 @@ fn case_files(c: &mut Catalogue) {
         &["no [[step]]"],
     );
     c.edit("[[step]] misspelled", "[[step]]", "[[steps]]", &["steps"]);
+    // [units]: labels only, two keys
+    c.append(
+        "[units] unknown key",
+        "[units]\nlength = \"mm\"\ntime = \"s\"",
+        &["units", "time", "length", "force"],
+    );
+    c.append(
+        "[units] empty name",
+        "[units]\nforce = \" \"",
+        &["units.force", "\"N\""],
+    );
     c.edit("[mesh] as an array", "[mesh]", "[[mesh]]", &["mesh"]);
     c.edit(
         "material as a table",

@@ -6,6 +6,7 @@ use super::schema::HistoryQuantitySpec;
 use super::Case;
 use crate::output::history::{History, HistoryQuantity};
 use crate::output::profile::{file_part, nodes_in_band, Profile, ProfileNode};
+use crate::output::units::Units;
 use crate::problem::Problem;
 use crate::Result;
 
@@ -107,12 +108,32 @@ impl Case {
         Ok(())
     }
 
+    /// `[units]`, each name non-empty and on one line.
+    fn units(&self) -> Result<Units> {
+        let spec = &self.spec.units;
+        for (key, value) in [("length", &spec.length), ("force", &spec.force)] {
+            if let Some(v) = value {
+                if v.trim().is_empty() || v.chars().any(char::is_control) {
+                    return Err(self.err(format!(
+                        "units.{key} = {v:?} is not a unit name: give one such as \"{}\", or remove the key",
+                        if key == "length" { "mm" } else { "N" }
+                    )));
+                }
+            }
+        }
+        Ok(Units {
+            length: spec.length.clone(),
+            force: spec.force.clone(),
+        })
+    }
+
     /// Validate `[[output.history]]` and `[[output.profile]]` against the
     /// problem and resolve their nodes.
     pub fn output_requests(&self, problem: &Problem) -> Result<OutputRequests> {
         let mesh = &problem.model.mesh;
         let mut taken = Vec::new();
         let mut out = OutputRequests::default();
+        let units = self.units()?;
         for (i, h) in self.spec.output.history.iter().enumerate() {
             let key = format!("output.history[{i}]");
             self.output_file_stem(&key, &h.name, &mut taken)?;
@@ -172,13 +193,16 @@ impl Case {
                         component,
                     },
                 };
-                out.histories.push(History::new(
-                    h.name.clone(),
-                    first,
-                    mesh.node_ids[first],
-                    history,
-                    quantity,
-                ));
+                out.histories.push(
+                    History::new(
+                        h.name.clone(),
+                        first,
+                        mesh.node_ids[first],
+                        history,
+                        quantity,
+                    )
+                    .with_units(units.clone()),
+                );
                 continue;
             }
             for (given, what) in [
@@ -249,13 +273,16 @@ impl Case {
                     (nodes[index], quantity, label)
                 }
             };
-            out.histories.push(History::new(
-                h.name.clone(),
-                node,
-                mesh.node_ids[node],
-                quantity,
-                label.to_string(),
-            ));
+            out.histories.push(
+                History::new(
+                    h.name.clone(),
+                    node,
+                    mesh.node_ids[node],
+                    quantity,
+                    label.to_string(),
+                )
+                .with_units(units.clone()),
+            );
         }
         for (i, p) in self.spec.output.profile.iter().enumerate() {
             let key = format!("output.profile[{i}]");
@@ -306,6 +333,7 @@ impl Case {
                 friction_coefficient: contact.friction.map(|f| f.coefficient),
                 nodes,
                 steps: Vec::new(),
+                units: units.clone(),
             });
         }
         self.profile_files_collide(problem, &out)?;

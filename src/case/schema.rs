@@ -58,6 +58,20 @@ pub struct CaseFile {
     /// `[output]`: where and what to write.
     #[serde(default)]
     pub output: OutputSpec,
+    /// `[units]`: the names of the length and force units, for the plots'
+    /// labels only.
+    #[serde(default)]
+    pub units: UnitsSpec,
+}
+
+/// `[units]`: `length = "mm"`, `force = "N"` (each optional). Labels only:
+/// the numbers of the case are the user's consistent units and nothing is
+/// converted; a plot of a pressure reads `N/mm²`.
+#[derive(Debug, Default, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct UnitsSpec {
+    pub length: Option<String>,
+    pub force: Option<String>,
 }
 
 /// `[mesh]`

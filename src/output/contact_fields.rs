@@ -1,8 +1,9 @@
 //! The contact fields of one converged increment, on every node of the
 //! mesh: what the VTU files show (`contact_pressure`, `gap`,
-//! `contact_status`, `contact_traction`, `slip`) and the per-interface
-//! totals of `summary.json`, built from the committed contact states and the
-//! node reports of the converged evaluation.
+//! `contact_status`, `contact_traction`, `slip` = `accumulated_slip`,
+//! `slip_increment`) and the per-interface totals of `summary.json`, built
+//! from the committed contact states (this increment's and the previous
+//! one's) and the node reports of the converged evaluation.
 
 use crate::contact::friction::ContactStatus;
 use crate::contact::interface::{ContactInterface, NodeReport, Primary};
@@ -34,21 +35,30 @@ pub struct ContactFields {
     /// Whether the node is a secondary node of some interface (its own
     /// gap and slip then win over those seen from a primary side).
     pub secondary: Vec<bool>,
-    /// Accumulated slip vector (3 per node, 0 elsewhere).
+    /// Accumulated slip vector `Σ Δg_T^slip` over every increment so far
+    /// (3 per node, 0 elsewhere): the `slip` and `accumulated_slip` arrays.
     pub slip: Vec<f64>,
+    /// This increment's slip `Δg_T^slip = slip_n+1 − slip_n`, the
+    /// accumulated slip committed now minus the one committed at the
+    /// previous increment (3 per node, 0 elsewhere; 0 at a node that stuck
+    /// or stayed open during the increment).
+    pub slip_increment: Vec<f64>,
     pub summaries: std::collections::BTreeMap<String, InterfaceSummary>,
     /// Every secondary node of every interface.
     pub reports: Vec<Vec<NodeReport>>,
 }
 
 impl ContactFields {
-    /// The fields at unknowns `x` with the committed states `contact` and
-    /// the node `reports` of the converged evaluation there (one list per
-    /// interface).
+    /// The fields at unknowns `x` with the committed states `contact`, the
+    /// states committed at the previous increment `previous` (an empty
+    /// state, e.g. [`ContactState::default`], before the first: no slip
+    /// before it) and the node `reports` of the converged evaluation there
+    /// (one list per interface).
     pub fn new(
         problem: &Problem,
         x: &[f64],
         contact: &ContactState,
+        previous: &ContactState,
         mut reports: Vec<Vec<NodeReport>>,
     ) -> Self {
         let n = problem.model.mesh.num_nodes();
@@ -61,31 +71,45 @@ impl ContactFields {
             traction: vec![0.0; 3 * n],
             secondary: vec![false; n],
             slip: vec![0.0; 3 * n],
+            slip_increment: vec![0.0; 3 * n],
             summaries: Default::default(),
             reports: Vec::new(),
         };
         if problem.contacts.is_empty() {
             return fields;
         }
-        for ((c, nodes), states) in problem
+        for (i, ((c, nodes), states)) in problem
             .contacts
             .iter()
             .zip(&mut reports)
             .zip(&contact.interfaces)
+            .enumerate()
         {
+            let before = previous.interfaces.get(i).map(Vec::as_slice);
+            let increments: Vec<Vector3<f64>> = states
+                .iter()
+                .enumerate()
+                .map(|(k, state)| {
+                    let old = before
+                        .and_then(|b| b.get(k))
+                        .map_or_else(Vector3::zeros, |b| b.friction.slip);
+                    state.friction.slip - old
+                })
+                .collect();
             let mut summary = InterfaceSummary::default();
             let mesh = &problem.model.mesh;
             #[allow(clippy::expect_used)]
             // an interface is built from this surface set of this mesh
             let set = mesh.surface(&c.surface).expect("validated");
             let (_, whole) = crate::contact::tributary_areas(mesh, set);
-            for ((((&s, &area), r), state), &whole) in c
+            for (((((&s, &area), r), state), &whole), increment) in c
                 .nodes
                 .iter()
                 .zip(&c.areas)
                 .zip(nodes.iter_mut())
                 .zip(states)
                 .zip(&whole)
+                .zip(&increments)
             {
                 // status and tangential traction as committed for this
                 // increment (re-evaluated from the committed history, a
@@ -105,6 +129,7 @@ impl ContactFields {
                     // a force here, a traction once every pass has added its share
                     fields.traction[3 * s + d] += r.force[d] + area * history.traction[d];
                     fields.slip[3 * s + d] = history.slip[d];
+                    fields.slip_increment[3 * s + d] = increment[d];
                 }
                 match history.status {
                     ContactStatus::Open => {}
@@ -118,8 +143,12 @@ impl ContactFields {
                 summary.largest_penetration = summary.largest_penetration.max(-r.gap);
             }
             if let Primary::Surface(p) = &c.primary {
-                summary.primary_force =
-                    Some(fields.add_primary_side(problem, c, p, x, states, nodes));
+                let secondary = SecondarySide {
+                    states,
+                    increments: &increments,
+                    reports: nodes,
+                };
+                summary.primary_force = Some(fields.add_primary_side(problem, c, p, x, &secondary));
             }
             fields.summaries.insert(c.name.clone(), summary);
         }
@@ -140,6 +169,14 @@ impl ContactFields {
     }
 }
 
+/// What the primary side's fields read of an interface's secondary nodes:
+/// their committed states, slip increments and reports.
+struct SecondarySide<'a> {
+    states: &'a [NodeContactState],
+    increments: &'a [Vector3<f64>],
+    reports: &'a [NodeReport],
+}
+
 impl ContactFields {
     /// The output fields on the nodes of a deformable primary surface:
     /// each secondary node's force `A_s (t_N n + t_T)` goes, opposite, to
@@ -147,8 +184,9 @@ impl ContactFields {
     /// (`N_i(ξ)` clamped to `≥ 0` and renormalised; divided by the
     /// primary node's tributary area for `contact_pressure` and
     /// `contact_traction`); `contact_status` is the largest status of the
-    /// closed secondary nodes over a primary node, `slip` minus their slip
-    /// averaged with the weights `A_s N_i`, and `gap` the primary node's
+    /// closed secondary nodes over a primary node, `slip` and
+    /// `slip_increment` minus theirs averaged with the weights `A_s N_i`
+    /// and `gap` the primary node's
     /// distance to the secondary surface (projected on its triangles; NaN
     /// beyond its edge or farther than the search margin); a node that is itself secondary in another pass
     /// keeps its own gap and slip. Returns the total force on the primary
@@ -159,18 +197,22 @@ impl ContactFields {
         c: &ContactInterface,
         primary: &PrimarySurface,
         x: &[f64],
-        states: &[NodeContactState],
-        reports: &[NodeReport],
+        secondary: &SecondarySide,
     ) -> [f64; 3] {
+        let (states, increments, reports) =
+            (secondary.states, secondary.increments, secondary.reports);
         let mesh = &problem.model.mesh;
         let reference = &mesh.nodes;
         let n_nodes = mesh.num_nodes();
         let mut normal = vec![0.0; n_nodes];
         let mut forces = vec![Vector3::zeros(); n_nodes];
-        let mut slip = vec![(Vector3::zeros(), 0.0); n_nodes];
+        // (Σ w slip, Σ w slip increment, Σ w) over the closed nodes
+        let mut slip = vec![(Vector3::zeros(), Vector3::zeros(), 0.0); n_nodes];
         let mut status = vec![0u8; n_nodes];
         let mut total = Vector3::zeros();
-        for ((r, &area), state) in reports.iter().zip(&c.areas).zip(states) {
+        for (((r, &area), state), increment) in
+            reports.iter().zip(&c.areas).zip(states).zip(increments)
+        {
             let Some(facet) = r.facet else {
                 continue;
             };
@@ -186,7 +228,8 @@ impl ContactFields {
                 // the closed nodes over the primary node, by their weights
                 if r.active && weight > 0.0 {
                     slip[n].0 -= history.slip * (area * weight);
-                    slip[n].1 += area * weight;
+                    slip[n].1 -= increment * (area * weight);
+                    slip[n].2 += area * weight;
                     status[n] = status[n].max(history.status.code());
                 }
             }
@@ -204,11 +247,12 @@ impl ContactFields {
         for (k, (&n, &a)) in nodes.iter().zip(&areas).enumerate() {
             self.nodal_force[n] += normal[n];
             self.nodal_area[n] = a;
-            let (slip_sum, weight) = slip[n];
+            let (slip_sum, increment_sum, weight) = slip[n];
             for (d, force) in forces[n].iter().enumerate() {
                 self.traction[3 * n + d] += force;
                 if weight > 0.0 && !self.secondary[n] {
                     self.slip[3 * n + d] = slip_sum[d] / weight;
+                    self.slip_increment[3 * n + d] = increment_sum[d] / weight;
                 }
             }
             self.status[n] = self.status[n].max(status[n] as f64);

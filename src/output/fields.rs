@@ -31,6 +31,12 @@ pub enum NodalField {
     /// The mesh file's id (tag) of the node, to find the nodes that
     /// messages, histories and profiles name.
     NodeId,
+    /// This increment's slip `Δg_T^slip` (3 per node): the accumulated
+    /// slip now minus at the previous increment.
+    SlipIncrement,
+    /// The accumulated slip `Σ Δg_T^slip` (3 per node): the same values as
+    /// `slip`, under the name that says which of the two it is.
+    AccumulatedSlip,
 }
 
 /// A field with values per element (VTU cell data).
@@ -49,7 +55,8 @@ pub enum CellField {
 
 impl NodalField {
     /// Every nodal field, in the order the VTU files list them.
-    pub const ALL: [NodalField; 7] = [
+    /// (New fields go at the end: the Python relay reads them in this order.)
+    pub const ALL: [NodalField; 9] = [
         NodalField::Displacement,
         NodalField::ContactPressure,
         NodalField::Gap,
@@ -57,6 +64,8 @@ impl NodalField {
         NodalField::ContactTraction,
         NodalField::Slip,
         NodalField::NodeId,
+        NodalField::SlipIncrement,
+        NodalField::AccumulatedSlip,
     ];
 
     /// The array name in the VTU files (a contract with users' scripts).
@@ -69,6 +78,8 @@ impl NodalField {
             NodalField::ContactTraction => "contact_traction",
             NodalField::Slip => "slip",
             NodalField::NodeId => "node_id",
+            NodalField::SlipIncrement => "slip_increment",
+            NodalField::AccumulatedSlip => "accumulated_slip",
         }
     }
 
@@ -83,7 +94,11 @@ impl NodalField {
     /// Numbers per node.
     pub fn components(self) -> usize {
         match self {
-            NodalField::Displacement | NodalField::ContactTraction | NodalField::Slip => 3,
+            NodalField::Displacement
+            | NodalField::ContactTraction
+            | NodalField::Slip
+            | NodalField::SlipIncrement
+            | NodalField::AccumulatedSlip => 3,
             NodalField::ContactPressure
             | NodalField::Gap
             | NodalField::ContactStatus
@@ -220,7 +235,8 @@ impl ConvergedIncrement<'_> {
             NodalField::Gap => &c.gap,
             NodalField::ContactStatus => &c.status,
             NodalField::ContactTraction => &c.traction,
-            NodalField::Slip => &c.slip,
+            NodalField::Slip | NodalField::AccumulatedSlip => &c.slip,
+            NodalField::SlipIncrement => &c.slip_increment,
             NodalField::NodeId => &[],
         })
     }
@@ -259,9 +275,65 @@ impl ConvergedIncrement<'_> {
             .collect()
     }
 
+    /// The increment's linear solves by the sparse LU that were a fallback
+    /// ([`lu_fallbacks`]).
+    pub fn lu_fallbacks(&self) -> usize {
+        lu_fallbacks(&self.problem.settings, self.record.lu_solves)
+    }
+
     /// The total of `r` over the nodes of each surface set: the reaction
     /// force where displacements are prescribed.
     pub fn reaction_forces(&self) -> Vec<(String, [f64; 3])> {
         self.problem.surface_forces(self.residual)
+    }
+}
+
+/// Of `lu_solves` solves by the sparse LU, those that were a fallback
+/// (GMRES that did not converge, an LDLᵀ that broke down): all of them
+/// unless `settings` chose the LU (`linear = "lu"`, or `nonsymmetric = "lu"`
+/// under `linear = "auto"`), then none.
+pub fn lu_fallbacks(settings: &crate::solve::settings::SolverSettings, lu_solves: usize) -> usize {
+    use crate::solve::settings::{LinearMethod, NonsymmetricSolver};
+    let chosen = match settings.linear {
+        LinearMethod::Lu => true,
+        LinearMethod::Auto => settings.nonsymmetric == NonsymmetricSolver::Lu,
+        LinearMethod::Ldlt | LinearMethod::Mixed | LinearMethod::Gmres | LinearMethod::Petsc => {
+            false
+        }
+    };
+    if chosen {
+        0
+    } else {
+        lu_solves
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::solve::settings::{LinearMethod, NonsymmetricSolver, SolverSettings};
+
+    /// LU solves are a fallback unless the settings chose the LU.
+    #[test]
+    fn lu_solves_are_fallbacks_unless_chosen() {
+        let with = |linear, nonsymmetric| SolverSettings {
+            linear,
+            nonsymmetric,
+            ..Default::default()
+        };
+        let default = SolverSettings::default();
+        assert_eq!(lu_fallbacks(&default, 3), 3);
+        assert_eq!(lu_fallbacks(&default, 0), 0);
+        assert_eq!(
+            lu_fallbacks(&with(LinearMethod::Auto, NonsymmetricSolver::Lu), 3),
+            0
+        );
+        assert_eq!(
+            lu_fallbacks(&with(LinearMethod::Lu, NonsymmetricSolver::Gmres), 3),
+            0
+        );
+        for linear in [LinearMethod::Ldlt, LinearMethod::Mixed, LinearMethod::Gmres] {
+            assert_eq!(lu_fallbacks(&with(linear, NonsymmetricSolver::Lu), 2), 2);
+        }
     }
 }

@@ -7,6 +7,7 @@ use std::path::Path;
 
 use super::line_plot::{write_line_plot, Curve, LinePlot};
 use super::table::write_csv;
+use super::units::{Dimension, Units};
 use crate::contact::interface::NodeReport;
 
 /// What a history records at its node (or on its surface).
@@ -48,6 +49,8 @@ pub struct History {
     /// `(time, values)` of every converged increment so far: one value, or
     /// the x, y, z components of a reaction force.
     pub samples: Vec<(f64, Vec<f64>)>,
+    /// The case's units, for the plot's y label.
+    pub units: Units,
 }
 
 impl History {
@@ -66,6 +69,23 @@ impl History {
             quantity,
             label,
             samples: Vec::new(),
+            units: Units::default(),
+        }
+    }
+
+    /// The same history with the plot labelled in `units`.
+    pub fn with_units(self, units: Units) -> Self {
+        History { units, ..self }
+    }
+
+    /// The dimension of the quantity.
+    pub fn dimension(&self) -> Dimension {
+        match self.quantity {
+            HistoryQuantity::Displacement(_) | HistoryQuantity::Gap { .. } => Dimension::Length,
+            HistoryQuantity::ContactPressure { .. } => Dimension::Stress,
+            HistoryQuantity::ReactionForce { .. } | HistoryQuantity::ReactionComponent { .. } => {
+                Dimension::Force
+            }
         }
     }
 
@@ -170,8 +190,9 @@ impl History {
         let plot = LinePlot {
             title,
             x_label: "pseudo-time t (load factor)".into(),
-            y_label: self.label.clone(),
+            y_label: self.units.label(&self.label, self.dimension()),
             curves,
+            below: Vec::new(),
         };
         write_line_plot(&dir.join(format!("{}.svg", self.name)), &plot)
     }

@@ -38,17 +38,27 @@ pub enum CurveStyle {
     Markers,
 }
 
-/// A whole plot: title, axis labels and curves.
+/// A whole plot: title, axis labels and curves; optionally more panels
+/// stacked below, sharing the x axis (e.g. a friction profile's
+/// tangential tractions under its pressures).
 #[derive(Clone, Debug, Default, PartialEq)]
 pub struct LinePlot {
     pub title: String,
     pub x_label: String,
     pub y_label: String,
     pub curves: Vec<Curve>,
+    pub below: Vec<Panel>,
 }
 
-/// Writes `plot` to `path` (SVG), atomically. The y axis always includes
-/// 0; an empty plot (no finite point) is drawn with unit axes and a note.
+/// A panel under the first: its own y axis and curves.
+#[derive(Clone, Debug, Default, PartialEq)]
+pub struct Panel {
+    pub y_label: String,
+    pub curves: Vec<Curve>,
+}
+
+/// Writes `plot` to `path` (SVG), atomically. Each y axis includes 0; an
+/// empty plot (no finite point) is drawn with unit axes and a note.
 pub fn write_line_plot(path: &Path, plot: &LinePlot) -> crate::Result<()> {
     let svg = render_line_plot(plot)
         .map_err(|message| crate::Error::io("draw", path, std::io::Error::other(message)))?;
@@ -86,20 +96,45 @@ fn axis_range(values: impl Iterator<Item = f64>, include_zero: bool) -> (f64, f6
     }
 }
 
-/// The SVG text of the plot.
+/// A curve to draw and its finite points.
+type Drawn<'a> = (&'a Curve, Vec<(f64, f64)>);
+
+/// The SVG text of the plot: the title on top, the panels stacked under it
+/// (sharing the x range, the x axis named under the last), each with its
+/// legend in a column on its right, beside the data and never over it.
 fn render_line_plot(plot: &LinePlot) -> Result<String, String> {
     let err = |e: plotters::drawing::DrawingAreaErrorKind<std::io::Error>| e.to_string();
-    let drawn: Vec<(&Curve, Vec<(f64, f64)>)> = plot
-        .curves
+    let first = Panel {
+        y_label: plot.y_label.clone(),
+        curves: plot.curves.clone(),
+    };
+    let panels: Vec<&Panel> = std::iter::once(&first).chain(&plot.below).collect();
+    // per panel, the curves with a finite point and those points
+    let drawn: Vec<Vec<Drawn>> = panels
         .iter()
-        .map(|c| (c, finite_points(c)))
-        .filter(|(_, p)| !p.is_empty())
+        .map(|panel| {
+            panel
+                .curves
+                .iter()
+                .map(|c| (c, finite_points(c)))
+                .filter(|(_, p)| !p.is_empty())
+                .collect()
+        })
         .collect();
-    let all = || drawn.iter().flat_map(|(_, p)| p.iter());
-    let x_range = axis_range(all().map(|p| p.0), false);
-    let y_range = axis_range(all().map(|p| p.1), true);
-    let colours = plot.curves.iter().map(|c| c.colour + 1).max().unwrap_or(1);
-    let (width, height) = (900u32, 580u32);
+    let x_range = axis_range(
+        drawn
+            .iter()
+            .flatten()
+            .flat_map(|(_, p)| p.iter().map(|p| p.0)),
+        false,
+    );
+    let colours = panels
+        .iter()
+        .flat_map(|p| p.curves.iter().map(|c| c.colour + 1))
+        .max()
+        .unwrap_or(1);
+    let panel_height = if panels.len() == 1 { 510 } else { 400 };
+    let (width, height) = (1100u32, 70 + panel_height * panels.len() as u32);
     let centre = width as i32 / 2;
 
     let mut svg = String::new();
@@ -113,7 +148,7 @@ fn render_line_plot(plot: &LinePlot) -> Result<String, String> {
         header
             .draw_text(&plot.title, &title, (centre, 10))
             .map_err(err)?;
-        if drawn.is_empty() {
+        if drawn.iter().all(Vec::is_empty) {
             let grey = BLACK.mix(0.7);
             let style = ("sans-serif", 17)
                 .into_text_style(&header)
@@ -123,61 +158,99 @@ fn render_line_plot(plot: &LinePlot) -> Result<String, String> {
                 .draw_text("no values to show", &style, (centre, 45))
                 .map_err(err)?;
         }
-        let mut chart = ChartBuilder::on(&body)
-            .margin(15)
-            .margin_top(5)
-            .margin_right(30)
-            .x_label_area_size(55)
-            .y_label_area_size(95)
-            .build_cartesian_2d(x_range.0..x_range.1, y_range.0..y_range.1)
-            .map_err(err)?;
-        chart
-            .configure_mesh()
-            .x_desc(plot.x_label.as_str())
-            .y_desc(plot.y_label.as_str())
-            .axis_desc_style(("sans-serif", 20))
-            .label_style(("sans-serif", 16))
-            .draw()
-            .map_err(err)?;
-        for (curve, points) in &drawn {
-            let colour = step_colour(curve.colour, colours);
-            let style = colour.stroke_width(2);
-            if curve.style == CurveStyle::Markers {
+        let areas = body.split_evenly((panels.len(), 1));
+        for (k, ((panel, curves), area)) in panels.iter().zip(&drawn).zip(&areas).enumerate() {
+            let last = k + 1 == panels.len();
+            let (chart_area, legend_area) = area.split_horizontally(LEGEND_LEFT);
+            let y_range = axis_range(curves.iter().flat_map(|(_, p)| p.iter().map(|p| p.1)), true);
+            let mut chart = ChartBuilder::on(&chart_area)
+                .margin(10)
+                .margin_right(20)
+                .x_label_area_size(if last { 55 } else { 30 })
+                .y_label_area_size(95)
+                .build_cartesian_2d(x_range.0..x_range.1, y_range.0..y_range.1)
+                .map_err(err)?;
+            let mut mesh = chart.configure_mesh();
+            mesh.y_desc(panel.y_label.as_str())
+                .axis_desc_style(("sans-serif", 19))
+                .label_style(("sans-serif", 15));
+            if last {
+                mesh.x_desc(plot.x_label.as_str());
+            }
+            mesh.draw().map_err(err)?;
+            let mut legend: Vec<(&str, RGBColor, CurveStyle)> = Vec::new();
+            for (curve, points) in curves {
+                let colour = step_colour(curve.colour, colours);
+                let style = colour.stroke_width(2);
+                legend.push((curve.label.as_str(), colour, curve.style));
+                match curve.style {
+                    CurveStyle::Markers => {
+                        chart
+                            .draw_series(points.iter().map(|&p| Cross::new(p, 6, style)))
+                            .map_err(err)?;
+                        continue;
+                    }
+                    CurveStyle::Dashed => chart.draw_series(DashedLineSeries::new(
+                        points.iter().copied(),
+                        8,
+                        5,
+                        style,
+                    )),
+                    CurveStyle::Solid => {
+                        chart.draw_series(LineSeries::new(points.iter().copied(), style))
+                    }
+                }
+                .map_err(err)?;
                 chart
-                    .draw_series(points.iter().map(|&p| Cross::new(p, 6, style)))
-                    .map_err(err)?
-                    .label(curve.label.as_str())
-                    .legend(move |(x, y)| Cross::new((x + 10, y), 6, style));
-                continue;
+                    .draw_series(points.iter().map(|&p| Circle::new(p, 3, colour.filled())))
+                    .map_err(err)?;
             }
-            let dashed = curve.style == CurveStyle::Dashed;
-            let series = if dashed {
-                chart.draw_series(DashedLineSeries::new(points.iter().copied(), 8, 5, style))
-            } else {
-                chart.draw_series(LineSeries::new(points.iter().copied(), style))
-            }
-            .map_err(err)?;
-            series.label(curve.label.as_str()).legend(move |(x, y)| {
-                let end = if dashed { x + 8 } else { x + 20 };
-                PathElement::new(vec![(x, y), (end, y)], style)
-            });
-            chart
-                .draw_series(points.iter().map(|&p| Circle::new(p, 3, colour.filled())))
-                .map_err(err)?;
-        }
-        if !drawn.is_empty() {
-            chart
-                .configure_series_labels()
-                .position(SeriesLabelPosition::UpperLeft)
-                .background_style(WHITE.mix(0.85))
-                .border_style(BLACK)
-                .label_font(("sans-serif", 15))
-                .draw()
-                .map_err(err)?;
+            draw_legend(&legend_area, &legend).map_err(err)?;
         }
         root.present().map_err(err)?;
     }
     Ok(svg)
+}
+
+/// Where the legend column starts, in pixels from the left of a panel.
+const LEGEND_LEFT: i32 = 790;
+
+/// A panel's legend, one entry a line from the top of `area` (a column
+/// beside the chart): the curve's line, dashes or cross, then its label;
+/// entries that do not fit are counted in a last line.
+fn draw_legend<DB: DrawingBackend>(
+    area: &DrawingArea<DB, plotters::coord::Shift>,
+    entries: &[(&str, RGBColor, CurveStyle)],
+) -> Result<(), plotters::drawing::DrawingAreaErrorKind<DB::ErrorType>> {
+    const ROW: i32 = 20;
+    let rows = ((area.dim_in_pixel().1 as i32 - 30) / ROW).max(1) as usize;
+    let text = ("sans-serif", 14)
+        .into_text_style(area)
+        .pos(Pos::new(HPos::Left, VPos::Center));
+    let shown = if entries.len() > rows {
+        rows - 1
+    } else {
+        entries.len()
+    };
+    for (i, &(label, colour, style)) in entries.iter().take(shown).enumerate() {
+        let y = 20 + ROW * i as i32;
+        let stroke = colour.stroke_width(2);
+        match style {
+            CurveStyle::Solid => area.draw(&PathElement::new(vec![(4, y), (28, y)], stroke))?,
+            CurveStyle::Dashed => {
+                area.draw(&PathElement::new(vec![(4, y), (12, y)], stroke))?;
+                area.draw(&PathElement::new(vec![(18, y), (26, y)], stroke))?;
+            }
+            CurveStyle::Markers => area.draw(&Cross::new((16, y), 6, stroke))?,
+        }
+        area.draw_text(label, &text, (36, y))?;
+    }
+    if shown < entries.len() {
+        let y = 20 + ROW * shown as i32;
+        let more = format!("… and {} more", entries.len() - shown);
+        area.draw_text(&more, &text, (36, y))?;
+    }
+    Ok(())
 }
 
 #[cfg(test)]
@@ -204,6 +277,7 @@ mod tests {
                     style: CurveStyle::Dashed,
                 },
             ],
+            below: Vec::new(),
         };
         let dir = tempfile::tempdir().unwrap();
         let path = dir.path().join("lift.svg");
@@ -222,6 +296,77 @@ mod tests {
             assert!(svg.contains(text), "missing {text}");
         }
         assert!(!svg.contains("NaN"));
+    }
+
+    /// The `x` attribute of every SVG element `tag` (`<circle cx=…`, `<text x=…`).
+    fn xs(svg: &str, tag: &str, attribute: &str) -> Vec<(f64, String)> {
+        svg.split(&format!("<{tag} "))
+            .skip(1)
+            .filter_map(|e| {
+                let start = e.find(&format!("{attribute}=\"")).unwrap() + attribute.len() + 2;
+                let x: f64 = e[start..start + e[start..].find('"').unwrap()]
+                    .parse()
+                    .ok()?;
+                let text = e
+                    .split('>')
+                    .nth(1)
+                    .unwrap_or("")
+                    .split('<')
+                    .next()
+                    .unwrap_or("")
+                    .trim();
+                Some((x, text.to_string()))
+            })
+            .collect()
+    }
+
+    /// Two panels share the x axis, each with its y label; every legend
+    /// entry is right of every data point (the legend never covers data),
+    /// also when the data reach the right edge.
+    #[test]
+    fn stacked_panels_and_legends_beside_the_data() {
+        let curve = |label: &str, y: f64, style| Curve {
+            label: label.into(),
+            points: (0..=20).map(|i| (i as f64, y * i as f64)).collect(),
+            colour: 0,
+            style,
+        };
+        let plot = LinePlot {
+            title: "profile".into(),
+            x_label: "abscissa (mm)".into(),
+            y_label: "contact pressure (N/mm²)".into(),
+            curves: vec![curve("pressure curve", 1.0, CurveStyle::Solid)],
+            below: vec![Panel {
+                y_label: "tangential traction (N/mm²)".into(),
+                curves: vec![
+                    curve("traction curve", -0.3, CurveStyle::Solid),
+                    curve("bound curve", 0.3, CurveStyle::Dashed),
+                    curve("slipping curve", 0.2, CurveStyle::Markers),
+                ],
+            }],
+        };
+        let svg = render_line_plot(&plot).unwrap();
+        for text in [
+            "contact pressure (N/mm²)",
+            "tangential traction (N/mm²)",
+            "abscissa (mm)",
+        ] {
+            assert_eq!(svg.matches(text).count(), 1, "{text}");
+        }
+        let dots = xs(&svg, "circle", "cx");
+        assert_eq!(dots.len(), 3 * 21);
+        let rightmost = dots.iter().map(|d| d.0).fold(0.0, f64::max);
+        let legend: Vec<(f64, String)> = xs(&svg, "text", "x")
+            .into_iter()
+            .filter(|t| t.1.ends_with(" curve"))
+            .collect();
+        assert_eq!(legend.len(), 4);
+        for (x, label) in legend {
+            assert!(
+                x > rightmost,
+                "legend '{label}' at x = {x}, data up to {rightmost}"
+            );
+        }
     }
 
     #[test]

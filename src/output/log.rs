@@ -13,6 +13,19 @@ use super::summary::Summary;
 use crate::solve::linear_solver::LinearFigures;
 use crate::{Error, Result};
 
+/// What the increment's line says when some of its linear solves fell back
+/// to the sparse LU ([`ConvergedIncrement::lu_fallbacks`]), e.g.
+/// `"  (sparse LU fallback: 2 solves)"`; empty otherwise. The console's
+/// increment line and `NAME.log` both carry it: a fallback is slower and
+/// says that GMRES or the LDLᵀ struggled, which should not go unseen.
+pub fn lu_fallback_note(increment: &ConvergedIncrement) -> String {
+    match increment.lu_fallbacks() {
+        0 => String::new(),
+        1 => "  (sparse LU fallback: 1 solve)".into(),
+        n => format!("  (sparse LU fallback: {n} solves)"),
+    }
+}
+
 /// Writes the log of a run.
 pub struct LogWriter {
     path: PathBuf,
@@ -83,8 +96,13 @@ impl StepObserver for LogWriter {
         let record = increment.record;
         let residual = record.newton.last().map_or(0.0, |r| r.residual);
         self.line(&format!(
-            "step '{}'  t = {:.6}  Δt = {:.3e}  converged in {} iterations, residual {:.2e}",
-            record.step_name, record.time, record.increment, record.iterations, residual
+            "step '{}'  t = {:.6}  Δt = {:.3e}  converged in {} iterations, residual {:.2e}{}",
+            record.step_name,
+            record.time,
+            record.increment,
+            record.iterations,
+            residual,
+            lu_fallback_note(increment)
         ));
         for (name, c) in &increment.contact_fields.summaries {
             self.line(&format!(

@@ -9,7 +9,8 @@
 //! - [`history`]: a nodal quantity after every increment (`.csv`, `.svg`).
 //! - [`profile`]: contact quantities along a line of an interface at the end
 //!   of every load step (`.csv` per step, one `.svg`).
-//! - [`line_plot`], [`table`]: the x–y plots and CSV tables they write.
+//! - [`line_plot`], [`table`]: the x–y plots and CSV tables they write;
+//!   [`units`]: the units of their labels (`[units]`).
 //! - [`fields`]: the result fields by name ([`NodalField`], [`CellField`])
 //!   and a converged increment in memory ([`ConvergedIncrement`]);
 //!   [`contact_fields`] builds its contact fields.
@@ -38,6 +39,7 @@ pub mod profile;
 pub mod pvd;
 pub mod summary;
 pub mod table;
+pub mod units;
 pub mod vtu;
 pub mod writer;
 

@@ -21,6 +21,9 @@ use super::write_atomically;
 pub struct StepResiduals {
     /// Shown in the legend, e.g. `"step 3, t = 0.30"`.
     pub label: String,
+    /// Pseudo-time at the end of the increment: the colour of its line on
+    /// the colour bar when there are too many increments for a legend.
+    pub time: f64,
     /// Relative force residual per Newton iteration: entry `k` is plotted at
     /// iteration `k` (so entry 0, if the caller records it, is the residual
     /// of the initial guess, before any correction).
@@ -28,8 +31,8 @@ pub struct StepResiduals {
 }
 
 /// Up to this many steps get their own colour and a legend entry; more are
-/// coloured along a gradient from the first to the last step, without
-/// legend.
+/// coloured by their pseudo-time along a gradient, with a colour bar
+/// instead of the legend.
 const MAX_LEGEND_STEPS: usize = 12;
 
 /// At most this many decades are shown below the largest residual; smaller
@@ -79,6 +82,16 @@ pub(crate) fn step_colour(index: usize, count: usize) -> RGBColor {
         (0, 0, 128),
         (128, 0, 0),
     ];
+    if count <= MAX_LEGEND_STEPS {
+        let (r, g, b) = PALETTE[index % PALETTE.len()];
+        return RGBColor(r, g, b);
+    }
+    gradient_colour(index as f64 / (count - 1).max(1) as f64)
+}
+
+/// The colour at `fraction` (0 … 1, clamped) of the dark-blue → green →
+/// yellow gradient (viridis-like).
+pub(crate) fn gradient_colour(fraction: f64) -> RGBColor {
     const GRADIENT: [(f64, f64, f64); 5] = [
         (68.0, 1.0, 84.0),
         (59.0, 82.0, 139.0),
@@ -86,11 +99,12 @@ pub(crate) fn step_colour(index: usize, count: usize) -> RGBColor {
         (94.0, 201.0, 98.0),
         (253.0, 231.0, 37.0),
     ];
-    if count <= MAX_LEGEND_STEPS {
-        let (r, g, b) = PALETTE[index % PALETTE.len()];
-        return RGBColor(r, g, b);
-    }
-    let t = index as f64 / (count - 1).max(1) as f64 * (GRADIENT.len() - 1) as f64;
+    let fraction = if fraction.is_finite() {
+        fraction.clamp(0.0, 1.0)
+    } else {
+        0.0
+    };
+    let t = fraction * (GRADIENT.len() - 1) as f64;
     let i = (t.floor() as usize).min(GRADIENT.len() - 2);
     let f = t - i as f64;
     let mix = |a: f64, b: f64| (a + (b - a) * f).round().clamp(0.0, 255.0) as u8;
@@ -120,7 +134,43 @@ fn format_tick(y: &f64) -> String {
     format!("{y:.0e}")
 }
 
-/// The SVG text of the plot.
+/// The colour of each step: the palette for few steps, else its
+/// pseudo-time's place between the first and the last step's on the
+/// gradient of the colour bar.
+fn colours(steps: &[StepResiduals]) -> Vec<RGBColor> {
+    if steps.len() <= MAX_LEGEND_STEPS {
+        return (0..steps.len())
+            .map(|i| step_colour(i, steps.len()))
+            .collect();
+    }
+    let (lo, hi) = time_range(steps);
+    steps
+        .iter()
+        .enumerate()
+        .map(|(i, s)| {
+            if hi > lo && s.time.is_finite() {
+                gradient_colour((s.time - lo) / (hi - lo))
+            } else {
+                step_colour(i, steps.len())
+            }
+        })
+        .collect()
+}
+
+/// The first and last finite pseudo-time of `steps`.
+fn time_range(steps: &[StepResiduals]) -> (f64, f64) {
+    steps
+        .iter()
+        .map(|s| s.time)
+        .filter(|t| t.is_finite())
+        .fold((f64::INFINITY, f64::NEG_INFINITY), |(lo, hi), t| {
+            (lo.min(t), hi.max(t))
+        })
+}
+
+/// The SVG text of the plot: the chart on the left; on its right, the
+/// legend (few steps) or a colour bar of the pseudo-time (many steps),
+/// beside the data and never over it.
 fn render_convergence_plot(steps: &[StepResiduals]) -> Result<String, String> {
     let err = |e: plotters::drawing::DrawingAreaErrorKind<std::io::Error>| e.to_string();
     let decades = y_decades(steps.iter().flat_map(|s| s.residuals.iter()));
@@ -141,7 +191,10 @@ fn render_convergence_plot(steps: &[StepResiduals]) -> Result<String, String> {
     let y_lo = 0.5 * 10f64.powi(decades.0);
     let y_hi = 2.0 * 10f64.powi(decades.1);
     let legend = steps.len() <= MAX_LEGEND_STEPS;
-    let (width, height) = (900u32, 580u32);
+    let colour = colours(steps);
+    // many lines: thinner, smaller markers, so that they stay apart
+    let (stroke, marker) = if legend { (2, 3) } else { (1, 2) };
+    let (width, height) = (1100u32, 600u32);
     let centre = width as i32 / 2;
 
     let mut svg = String::new();
@@ -159,7 +212,7 @@ fn render_convergence_plot(steps: &[StepResiduals]) -> Result<String, String> {
             Some("no residuals to show".to_string())
         } else if !legend {
             Some(format!(
-                "{} steps, coloured from the first (dark blue) to the last (yellow)",
+                "{} increments, coloured by their pseudo-time (colour bar)",
                 steps.len()
             ))
         } else {
@@ -173,8 +226,8 @@ fn render_convergence_plot(steps: &[StepResiduals]) -> Result<String, String> {
                 .pos(Pos::new(HPos::Center, VPos::Top));
             header.draw_text(&note, &style, (centre, 45)).map_err(err)?;
         }
-
-        let mut chart = ChartBuilder::on(&body)
+        let (chart_area, side) = body.split_horizontally(width as i32 - SIDE_WIDTH);
+        let mut chart = ChartBuilder::on(&chart_area)
             .margin(15)
             .margin_top(5)
             .x_label_area_size(55)
@@ -193,37 +246,73 @@ fn render_convergence_plot(steps: &[StepResiduals]) -> Result<String, String> {
             .map_err(err)?;
 
         for (index, points) in &drawn {
-            let colour = step_colour(*index, steps.len());
-            let line = chart
+            let c = colour[*index];
+            chart
                 .draw_series(LineSeries::new(
                     points.iter().copied(),
-                    colour.stroke_width(2),
+                    c.stroke_width(stroke),
                 ))
                 .map_err(err)?;
-            if legend {
-                line.label(steps[*index].label.as_str())
-                    .legend(move |(x, y)| {
-                        PathElement::new(vec![(x, y), (x + 20, y)], colour.stroke_width(2))
-                    });
-            }
             chart
-                .draw_series(points.iter().map(|&p| Circle::new(p, 3, colour.filled())))
+                .draw_series(points.iter().map(|&p| Circle::new(p, marker, c.filled())))
                 .map_err(err)?;
         }
-
-        if legend && !drawn.is_empty() {
-            chart
-                .configure_series_labels()
-                .position(SeriesLabelPosition::UpperRight)
-                .background_style(WHITE.mix(0.85))
-                .border_style(BLACK)
-                .label_font(("sans-serif", 15))
-                .draw()
-                .map_err(err)?;
+        if drawn.is_empty() {
+        } else if legend {
+            let text = ("sans-serif", 15)
+                .into_text_style(&side)
+                .pos(Pos::new(HPos::Left, VPos::Center));
+            for (row, (index, _)) in drawn.iter().enumerate() {
+                let y = 25 + 22 * row as i32;
+                let c = colour[*index];
+                side.draw(&PathElement::new(vec![(5, y), (29, y)], c.stroke_width(2)))
+                    .map_err(err)?;
+                side.draw_text(&steps[*index].label, &text, (37, y))
+                    .map_err(err)?;
+            }
+        } else {
+            draw_time_bar(&side, time_range(steps)).map_err(err)?;
         }
         root.present().map_err(err)?;
     }
     Ok(svg)
+}
+
+/// The width of the column beside the chart (legend or colour bar).
+const SIDE_WIDTH: i32 = 250;
+
+/// A vertical colour bar of the pseudo-time `lo … hi` (bottom to top) with
+/// five ticks and its name.
+fn draw_time_bar<DB: DrawingBackend>(
+    area: &DrawingArea<DB, plotters::coord::Shift>,
+    (lo, hi): (f64, f64),
+) -> Result<(), plotters::drawing::DrawingAreaErrorKind<DB::ErrorType>> {
+    let (top, bottom, left, right) = (40, area.dim_in_pixel().1 as i32 - 80, 20, 50);
+    let bands = 100;
+    for k in 0..bands {
+        let y0 = bottom - (bottom - top) * k / bands;
+        let y1 = bottom - (bottom - top) * (k + 1) / bands;
+        let c = gradient_colour((k as f64 + 0.5) / bands as f64);
+        area.draw(&Rectangle::new([(left, y1), (right, y0)], c.filled()))?;
+    }
+    area.draw(&Rectangle::new(
+        [(left, top), (right, bottom)],
+        BLACK.stroke_width(1),
+    ))?;
+    let text = ("sans-serif", 15)
+        .into_text_style(area)
+        .pos(Pos::new(HPos::Left, VPos::Center));
+    for k in 0..=4 {
+        let y = bottom - (bottom - top) * k / 4;
+        let t = lo + (hi - lo) * k as f64 / 4.0;
+        area.draw(&PathElement::new(vec![(right, y), (right + 6, y)], BLACK))?;
+        area.draw_text(&format!("{t:.4}"), &text, (right + 10, y))?;
+    }
+    let name = ("sans-serif", 17)
+        .into_text_style(area)
+        .pos(Pos::new(HPos::Left, VPos::Top));
+    area.draw_text("pseudo-time t", &name, (left, 10))?;
+    Ok(())
 }
 
 #[cfg(test)]
@@ -233,6 +322,7 @@ mod tests {
     fn step(label: &str, residuals: &[f64]) -> StepResiduals {
         StepResiduals {
             label: label.to_string(),
+            time: label.len() as f64,
             residuals: residuals.to_vec(),
         }
     }
@@ -277,19 +367,51 @@ mod tests {
         }
     }
 
+    /// 100 increments: coloured by pseudo-time (not by index: the first 90
+    /// in t < 0.1, the last 10 up to t = 1), a colour bar from the first to
+    /// the last time instead of the legend.
     #[test]
-    fn many_steps_use_a_gradient_without_legend() {
-        let steps: Vec<StepResiduals> = (0..30)
-            .map(|i| step(&format!("step {i}"), &[1.0, 10f64.powi(-2 - i % 5), 1e-9]))
+    fn many_steps_are_coloured_by_pseudo_time_with_a_colour_bar() {
+        let steps: Vec<StepResiduals> = (0..100)
+            .map(|i| StepResiduals {
+                label: format!("step {i}"),
+                time: if i < 90 {
+                    0.001 * i as f64
+                } else {
+                    0.1 * (i - 90) as f64 + 0.1
+                },
+                residuals: vec![1.0, 10f64.powi(-2 - i % 5), 1e-9],
+            })
             .collect();
         let svg = render_convergence_plot(&steps).unwrap();
         assert!(!svg.contains("step 7<"));
-        assert!(svg.contains("30 steps"));
-        assert_eq!(svg.matches("<circle").count(), 90);
-        assert_eq!(step_colour(0, 30), RGBColor(68, 1, 84));
-        assert_eq!(step_colour(29, 30), RGBColor(253, 231, 37));
-        assert_eq!(lines_of(&svg, 0, 30), 1);
-        assert_eq!(lines_of(&svg, 29, 30), 1);
+        assert!(svg.contains("100 increments") && svg.contains("pseudo-time t"));
+        // the bar's ends: the first and the last time
+        let texts: Vec<&str> = svg
+            .split("<text")
+            .skip(1)
+            .map(|t| {
+                t.split('>')
+                    .nth(1)
+                    .unwrap_or("")
+                    .split('<')
+                    .next()
+                    .unwrap()
+                    .trim()
+            })
+            .collect();
+        assert!(
+            texts.contains(&"0.0000") && texts.contains(&"1.0000"),
+            "{texts:?}"
+        );
+        assert_eq!(svg.matches("<circle").count(), 300);
+        let colour = colours(&steps);
+        assert_eq!(colour[0], RGBColor(68, 1, 84));
+        assert_eq!(colour[99], RGBColor(253, 231, 37));
+        // t = 0.089 of 1: near the start of the gradient, though step 89 of 100
+        assert_eq!(colour[89], gradient_colour(0.089));
+        let stroke = |c: RGBColor| format!("stroke=\"#{:02X}{:02X}{:02X}\"", c.0, c.1, c.2);
+        assert!(svg.contains(&stroke(colour[99])));
     }
 
     #[test]

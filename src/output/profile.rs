@@ -4,11 +4,13 @@
 //! it. At the end of every load step the profile writes
 //! `<name>_<step>.csv` (one row per node, the columns of [`COLUMNS`]) and
 //! redraws `<name>.svg`: the [`PLOTTED`] columns against the abscissa, one
-//! colour per step so far.
+//! colour per step so far, the contact pressure in a panel and, with
+//! friction, the tangential traction in a second panel below it.
 //!
 //! With friction the table also holds the tangential traction along the
 //! line, the slip bound `μ t_N` and the slipping nodes, and the plot draws
-//! them (`±μ t_N` dashed, the slipping nodes as crosses on `t_T`): where
+//! them in the second panel (`±μ t_N` dashed, the slipping nodes as
+//! crosses on `t_T`): where
 //! the traction meets the bound the nodes slip, elsewhere they stick. Without
 //! friction those columns are NaN and not drawn.
 //!
@@ -17,8 +19,9 @@
 
 use std::path::Path;
 
-use super::line_plot::{write_line_plot, Curve, CurveStyle, LinePlot};
+use super::line_plot::{write_line_plot, Curve, CurveStyle, LinePlot, Panel};
 use super::table::write_csv;
+use super::units::{Dimension, Units};
 use crate::contact::friction::ContactStatus;
 use crate::contact::interface::NodeReport;
 
@@ -111,13 +114,15 @@ pub const COLUMNS: &[Column] = &[
     },
 ];
 
-/// The columns drawn in the profile plot, against the abscissa.
-pub const PLOTTED: &[(&str, CurveStyle)] = &[
-    ("contact_pressure", CurveStyle::Solid),
-    ("tangential_traction", CurveStyle::Solid),
-    ("slip_bound", CurveStyle::Dashed),
-    ("minus_slip_bound", CurveStyle::Dashed),
-    ("slipping", CurveStyle::Markers),
+/// The columns drawn in the profile plot, against the abscissa: the
+/// header, the legend's name, the style and the panel (0: the contact
+/// pressure; 1, below it: the tangential traction and its bounds).
+pub const PLOTTED: &[(&str, &str, CurveStyle, usize)] = &[
+    ("contact_pressure", "t_N", CurveStyle::Solid, 0),
+    ("tangential_traction", "t_T", CurveStyle::Solid, 1),
+    ("slip_bound", "μ t_N", CurveStyle::Dashed, 1),
+    ("minus_slip_bound", "−μ t_N", CurveStyle::Dashed, 1),
+    ("slipping", "slipping nodes", CurveStyle::Markers, 1),
 ];
 
 /// A secondary node on the profile line.
@@ -156,6 +161,8 @@ pub struct Profile {
     pub nodes: Vec<ProfileNode>,
     /// Tables of the steps ended so far.
     pub steps: Vec<StepProfile>,
+    /// The case's units, for the plot's labels.
+    pub units: Units,
 }
 
 /// The secondary nodes (indices into `positions`, the reference positions
@@ -238,36 +245,43 @@ impl Profile {
         let column = |name: &str| COLUMNS.iter().position(|c| c.header == name);
         #[allow(clippy::expect_used)] // a constant of this file: COLUMNS has an abscissa
         let x = column("abscissa").expect("the abscissa is a column");
-        let mut curves = Vec::new();
-        // series with no finite value (friction's, on a frictionless
-        // interface) are neither drawn nor named
-        let mut drawn: Vec<&str> = Vec::new();
+        // per panel; series with no finite value (friction's, on a
+        // frictionless interface) are neither drawn nor named
+        let mut panels: [Vec<Curve>; 2] = Default::default();
         for (k, step) in self.steps.iter().enumerate() {
-            for &(name, style) in PLOTTED {
+            for &(name, legend, style, panel) in PLOTTED {
                 let Some(y) = column(name) else { continue };
                 let points: Vec<(f64, f64)> = step.rows.iter().map(|r| (r[x], r[y])).collect();
                 if points.iter().all(|p| !p.1.is_finite()) {
                     continue;
                 }
-                if !drawn.contains(&name) {
-                    drawn.push(name);
-                }
-                curves.push(Curve {
-                    label: format!("{name}, {} (t = {:.3})", step.step_name, step.time),
+                panels[panel].push(Curve {
+                    label: format!("{legend}, {} (t = {:.3})", step.step_name, step.time),
                     points,
                     colour: k,
                     style,
                 });
             }
         }
+        let [pressure, tangential] = panels;
+        let units = &self.units;
         let plot = LinePlot {
             title: format!("{}: interface '{}'", self.name, self.interface_name),
-            x_label: "abscissa along the line (reference configuration)".into(),
-            y_label: match drawn.as_slice() {
-                [one] => one.to_string(),
-                _ => "traction (see the legend)".into(),
+            x_label: units.label(
+                "abscissa along the line, reference configuration",
+                Dimension::Length,
+            ),
+            y_label: units.label("contact pressure t_N", Dimension::Stress),
+            curves: pressure,
+            below: if tangential.is_empty() {
+                Vec::new()
+            } else {
+                vec![Panel {
+                    y_label: units
+                        .label("tangential traction t_T along the line", Dimension::Stress),
+                    curves: tangential,
+                }]
             },
-            curves,
         };
         write_line_plot(&dir.join(format!("{}.svg", self.name)), &plot)
     }
@@ -314,6 +328,7 @@ mod tests {
                 },
             ],
             steps: Vec::new(),
+            units: Units::default(),
         };
         let report = |gap, pressure| NodeReport {
             gap,

@@ -242,6 +242,7 @@ impl StepObserver for ResultWriter {
             .iter()
             .map(|i| plot::StepResiduals {
                 label: format!("{} t={:.4}", i.step_name, i.time),
+                time: i.time,
                 residuals: i.residuals.clone(),
             })
             .collect();

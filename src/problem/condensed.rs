@@ -625,6 +625,7 @@ fn run_increments(
                 iterations: 1,
                 newton,
                 cuts: 0,
+                lu_solves: 0,
             };
             t = t_new;
             observer.on_converged(problem, &record, &x, &evaluation, &state)?;

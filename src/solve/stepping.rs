@@ -29,6 +29,10 @@ pub struct IncrementRecord {
     pub newton: Vec<IterationRecord>,
     /// Cuts suffered before this increment converged.
     pub cuts: usize,
+    /// Linear solves by the sparse LU during this increment, its cut
+    /// attempts included (chosen by `[solver]`, or the fallback of GMRES or
+    /// of an LDLᵀ that broke down).
+    pub lu_solves: usize,
 }
 
 /// What the stepper carries from one converged increment to the next
@@ -141,6 +145,8 @@ pub fn resume_steps<P: NonlinearProblem>(
     // the change of the unknowns over the last converged increment, and its
     // length (the predictor's secant)
     let mut secant: Option<(Vec<f64>, f64)> = resumed.secant;
+    // the LU solves counted when the last increment converged
+    let mut lu_solves = solver.statistics().lu_solves;
     for (s, step) in steps.iter().enumerate() {
         if resuming && s < resumed.step {
             continue;
@@ -231,7 +237,9 @@ pub fn resume_steps<P: NonlinearProblem>(
                         iterations: iterations.iter().filter(|r| r.correction > 0.0).count(),
                         newton: iterations,
                         cuts,
+                        lu_solves: solver.statistics().lu_solves - lu_solves,
                     };
+                    lu_solves += record.lu_solves;
                     t = t_new;
                     let settings = problem.settings();
                     if cuts == 0 && converged_well(&record.newton, settings.easy_iterations) {

@@ -1,0 +1,258 @@
+//! Cattaneo–Mindlin partial slip of two identical elastic spheres, the
+//! reference of `examples/cattaneo-mindlin` (shared by its `main.rs` and by
+//! `tests/cattaneo_mindlin.rs`): Mindlin (1949), Johnson, *Contact
+//! Mechanics* (1985) §7.2.
+//!
+//! Two identical spheres pressed by `P` and then sheared by `Q < μP`:
+//! identical materials uncouple the normal and tangential problems, so the
+//! pressure stays Hertz's `p(r) = p₀ √(1 − r²/a²)` and the tangential
+//! traction, along the load, is
+//! ```text
+//! q(r) = μ p₀ [√(1 − r²/a²) − (c/a) √(1 − r²/c²)]   r ≤ c (stick)
+//! q(r) = μ p₀ √(1 − r²/a²) = μ p(r)                 c ≤ r ≤ a (slip)
+//! c = a (1 − Q/(μP))^{1/3}
+//! ```
+//! The deficit `μp − q = μ p₀ (c/a) √(1 − r²/c²)` inside the stick circle
+//! is a half-ellipse in `r` like Hertz's pressure, so the stick radius of
+//! computed tractions is fitted as Hertz's contact radius is:
+//! `(μp − q)² = A − B r²` over the nodes whose deficit is well above zero,
+//! `c = √(A/B)` ([`fitted_contact_radius`]).
+
+// included with `#[path]` by the example and the test; each uses a part
+#![allow(dead_code)]
+
+use signorini::contact::friction::ContactStatus;
+use signorini::contact::hertz::{fitted_contact_radius, Hertz};
+use signorini::output::ConvergedIncrement;
+
+/// Mindlin's partial slip for normal force `P`, tangential force `Q`,
+/// friction coefficient `μ`, on Hertz's contact of `P`.
+#[derive(Clone, Copy, Debug)]
+pub struct Mindlin {
+    pub hertz: Hertz,
+    pub mu: f64,
+    /// `Q/(μP)`.
+    pub ratio: f64,
+    /// Stick radius `c = a (1 − Q/(μP))^{1/3}`.
+    pub stick_radius: f64,
+}
+
+impl Mindlin {
+    /// Two identical spheres of radius `radius`, modulus `E`, ratio `ν`:
+    /// Hertz with `R* = R/2` and `E* = E/(2(1 − ν²))`.
+    pub fn two_spheres(force: f64, tangential: f64, mu: f64, radius: f64, e: f64, nu: f64) -> Self {
+        let hertz = Hertz::new(force, 0.5 * radius, e / (2.0 * (1.0 - nu * nu)));
+        let ratio = tangential / (mu * force);
+        Mindlin {
+            hertz,
+            mu,
+            ratio,
+            stick_radius: hertz.radius * (1.0 - ratio).max(0.0).cbrt(),
+        }
+    }
+
+    /// `q(r)` (see the module's documentation), 0 outside the contact.
+    pub fn traction(&self, r: f64) -> f64 {
+        let (a, c) = (self.hertz.radius, self.stick_radius);
+        let slip = self.mu * self.hertz.pressure(r);
+        if r < c {
+            slip - self.mu * self.hertz.peak_pressure * (c / a) * (1.0 - (r / c).powi(2)).sqrt()
+        } else {
+            slip
+        }
+    }
+}
+
+/// One secondary node of the contact at the end of an increment.
+#[derive(Clone, Copy, Debug)]
+pub struct NodeSample {
+    /// Distance from the contact's centre (current configuration).
+    pub r: f64,
+    /// Abscissa along the load axis from the centre, and the reference `y`
+    /// (0 on the symmetry plane, which holds the load axis).
+    pub x: f64,
+    pub y_reference: f64,
+    /// Contact pressure `t_N`.
+    pub pressure: f64,
+    /// The tangential traction along the load, on the body that resists it:
+    /// `q = −t_T · x̂`.
+    pub traction: f64,
+    pub status: ContactStatus,
+}
+
+/// What one increment of the example shows against Mindlin.
+#[derive(Clone, Debug)]
+pub struct Comparison {
+    pub time: f64,
+    pub iterations: usize,
+    /// Normal and tangential force on the whole contact (twice the half model's).
+    pub force: f64,
+    pub tangential: f64,
+    pub mindlin: Mindlin,
+    pub nodes: Vec<NodeSample>,
+    /// The fitted stick radius (NaN without a stick zone to fit).
+    pub stick_radius: f64,
+    /// The contact radius fitted to the pressures (`p²` against `r²` over
+    /// `p > 0.2 p₀`, as `examples/two-spheres`).
+    pub contact_radius: f64,
+    /// The outermost sticking and the innermost slipping closed node.
+    pub outermost_stick: f64,
+    pub innermost_slip: f64,
+}
+
+/// The example's material and geometry (case.toml, spheres.geo).
+pub const RADIUS: f64 = 1.0;
+pub const YOUNGS_MODULUS: f64 = 1000.0;
+pub const POISSON_RATIO: f64 = 0.3;
+pub const FRICTION: f64 = 0.3;
+
+impl Comparison {
+    /// The secondary nodes of interface 0 of a converged increment of the
+    /// half model (symmetry plane `y = 0`, load along `+x`), and their fit.
+    pub fn of(inc: &ConvergedIncrement) -> Self {
+        let interface = &inc.problem.contacts[0];
+        let reports = &inc.contact_fields.reports[0];
+        let summary = inc.contact_fields.summaries.values().next();
+        let (force, tangential) = summary.map_or((0.0, 0.0), |s| {
+            (2.0 * s.force[2].abs(), -2.0 * s.tangential_force[0])
+        });
+        let mesh = &inc.problem.model.mesh;
+        let u = inc.displacement();
+        let current = |s: usize| [0, 1].map(|d| mesh.nodes[s][d] + u[3 * s + d]);
+        // the contact's centre on the load axis: the closed nodes' centroid
+        // in x, weighted by their normal force (the whole contact patch moves
+        // with the shear)
+        let (mut weighted, mut total) = (0.0, 0.0);
+        for (&s, (r, &area)) in interface
+            .nodes
+            .iter()
+            .zip(reports.iter().zip(&interface.areas))
+        {
+            weighted += area * r.pressure * current(s)[0];
+            total += area * r.pressure;
+        }
+        let centre = if total > 0.0 { weighted / total } else { 0.0 };
+        let nodes: Vec<NodeSample> = interface
+            .nodes
+            .iter()
+            .zip(reports)
+            .map(|(&s, r)| {
+                let [x, y] = current(s);
+                NodeSample {
+                    r: (x - centre).hypot(y),
+                    x: x - centre,
+                    y_reference: mesh.nodes[s][1],
+                    pressure: r.pressure,
+                    traction: -r.tangential_traction[0],
+                    status: r.status,
+                }
+            })
+            .collect();
+        let mindlin = Mindlin::two_spheres(
+            force,
+            tangential,
+            FRICTION,
+            RADIUS,
+            YOUNGS_MODULUS,
+            POISSON_RATIO,
+        );
+        let deficit: Vec<(f64, f64)> = nodes
+            .iter()
+            .filter(|n| n.status != ContactStatus::Open)
+            .map(|n| (n.r, FRICTION * n.pressure - n.traction))
+            .collect();
+        let largest = deficit.iter().map(|d| d.1).fold(0.0, f64::max);
+        let fitted = deficit.iter().filter(|d| d.1 > 0.2 * largest).count();
+        let stick_radius = if fitted >= 3 {
+            fitted_contact_radius(&deficit, 0.2 * largest)
+        } else {
+            f64::NAN
+        };
+        let pressures: Vec<(f64, f64)> = nodes.iter().map(|n| (n.r, n.pressure)).collect();
+        let contact_radius = fitted_contact_radius(&pressures, 0.2 * mindlin.hertz.peak_pressure);
+        let outermost_stick = nodes
+            .iter()
+            .filter(|n| n.status == ContactStatus::Stick)
+            .map(|n| n.r)
+            .fold(0.0, f64::max);
+        let innermost_slip = nodes
+            .iter()
+            .filter(|n| n.status == ContactStatus::Slip)
+            .map(|n| n.r)
+            .fold(f64::INFINITY, f64::min);
+        Comparison {
+            time: inc.record.time,
+            iterations: inc.record.iterations,
+            force,
+            tangential,
+            mindlin,
+            nodes,
+            stick_radius,
+            contact_radius,
+            outermost_stick,
+            innermost_slip,
+        }
+    }
+
+    /// Ring means of `q` against Mindlin's `q` averaged over the same
+    /// nodes, rings of width `a/10` up to `r < 0.8 a`: `(r_mid, mean, mindlin)`.
+    pub fn rings(&self) -> Vec<(f64, f64, f64)> {
+        let a = self.mindlin.hertz.radius;
+        (0..8)
+            .filter_map(|ring| {
+                let (lo, hi) = (ring as f64 * 0.1 * a, (ring + 1) as f64 * 0.1 * a);
+                let inside: Vec<&NodeSample> = self
+                    .nodes
+                    .iter()
+                    .filter(|n| n.r >= lo && n.r < hi)
+                    .collect();
+                if inside.is_empty() {
+                    return None;
+                }
+                let k = inside.len() as f64;
+                let mean = inside.iter().map(|n| n.traction).sum::<f64>() / k;
+                let reference = inside
+                    .iter()
+                    .map(|n| self.mindlin.traction(n.r))
+                    .sum::<f64>()
+                    / k;
+                Some((0.5 * (lo + hi), mean, reference))
+            })
+            .collect()
+    }
+
+    /// The largest ring error over `μ p₀`.
+    pub fn worst_ring(&self) -> f64 {
+        let scale = self.mindlin.mu * self.mindlin.hertz.peak_pressure;
+        self.rings()
+            .iter()
+            .map(|(_, mean, reference)| (mean - reference).abs() / scale)
+            .fold(0.0, f64::max)
+    }
+
+    /// One line of figures.
+    pub fn describe(&self) -> String {
+        let m = &self.mindlin;
+        format!(
+            "t = {:.3}: P = {:.5}, Q/(μP) = {:.4}, a = {:.5} (fit {:+.2} %), p0 = {:.3}; \
+             stick radius {:.5} (fit) vs Mindlin {:.5} ({:+.2} %; c/a of the fits {:+.2} % from \
+             Mindlin's), outermost stick node {:.5}, innermost slip node {:.5}; ring means \
+             within {:.2} % of μp0; {} iterations",
+            self.time,
+            self.force,
+            m.ratio,
+            m.hertz.radius,
+            100.0 * (self.contact_radius / m.hertz.radius - 1.0),
+            m.hertz.peak_pressure,
+            self.stick_radius,
+            m.stick_radius,
+            100.0 * (self.stick_radius / m.stick_radius - 1.0),
+            100.0
+                * (self.stick_radius / self.contact_radius / (1.0 - m.ratio).max(0.0).cbrt() - 1.0),
+            self.outermost_stick,
+            self.innermost_slip,
+            100.0 * self.worst_ring(),
+            self.iterations
+        )
+    }
+}

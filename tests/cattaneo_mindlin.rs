@@ -1,0 +1,162 @@
+//! `examples/cattaneo-mindlin` on its coarse mesh (`coarse.toml`,
+//! `coarse.msh`: `smin = 0.012` under the contact, 4 711 nodes; the
+//! committed example, `case.toml`, uses `smin = 0.008`, see its README):
+//! two identical elastic hemispheres pressed together, then sheared to
+//! `Q/(μP) ≈ 0.5`, against Hertz and Mindlin (`examples/cattaneo-mindlin/mindlin.rs`).
+//! Also the slip output of issue 18 item 5 (`slip_increment`,
+//! `accumulated_slip`) and the log's note of a sparse-LU fallback.
+
+#[path = "../examples/cattaneo-mindlin/mindlin.rs"]
+mod mindlin;
+
+use mindlin::Comparison;
+use signorini::output::{ConvergedIncrement, NodalField, StepObserver, Summary};
+use signorini::run::{run_observed, RunOptions};
+use std::path::Path;
+
+/// `(slip_increment, accumulated_slip, slip, contact_status)` of a node.
+type Slips = ([f64; 3], [f64; 3], [f64; 3], f64);
+
+/// Per increment: the comparison, and the secondary nodes' slip fields.
+#[derive(Default)]
+struct Record {
+    comparisons: Vec<Comparison>,
+    /// The [`Slips`] of every secondary node, per increment.
+    slips: Vec<Vec<Slips>>,
+    lu_solves: Vec<usize>,
+}
+
+impl StepObserver for Record {
+    fn on_increment(&mut self, inc: &ConvergedIncrement, _: &Summary) -> signorini::Result<()> {
+        self.comparisons.push(Comparison::of(inc));
+        let increment = inc.nodal(NodalField::SlipIncrement);
+        let accumulated = inc.nodal(NodalField::AccumulatedSlip);
+        let slip = inc.nodal(NodalField::Slip);
+        let status = inc.nodal(NodalField::ContactStatus);
+        let three = |v: &[f64], s: usize| [v[3 * s], v[3 * s + 1], v[3 * s + 2]];
+        self.slips.push(
+            inc.problem.contacts[0]
+                .nodes
+                .iter()
+                .map(|&s| {
+                    (
+                        three(&increment, s),
+                        three(&accumulated, s),
+                        three(&slip, s),
+                        status[s],
+                    )
+                })
+                .collect(),
+        );
+        self.lu_solves.push(inc.record.lu_solves);
+        Ok(())
+    }
+}
+
+/// The coarse Cattaneo–Mindlin run, against Hertz and Mindlin. Tolerances
+/// (today's code: the regularised tangential law with the automatic
+/// `ε_T = E/h_s`, which issue 18 item 2 replaces by an exact stick; the
+/// figures measured on this mesh are in the example's README):
+/// - `Q/(μP)` within 0.45 … 0.55 at the end of the shear;
+/// - the normal press: the contact radius (fit of `p²` against `r²`)
+///   within 3 % of Hertz's for the computed `P` (measured −1.5 %);
+/// - the stick radius fitted to the deficit `μp − q` within 3 % of
+///   Mindlin's `c = a (1 − Q/(μP))^{1/3}` (measured −2.2 %), and Mindlin's
+///   `c` between the outermost sticking node (at most 2 % beyond it) and
+///   the innermost slipping one (at most 2 % inside it);
+/// - the tangential traction averaged over rings `a/10` wide, `r < 0.8a`,
+///   within 8 % of `μp₀` of Mindlin's averaged over the same nodes
+///   (measured 5.7 %; the target of issue 18 is 2 %, with exact stick);
+/// - at most 6 Newton iterations per increment.
+///
+/// The slip fields: at every secondary node and increment,
+/// `accumulated_slip` = `slip` = the sum of the `slip_increment`s so far
+/// (1e-14), and `slip_increment` is nonzero exactly at the nodes that
+/// slip (`contact_status` 2); some do. The log's increment lines carry the
+/// sparse-LU note exactly when the increment had LU solves (the settings
+/// choose GMRES, so any LU solve is a fallback).
+#[test]
+fn cattaneo_mindlin_partial_slip() {
+    let out = tempfile::tempdir().unwrap();
+    let case = Path::new(env!("CARGO_MANIFEST_DIR")).join("examples/cattaneo-mindlin/coarse.toml");
+    let mut record = Record::default();
+    let options = RunOptions {
+        output: Some(out.path().to_path_buf()),
+        threads: None,
+        cancel: None,
+        restart: None,
+    };
+    run_observed(&case, &options, &mut record).expect("the example runs");
+    let end_of_press = record
+        .comparisons
+        .iter()
+        .find(|c| (c.time - 1.0).abs() < 1e-12)
+        .expect("an increment ends the press");
+    let last = record.comparisons.last().unwrap();
+    for c in &record.comparisons {
+        eprintln!("{}", c.describe());
+    }
+    let m = &last.mindlin;
+    assert!((0.45..=0.55).contains(&m.ratio), "Q/(μP) = {}", m.ratio);
+    // the press: all closed nodes stick, the fit is the contact radius
+    let press = &end_of_press.mindlin;
+    assert!(
+        (end_of_press.stick_radius / press.hertz.radius - 1.0).abs() < 0.03,
+        "contact radius {} vs Hertz {}",
+        end_of_press.stick_radius,
+        press.hertz.radius
+    );
+    let c = m.stick_radius;
+    assert!(
+        (last.stick_radius / c - 1.0).abs() < 0.03,
+        "stick radius {} vs Mindlin {c}",
+        last.stick_radius
+    );
+    assert!(
+        last.outermost_stick < 1.02 * c && last.innermost_slip > 0.98 * c,
+        "Mindlin's c = {c} outside the nodes' stick–slip boundary {} … {}",
+        last.outermost_stick,
+        last.innermost_slip
+    );
+    assert!(last.worst_ring() < 0.08, "ring error {}", last.worst_ring());
+    for c in &record.comparisons {
+        assert!(
+            c.iterations <= 6,
+            "t = {}: {} iterations",
+            c.time,
+            c.iterations
+        );
+    }
+
+    // slip output
+    let mut sum = vec![[0.0; 3]; record.slips[0].len()];
+    let mut slipping = 0;
+    for increment in &record.slips {
+        for ((step, accumulated, slip, status), total) in increment.iter().zip(&mut sum) {
+            for d in 0..3 {
+                total[d] += step[d];
+                assert!((accumulated[d] - total[d]).abs() < 1e-14);
+                assert_eq!(accumulated[d].to_bits(), slip[d].to_bits());
+            }
+            let moved = step.iter().any(|v| *v != 0.0);
+            assert_eq!(
+                moved,
+                *status == 2.0,
+                "slip increment {step:?}, status {status}"
+            );
+            slipping += usize::from(moved);
+        }
+    }
+    assert!(slipping > 0, "no node slipped");
+
+    // the log's note of a sparse-LU fallback, on the increments that had one
+    let log = std::fs::read_to_string(out.path().join("cattaneo.log")).unwrap();
+    let lines: Vec<&str> = log
+        .lines()
+        .filter(|l| l.starts_with("step '") && l.contains("converged in"))
+        .collect();
+    assert_eq!(lines.len(), record.lu_solves.len());
+    for (line, &lu) in lines.iter().zip(&record.lu_solves) {
+        assert_eq!(line.contains("sparse LU fallback"), lu > 0, "{line}");
+    }
+}

@@ -52,7 +52,10 @@ impl ElementColouring {
                     }
                 }
             }
-            let c = taken.iter().position(|&t| t != e + 1).unwrap_or(taken.len());
+            let c = taken
+                .iter()
+                .position(|&t| t != e + 1)
+                .unwrap_or(taken.len());
             if c == taken.len() {
                 taken.push(0);
                 colours.push(Vec::new());

@@ -149,8 +149,7 @@ impl<P: NonlinearProblem> Newton<'_, P> {
             // converged: prescribed values reached, a small residual, and a small
             // last correction; or a residual so far below its tolerance that the
             // next correction would be negligible (a linear problem converges in
-            // one solve); or a small residual whose next correction, predicted
-            // from the last one, is within the tolerance
+            // one solve)
             let small_residual = relative <= settings.residual_tolerance || norm(&r) == 0.0;
             let negligible = relative <= 1e-3 * settings.residual_tolerance;
             if at_target
@@ -158,8 +157,7 @@ impl<P: NonlinearProblem> Newton<'_, P> {
                 && small_residual
                 && (iteration == 0
                     || negligible
-                    || last_correction <= settings.displacement_tolerance
-                    || predicted_correction(&records) <= settings.displacement_tolerance)
+                    || last_correction <= settings.displacement_tolerance)
             {
                 return (Ok(evaluation), records);
             }
@@ -347,26 +345,6 @@ impl<P: NonlinearProblem> Newton<'_, P> {
         }
         best.1
     }
-}
-
-/// The relative correction the next Newton step would take, predicted
-/// from the last one: near the solution `δu_k ≈ −K⁻¹ r_k` with nearly the
-/// same `K` at consecutive iterates, so
-/// `‖δu_{k+1}‖ ≈ ‖δu_k‖ · ‖r_{k+1}‖ / ‖r_k‖`
-/// (the ratio of the last two residuals in `records`, the new one last).
-/// Infinite unless the last step was a full Newton step (step length 1,
-/// no prescribed jump left, no contact status changed), where the
-/// estimate holds. Accepting on it saves the solve whose only purpose is
-/// to show a correction below the tolerance (on the Ogden plate the
-/// skipped correction was 3.8e-10 against the predicted 3.3e-10).
-fn predicted_correction(records: &[IterationRecord]) -> f64 {
-    let [.., previous, last] = records else {
-        return f64::INFINITY;
-    };
-    if previous.step_length != 1.0 || last.switched != 0 || !(previous.residual > 0.0) {
-        return f64::INFINITY;
-    }
-    previous.correction * last.residual / previous.residual
 }
 
 fn zero_constrained(v: &mut [f64], constrained: &[bool]) {

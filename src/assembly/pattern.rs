@@ -11,6 +11,10 @@
 //! [`SparsityPattern::pivot_signs`] gives the expected LDLᵀ pivot signs.
 
 use faer::sparse::SymbolicSparseColMat;
+use std::sync::atomic::{AtomicU64, Ordering};
+
+/// Source of [`SparsityPattern::id`]: every pattern built gets the next one.
+static NEXT_PATTERN_ID: AtomicU64 = AtomicU64::new(0);
 
 /// Node-block sparsity pattern of a 3-dof-per-node matrix, with optional
 /// multiplier unknowns, plus the adjacency that locates an entry in
@@ -27,6 +31,8 @@ pub struct SparsityPattern {
     symbolic: SymbolicSparseColMat<usize>,
     /// `mirror[k]` is the index of entry (j, i) for entry `k` = (i, j).
     mirror: Vec<usize>,
+    /// Unique among the patterns of a process ([`SparsityPattern::id`]).
+    id: u64,
 }
 
 /// Where the entries coupling multiplier `k` and node `a` are stored.
@@ -122,7 +128,24 @@ impl SparsityPattern {
             multiplier_nodes,
             symbolic,
             mirror,
+            id: NEXT_PATTERN_ID.fetch_add(1, Ordering::Relaxed),
         }
+    }
+
+    /// An identifier no other pattern built in this process has: what is
+    /// derived from a pattern (the element scatter map, a cached constant
+    /// stiffness) is valid while the pattern it was built for has this id.
+    pub fn id(&self) -> u64 {
+        self.id
+    }
+
+    /// Number of stored rows of the three columns of node `b` (they hold
+    /// the same rows): the stride between the entries (row `3a + i`,
+    /// column `3b + j`) and (row `3a + i`, column `3b + j + 1`).
+    #[inline]
+    pub fn node_column_length(&self, b: usize) -> usize {
+        let cp = self.symbolic.col_ptr();
+        cp[3 * b + 1] - cp[3 * b]
     }
 
     /// Number of nodes (each with 3 displacement dofs, numbered first).

@@ -57,6 +57,12 @@ impl Material for LinearElastic {
         Kinematics::SmallStrain
     }
 
+    /// `σ = ℂ : ε` with `ε = sym(∇u)` and the linear `B`: `K = ∫ Bᵀ ℂ B dV`
+    /// does not depend on `u`.
+    fn constant_tangent(&self) -> bool {
+        true
+    }
+
     fn strain_energy(&self, f: &Mat3) -> f64 {
         self.params.hooke_energy(&Self::strain(f))
     }

@@ -63,6 +63,15 @@ pub trait Material: Send + Sync + std::fmt::Debug {
         Kinematics::FiniteStrain
     }
 
+    /// Whether the element stiffness of this material does not depend on the
+    /// displacement (a small-strain material with a constant `𝔻`): then
+    /// `K` can be assembled once and `f_int = K u` (the assembly's cache).
+    /// False for every finite-strain material (total Lagrangian: `B`
+    /// depends on `F`, and there is a geometric stiffness).
+    fn constant_tangent(&self) -> bool {
+        false
+    }
+
     /// Strain energy per unit reference volume, `W(F)`.
     fn strain_energy(&self, f: &Mat3) -> f64;
 

@@ -1022,6 +1022,9 @@ fn contacts_and_output(c: &mut Catalogue) {
         ("tangential penalty nan", "surface = \"contact\"\nobstacle = \"wall\"\nfriction_coefficient = 0.2\ntangential_penalty = nan", "contact[0].tangential_penalty = NaN is not a finite number"),
         ("negative penetration tolerance", "surface = \"contact\"\nobstacle = \"wall\"\ninitial_penetration_tolerance = -1.0", "initial_penetration_tolerance = -1 must be zero or positive"),
         ("infinite penetration tolerance", "surface = \"contact\"\nobstacle = \"wall\"\ninitial_penetration_tolerance = inf", "initial_penetration_tolerance = inf"),
+        ("exact stick without friction", "surface = \"contact\"\nobstacle = \"wall\"\nexact_stick = true", "exact_stick = true: it needs friction"),
+        ("exact stick with penalty", "surface = \"contact\"\nobstacle = \"wall\"\nfriction_coefficient = 0.2\nmethod = \"penalty\"\nexact_stick = true", "penalty method keeps the regularised law"),
+        ("exact stick between bodies", "surface = \"contact\"\nprimary = \"lid\"\nfriction_coefficient = 0.2\nexact_stick = true", "contact[0]"),
     ] {
         c.edit(&format!("contact: {name}"), contact, to, &[kw]);
     }

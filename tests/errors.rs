@@ -557,3 +557,44 @@ fn keys_of_another_shape_or_model_are_errors() {
         ],
     );
 }
+
+/// Errors found after parsing (a name that refers to nothing, a value out
+/// of range) name the case file's line of their key path, as parse errors
+/// do (issue 15 item 7): the line of `obstacle = "nowhere"`, and of a
+/// step's `max_increment`.
+#[test]
+fn errors_after_parsing_name_the_line_of_their_key() {
+    let dir = tempfile::tempdir().unwrap();
+    let base = common::stacked_blocks_case(
+        "model = \"linear_elastic\"\nyoungs_modulus = 50.0\npoisson_ratio = 0.3",
+        "",
+    );
+    std::fs::write(
+        dir.path().join("blocks.msh"),
+        common::msh22(&common::stacked_blocks_mesh()),
+    )
+    .unwrap();
+    let line_of =
+        |text: &str, needle: &str| text.lines().position(|l| l.starts_with(needle)).unwrap() + 1;
+    let text = base.replace("primary = \"lower.zmax\"", "obstacle = \"nowhere\"");
+    let line = line_of(&text, "obstacle = \"nowhere\"");
+    common::assert_case_error(
+        dir.path(),
+        &text,
+        &[&format!(
+            "line {line}: contact[0].obstacle: no [[obstacle]] named 'nowhere'"
+        )],
+    );
+    let text = base.replace(
+        "end_time = 1.0\n",
+        "end_time = 1.0\ninitial_increment = 0.5\nmin_increment = 0.25\nmax_increment = 0.1\n",
+    );
+    let line = line_of(&text, "max_increment = 0.1");
+    common::assert_case_error(
+        dir.path(),
+        &text,
+        &[&format!(
+            "line {line}: step[0].max_increment = 0.1 is smaller"
+        )],
+    );
+}

@@ -223,7 +223,7 @@ fn gentle_pull_leaves_every_node_stuck() {
     }
 }
 
-/// Exact stick (issue 18 item 2): with the Lagrangian methods the final
+/// Exact stick (issue 18 item 2, `exact_stick = true`): with the Lagrangian methods the final
 /// state of a monotonic press-then-shear with partial slip (the top dragged
 /// 0.01 in x after the press, in increments of 0.125: the trailing row of
 /// nodes sticks, the rest slips) changes by less than 1e-6 relative when
@@ -242,6 +242,7 @@ fn lagrangian_methods_do_not_depend_on_the_tangential_penalty() {
             tangential_penalty: eps,
             ..coulomb()
         });
+        pr.contacts[0].exact_stick_requested = true;
         let last = run(&mut pr);
         let (_, reports) = pr.residual_in(2.0, &last.x, &last.contact, None).unwrap();
         (pr, last, reports)

@@ -346,6 +346,7 @@ fn check(
         spec,
         mesh,
         notes: Vec::new(),
+        text: String::new(),
     };
     case.build_problem()
         .is_ok_and(|problem| case.output_requests(&problem).is_ok())

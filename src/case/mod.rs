@@ -4,6 +4,7 @@
 
 pub mod diagnosis;
 pub mod limits;
+mod lines;
 pub mod output;
 pub mod schema;
 mod tagged;
@@ -32,6 +33,8 @@ pub struct Case {
     /// Notes on reading the mesh for the user (e.g. the `.inp` keywords
     /// that were ignored).
     pub notes: Vec<String>,
+    /// The case file's text, for the lines that errors name.
+    pub text: String,
 }
 
 /// `{key} = {value} must be positive`, or, for an infinite or NaN value,
@@ -143,18 +146,17 @@ pub fn from_mesh(text: &str, base_dir: &Path, mesh: Mesh) -> Result<Case> {
         ));
     }
     // the schema's [mesh] table, after the text so that its line numbers hold
-    let spec = parse(
-        &path,
-        &format!(
-            "{text}\n[mesh]\nfile = \"{}\"\n",
-            crate::mesh::arrays::ARRAYS
-        ),
-    )?;
+    let text = format!(
+        "{text}\n[mesh]\nfile = \"{}\"\n",
+        crate::mesh::arrays::ARRAYS
+    );
+    let spec = parse(&path, &text)?;
     Ok(Case {
         path,
         spec,
         mesh: Arc::new(mesh),
         notes: Vec::new(),
+        text,
     })
 }
 
@@ -184,6 +186,7 @@ fn from_text(path: &Path, text: &str) -> Result<Case> {
         spec,
         mesh: Arc::new(mesh),
         notes,
+        text: text.to_string(),
     })
 }
 
@@ -255,8 +258,18 @@ impl Case {
         })
     }
 
+    /// An error in the case file, with the line of the key path the
+    /// message starts with (`contact[0].obstacle: …` → `line 31:
+    /// contact[0].obstacle: …`) when the text has it.
     fn err(&self, message: impl Into<String>) -> Error {
-        case_error(&self.path, message)
+        let message = message.into();
+        match lines::offset_of_path(&self.text, lines::leading_path(&message)) {
+            Some(offset) if !message.starts_with("line ") => case_error(
+                &self.path,
+                format!("line {}: {message}", line_of(&self.text, offset)),
+            ),
+            _ => case_error(&self.path, message),
+        }
     }
 
     fn amplitude(&self, key: &str, a: &Option<AmplitudeRef>) -> Result<Amplitude> {
@@ -882,7 +895,22 @@ impl Case {
                 },
                 friction_coefficient,
                 tangential_penalty: positive(c.tangential_penalty, "tangential_penalty")?,
+                exact_stick: c.exact_stick,
             };
+            if c.exact_stick {
+                let why = if friction_coefficient.is_none() {
+                    Some("it needs friction: give friction_coefficient")
+                } else if matches!(c.method, ContactMethod::Penalty) {
+                    Some("the penalty method keeps the regularised law: use method = \"rockafellar\", \"slack\" or \"uzawa\"")
+                } else if matches!(target, Target::Surface(_)) {
+                    Some("it is available against a rigid [[obstacle]] only, not between deformable bodies (whose friction stays regularised)")
+                } else {
+                    None
+                };
+                if let Some(why) = why {
+                    return Err(self.err(format!("{key}.exact_stick = true: {why}")));
+                }
+            }
             // the passes: one, or with `two_pass` also the primary surface's
             // nodes against the secondary surface's triangles, each pass on
             // half of every node's tributary area

@@ -316,6 +316,13 @@ pub struct ContactSpec {
     /// Tangential penalty `ε_T` of the friction law (traction per unit
     /// elastic slip); default: the normal penalty (`E/h_s` per node).
     pub tangential_penalty: Option<f64>,
+    /// Exact stick (default false: the regularised Coulomb law): the
+    /// tangential augmented Lagrangian of Simo and Laursen, so that sticking
+    /// nodes do not move at convergence and the answer does not depend on
+    /// `tangential_penalty`; with method rockafellar, slack or uzawa against
+    /// an obstacle.
+    #[serde(default)]
+    pub exact_stick: bool,
     /// Largest initial penetration accepted; default 1 % of the contact
     /// element size.
     pub initial_penetration_tolerance: Option<f64>,

@@ -74,6 +74,9 @@ pub struct ContactInterface {
     pub multiplier_offset: usize,
     /// A representative contact element size (for reports and tolerances).
     pub element_size: f64,
+    /// Friction with exact stick asked for (`[[contact]] exact_stick`);
+    /// it applies where [`exact_stick`](Self::exact_stick) says.
+    pub exact_stick_requested: bool,
 }
 
 /// What one node of an interface looks like in a state, for output.
@@ -151,7 +154,9 @@ impl ContactInterface {
     /// outer loop did not converge in 200 updates on `tests/deformable.rs`
     /// (a block dragged across facets, Uzawa).
     pub fn exact_stick(&self) -> bool {
-        self.law.augments_friction() && matches!(self.primary, Primary::Rigid(_))
+        self.exact_stick_requested
+            && self.law.augments_friction()
+            && matches!(self.primary, Primary::Rigid(_))
     }
 
     /// Whether friction makes the tangent nonsymmetric.

@@ -73,6 +73,9 @@ pub struct Enforcement {
     pub friction_coefficient: Option<f64>,
     /// Tangential penalty `ε_T`; `None`: automatic.
     pub tangential_penalty: Option<f64>,
+    /// Exact stick by the tangential augmented Lagrangian (the Lagrangian
+    /// methods against a rigid obstacle); `false`: the regularised law.
+    pub exact_stick: bool,
 }
 
 impl From<NormalLaw> for Enforcement {
@@ -92,6 +95,7 @@ impl From<NormalLaw> for Enforcement {
             primary_youngs_modulus: None,
             friction_coefficient: None,
             tangential_penalty: None,
+            exact_stick: false,
         }
     }
 }
@@ -201,6 +205,7 @@ impl ContactInterface {
             tangential_scale: Vec::new(),
             node_scale: Vec::new(),
             multiplier_offset: 0,
+            exact_stick_requested: enforcement.exact_stick,
         };
         enforcement.apply(&mut c);
         if let Primary::Surface(p) = &mut c.primary {

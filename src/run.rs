@@ -38,7 +38,7 @@ use crate::output::log::LogWriter;
 use crate::output::observer::Iteration;
 use crate::output::observer::{Cut, Observers, StepObserver};
 use crate::output::summary::{IncrementSummary, PhaseTimes, Summary};
-use crate::output::writer::{Restored, ResultWriter};
+use crate::output::writer::{Restored, ResultWriter, SeriesContent};
 use crate::problem::condensed::{self, Path as SolvePath};
 use crate::problem::{ContactState, Problem};
 use crate::solve::backend::try_linear_solver;
@@ -371,12 +371,15 @@ impl Simulation {
         let Some(dir) = &options.output else {
             return Ok((None, None));
         };
-        let (nodal, cells) = (self.nodal_fields.clone(), self.cell_fields.clone());
-        let histories = self.requests.histories.clone();
-        let profiles = self.requests.profiles.clone();
+        let content = SeriesContent {
+            nodal: self.nodal_fields.clone(),
+            cells: self.cell_fields.clone(),
+            histories: self.requests.histories.clone(),
+            profiles: self.requests.profiles.clone(),
+        };
         let (writer, log) = match restart {
             None => (
-                ResultWriter::new(dir, &self.name, nodal, cells, histories, profiles)?,
+                ResultWriter::new(dir, &self.name, content)?,
                 LogWriter::new(dir, &self.name)?,
             ),
             Some(r) => {
@@ -386,9 +389,7 @@ impl Simulation {
                     profiles: r.profiles.clone(),
                 };
                 (
-                    ResultWriter::resume(
-                        dir, &self.name, nodal, cells, histories, profiles, restored,
-                    )?,
+                    ResultWriter::resume(dir, &self.name, content, restored)?,
                     LogWriter::append(dir, &self.name)?,
                 )
             }

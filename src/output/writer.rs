@@ -45,6 +45,15 @@ pub struct Restored<'a> {
     pub profiles: Vec<Vec<super::profile::StepProfile>>,
 }
 
+/// What a series holds: the VTU files' nodal and cell fields, the
+/// histories and the profiles.
+pub struct SeriesContent {
+    pub nodal: Vec<NodalField>,
+    pub cells: Vec<CellField>,
+    pub histories: Vec<History>,
+    pub profiles: Vec<Profile>,
+}
+
 impl ResultWriter {
     /// A writer into `dir` (created if needed) for the series `name`: the
     /// files of an earlier run with that name (its `NAME.manifest`) and
@@ -52,22 +61,12 @@ impl ResultWriter {
     /// first, so the folder never lists files that are gone
     /// ([`Manifest::take_over`]); then an empty `.pvd` is written. The
     /// manifest also claims `NAME.log`, which [`LogWriter`](super::LogWriter)
-    /// writes. `nodal` and `cells` choose the fields of the VTU files
-    /// (contact fields are left out of a problem without contact).
-    pub fn new(
-        dir: &Path,
-        name: &str,
-        nodal: Vec<NodalField>,
-        cells: Vec<CellField>,
-        histories: Vec<History>,
-        profiles: Vec<Profile>,
-    ) -> Result<Self> {
+    /// writes. `content.nodal` and `content.cells` choose the fields of the
+    /// VTU files (contact fields are left out of a problem without contact).
+    pub fn new(dir: &Path, name: &str, content: SeriesContent) -> Result<Self> {
         std::fs::create_dir_all(dir).map_err(|e| Error::io("create output folder", dir, e))?;
         let manifest = Manifest::take_over(dir, name)?;
-        let files = Vec::new();
-        Self::open(
-            dir, name, manifest, nodal, cells, histories, profiles, files,
-        )
+        Self::open(dir, name, manifest, content, Vec::new())
     }
 
     /// A writer that goes on with the series `name` in `dir` after a
@@ -76,14 +75,10 @@ impl ResultWriter {
     /// and profiles start from their restored samples and tables (matched
     /// to `histories` and `profiles` by position; the caller checks the
     /// counts).
-    #[allow(clippy::too_many_arguments)] // new's arguments and what is restored
     pub fn resume(
         dir: &Path,
         name: &str,
-        nodal: Vec<NodalField>,
-        cells: Vec<CellField>,
-        mut histories: Vec<History>,
-        mut profiles: Vec<Profile>,
+        mut content: SeriesContent,
         restored: Restored,
     ) -> Result<Self> {
         let files: Vec<(f64, String)> = restored
@@ -95,31 +90,31 @@ impl ResultWriter {
             .collect();
         let keep: BTreeSet<String> = files.iter().map(|(_, f)| f.clone()).collect();
         let manifest = Manifest::resume(dir, name, &keep)?;
-        for (h, samples) in histories.iter_mut().zip(restored.histories) {
+        for (h, samples) in content.histories.iter_mut().zip(restored.histories) {
             h.samples = samples;
         }
-        for (p, steps) in profiles.iter_mut().zip(restored.profiles) {
+        for (p, steps) in content.profiles.iter_mut().zip(restored.profiles) {
             p.steps = steps;
         }
-        Self::open(
-            dir, name, manifest, nodal, cells, histories, profiles, files,
-        )
+        Self::open(dir, name, manifest, content, files)
     }
 
     /// The writer of [`new`](Self::new) and [`resume`](Self::resume): it
     /// claims the log and the `.pvd`, and writes the `.pvd` listing `files`
     /// (time, VTU file).
-    #[allow(clippy::too_many_arguments)] // the writer's parts, moved in
     fn open(
         dir: &Path,
         name: &str,
         mut manifest: Manifest,
-        nodal: Vec<NodalField>,
-        cells: Vec<CellField>,
-        histories: Vec<History>,
-        profiles: Vec<Profile>,
+        content: SeriesContent,
         files: Vec<(f64, String)>,
     ) -> Result<Self> {
+        let SeriesContent {
+            nodal,
+            cells,
+            histories,
+            profiles,
+        } = content;
         manifest.claim(&format!("{name}.log"))?;
         let pvd_file = format!("{name}.pvd");
         manifest.claim(&pvd_file)?;

@@ -52,23 +52,30 @@ mod ffi {
             err: *mut c_char,
             err_len: usize,
         ) -> c_int;
-        #[allow(clippy::too_many_arguments)] // mirrors the C function
         pub fn sg_petsc_solve(
             handle: *mut c_void,
-            n: c_int,
-            row_start: *const c_int,
-            columns: *const c_int,
-            values: *const f64,
-            same_pattern: c_int,
-            block_size: c_int,
-            coordinates: *const f64,
-            b: *const f64,
-            x: *mut f64,
-            iterations: *mut c_int,
+            system: *const super::SystemArguments,
             err: *mut c_char,
             err_len: usize,
         ) -> c_int;
     }
+}
+
+/// One linear system for the C layer (`SystemArguments` in `shim.c`, the
+/// same layout): CSR arrays of `n` rows, the right-hand side, the solution
+/// and the Krylov iterations written back.
+#[repr(C)]
+struct SystemArguments {
+    n: c_int,
+    row_start: *const c_int,
+    columns: *const c_int,
+    values: *const f64,
+    same_pattern: c_int,
+    block_size: c_int,
+    coordinates: *const f64,
+    b: *const f64,
+    x: *mut f64,
+    iterations: *mut c_int,
 }
 
 /// Serialises every call into PETSc.
@@ -261,26 +268,20 @@ impl LinearSolver for PetscSolver {
         let mut iterations: c_int = 0;
         let mut err = [0 as c_char; MESSAGE];
         let _lock = PETSC.lock().unwrap_or_else(|e| e.into_inner());
-        // SAFETY: arrays of the lengths PETSc reads (n + 1 row starts, nnz
-        // columns and values, n right-hand side and solution entries, 3 per
-        // node coordinates when given), all alive for the call
-        let code = unsafe {
-            ffi::sg_petsc_solve(
-                self.handle,
-                n as c_int,
-                rows.row_start.as_ptr(),
-                rows.columns.as_ptr(),
-                self.values.as_ptr(),
-                same_pattern as c_int,
-                block_size,
-                coordinates,
-                rhs.as_ptr(),
-                x.as_mut_ptr(),
-                &mut iterations,
-                err.as_mut_ptr(),
-                err.len(),
-            )
+        let system = SystemArguments {
+            n: n as c_int,
+            row_start: rows.row_start.as_ptr(),
+            columns: rows.columns.as_ptr(),
+            values: self.values.as_ptr(),
+            same_pattern: same_pattern as c_int,
+            block_size,
+            coordinates,
+            b: rhs.as_ptr(),
+            x: x.as_mut_ptr(),
+            iterations: &mut iterations,
         };
+        let code =
+            unsafe { ffi::sg_petsc_solve(self.handle, &system, err.as_mut_ptr(), err.len()) };
         self.solves += 1;
         self.iterations += iterations.max(0) as usize;
         self.total += start.elapsed();

@@ -126,17 +126,37 @@ int sg_petsc_describe(void *handle, char *text, size_t text_len, char *err,
   return 0;
 }
 
+/* One linear system, as `sg_petsc_solve` takes it (the same layout as
+ * `SystemArguments` in mod.rs). */
+typedef struct {
+  int n;
+  const int *row_start;
+  const int *columns;
+  const double *values;
+  int same_pattern;
+  int block_size;
+  const double *coordinates;
+  const double *b;
+  double *x;
+  int *iterations;
+} SystemArguments;
+
 /* Solve K x = b with K given by CSR arrays (`row_start` of length n + 1,
  * sorted `columns`, `values`). `same_pattern` says the arrays have the
  * pattern of the previous call. `block_size` 3 when the unknowns are
  * nodal displacements only (then `coordinates`, 3 per node, if not NULL,
  * give GAMG the rigid-body near-null space). Returns the Krylov
  * iterations in `iterations`. */
-int sg_petsc_solve(void *handle, int n, const int *row_start, const int *columns,
-                   const double *values, int same_pattern, int block_size,
-                   const double *coordinates, const double *b, double *x,
-                   int *iterations, char *err, size_t err_len) {
+int sg_petsc_solve(void *handle, const SystemArguments *system, char *err,
+                   size_t err_len) {
   Solver *s = handle;
+  int n = system->n, same_pattern = system->same_pattern,
+      block_size = system->block_size;
+  const int *row_start = system->row_start, *columns = system->columns;
+  const double *values = system->values, *coordinates = system->coordinates,
+               *b = system->b;
+  double *x = system->x;
+  int *iterations = system->iterations;
   PetscInt nnz = row_start[n];
   if (!(same_pattern && s->matrix && s->n == n && s->nnz == nnz)) {
     if (s->matrix) MatDestroy(&s->matrix);

@@ -60,50 +60,7 @@ fn stacked_blocks(scale: f64) -> Mesh {
 
 /// The stacked blocks' case: the two materials' keys, the pressure.
 fn stacked_case(lower: &str, upper: &str, pressure: f64) -> String {
-    format!(
-        r#"
-[[material]]
-region = "lower"
-{lower}
-
-[[material]]
-region = "upper"
-{upper}
-
-[[displacement]]
-surface = "lower.zmin"
-z = 0.0
-
-[[displacement]]
-surface = "lower.xmin"
-x = 0.0
-
-[[displacement]]
-surface = "lower.ymin"
-y = 0.0
-
-[[displacement]]
-surface = "upper.xmin"
-x = 0.0
-
-[[displacement]]
-surface = "upper.ymin"
-y = 0.0
-
-[[pressure]]
-surface = "upper.zmax"
-value = {pressure:e}
-
-[[contact]]
-name = "interface"
-surface = "upper.zmin"
-primary = "lower.zmax"
-
-[[step]]
-name = "press"
-end_time = 1.0
-"#
-    )
+    common::stacked_blocks_tables(lower, upper, pressure, "")
 }
 
 /// Equilibrium of the stacked blocks at the end: the interface carries

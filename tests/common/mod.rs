@@ -451,27 +451,21 @@ pub fn stacked_blocks_mesh() -> Mesh {
     two_bodies(lower, "lower", upper, "upper", [0.0, 0.0, 0.5])
 }
 
-/// The stacked blocks as a case file (the lower block linear elastic,
-/// E = 100, ν = 0.3; the upper one `upper_material` (its `model` and
-/// parameters); symmetry planes x = 0 and y = 0, the lower bottom held in
-/// z, pressure 2 on the upper top; one increment, residual tolerance
-/// 1e-10); `contact` is the `[[contact]]` table's keys after `name`,
-/// `surface` and `primary`.
-pub fn stacked_blocks_case(upper_material: &str, contact: &str) -> String {
+/// The stacked blocks' tables after `[mesh]`: materials (`lower` and
+/// `upper`: each a `model` and its parameters), symmetry planes x = 0 and
+/// y = 0, the lower bottom held in z, `pressure` on the upper top, the
+/// `[[contact]]` of the upper bottom on the lower top with the keys
+/// `contact` after `name`, `surface` and `primary`, and one step.
+pub fn stacked_blocks_tables(lower: &str, upper: &str, pressure: f64, contact: &str) -> String {
     format!(
         r#"
-[mesh]
-file = "blocks.msh"
-
 [[material]]
 region = "lower"
-model = "linear_elastic"
-youngs_modulus = 100.0
-poisson_ratio = 0.3
+{lower}
 
 [[material]]
 region = "upper"
-{upper_material}
+{upper}
 
 [[displacement]]
 surface = "lower.zmin"
@@ -495,7 +489,7 @@ y = 0.0
 
 [[pressure]]
 surface = "upper.zmax"
-value = 2.0
+value = {pressure:?}
 
 [[contact]]
 name = "interface"
@@ -506,10 +500,21 @@ primary = "lower.zmax"
 [[step]]
 name = "press"
 end_time = 1.0
-
-[solver]
-residual_tolerance = 1e-10
 "#
+    )
+}
+
+/// The stacked blocks as a case file (the lower block linear elastic,
+/// E = 100, ν = 0.3; the upper one `upper_material` (its `model` and
+/// parameters); symmetry planes x = 0 and y = 0, the lower bottom held in
+/// z, pressure 2 on the upper top; one increment, residual tolerance
+/// 1e-10); `contact` is the `[[contact]]` table's keys after `name`,
+/// `surface` and `primary`.
+pub fn stacked_blocks_case(upper_material: &str, contact: &str) -> String {
+    let lower = "model = \"linear_elastic\"\nyoungs_modulus = 100.0\npoisson_ratio = 0.3";
+    format!(
+        "\n[mesh]\nfile = \"blocks.msh\"\n{}\n[solver]\nresidual_tolerance = 1e-10\n",
+        stacked_blocks_tables(lower, upper_material, 2.0, contact)
     )
 }
 

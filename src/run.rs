@@ -28,30 +28,28 @@
 //! # Ok::<(), signorini::Error>(())
 //! ```
 
+mod recorder;
+mod restart;
+
 use crate::case::{self, output::OutputRequests, Case};
-use crate::contact::interface::NodeReport;
-use crate::output::checkpoint::{self, CaseKey, Fnv1a};
-use crate::output::contact_fields::ContactFields;
+use crate::output::checkpoint::CaseKey;
 use crate::output::describe::describe_model;
-use crate::output::fields::{CellField, ConvergedIncrement, NodalField};
+use crate::output::fields::{CellField, NodalField};
 use crate::output::log::LogWriter;
-use crate::output::observer::Iteration;
-use crate::output::observer::{Cut, Observers, StepObserver};
-use crate::output::summary::{IncrementSummary, PhaseTimes, Summary};
+use crate::output::observer::{Observers, StepObserver};
+use crate::output::summary::Summary;
 use crate::output::writer::{Restored, ResultWriter, SeriesContent};
 use crate::problem::condensed::{self, Path as SolvePath};
 use crate::problem::{ContactState, Problem};
 use crate::solve::backend::try_linear_solver;
-use crate::solve::failure::IncrementFailure;
 use crate::solve::linear_solver::SolverStatistics;
-use crate::solve::newton::IterationRecord;
-use crate::solve::nonlinear::Evaluation;
-use crate::solve::stepping::{self, resume_steps, IncrementRecord, Resume, Stepping};
+use crate::solve::stepping::{resume_steps, Resume};
 use crate::{Error, Result};
+use recorder::{update_totals, Recorder};
+use restart::Restart;
 use std::path::{Path, PathBuf};
-use std::sync::atomic::{AtomicBool, Ordering};
+use std::sync::atomic::AtomicBool;
 use std::sync::Arc;
-use std::time::Instant;
 
 /// How a simulation runs.
 #[derive(Clone, Debug, Default)]
@@ -120,17 +118,6 @@ pub struct Simulation {
     case_key: CaseKey,
 }
 
-/// What a restart resumes from: the checkpoint's state and output.
-struct Restart {
-    resume: Resume<ContactState>,
-    summary: Summary,
-    histories: Vec<Vec<(f64, Vec<f64>)>>,
-    profiles: Vec<Vec<crate::output::profile::StepProfile>>,
-    /// The increments in the checkpoint, and the folder it was read from.
-    increments: usize,
-    dir: PathBuf,
-}
-
 impl Simulation {
     /// From a case: builds the problem and validates the output requests.
     pub fn from_case(case: &Case) -> Result<Self> {
@@ -142,17 +129,7 @@ impl Simulation {
             path: case.path.clone(),
             message,
         })?;
-        let case_key = CaseKey {
-            nodes: problem.model.mesh.num_nodes(),
-            dofs: problem.model.num_dofs(),
-            unknowns: problem.num_unknowns(),
-            physics: physics_hash(case),
-            steps: problem
-                .steps
-                .iter()
-                .map(|s| (s.name.clone(), s.end_time))
-                .collect(),
-        };
+        let case_key = restart::case_key(case, &problem);
         Ok(Simulation {
             case_label: case.path.display().to_string(),
             name: case.output_name(),
@@ -218,7 +195,6 @@ impl Simulation {
         options: &RunOptions,
         observer: &mut (dyn StepObserver + Send),
     ) -> Result<RunOutcome> {
-        let start = Instant::now();
         let restart = match &options.restart {
             Some(dir) => Some(self.read_restart(dir, options.output.as_deref())?),
             None => None,
@@ -232,69 +208,17 @@ impl Simulation {
             observers.0.insert(0, l);
         }
         self.describe_to(&mut observers);
-        let mut recorder = Recorder {
-            summary: Summary::start(&self.case_label, &self.problem),
-            observers,
-            name: &self.name,
-            every: self.every,
-            cancel: options.cancel.clone(),
-            last: start,
-            start,
-            contact: ContactState::default(),
-            stepping: Stepping::default(),
-            statistics: SolverStatistics::default(),
-            earlier: None,
-        };
+        let mut recorder = Recorder::new(&self.case_label, &self.problem, observers, &self.name);
+        recorder.every = self.every;
+        recorder.cancel = options.cancel.clone();
         let resume = restart.map(|r| recorder.restore(r));
-        recorder.summary.strategy = self.strategy.path.name().into();
-        recorder.summary.strategy_reason = self.strategy.reason.clone();
-        recorder.observers.on_message(&format!(
-            "strategy: {} ({})",
-            self.strategy.path.name(),
-            self.strategy.reason
-        ));
-        recorder.observers.on_start(&recorder.summary)?;
+        self.announce_strategy(&mut recorder)?;
         let output = options.output.clone().unwrap_or_default();
         let (result, statistics) = match self.strategy.path {
-            SolvePath::Monolithic => {
-                let ordering = fill_reducing_ordering(&self.problem)?;
-                let coordinates = self
-                    .problem
-                    .model
-                    .mesh
-                    .nodes
-                    .iter()
-                    .flatten()
-                    .copied()
-                    .collect();
-                let mut solver =
-                    try_linear_solver(&self.problem.settings, ordering, 0, Some(coordinates))?;
-                let about_solver = solver.description();
-                if !about_solver.is_empty() {
-                    recorder
-                        .observers
-                        .on_message(&format!("linear solver: {about_solver}"));
-                }
-                let result = resume_steps(
-                    &mut self.problem,
-                    &mut *solver,
-                    &mut recorder,
-                    output.clone(),
-                    resume,
-                );
-                (result, solver.statistics())
-            }
+            SolvePath::Monolithic => self.run_monolithic(&mut recorder, resume, &output)?,
             SolvePath::Condensed => {
                 if resume.is_some() {
-                    return Err(Error::Restart {
-                        path: options.restart.clone().unwrap_or_default(),
-                        message: format!(
-                            "a restart resumes Newton's path, and this case runs on the \
-                             condensed contact path ({}); set [solver] strategy = \
-                             \"monolithic\" to restart it",
-                            self.strategy.reason
-                        ),
-                    });
+                    return Err(self.condensed_restart_refused(options));
                 }
                 let (result, statistics, steps) =
                     condensed::run_steps(&mut self.problem, &mut recorder, output.clone());
@@ -313,52 +237,58 @@ impl Simulation {
         recorder.finish(result, output)
     }
 
-    /// The checkpoint in `dir` (`NAME.checkpoint`), checked against this
-    /// case, with the output it restores; `output` must be `dir` or none.
-    fn read_restart(&self, dir: &Path, output: Option<&Path>) -> Result<Restart> {
-        if let Some(out) = output.filter(|out| !same_folder(out, dir)) {
-            return Err(Error::Restart {
-                path: dir.to_path_buf(),
-                message: format!(
-                    "a restart goes on writing into the folder it resumes from, not into '{}'; \
-                     leave out --output (or give the same folder), or copy the folder first \
-                     to keep the interrupted run's files",
-                    out.display()
-                ),
-            });
+    /// The path (monolithic or condensed) and why, in the summary and the
+    /// log; the observers are told the run starts.
+    fn announce_strategy(&self, recorder: &mut Recorder) -> Result<()> {
+        let (path, reason) = (self.strategy.path.name(), &self.strategy.reason);
+        recorder.summary.strategy = path.into();
+        recorder.summary.strategy_reason = reason.clone();
+        recorder
+            .observers
+            .on_message(&format!("strategy: {path} ({reason})"));
+        recorder.observers.on_start(&recorder.summary)
+    }
+
+    /// Newton's load steps on the whole system with the `[solver] linear`
+    /// backend (resumed from a checkpoint's state when given); the result
+    /// and the linear solver's figures.
+    fn run_monolithic(
+        &mut self,
+        recorder: &mut Recorder,
+        resume: Option<Resume<ContactState>>,
+        output: &Path,
+    ) -> Result<(Result<Vec<f64>>, SolverStatistics)> {
+        let ordering = fill_reducing_ordering(&self.problem)?;
+        let mesh = &self.problem.model.mesh;
+        let coordinates = mesh.nodes.iter().flatten().copied().collect();
+        let mut solver = try_linear_solver(&self.problem.settings, ordering, 0, Some(coordinates))?;
+        let about_solver = solver.description();
+        if !about_solver.is_empty() {
+            recorder
+                .observers
+                .on_message(&format!("linear solver: {about_solver}"));
         }
-        let c = checkpoint::read(dir, &self.name)?;
-        let path = checkpoint::path(dir, &self.name);
-        c.check_case(&self.case_key, &path)?;
-        let fail = |message: String| Error::Restart {
-            path: path.clone(),
-            message,
-        };
-        let (histories, profiles) = (&self.requests.histories, &self.requests.profiles);
-        if c.histories.len() != histories.len() || c.profiles.len() != profiles.len() {
-            return Err(fail(format!(
-                "the checkpoint has {} histories and {} profiles, the case asks for {} and {}; \
-                 a restart needs the same [[output.history]] and [[output.profile]] tables",
-                c.histories.len(),
-                c.profiles.len(),
-                histories.len(),
-                profiles.len()
-            )));
+        let result = resume_steps(
+            &mut self.problem,
+            &mut *solver,
+            recorder,
+            output.to_path_buf(),
+            resume,
+        );
+        Ok((result, solver.statistics()))
+    }
+
+    /// Why a case on the condensed path cannot restart.
+    fn condensed_restart_refused(&self, options: &RunOptions) -> Error {
+        Error::Restart {
+            path: options.restart.clone().unwrap_or_default(),
+            message: format!(
+                "a restart resumes Newton's path, and this case runs on the \
+                 condensed contact path ({}); set [solver] strategy = \
+                 \"monolithic\" to restart it",
+                self.strategy.reason
+            ),
         }
-        let summary: Summary = serde_json::from_str(&c.summary)
-            .map_err(|e| fail(format!("corrupted: its summary does not read back ({e})")))?;
-        Ok(Restart {
-            increments: summary.increments.len(),
-            summary,
-            histories: c.histories.into_iter().map(|h| h.into_owned()).collect(),
-            profiles: c.profiles.into_iter().map(|p| p.into_owned()).collect(),
-            resume: Resume {
-                unknowns: c.unknowns.into_owned(),
-                state: c.contact.into_owned(),
-                stepping: c.stepping.into_owned(),
-            },
-            dir: dir.to_path_buf(),
-        })
     }
 
     /// The result files and the log, when the run has an output folder
@@ -435,51 +365,6 @@ impl Simulation {
     }
 }
 
-/// Whether `a` and `b` name the same folder (compared as given when
-/// either does not exist).
-fn same_folder(a: &Path, b: &Path) -> bool {
-    match (a.canonicalize(), b.canonicalize()) {
-        (Ok(a), Ok(b)) => a == b,
-        _ => a == b,
-    }
-}
-
-/// The FNV-1a hash of a case's physics ([`CaseKey::physics`]): the mesh's
-/// coordinates (their bits), elements and sets, and the debug form of the
-/// case's materials, loads, amplitudes, obstacles and contacts.
-fn physics_hash(case: &Case) -> u64 {
-    use std::fmt::Write;
-    use std::hash::Hasher;
-    let mut h = Fnv1a::default();
-    let mesh = &case.mesh;
-    for x in mesh.nodes.iter().flatten() {
-        h.write(&x.to_bits().to_le_bytes());
-    }
-    for e in &mesh.elements {
-        let _ = write!(h, "{:?}", e.kind);
-        for &n in &e.nodes {
-            h.write(&(n as u64).to_le_bytes());
-        }
-    }
-    let s = &case.spec;
-    let _ = write!(
-        h,
-        "{:?}{:?}{:?}{:?}{:?}{:?}{:?}{:?}{:?}{:?}{:?}",
-        mesh.regions,
-        mesh.surfaces,
-        mesh.node_sets,
-        s.material,
-        s.displacement,
-        s.pressure,
-        s.body_force,
-        s.nodal_force,
-        s.obstacle,
-        s.contact,
-        s.amplitudes
-    );
-    h.finish()
-}
-
 /// The fill-reducing ordering of `problem`'s pattern
 /// ([`crate::solve::ordering::fill_reducing_ordering`]).
 pub fn fill_reducing_ordering(problem: &Problem) -> Result<crate::solve::linear::Ordering> {
@@ -509,240 +394,4 @@ pub fn run_observed(
         ..options.clone()
     };
     simulation.run(&options, observer)
-}
-
-/// Turns the stepper's converged increments into the in-memory results that
-/// observers read, and keeps the run's summary.
-struct Recorder<'a> {
-    summary: Summary,
-    observers: Observers<'a>,
-    name: &'a str,
-    every: usize,
-    cancel: Option<Arc<AtomicBool>>,
-    last: Instant,
-    start: Instant,
-    contact: ContactState,
-    /// The stepper's state after the last converged increment, and the
-    /// linear solver's figures then.
-    stepping: Stepping,
-    statistics: SolverStatistics,
-    /// After a restart: the summary of the checkpoint, whose run totals
-    /// the resumed run's add to.
-    earlier: Option<Summary>,
-}
-
-impl Recorder<'_> {
-    /// Take over a restart's summary and state (the run's clock counts the
-    /// earlier run's time too); what the stepper resumes from.
-    fn restore(&mut self, restart: Restart) -> Resume<ContactState> {
-        let Restart {
-            resume,
-            mut summary,
-            increments,
-            dir,
-            ..
-        } = restart;
-        let stepping = &resume.stepping;
-        self.observers.on_message(&format!(
-            "restart: resuming from the checkpoint in {} after increment {increments} \
-             (step '{}', t = {})",
-            dir.display(),
-            summary
-                .increments
-                .last()
-                .map_or("", |i| i.step_name.as_str()),
-            stepping.time
-        ));
-        summary.status = "running".into();
-        summary.error = None;
-        summary.threads = rayon::current_num_threads();
-        self.earlier = Some(summary.clone());
-        self.summary = summary;
-        self.contact.clone_from(&resume.state);
-        self.stepping.clone_from(&resume.stepping);
-        resume
-    }
-
-    /// The end of a run: its status in the summary, the observers told,
-    /// the outcome (or the error that ended the run, every converged
-    /// increment kept).
-    fn finish(mut self, result: Result<Vec<f64>>, output: PathBuf) -> Result<RunOutcome> {
-        match result {
-            Ok(displacement) => {
-                self.summary.status = "completed".into();
-                self.observers.on_finish(&self.summary)?;
-                Ok(RunOutcome {
-                    output_dir: output,
-                    summary: self.summary,
-                    displacement,
-                    contact: self.contact,
-                })
-            }
-            Err(e) => {
-                self.summary.status = match e {
-                    Error::Interrupted { .. } => "interrupted",
-                    _ => "failed",
-                }
-                .into();
-                self.summary.error = Some(e.to_string());
-                // keep what converged; the original error matters more than a
-                // failure to write the failure report
-                let _ = self.observers.on_finish(&self.summary);
-                Err(e)
-            }
-        }
-    }
-}
-
-/// The run's totals in the summary so far ([`record_totals`]), with those
-/// of the run a restart resumed (`earlier`) added: in `summary.json` after
-/// every increment, and so in the checkpoint.
-fn update_totals(
-    summary: &mut Summary,
-    problem: &Problem,
-    statistics: &SolverStatistics,
-    start: Instant,
-    earlier: Option<&Summary>,
-) {
-    record_totals(summary, problem, statistics, start);
-    if let Some(earlier) = earlier {
-        add_earlier_totals(summary, earlier);
-    }
-}
-
-/// After a restart: the run totals of the earlier run (`earlier`, the
-/// checkpoint's summary) added to the resumed run's (wall time included).
-fn add_earlier_totals(summary: &mut Summary, earlier: &Summary) {
-    summary.symbolic_analyses += earlier.symbolic_analyses;
-    let (t, e) = (&mut summary.phase_times, &earlier.phase_times);
-    t.assembly += e.assembly;
-    t.contact += e.contact;
-    t.symbolic += e.symbolic;
-    t.factorisation += e.factorisation;
-    t.solve += e.solve;
-    summary.krylov_solves += earlier.krylov_solves;
-    summary.krylov_iterations += earlier.krylov_iterations;
-    summary.lu_solves += earlier.lu_solves;
-    summary.factorisations += earlier.factorisations;
-    summary.single_factorisations += earlier.single_factorisations;
-    summary.refinement_steps += earlier.refinement_steps;
-    summary.mixed_precision_fallbacks += earlier.mixed_precision_fallbacks;
-    summary.wall_time += earlier.wall_time;
-}
-
-/// The run's totals in the summary: where the time went and what the
-/// linear solver did.
-fn record_totals(
-    summary: &mut Summary,
-    problem: &Problem,
-    statistics: &SolverStatistics,
-    start: Instant,
-) {
-    summary.symbolic_analyses = statistics.analyses;
-    summary.phase_times = PhaseTimes {
-        assembly: problem.timings.assembly(),
-        contact: problem.timings.contact(),
-        symbolic: statistics.symbolic.as_secs_f64(),
-        factorisation: statistics.factorisation.as_secs_f64(),
-        solve: statistics.solve.as_secs_f64(),
-    };
-    summary.factor_nnz = statistics.factor_nnz;
-    summary.krylov_solves = statistics.krylov_solves;
-    summary.krylov_iterations = statistics.krylov_iterations;
-    summary.lu_solves = statistics.lu_solves;
-    summary.factorisations = statistics.factorisations + statistics.single_factorisations;
-    summary.single_factorisations = statistics.single_factorisations;
-    summary.refinement_steps = statistics.refinement_steps;
-    summary.mixed_precision_fallbacks = statistics.mixed_precision_fallbacks;
-    summary.wall_time = start.elapsed().as_secs_f64();
-}
-
-impl stepping::StepObserver<Problem> for Recorder<'_> {
-    fn on_converged(
-        &mut self,
-        problem: &Problem,
-        record: &IncrementRecord,
-        u: &[f64],
-        evaluation: &Evaluation<Vec<Vec<NodeReport>>>,
-        contact: &ContactState,
-    ) -> Result<()> {
-        let previous = std::mem::replace(&mut self.contact, contact.clone());
-        let increment = ConvergedIncrement {
-            problem,
-            record,
-            unknowns: u,
-            residual: &evaluation.residual,
-            contact,
-            stepping: &self.stepping,
-            contact_fields: ContactFields::new(
-                problem,
-                u,
-                contact,
-                &previous,
-                evaluation.reports.clone(),
-            ),
-        };
-        let now = Instant::now();
-        // deformable contact may have rebuilt the pattern with new pairs
-        self.summary.matrix_nnz = problem.model.pattern.nnz();
-        let index = self.summary.increments.len() + 1;
-        let end_of_step = record.time == problem.steps[record.step].end_time;
-        let file = if index.is_multiple_of(self.every) || end_of_step {
-            format!("{}_{index:04}.vtu", self.name)
-        } else {
-            String::new()
-        };
-        self.summary.increments.push(IncrementSummary {
-            step: record.step,
-            step_name: record.step_name.clone(),
-            time: record.time,
-            increment: record.increment,
-            iterations: record.iterations,
-            residuals: record.newton.iter().map(|r| r.residual).collect(),
-            corrections: record.newton.iter().map(|r| r.correction).collect(),
-            cuts: record.cuts,
-            wall_time: (now - self.last).as_secs_f64(),
-            switched: record.newton.iter().map(|r| r.switched).collect(),
-            contact: increment.contact_fields.summaries.clone(),
-            file,
-            reaction_forces: increment.reaction_forces().into_iter().collect(),
-        });
-        self.summary.update_step_totals();
-        self.last = now;
-        // the totals so far (fields apart: `increment` borrows `stepping`)
-        let earlier = self.earlier.as_ref();
-        update_totals(
-            &mut self.summary,
-            problem,
-            &self.statistics,
-            self.start,
-            earlier,
-        );
-        self.observers.on_increment(&increment, &self.summary)
-    }
-
-    fn on_stepping(&mut self, stepping: &Stepping, statistics: &SolverStatistics) {
-        self.stepping.clone_from(stepping);
-        self.statistics = *statistics;
-    }
-
-    fn cancelled(&mut self) -> bool {
-        self.cancel
-            .as_ref()
-            .is_some_and(|c| c.load(Ordering::Relaxed))
-    }
-
-    fn on_iteration(&mut self, step: &str, time: f64, record: &IterationRecord) {
-        self.observers
-            .on_iteration(&Iteration { step, time, record });
-    }
-
-    fn on_cut(&mut self, step: &str, time: f64, increment: f64, reason: &IncrementFailure) {
-        self.observers.on_cut(&Cut {
-            step,
-            time,
-            increment,
-            reason,
-        });
-    }
 }

@@ -86,9 +86,34 @@ pub fn shorten(value: &str) -> String {
     }
 }
 
+/// `x` as a message echoes it: the shortest text that reads back to the
+/// same `f64`, plainly for magnitudes from 1e-4 to 1e15 (`1000`, `0.3`)
+/// and in exponent form beyond (`1e300`, `2.5e-9`), so that no value
+/// prints as hundreds of digits.
+pub fn number(x: f64) -> String {
+    if x == 0.0 || !x.is_finite() || (1e-4..1e15).contains(&x.abs()) {
+        format!("{x}")
+    } else {
+        format!("{x:e}")
+    }
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    #[test]
+    fn numbers_read_back_and_stay_short() {
+        assert_eq!(number(1000.0), "1000");
+        assert_eq!(number(0.3), "0.3");
+        assert_eq!(number(1e300), "1e300");
+        assert_eq!(number(-2.5e-9), "-2.5e-9");
+        for x in [1e300, 1.234567890123e-200, 0.1 + 0.2, 123456.789, -7e20] {
+            let text = number(x);
+            assert_eq!(text.parse::<f64>().unwrap(), x, "{text}");
+            assert!(text.len() < 25, "{text}");
+        }
+    }
 
     #[test]
     fn long_values_are_shortened() {

@@ -7,6 +7,7 @@
 //! [`NeoHookean`]: super::NeoHookean
 
 use super::{isotropic_elasticity, key_path, lame, Mat3, Mat6};
+use crate::input::number;
 use crate::{Error, Result};
 
 /// Validated `(E, ν)` with their Lamé parameters `(λ, μ)` = [`lame`]`(E, ν)`.
@@ -34,7 +35,11 @@ impl IsotropicParameters {
 
     /// `"E = …, ν = …"`.
     pub(crate) fn describe(&self) -> String {
-        format!("E = {}, ν = {}", self.youngs_modulus, self.poisson_ratio)
+        format!(
+            "E = {}, ν = {}",
+            number(self.youngs_modulus),
+            number(self.poisson_ratio)
+        )
     }
 
     /// Young's modulus `E`.

@@ -1,6 +1,7 @@
 //! Compressible Ogden hyperelasticity, computed in principal stretches.
 
 use super::{key_path, nan_response, voigt_from_sym, Mat3, Mat6, Material, Vec6};
+use crate::input::number;
 use crate::{Error, Result};
 use nalgebra::{SymmetricEigen, Vector3};
 
@@ -294,10 +295,22 @@ impl Material for Ogden {
 
     fn parameters(&self) -> String {
         format!(
-            "μ = {:?}, α = {:?}, κ = {} (initial shear modulus {})",
-            self.mu, self.alpha, self.bulk_modulus, self.shear_modulus
+            "μ = [{}], α = [{}], κ = {} (initial shear modulus {})",
+            list(&self.mu),
+            list(&self.alpha),
+            number(self.bulk_modulus),
+            number(self.shear_modulus)
         )
     }
+}
+
+/// Values as a message lists them, `1, 2.5e-9`.
+fn list(values: &[f64]) -> String {
+    values
+        .iter()
+        .map(|&v| number(v))
+        .collect::<Vec<_>>()
+        .join(", ")
 }
 
 #[cfg(test)]

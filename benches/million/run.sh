@@ -9,9 +9,14 @@
 # PETSc options in PETSC_EXTRA are appended to the case's [solver.petsc]
 # options (which win over the environment's PETSC_OPTIONS; put -log_view
 # there, it is read once per process). The work folder is
-# target/million/nN (the mesh, the case and the results); KEEP=1 keeps the
+# target/million/nN (the mesh, the case and the results; WORK=DIR puts nN
+# under DIR instead); KEEP=1 keeps the
 # mesh and the VTU files, which are otherwise deleted after the run (the
 # 1 M-dof mesh is about 37 MB, each VTU 17 MB).
+# Distributed (a `petsc` build with helper "mpi"'s `mpirun` support):
+#     LAUNCH="mpirun -np 2 --allow-run-as-root --oversubscribe" THREADS=1 \
+#         sh benches/million/run.sh 45
+# /usr/bin/time then reports the largest process's peak memory.
 set -eu
 n=${1:?usage: run.sh N (30: 142 k dofs, 45: 465 k, 60: 1.09 M)}
 here=$(cd "$(dirname "$0")" && pwd)
@@ -23,7 +28,9 @@ gmsh -3 "$here/block.geo" -setnumber n "$n" -format msh41 -bin -o "$work/block.m
 sed "/^options = /s|\"\$| ${PETSC_EXTRA:-}\"|" "$here/case.toml" > "$work/case.toml"
 rm -rf "$work/results"
 load_before=$(uptime)
-/usr/bin/time -v "$signorini" run "$work/case.toml" --output "$work/results" --quiet \
+# shellcheck disable=SC2086 # LAUNCH is a command line to split
+/usr/bin/time -v ${LAUNCH:-} "$signorini" run "$work/case.toml" --output "$work/results" --quiet \
+    ${THREADS:+--threads "$THREADS"} \
     > "$work/run.log" 2> "$work/time.txt" || { tail -20 "$work/run.log" "$work/time.txt"; exit 1; }
 load_after=$(uptime)
 python3 - "$work" "$load_before" "$load_after" <<'PY'

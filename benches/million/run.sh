@@ -1,0 +1,62 @@
+#!/bin/sh
+# The million-dof benchmark (README.md beside this file): mesh the block at
+# size N with gmsh, run it with PETSc's GMRES + GAMG under /usr/bin/time -v,
+# and print dofs, wall time, peak memory, iterations, phase times and the
+# contact's totals (half model). Run from the repository's root, after
+# `cargo build --release --features petsc`:
+#     sh benches/million/run.sh 60        # 1.09 M dofs
+#     sh benches/million/run.sh 30        # 142 k dofs, the check's coarse run
+# PETSc options in PETSC_EXTRA are appended to the case's [solver.petsc]
+# options (which win over the environment's PETSC_OPTIONS; put -log_view
+# there, it is read once per process). The work folder is
+# target/million/nN (the mesh, the case and the results; WORK=DIR puts nN
+# under DIR instead); KEEP=1 keeps the
+# mesh and the VTU files, which are otherwise deleted after the run (the
+# 1 M-dof mesh is about 37 MB, each VTU 17 MB).
+# Distributed (a `petsc` build with helper "mpi"'s `mpirun` support):
+#     LAUNCH="mpirun -np 2 --allow-run-as-root --oversubscribe" THREADS=1 \
+#         sh benches/million/run.sh 45
+# /usr/bin/time then reports the largest process's peak memory.
+set -eu
+n=${1:?usage: run.sh N (30: 142 k dofs, 45: 465 k, 60: 1.09 M)}
+here=$(cd "$(dirname "$0")" && pwd)
+root=$(cd "$here/../.." && pwd)
+signorini=${SIGNORINI:-$root/target/release/signorini}
+work=${WORK:-$root/target/million}/n$n
+mkdir -p "$work"
+gmsh -3 "$here/block.geo" -setnumber n "$n" -format msh41 -bin -o "$work/block.msh" > "$work/gmsh.log"
+sed "/^options = /s|\"\$| ${PETSC_EXTRA:-}\"|" "$here/case.toml" > "$work/case.toml"
+rm -rf "$work/results"
+load_before=$(uptime)
+# shellcheck disable=SC2086 # LAUNCH is a command line to split
+/usr/bin/time -v ${LAUNCH:-} "$signorini" run "$work/case.toml" --output "$work/results" --quiet \
+    ${THREADS:+--threads "$THREADS"} \
+    > "$work/run.log" 2> "$work/time.txt" || { tail -20 "$work/run.log" "$work/time.txt"; exit 1; }
+load_after=$(uptime)
+python3 - "$work" "$load_before" "$load_after" <<'PY'
+import json, re, sys
+work, before, after = sys.argv[1:4]
+s = json.load(open(f"{work}/results/summary.json"))
+t = open(f"{work}/time.txt").read()
+wall = re.search(r"Elapsed \(wall clock\) time.*: (.*)", t).group(1)
+rss = int(re.search(r"Maximum resident set size \(kbytes\): (\d+)", t).group(1))
+last = s["increments"][-1]
+c = last["contact"]["indentation"]
+press = [i for i in s["increments"] if i["step_name"] == "press"][-1]
+cp = press["contact"]["indentation"]
+print(f"case        {work}/case.toml")
+print(f"dofs        {s['dofs']} ({s['nodes']} nodes, {s['elements']} Hex8)")
+print(f"wall        {wall} (summary {s['wall_time']:.1f} s), peak RSS {rss / 2**20:.2f} GiB")
+print(f"increments  {len(s['increments'])}, Newton iterations "
+      f"{sum(i['iterations'] for i in s['increments'])} {[i['iterations'] for i in s['increments']]}")
+print(f"linear      {s['krylov_solves']} solves, {s['krylov_iterations']} Krylov iterations")
+print("phases      " + ", ".join(f"{k} {v:.1f} s" for k, v in s["phase_times"].items()))
+print(f"end press   normal force {-cp['force'][2]:.5f}, contact area {cp['area']:.5f}, "
+      f"friction force x {cp['tangential_force'][0]:.5f}, closed nodes {cp['closed_nodes']}")
+print(f"end shear   normal force {-c['force'][2]:.5f}, contact area {c['area']:.5f}, "
+      f"friction force x {-c['tangential_force'][0]:.5f} (Q/muP {-c['tangential_force'][0] / (-0.3 * c['force'][2]):.3f}), "
+      f"stick {c['stick_nodes']}, slip {c['slip_nodes']}, largest penetration {c['largest_penetration']:.2e}")
+print(f"load        before: {before.strip()}")
+print(f"            after:  {after.strip()}")
+PY
+if [ -z "${KEEP:-}" ]; then rm -f "$work/block.msh" "$work"/results/*.vtu "$work"/results/*.checkpoint; fi

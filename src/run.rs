@@ -37,7 +37,9 @@ use crate::output::fields::{CellField, ConvergedIncrement, NodalField};
 use crate::output::log::LogWriter;
 use crate::output::observer::Iteration;
 use crate::output::observer::{Cut, Observers, StepObserver};
+use crate::output::pvtu::{PieceWriter, Pieces};
 use crate::output::summary::{IncrementSummary, PhaseTimes, Summary};
+use crate::output::vtu::VtuOptions;
 use crate::output::writer::{Restored, ResultWriter, SeriesContent};
 use crate::problem::condensed::{self, Path as SolvePath};
 use crate::problem::{ContactState, Problem};
@@ -52,6 +54,10 @@ use std::path::{Path, PathBuf};
 use std::sync::atomic::{AtomicBool, Ordering};
 use std::sync::Arc;
 use std::time::Instant;
+
+mod distributed;
+use distributed::Distribution;
+pub use distributed::{launched_processes, launched_rank};
 
 /// How a simulation runs.
 #[derive(Clone, Debug, Default)]
@@ -142,6 +148,7 @@ impl Simulation {
             path: case.path.clone(),
             message,
         })?;
+        let strategy = distributed::strategy_for_petsc(&problem, strategy);
         let case_key = CaseKey {
             nodes: problem.model.mesh.num_nodes(),
             dofs: problem.model.num_dofs(),
@@ -219,11 +226,18 @@ impl Simulation {
         observer: &mut (dyn StepObserver + Send),
     ) -> Result<RunOutcome> {
         let start = Instant::now();
+        // under mpirun: this process's elements, its rank's share of the files
+        let distribution = Distribution::start(&mut self.problem, &self.case_label)?;
+        let strategy = match &distribution {
+            Some(d) => d.strategy(&self.problem, self.strategy.clone())?,
+            None => self.strategy.clone(),
+        };
         let restart = match &options.restart {
             Some(dir) => Some(self.read_restart(dir, options.output.as_deref())?),
             None => None,
         };
-        let (mut writer, mut log) = self.file_observers(options, restart.as_ref())?;
+        let (mut writer, mut log, mut piece) =
+            self.file_observers(options, restart.as_ref(), distribution.as_ref())?;
         let mut observers = Observers(vec![observer]);
         if let Some(w) = writer.as_mut() {
             observers.0.insert(0, w);
@@ -231,11 +245,22 @@ impl Simulation {
         if let Some(l) = log.as_mut() {
             observers.0.insert(0, l);
         }
+        if let Some(p) = piece.as_mut() {
+            observers.0.insert(0, p);
+        }
         self.describe_to(&mut observers);
+        for line in distribution.iter().flat_map(|d| d.describe(&self.problem)) {
+            observers.on_message(&line);
+        }
         let mut recorder = Recorder {
             summary: Summary::start(&self.case_label, &self.problem),
             observers,
             name: &self.name,
+            extension: if distribution.is_some() {
+                "pvtu"
+            } else {
+                "vtu"
+            },
             every: self.every,
             cancel: options.cancel.clone(),
             last: start,
@@ -246,29 +271,33 @@ impl Simulation {
             earlier: None,
         };
         let resume = restart.map(|r| recorder.restore(r));
-        recorder.summary.strategy = self.strategy.path.name().into();
-        recorder.summary.strategy_reason = self.strategy.reason.clone();
+        recorder.summary.strategy = strategy.path.name().into();
+        recorder.summary.strategy_reason = strategy.reason.clone();
         recorder.observers.on_message(&format!(
             "strategy: {} ({})",
-            self.strategy.path.name(),
-            self.strategy.reason
+            strategy.path.name(),
+            strategy.reason
         ));
         recorder.observers.on_start(&recorder.summary)?;
         let output = options.output.clone().unwrap_or_default();
-        let (result, statistics) = match self.strategy.path {
+        let (result, statistics) = match strategy.path {
             SolvePath::Monolithic => {
-                let ordering = fill_reducing_ordering(&self.problem)?;
-                let coordinates = self
-                    .problem
-                    .model
-                    .mesh
-                    .nodes
-                    .iter()
-                    .flatten()
-                    .copied()
-                    .collect();
-                let mut solver =
-                    try_linear_solver(&self.problem.settings, ordering, 0, Some(coordinates))?;
+                let mut solver = match &distribution {
+                    Some(d) => d.linear_solver(&self.problem)?,
+                    None => {
+                        let ordering = fill_reducing_ordering(&self.problem)?;
+                        let coordinates = self
+                            .problem
+                            .model
+                            .mesh
+                            .nodes
+                            .iter()
+                            .flatten()
+                            .copied()
+                            .collect();
+                        try_linear_solver(&self.problem.settings, ordering, 0, Some(coordinates))?
+                    }
+                };
                 let about_solver = solver.description();
                 if !about_solver.is_empty() {
                     recorder
@@ -292,7 +321,7 @@ impl Simulation {
                             "a restart resumes Newton's path, and this case runs on the \
                              condensed contact path ({}); set [solver] strategy = \
                              \"monolithic\" to restart it",
-                            self.strategy.reason
+                            strategy.reason
                         ),
                     });
                 }
@@ -362,15 +391,38 @@ impl Simulation {
     }
 
     /// The result files and the log, when the run has an output folder
-    /// (going on with the restored ones after a restart).
+    /// (going on with the restored ones after a restart); in a distributed
+    /// run, those of rank 0 with its piece of each `.pvtu`, and the other
+    /// processes' pieces.
     fn file_observers(
         &self,
         options: &RunOptions,
         restart: Option<&Restart>,
-    ) -> Result<(Option<ResultWriter>, Option<LogWriter>)> {
+        distribution: Option<&Distribution>,
+    ) -> Result<(Option<ResultWriter>, Option<LogWriter>, Option<PieceWriter>)> {
         let Some(dir) = &options.output else {
-            return Ok((None, None));
+            return Ok((None, None, None));
         };
+        let pieces = distribution.map(|d| Pieces {
+            rank: d.rank,
+            parts: d.partition.parts,
+            elements: d.owned_elements(),
+        });
+        if let Some(pieces) = pieces
+            .clone()
+            .filter(|_| distribution.is_some_and(|d| !d.is_lead()))
+        {
+            let piece = PieceWriter {
+                dir: dir.clone(),
+                pieces,
+                nodal: self.nodal_fields.clone(),
+                cells: self.cell_fields.clone(),
+                options: VtuOptions {
+                    compress: self.compress,
+                },
+            };
+            return Ok((None, None, Some(piece)));
+        }
         let content = SeriesContent {
             nodal: self.nodal_fields.clone(),
             cells: self.cell_fields.clone(),
@@ -394,10 +446,13 @@ impl Simulation {
                 )
             }
         };
-        let writer = writer
+        let mut writer = writer
             .compress(self.compress)
             .checkpoint(self.case_key.clone());
-        Ok((Some(writer), Some(log)))
+        if let Some(pieces) = pieces {
+            writer = writer.pieces(pieces);
+        }
+        Ok((Some(writer), Some(log), None))
     }
 
     /// The model in words, the notes on reading it and what the histories
@@ -517,6 +572,8 @@ struct Recorder<'a> {
     summary: Summary,
     observers: Observers<'a>,
     name: &'a str,
+    /// `vtu`, or `pvtu` in a distributed run.
+    extension: &'static str,
     every: usize,
     cancel: Option<Arc<AtomicBool>>,
     last: Instant,
@@ -688,7 +745,7 @@ impl stepping::StepObserver<Problem> for Recorder<'_> {
         let index = self.summary.increments.len() + 1;
         let end_of_step = record.time == problem.steps[record.step].end_time;
         let file = if index.is_multiple_of(self.every) || end_of_step {
-            format!("{}_{index:04}.vtu", self.name)
+            format!("{}_{index:04}.{}", self.name, self.extension)
         } else {
             String::new()
         };

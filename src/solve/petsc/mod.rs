@@ -81,10 +81,12 @@ struct SystemArguments {
 /// Serialises every call into PETSc.
 static PETSC: Mutex<()> = Mutex::new(());
 
+pub mod distributed;
+
 const MESSAGE: usize = 1024;
 
 /// A message buffer the C layer writes into, as a Rust string.
-fn message(buffer: &[c_char]) -> String {
+pub(crate) fn message(buffer: &[c_char]) -> String {
     // SAFETY: the C layer writes a NUL-terminated string (snprintf) into a
     // zeroed buffer of this length, so there is a NUL within it
     unsafe { CStr::from_ptr(buffer.as_ptr()) }
@@ -141,6 +143,50 @@ impl RowPattern {
     }
 }
 
+/// Initialise PETSc (and MPI: the world of `mpirun`, or a singleton) once
+/// per process; PETSc's version.
+pub fn initialise() -> Result<String> {
+    let _lock = PETSC.lock().unwrap_or_else(|e| e.into_inner());
+    let mut err = [0 as c_char; MESSAGE];
+    let mut version = [0 as c_char; 256];
+    // SAFETY: buffers of the lengths given
+    let code = unsafe {
+        ffi::sg_petsc_initialise(
+            version.as_mut_ptr(),
+            version.len(),
+            err.as_mut_ptr(),
+            err.len(),
+        )
+    };
+    if code != 0 {
+        return Err(Error::LinearSolver(message(&err)));
+    }
+    Ok(message(&version))
+}
+
+/// PETSc options given on the command line (`signorini run case.toml --
+/// -ksp_type cg -pc_type gamg`), read after the case's.
+static COMMAND_LINE: Mutex<String> = Mutex::new(String::new());
+
+/// Set the PETSc options of the command line: every PETSc solver made
+/// after this reads them after `PETSC_OPTIONS` and the case's
+/// `[solver.petsc] options`, so the command line wins.
+pub fn set_command_line_options(options: &[String]) {
+    *COMMAND_LINE.lock().unwrap_or_else(|e| e.into_inner()) = options.join(" ");
+}
+
+/// A solver's options: the case's, then the command line's, as a C string.
+fn with_command_line(options: &str) -> Result<CString> {
+    let command_line = COMMAND_LINE.lock().unwrap_or_else(|e| e.into_inner());
+    let text = if command_line.is_empty() {
+        options.to_string()
+    } else {
+        format!("{options} {command_line}")
+    };
+    CString::new(text)
+        .map_err(|_| Error::LinearSolver("the PETSc options contain a NUL character".into()))
+}
+
 /// PETSc's KSP and PC on the tangent.
 pub struct PetscSolver {
     handle: *mut c_void,
@@ -166,24 +212,10 @@ impl PetscSolver {
     /// `coordinates` (3 per node, reference) are attached as GAMG's
     /// rigid-body near-null space when every unknown is a displacement.
     pub fn new(options: &str, coordinates: Option<Vec<f64>>) -> Result<Self> {
-        let options = CString::new(options).map_err(|_| {
-            Error::LinearSolver("[solver.petsc] options contain a NUL character".into())
-        })?;
+        let options = with_command_line(options)?;
+        let version = initialise()?;
         let _lock = PETSC.lock().unwrap_or_else(|e| e.into_inner());
         let mut err = [0 as c_char; MESSAGE];
-        let mut version = [0 as c_char; 256];
-        // SAFETY: valid NUL-terminated input, buffers of the lengths given
-        let code = unsafe {
-            ffi::sg_petsc_initialise(
-                version.as_mut_ptr(),
-                version.len(),
-                err.as_mut_ptr(),
-                err.len(),
-            )
-        };
-        if code != 0 {
-            return Err(Error::LinearSolver(message(&err)));
-        }
         let mut handle = std::ptr::null_mut();
         // SAFETY: out-pointer, NUL-terminated options and buffer valid
         let code = unsafe {
@@ -215,7 +247,7 @@ impl PetscSolver {
             rows: None,
             values: Vec::new(),
             coordinates,
-            description: format!("{}, {solver_text}", message(&version)),
+            description: format!("{version}, {solver_text}"),
             total: Duration::ZERO,
             solves: 0,
             iterations: 0,

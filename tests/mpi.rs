@@ -7,7 +7,7 @@
 //! processes, read from the log). The displacements are read from the
 //! `.pvtu` pieces, each node through the pieces' `global_node` array.
 
-#[cfg(feature = "petsc")]
+#[allow(dead_code)]
 mod common;
 
 #[cfg(feature = "petsc")]
@@ -304,4 +304,39 @@ name = "block"
             last.tangential_force
         );
     }
+}
+
+/// Started by `mpirun` on two processes (Open MPI's environment, faked),
+/// a build without PETSc refuses to run the whole case twice and says how
+/// to build it.
+#[cfg(not(feature = "petsc"))]
+#[test]
+fn mpirun_without_the_feature_says_how_to_build_it() {
+    let dir = tempfile::tempdir().unwrap();
+    let case = dir.path().join("case.toml");
+    std::fs::write(
+        &case,
+        "[mesh]\nfile = \"cube.msh\"\n\n[[material]]\nregion = \"body\"\nmodel = \"linear_elastic\"\n\
+         youngs_modulus = 1.0\npoisson_ratio = 0.3\n\n[[step]]\nname = \"s\"\nend_time = 1.0\n",
+    )
+    .unwrap();
+    let mesh = signorini::mesh::structured::box_mesh(
+        signorini::mesh::ElementKind::Hex8,
+        [1, 1, 1],
+        [1.0, 1.0, 1.0],
+    );
+    std::fs::write(dir.path().join("cube.msh"), common::msh22(&mesh)).unwrap();
+    let out = std::process::Command::new(env!("CARGO_BIN_EXE_signorini"))
+        .args(["run", case.to_str().unwrap(), "--quiet"])
+        .env("OMPI_COMM_WORLD_SIZE", "2")
+        .env("OMPI_COMM_WORLD_RANK", "0")
+        .output()
+        .unwrap();
+    assert_eq!(out.status.code(), Some(1));
+    let text = String::from_utf8_lossy(&out.stderr);
+    assert!(
+        text.contains("mpirun on 2 processes") && text.contains("--features petsc"),
+        "{text}"
+    );
+    assert!(!dir.path().join("results/summary.json").exists());
 }

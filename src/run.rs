@@ -229,7 +229,7 @@ impl Simulation {
         // under mpirun: this process's elements, its rank's share of the files
         let distribution = Distribution::start(&mut self.problem, &self.case_label)?;
         let strategy = match &distribution {
-            Some(d) => d.strategy(&self.problem, self.strategy.clone())?,
+            Some(d) => d.strategy(&self.problem, self.strategy.clone(), &self.case_label)?,
             None => self.strategy.clone(),
         };
         let restart = match &options.restart {

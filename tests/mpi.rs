@@ -7,7 +7,6 @@
 //! processes, read from the log). The displacements are read from the
 //! `.pvtu` pieces, each node through the pieces' `global_node` array.
 
-#[allow(dead_code)]
 mod common;
 
 #[cfg(feature = "petsc")]

@@ -181,9 +181,12 @@ fn global_node_field(values: &[f64]) -> vtu::Field<'_> {
 /// mesh (contact fields left out of a problem without contact): what the
 /// [`super::ResultWriter`] and the [`PieceWriter`] write.
 pub struct IncrementArrays<'a> {
-    nodal: Vec<(NodalField, Cow<'a, [f64]>)>,
-    cells: Vec<(CellField, Vec<f64>)>,
+    nodal: Vec<Array<'a>>,
+    cells: Vec<Array<'a>>,
 }
+
+/// An array's name, components, number type and values.
+type Array<'a> = (&'static str, usize, vtu::ArrayKind, Cow<'a, [f64]>);
 
 impl<'a> IncrementArrays<'a> {
     pub fn new(
@@ -196,37 +199,47 @@ impl<'a> IncrementArrays<'a> {
             nodal: nodal
                 .iter()
                 .filter(|f| has_contact || !f.needs_contact())
-                .map(|&f| (f, increment.nodal(f)))
+                .map(|&f| (f.name(), f.components(), f.kind(), increment.nodal(f)))
                 .collect(),
-            cells: cells.iter().copied().zip(increment.cells(cells)).collect(),
+            cells: cells
+                .iter()
+                .zip(increment.cells(cells))
+                .map(|(f, v)| (f.name(), f.components(), f.kind(), Cow::Owned(v)))
+                .collect(),
         }
     }
 
     /// The point arrays.
     pub fn points(&self) -> Vec<vtu::Field<'_>> {
-        self.nodal
-            .iter()
-            .map(|(f, v)| vtu::Field {
-                name: f.name(),
-                components: f.components(),
-                values: v,
-                kind: f.kind(),
-            })
-            .collect()
+        fields(&self.nodal)
     }
 
     /// The cell arrays.
     pub fn cells(&self) -> Vec<vtu::Field<'_>> {
-        self.cells
-            .iter()
-            .map(|(f, v)| vtu::Field {
-                name: f.name(),
-                components: f.components(),
-                values: v,
-                kind: f.kind(),
-            })
-            .collect()
+        fields(&self.cells)
     }
+}
+
+fn fields<'b>(arrays: &'b [Array<'_>]) -> Vec<vtu::Field<'b>> {
+    arrays
+        .iter()
+        .map(|(name, components, kind, values)| vtu::Field {
+            name,
+            components: *components,
+            values,
+            kind: *kind,
+        })
+        .collect()
+}
+
+/// The data set file of the last increment in `summary` (empty when
+/// `[output] every` left it without one).
+pub fn data_set_file(summary: &Summary) -> String {
+    summary
+        .increments
+        .last()
+        .map(|i| i.file.clone())
+        .unwrap_or_default()
 }
 
 /// The result files of a process other than rank 0 in a distributed run:
@@ -242,11 +255,7 @@ pub struct PieceWriter {
 
 impl StepObserver for PieceWriter {
     fn on_increment(&mut self, increment: &ConvergedIncrement, summary: &Summary) -> Result<()> {
-        let file = summary
-            .increments
-            .last()
-            .map(|i| i.file.clone())
-            .unwrap_or_default();
+        let file = data_set_file(summary);
         if file.is_empty() {
             return Ok(());
         }

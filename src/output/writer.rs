@@ -13,7 +13,7 @@ use super::history::History;
 use super::manifest::Manifest;
 use super::observer::StepObserver;
 use super::profile::{file_part, Profile};
-use super::pvtu::{IncrementArrays, Pieces};
+use super::pvtu::{data_set_file, IncrementArrays, Pieces};
 use super::summary::Summary;
 use super::{plot, pvd::PvdCollection, vtu};
 use crate::{Error, Result};
@@ -221,11 +221,7 @@ impl StepObserver for ResultWriter {
     }
 
     fn on_increment(&mut self, increment: &ConvergedIncrement, summary: &Summary) -> Result<()> {
-        let file = summary
-            .increments
-            .last()
-            .map(|i| i.file.clone())
-            .unwrap_or_default();
+        let file = data_set_file(summary);
         // `[output] every` leaves some increments without a file
         if !file.is_empty() {
             self.write_vtu(increment, &file)?;

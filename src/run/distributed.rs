@@ -119,16 +119,19 @@ impl Distribution {
 
     /// The strategy of a distributed run: monolithic Newton (the condensed
     /// path is serial); an error when the case asks for the condensed one.
-    pub fn strategy(&self, problem: &Problem, choice: Choice) -> Result<Choice> {
+    pub fn strategy(&self, problem: &Problem, choice: Choice, case_label: &str) -> Result<Choice> {
         if choice.path == SolvePath::Monolithic {
             return Ok(choice);
         }
         if problem.settings.strategy == Strategy::Condensed {
-            return Err(Error::LinearSolver(format!(
-                "solver.strategy = \"condensed\" runs on one process; this run has {} \
-                 (mpirun -np): use strategy = \"auto\" or \"monolithic\"",
-                self.partition.parts
-            )));
+            return Err(Error::Case {
+                path: case_label.into(),
+                message: format!(
+                    "solver.strategy = \"condensed\" runs on one process; this run has {} \
+                     (mpirun -np): use strategy = \"auto\" or \"monolithic\"",
+                    self.partition.parts
+                ),
+            });
         }
         Ok(Choice {
             path: SolvePath::Monolithic,

@@ -14,7 +14,7 @@
 //! solution is scattered whole to every process (`VecScatterCreateToAll`),
 //! so every process goes on with the same unknowns.
 
-use super::{message, with_command_line, RowPattern, MESSAGE, PETSC};
+use super::{make_ksp, message, RowPattern, Tally, MESSAGE, PETSC};
 use crate::assembly::share::Communicator;
 use crate::solve::linear::{pattern_fingerprint, Ordering};
 use crate::solve::linear_solver::{LinearSolver, LinearSystem, SolverStatistics};
@@ -22,7 +22,7 @@ use crate::solve::partition::MeshPartition;
 use crate::{Error, Result};
 use faer::sparse::SymbolicSparseColMat;
 use std::ffi::{c_char, c_int, c_void};
-use std::time::{Duration, Instant};
+use std::time::Instant;
 
 mod ffi {
     use std::ffi::{c_char, c_int, c_void};
@@ -242,9 +242,7 @@ pub struct DistributedPetscSolver {
     numbering: Option<Numbering>,
     layout: Option<RowLayout>,
     description: String,
-    total: Duration,
-    solves: usize,
-    iterations: usize,
+    tally: Tally,
 }
 
 // SAFETY: the handle is only used under the `PETSC` lock
@@ -260,32 +258,12 @@ impl DistributedPetscSolver {
         rank: usize,
         coordinates: Vec<f64>,
     ) -> Result<Self> {
-        let options = with_command_line(options)?;
-        let version = super::initialise()?;
-        let _lock = PETSC.lock().unwrap_or_else(|e| e.into_inner());
-        let mut err = [0 as c_char; MESSAGE];
-        let mut handle = std::ptr::null_mut();
-        // SAFETY: out-pointer, NUL-terminated options and buffer valid
-        let code = unsafe {
-            ffi::sg_petsc_mpi_solver_new(&mut handle, options.as_ptr(), err.as_mut_ptr(), err.len())
-        };
-        if code != 0 {
-            // SAFETY: the C layer sets `handle` before anything can fail
-            unsafe { ffi::sg_petsc_mpi_solver_free(handle) };
-            return Err(Error::LinearSolver(message(&err)));
-        }
-        let mut text = [0 as c_char; 256];
-        // SAFETY: handle made above, buffers valid
-        let code = unsafe {
-            ffi::sg_petsc_mpi_describe(
-                handle,
-                text.as_mut_ptr(),
-                text.len(),
-                err.as_mut_ptr(),
-                err.len(),
-            )
-        };
-        let solver_text = message(if code == 0 { &text } else { &err });
+        let (handle, description) = make_ksp(
+            options,
+            ffi::sg_petsc_mpi_solver_new,
+            ffi::sg_petsc_mpi_solver_free,
+            ffi::sg_petsc_mpi_describe,
+        )?;
         let parts = partition.parts;
         Ok(DistributedPetscSolver {
             handle,
@@ -294,10 +272,8 @@ impl DistributedPetscSolver {
             coordinates,
             numbering: None,
             layout: None,
-            description: format!("{version}, {solver_text}, distributed over {parts} processes"),
-            total: Duration::ZERO,
-            solves: 0,
-            iterations: 0,
+            description: format!("{description}, distributed over {parts} processes"),
+            tally: Tally::default(),
         })
     }
 
@@ -429,19 +405,10 @@ impl LinearSolver for DistributedPetscSolver {
             // holds the n unknowns PETSc writes
             unsafe { ffi::sg_petsc_mpi_solve(self.handle, &arguments, err.as_mut_ptr(), err.len()) }
         };
-        self.solves += 1;
-        self.iterations += iterations.max(0) as usize;
-        self.total += start.elapsed();
-        if code != 0 {
-            return Err(message(&err));
-        }
         for (old, xi) in x.iter_mut().enumerate() {
             *xi = solution[numbering.global[old]];
         }
-        if x.iter().any(|v| !v.is_finite()) {
-            return Err("PETSc's solution is not finite: the tangent is singular".into());
-        }
-        Ok(())
+        self.tally.record(start, iterations, code, &err, x)
     }
 
     fn description(&self) -> String {
@@ -449,12 +416,7 @@ impl LinearSolver for DistributedPetscSolver {
     }
 
     fn statistics(&self) -> SolverStatistics {
-        SolverStatistics {
-            factorisation: self.total,
-            krylov_solves: self.solves,
-            krylov_iterations: self.iterations,
-            ..Default::default()
-        }
+        self.tally.statistics()
     }
 }
 

@@ -138,6 +138,24 @@ int sg_petsc_describe(void *handle, char *text, size_t text_len, char *err,
   return describe_ksp(((Solver *)handle)->ksp, text, text_len, err, err_len);
 }
 
+/* KSPSolve, its iterations into `iterations`, and an error when it did
+ * not converge. */
+static int solve_ksp(KSP ksp, Vec b, Vec x, int *iterations, char *err,
+                     size_t err_len) {
+  CHECK(KSPSolve(ksp, b, x));
+  KSPConvergedReason reason;
+  CHECK(KSPGetConvergedReason(ksp, &reason));
+  PetscInt its;
+  CHECK(KSPGetIterationNumber(ksp, &its));
+  *iterations = (int)its;
+  if (reason < 0) {
+    snprintf(err, err_len, "PETSc's KSP did not converge: %s after %d iterations",
+             KSPConvergedReasons[reason], (int)its);
+    return 1;
+  }
+  return 0;
+}
+
 /* One linear system, as `sg_petsc_solve` takes it (the same layout as
  * `SystemArguments` in mod.rs). */
 typedef struct {
@@ -212,18 +230,8 @@ int sg_petsc_solve(void *handle, const SystemArguments *system, char *err,
   CHECK(VecGetArray(s->rhs, &a));
   memcpy(a, b, sizeof(double) * (size_t)n);
   CHECK(VecRestoreArray(s->rhs, &a));
-  CHECK(KSPSolve(s->ksp, s->rhs, s->solution));
-
-  KSPConvergedReason reason;
-  CHECK(KSPGetConvergedReason(s->ksp, &reason));
-  PetscInt its;
-  CHECK(KSPGetIterationNumber(s->ksp, &its));
-  *iterations = (int)its;
-  if (reason < 0) {
-    snprintf(err, err_len, "PETSc's KSP did not converge: %s after %d iterations",
-             KSPConvergedReasons[reason], (int)its);
-    return 1;
-  }
+  int failed = solve_ksp(s->ksp, s->rhs, s->solution, iterations, err, err_len);
+  if (failed) return failed;
   const PetscScalar *y;
   CHECK(VecGetArrayRead(s->solution, &y));
   memcpy(x, y, sizeof(double) * (size_t)n);
@@ -392,17 +400,9 @@ int sg_petsc_mpi_solve(void *handle, const DistributedSystem *system,
   CHECK(VecGetArray(s->rhs, &a));
   memcpy(a, system->b, sizeof(double) * (size_t)local);
   CHECK(VecRestoreArray(s->rhs, &a));
-  CHECK(KSPSolve(s->ksp, s->rhs, s->solution));
-  KSPConvergedReason reason;
-  CHECK(KSPGetConvergedReason(s->ksp, &reason));
-  PetscInt its;
-  CHECK(KSPGetIterationNumber(s->ksp, &its));
-  *system->iterations = (int)its;
-  if (reason < 0) {
-    snprintf(err, err_len, "PETSc's KSP did not converge: %s after %d iterations",
-             KSPConvergedReasons[reason], (int)its);
-    return 1;
-  }
+  int failed = solve_ksp(s->ksp, s->rhs, s->solution, system->iterations, err,
+                         err_len);
+  if (failed) return failed;
   CHECK(VecScatterBegin(s->to_all, s->solution, s->everywhere, INSERT_VALUES,
                         SCATTER_FORWARD));
   CHECK(VecScatterEnd(s->to_all, s->solution, s->everywhere, INSERT_VALUES,

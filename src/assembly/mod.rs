@@ -570,4 +570,95 @@ mod tests {
         assert_close(&k, &k_ref, "tangent with multipliers");
         assert!(f[3 * nodes..].iter().all(|&v| v == 0.0));
     }
+
+    /// A second process in this one: `sum` adds what "the other process"
+    /// assembled (its elements, computed beforehand).
+    struct OtherProcess {
+        rank: usize,
+        other: Mutex<Vec<Vec<f64>>>,
+    }
+
+    impl share::Communicator for OtherProcess {
+        fn rank(&self) -> usize {
+            self.rank
+        }
+        fn size(&self) -> usize {
+            2
+        }
+        fn sum(&self, v: &mut [f64]) {
+            let mut queue = self.other.lock().unwrap();
+            let other = queue.remove(0);
+            v.iter_mut().zip(other).for_each(|(a, b)| *a += b);
+        }
+    }
+
+    /// Two shares of the elements (even and odd indices): each part's
+    /// tangent plus the other's is the whole tangent, each process's force
+    /// after the sum is the whole force, for a finite-strain and a linear
+    /// (cached constant stiffness) material; an element failure of the
+    /// other process is reported here too.
+    #[test]
+    fn two_shares_add_up_to_the_whole_assembly() {
+        let materials: [Arc<dyn Material>; 2] = [
+            Arc::new(NeoHookean::new(100.0, 0.45, "m").unwrap()),
+            Arc::new(LinearElastic::new(1000.0, 0.3, "m").unwrap()),
+        ];
+        for material in materials {
+            let (whole, u) = model_and_u(ElementKind::Hex8, material.clone());
+            let (force, k) = assemble_with_threads(&whole, &u, 1);
+            let ne = whole.mesh.elements.len();
+            let part = |rank: usize, other: Vec<Vec<f64>>| {
+                let (mut m, _) = model_and_u(ElementKind::Hex8, material.clone());
+                let communicator = Arc::new(OtherProcess {
+                    rank,
+                    other: Mutex::new(other),
+                });
+                m.set_share(Share {
+                    owned: (0..ne).map(|e| e % 2 == rank).collect(),
+                    communicator,
+                });
+                m
+            };
+            // the odd elements alone (a share whose sums add nothing)
+            let zeros = vec![vec![0.0; force.len()], vec![0.0; 8]];
+            let odd = part(1, zeros);
+            let (odd_force, odd_k) = assemble_with_threads(&odd, &u, 1);
+            // the even elements, completed by the odd ones
+            let even = part(0, vec![odd_force, vec![0.0; 8]]);
+            let (even_force, even_k) = assemble_with_threads(&even, &u, 2);
+            assert_close(&even_force, &force, "summed force");
+            let sum: Vec<f64> = even_k.iter().zip(&odd_k).map(|(a, b)| a + b).collect();
+            assert_close(&sum, &k, "two parts of K");
+            assert!(even_k
+                .iter()
+                .zip(&k)
+                .any(|(a, b)| (a - b).abs() > 1e-6 * b.abs().max(1.0)));
+        }
+        // process 1 reports element 5 inverted: process 0 fails with it
+        let (whole, u) = model_and_u(
+            ElementKind::Hex8,
+            Arc::new(LinearElastic::new(1.0, 0.3, "m").unwrap()),
+        );
+        let ne = whole.mesh.elements.len();
+        let mut failure = vec![0.0; 8];
+        failure[4..8].copy_from_slice(&[6.0, 2.0, 3.0, -0.5]);
+        let (mut m, _) = model_and_u(
+            ElementKind::Hex8,
+            Arc::new(LinearElastic::new(1.0, 0.3, "m").unwrap()),
+        );
+        m.set_share(Share {
+            owned: (0..ne).map(|e| e % 2 == 0).collect(),
+            communicator: Arc::new(OtherProcess {
+                rank: 0,
+                other: Mutex::new(vec![vec![0.0; 3 * m.mesh.num_nodes()], failure]),
+            }),
+        });
+        let mut force = vec![0.0; m.pattern.dimension()];
+        let f = m.assemble_internal(&u, &mut force, None).unwrap_err();
+        assert_eq!(f.element, 5);
+        assert!(matches!(
+            f.failure,
+            KernelFailure::Inverted { quadrature_point: 3, det_f } if det_f == -0.5
+        ));
+    }
 }

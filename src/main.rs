@@ -42,6 +42,11 @@ enum Command {
         /// folder DIR is (its NAME.checkpoint), writing on into DIR.
         #[arg(long, value_name = "DIR")]
         restart: Option<PathBuf>,
+        /// PETSc options after `--` (e.g. `-- -ksp_type cg -pc_type gamg
+        /// -ksp_rtol 1e-10`), read after PETSC_OPTIONS and the case's
+        /// [solver.petsc] options (build with `--features petsc`).
+        #[arg(last = true, value_name = "PETSC_OPTIONS", allow_hyphen_values = true)]
+        petsc: Vec<String>,
     },
     /// Validate the case and its mesh without solving; print what was read.
     Check {
@@ -59,6 +64,7 @@ fn main() -> ExitCode {
             threads,
             quiet,
             restart,
+            petsc,
         } => {
             let limit = max_threads();
             if let Some(t) = threads.filter(|&t| t as usize > limit) {
@@ -69,6 +75,12 @@ fn main() -> ExitCode {
                 );
                 return ExitCode::from(2);
             }
+            if let Err(message) = petsc_command_line(&petsc) {
+                eprintln!("error: {message}");
+                return ExitCode::from(2);
+            }
+            // under mpirun, rank 0 alone shows progress and the result
+            let quiet = quiet || signorini::run::launched_rank().is_some_and(|r| r > 0);
             run(case, output, threads, quiet, restart)
         }
         Command::Check { case } => check(case),
@@ -85,6 +97,31 @@ fn main() -> ExitCode {
             ExitCode::from(1)
         }
     }
+}
+
+/// Hand the PETSc options given after `--` to the PETSc backend; an error
+/// without it, or for an argument that is not a PETSc option or its value.
+fn petsc_command_line(options: &[String]) -> Result<(), String> {
+    if options.is_empty() {
+        return Ok(());
+    }
+    if !options[0].starts_with('-') {
+        return Err(format!(
+            "'{}' after `--`: PETSc options start with '-' (e.g. `-- -ksp_type cg -pc_type gamg`)",
+            options[0]
+        ));
+    }
+    #[cfg(feature = "petsc")]
+    {
+        signorini::solve::petsc::set_command_line_options(options);
+        Ok(())
+    }
+    #[cfg(not(feature = "petsc"))]
+    Err(format!(
+        "PETSc options after `--` ({}) need signorini built with PETSc: `cargo build --release \
+         --features petsc` (PETSc from `apt-get install petsc-dev`)",
+        options.join(" ")
+    ))
 }
 
 /// The most worker threads `--threads` accepts on any machine: more only

@@ -352,6 +352,10 @@ impl Problem {
         PhaseTimings::add(&self.timings.assembly_ns, start);
         let start = std::time::Instant::now();
         let pattern = &self.model.pattern;
+        // distributed (`mpirun`): every process holds the whole internal
+        // force and computes contact and loads alike; only the lead adds
+        // their tangent to its part of K
+        let mut tangent = tangent.filter(|_| self.model.is_lead());
         let reports = self.contacts.assemble(
             &self.contact_context(t, x),
             contact,

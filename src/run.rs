@@ -28,6 +28,7 @@
 //! # Ok::<(), signorini::Error>(())
 //! ```
 
+mod distributed;
 mod recorder;
 mod restart;
 
@@ -37,7 +38,9 @@ use crate::output::describe::describe_model;
 use crate::output::fields::{CellField, NodalField};
 use crate::output::log::LogWriter;
 use crate::output::observer::{Observers, StepObserver};
+use crate::output::pvtu::{PieceWriter, Pieces};
 use crate::output::summary::Summary;
+use crate::output::vtu::VtuOptions;
 use crate::output::writer::{Restored, ResultWriter, SeriesContent};
 use crate::problem::condensed::{self, Path as SolvePath};
 use crate::problem::{ContactState, Problem};
@@ -45,6 +48,8 @@ use crate::solve::backend::try_linear_solver;
 use crate::solve::linear_solver::SolverStatistics;
 use crate::solve::stepping::{resume_steps, Resume};
 use crate::{Error, Result};
+use distributed::Distribution;
+pub use distributed::{launched_processes, launched_rank};
 use recorder::{update_totals, Recorder};
 use restart::Restart;
 use std::path::{Path, PathBuf};
@@ -129,6 +134,7 @@ impl Simulation {
             path: case.path.clone(),
             message,
         })?;
+        let strategy = distributed::strategy_for_petsc(&problem, strategy);
         let case_key = restart::case_key(case, &problem);
         Ok(Simulation {
             case_label: case.path.display().to_string(),
@@ -195,11 +201,18 @@ impl Simulation {
         options: &RunOptions,
         observer: &mut (dyn StepObserver + Send),
     ) -> Result<RunOutcome> {
+        // under mpirun: this process's elements, its rank's share of the files
+        let distribution = Distribution::start(&mut self.problem, &self.case_label)?;
+        let strategy = match &distribution {
+            Some(d) => d.strategy(&self.problem, self.strategy.clone(), &self.case_label)?,
+            None => self.strategy.clone(),
+        };
         let restart = match &options.restart {
             Some(dir) => Some(self.read_restart(dir, options.output.as_deref())?),
             None => None,
         };
-        let (mut writer, mut log) = self.file_observers(options, restart.as_ref())?;
+        let (mut writer, mut log, mut piece) =
+            self.file_observers(options, restart.as_ref(), distribution.as_ref())?;
         let mut observers = Observers(vec![observer]);
         if let Some(w) = writer.as_mut() {
             observers.0.insert(0, w);
@@ -207,18 +220,29 @@ impl Simulation {
         if let Some(l) = log.as_mut() {
             observers.0.insert(0, l);
         }
+        if let Some(p) = piece.as_mut() {
+            observers.0.insert(0, p);
+        }
         self.describe_to(&mut observers);
+        for line in distribution.iter().flat_map(|d| d.describe(&self.problem)) {
+            observers.on_message(&line);
+        }
         let mut recorder = Recorder::new(&self.case_label, &self.problem, observers, &self.name);
         recorder.every = self.every;
         recorder.cancel = options.cancel.clone();
+        if distribution.is_some() {
+            recorder.extension = "pvtu";
+        }
         let resume = restart.map(|r| recorder.restore(r));
-        self.announce_strategy(&mut recorder)?;
+        announce_strategy(&strategy, &mut recorder)?;
         let output = options.output.clone().unwrap_or_default();
-        let (result, statistics) = match self.strategy.path {
-            SolvePath::Monolithic => self.run_monolithic(&mut recorder, resume, &output)?,
+        let (result, statistics) = match strategy.path {
+            SolvePath::Monolithic => {
+                self.run_monolithic(&mut recorder, resume, &output, distribution.as_ref())?
+            }
             SolvePath::Condensed => {
                 if resume.is_some() {
-                    return Err(self.condensed_restart_refused(options));
+                    return Err(condensed_restart_refused(&strategy, options));
                 }
                 let (result, statistics, steps) =
                     condensed::run_steps(&mut self.problem, &mut recorder, output.clone());
@@ -237,31 +261,25 @@ impl Simulation {
         recorder.finish(result, output)
     }
 
-    /// The path (monolithic or condensed) and why, in the summary and the
-    /// log; the observers are told the run starts.
-    fn announce_strategy(&self, recorder: &mut Recorder) -> Result<()> {
-        let (path, reason) = (self.strategy.path.name(), &self.strategy.reason);
-        recorder.summary.strategy = path.into();
-        recorder.summary.strategy_reason = reason.clone();
-        recorder
-            .observers
-            .on_message(&format!("strategy: {path} ({reason})"));
-        recorder.observers.on_start(&recorder.summary)
-    }
-
     /// Newton's load steps on the whole system with the `[solver] linear`
-    /// backend (resumed from a checkpoint's state when given); the result
+    /// backend (distributed under mpirun; resumed from a checkpoint's state when given); the result
     /// and the linear solver's figures.
     fn run_monolithic(
         &mut self,
         recorder: &mut Recorder,
         resume: Option<Resume<ContactState>>,
         output: &Path,
+        distribution: Option<&Distribution>,
     ) -> Result<(Result<Vec<f64>>, SolverStatistics)> {
-        let ordering = fill_reducing_ordering(&self.problem)?;
-        let mesh = &self.problem.model.mesh;
-        let coordinates = mesh.nodes.iter().flatten().copied().collect();
-        let mut solver = try_linear_solver(&self.problem.settings, ordering, 0, Some(coordinates))?;
+        let mut solver = match distribution {
+            Some(d) => d.linear_solver(&self.problem)?,
+            None => {
+                let ordering = fill_reducing_ordering(&self.problem)?;
+                let mesh = &self.problem.model.mesh;
+                let coordinates = mesh.nodes.iter().flatten().copied().collect();
+                try_linear_solver(&self.problem.settings, ordering, 0, Some(coordinates))?
+            }
+        };
         let about_solver = solver.description();
         if !about_solver.is_empty() {
             recorder
@@ -278,29 +296,39 @@ impl Simulation {
         Ok((result, solver.statistics()))
     }
 
-    /// Why a case on the condensed path cannot restart.
-    fn condensed_restart_refused(&self, options: &RunOptions) -> Error {
-        Error::Restart {
-            path: options.restart.clone().unwrap_or_default(),
-            message: format!(
-                "a restart resumes Newton's path, and this case runs on the \
-                 condensed contact path ({}); set [solver] strategy = \
-                 \"monolithic\" to restart it",
-                self.strategy.reason
-            ),
-        }
-    }
-
     /// The result files and the log, when the run has an output folder
-    /// (going on with the restored ones after a restart).
+    /// (going on with the restored ones after a restart); in a distributed
+    /// run, those of rank 0 with its piece of each `.pvtu`, and the other
+    /// processes' pieces.
     fn file_observers(
         &self,
         options: &RunOptions,
         restart: Option<&Restart>,
-    ) -> Result<(Option<ResultWriter>, Option<LogWriter>)> {
+        distribution: Option<&Distribution>,
+    ) -> Result<(Option<ResultWriter>, Option<LogWriter>, Option<PieceWriter>)> {
         let Some(dir) = &options.output else {
-            return Ok((None, None));
+            return Ok((None, None, None));
         };
+        let pieces = distribution.map(|d| Pieces {
+            rank: d.rank,
+            parts: d.partition.parts,
+            elements: d.owned_elements(),
+        });
+        if let Some(pieces) = pieces
+            .clone()
+            .filter(|_| distribution.is_some_and(|d| !d.is_lead()))
+        {
+            let piece = PieceWriter {
+                dir: dir.clone(),
+                pieces,
+                nodal: self.nodal_fields.clone(),
+                cells: self.cell_fields.clone(),
+                options: VtuOptions {
+                    compress: self.compress,
+                },
+            };
+            return Ok((None, None, Some(piece)));
+        }
         let content = SeriesContent {
             nodal: self.nodal_fields.clone(),
             cells: self.cell_fields.clone(),
@@ -324,10 +352,13 @@ impl Simulation {
                 )
             }
         };
-        let writer = writer
+        let mut writer = writer
             .compress(self.compress)
             .checkpoint(self.case_key.clone());
-        Ok((Some(writer), Some(log)))
+        if let Some(pieces) = pieces {
+            writer = writer.pieces(pieces);
+        }
+        Ok((Some(writer), Some(log), None))
     }
 
     /// The model in words, the notes on reading it and what the histories
@@ -362,6 +393,31 @@ impl Simulation {
             )
         });
         histories.chain(profiles).collect()
+    }
+}
+
+/// The path (monolithic or condensed) and why, in the summary and the
+/// log; the observers are told the run starts.
+fn announce_strategy(strategy: &condensed::Choice, recorder: &mut Recorder) -> Result<()> {
+    let (path, reason) = (strategy.path.name(), &strategy.reason);
+    recorder.summary.strategy = path.into();
+    recorder.summary.strategy_reason = reason.clone();
+    recorder
+        .observers
+        .on_message(&format!("strategy: {path} ({reason})"));
+    recorder.observers.on_start(&recorder.summary)
+}
+
+/// Why a case on the condensed path cannot restart.
+fn condensed_restart_refused(strategy: &condensed::Choice, options: &RunOptions) -> Error {
+    Error::Restart {
+        path: options.restart.clone().unwrap_or_default(),
+        message: format!(
+            "a restart resumes Newton's path, and this case runs on the \
+             condensed contact path ({}); set [solver] strategy = \
+             \"monolithic\" to restart it",
+            strategy.reason
+        ),
     }
 }
 

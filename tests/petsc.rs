@@ -3,14 +3,20 @@
 //! frictional press-pull example (a nonsymmetric saddle-point tangent with
 //! multipliers), and with MUMPS and GAMG (CG/GMRES on the penalty method,
 //! where every unknown is a displacement, block size 3 and the rigid-body
-//! near-null space) on the stacked blocks. Without the feature, asking for
-//! PETSc is a case error that says how to get it.
+//! near-null space) on the stacked blocks, on press-pull with penalty
+//! contact and friction, and on a Hertz-like paraboloid pressed on a plane
+//! (where `strategy = "auto"` takes monolithic Newton for PETSc, and faer
+//! the condensed path). GAMG cannot take the zero diagonal blocks of the
+//! contact multipliers, so its cases use the penalty method, which has no
+//! multiplier unknowns. Without the feature, asking for PETSc is a case
+//! error that says how to get it.
 
 mod common;
 
 #[cfg(feature = "petsc")]
 mod with_petsc {
-    use super::common::write_stacked_blocks_case;
+    use super::common::{msh22, write_stacked_blocks_case};
+    use signorini::mesh::{structured::box_mesh, ElementKind};
     use signorini::run::{run, RunOptions, RunOutcome};
     use std::path::Path;
 
@@ -56,11 +62,33 @@ mod with_petsc {
         );
     }
 
-    #[test]
-    fn mumps_gives_the_faer_answer_on_press_pull() {
-        let dir = tempfile::tempdir().unwrap();
+    /// Every increment's normal and tangential contact force on interface
+    /// `name` equal to `tolerance` of the normal force's size.
+    fn assert_same_forces(a: &RunOutcome, b: &RunOutcome, name: &str, tolerance: f64, what: &str) {
+        assert_eq!(
+            a.summary.increments.len(),
+            b.summary.increments.len(),
+            "{what}"
+        );
+        for (x, y) in a.summary.increments.iter().zip(&b.summary.increments) {
+            let (x, y) = (&x.contact[name], &y.contact[name]);
+            let size = x.force.iter().map(|f| f * f).sum::<f64>().sqrt();
+            assert!(size > 0.0, "{what}: no contact force");
+            for i in 0..3 {
+                for (f, g) in [
+                    (x.force[i], y.force[i]),
+                    (x.tangential_force[i], y.tangential_force[i]),
+                ] {
+                    assert!((f - g).abs() <= tolerance * size, "{what}: {f} against {g}");
+                }
+            }
+        }
+    }
+
+    /// The press-pull example's mesh and case copied into `dir/case`.
+    fn press_pull(dir: &Path) -> std::path::PathBuf {
         let example = Path::new(env!("CARGO_MANIFEST_DIR")).join("examples/press-pull");
-        let work = dir.path().join("case");
+        let work = dir.join("case");
         std::fs::create_dir(&work).unwrap();
         for f in std::fs::read_dir(&example).unwrap() {
             let f = f.unwrap().path();
@@ -68,11 +96,144 @@ mod with_petsc {
                 std::fs::copy(&f, work.join(f.file_name().unwrap())).unwrap();
             }
         }
-        let case = work.join("case.toml");
+        work.join("case.toml")
+    }
+
+    #[test]
+    fn mumps_gives_the_faer_answer_on_press_pull() {
+        let dir = tempfile::tempdir().unwrap();
+        let case = press_pull(dir.path());
         let faer = run_with(&case, &dir.path().join("faer"), "linear = \"auto\"");
         let petsc = run_with(&case, &dir.path().join("mumps"), "linear = \"petsc\"");
         assert_same(&faer, &petsc, 1e-8, "press-pull, MUMPS");
+        assert_same_forces(&faer, &petsc, "base", 1e-8, "press-pull, MUMPS");
         assert!(petsc.summary.krylov_solves > 0);
+    }
+
+    #[test]
+    fn mumps_and_gamg_give_the_faer_answer_on_press_pull_with_penalty_contact() {
+        let dir = tempfile::tempdir().unwrap();
+        let case = press_pull(dir.path());
+        // the penalty method (GAMG takes no multiplier blocks), friction by
+        // its tangential penalty (exact stick needs multipliers)
+        let text = std::fs::read_to_string(&case).unwrap();
+        assert!(text.contains("exact_stick = true"));
+        let text: String = text
+            .lines()
+            .map(|l| {
+                if l.starts_with("exact_stick") {
+                    "method = \"penalty\"\n".to_string()
+                } else {
+                    format!("{l}\n")
+                }
+            })
+            .collect();
+        std::fs::write(&case, text).unwrap();
+        let faer = run_with(&case, &dir.path().join("faer"), "linear = \"auto\"");
+        let mumps = run_with(&case, &dir.path().join("mumps"), "linear = \"petsc\"");
+        assert_same(&faer, &mumps, 1e-8, "press-pull penalty, MUMPS");
+        assert_same_forces(&faer, &mumps, "base", 1e-8, "press-pull penalty, MUMPS");
+        let gamg = run_with(
+            &case,
+            &dir.path().join("gamg"),
+            "linear = \"petsc\"\npetsc = { options = \"-ksp_type gmres -pc_type gamg -ksp_rtol 1e-12 -ksp_max_it 1000\" }",
+        );
+        assert_same(&faer, &gamg, 1e-8, "press-pull penalty, GAMG");
+        assert_same_forces(&faer, &gamg, "base", 1e-8, "press-pull penalty, GAMG");
+        assert!(gamg.summary.krylov_iterations > gamg.summary.krylov_solves);
+        // the pull reached 0.8 μN = 4.8 of friction
+        let last = &faer.summary.increments.last().unwrap().contact["base"];
+        assert!((last.tangential_force[0] + 4.8).abs() < 1e-6, "{last:?}");
+    }
+
+    /// A Hertz-like contact in `dir`: a quarter of a 1 × 1 × 1 block
+    /// (8 × 8 × 4 Hex8, E = 1000, ν = 0.3) whose bottom is the paraboloid
+    /// z = (x² + y²)/(2R), R = 2, touching the plane z = 0 at the origin,
+    /// its top pushed down by 0.05 in two increments; frictionless, with
+    /// the `[[contact]]` keys `contact`.
+    fn paraboloid_case(dir: &Path, contact: &str) -> std::path::PathBuf {
+        let mut mesh = box_mesh(ElementKind::Hex8, [8, 8, 4], [1.0, 1.0, 1.0]);
+        for x in &mut mesh.nodes {
+            x[2] += (1.0 - x[2]) * (x[0] * x[0] + x[1] * x[1]) / 4.0;
+        }
+        std::fs::write(dir.join("paraboloid.msh"), msh22(&mesh)).unwrap();
+        let path = dir.join(format!("paraboloid-{}.toml", contact.len()));
+        std::fs::write(
+            &path,
+            format!(
+                r#"[mesh]
+file = "paraboloid.msh"
+
+[[material]]
+region = "body"
+model = "linear_elastic"
+youngs_modulus = 1000.0
+poisson_ratio = 0.3
+
+[[displacement]]
+surface = "xmin"
+x = 0.0
+
+[[displacement]]
+surface = "ymin"
+y = 0.0
+
+[[displacement]]
+surface = "zmax"
+z = -0.05
+
+[[obstacle]]
+name = "floor"
+shape = "plane"
+point = [0.0, 0.0, 0.0]
+normal = [0.0, 0.0, 1.0]
+
+[[contact]]
+name = "pole"
+surface = "zmin"
+obstacle = "floor"
+{contact}
+
+[[step]]
+name = "press"
+end_time = 1.0
+initial_increment = 0.5
+"#
+            ),
+        )
+        .unwrap();
+        path
+    }
+
+    #[test]
+    fn mumps_and_gamg_give_the_faer_answer_on_a_hertz_like_contact() {
+        let dir = tempfile::tempdir().unwrap();
+        // the Lagrangian default: faer's `auto` takes the condensed path,
+        // PETSc's monolithic Newton (the same discrete problem)
+        let case = paraboloid_case(dir.path(), "");
+        let faer = run_with(&case, &dir.path().join("faer"), "linear = \"auto\"");
+        assert_eq!(faer.summary.strategy, "condensed");
+        let mumps = run_with(&case, &dir.path().join("mumps"), "linear = \"petsc\"");
+        assert_eq!(mumps.summary.strategy, "monolithic");
+        assert!(
+            mumps.summary.strategy_reason.contains("linear = \"petsc\""),
+            "{}",
+            mumps.summary.strategy_reason
+        );
+        assert_same(&faer, &mumps, 1e-8, "paraboloid, MUMPS");
+        assert_same_forces(&faer, &mumps, "pole", 1e-8, "paraboloid, MUMPS");
+        let closed = mumps.summary.increments.last().unwrap().contact["pole"].closed_nodes;
+        assert!(closed > 3, "a contact zone of {closed} nodes");
+        // GAMG on the penalty method, against faer on it
+        let case = paraboloid_case(dir.path(), "method = \"penalty\"");
+        let faer = run_with(&case, &dir.path().join("faer-penalty"), "linear = \"auto\"");
+        let gamg = run_with(
+            &case,
+            &dir.path().join("gamg"),
+            "linear = \"petsc\"\npetsc = { options = \"-ksp_type cg -pc_type gamg -ksp_rtol 1e-13 -ksp_max_it 1000\" }",
+        );
+        assert_same(&faer, &gamg, 1e-8, "paraboloid penalty, GAMG");
+        assert_same_forces(&faer, &gamg, "pole", 1e-8, "paraboloid penalty, GAMG");
     }
 
     #[test]
@@ -127,4 +288,37 @@ fn petsc_options_without_the_petsc_solver_are_refused() {
     let text =
         std::fs::read_to_string(&case).unwrap() + "\n[solver.petsc]\noptions = \"-pc_type gamg\"\n";
     common::assert_case_error(dir.path(), &text, &["[solver.petsc]", "linear = \"petsc\""]);
+}
+
+/// PETSc options after `--` on the command line: without the feature an
+/// error that says how to get PETSc (exit code 2, usage); an argument that
+/// is not an option is refused in every build.
+#[test]
+fn petsc_options_on_the_command_line_are_checked() {
+    let dir = tempfile::tempdir().unwrap();
+    let case = common::write_stacked_blocks_case(
+        dir.path(),
+        "model = \"linear_elastic\"\nyoungs_modulus = 50.0\npoisson_ratio = 0.3",
+        "",
+    );
+    let run = |extra: &[&str]| {
+        std::process::Command::new(env!("CARGO_BIN_EXE_signorini"))
+            .args(["run", case.to_str().unwrap(), "--quiet", "--"])
+            .args(extra)
+            .output()
+            .unwrap()
+    };
+    let out = run(&["ksp_type", "cg"]);
+    assert_eq!(out.status.code(), Some(2));
+    let text = String::from_utf8_lossy(&out.stderr);
+    assert!(
+        text.contains("'ksp_type'") && text.contains("start with '-'"),
+        "{text}"
+    );
+    if cfg!(not(feature = "petsc")) {
+        let out = run(&["-ksp_type", "cg"]);
+        assert_eq!(out.status.code(), Some(2));
+        let text = String::from_utf8_lossy(&out.stderr);
+        assert!(text.contains("--features petsc"), "{text}");
+    }
 }

@@ -26,6 +26,7 @@ pub mod loads;
 pub mod pattern;
 pub mod scatter;
 pub mod scatter_map;
+pub mod share;
 
 use crate::material::{Mat3, Material};
 use crate::mesh::Mesh;
@@ -35,6 +36,7 @@ use kernel::{KernelFailure, PointGeometry, MAX_NODES};
 use pattern::SparsityPattern;
 use rayon::prelude::*;
 use scatter_map::ScatterMap;
+use share::Share;
 use std::sync::{Arc, Mutex, PoisonError};
 
 /// A mesh with a material on every element and the precomputed reference
@@ -52,6 +54,9 @@ pub struct Model {
     scatter_map: Mutex<Option<Arc<ScatterMap>>>,
     /// `Some` when every element's material has a constant tangent.
     constant: Option<StiffnessCache>,
+    /// In a distributed run: the elements this process assembles
+    /// ([`share`]); `None`: every element.
+    share: Option<Share>,
 }
 
 /// An element that could not be evaluated.
@@ -106,6 +111,7 @@ impl Model {
             colouring,
             scatter_map: Mutex::new(None),
             constant,
+            share: None,
         })
     }
 
@@ -120,6 +126,37 @@ impl Model {
             }
         }
         (0..3).map(|d| (hi[d] - lo[d]).powi(2)).sum::<f64>().sqrt()
+    }
+
+    /// Assemble only the elements `share` owns from now on (a distributed
+    /// run, [`share`]): the internal force is summed over the processes,
+    /// the tangent is this process's part. A cached constant stiffness is
+    /// dropped (it held every element).
+    pub fn set_share(&mut self, share: Share) {
+        if self.constant.is_some() {
+            self.constant = Some(StiffnessCache::default());
+        }
+        self.share = Some(share);
+    }
+
+    /// This process's share of a distributed assembly, if any.
+    pub fn share(&self) -> Option<&Share> {
+        self.share.as_ref()
+    }
+
+    /// Whether this process adds the contributions that are not an
+    /// element's (contact, loads) to the tangent: always without a share,
+    /// the lead process with one.
+    pub fn is_lead(&self) -> bool {
+        self.share.as_ref().is_none_or(Share::is_lead)
+    }
+
+    /// Complete a product with this process's part of the tangent,
+    /// `v ← Σ_p K^p w` (nothing to do without a share).
+    pub fn sum_over_processes(&self, v: &mut [f64]) {
+        if let Some(share) = &self.share {
+            share.communicator.sum(v);
+        }
     }
 
     /// Number of unknowns (3 per node).
@@ -142,20 +179,30 @@ impl Model {
     /// `pattern.nnz()`). With a constant stiffness (every material linear,
     /// small strain), `f_int = K u` with the cached `K`
     /// ([`Model::constant_stiffness`]).
+    ///
+    /// With a [`Share`], only the owned elements are evaluated; `force` is
+    /// then summed over the processes and the first failing element (in
+    /// mesh order, over every process) is reported on every process.
     pub fn assemble_internal(
         &self,
         u: &[f64],
         force: &mut [f64],
         tangent: Option<&mut [f64]>,
     ) -> Result<(), ElementFailure> {
-        if let Some(k) = self.constant_stiffness() {
+        let local = if let Some(k) = self.constant_stiffness() {
             constant_stiffness::multiply_symmetric(&self.pattern, &k, self.num_dofs(), u, force);
             if let Some(t) = tangent {
                 t.copy_from_slice(&k);
             }
-            return Ok(());
-        }
-        self.assemble_elements(u, force, tangent)
+            Ok(())
+        } else {
+            self.assemble_elements(u, force, tangent)
+        };
+        let Some(share) = &self.share else {
+            return local;
+        };
+        share.communicator.sum(force);
+        agree_on_failure(share, local.err()).map_or(Ok(()), Err)
     }
 
     /// The element stiffness `K = ∫ Bᵀ ℂ B dV` on the current pattern when
@@ -212,9 +259,11 @@ impl Model {
         let target = tangent.as_ref().zip(map.as_deref());
         let mut first_failure: Option<ElementFailure> = None;
         for colour in self.colouring.colours() {
+            let owned = |e: &&usize| self.share.as_ref().is_none_or(|s| s.owned[**e]);
             let failure = colour
                 .par_iter()
                 .with_min_len(16)
+                .filter(owned)
                 .filter_map(|&e| self.add_element(e, u, &force, target).err())
                 .min_by_key(|f| f.element);
             first_failure = match (first_failure, failure) {
@@ -339,6 +388,52 @@ pub fn scatter_block_matrix(
         |i, j| matrix[i * dofs + j],
         |_| true,
     );
+}
+
+/// The first element failure (in mesh order) over every process of
+/// `share`, given this process's `local` one: each process puts its
+/// failure (element + 1, kind, quadrature point, determinant) in its own
+/// slot of a vector summed over the processes.
+fn agree_on_failure(share: &Share, local: Option<ElementFailure>) -> Option<ElementFailure> {
+    let (rank, size) = (share.communicator.rank(), share.communicator.size());
+    let mut slots = vec![0.0; 4 * size];
+    if let Some(f) = local {
+        let (kind, point, det) = match f.failure {
+            KernelFailure::ReferenceInverted {
+                quadrature_point,
+                det_j,
+            } => (1.0, quadrature_point, det_j),
+            KernelFailure::Inverted {
+                quadrature_point,
+                det_f,
+            } => (2.0, quadrature_point, det_f),
+        };
+        slots[4 * rank..4 * rank + 4].copy_from_slice(&[
+            (f.element + 1) as f64,
+            kind,
+            point as f64,
+            det,
+        ]);
+    }
+    share.communicator.sum(&mut slots);
+    slots
+        .chunks_exact(4)
+        .filter(|s| s[0] > 0.0)
+        .min_by(|a, b| a[0].total_cmp(&b[0]))
+        .map(|s| ElementFailure {
+            element: s[0] as usize - 1,
+            failure: if s[1] == 1.0 {
+                KernelFailure::ReferenceInverted {
+                    quadrature_point: s[2] as usize,
+                    det_j: s[3],
+                }
+            } else {
+                KernelFailure::Inverted {
+                    quadrature_point: s[2] as usize,
+                    det_f: s[3],
+                }
+            },
+        })
 }
 
 #[cfg(test)]
@@ -474,5 +569,96 @@ mod tests {
         assert_close(&f, &f_ref, "force with multipliers");
         assert_close(&k, &k_ref, "tangent with multipliers");
         assert!(f[3 * nodes..].iter().all(|&v| v == 0.0));
+    }
+
+    /// A second process in this one: `sum` adds what "the other process"
+    /// assembled (its elements, computed beforehand).
+    struct OtherProcess {
+        rank: usize,
+        other: Mutex<Vec<Vec<f64>>>,
+    }
+
+    impl share::Communicator for OtherProcess {
+        fn rank(&self) -> usize {
+            self.rank
+        }
+        fn size(&self) -> usize {
+            2
+        }
+        fn sum(&self, v: &mut [f64]) {
+            let mut queue = self.other.lock().unwrap();
+            let other = queue.remove(0);
+            v.iter_mut().zip(other).for_each(|(a, b)| *a += b);
+        }
+    }
+
+    /// Two shares of the elements (even and odd indices): each part's
+    /// tangent plus the other's is the whole tangent, each process's force
+    /// after the sum is the whole force, for a finite-strain and a linear
+    /// (cached constant stiffness) material; an element failure of the
+    /// other process is reported here too.
+    #[test]
+    fn two_shares_add_up_to_the_whole_assembly() {
+        let materials: [Arc<dyn Material>; 2] = [
+            Arc::new(NeoHookean::new(100.0, 0.45, "m").unwrap()),
+            Arc::new(LinearElastic::new(1000.0, 0.3, "m").unwrap()),
+        ];
+        for material in materials {
+            let (whole, u) = model_and_u(ElementKind::Hex8, material.clone());
+            let (force, k) = assemble_with_threads(&whole, &u, 1);
+            let ne = whole.mesh.elements.len();
+            let part = |rank: usize, other: Vec<Vec<f64>>| {
+                let (mut m, _) = model_and_u(ElementKind::Hex8, material.clone());
+                let communicator = Arc::new(OtherProcess {
+                    rank,
+                    other: Mutex::new(other),
+                });
+                m.set_share(Share {
+                    owned: (0..ne).map(|e| e % 2 == rank).collect(),
+                    communicator,
+                });
+                m
+            };
+            // the odd elements alone (a share whose sums add nothing)
+            let zeros = vec![vec![0.0; force.len()], vec![0.0; 8]];
+            let odd = part(1, zeros);
+            let (odd_force, odd_k) = assemble_with_threads(&odd, &u, 1);
+            // the even elements, completed by the odd ones
+            let even = part(0, vec![odd_force, vec![0.0; 8]]);
+            let (even_force, even_k) = assemble_with_threads(&even, &u, 2);
+            assert_close(&even_force, &force, "summed force");
+            let sum: Vec<f64> = even_k.iter().zip(&odd_k).map(|(a, b)| a + b).collect();
+            assert_close(&sum, &k, "two parts of K");
+            assert!(even_k
+                .iter()
+                .zip(&k)
+                .any(|(a, b)| (a - b).abs() > 1e-6 * b.abs().max(1.0)));
+        }
+        // process 1 reports element 5 inverted: process 0 fails with it
+        let (whole, u) = model_and_u(
+            ElementKind::Hex8,
+            Arc::new(LinearElastic::new(1.0, 0.3, "m").unwrap()),
+        );
+        let ne = whole.mesh.elements.len();
+        let mut failure = vec![0.0; 8];
+        failure[4..8].copy_from_slice(&[6.0, 2.0, 3.0, -0.5]);
+        let (mut m, _) = model_and_u(
+            ElementKind::Hex8,
+            Arc::new(LinearElastic::new(1.0, 0.3, "m").unwrap()),
+        );
+        m.set_share(Share {
+            owned: (0..ne).map(|e| e % 2 == 0).collect(),
+            communicator: Arc::new(OtherProcess {
+                rank: 0,
+                other: Mutex::new(vec![vec![0.0; 3 * m.mesh.num_nodes()], failure]),
+            }),
+        });
+        let mut force = vec![0.0; m.pattern.dimension()];
+        let f = m.assemble_internal(&u, &mut force, None).unwrap_err();
+        assert_eq!(f.element, 5);
+        assert!(matches!(
+            f.failure,
+            KernelFailure::Inverted { quadrature_point: 3, det_f } if det_f == -0.5
+        ));
     }
 }

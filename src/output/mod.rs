@@ -5,6 +5,8 @@
 //!   ParaView) and cell data (e.g. stress tensors), inline base64 binary.
 //! - [`pvd`]: the ParaView collection (`.pvd`) that lists the `.vtu` files
 //!   with their times, so ParaView opens the whole series at once.
+//! - [`pvtu`]: a distributed run's `.pvtu` data sets and their `.vtu`
+//!   pieces, one per process.
 //! - [`plot`]: an SVG plot of the Newton convergence of every step.
 //! - [`history`]: a nodal quantity after every increment (`.csv`, `.svg`).
 //! - [`profile`]: contact quantities along a line of an interface at the end
@@ -37,6 +39,7 @@ pub mod observer;
 pub mod plot;
 pub mod profile;
 pub mod pvd;
+pub mod pvtu;
 pub mod summary;
 pub mod table;
 pub mod units;

@@ -13,6 +13,7 @@ use super::history::History;
 use super::manifest::Manifest;
 use super::observer::StepObserver;
 use super::profile::{file_part, Profile};
+use super::pvtu::{data_set_file, IncrementArrays, Pieces};
 use super::summary::Summary;
 use super::{plot, pvd::PvdCollection, vtu};
 use crate::{Error, Result};
@@ -34,6 +35,9 @@ pub struct ResultWriter {
     name: String,
     /// The case the checkpoint is written for; `None`: no checkpoint.
     case_key: Option<CaseKey>,
+    /// In a distributed run (rank 0): its piece of each `.pvtu`, which it
+    /// writes with the `.pvtu`; `None`: whole `.vtu` files.
+    pieces: Option<Pieces>,
 }
 
 /// What a restart restores of the result files: the increments so far
@@ -134,6 +138,7 @@ impl ResultWriter {
             vtu: vtu::VtuOptions { compress: true },
             name: name.to_string(),
             case_key: None,
+            pieces: None,
         })
     }
 
@@ -141,6 +146,14 @@ impl ResultWriter {
     /// (a restart resumes from it).
     pub fn checkpoint(mut self, key: CaseKey) -> Self {
         self.case_key = Some(key);
+        self
+    }
+
+    /// Write each data set as a `.pvtu` over one piece per process, this
+    /// process (rank 0) writing its own piece (a distributed run; the
+    /// summary names `.pvtu` files then).
+    pub fn pieces(mut self, pieces: Pieces) -> Self {
+        self.pieces = Some(pieces);
         self
     }
 
@@ -155,34 +168,27 @@ impl ResultWriter {
         &self.dir
     }
 
-    /// The VTU file of an increment, with the chosen fields.
+    /// The VTU file of an increment, with the chosen fields (or, in a
+    /// distributed run, the `.pvtu` and this process's piece).
     fn write_vtu(&mut self, increment: &ConvergedIncrement, file: &str) -> Result<()> {
-        let has_contact = !increment.problem.contacts.is_empty();
-        let nodal: Vec<(NodalField, _)> = self
-            .nodal
-            .iter()
-            .filter(|f| has_contact || !f.needs_contact())
-            .map(|&f| (f, increment.nodal(f)))
-            .collect();
-        let cells = increment.cells(&self.cells);
+        let arrays = IncrementArrays::new(increment, &self.nodal, &self.cells);
+        let (point_data, cell_data) = (arrays.points(), arrays.cells());
         self.manifest.claim(file)?;
-        let point_data: Vec<vtu::Field> = nodal
-            .iter()
-            .map(|(f, v)| field(f.name(), f.components(), f.kind(), v))
-            .collect();
-        let cell_data: Vec<vtu::Field> = self
-            .cells
-            .iter()
-            .zip(&cells)
-            .map(|(f, v)| field(f.name(), f.components(), f.kind(), v))
-            .collect();
-        vtu::write_vtu_with(
-            &self.dir.join(file),
-            &increment.problem.model.mesh,
-            &point_data,
-            &cell_data,
-            self.vtu,
-        )
+        let mesh = &increment.problem.model.mesh;
+        let Some(pieces) = &self.pieces else {
+            return vtu::write_vtu_with(
+                &self.dir.join(file),
+                mesh,
+                &point_data,
+                &cell_data,
+                self.vtu,
+            );
+        };
+        for rank in 0..pieces.parts {
+            self.manifest.claim(&Pieces::piece_file(file, rank))?;
+        }
+        pieces.write_piece(&self.dir, file, mesh, &point_data, &cell_data, self.vtu)?;
+        pieces.write_pvtu(&self.dir, file, &point_data, &cell_data)
     }
 
     /// Histories after every increment; profiles at the end of a step.
@@ -215,11 +221,7 @@ impl StepObserver for ResultWriter {
     }
 
     fn on_increment(&mut self, increment: &ConvergedIncrement, summary: &Summary) -> Result<()> {
-        let file = summary
-            .increments
-            .last()
-            .map(|i| i.file.clone())
-            .unwrap_or_default();
+        let file = data_set_file(summary);
         // `[output] every` leaves some increments without a file
         if !file.is_empty() {
             self.write_vtu(increment, &file)?;
@@ -280,20 +282,5 @@ impl ResultWriter {
                 .collect(),
         };
         checkpoint::write(&path, &content)
-    }
-}
-
-/// A VTU array of `values`.
-fn field<'a>(
-    name: &'static str,
-    components: usize,
-    kind: vtu::ArrayKind,
-    values: &'a [f64],
-) -> vtu::Field<'a> {
-    vtu::Field {
-        name,
-        components,
-        values,
-        kind,
     }
 }

@@ -108,4 +108,7 @@ impl NonlinearProblem for Problem {
     fn moving_coupled_nodes(&self) -> Vec<usize> {
         self.deformable_contact_nodes()
     }
+    fn sum_over_processes(&self, v: &mut [f64]) {
+        self.model.sum_over_processes(v)
+    }
 }

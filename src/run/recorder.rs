@@ -28,6 +28,8 @@ pub(super) struct Recorder<'a> {
     pub(super) summary: Summary,
     pub(super) observers: Observers<'a>,
     pub(super) name: String,
+    /// `vtu`, or `pvtu` in a distributed run.
+    pub(super) extension: &'static str,
     pub(super) every: usize,
     pub(super) cancel: Option<Arc<AtomicBool>>,
     pub(super) last: Instant,
@@ -57,6 +59,7 @@ impl<'a> Recorder<'a> {
             summary: Summary::start(case_label, problem),
             observers,
             name: name.to_string(),
+            extension: "vtu",
             every: 1,
             cancel: None,
             last: start,
@@ -228,7 +231,7 @@ impl stepping::StepObserver<Problem> for Recorder<'_> {
         let index = self.summary.increments.len() + 1;
         let end_of_step = record.time == problem.steps[record.step].end_time;
         let file = if index.is_multiple_of(self.every) || end_of_step {
-            format!("{}_{index:04}.vtu", self.name)
+            format!("{}_{index:04}.{}", self.name, self.extension)
         } else {
             String::new()
         };

@@ -15,6 +15,7 @@ pub mod lu;
 pub mod newton;
 pub mod nonlinear;
 pub mod ordering;
+pub mod partition;
 #[cfg(feature = "petsc")]
 pub mod petsc;
 pub mod settings;

@@ -128,6 +128,8 @@ impl<P: NonlinearProblem> Newton<'_, P> {
             // prescribed values still to be reached: r_f + K_fc d
             if have_tangent {
                 super::linear::multiply(blocks.symbolic(), &k_values, &jump, &mut kd);
+                // distributed: K_fc d from every process's part of K
+                problem.sum_over_processes(&mut kd);
             } else {
                 kd.iter_mut().for_each(|x| *x = 0.0);
             }

@@ -107,4 +107,8 @@ pub trait NonlinearProblem {
     /// The nodes whose motion sets the search margin of
     /// [`NonlinearProblem::refresh_pattern`].
     fn moving_coupled_nodes(&self) -> Vec<usize>;
+    /// In a distributed run, where each process holds its part `K^p` of
+    /// the tangent: complete a product with it, `v ← Σ_p v^p`
+    /// (`v = K^p w` on entry). Nothing to do in a serial run.
+    fn sum_over_processes(&self, _v: &mut [f64]) {}
 }

@@ -81,10 +81,12 @@ struct SystemArguments {
 /// Serialises every call into PETSc.
 static PETSC: Mutex<()> = Mutex::new(());
 
+pub mod distributed;
+
 const MESSAGE: usize = 1024;
 
 /// A message buffer the C layer writes into, as a Rust string.
-fn message(buffer: &[c_char]) -> String {
+pub(crate) fn message(buffer: &[c_char]) -> String {
     // SAFETY: the C layer writes a NUL-terminated string (snprintf) into a
     // zeroed buffer of this length, so there is a NUL within it
     unsafe { CStr::from_ptr(buffer.as_ptr()) }
@@ -141,6 +143,92 @@ impl RowPattern {
     }
 }
 
+/// Initialise PETSc (and MPI: the world of `mpirun`, or a singleton) once
+/// per process; PETSc's version.
+pub fn initialise() -> Result<String> {
+    let _lock = PETSC.lock().unwrap_or_else(|e| e.into_inner());
+    let mut err = [0 as c_char; MESSAGE];
+    let mut version = [0 as c_char; 256];
+    // SAFETY: buffers of the lengths given
+    let code = unsafe {
+        ffi::sg_petsc_initialise(
+            version.as_mut_ptr(),
+            version.len(),
+            err.as_mut_ptr(),
+            err.len(),
+        )
+    };
+    if code != 0 {
+        return Err(Error::LinearSolver(message(&err)));
+    }
+    Ok(message(&version))
+}
+
+/// PETSc options given on the command line (`signorini run case.toml --
+/// -ksp_type cg -pc_type gamg`), read after the case's.
+static COMMAND_LINE: Mutex<String> = Mutex::new(String::new());
+
+/// Set the PETSc options of the command line: every PETSc solver made
+/// after this reads them after `PETSC_OPTIONS` and the case's
+/// `[solver.petsc] options`, so the command line wins.
+pub fn set_command_line_options(options: &[String]) {
+    *COMMAND_LINE.lock().unwrap_or_else(|e| e.into_inner()) = options.join(" ");
+}
+
+/// A solver's options: the case's, then the command line's, as a C string.
+fn with_command_line(options: &str) -> Result<CString> {
+    let command_line = COMMAND_LINE.lock().unwrap_or_else(|e| e.into_inner());
+    let text = if command_line.is_empty() {
+        options.to_string()
+    } else {
+        format!("{options} {command_line}")
+    };
+    CString::new(text)
+        .map_err(|_| Error::LinearSolver("the PETSc options contain a NUL character".into()))
+}
+
+/// What a PETSc solver did: its time, solves and Krylov iterations.
+#[derive(Default)]
+struct Tally {
+    total: Duration,
+    solves: usize,
+    iterations: usize,
+}
+
+impl Tally {
+    /// One solve begun at `start` with `iterations` Krylov iterations and
+    /// the C layer's return `code`; `x` the solution. Why it failed, if it
+    /// did (the C layer's message, or a solution that is not finite).
+    fn record(
+        &mut self,
+        start: Instant,
+        iterations: c_int,
+        code: c_int,
+        err: &[c_char],
+        x: &[f64],
+    ) -> std::result::Result<(), String> {
+        self.solves += 1;
+        self.iterations += iterations.max(0) as usize;
+        self.total += start.elapsed();
+        if code != 0 {
+            return Err(message(err));
+        }
+        if x.iter().any(|v| !v.is_finite()) {
+            return Err("PETSc's solution is not finite: the tangent is singular".into());
+        }
+        Ok(())
+    }
+
+    fn statistics(&self) -> SolverStatistics {
+        SolverStatistics {
+            factorisation: self.total,
+            krylov_solves: self.solves,
+            krylov_iterations: self.iterations,
+            ..Default::default()
+        }
+    }
+}
+
 /// PETSc's KSP and PC on the tangent.
 pub struct PetscSolver {
     handle: *mut c_void,
@@ -151,9 +239,7 @@ pub struct PetscSolver {
     coordinates: Option<Vec<f64>>,
     /// PETSc's version and the KSP/PC in use, for the log.
     description: String,
-    total: Duration,
-    solves: usize,
-    iterations: usize,
+    tally: Tally,
 }
 
 // SAFETY: the handle is only used under the `PETSC` lock, and PETSc's
@@ -166,61 +252,63 @@ impl PetscSolver {
     /// `coordinates` (3 per node, reference) are attached as GAMG's
     /// rigid-body near-null space when every unknown is a displacement.
     pub fn new(options: &str, coordinates: Option<Vec<f64>>) -> Result<Self> {
-        let options = CString::new(options).map_err(|_| {
-            Error::LinearSolver("[solver.petsc] options contain a NUL character".into())
-        })?;
-        let _lock = PETSC.lock().unwrap_or_else(|e| e.into_inner());
-        let mut err = [0 as c_char; MESSAGE];
-        let mut version = [0 as c_char; 256];
-        // SAFETY: valid NUL-terminated input, buffers of the lengths given
-        let code = unsafe {
-            ffi::sg_petsc_initialise(
-                version.as_mut_ptr(),
-                version.len(),
-                err.as_mut_ptr(),
-                err.len(),
-            )
-        };
-        if code != 0 {
-            return Err(Error::LinearSolver(message(&err)));
-        }
-        let mut handle = std::ptr::null_mut();
-        // SAFETY: out-pointer, NUL-terminated options and buffer valid
-        let code = unsafe {
-            ffi::sg_petsc_solver_new(&mut handle, options.as_ptr(), err.as_mut_ptr(), err.len())
-        };
-        if code != 0 {
-            // SAFETY: the C layer sets `handle` before anything can fail
-            unsafe { ffi::sg_petsc_solver_free(handle) };
-            return Err(Error::LinearSolver(message(&err)));
-        }
-        let mut text = [0 as c_char; 256];
-        // SAFETY: handle made above, buffers valid
-        let code = unsafe {
-            ffi::sg_petsc_describe(
-                handle,
-                text.as_mut_ptr(),
-                text.len(),
-                err.as_mut_ptr(),
-                err.len(),
-            )
-        };
-        let solver_text = if code == 0 {
-            message(&text)
-        } else {
-            message(&err)
-        };
+        let (handle, description) = make_ksp(
+            options,
+            ffi::sg_petsc_solver_new,
+            ffi::sg_petsc_solver_free,
+            ffi::sg_petsc_describe,
+        )?;
         Ok(PetscSolver {
             handle,
             rows: None,
             values: Vec::new(),
             coordinates,
-            description: format!("{}, {solver_text}", message(&version)),
-            total: Duration::ZERO,
-            solves: 0,
-            iterations: 0,
+            description,
+            tally: Tally::default(),
         })
     }
+}
+
+/// The C layer's constructor, destructor and description of a solver.
+type MakeFn = unsafe extern "C" fn(*mut *mut c_void, *const c_char, *mut c_char, usize) -> c_int;
+type FreeFn = unsafe extern "C" fn(*mut c_void);
+type DescribeFn =
+    unsafe extern "C" fn(*mut c_void, *mut c_char, usize, *mut c_char, usize) -> c_int;
+
+/// Initialise PETSc and make a solver with the C layer's `make` from
+/// `options` (then the command line's): its handle, and PETSc's version
+/// with the KSP and PC in words (`describe`).
+fn make_ksp(
+    options: &str,
+    make: MakeFn,
+    free: FreeFn,
+    describe: DescribeFn,
+) -> Result<(*mut c_void, String)> {
+    let options = with_command_line(options)?;
+    let version = initialise()?;
+    let _lock = PETSC.lock().unwrap_or_else(|e| e.into_inner());
+    let mut err = [0 as c_char; MESSAGE];
+    let mut handle = std::ptr::null_mut();
+    // SAFETY: out-pointer, NUL-terminated options and buffer valid
+    let code = unsafe { make(&mut handle, options.as_ptr(), err.as_mut_ptr(), err.len()) };
+    if code != 0 {
+        // SAFETY: the C layer sets `handle` before anything can fail
+        unsafe { free(handle) };
+        return Err(Error::LinearSolver(message(&err)));
+    }
+    let mut text = [0 as c_char; 256];
+    // SAFETY: handle made above, buffers valid
+    let code = unsafe {
+        describe(
+            handle,
+            text.as_mut_ptr(),
+            text.len(),
+            err.as_mut_ptr(),
+            err.len(),
+        )
+    };
+    let solver_text = message(if code == 0 { &text } else { &err });
+    Ok((handle, format!("{version}, {solver_text}")))
 }
 
 impl Drop for PetscSolver {
@@ -282,16 +370,7 @@ impl LinearSolver for PetscSolver {
         };
         let code =
             unsafe { ffi::sg_petsc_solve(self.handle, &system, err.as_mut_ptr(), err.len()) };
-        self.solves += 1;
-        self.iterations += iterations.max(0) as usize;
-        self.total += start.elapsed();
-        if code != 0 {
-            return Err(message(&err));
-        }
-        if x.iter().any(|v| !v.is_finite()) {
-            return Err("PETSc's solution is not finite: the tangent is singular".into());
-        }
-        Ok(())
+        self.tally.record(start, iterations, code, &err, x)
     }
 
     fn description(&self) -> String {
@@ -299,12 +378,7 @@ impl LinearSolver for PetscSolver {
     }
 
     fn statistics(&self) -> SolverStatistics {
-        SolverStatistics {
-            factorisation: self.total,
-            krylov_solves: self.solves,
-            krylov_iterations: self.iterations,
-            ..Default::default()
-        }
+        self.tally.statistics()
     }
 }
 

@@ -64,9 +64,34 @@ typedef struct {
   PetscInt n, nnz;
 } Solver;
 
-/* A solver whose KSP and PC read an options database of their own:
- * PETSC_OPTIONS from the environment, then `options` (so the case file
- * wins), so that two solvers in one process do not share options. */
+/* A KSP on `comm` whose PC it reads an options database of its own:
+ * PETSC_OPTIONS from the environment, then `text` (so the case file
+ * wins), so that two solvers in one process do not share options. The
+ * default is a direct solve by MUMPS (LU, so saddle-point systems of the
+ * Lagrangian contact methods are fine); the options database overrides. */
+static int make_ksp(MPI_Comm comm, const char *text, PetscOptions *options,
+                    KSP *ksp, char *err, size_t err_len) {
+  CHECK(PetscOptionsCreate(options));
+  const char *environment = getenv("PETSC_OPTIONS");
+  if (environment && environment[0]) {
+    CHECK(PetscOptionsInsertString(*options, environment));
+  }
+  if (text && text[0]) {
+    CHECK(PetscOptionsInsertString(*options, text));
+  }
+  CHECK(KSPCreate(comm, ksp));
+  CHECK(PetscObjectSetOptions((PetscObject)*ksp, *options));
+  PC pc;
+  CHECK(KSPSetType(*ksp, KSPPREONLY));
+  CHECK(KSPGetPC(*ksp, &pc));
+  CHECK(PCSetType(pc, PCLU));
+  CHECK(PCFactorSetMatSolverType(pc, MATSOLVERMUMPS));
+  CHECK(KSPSetFromOptions(*ksp));
+  return 0;
+}
+
+/* A solver whose KSP and PC read an options database of their own
+ * (make_ksp) on one process. */
 int sg_petsc_solver_new(void **out, const char *options, char *err,
                         size_t err_len) {
   Solver *s = calloc(1, sizeof(Solver));
@@ -75,25 +100,7 @@ int sg_petsc_solver_new(void **out, const char *options, char *err,
     return 1;
   }
   *out = s;
-  CHECK(PetscOptionsCreate(&s->options));
-  const char *environment = getenv("PETSC_OPTIONS");
-  if (environment && environment[0]) {
-    CHECK(PetscOptionsInsertString(s->options, environment));
-  }
-  if (options && options[0]) {
-    CHECK(PetscOptionsInsertString(s->options, options));
-  }
-  CHECK(KSPCreate(PETSC_COMM_SELF, &s->ksp));
-  CHECK(PetscObjectSetOptions((PetscObject)s->ksp, s->options));
-  /* the default: a direct solve by MUMPS (LU, so saddle-point systems of the
-   * Lagrangian contact methods are fine); the options database overrides */
-  PC pc;
-  CHECK(KSPSetType(s->ksp, KSPPREONLY));
-  CHECK(KSPGetPC(s->ksp, &pc));
-  CHECK(PCSetType(pc, PCLU));
-  CHECK(PCFactorSetMatSolverType(pc, MATSOLVERMUMPS));
-  CHECK(KSPSetFromOptions(s->ksp));
-  return 0;
+  return make_ksp(PETSC_COMM_SELF, options, &s->options, &s->ksp, err, err_len);
 }
 
 void sg_petsc_solver_free(void *handle) {
@@ -107,22 +114,45 @@ void sg_petsc_solver_free(void *handle) {
   free(s);
 }
 
-/* Describe the KSP and PC (type names) into `text`. */
-int sg_petsc_describe(void *handle, char *text, size_t text_len, char *err,
-                      size_t err_len) {
-  Solver *s = handle;
+/* Describe a KSP and its PC (type names) into `text`. */
+static int describe_ksp(KSP ksp, char *text, size_t text_len, char *err,
+                        size_t err_len) {
   KSPType ksp_type;
   PCType pc_type;
   PC pc;
   MatSolverType package = NULL;
-  CHECK(KSPGetType(s->ksp, &ksp_type));
-  CHECK(KSPGetPC(s->ksp, &pc));
+  CHECK(KSPGetType(ksp, &ksp_type));
+  CHECK(KSPGetPC(ksp, &pc));
   CHECK(PCGetType(pc, &pc_type));
   if (pc_type && (!strcmp(pc_type, PCLU) || !strcmp(pc_type, PCCHOLESKY))) {
     CHECK(PCFactorGetMatSolverType(pc, &package));
   }
   snprintf(text, text_len, "ksp %s, pc %s%s%s", ksp_type ? ksp_type : "?",
            pc_type ? pc_type : "?", package ? " " : "", package ? package : "");
+  return 0;
+}
+
+/* Describe the solver's KSP and PC into `text`. */
+int sg_petsc_describe(void *handle, char *text, size_t text_len, char *err,
+                      size_t err_len) {
+  return describe_ksp(((Solver *)handle)->ksp, text, text_len, err, err_len);
+}
+
+/* KSPSolve, its iterations into `iterations`, and an error when it did
+ * not converge. */
+static int solve_ksp(KSP ksp, Vec b, Vec x, int *iterations, char *err,
+                     size_t err_len) {
+  CHECK(KSPSolve(ksp, b, x));
+  KSPConvergedReason reason;
+  CHECK(KSPGetConvergedReason(ksp, &reason));
+  PetscInt its;
+  CHECK(KSPGetIterationNumber(ksp, &its));
+  *iterations = (int)its;
+  if (reason < 0) {
+    snprintf(err, err_len, "PETSc's KSP did not converge: %s after %d iterations",
+             KSPConvergedReasons[reason], (int)its);
+    return 1;
+  }
   return 0;
 }
 
@@ -200,21 +230,188 @@ int sg_petsc_solve(void *handle, const SystemArguments *system, char *err,
   CHECK(VecGetArray(s->rhs, &a));
   memcpy(a, b, sizeof(double) * (size_t)n);
   CHECK(VecRestoreArray(s->rhs, &a));
-  CHECK(KSPSolve(s->ksp, s->rhs, s->solution));
-
-  KSPConvergedReason reason;
-  CHECK(KSPGetConvergedReason(s->ksp, &reason));
-  PetscInt its;
-  CHECK(KSPGetIterationNumber(s->ksp, &its));
-  *iterations = (int)its;
-  if (reason < 0) {
-    snprintf(err, err_len, "PETSc's KSP did not converge: %s after %d iterations",
-             KSPConvergedReasons[reason], (int)its);
-    return 1;
-  }
+  int failed = solve_ksp(s->ksp, s->rhs, s->solution, iterations, err, err_len);
+  if (failed) return failed;
   const PetscScalar *y;
   CHECK(VecGetArrayRead(s->solution, &y));
   memcpy(x, y, sizeof(double) * (size_t)n);
   CHECK(VecRestoreArrayRead(s->solution, &y));
+  return 0;
+}
+
+/* ---- distributed runs (mpirun -np N): src/solve/petsc/distributed.rs ---- */
+
+/* This process's rank and the number of processes of PETSc's world
+ * (PETSc initialised first). */
+int sg_mpi_world(int *rank, int *size, char *err, size_t err_len) {
+  CHECK(MPI_Comm_rank(PETSC_COMM_WORLD, rank));
+  CHECK(MPI_Comm_size(PETSC_COMM_WORLD, size));
+  return 0;
+}
+
+/* v <- the sum of every process's v, the same bits on every process: a
+ * reduction to rank 0, then a broadcast (an MPI_Allreduce may round
+ * differently on different processes). */
+int sg_mpi_sum(double *v, size_t n, char *err, size_t err_len) {
+  int rank;
+  CHECK(MPI_Comm_rank(PETSC_COMM_WORLD, &rank));
+  const size_t chunk = 1 << 26;
+  for (size_t start = 0; start < n; start += chunk) {
+    int count = (int)(n - start < chunk ? n - start : chunk);
+    if (rank == 0) {
+      CHECK(MPI_Reduce(MPI_IN_PLACE, v + start, count, MPI_DOUBLE, MPI_SUM, 0,
+                       PETSC_COMM_WORLD));
+    } else {
+      CHECK(MPI_Reduce(v + start, NULL, count, MPI_DOUBLE, MPI_SUM, 0,
+                       PETSC_COMM_WORLD));
+    }
+    CHECK(MPI_Bcast(v + start, count, MPI_DOUBLE, 0, PETSC_COMM_WORLD));
+  }
+  return 0;
+}
+
+typedef struct {
+  PetscOptions options;
+  Mat matrix;
+  Vec rhs, solution, everywhere;
+  VecScatter to_all;
+  KSP ksp;
+} DistributedSolver;
+
+/* A KSP on PETSc's world (make_ksp). */
+int sg_petsc_mpi_solver_new(void **out, const char *options, char *err,
+                            size_t err_len) {
+  DistributedSolver *s = calloc(1, sizeof(DistributedSolver));
+  if (!s) {
+    snprintf(err, err_len, "out of memory for a PETSc solver");
+    return 1;
+  }
+  *out = s;
+  return make_ksp(PETSC_COMM_WORLD, options, &s->options, &s->ksp, err, err_len);
+}
+
+static void distributed_free_system(DistributedSolver *s) {
+  if (s->matrix) MatDestroy(&s->matrix);
+  if (s->rhs) VecDestroy(&s->rhs);
+  if (s->solution) VecDestroy(&s->solution);
+  if (s->everywhere) VecDestroy(&s->everywhere);
+  if (s->to_all) VecScatterDestroy(&s->to_all);
+}
+
+void sg_petsc_mpi_solver_free(void *handle) {
+  DistributedSolver *s = handle;
+  if (!s) return;
+  distributed_free_system(s);
+  if (s->ksp) KSPDestroy(&s->ksp);
+  if (s->options) PetscOptionsDestroy(&s->options);
+  free(s);
+}
+
+int sg_petsc_mpi_describe(void *handle, char *text, size_t text_len,
+                          char *err, size_t err_len) {
+  return describe_ksp(((DistributedSolver *)handle)->ksp, text, text_len, err,
+                      err_len);
+}
+
+/* The distributed matrix's layout (`DistributedLayout` in
+ * distributed.rs): this process owns the global rows [first, first +
+ * local) of `global`; `row_start`/`columns` (sorted global columns) give
+ * the pattern of those rows for the preallocation; `coordinates` (3 per
+ * owned node, or NULL) the rigid-body near-null space when block_size is
+ * 3. */
+typedef struct {
+  int global;
+  int first;
+  int local;
+  int block_size;
+  const int *row_start;
+  const int *columns;
+  const double *coordinates;
+} DistributedLayout;
+
+/* Make the matrix (MPIAIJ, preallocated exactly from the pattern), its
+ * vectors and the scatter of the solution to every process. */
+int sg_petsc_mpi_layout(void *handle, const DistributedLayout *layout,
+                        char *err, size_t err_len) {
+  DistributedSolver *s = handle;
+  distributed_free_system(s);
+  CHECK(MatCreate(PETSC_COMM_WORLD, &s->matrix));
+  CHECK(PetscObjectSetOptions((PetscObject)s->matrix, s->options));
+  CHECK(MatSetSizes(s->matrix, layout->local, layout->local, layout->global,
+                    layout->global));
+  CHECK(MatSetType(s->matrix, MATMPIAIJ));
+  if (layout->block_size > 1) CHECK(MatSetBlockSize(s->matrix, layout->block_size));
+  CHECK(MatMPIAIJSetPreallocationCSR(s->matrix, layout->row_start,
+                                     layout->columns, NULL));
+  CHECK(MatSetOption(s->matrix, MAT_NEW_NONZERO_ALLOCATION_ERR, PETSC_TRUE));
+  CHECK(MatCreateVecs(s->matrix, &s->solution, &s->rhs));
+  CHECK(VecScatterCreateToAll(s->solution, &s->to_all, &s->everywhere));
+  if (layout->coordinates && layout->block_size == 3) {
+    Vec coords;
+    MatNullSpace rigid;
+    CHECK(VecCreateMPI(PETSC_COMM_WORLD, layout->local, layout->global, &coords));
+    CHECK(VecSetBlockSize(coords, 3));
+    PetscScalar *c;
+    CHECK(VecGetArray(coords, &c));
+    memcpy(c, layout->coordinates, sizeof(double) * (size_t)layout->local);
+    CHECK(VecRestoreArray(coords, &c));
+    CHECK(MatNullSpaceCreateRigidBody(coords, &rigid));
+    CHECK(MatSetNearNullSpace(s->matrix, rigid));
+    CHECK(MatNullSpaceDestroy(&rigid));
+    CHECK(VecDestroy(&coords));
+  }
+  return 0;
+}
+
+/* This process's part of one system (`DistributedSystem` in
+ * distributed.rs): `rows` global rows of its part of K with their
+ * entries (`row_start`, global `columns`, `values`), added into the
+ * matrix (rows of other processes through PETSc's stash); `b` the
+ * right-hand side of its own rows; `x` the whole solution (global
+ * numbering) on return, on every process. */
+typedef struct {
+  int rows;
+  const int *row_index;
+  const int *row_start;
+  const int *columns;
+  const double *values;
+  const double *b;
+  double *x;
+  int *iterations;
+} DistributedSystem;
+
+int sg_petsc_mpi_solve(void *handle, const DistributedSystem *system,
+                       char *err, size_t err_len) {
+  DistributedSolver *s = handle;
+  CHECK(MatZeroEntries(s->matrix));
+  for (int r = 0; r < system->rows; r++) {
+    PetscInt row = system->row_index[r];
+    PetscInt count = system->row_start[r + 1] - system->row_start[r];
+    CHECK(MatSetValues(s->matrix, 1, &row, count,
+                       system->columns + system->row_start[r],
+                       system->values + system->row_start[r], ADD_VALUES));
+  }
+  CHECK(MatAssemblyBegin(s->matrix, MAT_FINAL_ASSEMBLY));
+  CHECK(MatAssemblyEnd(s->matrix, MAT_FINAL_ASSEMBLY));
+  CHECK(KSPSetOperators(s->ksp, s->matrix, s->matrix));
+  PetscInt local;
+  CHECK(VecGetLocalSize(s->rhs, &local));
+  PetscScalar *a;
+  CHECK(VecGetArray(s->rhs, &a));
+  memcpy(a, system->b, sizeof(double) * (size_t)local);
+  CHECK(VecRestoreArray(s->rhs, &a));
+  int failed = solve_ksp(s->ksp, s->rhs, s->solution, system->iterations, err,
+                         err_len);
+  if (failed) return failed;
+  CHECK(VecScatterBegin(s->to_all, s->solution, s->everywhere, INSERT_VALUES,
+                        SCATTER_FORWARD));
+  CHECK(VecScatterEnd(s->to_all, s->solution, s->everywhere, INSERT_VALUES,
+                      SCATTER_FORWARD));
+  PetscInt global;
+  CHECK(VecGetSize(s->everywhere, &global));
+  const PetscScalar *y;
+  CHECK(VecGetArrayRead(s->everywhere, &y));
+  memcpy(system->x, y, sizeof(double) * (size_t)global);
+  CHECK(VecRestoreArrayRead(s->everywhere, &y));
   return 0;
 }

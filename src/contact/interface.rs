@@ -148,15 +148,11 @@ impl ContactInterface {
     }
 
     /// Whether friction sticks exactly (the augmented Lagrangian of
-    /// [`friction`], "Exact stick"): a law that augments friction
-    /// ([`NormalLaw::augments_friction`]) against a rigid obstacle. Between
-    /// deformable bodies friction stays regularised for now: there the
-    /// outer loop did not converge in 200 updates on `tests/deformable.rs`
-    /// (a block dragged across facets, Uzawa).
+    /// [`friction`], "Exact stick"): asked for, with a law that augments
+    /// friction ([`NormalLaw::augments_friction`]), against a rigid
+    /// obstacle or a primary surface.
     pub fn exact_stick(&self) -> bool {
-        self.exact_stick_requested
-            && self.law.augments_friction()
-            && matches!(self.primary, Primary::Rigid(_))
+        self.exact_stick_requested && self.law.augments_friction()
     }
 
     /// Whether friction makes the tangent nonsymmetric.
@@ -551,12 +547,13 @@ impl ContactInterface {
             let state_of = |i| self.node_state(ctx, states, i);
             self.for_each_node(p, ctx, state_of, |node, state, k| {
                 let e = k.map(|k| self.evaluate(p, node, k, &state));
-                let response = e.as_ref().and_then(|e| e.tangential.as_ref());
-                if let Some(r) = response {
+                let response = e
+                    .as_ref()
+                    .and_then(|e| e.tangential.as_ref().map(|t| (t, &e.kinematics.normal)));
+                if let Some((r, _)) = response {
                     worst = worst.max(r.multiplier_residual.norm());
                 }
-                // against a rigid obstacle (exact_stick): no material point
-                augmented.push(friction::augment(&state.friction, response));
+                augmented.push(p.augment(node, &state.friction, response));
             });
         });
         if worst <= tolerance {

@@ -1024,7 +1024,6 @@ fn contacts_and_output(c: &mut Catalogue) {
         ("infinite penetration tolerance", "surface = \"contact\"\nobstacle = \"wall\"\ninitial_penetration_tolerance = inf", "initial_penetration_tolerance = inf"),
         ("exact stick without friction", "surface = \"contact\"\nobstacle = \"wall\"\nexact_stick = true", "exact_stick = true: it needs friction"),
         ("exact stick with penalty", "surface = \"contact\"\nobstacle = \"wall\"\nfriction_coefficient = 0.2\nmethod = \"penalty\"\nexact_stick = true", "penalty method keeps the regularised law"),
-        ("exact stick between bodies", "surface = \"contact\"\nprimary = \"lid\"\nfriction_coefficient = 0.2\nexact_stick = true", "contact[0]"),
     ] {
         c.edit(&format!("contact: {name}"), contact, to, &[kw]);
     }

@@ -53,21 +53,31 @@ impl StepObserver for Record {
     }
 }
 
-/// The coarse Cattaneo–Mindlin run, against Hertz and Mindlin. Tolerances
-/// (today's code: the regularised tangential law with the automatic
-/// `ε_T = E/h_s`, which issue 18 item 2 replaces by an exact stick; the
-/// figures measured on this mesh are in the example's README):
+/// The coarse Cattaneo–Mindlin run (exact stick, issue 18 item 2), against
+/// Hertz and Mindlin. Tolerances (the figures measured on this mesh and on
+/// the committed one are in the example's README):
 /// - `Q/(μP)` within 0.45 … 0.55 at the end of the shear;
 /// - the normal press: the contact radius (fit of `p²` against `r²`)
-///   within 3 % of Hertz's for the computed `P` (measured −1.5 %);
-/// - the stick radius fitted to the deficit `μp − q` within 3 % of
-///   Mindlin's `c = a (1 − Q/(μP))^{1/3}` (measured −2.2 %), and Mindlin's
-///   `c` between the outermost sticking node (at most 2 % beyond it) and
-///   the innermost slipping one (at most 2 % inside it);
+///   within 3 % of Hertz's for the computed `P` (measured −1.6 %);
+/// - the stick radius fitted to the deficit `μp − q` within 2 % of
+///   Mindlin's `c = a (1 − Q/(μP))^{1/3}` (measured −1.17 %; the
+///   regularised law gave −2.2 %), and within 1 % of Mindlin's ratio
+///   `c/a` with both radii fitted (measured +0.43 %; the fitted contact
+///   radius is itself 1.6 % short of Hertz's); Mindlin's `c` between the
+///   outermost sticking node (at most 2 % beyond it) and the innermost
+///   slipping one (at most 4 % inside it: stick and slip nodes interleave
+///   over one element around `c`, measured 0.08668 and 0.08569 for
+///   `c = 0.08830`);
 /// - the tangential traction averaged over rings `a/10` wide, `r < 0.8a`,
-///   within 8 % of `μp₀` of Mindlin's averaged over the same nodes
-///   (measured 5.7 %; the target of issue 18 is 2 %, with exact stick);
-/// - at most 6 Newton iterations per increment.
+///   within 12 % of `μp₀` of Mindlin's averaged over the same nodes
+///   (measured 9.6 % in the ring that holds `c`, where Mindlin's `q` rises
+///   with an infinite slope, so that the ring's mean follows `c`'s place
+///   within the ring's few nodes; at most 1.3 % in the others; the
+///   regularised law gave 5.7 %; the target of issue 18 is 2 %);
+/// - at most 18 Newton iterations per increment (measured 6–17: exact
+///   stick's outer loop, 5–8 multiplier updates per increment, each
+///   leaving about a tenth of the stick error; the regularised law took
+///   at most 6).
 ///
 /// The slip fields: at every secondary node and increment,
 /// `accumulated_slip` = `slip` = the sum of the `slip_increment`s so far
@@ -108,20 +118,26 @@ fn cattaneo_mindlin_partial_slip() {
     );
     let c = m.stick_radius;
     assert!(
-        (last.stick_radius / c - 1.0).abs() < 0.03,
+        (last.stick_radius / c - 1.0).abs() < 0.02,
         "stick radius {} vs Mindlin {c}",
         last.stick_radius
     );
+    let ratio = last.stick_radius / last.contact_radius;
+    let mindlin_ratio = (1.0 - m.ratio).cbrt();
     assert!(
-        last.outermost_stick < 1.02 * c && last.innermost_slip > 0.98 * c,
+        (ratio / mindlin_ratio - 1.0).abs() < 0.01,
+        "c/a of the fits {ratio} vs Mindlin's {mindlin_ratio}"
+    );
+    assert!(
+        last.outermost_stick < 1.02 * c && last.innermost_slip > 0.96 * c,
         "Mindlin's c = {c} outside the nodes' stick–slip boundary {} … {}",
         last.outermost_stick,
         last.innermost_slip
     );
-    assert!(last.worst_ring() < 0.08, "ring error {}", last.worst_ring());
+    assert!(last.worst_ring() < 0.12, "ring error {}", last.worst_ring());
     for c in &record.comparisons {
         assert!(
-            c.iterations <= 6,
+            c.iterations <= 18,
             "t = {}: {} iterations",
             c.time,
             c.iterations

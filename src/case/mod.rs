@@ -902,8 +902,6 @@ impl Case {
                     Some("it needs friction: give friction_coefficient")
                 } else if matches!(c.method, ContactMethod::Penalty) {
                     Some("the penalty method keeps the regularised law: use method = \"rockafellar\", \"slack\" or \"uzawa\"")
-                } else if matches!(target, Target::Surface(_)) {
-                    Some("it is available against a rigid [[obstacle]] only, not between deformable bodies (whose friction stays regularised)")
                 } else {
                     None
                 };

@@ -319,8 +319,8 @@ pub struct ContactSpec {
     /// Exact stick (default false: the regularised Coulomb law): the
     /// tangential augmented Lagrangian of Simo and Laursen, so that sticking
     /// nodes do not move at convergence and the answer does not depend on
-    /// `tangential_penalty`; with method rockafellar, slack or uzawa against
-    /// an obstacle.
+    /// `tangential_penalty`; with method rockafellar, slack or uzawa, against
+    /// an obstacle or a primary surface.
     #[serde(default)]
     pub exact_stick: bool,
     /// Largest initial penetration accepted; default 1 % of the contact

@@ -50,9 +50,9 @@
 //! ## Exact stick: the augmented Lagrangian (Simo–Laursen)
 //! With a law that enforces the normal constraint exactly
 //! ([`NormalLaw::augments_friction`](super::laws::NormalLaw::augments_friction):
-//! Uzawa, Rockafellar, slack) against a rigid obstacle
-//! ([`ContactInterface::exact_stick`](super::interface::ContactInterface::exact_stick);
-//! between deformable bodies friction stays regularised for now), the old traction of the trial becomes a
+//! Uzawa, Rockafellar, slack), where asked for
+//! ([`ContactInterface::exact_stick`](super::interface::ContactInterface::exact_stick)),
+//! the old traction of the trial becomes a
 //! tangential multiplier `λ_T`, held fixed during Newton and updated after
 //! each converged Newton solve, nested with Uzawa's normal update when the
 //! law has one (Simo & Laursen, *An augmented Lagrangian treatment of
@@ -63,7 +63,13 @@
 //! t_T = P_μt_N(T λ_T − ε_T Δg_T)      (the return mapping above, λ_T for t_T,n)
 //! λ_T ← t_T                           (augment), until max |t_T − T λ_T|/ε_T ≤ 1e-9 h
 //! ```
-//! `λ_T` starts each increment at the committed traction. At the fixed
+//! `λ_T` starts each increment at the committed traction. Between
+//! deformable bodies it is kept where the slip frame reads the committed
+//! traction, as components `τ^α` on the anchor triangle's edges, with
+//! `T (τ^α a_α) = t_T` exactly ([`GapProducer::augment`](super::kinematics::GapProducer::augment)
+//! of [`SurfaceGap`](super::surface_contact::SurfaceGap)): a multiplier
+//! kept in `traction` alone was never read there, and the outer loop could
+//! not converge. At the fixed
 //! point a sticking node has `T Δg_T = 0` (it does not move), a slipping
 //! node `t_T = μ t_N m` with `Δg_T` along `−m`: Coulomb's law exactly, and
 //! `ε_T` only sets how fast the outer loop converges (each update leaves

@@ -148,15 +148,11 @@ impl ContactInterface {
     }
 
     /// Whether friction sticks exactly (the augmented Lagrangian of
-    /// [`friction`], "Exact stick"): a law that augments friction
-    /// ([`NormalLaw::augments_friction`]) against a rigid obstacle. Between
-    /// deformable bodies friction stays regularised for now: there the
-    /// outer loop did not converge in 200 updates on `tests/deformable.rs`
-    /// (a block dragged across facets, Uzawa).
+    /// [`friction`], "Exact stick"): asked for, with a law that augments
+    /// friction ([`NormalLaw::augments_friction`]), against a rigid
+    /// obstacle or a primary surface.
     pub fn exact_stick(&self) -> bool {
-        self.exact_stick_requested
-            && self.law.augments_friction()
-            && matches!(self.primary, Primary::Rigid(_))
+        self.exact_stick_requested && self.law.augments_friction()
     }
 
     /// Whether friction makes the tangent nonsymmetric.
@@ -545,20 +541,7 @@ impl ContactInterface {
             return false;
         }
         let tolerance = 1e-9 * self.element_size;
-        let mut worst = 0.0_f64;
-        let mut augmented = Vec::with_capacity(self.nodes.len());
-        with_producer!(self, ctx.t, p => {
-            let state_of = |i| self.node_state(ctx, states, i);
-            self.for_each_node(p, ctx, state_of, |node, state, k| {
-                let e = k.map(|k| self.evaluate(p, node, k, &state));
-                let response = e.as_ref().and_then(|e| e.tangential.as_ref());
-                if let Some(r) = response {
-                    worst = worst.max(r.multiplier_residual.norm());
-                }
-                // against a rigid obstacle (exact_stick): no material point
-                augmented.push(friction::augment(&state.friction, response));
-            });
-        });
+        let (worst, augmented) = self.augmented_friction(ctx, states);
         if worst <= tolerance {
             return false;
         }
@@ -566,6 +549,32 @@ impl ContactInterface {
             state.friction = history;
         }
         true
+    }
+
+    /// Every node's history with its tangential multiplier augmented at
+    /// `ctx` (`λ_T ← t_T`, [`GapProducer::augment`]), and the largest
+    /// multiplier residual `|t_T − T λ_T|/ε_T` before the update.
+    fn augmented_friction(
+        &self,
+        ctx: &ContactContext,
+        states: &[NodeContactState],
+    ) -> (f64, Vec<FrictionHistory>) {
+        let mut worst = 0.0_f64;
+        let mut augmented = Vec::with_capacity(self.nodes.len());
+        with_producer!(self, ctx.t, p => {
+            let state_of = |i| self.node_state(ctx, states, i);
+            self.for_each_node(p, ctx, state_of, |node, state, k| {
+                let e = k.map(|k| self.evaluate(p, node, k, &state));
+                let response = e
+                    .as_ref()
+                    .and_then(|e| e.tangential.as_ref().map(|t| (t, &e.kinematics.normal)));
+                if let Some((r, _)) = response {
+                    worst = worst.max(r.multiplier_residual.norm());
+                }
+                augmented.push(p.augment(node, &state.friction, response));
+            });
+        });
+        (worst, augmented)
     }
 
     /// Uzawa's outer loop (see [`augment`](Self::augment)).

@@ -213,6 +213,22 @@ pub trait GapProducer<const Q: usize> {
         area: f64,
     ) -> SMatrix<f64, Q, Q>;
 
+    /// The history with its tangential multiplier augmented to the
+    /// traction `t_T` of the node's `response` at the current unit normal
+    /// `n` (`None`: the node is open, `λ_T ← 0`): Simo–Laursen's update
+    /// `λ_T ← t_T` ([`friction::augment`], the default) in the form the
+    /// producer's [`slip`](Self::slip) reads it back, so that `T λ_T = t_T`
+    /// at the next evaluation in this configuration.
+    fn augment(
+        &self,
+        node: &SecondaryNode,
+        history: &FrictionHistory,
+        response: Option<(&TangentialResponse<Q>, &Vector3<f64>)>,
+    ) -> FrictionHistory {
+        let _ = node;
+        friction::augment(history, response.map(|(r, _)| r))
+    }
+
     /// The material point a node anchors its friction to after an increment
     /// converged (`None` against a rigid obstacle), with the committed
     /// `traction` carried by it.

@@ -10,8 +10,8 @@
 //! the factor `h/h_s`), times [`uzawa::AUTOMATIC_FACTOR`] for Uzawa's `ε`.
 //! The tangential penalty defaults to the normal penalty when one is given,
 //! else to `E/h_s` for the penalty law and [`friction::AUGMENTED_FACTOR`]
-//! `E/h_s` where friction sticks exactly (Uzawa, Rockafellar, slack
-//! against a rigid obstacle, [`ContactInterface::exact_stick`]).
+//! `E/h_s` where friction sticks exactly (Uzawa, Rockafellar, slack with
+//! `exact_stick`, [`ContactInterface::exact_stick`]).
 //!
 //! `E/h` is the stiffness of one element layer (traction per unit
 //! displacement). Against a rigid obstacle it is the secondary body's,

@@ -245,6 +245,44 @@ impl GapProducer<Q> for SurfaceGap<'_> {
         stiffness * lever.transpose() * projector * lever
     }
 
+    /// `λ_T ← t_T` on the material point: its components `τ^α` on the
+    /// anchor triangle's edges projected on the current tangent plane,
+    /// `M τ = ((T a_α)·t_T)`, `M_αβ = (T a_α)·(T a_β)`, so that
+    /// [`slip`](GapProducer::slip)'s `T (τ^α a_α) = t_T` exactly also when
+    /// the anchor lies on another triangle than the projection (its plain
+    /// edge components, [`anchor`](GapProducer::anchor)'s, would leave
+    /// `O(θ²) |t_T|` between the two planes at angle `θ`: the outer loop
+    /// would stall there). Without a material point, the global vector.
+    fn augment(
+        &self,
+        node: &SecondaryNode,
+        history: &FrictionHistory,
+        response: Option<(&TangentialResponse<Q>, &Vector3<f64>)>,
+    ) -> FrictionHistory {
+        let traction = response.map_or_else(Vector3::zeros, |(r, _)| r.traction);
+        let material_point = match (self.material_point(node.index, history), response) {
+            (Some(m), Some((_, n))) => {
+                let y = self.primary.corners(node.reference, node.x, m.triangle);
+                let projector = Matrix3::identity() - n * n.transpose();
+                let (a1, a2) = (projector * (y[1] - y[0]), projector * (y[2] - y[0]));
+                Some(MaterialPoint {
+                    traction: edge_components(&a1, &a2, &traction),
+                    ..m
+                })
+            }
+            (Some(m), None) => Some(MaterialPoint {
+                traction: [0.0; 2],
+                ..m
+            }),
+            (None, _) => history.material_point,
+        };
+        FrictionHistory {
+            traction,
+            material_point,
+            ..*history
+        }
+    }
+
     /// Where the node is over the primary surface; beyond its edge, the
     /// surface's point closest to it; the traction as its components on
     /// the point's triangle's edges.
@@ -302,4 +340,26 @@ fn edge_components(a1: &Vector3<f64>, a2: &Vector3<f64>, t: &Vector3<f64>) -> [f
     }
     let (b1, b2) = (a1.dot(t), a2.dot(t));
     [(m22 * b1 - m12 * b2) / det, (m11 * b2 - m12 * b1) / det]
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// The multiplier kept on an anchor triangle tilted against the current
+    /// tangent plane: components on the projected edges rebuild `t_T`
+    /// exactly under `T`; the plain edge components miss it by `O(θ²)`.
+    #[test]
+    fn projected_edge_components_rebuild_the_traction_exactly() {
+        let n = Vector3::new(0.0, 0.0, 1.0);
+        let projector = Matrix3::identity() - n * n.transpose();
+        let t = Vector3::new(0.7, -0.4, 0.0);
+        // the anchor's edges tilted by θ = 0.1 about y, and sheared
+        let (a1, a2) = (Vector3::new(1.0, 0.0, 0.1), Vector3::new(0.3, 0.8, 0.02));
+        let rebuilt = |[t1, t2]: [f64; 2]| projector * (t1 * a1 + t2 * a2);
+        let exact = rebuilt(edge_components(&(projector * a1), &(projector * a2), &t));
+        assert!((exact - t).norm() < 1e-15, "{exact} vs {t}");
+        let plain = rebuilt(edge_components(&a1, &a2, &t));
+        assert!((plain - t).norm() > 1e-3 * t.norm(), "{plain} vs {t}");
+    }
 }

@@ -240,6 +240,50 @@ pub struct Last {
     pub snapshots: Vec<Snapshot>,
 }
 
+/// How the end of run `b` differs from that of run `a` of the same
+/// problem (`dofs` displacement unknowns): for the tests that change only
+/// the tangential penalty.
+pub struct EndChange {
+    /// The largest displacement of `a`.
+    pub size: f64,
+    /// The largest displacement difference.
+    pub displacement: f64,
+    /// The largest difference of a node's committed tangential traction
+    /// on interface 0.
+    pub traction: f64,
+    /// Whether interface 0 of `a` ends with sticking and slipping nodes.
+    pub partial_slip: bool,
+}
+
+impl Last {
+    /// See [`EndChange`].
+    pub fn change_to(&self, b: &Last, dofs: usize) -> EndChange {
+        use signorini::contact::friction::ContactStatus;
+        let (a, b) = (self, b);
+        let size = a.x[..dofs].iter().fold(0.0_f64, |m, v| m.max(v.abs()));
+        let displacement = a.x[..dofs]
+            .iter()
+            .zip(&b.x[..dofs])
+            .fold(0.0_f64, |m, (a, b)| m.max((a - b).abs()));
+        let traction = a.contact.interfaces[0]
+            .iter()
+            .zip(&b.contact.interfaces[0])
+            .map(|(a, b)| (a.friction.traction - b.friction.traction).norm())
+            .fold(0.0, f64::max);
+        let has = |s| {
+            a.contact.interfaces[0]
+                .iter()
+                .any(|n| n.friction.status == s)
+        };
+        EndChange {
+            size,
+            displacement,
+            traction,
+            partial_slip: has(ContactStatus::Stick) && has(ContactStatus::Slip),
+        }
+    }
+}
+
 impl StepObserver<Problem> for Last {
     fn on_converged(
         &mut self,

@@ -62,6 +62,7 @@ use crate::solve::linear::{multiply, SparseLdlt};
 use crate::solve::linear_solver::SolverStatistics;
 use crate::solve::newton::{apply_identity_rows, IterationRecord};
 use crate::solve::nonlinear::NonlinearProblem;
+use crate::solve::schur::{grow_flexibility, trailing_ordering, Direction, TrailingInverse};
 use crate::solve::settings::{Step, Strategy};
 use crate::solve::stepping::{next_increment, IncrementRecord, StepObserver};
 use crate::{Error, Result};
@@ -264,6 +265,10 @@ struct ContactNode {
 /// the candidates and their flexibility `W`.
 struct Condensation {
     ldlt: SparseLdlt,
+    /// `(K̃⁻¹)_TT` on the normal dofs of the contact nodes nearest to their
+    /// planes, ordered last in the factorisation: `W` of those nodes
+    /// without solves ([`crate::solve::schur`]).
+    trailing: TrailingInverse,
     /// `K` as assembled and `K̃` (prescribed rows, columns and multipliers
     /// a scaled identity `s`).
     k: Vec<f64>,
@@ -293,8 +298,11 @@ const RESIDUAL_FLOOR: f64 = 1e-10;
 /// 0.5 was the fastest.
 const ENTERING_FRACTION: f64 = 0.5;
 
-/// Columns solved together when `W` grows.
-const BLOCK: usize = 64;
+/// At most this many unknowns ordered last for `(K̃⁻¹)_TT` (a dense
+/// block: `2c³/3` flops to read, `c²` entries): the normal dofs of the
+/// contact nodes with the smallest gaps at `u = 0`; a node beyond them
+/// gets its column of `W` by a solve.
+const MAX_TRAILING: usize = 4000;
 
 impl Condensation {
     /// Assemble `K` at `u = 0`, make `K̃` and factorise it once.
@@ -312,9 +320,6 @@ impl Condensation {
         constrained[dofs..].iter_mut().for_each(|c| *c = true);
         let mut k_tilde = k.clone();
         let scale = apply_identity_rows(problem, &constrained, &mut k_tilde);
-        let ordering = crate::solve::ordering::fill_reducing_ordering(pattern, dofs)?;
-        let mut ldlt = SparseLdlt::new(ordering, 0);
-        ldlt.factorize(pattern.symbolic(), &k_tilde, None)?;
         let mut nodes = Vec::new();
         for (ci, c) in problem.contacts.iter().enumerate() {
             let Primary::Rigid(RigidObstacle::Plane { normal, .. }) = &c.primary else {
@@ -335,8 +340,15 @@ impl Condensation {
             }
         }
         let count = nodes.len();
+        let trailing = Self::nearest_normal_dofs(problem, &nodes, &constrained);
+        let mut marked = vec![false; dimension];
+        trailing.iter().for_each(|&i| marked[i] = true);
+        let mut ldlt = SparseLdlt::new(trailing_ordering(pattern, &marked)?, 0);
+        ldlt.factorize(pattern.symbolic(), &k_tilde, None)?;
+        let trailing = TrailingInverse::of(&ldlt, &trailing)?;
         Ok(Condensation {
             ldlt,
+            trailing,
             k,
             k_tilde,
             scale,
@@ -350,6 +362,62 @@ impl Condensation {
         })
     }
 
+    /// The free dofs on which the normals of the contact nodes nearest to
+    /// their planes (gap at `u = 0`, the smallest over the steps' ends)
+    /// have a component, at most [`MAX_TRAILING`].
+    fn nearest_normal_dofs(
+        problem: &Problem,
+        nodes: &[ContactNode],
+        constrained: &[bool],
+    ) -> Vec<usize> {
+        let dimension = constrained.len();
+        let zero = vec![0.0; dimension];
+        let reference = &problem.model.mesh.nodes;
+        let mut gap = vec![f64::INFINITY; nodes.len()];
+        let times = std::iter::once(0.0).chain(problem.steps.iter().map(|s| s.end_time));
+        for t in times {
+            let per_interface: Vec<Vec<f64>> = problem
+                .contacts
+                .iter()
+                .map(|c| match c.primary {
+                    Primary::Rigid(RigidObstacle::Plane { .. }) => {
+                        c.gaps(reference, t, &zero, None)
+                    }
+                    _ => Vec::new(),
+                })
+                .collect();
+            for (g, c) in gap.iter_mut().zip(nodes) {
+                *g = g.min(per_interface[c.interface][c.index]);
+            }
+        }
+        let mut order: Vec<usize> = (0..nodes.len()).collect();
+        order.sort_by(|&a, &b| gap[a].total_cmp(&gap[b]));
+        let mut dofs = Vec::new();
+        let mut taken = vec![false; dimension];
+        for a in order {
+            let c = &nodes[a];
+            let free: Vec<usize> = (0..3)
+                .map(|d| 3 * c.node + d)
+                .filter(|&i| !constrained[i] && c.normal[i % 3] != 0.0 && !taken[i])
+                .collect();
+            if dofs.len() + free.len() > MAX_TRAILING {
+                break;
+            }
+            free.iter().for_each(|&i| taken[i] = true);
+            dofs.extend(free);
+        }
+        dofs
+    }
+
+    /// `E e_a`: the normal of node `a` on its free dofs, as a direction.
+    fn direction(&self, a: usize) -> Direction {
+        let c = &self.nodes[a];
+        (0..3)
+            .map(|d| (3 * c.node + d, c.normal[d]))
+            .filter(|&(i, n)| !self.constrained[i] && n != 0.0)
+            .collect()
+    }
+
     /// `E e_a`: the normal of node `a` on its free dofs.
     fn add_column(&self, a: usize, factor: f64, v: &mut [f64]) {
         let c = &self.nodes[a];
@@ -360,49 +428,17 @@ impl Condensation {
         }
     }
 
-    /// `(Eᵀ v)_a = n_a · v_a`.
-    fn normal_component(&self, a: usize, v: &[f64]) -> f64 {
-        let c = &self.nodes[a];
-        (0..3).map(|d| c.normal[d] * v[3 * c.node + d]).sum()
-    }
-
-    /// Add the nodes `new` to the candidates: their columns of `W` by block
-    /// solves with the factor, the rest of their rows by symmetry.
+    /// Add the nodes `new` to the candidates: their columns of `W` from
+    /// `(K̃⁻¹)_TT` or by block solves with the factor
+    /// ([`grow_flexibility`]).
     fn grow(&mut self, new: &[usize]) -> Result<()> {
-        let old = self.candidates.len();
-        let total = old + new.len();
-        let mut w = DMatrix::zeros(total, total);
-        w.view_mut((0, 0), (old, old)).copy_from(&self.w);
         self.candidates.extend_from_slice(new);
         new.iter().for_each(|&a| self.is_candidate[a] = true);
+        let directions: Vec<Direction> =
+            self.candidates.iter().map(|&a| self.direction(a)).collect();
         let n = self.constrained.len();
-        for chunk in (old..total).collect::<Vec<_>>().chunks(BLOCK) {
-            let mut z = vec![0.0; n * chunk.len()];
-            for (j, &col) in chunk.iter().enumerate() {
-                self.add_column(self.candidates[col], 1.0, &mut z[j * n..(j + 1) * n]);
-            }
-            self.ldlt.solve_columns_in_place(&mut z, chunk.len())?;
-            for (j, &col) in chunk.iter().enumerate() {
-                let zj = &z[j * n..(j + 1) * n];
-                for row in 0..total {
-                    let value = self.normal_component(self.candidates[row], zj);
-                    w[(row, col)] = value;
-                    if row < old {
-                        w[(col, row)] = value;
-                    }
-                }
-            }
-        }
-        // symmetrise the new block (equal to round-off)
-        for i in old..total {
-            for j in old..i {
-                let mean = 0.5 * (w[(i, j)] + w[(j, i)]);
-                w[(i, j)] = mean;
-                w[(j, i)] = mean;
-            }
-        }
-        self.w = w;
-        self.active.resize(total, false);
+        self.w = grow_flexibility(&mut self.ldlt, &self.trailing, &self.w, &directions, n)?;
+        self.active.resize(self.candidates.len(), false);
         Ok(())
     }
 
@@ -418,8 +454,14 @@ impl Condensation {
             .filter(outside)
             .map(|a| g[a])
             .fold(0.0f64, f64::min);
+        // a node on the trailing block costs no solve: every one that
+        // penetrates enters
         (0..self.nodes.len())
-            .filter(|a| outside(a) && g[*a] <= ENTERING_FRACTION * deepest)
+            .filter(|a| {
+                outside(a)
+                    && (g[*a] <= ENTERING_FRACTION * deepest
+                        || self.trailing.covers(&self.direction(*a)))
+            })
             .collect()
     }
 

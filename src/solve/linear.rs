@@ -163,6 +163,18 @@ impl SparseLdlt {
         Ok(())
     }
 
+    /// The last f64 factorisation: its symbolic structure and values (`L`
+    /// below the diagonal, `D` on it); `None` before one or after an f32
+    /// one.
+    pub fn factor_parts(&self) -> Option<(&SymbolicCholesky<usize>, &[f64])> {
+        match (&self.symbolic, self.precision) {
+            (Some(s), Precision::Double) if self.factor.len() == s.len_val() => {
+                Some((s, &self.factor))
+            }
+            _ => None,
+        }
+    }
+
     /// Number of stored entries of the factor `L` (after analysis).
     pub fn factor_nnz(&self) -> usize {
         self.factor.len()

@@ -17,5 +17,6 @@ pub mod nonlinear;
 pub mod ordering;
 #[cfg(feature = "petsc")]
 pub mod petsc;
+pub mod schur;
 pub mod settings;
 pub mod stepping;

@@ -58,12 +58,12 @@ use crate::contact::laws::{NormalLaw, SlackState};
 use crate::contact::obstacle::RigidObstacle;
 use crate::material::Kinematics;
 use crate::solve::complementarity::solve_lcp;
-use crate::solve::linear::{multiply, SparseLdlt};
+use crate::solve::linear::{multiply, Precision, SparseLdlt};
 use crate::solve::linear_solver::SolverStatistics;
 use crate::solve::newton::{apply_identity_rows, IterationRecord};
 use crate::solve::nonlinear::NonlinearProblem;
 use crate::solve::schur::{grow_flexibility, trailing_ordering, Direction, TrailingInverse};
-use crate::solve::settings::{Step, Strategy};
+use crate::solve::settings::{LinearMethod, Step, Strategy};
 use crate::solve::stepping::{next_increment, IncrementRecord, StepObserver};
 use crate::{Error, Result};
 use nalgebra::{DMatrix, Matrix6, Vector3, Vector6};
@@ -269,6 +269,7 @@ struct Condensation {
     /// planes, ordered last in the factorisation: `W` of those nodes
     /// without solves ([`crate::solve::schur`]).
     trailing: TrailingInverse,
+    trailing_dofs: Vec<usize>,
     /// `K` as assembled and `K̃` (prescribed rows, columns and multipliers
     /// a scaled identity `s`).
     k: Vec<f64>,
@@ -283,6 +284,8 @@ struct Condensation {
     w: DMatrix<f64>,
     active: Vec<bool>,
     active_set_iterations: usize,
+    /// f32 factorisations refactorised in f64 when a refined solve stalled.
+    fallbacks: usize,
 }
 
 /// The largest relative residual the condensed solution may leave when a
@@ -303,6 +306,15 @@ const ENTERING_FRACTION: f64 = 0.5;
 /// contact nodes with the smallest gaps at `u = 0`; a node beyond them
 /// gets its column of `W` by a solve.
 const MAX_TRAILING: usize = 4000;
+
+/// From this many unknowns `[solver] linear = "auto"` factorises `K̃` in
+/// f32 on the condensed path (refined in f64; the contact forces corrected
+/// against the f64 gaps, [`Condensation::solve_increment`]): the one
+/// factorisation is most of the run there.
+const MIXED_PRECISION_UNKNOWNS: usize = 10_000;
+
+/// Refinement steps at most on an f32 factor before the f64 fallback.
+const MIXED_REFINEMENTS: usize = 10;
 
 impl Condensation {
     /// Assemble `K` at `u = 0`, make `K̃` and factorise it once.
@@ -344,11 +356,22 @@ impl Condensation {
         let mut marked = vec![false; dimension];
         trailing.iter().for_each(|&i| marked[i] = true);
         let mut ldlt = SparseLdlt::new(trailing_ordering(pattern, &marked)?, 0);
-        ldlt.factorize(pattern.symbolic(), &k_tilde, None)?;
-        let trailing = TrailingInverse::of(&ldlt, &trailing)?;
+        let single = match problem.settings.linear {
+            LinearMethod::Mixed => true,
+            LinearMethod::Auto => dimension >= MIXED_PRECISION_UNKNOWNS,
+            _ => false,
+        };
+        if single {
+            ldlt.factorize_single(pattern.symbolic(), &k_tilde, None)?;
+        } else {
+            ldlt.factorize(pattern.symbolic(), &k_tilde, None)?;
+        }
+        let trailing_dofs = trailing;
+        let trailing = TrailingInverse::of(&ldlt, &trailing_dofs)?;
         Ok(Condensation {
             ldlt,
             trailing,
+            trailing_dofs,
             k,
             k_tilde,
             scale,
@@ -359,6 +382,7 @@ impl Condensation {
             w: DMatrix::zeros(0, 0),
             active: Vec::new(),
             active_set_iterations: 0,
+            fallbacks: 0,
         })
     }
 
@@ -465,9 +489,29 @@ impl Condensation {
             .collect()
     }
 
-    /// `K̃ u = rhs`, refined.
+    /// `K̃ u = rhs`, refined; on an f32 factor whose refinement stalls
+    /// above 1e-12, `K̃` factorised again in f64 (and `W` made again from
+    /// it) and solved with that.
     fn solve(&mut self, problem: &Problem, rhs: &mut [f64]) -> Result<()> {
         let pattern = problem.model.pattern.symbolic();
+        if self.ldlt.precision() == Precision::Single {
+            let b = rhs.to_vec();
+            let relative =
+                self.ldlt
+                    .refine(pattern, &self.k_tilde, rhs, MIXED_REFINEMENTS, true)?;
+            if relative <= 1e-12 {
+                return Ok(());
+            }
+            self.fallbacks += 1;
+            self.ldlt.factorize(pattern, &self.k_tilde, None)?;
+            self.trailing = TrailingInverse::of(&self.ldlt, &self.trailing_dofs)?;
+            let directions: Vec<Direction> =
+                self.candidates.iter().map(|&a| self.direction(a)).collect();
+            let n = self.constrained.len();
+            let none = DMatrix::zeros(0, 0);
+            self.w = grow_flexibility(&mut self.ldlt, &self.trailing, &none, &directions, n)?;
+            rhs.copy_from_slice(&b);
+        }
         let relative = self.ldlt.solve_refined(pattern, &self.k_tilde, rhs, 3)?;
         if relative > 1e-10 {
             return Err(Error::LinearSolver(format!(
@@ -520,6 +564,15 @@ impl Condensation {
 
     /// The displacements and contact forces (per node, `λ_a = A_a t_N`) at
     /// time `t`.
+    ///
+    /// `W` may be inexact (from an f32 factor): the complementarity problem
+    /// is solved on `W̃` with the gaps shifted by the defect
+    /// `d = g(u(λ)) − (g₀ + W̃λ) = (W − W̃)λ` of the last solution, `g(u)`
+    /// the gaps of the refined (f64) displacements, until `d` changes by
+    /// less than a thousandth of the gap tolerance: then `g(u) = g₀ + Wλ` and the solution
+    /// is the one of the exact `W` (a splitting iteration, contracting
+    /// while `‖W̃⁻¹(W − W̃)‖ < 1`). With an f64 `W` the first `d` is
+    /// round-off and one pass is enough.
     fn solve_increment(&mut self, problem: &Problem, t: f64) -> Result<(Vec<f64>, Vec<f64>)> {
         let b = self.load(problem, t);
         let mut u0 = b.clone();
@@ -528,8 +581,12 @@ impl Condensation {
         let tolerance = 1e-12 * problem.model.size();
         let entering = self.entering(&g0, tolerance);
         self.grow(&entering)?;
-        loop {
-            let q: Vec<f64> = self.candidates.iter().map(|&a| g0[a]).collect();
+        let mut defect = vec![0.0; self.nodes.len()];
+        // defect corrections before the splitting is taken as diverging
+        const MAX_CORRECTIONS: usize = 50;
+        let mut previous_change = f64::INFINITY;
+        for _ in 0..MAX_CORRECTIONS {
+            let q: Vec<f64> = self.candidates.iter().map(|&a| g0[a] + defect[a]).collect();
             let mut w = self.w.clone();
             for (i, &a) in self.candidates.iter().enumerate() {
                 w[(i, i)] += self.nodes[a].compliance;
@@ -553,12 +610,32 @@ impl Condensation {
             }
             self.solve(problem, &mut u)?;
             let g = self.gaps(problem, t, &u);
+            let mut change = 0.0f64;
+            for (i, &a) in self.candidates.iter().enumerate() {
+                let predicted = g0[a]
+                    + (0..self.candidates.len())
+                        .map(|j| self.w[(i, j)] * solution.lambda[j])
+                        .sum::<f64>();
+                let d = g[a] - predicted;
+                change = change.max((d - defect[a]).abs());
+                defect[a] = d;
+            }
             let entering = self.entering(&g, tolerance);
-            if entering.is_empty() {
+            // settled: far below the gap tolerance (a gap error `δ` is a
+            // force residual `k δ` in the augmented laws), or within it and
+            // no longer contracting (round-off)
+            let settled = change <= 1e-3 * tolerance
+                || change <= tolerance && change >= 0.5 * previous_change;
+            previous_change = change;
+            if entering.is_empty() && settled {
                 return Ok((u, forces));
             }
             self.grow(&entering)?;
         }
+        Err(Error::LinearSolver(format!(
+            "the condensed contact forces did not settle in {MAX_CORRECTIONS} corrections of \
+             the flexibility; run with [solver] linear = \"ldlt\""
+        )))
     }
 }
 
@@ -578,7 +655,10 @@ pub fn run_steps(
         Err(e) => return (Err(e), SolverStatistics::default(), 0),
     };
     let result = run_increments(problem, &mut condensation, observer, output);
-    let statistics = SolverStatistics::of_ldlt(&condensation.ldlt);
+    let statistics = SolverStatistics {
+        mixed_precision_fallbacks: condensation.fallbacks,
+        ..SolverStatistics::of_ldlt(&condensation.ldlt)
+    };
     (result, statistics, condensation.active_set_iterations)
 }
 

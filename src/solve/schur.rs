@@ -76,12 +76,13 @@ impl TrailingInverse {
         }
     }
 
-    /// `(K⁻¹)_TT = L_TT⁻ᵀ D_T⁻¹ L_TT⁻¹` from the last f64 factorisation of
-    /// `ldlt`, for the unknowns `trailing` (all of them in the last
+    /// `(K⁻¹)_TT = L_TT⁻ᵀ D_T⁻¹ L_TT⁻¹` from the last factorisation of
+    /// `ldlt` (in f64 arithmetic from an f32 factor's values: then the
+    /// inverse of the f32 factor's Schur complement), for the unknowns `trailing` (all of them in the last
     /// `trailing.len()` positions of its ordering, else an error).
     pub fn of(ldlt: &SparseLdlt, trailing: &[usize]) -> Result<Self> {
         let (symbolic, values) = ldlt.factor_parts().ok_or_else(|| {
-            Error::LinearSolver("the trailing block needs an f64 factorisation".into())
+            Error::LinearSolver("the trailing block needs a factorisation".into())
         })?;
         let n = symbolic.nrows();
         let c = trailing.len();
@@ -122,18 +123,17 @@ impl TrailingInverse {
                     let width = end[k] - begin[k];
                     let pattern = &rows[ptr_row[k]..ptr_row[k + 1]];
                     let height = width + pattern.len();
-                    let block = &values[ptr_val[k]..ptr_val[k + 1]];
                     for jj in 0..width {
                         let j = begin[k] + jj;
                         if j < first {
                             continue;
                         }
-                        let column = &block[jj * height..(jj + 1) * height];
+                        let column = ptr_val[k] + jj * height;
                         for ii in jj..width {
-                            put(begin[k] + ii, j, column[ii]);
+                            put(begin[k] + ii, j, values.get(column + ii));
                         }
                         for (p, &row) in pattern.iter().enumerate() {
-                            put(row, j, column[width + p]);
+                            put(row, j, values.get(column + width + p));
                         }
                     }
                 }
@@ -143,7 +143,7 @@ impl TrailingInverse {
                 let (cp, ri) = (factor.col_ptr(), factor.row_idx());
                 for j in first..n {
                     for k in cp[j]..cp[j + 1] {
-                        put(ri[k], j, values[k]);
+                        put(ri[k], j, values.get(k));
                     }
                 }
             }

@@ -142,8 +142,8 @@ impl TrailingInverse {
                 let factor = s.factor();
                 let (cp, ri) = (factor.col_ptr(), factor.row_idx());
                 for j in first..n {
-                    for k in cp[j]..cp[j + 1] {
-                        put(ri[k], j, values.get(k));
+                    for (k, &row) in ri.iter().enumerate().take(cp[j + 1]).skip(cp[j]) {
+                        put(row, j, values.get(k));
                     }
                 }
             }

@@ -331,6 +331,7 @@ mod tests {
     /// some not) equals `Eᵀ K⁻¹ E` column by column.
     #[test]
     fn trailing_block_is_the_inverse_block() {
+        let mut kinds = Vec::new();
         for n in [3usize, 9] {
             let (pattern, k) = grid(n);
             let dim = pattern.dimension();
@@ -341,6 +342,8 @@ mod tests {
             let mut ldlt = SparseLdlt::new(ordering, 1);
             ldlt.factorize(pattern.symbolic(), &k, None).unwrap();
             let inverse = TrailingInverse::of(&ldlt, &trailing).unwrap();
+            let (symbolic, _) = ldlt.factor_parts().unwrap();
+            kinds.push(matches!(symbolic.raw(), SymbolicCholeskyRaw::Supernodal(_)));
             assert_eq!(inverse.len(), trailing.len());
             // directions: two on T, one off T (an x dof), one mixed
             let directions: Vec<Direction> = vec![
@@ -372,5 +375,7 @@ mod tests {
             }
             assert!(largest > 1e-2);
         }
+        // one simplicial and one supernodal factor were read
+        assert_eq!(kinds, [false, true]);
     }
 }

@@ -57,6 +57,24 @@ fn relative_difference(a: &[f64], b: &[f64]) -> f64 {
         / scale
 }
 
+/// The condensed run's displacements and nodal contact forces (at every
+/// increment) equal the monolithic run's to 1e-10 relative.
+fn assert_same_answer(
+    label: &str,
+    (cond, cond_forces): (&RunOutcome, &Forces),
+    (mono, mono_forces): (&RunOutcome, &Forces),
+) {
+    let du = relative_difference(&cond.displacement, &mono.displacement);
+    eprintln!("{label}: condensed − monolithic displacements {du:.1e}");
+    assert!(du < 1e-10, "displacements differ by {du:e}");
+    assert_eq!(mono_forces.0.len(), cond_forces.0.len());
+    for (c, m) in cond_forces.0.iter().zip(&mono_forces.0) {
+        let df = relative_difference(c, m);
+        eprintln!("{label}: condensed − monolithic nodal contact forces {df:.1e}");
+        assert!(df < 1e-10, "contact forces differ by {df:e}");
+    }
+}
+
 /// The coarse Hertz hemisphere (tests/data/hemisphere_coarse.msh in the
 /// examples/hertz case: 2.4 k dofs, Rockafellar, frictionless, 4
 /// increments).
@@ -83,15 +101,7 @@ fn condensed_equals_monolithic_on_frictionless_hertz() {
     let (cond, cond_forces) = hertz("strategy = \"condensed\"", &[]);
     assert_eq!(cond.summary.strategy, "condensed");
     assert_eq!(mono.summary.strategy, "monolithic");
-    let du = relative_difference(&cond.displacement, &mono.displacement);
-    eprintln!("hertz: condensed − monolithic displacements {du:.1e}");
-    assert!(du < 1e-10, "displacements differ by {du:e}");
-    assert_eq!(mono_forces.0.len(), cond_forces.0.len());
-    for (c, m) in cond_forces.0.iter().zip(&mono_forces.0) {
-        let df = relative_difference(c, m);
-        eprintln!("hertz: condensed − monolithic nodal contact forces {df:.1e}");
-        assert!(df < 1e-10, "contact forces differ by {df:e}");
-    }
+    assert_same_answer("hertz", (&cond, &cond_forces), (&mono, &mono_forces));
     for (c, m) in cond.summary.increments.iter().zip(&mono.summary.increments) {
         assert_eq!(c.time, m.time);
         let (fc, fm) = (c.contact["pole"].force[2], m.contact["pole"].force[2]);
@@ -237,15 +247,11 @@ fn condensed_on_an_f32_factor_equals_monolithic() {
     let (mono, mono_forces) = hertz("strategy = \"monolithic\"\nresidual_tolerance = 1e-11", &[]);
     let (mixed, mixed_forces) = hertz("strategy = \"condensed\"\nlinear = \"mixed\"", &[]);
     assert_eq!(mixed.summary.strategy, "condensed");
-    let du = relative_difference(&mixed.displacement, &mono.displacement);
-    eprintln!("hertz, f32 factor: condensed − monolithic displacements {du:.1e}");
-    assert!(du < 1e-10, "displacements differ by {du:e}");
-    assert_eq!(mono_forces.0.len(), mixed_forces.0.len());
-    for (c, m) in mixed_forces.0.iter().zip(&mono_forces.0) {
-        let df = relative_difference(c, m);
-        eprintln!("hertz, f32 factor: condensed − monolithic nodal contact forces {df:.1e}");
-        assert!(df < 1e-10, "contact forces differ by {df:e}");
-    }
+    assert_same_answer(
+        "hertz, f32 factor",
+        (&mixed, &mixed_forces),
+        (&mono, &mono_forces),
+    );
     assert_eq!(
         (
             mixed.summary.single_factorisations,

@@ -58,11 +58,12 @@ use crate::contact::laws::{NormalLaw, SlackState};
 use crate::contact::obstacle::RigidObstacle;
 use crate::material::Kinematics;
 use crate::solve::complementarity::solve_lcp;
-use crate::solve::linear::{multiply, SparseLdlt};
+use crate::solve::linear::{multiply, Precision, SparseLdlt};
 use crate::solve::linear_solver::SolverStatistics;
 use crate::solve::newton::{apply_identity_rows, IterationRecord};
 use crate::solve::nonlinear::NonlinearProblem;
-use crate::solve::settings::{Step, Strategy};
+use crate::solve::schur::{grow_flexibility, trailing_ordering, Direction, TrailingInverse};
+use crate::solve::settings::{LinearMethod, Step, Strategy};
 use crate::solve::stepping::{next_increment, IncrementRecord, StepObserver};
 use crate::{Error, Result};
 use nalgebra::{DMatrix, Matrix6, Vector3, Vector6};
@@ -264,6 +265,11 @@ struct ContactNode {
 /// the candidates and their flexibility `W`.
 struct Condensation {
     ldlt: SparseLdlt,
+    /// `(K̃⁻¹)_TT` on the normal dofs of the contact nodes nearest to their
+    /// planes, ordered last in the factorisation: `W` of those nodes
+    /// without solves ([`crate::solve::schur`]).
+    trailing: TrailingInverse,
+    trailing_dofs: Vec<usize>,
     /// `K` as assembled and `K̃` (prescribed rows, columns and multipliers
     /// a scaled identity `s`).
     k: Vec<f64>,
@@ -278,6 +284,8 @@ struct Condensation {
     w: DMatrix<f64>,
     active: Vec<bool>,
     active_set_iterations: usize,
+    /// f32 factorisations refactorised in f64 when a refined solve stalled.
+    fallbacks: usize,
 }
 
 /// The largest relative residual the condensed solution may leave when a
@@ -293,8 +301,20 @@ const RESIDUAL_FLOOR: f64 = 1e-10;
 /// 0.5 was the fastest.
 const ENTERING_FRACTION: f64 = 0.5;
 
-/// Columns solved together when `W` grows.
-const BLOCK: usize = 64;
+/// At most this many unknowns ordered last for `(K̃⁻¹)_TT` (a dense
+/// block: `2c³/3` flops to read, `c²` entries): the normal dofs of the
+/// contact nodes with the smallest gaps at `u = 0`; a node beyond them
+/// gets its column of `W` by a solve.
+const MAX_TRAILING: usize = 4000;
+
+/// From this many unknowns `[solver] linear = "auto"` factorises `K̃` in
+/// f32 on the condensed path (refined in f64; the contact forces corrected
+/// against the f64 gaps, [`Condensation::solve_increment`]): the one
+/// factorisation is most of the run there.
+const MIXED_PRECISION_UNKNOWNS: usize = 10_000;
+
+/// Refinement steps at most on an f32 factor before the f64 fallback.
+const MIXED_REFINEMENTS: usize = 10;
 
 impl Condensation {
     /// Assemble `K` at `u = 0`, make `K̃` and factorise it once.
@@ -312,9 +332,6 @@ impl Condensation {
         constrained[dofs..].iter_mut().for_each(|c| *c = true);
         let mut k_tilde = k.clone();
         let scale = apply_identity_rows(problem, &constrained, &mut k_tilde);
-        let ordering = crate::solve::ordering::fill_reducing_ordering(pattern, dofs)?;
-        let mut ldlt = SparseLdlt::new(ordering, 0);
-        ldlt.factorize(pattern.symbolic(), &k_tilde, None)?;
         let mut nodes = Vec::new();
         for (ci, c) in problem.contacts.iter().enumerate() {
             let Primary::Rigid(RigidObstacle::Plane { normal, .. }) = &c.primary else {
@@ -335,8 +352,26 @@ impl Condensation {
             }
         }
         let count = nodes.len();
+        let trailing = Self::nearest_normal_dofs(problem, &nodes, &constrained);
+        let mut marked = vec![false; dimension];
+        trailing.iter().for_each(|&i| marked[i] = true);
+        let mut ldlt = SparseLdlt::new(trailing_ordering(pattern, &marked)?, 0);
+        let single = match problem.settings.linear {
+            LinearMethod::Mixed => true,
+            LinearMethod::Auto => dimension >= MIXED_PRECISION_UNKNOWNS,
+            _ => false,
+        };
+        if single {
+            ldlt.factorize_single(pattern.symbolic(), &k_tilde, None)?;
+        } else {
+            ldlt.factorize(pattern.symbolic(), &k_tilde, None)?;
+        }
+        let trailing_dofs = trailing;
+        let trailing = TrailingInverse::of(&ldlt, &trailing_dofs)?;
         Ok(Condensation {
             ldlt,
+            trailing,
+            trailing_dofs,
             k,
             k_tilde,
             scale,
@@ -347,7 +382,64 @@ impl Condensation {
             w: DMatrix::zeros(0, 0),
             active: Vec::new(),
             active_set_iterations: 0,
+            fallbacks: 0,
         })
+    }
+
+    /// The free dofs on which the normals of the contact nodes nearest to
+    /// their planes (gap at `u = 0`, the smallest over the steps' ends)
+    /// have a component, at most [`MAX_TRAILING`].
+    fn nearest_normal_dofs(
+        problem: &Problem,
+        nodes: &[ContactNode],
+        constrained: &[bool],
+    ) -> Vec<usize> {
+        let dimension = constrained.len();
+        let zero = vec![0.0; dimension];
+        let reference = &problem.model.mesh.nodes;
+        let mut gap = vec![f64::INFINITY; nodes.len()];
+        let times = std::iter::once(0.0).chain(problem.steps.iter().map(|s| s.end_time));
+        for t in times {
+            let per_interface: Vec<Vec<f64>> = problem
+                .contacts
+                .iter()
+                .map(|c| match c.primary {
+                    Primary::Rigid(RigidObstacle::Plane { .. }) => {
+                        c.gaps(reference, t, &zero, None)
+                    }
+                    _ => Vec::new(),
+                })
+                .collect();
+            for (g, c) in gap.iter_mut().zip(nodes) {
+                *g = g.min(per_interface[c.interface][c.index]);
+            }
+        }
+        let mut order: Vec<usize> = (0..nodes.len()).collect();
+        order.sort_by(|&a, &b| gap[a].total_cmp(&gap[b]));
+        let mut dofs = Vec::new();
+        let mut taken = vec![false; dimension];
+        for a in order {
+            let c = &nodes[a];
+            let free: Vec<usize> = (0..3)
+                .map(|d| 3 * c.node + d)
+                .filter(|&i| !constrained[i] && c.normal[i % 3] != 0.0 && !taken[i])
+                .collect();
+            if dofs.len() + free.len() > MAX_TRAILING {
+                break;
+            }
+            free.iter().for_each(|&i| taken[i] = true);
+            dofs.extend(free);
+        }
+        dofs
+    }
+
+    /// `E e_a`: the normal of node `a` on its free dofs, as a direction.
+    fn direction(&self, a: usize) -> Direction {
+        let c = &self.nodes[a];
+        (0..3)
+            .map(|d| (3 * c.node + d, c.normal[d]))
+            .filter(|&(i, n)| !self.constrained[i] && n != 0.0)
+            .collect()
     }
 
     /// `E e_a`: the normal of node `a` on its free dofs.
@@ -360,49 +452,17 @@ impl Condensation {
         }
     }
 
-    /// `(Eᵀ v)_a = n_a · v_a`.
-    fn normal_component(&self, a: usize, v: &[f64]) -> f64 {
-        let c = &self.nodes[a];
-        (0..3).map(|d| c.normal[d] * v[3 * c.node + d]).sum()
-    }
-
-    /// Add the nodes `new` to the candidates: their columns of `W` by block
-    /// solves with the factor, the rest of their rows by symmetry.
+    /// Add the nodes `new` to the candidates: their columns of `W` from
+    /// `(K̃⁻¹)_TT` or by block solves with the factor
+    /// ([`grow_flexibility`]).
     fn grow(&mut self, new: &[usize]) -> Result<()> {
-        let old = self.candidates.len();
-        let total = old + new.len();
-        let mut w = DMatrix::zeros(total, total);
-        w.view_mut((0, 0), (old, old)).copy_from(&self.w);
         self.candidates.extend_from_slice(new);
         new.iter().for_each(|&a| self.is_candidate[a] = true);
+        let directions: Vec<Direction> =
+            self.candidates.iter().map(|&a| self.direction(a)).collect();
         let n = self.constrained.len();
-        for chunk in (old..total).collect::<Vec<_>>().chunks(BLOCK) {
-            let mut z = vec![0.0; n * chunk.len()];
-            for (j, &col) in chunk.iter().enumerate() {
-                self.add_column(self.candidates[col], 1.0, &mut z[j * n..(j + 1) * n]);
-            }
-            self.ldlt.solve_columns_in_place(&mut z, chunk.len())?;
-            for (j, &col) in chunk.iter().enumerate() {
-                let zj = &z[j * n..(j + 1) * n];
-                for row in 0..total {
-                    let value = self.normal_component(self.candidates[row], zj);
-                    w[(row, col)] = value;
-                    if row < old {
-                        w[(col, row)] = value;
-                    }
-                }
-            }
-        }
-        // symmetrise the new block (equal to round-off)
-        for i in old..total {
-            for j in old..i {
-                let mean = 0.5 * (w[(i, j)] + w[(j, i)]);
-                w[(i, j)] = mean;
-                w[(j, i)] = mean;
-            }
-        }
-        self.w = w;
-        self.active.resize(total, false);
+        self.w = grow_flexibility(&mut self.ldlt, &self.trailing, &self.w, &directions, n)?;
+        self.active.resize(self.candidates.len(), false);
         Ok(())
     }
 
@@ -418,14 +478,40 @@ impl Condensation {
             .filter(outside)
             .map(|a| g[a])
             .fold(0.0f64, f64::min);
+        // a node on the trailing block costs no solve: every one that
+        // penetrates enters
         (0..self.nodes.len())
-            .filter(|a| outside(a) && g[*a] <= ENTERING_FRACTION * deepest)
+            .filter(|a| {
+                outside(a)
+                    && (g[*a] <= ENTERING_FRACTION * deepest
+                        || self.trailing.covers(&self.direction(*a)))
+            })
             .collect()
     }
 
-    /// `K̃ u = rhs`, refined.
+    /// `K̃ u = rhs`, refined; on an f32 factor whose refinement stalls
+    /// above 1e-12, `K̃` factorised again in f64 (and `W` made again from
+    /// it) and solved with that.
     fn solve(&mut self, problem: &Problem, rhs: &mut [f64]) -> Result<()> {
         let pattern = problem.model.pattern.symbolic();
+        if self.ldlt.precision() == Precision::Single {
+            let b = rhs.to_vec();
+            let relative =
+                self.ldlt
+                    .refine(pattern, &self.k_tilde, rhs, MIXED_REFINEMENTS, true)?;
+            if relative <= 1e-12 {
+                return Ok(());
+            }
+            self.fallbacks += 1;
+            self.ldlt.factorize(pattern, &self.k_tilde, None)?;
+            self.trailing = TrailingInverse::of(&self.ldlt, &self.trailing_dofs)?;
+            let directions: Vec<Direction> =
+                self.candidates.iter().map(|&a| self.direction(a)).collect();
+            let n = self.constrained.len();
+            let none = DMatrix::zeros(0, 0);
+            self.w = grow_flexibility(&mut self.ldlt, &self.trailing, &none, &directions, n)?;
+            rhs.copy_from_slice(&b);
+        }
         let relative = self.ldlt.solve_refined(pattern, &self.k_tilde, rhs, 3)?;
         if relative > 1e-10 {
             return Err(Error::LinearSolver(format!(
@@ -478,6 +564,15 @@ impl Condensation {
 
     /// The displacements and contact forces (per node, `λ_a = A_a t_N`) at
     /// time `t`.
+    ///
+    /// `W` may be inexact (from an f32 factor): the complementarity problem
+    /// is solved on `W̃` with the gaps shifted by the defect
+    /// `d = g(u(λ)) − (g₀ + W̃λ) = (W − W̃)λ` of the last solution, `g(u)`
+    /// the gaps of the refined (f64) displacements, until `d` changes by
+    /// less than a thousandth of the gap tolerance: then `g(u) = g₀ + Wλ` and the solution
+    /// is the one of the exact `W` (a splitting iteration, contracting
+    /// while `‖W̃⁻¹(W − W̃)‖ < 1`). With an f64 `W` the first `d` is
+    /// round-off and one pass is enough.
     fn solve_increment(&mut self, problem: &Problem, t: f64) -> Result<(Vec<f64>, Vec<f64>)> {
         let b = self.load(problem, t);
         let mut u0 = b.clone();
@@ -486,8 +581,12 @@ impl Condensation {
         let tolerance = 1e-12 * problem.model.size();
         let entering = self.entering(&g0, tolerance);
         self.grow(&entering)?;
-        loop {
-            let q: Vec<f64> = self.candidates.iter().map(|&a| g0[a]).collect();
+        let mut defect = vec![0.0; self.nodes.len()];
+        // defect corrections before the splitting is taken as diverging
+        const MAX_CORRECTIONS: usize = 50;
+        let mut previous_change = f64::INFINITY;
+        for _ in 0..MAX_CORRECTIONS {
+            let q: Vec<f64> = self.candidates.iter().map(|&a| g0[a] + defect[a]).collect();
             let mut w = self.w.clone();
             for (i, &a) in self.candidates.iter().enumerate() {
                 w[(i, i)] += self.nodes[a].compliance;
@@ -511,12 +610,32 @@ impl Condensation {
             }
             self.solve(problem, &mut u)?;
             let g = self.gaps(problem, t, &u);
+            let mut change = 0.0f64;
+            for (i, &a) in self.candidates.iter().enumerate() {
+                let predicted = g0[a]
+                    + (0..self.candidates.len())
+                        .map(|j| self.w[(i, j)] * solution.lambda[j])
+                        .sum::<f64>();
+                let d = g[a] - predicted;
+                change = change.max((d - defect[a]).abs());
+                defect[a] = d;
+            }
             let entering = self.entering(&g, tolerance);
-            if entering.is_empty() {
+            // settled: far below the gap tolerance (a gap error `δ` is a
+            // force residual `k δ` in the augmented laws), or within it and
+            // no longer contracting (round-off)
+            let settled = change <= 1e-3 * tolerance
+                || change <= tolerance && change >= 0.5 * previous_change;
+            previous_change = change;
+            if entering.is_empty() && settled {
                 return Ok((u, forces));
             }
             self.grow(&entering)?;
         }
+        Err(Error::LinearSolver(format!(
+            "the condensed contact forces did not settle in {MAX_CORRECTIONS} corrections of \
+             the flexibility; run with [solver] linear = \"ldlt\""
+        )))
     }
 }
 
@@ -536,7 +655,10 @@ pub fn run_steps(
         Err(e) => return (Err(e), SolverStatistics::default(), 0),
     };
     let result = run_increments(problem, &mut condensation, observer, output);
-    let statistics = SolverStatistics::of_ldlt(&condensation.ldlt);
+    let statistics = SolverStatistics {
+        mixed_precision_fallbacks: condensation.fallbacks,
+        ..SolverStatistics::of_ldlt(&condensation.ldlt)
+    };
     (result, statistics, condensation.active_set_iterations)
 }
 

@@ -68,6 +68,23 @@ pub struct SparseLdlt {
     pub timings: SolverTimings,
 }
 
+/// The values of a factor, in its arithmetic.
+#[derive(Clone, Copy, Debug)]
+pub enum FactorValues<'a> {
+    Double(&'a [f64]),
+    Single(&'a [f32]),
+}
+
+impl FactorValues<'_> {
+    /// Entry `k`, in f64.
+    pub fn get(&self, k: usize) -> f64 {
+        match self {
+            FactorValues::Double(v) => v[k],
+            FactorValues::Single(v) => v[k] as f64,
+        }
+    }
+}
+
 /// The arithmetic of a numeric factorisation.
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
 pub enum Precision {
@@ -161,6 +178,27 @@ impl SparseLdlt {
         self.timings.symbolic_total += self.timings.symbolic;
         self.timings.analyses += 1;
         Ok(())
+    }
+
+    /// The last factorisation: its symbolic structure and values (`L`
+    /// below the diagonal, `D` on it), in the precision it was made in;
+    /// `None` before one.
+    pub fn factor_parts(&self) -> Option<(&SymbolicCholesky<usize>, FactorValues<'_>)> {
+        let s = self.symbolic.as_ref()?;
+        match self.precision {
+            Precision::Double if self.factor.len() == s.len_val() => {
+                Some((s, FactorValues::Double(&self.factor)))
+            }
+            Precision::Single if self.factor_single.len() == s.len_val() => {
+                Some((s, FactorValues::Single(&self.factor_single)))
+            }
+            _ => None,
+        }
+    }
+
+    /// The arithmetic of the last factorisation.
+    pub fn precision(&self) -> Precision {
+        self.precision
     }
 
     /// Number of stored entries of the factor `L` (after analysis).
@@ -288,26 +326,42 @@ impl SparseLdlt {
 
 impl SparseLdlt {
     /// Solve `A X = B` in place for `B` of `columns` columns (column-major,
-    /// `rhs.len() = n · columns`) with the last f64 factorisation: one pass
-    /// over the factor for all of them (supernodal blocks against a
-    /// block of right-hand sides).
+    /// `rhs.len() = n · columns`) with the last factorisation (in its
+    /// arithmetic: unrefined after an f32 one): one pass over the factor
+    /// for all of them (supernodal blocks against a block of right-hand
+    /// sides).
     pub fn solve_columns_in_place(&mut self, rhs: &mut [f64], columns: usize) -> Result<()> {
         let start = Instant::now();
         let symbolic = self
             .symbolic
             .as_ref()
             .ok_or_else(|| Error::LinearSolver("solve before factorisation".into()))?;
-        if self.precision != Precision::Double || columns == 0 || !rhs.len().is_multiple_of(columns)
-        {
+        if columns == 0 || !rhs.len().is_multiple_of(columns) {
             return Err(Error::LinearSolver(
-                "a block solve needs an f64 factorisation and whole columns".into(),
+                "a block solve needs whole columns".into(),
             ));
         }
         let n = rhs.len() / columns;
-        let ldlt = LdltRef::<'_, usize, f64>::new(symbolic, &self.factor);
-        let mut mem = MemBuffer::new(symbolic.solve_in_place_scratch::<f64>(columns, self.par));
-        let x = MatMut::from_column_major_slice_mut(rhs, n, columns);
-        ldlt.solve_in_place_with_conj(faer::Conj::No, x, self.par, MemStack::new(&mut mem));
+        match self.precision {
+            Precision::Double => {
+                let ldlt = LdltRef::<'_, usize, f64>::new(symbolic, &self.factor);
+                let mut mem =
+                    MemBuffer::new(symbolic.solve_in_place_scratch::<f64>(columns, self.par));
+                let x = MatMut::from_column_major_slice_mut(rhs, n, columns);
+                ldlt.solve_in_place_with_conj(faer::Conj::No, x, self.par, MemStack::new(&mut mem));
+            }
+            Precision::Single => {
+                let ldlt = LdltRef::<'_, usize, f32>::new(symbolic, &self.factor_single);
+                let mut mem =
+                    MemBuffer::new(symbolic.solve_in_place_scratch::<f32>(columns, self.par));
+                let mut single: Vec<f32> = rhs.iter().map(|&v| v as f32).collect();
+                let x = MatMut::from_column_major_slice_mut(&mut single, n, columns);
+                ldlt.solve_in_place_with_conj(faer::Conj::No, x, self.par, MemStack::new(&mut mem));
+                rhs.iter_mut()
+                    .zip(&single)
+                    .for_each(|(r, &s)| *r = s as f64);
+            }
+        }
         self.timings.solve = start.elapsed();
         self.timings.solve_total += self.timings.solve;
         if rhs.iter().any(|v| !v.is_finite()) {

@@ -18,5 +18,6 @@ pub mod ordering;
 pub mod partition;
 #[cfg(feature = "petsc")]
 pub mod petsc;
+pub mod schur;
 pub mod settings;
 pub mod stepping;

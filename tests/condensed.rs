@@ -8,13 +8,16 @@ use signorini::run::{RunOptions, RunOutcome, Simulation};
 use std::path::Path;
 
 /// Per converged increment: the nodal contact force (`A_s t_N n`, 3 per
-/// node) of every interface node.
+/// node) of every interface node (`.0`), the contact traction `t_N n + t_T`
+/// (`.1`) and the contact status (`.2`).
 #[derive(Default)]
-struct Forces(Vec<Vec<f64>>);
+struct Forces(Vec<Vec<f64>>, Vec<Vec<f64>>, Vec<Vec<f64>>);
 
 impl StepObserver for Forces {
     fn on_increment(&mut self, inc: &ConvergedIncrement, _: &Summary) -> signorini::Result<()> {
         self.0.push(inc.contact_fields.nodal_force.clone());
+        self.1.push(inc.contact_fields.traction.clone());
+        self.2.push(inc.contact_fields.status.clone());
         Ok(())
     }
 }
@@ -107,10 +110,12 @@ fn condensed_equals_monolithic_on_frictionless_hertz() {
 }
 
 /// `auto` takes the condensed path on Hertz (linear elastic, a rigid
-/// plane, frictionless, Rockafellar) and says why; it takes the monolithic
-/// one for friction (examples/press-pull) and a finite-strain material,
-/// naming the reason; `condensed` asked for where it does not apply is an
-/// error naming the reason.
+/// plane, frictionless, Rockafellar) and on examples/press-pull (linear
+/// elastic, Coulomb friction against a rigid plane, the block held in x by
+/// friction alone) and says why; it takes the monolithic one for a
+/// finite-strain material and for friction against a sphere, naming the
+/// reason; `condensed` asked for where it does not apply is an error
+/// naming the reason.
 #[test]
 fn auto_takes_the_condensed_path_exactly_where_it_applies() {
     let (auto, _) = hertz("strategy = \"auto\"", &[]);
@@ -128,18 +133,28 @@ fn auto_takes_the_condensed_path_exactly_where_it_applies() {
         finite.summary.strategy_reason
     );
     let (press_pull, _) = run_case("press-pull", &[], "strategy = \"auto\"").unwrap();
-    assert_eq!(press_pull.summary.strategy, "monolithic");
+    assert_eq!(press_pull.summary.strategy, "condensed");
     assert!(
-        press_pull.summary.strategy_reason.contains("friction"),
+        press_pull.summary.strategy_reason.contains("Coulomb friction"),
         "{}",
         press_pull.summary.strategy_reason
     );
-    let Err(e) = run_case("press-pull", &[], "strategy = \"condensed\"") else {
-        panic!("condensed ran with friction");
+    assert_eq!(press_pull.summary.factorisations, 1);
+    // friction against a curved obstacle: refused, and `condensed` is an
+    // error naming the reason
+    let sphere = [(
+        "shape = \"plane\"\npoint = [0.0, 0.0, 0.0]\nnormal = [0.0, 0.0, 1.0]",
+        "shape = \"sphere\"\ncenter = [2.0, 0.0, -100.0]\nradius = 100.0".to_string(),
+    )];
+    let curved = press_pull_problem(&sphere);
+    let why = signorini::problem::condensed::not_applicable(curved.problem()).unwrap();
+    assert!(why.contains("sphere"), "{why}");
+    let Err(e) = run_case("press-pull", &sphere, "strategy = \"condensed\"") else {
+        panic!("condensed ran against a sphere");
     };
     let message = e.to_string();
     assert!(
-        message.contains("solver.strategy") && message.contains("friction"),
+        message.contains("solver.strategy") && message.contains("sphere"),
         "{message}"
     );
 }
@@ -224,4 +239,86 @@ fn a_body_held_only_by_contact_is_not_condensed() {
     let free = Simulation::from_toml(&pushed, &folder).unwrap();
     let why = signorini::problem::condensed::not_applicable(free.problem()).unwrap();
     assert!(why.contains("held only by contact"), "{why}");
+}
+
+/// examples/press-pull with `replacements` made, set up (not run).
+fn press_pull_problem(replacements: &[(&str, String)]) -> Simulation {
+    let root = Path::new(env!("CARGO_MANIFEST_DIR"));
+    let folder = root.join("examples/press-pull");
+    let mut text = std::fs::read_to_string(folder.join("case.toml")).unwrap();
+    for (old, new) in replacements {
+        assert!(text.contains(old), "{old}");
+        text = text.replace(old, new);
+    }
+    Simulation::from_toml(&text, &folder).unwrap()
+}
+
+/// examples/press-pull (linear elastic block, μ = 0.3, a rigid plane) with
+/// its increments fixed at the case's first ones (friction is path
+/// dependent: both paths must take the same increments), `extra`
+/// replacements made, run with `solver`.
+fn press_pull(solver: &str, extra: &[(&str, String)]) -> (RunOutcome, Forces) {
+    let mut replacements = vec![
+        (
+            "initial_increment = 0.5",
+            "initial_increment = 0.5\nmax_increment = 0.5".to_string(),
+        ),
+        (
+            "initial_increment = 0.25",
+            "initial_increment = 0.25\nmax_increment = 0.25".to_string(),
+        ),
+    ];
+    replacements.extend(extra.iter().cloned());
+    run_case("press-pull", &replacements, solver).unwrap_or_else(|e| panic!("{solver}: {e}"))
+}
+
+/// The largest relative difference of the displacements and of the
+/// contact tractions `t_N n + t_T` of every increment, and whether the
+/// stick/slip/open status is the same everywhere.
+fn compare(
+    (cond, cond_forces): &(RunOutcome, Forces),
+    (mono, mono_forces): &(RunOutcome, Forces),
+) -> (f64, f64, bool) {
+    let du = relative_difference(&cond.displacement, &mono.displacement);
+    assert_eq!(cond_forces.1.len(), mono_forces.1.len());
+    let dt = cond_forces
+        .1
+        .iter()
+        .zip(&mono_forces.1)
+        .map(|(c, m)| relative_difference(c, m))
+        .fold(0.0f64, f64::max);
+    let same_status = cond_forces.2 == mono_forces.2;
+    (du, dt, same_status)
+}
+
+/// Regularised Coulomb friction (`exact_stick = false`: the return mapping
+/// with the tangential penalty ε_T) on press-pull: the frictional condensed
+/// path reproduces monolithic Newton (residual tolerance 1e-12) — the
+/// displacements and the contact tractions (normal and tangential) of every
+/// increment to 1e-10 relative, the same stick/slip status at every node,
+/// the same total friction force — with one factorisation against one per
+/// Newton iteration. The block is held in x by friction alone.
+#[test]
+fn frictional_condensed_equals_monolithic_with_regularised_stick() {
+    let regularised = [(
+        "exact_stick = true",
+        "exact_stick = false".to_string(),
+    )];
+    let mono = press_pull(
+        "strategy = \"monolithic\"\nresidual_tolerance = 1e-12",
+        &regularised,
+    );
+    let cond = press_pull("strategy = \"condensed\"", &regularised);
+    assert_eq!(cond.0.summary.strategy, "condensed");
+    let (du, dt, same_status) = compare(&cond, &mono);
+    eprintln!("press-pull, regularised: displacements {du:.1e}, tractions {dt:.1e}");
+    assert!(du < 1e-10, "displacements differ by {du:e}");
+    assert!(dt < 1e-10, "contact tractions differ by {dt:e}");
+    assert!(same_status, "the stick/slip status differs");
+    let last = |r: &RunOutcome| r.summary.increments.last().unwrap().contact["base"].clone();
+    let (c, m) = (last(&cond.0), last(&mono.0));
+    assert!((c.tangential_force[0] - m.tangential_force[0]).abs() < 1e-10 * 4.8);
+    assert!(c.slip_nodes > 0 && c.stick_nodes > 0, "{} {}", c.slip_nodes, c.stick_nodes);
+    assert_eq!(cond.0.summary.factorisations, 1);
+    assert!(mono.0.summary.factorisations > 6);
 }

@@ -580,8 +580,11 @@ impl IncrementSolver for Condensation {
         trial: &mut ContactState,
     ) -> Result<()> {
         let (u, forces) = self.solve_increment(problem, t)?;
-        let mut pressures: Vec<Vec<f64>> =
-            problem.contacts.iter().map(|c| vec![0.0; c.nodes.len()]).collect();
+        let mut pressures: Vec<Vec<f64>> = problem
+            .contacts
+            .iter()
+            .map(|c| vec![0.0; c.nodes.len()])
+            .collect();
         for (a, c) in self.nodes.iter().enumerate() {
             pressures[c.interface][c.index] =
                 forces[a] / problem.contacts[c.interface].areas[c.index];

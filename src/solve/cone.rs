@@ -317,7 +317,11 @@ impl ConeProblem<'_> {
             .iter()
             .enumerate()
             .map(|(i, &(a, d))| {
-                let shift = if self.shifted[i] { self.shift * u[i] } else { 0.0 };
+                let shift = if self.shifted[i] {
+                    self.shift * u[i]
+                } else {
+                    0.0
+                };
                 self.nodes[a].area * t[a][d] + shift
             })
             .collect();

@@ -28,9 +28,7 @@ use crate::contact::friction::{ContactStatus, Coulomb};
 use crate::contact::interface::Primary;
 use crate::contact::laws::NormalLaw;
 use crate::contact::obstacle::RigidObstacle;
-use crate::solve::cone::{
-    solve_cone, ConeNode, ConeProblem, NormalEnforcement, TangentialLaw,
-};
+use crate::solve::cone::{solve_cone, ConeNode, ConeProblem, NormalEnforcement, TangentialLaw};
 use crate::solve::linear_solver::SolverStatistics;
 use crate::{Error, Result};
 use nalgebra::Vector3;
@@ -292,7 +290,9 @@ impl FrictionalCondensation {
                 nodes: &nodes,
             };
             let solution = solve_cone(&cone, guess_u, guess_t).map_err(|e| {
-                Error::LinearSolver(format!("{e} at time {t}; run with [solver] strategy = \"monolithic\""))
+                Error::LinearSolver(format!(
+                    "{e} at time {t}; run with [solver] strategy = \"monolithic\""
+                ))
             })?;
             self.iterations += solution.iterations;
             // u = K̂⁻¹ (b + E (A t + ρ P_S u_F))
@@ -350,8 +350,11 @@ impl IncrementSolver for FrictionalCondensation {
         trial: &mut ContactState,
     ) -> Result<()> {
         let (u, traction) = self.solve_increment(problem, t, state)?;
-        let mut pressures: Vec<Vec<f64>> =
-            problem.contacts.iter().map(|c| vec![0.0; c.nodes.len()]).collect();
+        let mut pressures: Vec<Vec<f64>> = problem
+            .contacts
+            .iter()
+            .map(|c| vec![0.0; c.nodes.len()])
+            .collect();
         for (a, c) in self.contact.iter().enumerate() {
             let interface = &problem.contacts[c.interface];
             let Primary::Rigid(RigidObstacle::Plane { normal, .. }) = &interface.primary else {

@@ -43,14 +43,22 @@
 //! solve with the same factor) and the increment is solved again. The
 //! factorisation is never repeated.
 //!
+//! ## Coulomb friction
+//! With friction on some interface the run takes [`friction`]: three
+//! unknowns per contact node, a dense semismooth Newton solve per
+//! increment ([`crate::solve::cone`]), and a shifted `K̂` where only the
+//! contact holds a body.
+//!
 //! ## Where it applies ([`not_applicable`])
 //! Every material small-strain (`linear_elastic`: the total-Lagrangian
 //! laws are geometrically nonlinear, their `K` changes with `u`), no
-//! follower pressure, every contact against a rigid plane, frictionless,
-//! with an exact or penalty law, and every body held by its prescribed
-//! displacements (`K̃` regular: a body held only by contact has a
-//! rigid-body mode). `auto` takes it exactly then; otherwise the run is
-//! monolithic and the log and `summary.json` say why.
+//! follower pressure, every contact against a rigid plane (translating or
+//! not), frictionless or with Coulomb friction, with an exact or penalty
+//! law, and every body held by its prescribed displacements (`K̃` regular:
+//! a body held only by contact has a rigid-body mode) or, with friction,
+//! by those and the nodes touching the plane at the start. `auto` takes it
+//! exactly then; otherwise the run is monolithic and the log and
+//! `summary.json` say why.
 
 use super::{ContactState, Problem};
 use crate::contact::interface::Primary;

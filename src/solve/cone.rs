@@ -49,16 +49,22 @@
 //! first-contact offset is zero at `g = 0`: the monolithic answer).
 //!
 //! ## Newton
-//! The generalized Jacobian of `(R_S, L)` is dense, `(n_F + 3m)²`, factorised
-//! by LU with partial pivoting; the structure rows are scaled to tractions
-//! by `1/(Ŵ_ii A_i)`. A step that does not lower `½|R|²` is halved (at most
-//! [`HALVINGS`] times, then taken whole). Converged when
-//! `|R|∞ ≤ 1e-13` of the traction scale: the answer is exact up to
+//! The structure rows are eliminated exactly: with `Ŵ` symmetric positive
+//! definite (as `K̂` is), `R_S = 0` is `A t_F = S u_F − q`, `S = Ŵ⁻¹ − ρ P_S`
+//! (the condensed stiffness, singular where only contact holds the body),
+//! `q = Ŵ⁻¹ û₀`: the traction's free components follow from `u_F`. The
+//! unknowns are `u_F` and the traction's prescribed components (no column
+//! of `Ŵ`; only the node law fixes them), `3m` in all, and the equations
+//! the `3m` node laws. The generalized Jacobian `D_u + D_t A⁻¹ S` is dense,
+//! `3m × 3m` (half the size of the `(u_F, t)` system), factorised by LU
+//! with partial pivoting (faer). A step that does not lower `½|L|²` is
+//! halved (at most [`HALVINGS`] times, then taken whole). Converged when
+//! `|L|∞ ≤ 1e-13` of the traction scale: the answer is exact up to
 //! round-off.
 
 use crate::contact::friction::{self, ContactStatus, Coulomb, NormalPressure, SlipKinematics};
 use faer::linalg::solvers::Solve;
-use nalgebra::{DMatrix, Matrix3, Vector3};
+use nalgebra::{DMatrix, DVector, Matrix3, Vector3};
 
 /// Most Newton iterations of one solve.
 const MAX_ITERATIONS: usize = 200;
@@ -289,6 +295,27 @@ pub struct ConeSolution {
     pub iterations: usize,
 }
 
+/// Where component `d` of a node's traction comes from.
+#[derive(Clone, Copy, Debug)]
+enum Component {
+    /// A free dof, contact dof `i`: `A t = (S u_F − q)_i`.
+    Free(usize),
+    /// A prescribed dof: unknown `j` after `u_F`.
+    Prescribed(usize),
+}
+
+/// The structure condensed onto the contact dofs: `A t_F = S u_F − q`.
+struct Condensed {
+    /// `S = Ŵ⁻¹ − ρ P_S`.
+    stiffness: DMatrix<f64>,
+    /// `q = Ŵ⁻¹ û₀`.
+    load: DVector<f64>,
+    /// Per node, per component.
+    components: Vec<[Component; 3]>,
+    /// Number of prescribed components (unknowns after `u_F`).
+    prescribed: usize,
+}
+
 impl ConeProblem<'_> {
     /// Each node's full displacement at `u_F`.
     fn node_displacements(&self, u: &[f64]) -> Vec<Vector3<f64>> {
@@ -299,77 +326,100 @@ impl ConeProblem<'_> {
         full
     }
 
-    /// `1/(Ŵ_ii A_i)`: the structure rows in traction units.
-    fn row_scales(&self) -> Vec<f64> {
-        self.columns
+    /// `S`, `q` and the numbering of the unknowns (a Cholesky factor of
+    /// `Ŵ`, symmetric positive definite as `K̂` is).
+    fn condense(&self) -> Result<Condensed, String> {
+        let cholesky = self.flexibility.clone().cholesky().ok_or_else(|| {
+            "the condensed contact flexibility Ŵ is not positive definite".to_string()
+        })?;
+        let mut stiffness = cholesky.inverse();
+        for (i, &shifted) in self.shifted.iter().enumerate() {
+            if shifted {
+                stiffness[(i, i)] -= self.shift;
+            }
+        }
+        let load = cholesky.solve(&DVector::from_column_slice(self.free_displacement));
+        let mut components = vec![[Component::Prescribed(usize::MAX); 3]; self.nodes.len()];
+        for (i, &(a, d)) in self.columns.iter().enumerate() {
+            components[a][d] = Component::Free(i);
+        }
+        let mut prescribed = 0;
+        for node in components.iter_mut() {
+            for c in node.iter_mut() {
+                if let Component::Prescribed(j) = c {
+                    *j = prescribed;
+                    prescribed += 1;
+                }
+            }
+        }
+        Ok(Condensed {
+            stiffness,
+            load,
+            components,
+            prescribed,
+        })
+    }
+
+    /// The tractions at the unknowns `z = (u_F, t_prescribed)`.
+    fn tractions(&self, c: &Condensed, z: &[f64]) -> Vec<Vector3<f64>> {
+        let f = self.columns.len();
+        let u = DVector::from_column_slice(&z[..f]);
+        let force = &c.stiffness * u - &c.load;
+        c.components
             .iter()
-            .enumerate()
-            .map(|(i, &(a, _))| 1.0 / (self.flexibility[(i, i)] * self.nodes[a].area))
+            .zip(self.nodes)
+            .map(|(components, node)| {
+                Vector3::from_fn(|d, _| match components[d] {
+                    Component::Free(i) => force[i] / node.area,
+                    Component::Prescribed(j) => z[f + j],
+                })
+            })
             .collect()
     }
 
-    /// The scaled residual `(s R_S, L)` at `(u, t)` with the node laws.
-    fn residual(&self, scales: &[f64], u: &[f64], t: &[Vector3<f64>]) -> (Vec<f64>, Vec<NodeLaw>) {
-        let f = self.columns.len();
-        // A t + ρ P_S u on the contact dofs
-        let load: Vec<f64> = self
-            .columns
-            .iter()
-            .enumerate()
-            .map(|(i, &(a, d))| {
-                let shift = if self.shifted[i] {
-                    self.shift * u[i]
-                } else {
-                    0.0
-                };
-                self.nodes[a].area * t[a][d] + shift
-            })
-            .collect();
-        let load = nalgebra::DVector::from_vec(load);
-        let w_load = self.flexibility * load;
-        let mut r = vec![0.0; f + 3 * self.nodes.len()];
-        for i in 0..f {
-            r[i] = scales[i] * (u[i] - w_load[i] - self.free_displacement[i]);
-        }
-        let displacements = self.node_displacements(u);
+    /// The node laws at `z`, the residual and the tractions.
+    fn residual(&self, c: &Condensed, z: &[f64]) -> (Vec<f64>, Vec<NodeLaw>, Vec<Vector3<f64>>) {
+        let t = self.tractions(c, z);
+        let displacements = self.node_displacements(&z[..self.columns.len()]);
         let laws: Vec<NodeLaw> = self
             .nodes
             .iter()
             .zip(&displacements)
-            .zip(t)
+            .zip(&t)
             .map(|((node, u_a), t_a)| node_law(node, u_a, t_a))
             .collect();
-        for (a, law) in laws.iter().enumerate() {
-            for k in 0..3 {
-                r[f + 3 * a + k] = law.residual[k];
-            }
-        }
-        (r, laws)
+        let r = laws
+            .iter()
+            .flat_map(|l| l.residual.iter().copied())
+            .collect();
+        (r, laws, t)
     }
 
-    /// The generalized Jacobian of the scaled residual.
-    fn jacobian(&self, scales: &[f64], laws: &[NodeLaw]) -> faer::Mat<f64> {
+    /// The generalized Jacobian of the node laws with respect to `z`:
+    /// `∂L_a/∂u_F = D_u + D_t A⁻¹ S` on the free components,
+    /// `∂L_a/∂t_p = D_t` on the prescribed ones.
+    fn jacobian(&self, c: &Condensed, laws: &[NodeLaw]) -> faer::Mat<f64> {
         let f = self.columns.len();
-        let size = f + 3 * self.nodes.len();
-        let w = self.flexibility;
-        let mut j = faer::Mat::<f64>::zeros(size, size);
-        for (col, &(a, d)) in self.columns.iter().enumerate() {
-            let area = self.nodes[a].area;
-            let shift = if self.shifted[col] { self.shift } else { 0.0 };
-            for row in 0..f {
-                let s = scales[row];
-                let identity = if row == col { 1.0 } else { 0.0 };
-                j[(row, col)] = s * (identity - shift * w[(row, col)]);
-                j[(row, f + 3 * a + d)] = -s * w[(row, col)] * area;
-            }
-            for k in 0..3 {
-                j[(f + 3 * a + k, col)] = laws[a].displacement_derivative[(k, d)];
-            }
-        }
+        let size = f + c.prescribed;
+        let mut j = faer::Mat::<f64>::zeros(3 * self.nodes.len(), size);
         for (a, law) in laws.iter().enumerate() {
+            let area = self.nodes[a].area;
             for k in 0..3 {
+                let row = 3 * a + k;
                 for d in 0..3 {
-                    j[(f + 3 * a + k, f + 3 * a + d)] = law.traction_derivative[(k, d)];
+                    let dt = law.traction_derivative[(k, d)];
+                    match c.components[a][d] {
+                        Component::Free(i) => {
+                            j[(row, i)] += law.displacement_derivative[(k, d)];
+                            if dt != 0.0 {
+                                let factor = dt / area;
+                                for col in 0..f {
+                                    j[(row, col)] += factor * c.stiffness[(i, col)];
+                                }
+                            }
+                        }
+                        Component::Prescribed(p) => j[(row, f + p)] += dt,
+                    }
                 }
             }
         }
@@ -383,38 +433,44 @@ fn merit(r: &[f64]) -> f64 {
 }
 
 /// Solve `problem` by semismooth Newton from `(u, t)` (the last
-/// increment's answer is a good start). Errors when Newton does not
-/// converge in [`MAX_ITERATIONS`] or its Jacobian is singular.
+/// increment's answer is a good start; only the prescribed components of
+/// `t` are unknowns, the free ones follow from `u`). Errors when Newton
+/// does not converge in [`MAX_ITERATIONS`] or its Jacobian is singular.
 pub fn solve_cone(
     problem: &ConeProblem,
-    mut u: Vec<f64>,
-    mut t: Vec<Vector3<f64>>,
+    u: Vec<f64>,
+    t: Vec<Vector3<f64>>,
 ) -> Result<ConeSolution, String> {
     let f = problem.columns.len();
-    let scales = problem.row_scales();
-    let (mut r, mut laws) = problem.residual(&scales, &u, &t);
+    let condensed = problem.condense()?;
+    let mut z = u;
+    z.resize(f + condensed.prescribed, 0.0);
+    for (a, components) in condensed.components.iter().enumerate() {
+        for d in 0..3 {
+            if let Component::Prescribed(j) = components[d] {
+                z[f + j] = t[a][d];
+            }
+        }
+    }
+    let load_scale = condensed
+        .load
+        .iter()
+        .enumerate()
+        .map(|(i, q)| (q / problem.nodes[problem.columns[i].0].area).abs())
+        .fold(f64::MIN_POSITIVE, f64::max);
+    let (mut r, mut laws, mut t) = problem.residual(&condensed, &z);
     for iteration in 1..=MAX_ITERATIONS {
-        let traction_scale = t
-            .iter()
-            .map(|v| v.amax())
-            .chain(
-                problem
-                    .free_displacement
-                    .iter()
-                    .zip(&scales)
-                    .map(|(v, s)| (v * s).abs()),
-            )
-            .fold(f64::MIN_POSITIVE, f64::max);
+        let scale = t.iter().map(|v| v.amax()).fold(load_scale, f64::max);
         let largest = r.iter().fold(0.0f64, |m, v| m.max(v.abs()));
-        if largest <= TOLERANCE * traction_scale {
+        if largest <= TOLERANCE * scale {
             return Ok(ConeSolution {
-                displacement: u,
+                displacement: z[..f].to_vec(),
                 traction: t,
                 status: laws.iter().map(|l| l.status).collect(),
                 iterations: iteration - 1,
             });
         }
-        let jacobian = problem.jacobian(&scales, &laws);
+        let jacobian = problem.jacobian(&condensed, &laws);
         let rhs = faer::Mat::<f64>::from_fn(r.len(), 1, |i, _| -r[i]);
         let step = jacobian.partial_piv_lu().solve(&rhs);
         if (0..r.len()).any(|i| !step[(i, 0)].is_finite()) {
@@ -425,30 +481,22 @@ pub fn solve_cone(
         }
         let old = merit(&r);
         let trial = |alpha: f64| {
-            let trial_u: Vec<f64> = (0..f).map(|i| u[i] + alpha * step[(i, 0)]).collect();
-            let trial_t: Vec<Vector3<f64>> = t
-                .iter()
-                .enumerate()
-                .map(|(a, v)| {
-                    let s = |k: usize| step[(f + 3 * a + k, 0)];
-                    v + alpha * Vector3::new(s(0), s(1), s(2))
-                })
-                .collect();
-            let (trial_r, trial_laws) = problem.residual(&scales, &trial_u, &trial_t);
-            (trial_u, trial_t, trial_r, trial_laws)
+            let trial_z: Vec<f64> = (0..z.len()).map(|i| z[i] + alpha * step[(i, 0)]).collect();
+            let (trial_r, trial_laws, trial_t) = problem.residual(&condensed, &trial_z);
+            (trial_z, trial_r, trial_laws, trial_t)
         };
         let mut alpha = 1.0;
         let mut accepted = None;
         for _ in 0..=HALVINGS {
             let candidate = trial(alpha);
-            if merit(&candidate.2) < old {
+            if merit(&candidate.1) < old {
                 accepted = Some(candidate);
                 break;
             }
             alpha *= 0.5;
         }
         // no decrease along the step: take it whole
-        (u, t, r, laws) = accepted.unwrap_or_else(|| trial(1.0));
+        (z, r, laws, t) = accepted.unwrap_or_else(|| trial(1.0));
     }
     Err(format!(
         "the condensed Coulomb problem did not converge in {MAX_ITERATIONS} Newton iterations"

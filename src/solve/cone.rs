@@ -502,3 +502,156 @@ pub fn solve_cone(
         "the condensed Coulomb problem did not converge in {MAX_ITERATIONS} Newton iterations"
     ))
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    const MU: f64 = 0.3;
+
+    fn node(normal_law: NormalEnforcement, tangential_law: TangentialLaw) -> ConeNode {
+        ConeNode {
+            normal: Vector3::new(0.1, -0.2, 1.0).normalize(),
+            area: 0.7,
+            normal_law,
+            tangential_law,
+            coulomb: Coulomb {
+                coefficient: MU,
+                tangential_penalty: 500.0,
+            },
+            committed_traction: Vector3::new(0.4, -0.3, 0.0),
+            gap_at_rest: 0.0,
+            offset_at_rest: Vector3::zeros(),
+            committed_gap: 0.0,
+            was_open: false,
+            prescribed: [false; 3],
+        }
+    }
+
+    /// `∂L/∂u` and `∂L/∂t` of [`node_law`] against central differences, for
+    /// exact and penalty normal laws, regularised and exact stick, in stick
+    /// and in slip (states away from the switches).
+    #[test]
+    fn node_law_derivatives_match_finite_differences() {
+        let exact = NormalEnforcement::Exact { r: 800.0 };
+        let penalty = NormalEnforcement::Penalty { epsilon: 800.0 };
+        let cases = [
+            (
+                exact,
+                TangentialLaw::Regularised,
+                1e-4,
+                ContactStatus::Stick,
+            ),
+            (exact, TangentialLaw::Regularised, 3e-2, ContactStatus::Slip),
+            (exact, TangentialLaw::ExactStick, 1e-4, ContactStatus::Stick),
+            (exact, TangentialLaw::ExactStick, 3e-2, ContactStatus::Slip),
+            (
+                penalty,
+                TangentialLaw::Regularised,
+                1e-4,
+                ContactStatus::Stick,
+            ),
+            (
+                penalty,
+                TangentialLaw::Regularised,
+                3e-2,
+                ContactStatus::Slip,
+            ),
+        ];
+        for (normal_law, tangential_law, motion, status) in cases {
+            let n = node(normal_law, tangential_law);
+            let u = Vector3::new(motion, 0.5 * motion, -0.01);
+            let t = Vector3::new(0.2, 0.1, 5.0);
+            let law = node_law(&n, &u, &t);
+            assert_eq!(
+                law.status, status,
+                "{normal_law:?} {tangential_law:?} {motion}"
+            );
+            let h = 1e-7;
+            for j in 0..3 {
+                let e = Vector3::ith(j, h);
+                let du = (node_law(&n, &(u + e), &t).residual
+                    - node_law(&n, &(u - e), &t).residual)
+                    / (2.0 * h);
+                let dt = (node_law(&n, &u, &(t + e)).residual
+                    - node_law(&n, &u, &(t - e)).residual)
+                    / (2.0 * h);
+                let scale = law.displacement_derivative.amax().max(1.0);
+                assert!(
+                    (du - law.displacement_derivative.column(j)).amax() < 1e-6 * scale,
+                    "{normal_law:?} {tangential_law:?} {status:?} ∂/∂u_{j}: {du} vs {}",
+                    law.displacement_derivative.column(j)
+                );
+                assert!(
+                    (dt - law.traction_derivative.column(j)).amax() < 1e-6,
+                    "{normal_law:?} {tangential_law:?} {status:?} ∂/∂t_{j}: {dt} vs {}",
+                    law.traction_derivative.column(j)
+                );
+            }
+        }
+    }
+
+    /// One node on a spring `k` (`Ŵ = I/k`) resting on the plane z = 0,
+    /// loaded by `F = (F_x, 0, −F_z)` (`û₀ = F/k`): `t_N = F_z`, `u_z = 0`;
+    /// with exact stick it sticks (`u_x = 0`, `t_x = −F_x`) while
+    /// `F_x ≤ μ F_z` and slips beyond (`t_x = −μ F_z`,
+    /// `u_x = (F_x − μ F_z)/k`); with the regularised law it sticks
+    /// elastically, `u_x = F_x/(k + A ε_T)`.
+    #[test]
+    fn a_spring_on_the_plane_sticks_and_slips_by_coulomb() {
+        let (k, f_z) = (200.0, 10.0);
+        let w = DMatrix::identity(3, 3) / k;
+        let columns = [(0, 0), (0, 1), (0, 2)];
+        let mut n = node(
+            NormalEnforcement::Exact { r: 500.0 },
+            TangentialLaw::ExactStick,
+        );
+        n.normal = Vector3::z();
+        n.area = 1.0;
+        n.committed_traction = Vector3::zeros();
+        for (f_x, law, u_x, t_x) in [
+            (2.0, TangentialLaw::ExactStick, 0.0, -2.0),
+            (
+                5.0,
+                TangentialLaw::ExactStick,
+                (5.0 - MU * f_z) / k,
+                -MU * f_z,
+            ),
+            (
+                2.0,
+                TangentialLaw::Regularised,
+                2.0 / (k + 500.0),
+                -500.0 * 2.0 / (k + 500.0),
+            ),
+        ] {
+            let nodes = [ConeNode {
+                tangential_law: law,
+                ..n
+            }];
+            let u0 = [f_x / k, 0.0, -f_z / k];
+            let problem = ConeProblem {
+                flexibility: &w,
+                columns: &columns,
+                shifted: &[false; 3],
+                shift: 0.0,
+                free_displacement: &u0,
+                prescribed: &[Vector3::zeros()],
+                nodes: &nodes,
+            };
+            let s = solve_cone(&problem, u0.to_vec(), vec![Vector3::zeros()]).unwrap();
+            let (u, t) = (&s.displacement, s.traction[0]);
+            assert!(
+                (u[0] - u_x).abs() < 1e-15,
+                "{law:?} F_x = {f_x}: u_x {}",
+                u[0]
+            );
+            assert!(u[1].abs() < 1e-15 && u[2].abs() < 1e-15, "{u:?}");
+            assert!(
+                (t.x - t_x).abs() < 1e-12,
+                "{law:?} F_x = {f_x}: t_x {}",
+                t.x
+            );
+            assert!((t.z - f_z).abs() < 1e-12 && t.y.abs() < 1e-12, "{t}");
+        }
+    }
+}

@@ -52,7 +52,7 @@
 //! The structure rows are eliminated exactly: with `Ŵ` symmetric positive
 //! definite (as `K̂` is), `R_S = 0` is `A t_F = S u_F − q`, `S = Ŵ⁻¹ − ρ P_S`
 //! (the condensed stiffness, singular where only contact holds the body),
-//! `q = Ŵ⁻¹ û₀`: the traction's free components follow from `u_F`. The
+//! `q = Ŵ⁻¹ û₀` (`Ŵ⁻¹` from the caller, once per `Ŵ`): the traction's free components follow from `u_F`. The
 //! unknowns are `u_F` and the traction's prescribed components (no column
 //! of `Ŵ`; only the node law fixes them), `3m` in all, and the equations
 //! the `3m` node laws. The generalized Jacobian `D_u + D_t A⁻¹ S` is dense,
@@ -267,8 +267,10 @@ pub fn node_law(node: &ConeNode, u: &Vector3<f64>, t: &Vector3<f64>) -> NodeLaw 
 
 /// The condensed problem of one increment.
 pub struct ConeProblem<'a> {
-    /// `Ŵ` over the contact dofs (`n_F × n_F`, symmetric).
-    pub flexibility: &'a DMatrix<f64>,
+    /// `Ŵ⁻¹`, the inverse of the flexibility over the contact dofs
+    /// (`n_F × n_F`, symmetric positive definite; computed once per `Ŵ`
+    /// by the caller).
+    pub inverse_flexibility: &'a DMatrix<f64>,
     /// Contact dof `i` is component `columns[i].1` of node `columns[i].0`.
     pub columns: &'a [(usize, usize)],
     /// Whether contact dof `i` carries the shift `ρ`.
@@ -326,19 +328,15 @@ impl ConeProblem<'_> {
         full
     }
 
-    /// `S`, `q` and the numbering of the unknowns (a Cholesky factor of
-    /// `Ŵ`, symmetric positive definite as `K̂` is).
-    fn condense(&self) -> Result<Condensed, String> {
-        let cholesky = self.flexibility.clone().cholesky().ok_or_else(|| {
-            "the condensed contact flexibility Ŵ is not positive definite".to_string()
-        })?;
-        let mut stiffness = cholesky.inverse();
+    /// `S`, `q` and the numbering of the unknowns.
+    fn condense(&self) -> Condensed {
+        let mut stiffness = self.inverse_flexibility.clone();
+        let load = &stiffness * DVector::from_column_slice(self.free_displacement);
         for (i, &shifted) in self.shifted.iter().enumerate() {
             if shifted {
                 stiffness[(i, i)] -= self.shift;
             }
         }
-        let load = cholesky.solve(&DVector::from_column_slice(self.free_displacement));
         let mut components = vec![[Component::Prescribed(usize::MAX); 3]; self.nodes.len()];
         for (i, &(a, d)) in self.columns.iter().enumerate() {
             components[a][d] = Component::Free(i);
@@ -352,12 +350,12 @@ impl ConeProblem<'_> {
                 }
             }
         }
-        Ok(Condensed {
+        Condensed {
             stiffness,
             load,
             components,
             prescribed,
-        })
+        }
     }
 
     /// The tractions at the unknowns `z = (u_F, t_prescribed)`.
@@ -442,7 +440,7 @@ pub fn solve_cone(
     t: Vec<Vector3<f64>>,
 ) -> Result<ConeSolution, String> {
     let f = problem.columns.len();
-    let condensed = problem.condense()?;
+    let condensed = problem.condense();
     let mut z = u;
     z.resize(f + condensed.prescribed, 0.0);
     for (a, components) in condensed.components.iter().enumerate() {
@@ -600,7 +598,7 @@ mod tests {
     #[test]
     fn a_spring_on_the_plane_sticks_and_slips_by_coulomb() {
         let (k, f_z) = (200.0, 10.0);
-        let w = DMatrix::identity(3, 3) / k;
+        let inverse = DMatrix::identity(3, 3) * k;
         let columns = [(0, 0), (0, 1), (0, 2)];
         let mut n = node(
             NormalEnforcement::Exact { r: 500.0 },
@@ -630,7 +628,7 @@ mod tests {
             }];
             let u0 = [f_x / k, 0.0, -f_z / k];
             let problem = ConeProblem {
-                flexibility: &w,
+                inverse_flexibility: &inverse,
                 columns: &columns,
                 shifted: &[false; 3],
                 shift: 0.0,

@@ -53,6 +53,8 @@ pub(super) struct FrictionalCondensation {
     /// Candidate nodes (into `contact`), in the order of their columns.
     candidates: Vec<usize>,
     is_candidate: Vec<bool>,
+    /// `Ŵ⁻¹` (a Cholesky inverse), once per `Ŵ`.
+    inverse: Option<nalgebra::DMatrix<f64>>,
     /// Per column of `Ŵ`: shifted by `ρ`.
     shifted: Vec<bool>,
     /// The shift `ρ` (0 when nothing is shifted).
@@ -157,6 +159,7 @@ impl FrictionalCondensation {
             column_owner,
             candidates: Vec::new(),
             is_candidate: vec![false; count],
+            inverse: None,
             shifted: Vec::new(),
             shift,
             traction: vec![Vector3::zeros(); count],
@@ -174,6 +177,7 @@ impl FrictionalCondensation {
             .flat_map(|&a| self.contact[a].columns.iter().map(|&(_, col)| col))
             .collect();
         self.base.grow(&columns)?;
+        self.inverse = None;
         self.shifted.extend(columns.iter().map(|_| shifted));
         for &a in new {
             self.is_candidate[a] = true;
@@ -280,8 +284,19 @@ impl FrictionalCondensation {
                 .collect();
             let guess_t: Vec<Vector3<f64>> =
                 self.candidates.iter().map(|&a| self.traction[a]).collect();
+            let inverse = match self.inverse.take() {
+                Some(inverse) => inverse,
+                None => {
+                    let cholesky = self.base.w.clone().cholesky().ok_or_else(|| {
+                        Error::LinearSolver(
+                            "the condensed contact flexibility is not positive definite".into(),
+                        )
+                    })?;
+                    cholesky.inverse()
+                }
+            };
             let cone = ConeProblem {
-                flexibility: &self.base.w,
+                inverse_flexibility: &inverse,
                 columns: &columns,
                 shifted: &self.shifted,
                 shift: self.shift,
@@ -295,6 +310,7 @@ impl FrictionalCondensation {
                 ))
             })?;
             self.iterations += solution.iterations;
+            self.inverse = Some(inverse);
             // u = K̂⁻¹ (b + E (A t + ρ P_S u_F))
             let mut u = b.clone();
             for (k, &col) in self.base.candidates.iter().enumerate() {

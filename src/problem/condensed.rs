@@ -588,11 +588,7 @@ impl IncrementSolver for Condensation {
         trial: &mut ContactState,
     ) -> Result<()> {
         let (u, forces) = self.solve_increment(problem, t)?;
-        let mut pressures: Vec<Vec<f64>> = problem
-            .contacts
-            .iter()
-            .map(|c| vec![0.0; c.nodes.len()])
-            .collect();
+        let mut pressures = zero_per_node(problem);
         for (a, c) in self.nodes.iter().enumerate() {
             pressures[c.interface][c.index] =
                 forces[a] / problem.contacts[c.interface].areas[c.index];
@@ -725,6 +721,15 @@ fn run_increments(
         }
     }
     Ok(x)
+}
+
+/// A zero per secondary node of every interface.
+fn zero_per_node(problem: &Problem) -> Vec<Vec<f64>> {
+    problem
+        .contacts
+        .iter()
+        .map(|c| vec![0.0; c.nodes.len()])
+        .collect()
 }
 
 /// The unknowns `x` of the monolithic system at the condensed solution:

@@ -366,11 +366,7 @@ impl IncrementSolver for FrictionalCondensation {
         trial: &mut ContactState,
     ) -> Result<()> {
         let (u, traction) = self.solve_increment(problem, t, state)?;
-        let mut pressures: Vec<Vec<f64>> = problem
-            .contacts
-            .iter()
-            .map(|c| vec![0.0; c.nodes.len()])
-            .collect();
+        let mut pressures = super::zero_per_node(problem);
         for (a, c) in self.contact.iter().enumerate() {
             let interface = &problem.contacts[c.interface];
             let Primary::Rigid(RigidObstacle::Plane { normal, .. }) = &interface.primary else {

@@ -125,8 +125,8 @@ fn condensed_equals_monolithic_on_frictionless_hertz() {
 /// plane, frictionless, Rockafellar) and on examples/press-pull (linear
 /// elastic, Coulomb friction against a rigid plane, the block held in x by
 /// friction alone) and says why; it takes the monolithic one for a
-/// finite-strain material and for friction against a sphere, naming the
-/// reason; `condensed` asked for where it does not apply is an error
+/// finite-strain material, for friction against a sphere and for two
+/// deformable bodies (examples/two-spheres), naming the reason; `condensed` asked for where it does not apply is an error
 /// naming the reason.
 #[test]
 fn auto_takes_the_condensed_path_exactly_where_it_applies() {
@@ -164,6 +164,11 @@ fn auto_takes_the_condensed_path_exactly_where_it_applies() {
     let curved = press_pull_problem(&sphere);
     let why = signorini::problem::condensed::not_applicable(curved.problem()).unwrap();
     assert!(why.contains("sphere"), "{why}");
+    // two linear elastic bodies in contact (examples/two-spheres): refused
+    let root = Path::new(env!("CARGO_MANIFEST_DIR"));
+    let pair = Simulation::from_file(&root.join("examples/two-spheres/case.toml")).unwrap();
+    let why = signorini::problem::condensed::not_applicable(pair.problem()).unwrap();
+    assert!(why.contains("between two bodies"), "{why}");
     let Err(e) = run_case("press-pull", &sphere, "strategy = \"condensed\"") else {
         panic!("condensed ran against a sphere");
     };

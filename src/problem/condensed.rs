@@ -705,6 +705,8 @@ fn run_increments(
                 switched: 0,
                 linear: Default::default(),
             }];
+            // the increment's one solve, as Newton's iterations are told
+            observer.on_iteration(&step.name, t_new, &newton[0]);
             let record = IncrementRecord {
                 step: s,
                 step_name: step.name.clone(),

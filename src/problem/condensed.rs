@@ -608,7 +608,8 @@ impl IncrementSolver for Condensation {
 /// Run every step of `problem` on the condensed path (the caller checked
 /// [`not_applicable`]): increments as the stepper makes them for easy ones
 /// (the first of each step `initial_increment`, then grown by
-/// `growth_factor` up to `max_increment`), each solved exactly (frictional
+/// `growth_factor` up to `max_increment`; with friction, which is path
+/// dependent, all `initial_increment`), each solved exactly (frictional
 /// contact by [`friction`], frictionless by the complementarity problem),
 /// evaluated once for its residual and reports, and given to `observer`.
 /// Returns the final unknowns, the linear solver's statistics and the
@@ -651,6 +652,7 @@ fn run_increments(
     let mut force_scale = 0.0f64;
     let settings = problem.settings.clone();
     let steps: Vec<Step> = problem.steps.clone();
+    let path_dependent = has_friction(problem);
     for (s, step) in steps.iter().enumerate() {
         let mut dt = step.initial_increment.min(step.end_time - t);
         while t < step.end_time - 1e-12 * step.end_time.abs().max(1.0) {
@@ -719,7 +721,12 @@ fn run_increments(
             };
             t = t_new;
             observer.on_converged(problem, &record, &x, &evaluation, &state)?;
-            dt = (dt * settings.growth_factor).min(step.max_increment);
+            // friction is path dependent: its increments stay the case's
+            // own (the ones Newton takes where it converges without cuts),
+            // so that `auto` does not change the answer
+            if !path_dependent {
+                dt = (dt * settings.growth_factor).min(step.max_increment);
+            }
         }
     }
     Ok(x)

@@ -169,6 +169,12 @@ impl Simulation {
         &self.problem
     }
 
+    /// The problem, to adjust before [`run`](Self::run) (the strategy
+    /// chosen when it was built stays).
+    pub fn problem_mut(&mut self) -> &mut Problem {
+        &mut self.problem
+    }
+
     /// The case's output folder (`[output] folder` relative to the case
     /// file, or `results` beside it).
     pub fn default_output_dir(&self) -> &Path {

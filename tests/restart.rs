@@ -42,8 +42,12 @@ impl StepObserver for StopAfter {
     }
 }
 
+/// The case on Newton's path (`strategy = "monolithic"`): a restart
+/// resumes Newton's increments (press-pull would otherwise run on the
+/// condensed path, which does not restart).
 fn simulation(case: &str) -> Simulation {
-    Simulation::from_toml(case, &example()).unwrap()
+    let case = format!("{case}\n[solver]\nstrategy = \"monolithic\"\n");
+    Simulation::from_toml(&case, &example()).unwrap()
 }
 
 fn options(output: &Path, restart: Option<&Path>) -> RunOptions {

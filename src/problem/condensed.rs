@@ -43,14 +43,22 @@
 //! solve with the same factor) and the increment is solved again. The
 //! factorisation is never repeated.
 //!
+//! ## Coulomb friction
+//! With friction on some interface the run takes [`friction`]: three
+//! unknowns per contact node, a dense semismooth Newton solve per
+//! increment ([`crate::solve::cone`]), and a shifted `K̂` where only the
+//! contact holds a body.
+//!
 //! ## Where it applies ([`not_applicable`])
 //! Every material small-strain (`linear_elastic`: the total-Lagrangian
 //! laws are geometrically nonlinear, their `K` changes with `u`), no
-//! follower pressure, every contact against a rigid plane, frictionless,
-//! with an exact or penalty law, and every body held by its prescribed
-//! displacements (`K̃` regular: a body held only by contact has a
-//! rigid-body mode). `auto` takes it exactly then; otherwise the run is
-//! monolithic and the log and `summary.json` say why.
+//! follower pressure, every contact against a rigid plane (translating or
+//! not), frictionless or with Coulomb friction, with an exact or penalty
+//! law, and every body held by its prescribed displacements (`K̃` regular:
+//! a body held only by contact has a rigid-body mode) or, with friction,
+//! by those and the nodes touching the plane at the start. `auto` takes it
+//! exactly then; otherwise the run is monolithic and the log and
+//! `summary.json` say why.
 
 use super::{ContactState, Problem};
 use crate::contact::interface::Primary;
@@ -68,6 +76,8 @@ use crate::solve::stepping::{next_increment, IncrementRecord, StepObserver};
 use crate::{Error, Result};
 use nalgebra::{DMatrix, Matrix6, Vector3, Vector6};
 use std::path::PathBuf;
+
+mod friction;
 
 /// Which path a run takes.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
@@ -100,10 +110,18 @@ pub fn choose(problem: &Problem) -> std::result::Result<Choice, String> {
     let strategy = problem.settings.strategy;
     let condensed = || Choice {
         path: Path::Condensed,
-        reason: "the stiffness is constant and every contact is frictionless against a rigid \
-                 plane: one factorisation per run, the contact problem solved exactly on the \
-                 contact nodes (monolithic Newton would factorise at every iteration)"
-            .into(),
+        reason: if has_friction(problem) {
+            "the stiffness is constant and every contact is against a rigid plane with Coulomb \
+             friction: one factorisation per run, the frictional contact problem solved on the \
+             contact nodes by a dense semismooth Newton method (monolithic Newton would \
+             factorise at every iteration)"
+                .into()
+        } else {
+            "the stiffness is constant and every contact is frictionless against a rigid \
+             plane: one factorisation per run, the contact problem solved exactly on the \
+             contact nodes (monolithic Newton would factorise at every iteration)"
+                .into()
+        },
     };
     match (strategy, why_not) {
         (Strategy::Monolithic, _) => Ok(Choice {
@@ -149,9 +167,6 @@ pub fn not_applicable(problem: &Problem) -> Option<String> {
     for c in &problem.contacts {
         let why = match (&c.primary, c.law) {
             (Primary::Surface(_), _) => Some("is between two bodies (not condensed yet)".into()),
-            (Primary::Rigid(RigidObstacle::Plane { .. }), _) if c.has_friction() => {
-                Some("has Coulomb friction (not condensed yet)".into())
-            }
             (Primary::Rigid(RigidObstacle::Plane { .. }), NormalLaw::Uzawa { .. }) => Some(
                 "uses uzawa, which meets the constraint only to its outer loop's tolerance".into(),
             ),
@@ -169,17 +184,31 @@ pub fn not_applicable(problem: &Problem) -> Option<String> {
             return Some(format!("contact '{}' {why}", c.name));
         }
     }
-    free_rigid_body_mode(problem)
+    let mut held = problem.constrained_dofs();
+    if has_friction(problem) {
+        // the frictional path shifts the dofs of the nodes touching at the
+        // start (`K̂ = K̃ + ρ Σ I₃`), which holds a body that friction holds
+        for d in friction::initially_touching_dofs(problem) {
+            held[d] = true;
+        }
+    }
+    free_rigid_body_mode(problem, &held).map(|why| {
+        if has_friction(problem) {
+            format!("{why}, and the nodes touching the obstacle at the start do not hold it")
+        } else {
+            why
+        }
+    })
 }
 
-/// A body (a connected set of elements) that its prescribed displacements
-/// do not hold against every rigid-body motion (`K̃` is then singular),
+/// A body (a connected set of elements) that the `constrained` dofs (its
+/// prescribed displacements, and the shifted contact dofs) do not hold against every rigid-body motion (`K̃` is then singular),
 /// named by one of its nodes; a node in no element that is not fully
 /// prescribed. The six rigid modes of a body about its centroid `c`,
 /// `t_i = e_i` and `r_i = e_i × (X − c)/L`, are held when their Gram
 /// matrix over the prescribed dofs, `G = Σ_d m(d) m(d)ᵀ`, is regular
 /// (smallest eigenvalue above 1e-10 of the largest).
-fn free_rigid_body_mode(problem: &Problem) -> Option<String> {
+fn free_rigid_body_mode(problem: &Problem, constrained: &[bool]) -> Option<String> {
     let mesh = &problem.model.mesh;
     let n = mesh.num_nodes();
     let mut parent: Vec<usize> = (0..n).collect();
@@ -198,7 +227,6 @@ fn free_rigid_body_mode(problem: &Problem) -> Option<String> {
             parent[ra] = rb;
         }
     }
-    let constrained = problem.constrained_dofs();
     let mut bodies: std::collections::BTreeMap<usize, Vec<usize>> = Default::default();
     for a in 0..n {
         if !in_element[a] {
@@ -317,21 +345,9 @@ const MIXED_PRECISION_UNKNOWNS: usize = 10_000;
 const MIXED_REFINEMENTS: usize = 10;
 
 impl Condensation {
-    /// Assemble `K` at `u = 0`, make `K̃` and factorise it once.
+    /// The frictionless condensation: one column per secondary node of
+    /// every rigid-plane interface, its normal; `K̃` unshifted.
     fn new(problem: &Problem) -> Result<Self> {
-        let pattern = &problem.model.pattern;
-        let dimension = pattern.dimension();
-        let mut k = vec![0.0; pattern.nnz()];
-        let mut force = vec![0.0; dimension];
-        problem
-            .model
-            .assemble_internal(&vec![0.0; dimension], &mut force, Some(&mut k))
-            .map_err(|f| Error::LinearSolver(problem.describe_failure(&f)))?;
-        let mut constrained = problem.constrained_dofs();
-        let dofs = problem.model.num_dofs();
-        constrained[dofs..].iter_mut().for_each(|c| *c = true);
-        let mut k_tilde = k.clone();
-        let scale = apply_identity_rows(problem, &constrained, &mut k_tilde);
         let mut nodes = Vec::new();
         for (ci, c) in problem.contacts.iter().enumerate() {
             let Primary::Rigid(RigidObstacle::Plane { normal, .. }) = &c.primary else {
@@ -350,6 +366,29 @@ impl Condensation {
                     compliance,
                 });
             }
+        }
+        Self::factorise(problem, nodes, &[])
+    }
+
+    /// Assemble `K` at `u = 0`, make `K̃` (prescribed rows and columns a
+    /// scaled identity `s`, plus `ρ = s` on the diagonal of the `shifted`
+    /// dofs) and factorise it once; `nodes` are the columns of `E`.
+    fn factorise(problem: &Problem, nodes: Vec<ContactNode>, shifted: &[usize]) -> Result<Self> {
+        let pattern = &problem.model.pattern;
+        let dimension = pattern.dimension();
+        let mut k = vec![0.0; pattern.nnz()];
+        let mut force = vec![0.0; dimension];
+        problem
+            .model
+            .assemble_internal(&vec![0.0; dimension], &mut force, Some(&mut k))
+            .map_err(|f| Error::LinearSolver(problem.describe_failure(&f)))?;
+        let mut constrained = problem.constrained_dofs();
+        let dofs = problem.model.num_dofs();
+        constrained[dofs..].iter_mut().for_each(|c| *c = true);
+        let mut k_tilde = k.clone();
+        let scale = apply_identity_rows(problem, &constrained, &mut k_tilde);
+        for &d in shifted {
+            k_tilde[pattern.diagonal_entry(d)] += scale;
         }
         let count = nodes.len();
         let trailing = Self::nearest_normal_dofs(problem, &nodes, &constrained);
@@ -639,32 +678,89 @@ impl Condensation {
     }
 }
 
+/// One increment of a condensed path: the unknowns `x` (displacements and
+/// the multipliers of the laws that have them) and the trial contact state
+/// at time `t` from the committed `state`, so that the problem's own
+/// evaluation reports (and checks) the answer.
+trait IncrementSolver {
+    fn increment(
+        &mut self,
+        problem: &Problem,
+        t: f64,
+        state: &ContactState,
+        x: &mut [f64],
+        trial: &mut ContactState,
+    ) -> Result<()>;
+
+    /// The factorisation's statistics and the iterations of the contact
+    /// solves (active-set steps, semismooth Newton iterations).
+    fn statistics(&self) -> (SolverStatistics, usize);
+}
+
+impl IncrementSolver for Condensation {
+    fn increment(
+        &mut self,
+        problem: &Problem,
+        t: f64,
+        _: &ContactState,
+        x: &mut [f64],
+        trial: &mut ContactState,
+    ) -> Result<()> {
+        let (u, forces) = self.solve_increment(problem, t)?;
+        let mut pressures = zero_per_node(problem);
+        for (a, c) in self.nodes.iter().enumerate() {
+            pressures[c.interface][c.index] =
+                forces[a] / problem.contacts[c.interface].areas[c.index];
+        }
+        set_multipliers(problem, &pressures, &u, t, x, trial);
+        Ok(())
+    }
+
+    fn statistics(&self) -> (SolverStatistics, usize) {
+        let statistics = SolverStatistics {
+            mixed_precision_fallbacks: self.fallbacks,
+            ..SolverStatistics::of_ldlt(&self.ldlt)
+        };
+        (statistics, self.active_set_iterations)
+    }
+}
+
 /// Run every step of `problem` on the condensed path (the caller checked
 /// [`not_applicable`]): increments as the stepper makes them for easy ones
 /// (the first of each step `initial_increment`, then grown by
-/// `growth_factor` up to `max_increment`), each solved exactly, evaluated
-/// once for its residual and reports, and given to `observer`. Returns the
-/// final unknowns and the linear solver's statistics.
+/// `growth_factor` up to `max_increment`; with friction, which is path
+/// dependent, all `initial_increment`), each solved exactly (frictional
+/// contact by [`friction`], frictionless by the complementarity problem),
+/// evaluated once for its residual and reports, and given to `observer`.
+/// Returns the final unknowns, the linear solver's statistics and the
+/// iterations of the contact solves.
 pub fn run_steps(
     problem: &mut Problem,
     observer: &mut dyn StepObserver<Problem>,
     output: PathBuf,
 ) -> (Result<Vec<f64>>, SolverStatistics, usize) {
-    let mut condensation = match Condensation::new(problem) {
+    let solver: Result<Box<dyn IncrementSolver>> = if has_friction(problem) {
+        friction::FrictionalCondensation::new(problem).map(|c| Box::new(c) as Box<_>)
+    } else {
+        Condensation::new(problem).map(|c| Box::new(c) as Box<_>)
+    };
+    let mut solver = match solver {
         Ok(c) => c,
         Err(e) => return (Err(e), SolverStatistics::default(), 0),
     };
-    let result = run_increments(problem, &mut condensation, observer, output);
-    let statistics = SolverStatistics {
-        mixed_precision_fallbacks: condensation.fallbacks,
-        ..SolverStatistics::of_ldlt(&condensation.ldlt)
-    };
-    (result, statistics, condensation.active_set_iterations)
+    let result = run_increments(problem, &mut *solver, observer, output);
+    let (statistics, iterations) = solver.statistics();
+    (result, statistics, iterations)
+}
+
+/// Whether any interface has Coulomb friction (`μ > 0`).
+fn has_friction(problem: &Problem) -> bool {
+    problem.contacts.iter().any(|c| c.has_friction())
 }
 
 fn run_increments(
     problem: &Problem,
-    condensation: &mut Condensation,
+    solver: &mut dyn IncrementSolver,
     observer: &mut dyn StepObserver<Problem>,
     output: PathBuf,
 ) -> Result<Vec<f64>> {
@@ -676,6 +772,7 @@ fn run_increments(
     let mut force_scale = 0.0f64;
     let settings = problem.settings.clone();
     let steps: Vec<Step> = problem.steps.clone();
+    let path_dependent = has_friction(problem);
     for (s, step) in steps.iter().enumerate() {
         let mut dt = step.initial_increment.min(step.end_time - t);
         while t < step.end_time - 1e-12 * step.end_time.abs().max(1.0) {
@@ -688,17 +785,8 @@ fn run_increments(
                     ),
                 });
             }
-            let (u, forces) = condensation.solve_increment(problem, t_new)?;
             let mut trial = state.clone();
-            set_multipliers(
-                problem,
-                condensation,
-                &forces,
-                &u,
-                t_new,
-                &mut x,
-                &mut trial,
-            );
+            solver.increment(problem, t_new, &state, &mut x, &mut trial)?;
             let evaluation = problem
                 .evaluate(t_new, &x, &trial, None)
                 .map_err(|f| Error::LinearSolver(f.to_string()))?;
@@ -739,6 +827,8 @@ fn run_increments(
                 switched: 0,
                 linear: Default::default(),
             }];
+            // the increment's one solve, as Newton's iterations are told
+            observer.on_iteration(&step.name, t_new, &newton[0]);
             let record = IncrementRecord {
                 step: s,
                 step_name: step.name.clone(),
@@ -751,20 +841,34 @@ fn run_increments(
             };
             t = t_new;
             observer.on_converged(problem, &record, &x, &evaluation, &state)?;
-            dt = (dt * settings.growth_factor).min(step.max_increment);
+            // friction is path dependent: its increments stay the case's
+            // own (the ones Newton takes where it converges without cuts),
+            // so that `auto` does not change the answer
+            if !path_dependent {
+                dt = (dt * settings.growth_factor).min(step.max_increment);
+            }
         }
     }
     Ok(x)
 }
 
+/// A zero per secondary node of every interface.
+fn zero_per_node(problem: &Problem) -> Vec<Vec<f64>> {
+    problem
+        .contacts
+        .iter()
+        .map(|c| vec![0.0; c.nodes.len()])
+        .collect()
+}
+
 /// The unknowns `x` of the monolithic system at the condensed solution:
 /// the displacements `u` and, for the multiplier laws, `λ = t_N / k` with
-/// `t_N = force / A` (the slack law's local unknowns consistent with them),
-/// so that the problem's own evaluation reports the state.
+/// `t_N = pressures[interface][node]` (the slack law's local unknowns
+/// consistent with them), so that the problem's own evaluation reports the
+/// state.
 fn set_multipliers(
     problem: &Problem,
-    condensation: &Condensation,
-    forces: &[f64],
+    pressures: &[Vec<f64>],
     u: &[f64],
     t: f64,
     x: &mut [f64],
@@ -772,19 +876,20 @@ fn set_multipliers(
 ) {
     let dofs = problem.model.num_dofs();
     x[..dofs].copy_from_slice(&u[..dofs]);
-    let gaps = condensation.gaps(problem, t, u);
-    for (a, c) in condensation.nodes.iter().enumerate() {
-        let interface = &problem.contacts[c.interface];
-        let pressure = forces[a] / interface.areas[c.index];
-        let node = &mut state.interfaces[c.interface][c.index];
-        match interface.law_at(c.index) {
-            NormalLaw::Rockafellar { k, .. } => node.lambda = pressure / k,
-            NormalLaw::Slack { p, k } => {
-                node.lambda = pressure / k;
-                node.slack = SlackState::consistent(gaps[a], node.lambda, p, k);
+    let reference = &problem.model.mesh.nodes;
+    for (ci, interface) in problem.contacts.iter().enumerate() {
+        let gaps = interface.gaps(reference, t, u, None);
+        for (i, &pressure) in pressures[ci].iter().enumerate() {
+            let node = &mut state.interfaces[ci][i];
+            match interface.law_at(i) {
+                NormalLaw::Rockafellar { k, .. } => node.lambda = pressure / k,
+                NormalLaw::Slack { p, k } => {
+                    node.lambda = pressure / k;
+                    node.slack = SlackState::consistent(gaps[i], node.lambda, p, k);
+                }
+                _ => continue,
             }
-            _ => continue,
+            x[dofs + interface.multiplier_offset + i] = node.lambda;
         }
-        x[dofs + interface.multiplier_offset + c.index] = node.lambda;
     }
 }

@@ -5,6 +5,7 @@
 pub mod backend;
 pub mod chattering;
 pub mod complementarity;
+pub mod cone;
 pub mod direct;
 pub mod failure;
 pub mod gmres;

@@ -1,0 +1,389 @@
+//! The frictional condensed path: Coulomb friction against rigid planes on
+//! a body of constant stiffness, three unknowns per contact node, solved
+//! per increment by the dense semismooth Newton method of
+//! [`crate::solve::cone`], with the friction history committed per
+//! increment by the problem itself (as the monolithic path does).
+//!
+//! ## A body that only contact holds
+//! A body held in a tangential direction by friction alone (examples/
+//! press-pull: nothing prescribes its x displacement) has a singular `K̃`.
+//! The dofs of the nodes touching the obstacle at the start get a shift
+//! `ρ` (the scale of `K̃`'s prescribed rows, the mean diagonal):
+//! `K̂ = K̃ + ρ Σ_{a touching} I₃`, regular when those nodes with the
+//! prescribed displacements hold every rigid-body motion
+//! ([`super::not_applicable`] checks it). The shift is exact: it is added
+//! on both sides, `K̂ u = b + E (A t + ρ P_S u_F)`, so the condensed
+//! problem carries `ρ P_S u_F` ([`ConeProblem::shift`]). Where the
+//! prescribed displacements hold the body no dof is shifted.
+//!
+//! ## Candidates
+//! `Ŵ = Eᵀ K̂⁻¹ E` over the free dofs of the candidate nodes: those
+//! touching or penetrating at the start, then every node that penetrates
+//! at an increment's answer (the increment is solved again with it; its
+//! columns are solves with the same factor, not shifted). One
+//! factorisation per run.
+
+use super::{Condensation, ContactNode, ContactState, IncrementSolver, Problem};
+use crate::contact::friction::{ContactStatus, Coulomb};
+use crate::contact::interface::Primary;
+use crate::contact::laws::NormalLaw;
+use crate::contact::obstacle::RigidObstacle;
+use crate::solve::cone::{solve_cone, ConeNode, ConeProblem, NormalEnforcement, TangentialLaw};
+use crate::solve::linear_solver::SolverStatistics;
+use crate::{Error, Result};
+use nalgebra::Vector3;
+
+/// A secondary node of a rigid-plane interface.
+struct FrictionNode {
+    interface: usize,
+    index: usize,
+    node: usize,
+    /// Its free components `d` with their columns in [`Condensation::nodes`].
+    columns: Vec<(usize, usize)>,
+}
+
+/// The frictional condensed solver of a run.
+pub(super) struct FrictionalCondensation {
+    /// The factor of `K̂`, one column `e_d` per free dof of every contact
+    /// node, `Ŵ` over the candidates' columns.
+    base: Condensation,
+    contact: Vec<FrictionNode>,
+    /// The column's contact node and component.
+    column_owner: Vec<(usize, usize)>,
+    /// Candidate nodes (into `contact`), in the order of their columns.
+    candidates: Vec<usize>,
+    is_candidate: Vec<bool>,
+    /// `Ŵ⁻¹` (a Cholesky inverse), once per `Ŵ`.
+    inverse: Option<nalgebra::DMatrix<f64>>,
+    /// Per column of `Ŵ`: shifted by `ρ`.
+    shifted: Vec<bool>,
+    /// The shift `ρ` (0 when nothing is shifted).
+    shift: f64,
+    /// The last answer per contact node (the next increment's start).
+    traction: Vec<Vector3<f64>>,
+    displacement: Vec<Option<f64>>,
+    iterations: usize,
+}
+
+/// The gaps of every node of interface `c` at the reference position
+/// plus the prescribed displacements at `t = 0`.
+fn initial_gaps(problem: &Problem, c: usize) -> Vec<f64> {
+    let mut x = vec![0.0; problem.num_unknowns()];
+    problem.apply_prescribed(0.0, &mut x);
+    problem.contacts[c].gaps(&problem.model.mesh.nodes, 0.0, &x, None)
+}
+
+/// The touching tolerance: 1e-12 of the model size.
+fn touching(problem: &Problem) -> f64 {
+    1e-12 * problem.model.size()
+}
+
+/// The free dofs of the rigid-plane nodes that touch or penetrate at the
+/// start: the ones the frictional path shifts.
+pub(super) fn initially_touching_dofs(problem: &Problem) -> Vec<usize> {
+    let constrained = problem.constrained_dofs();
+    let tolerance = touching(problem);
+    let mut dofs = Vec::new();
+    for (ci, c) in problem.contacts.iter().enumerate() {
+        if !matches!(c.primary, Primary::Rigid(RigidObstacle::Plane { .. })) {
+            continue;
+        }
+        for (i, g) in initial_gaps(problem, ci).iter().enumerate() {
+            if *g <= tolerance {
+                let node = c.nodes[i];
+                dofs.extend((0..3).map(|d| 3 * node + d).filter(|&d| !constrained[d]));
+            }
+        }
+    }
+    dofs
+}
+
+impl FrictionalCondensation {
+    /// The contact nodes and their columns; `K̂` factorised once (shifted
+    /// where only contact holds the body); the nodes touching at the start
+    /// made candidates.
+    pub(super) fn new(problem: &Problem) -> Result<Self> {
+        let constrained = problem.constrained_dofs();
+        let mut columns = Vec::new();
+        let mut column_owner = Vec::new();
+        let mut contact = Vec::new();
+        let mut initial = Vec::new();
+        let tolerance = touching(problem);
+        for (ci, c) in problem.contacts.iter().enumerate() {
+            if !matches!(c.primary, Primary::Rigid(RigidObstacle::Plane { .. })) {
+                continue;
+            }
+            let gaps = initial_gaps(problem, ci);
+            for (i, &node) in c.nodes.iter().enumerate() {
+                let mut own = Vec::new();
+                for d in (0..3).filter(|&d| !constrained[3 * node + d]) {
+                    own.push((d, columns.len()));
+                    column_owner.push((contact.len(), d));
+                    columns.push(ContactNode {
+                        interface: ci,
+                        index: i,
+                        node,
+                        normal: Vector3::ith(d, 1.0),
+                        compliance: 0.0,
+                    });
+                }
+                if gaps[i] <= tolerance {
+                    initial.push(contact.len());
+                }
+                contact.push(FrictionNode {
+                    interface: ci,
+                    index: i,
+                    node,
+                    columns: own,
+                });
+            }
+        }
+        // shift only where the prescribed displacements do not hold a body
+        let floating = super::free_rigid_body_mode(problem, &constrained).is_some();
+        let shifted_dofs: Vec<usize> = if floating {
+            initial
+                .iter()
+                .flat_map(|&a| contact[a].columns.iter().map(|&(_, col)| col))
+                .map(|col| 3 * columns[col].node + columns[col].normal.iamax())
+                .collect()
+        } else {
+            Vec::new()
+        };
+        let base = Condensation::factorise(problem, columns, &shifted_dofs)?;
+        let shift = if floating { base.scale } else { 0.0 };
+        let count = contact.len();
+        let columns_count = base.nodes.len();
+        let mut condensation = FrictionalCondensation {
+            base,
+            contact,
+            column_owner,
+            candidates: Vec::new(),
+            is_candidate: vec![false; count],
+            inverse: None,
+            shifted: Vec::new(),
+            shift,
+            traction: vec![Vector3::zeros(); count],
+            displacement: vec![None; columns_count],
+            iterations: 0,
+        };
+        condensation.grow(&initial, floating)?;
+        Ok(condensation)
+    }
+
+    /// Make the contact nodes `new` candidates: their columns of `Ŵ`.
+    fn grow(&mut self, new: &[usize], shifted: bool) -> Result<()> {
+        let columns: Vec<usize> = new
+            .iter()
+            .flat_map(|&a| self.contact[a].columns.iter().map(|&(_, col)| col))
+            .collect();
+        self.base.grow(&columns)?;
+        self.inverse = None;
+        self.shifted.extend(columns.iter().map(|_| shifted));
+        for &a in new {
+            self.is_candidate[a] = true;
+            self.candidates.push(a);
+        }
+        Ok(())
+    }
+
+    /// The condensed node of contact node `a` at time `t` from its
+    /// committed state.
+    fn cone_node(&self, problem: &Problem, t: f64, state: &ContactState, a: usize) -> ConeNode {
+        let c = &self.contact[a];
+        let interface = &problem.contacts[c.interface];
+        let Primary::Rigid(RigidObstacle::Plane { point, normal }) = &interface.primary else {
+            unreachable!("the frictional condensation holds rigid-plane nodes only")
+        };
+        let committed = &state.interfaces[c.interface][c.index];
+        let translation = interface.translation_at(t);
+        let position = Vector3::from(problem.model.mesh.nodes[c.node]) - translation;
+        let coulomb = interface.friction_at(c.index).unwrap_or(Coulomb {
+            coefficient: 0.0,
+            tangential_penalty: 1.0,
+        });
+        let normal_law = match interface.law_at(c.index) {
+            NormalLaw::Penalty { epsilon } => NormalEnforcement::Penalty { epsilon },
+            NormalLaw::Rockafellar { p, .. } | NormalLaw::Slack { p, .. } => {
+                NormalEnforcement::Exact { r: p }
+            }
+            NormalLaw::Uzawa { epsilon, .. } => NormalEnforcement::Exact { r: epsilon },
+        };
+        ConeNode {
+            normal: *normal,
+            area: interface.areas[c.index],
+            normal_law,
+            tangential_law: if interface.exact_stick() {
+                TangentialLaw::ExactStick
+            } else {
+                TangentialLaw::Regularised
+            },
+            coulomb,
+            committed_traction: committed.friction.traction,
+            gap_at_rest: (position - point).dot(normal),
+            offset_at_rest: position - committed.friction.anchor,
+            committed_gap: committed.gap,
+            was_open: committed.friction.status == ContactStatus::Open,
+            prescribed: [0, 1, 2].map(|d| self.base.constrained[3 * c.node + d]),
+        }
+    }
+
+    /// The displacements (all unknowns, multipliers zero) and the traction
+    /// of every contact node at time `t`.
+    fn solve_increment(
+        &mut self,
+        problem: &Problem,
+        t: f64,
+        state: &ContactState,
+    ) -> Result<(Vec<f64>, Vec<Vector3<f64>>)> {
+        let b = self.base.load(problem, t);
+        let mut u0 = b.clone();
+        self.base.solve(problem, &mut u0)?;
+        let mut prescribed_all = vec![0.0; b.len()];
+        problem.apply_prescribed(t, &mut prescribed_all);
+        let tolerance = touching(problem);
+        loop {
+            let slot: std::collections::HashMap<usize, usize> = self
+                .candidates
+                .iter()
+                .enumerate()
+                .map(|(s, &a)| (a, s))
+                .collect();
+            let nodes: Vec<ConeNode> = self
+                .candidates
+                .iter()
+                .map(|&a| self.cone_node(problem, t, state, a))
+                .collect();
+            let prescribed: Vec<Vector3<f64>> = self
+                .candidates
+                .iter()
+                .map(|&a| {
+                    let n = self.contact[a].node;
+                    Vector3::new(
+                        prescribed_all[3 * n],
+                        prescribed_all[3 * n + 1],
+                        prescribed_all[3 * n + 2],
+                    )
+                })
+                .collect();
+            let columns: Vec<(usize, usize)> = self
+                .base
+                .candidates
+                .iter()
+                .map(|&col| {
+                    let (a, d) = self.column_owner[col];
+                    (slot[&a], d)
+                })
+                .collect();
+            let dof = |col: usize| 3 * self.base.nodes[col].node + self.column_owner[col].1;
+            let free: Vec<f64> = self.base.candidates.iter().map(|&c| u0[dof(c)]).collect();
+            let guess_u: Vec<f64> = self
+                .base
+                .candidates
+                .iter()
+                .map(|&c| self.displacement[c].unwrap_or(u0[dof(c)]))
+                .collect();
+            let guess_t: Vec<Vector3<f64>> =
+                self.candidates.iter().map(|&a| self.traction[a]).collect();
+            let inverse = match self.inverse.take() {
+                Some(inverse) => inverse,
+                None => {
+                    let cholesky = self.base.w.clone().cholesky().ok_or_else(|| {
+                        Error::LinearSolver(
+                            "the condensed contact flexibility is not positive definite".into(),
+                        )
+                    })?;
+                    cholesky.inverse()
+                }
+            };
+            let cone = ConeProblem {
+                inverse_flexibility: &inverse,
+                columns: &columns,
+                shifted: &self.shifted,
+                shift: self.shift,
+                free_displacement: &free,
+                prescribed: &prescribed,
+                nodes: &nodes,
+            };
+            let solution = solve_cone(&cone, guess_u, guess_t).map_err(|e| {
+                Error::LinearSolver(format!(
+                    "{e} at time {t}; run with [solver] strategy = \"monolithic\""
+                ))
+            })?;
+            self.iterations += solution.iterations;
+            self.inverse = Some(inverse);
+            // u = K̂⁻¹ (b + E (A t + ρ P_S u_F))
+            let mut u = b.clone();
+            for (k, &col) in self.base.candidates.iter().enumerate() {
+                let (s, d) = columns[k];
+                let shift = if self.shifted[k] {
+                    self.shift * solution.displacement[k]
+                } else {
+                    0.0
+                };
+                u[dof(col)] += nodes[s].area * solution.traction[s][d] + shift;
+                self.displacement[col] = Some(solution.displacement[k]);
+            }
+            for (s, &a) in self.candidates.iter().enumerate() {
+                self.traction[a] = solution.traction[s];
+            }
+            self.base.solve(problem, &mut u)?;
+            // nodes outside the candidates that penetrate join them
+            let reference = &problem.model.mesh.nodes;
+            let gaps: Vec<Vec<f64>> = problem
+                .contacts
+                .iter()
+                .map(|c| c.gaps(reference, t, &u, None))
+                .collect();
+            let entering: Vec<usize> = (0..self.contact.len())
+                .filter(|&a| {
+                    let c = &self.contact[a];
+                    !self.is_candidate[a] && gaps[c.interface][c.index] < -tolerance
+                })
+                .collect();
+            if entering.is_empty() {
+                let mut traction = vec![Vector3::zeros(); self.contact.len()];
+                for &a in &self.candidates {
+                    traction[a] = self.traction[a];
+                }
+                return Ok((u, traction));
+            }
+            self.grow(&entering, false)?;
+        }
+    }
+}
+
+impl IncrementSolver for FrictionalCondensation {
+    /// The condensed answer as the monolithic unknowns: the multipliers
+    /// from the pressures; with exact stick each node's tangential
+    /// multiplier `λ_T` set to its traction (the augmented Lagrangian's
+    /// fixed point, which the problem's evaluation and commit then read).
+    fn increment(
+        &mut self,
+        problem: &Problem,
+        t: f64,
+        state: &ContactState,
+        x: &mut [f64],
+        trial: &mut ContactState,
+    ) -> Result<()> {
+        let (u, traction) = self.solve_increment(problem, t, state)?;
+        let mut pressures = super::zero_per_node(problem);
+        for (a, c) in self.contact.iter().enumerate() {
+            let interface = &problem.contacts[c.interface];
+            let Primary::Rigid(RigidObstacle::Plane { normal, .. }) = &interface.primary else {
+                continue;
+            };
+            let tn = normal.dot(&traction[a]);
+            pressures[c.interface][c.index] = tn;
+            if interface.exact_stick() {
+                trial.interfaces[c.interface][c.index].friction.traction =
+                    traction[a] - normal * tn;
+            }
+        }
+        super::set_multipliers(problem, &pressures, &u, t, x, trial);
+        Ok(())
+    }
+
+    fn statistics(&self) -> (SolverStatistics, usize) {
+        (SolverStatistics::of_ldlt(&self.base.ldlt), self.iterations)
+    }
+}

@@ -12,6 +12,23 @@
 use super::linear::Ordering;
 use crate::assembly::pattern::SparsityPattern;
 use crate::{Error, Result};
+use std::sync::{Mutex, MutexGuard};
+
+/// METIS keeps its random-number state in globals (GKlib's seeded
+/// generator, reseeded at the start of every call): two calls at once in
+/// one process interleave it and each returns a different, still valid,
+/// answer, so that two simulations run side by side (threads, the Python
+/// package) ordered their matrices differently and differed in round-off
+/// (4e-16 measured on press-pull). Every METIS call holds this lock.
+static METIS: Mutex<()> = Mutex::new(());
+
+/// The lock around a METIS call (see [`METIS`]); a panic while it was
+/// held leaves nothing to repair, so a poisoned lock is taken as it is.
+pub(crate) fn metis_lock() -> MutexGuard<'static, ()> {
+    METIS
+        .lock()
+        .unwrap_or_else(|poisoned| poisoned.into_inner())
+}
 
 /// Nested-dissection permutation of the nodes of a graph given in CSR form
 /// (`xadj`, `adjncy`, self excluded). Returns `forward` with
@@ -32,6 +49,7 @@ pub fn nested_dissection(xadj: &[usize], adjncy: &[usize]) -> Result<Vec<usize>>
     let mut perm = vec![0i32; n];
     let mut iperm = vec![0i32; n];
     let mut options = [-1i32; metis_sys::METIS_NOPTIONS as usize];
+    let _metis = metis_lock();
     // SAFETY: every array has the length METIS_NodeND expects (nvtxs + 1,
     // xadj[nvtxs], nvtxs, nvtxs, NOPTIONS); METIS does not keep the pointers.
     let status = unsafe {

@@ -60,6 +60,7 @@ impl MeshPartition {
         let mut objval = 0i32;
         let mut epart = vec![0i32; ne];
         let mut npart = vec![0i32; nn];
+        let _metis = super::ordering::metis_lock();
         // SAFETY: eptr has ne + 1 entries, eind eptr[ne], epart ne, npart
         // nn, options NOPTIONS; the null arguments are optional in METIS
         let status = unsafe {

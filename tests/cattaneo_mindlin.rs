@@ -58,19 +58,21 @@ impl StepObserver for Record {
 /// the committed one are in the example's README):
 /// - `Q/(μP)` within 0.45 … 0.55 at the end of the shear;
 /// - the normal press: the contact radius (fit of `p²` against `r²`)
-///   within 3 % of Hertz's for the computed `P` (measured −1.6 %);
-/// - the stick radius fitted to the deficit `μp − q` within 2 % of
-///   Mindlin's `c = a (1 − Q/(μP))^{1/3}` (measured −1.17 %; the
-///   regularised law gave −2.2 %), and within 1 % of Mindlin's ratio
-///   `c/a` with both radii fitted (measured +0.43 %; the fitted contact
-///   radius is itself 1.6 % short of Hertz's); Mindlin's `c` between the
+///   within 1 % of Hertz's for the computed `P` (measured −0.38 %; radii
+///   in reference coordinates, as the small-strain theory has them: the
+///   deformed ones are 1.3 % shorter, Johnson 1985 eq. 3.41b);
+/// - the stick radius fitted to the deficit `μp − q` within 1 % of
+///   Mindlin's `c = a (1 − Q/(μP))^{1/3}` (measured +0.32 %; −1.17 % in
+///   deformed coordinates; the regularised law gave −2.2 %), and within
+///   1 % of Mindlin's ratio `c/a` with both radii fitted (measured
+///   +0.68 %); Mindlin's `c` between the
 ///   outermost sticking node (at most 2 % beyond it) and the innermost
 ///   slipping one (at most 4 % inside it: stick and slip nodes interleave
 ///   over one element around `c`, measured 0.08668 and 0.08569 for
 ///   `c = 0.08830`);
 /// - the tangential traction averaged over rings `a/10` wide, `r < 0.8a`,
-///   within 12 % of `μp₀` of Mindlin's averaged over the same nodes
-///   (measured 9.6 % in the ring that holds `c`, where Mindlin's `q` rises
+///   within 9 % of `μp₀` of Mindlin's averaged over the same nodes
+///   (measured 7.2 % in the ring that holds `c`, where Mindlin's `q` rises
 ///   with an infinite slope, so that the ring's mean follows `c`'s place
 ///   within the ring's few nodes; at most 1.3 % in the others; the
 ///   regularised law gave 5.7 %; the target of issue 18 is 2 %);
@@ -111,14 +113,14 @@ fn cattaneo_mindlin_partial_slip() {
     // the press: all closed nodes stick, the fit is the contact radius
     let press = &end_of_press.mindlin;
     assert!(
-        (end_of_press.stick_radius / press.hertz.radius - 1.0).abs() < 0.03,
+        (end_of_press.stick_radius / press.hertz.radius - 1.0).abs() < 0.01,
         "contact radius {} vs Hertz {}",
         end_of_press.stick_radius,
         press.hertz.radius
     );
     let c = m.stick_radius;
     assert!(
-        (last.stick_radius / c - 1.0).abs() < 0.02,
+        (last.stick_radius / c - 1.0).abs() < 0.01,
         "stick radius {} vs Mindlin {c}",
         last.stick_radius
     );
@@ -134,7 +136,7 @@ fn cattaneo_mindlin_partial_slip() {
         last.outermost_stick,
         last.innermost_slip
     );
-    assert!(last.worst_ring() < 0.12, "ring error {}", last.worst_ring());
+    assert!(last.worst_ring() < 0.09, "ring error {}", last.worst_ring());
     for c in &record.comparisons {
         assert!(
             c.iterations <= 18,

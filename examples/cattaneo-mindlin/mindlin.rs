@@ -117,11 +117,15 @@ impl Comparison {
             (2.0 * s.force[2].abs(), -2.0 * s.tangential_force[0])
         });
         let mesh = &inc.problem.model.mesh;
-        let u = inc.displacement();
-        let current = |s: usize| [0, 1].map(|d| mesh.nodes[s][d] + u[3 * s + d]);
+        // Hertz and Mindlin are small-strain theories: their radii are
+        // material (reference) coordinates. The deformed positions would
+        // move every node inwards by Hertz's radial surface displacement,
+        // u_r(a) = -(1-2ν)(1+ν) a p0/(3E) at the edge (Johnson, Contact
+        // Mechanics, 1985, eq. 3.41b; -1.3 % of a here), and along x by
+        // the shear's elastic displacement.
+        let current = |s: usize| [mesh.nodes[s][0], mesh.nodes[s][1]];
         // the contact's centre on the load axis: the closed nodes' centroid
-        // in x, weighted by their normal force (the whole contact patch moves
-        // with the shear)
+        // in x, weighted by their normal force
         let (mut weighted, mut total) = (0.0, 0.0);
         for (&s, (r, &area)) in interface
             .nodes

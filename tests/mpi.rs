@@ -81,6 +81,9 @@ initial_increment = 0.5
 {pull}
 [solver]
 residual_tolerance = 1e-10
+# Newton's path in serial too (auto would condense the frictional case,
+# equal to Newton only to its residual tolerance, in other iterations)
+strategy = "monolithic"
 {solver}
 
 [output]

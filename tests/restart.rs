@@ -15,12 +15,12 @@ fn example() -> PathBuf {
     Path::new(env!("CARGO_MANIFEST_DIR")).join("examples/press-pull")
 }
 
-/// One comparison at a time: two runs solving at once in one process
-/// differ in round-off (measured on press-pull: 6e-13 in `u`, 7e-9 in the
-/// friction state, with no restart at all; a process of its own, as the
-/// command line's, is bitwise reproducible), which would hide whether the
-/// restart itself is exact. Alone, uninterrupted and resumed agree bit
-/// for bit.
+/// One comparison at a time. Two runs solving at once in one process used
+/// to differ in round-off (6e-13 in `u` on press-pull: METIS's global
+/// random-number state gave them different orderings; its calls are now
+/// serialised and `tests/simulation.rs` checks side-by-side runs bit for
+/// bit); the lock stays so that a difference here can only come from the
+/// restart. Alone, uninterrupted and resumed agree bit for bit.
 static ALONE: std::sync::Mutex<()> = std::sync::Mutex::new(());
 
 /// Stops the run after its `n`-th converged increment (as a script's

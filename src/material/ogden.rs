@@ -1,9 +1,10 @@
 //! Compressible Ogden hyperelasticity, computed in principal stretches.
 
+use super::eigen3::symmetric_eigen;
 use super::{key_path, nan_response, voigt_from_sym, Mat3, Mat6, Material, Vec6};
 use crate::input::number;
 use crate::{Error, Result};
-use nalgebra::{SymmetricEigen, Vector3};
+use nalgebra::Vector3;
 
 /// Compressible Ogden material with `N ≥ 1` terms, split into an isochoric
 /// and a volumetric part:
@@ -19,7 +20,7 @@ use nalgebra::{SymmetricEigen, Vector3};
 ///
 /// ## Stress and tangent
 /// `W` is written as a function `W(c₁, c₂, c₃)` of the eigenvalues of `C`
-/// (nalgebra [`SymmetricEigen`]), with `w_i = ∂W/∂c_i`,
+/// (cyclic Jacobi, [`symmetric_eigen`]), with `w_i = ∂W/∂c_i`,
 /// `w_ij = ∂²W/∂c_i∂c_j`, `M_i = N_i⊗N_i` and
 /// `B_ij = ½(N_i⊗N_j + N_j⊗N_i)`:
 ///
@@ -266,12 +267,10 @@ impl Material for Ogden {
         if !(j > 0.0 && j.is_finite()) {
             return nan_response();
         }
-        let eig = SymmetricEigen::new(f.transpose() * f);
-        let c = eig.eigenvalues;
+        let (c, n) = symmetric_eigen(&(f.transpose() * f));
         if !c.iter().all(|&ci| ci > 0.0) {
             return nan_response();
         }
-        let n = eig.eigenvectors;
         let d = self.derivatives(&c, j, true);
 
         let m: [Mat3; 3] = std::array::from_fn(|i| {
@@ -305,12 +304,10 @@ impl Material for Ogden {
         if !(j > 0.0 && j.is_finite()) {
             return nan_response().0;
         }
-        let eig = SymmetricEigen::new(f.transpose() * f);
-        let c = eig.eigenvalues;
+        let (c, n) = symmetric_eigen(&(f.transpose() * f));
         if !c.iter().all(|&ci| ci > 0.0) {
             return nan_response().0;
         }
-        let n = eig.eigenvectors;
         let d = self.derivatives(&c, j, false);
         let mut s = Mat3::zeros();
         for i in 0..3 {

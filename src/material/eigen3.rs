@@ -39,16 +39,14 @@ pub fn symmetric_eigen(a: &Matrix3<f64>) -> (Vector3<f64>, Matrix3<f64>) {
             let c = 1.0 / (1.0 + t * t).sqrt();
             let s = t * c;
             // A ← Jᵀ A J on rows and columns p, q
-            for k in 0..3 {
-                let (akp, akq) = (m[k][p], m[k][q]);
-                m[k][p] = c * akp - s * akq;
-                m[k][q] = s * akp + c * akq;
+            for row in &mut m {
+                let (akp, akq) = (row[p], row[q]);
+                row[p] = c * akp - s * akq;
+                row[q] = s * akp + c * akq;
             }
-            for k in 0..3 {
-                let (apk, aqk) = (m[p][k], m[q][k]);
-                m[p][k] = c * apk - s * aqk;
-                m[q][k] = s * apk + c * aqk;
-            }
+            let (row_p, row_q) = (m[p], m[q]);
+            m[p] = std::array::from_fn(|k| c * row_p[k] - s * row_q[k]);
+            m[q] = std::array::from_fn(|k| s * row_p[k] + c * row_q[k]);
             m[p][q] = 0.0;
             m[q][p] = 0.0;
             // V ← V J

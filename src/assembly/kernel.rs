@@ -154,7 +154,14 @@ pub fn internal_force_and_tangent_into(
                 det_f,
             });
         }
-        let (s, d): (Mat3, Mat6) = material.stress_and_tangent(&f);
+        // the stress alone where no tangent is asked (line search, convergence
+        // checks): a material may compute it for much less (Ogden: no 𝔻)
+        let (s, d): (Mat3, Option<Mat6>) = if stiffness.is_some() {
+            let (s, d) = material.stress_and_tangent(&f);
+            (s, Some(d))
+        } else {
+            (material.second_piola_kirchhoff(&f), None)
+        };
         let kin = if small { Mat3::identity() } else { f };
         // f_a = ∫ (F S) G_a dV₀
         let pk1 = kin * s;
@@ -164,7 +171,7 @@ pub fn internal_force_and_tangent_into(
                 force[3 * a + i] += fa[i];
             }
         }
-        let Some(k) = stiffness.as_deref_mut() else {
+        let (Some(k), Some(d)) = (stiffness.as_deref_mut(), d) else {
             continue;
         };
         for (b_a, g_a) in b.iter_mut().zip(&p.gradients) {
@@ -227,7 +234,7 @@ pub fn element_cauchy_stress(
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::material::{LinearElastic, NeoHookean};
+    use crate::material::{LinearElastic, NeoHookean, Ogden};
 
     /// A distorted element of `kind` and a displacement of a few percent.
     fn element(kind: ElementKind) -> (Vec<PointGeometry>, Vec<[f64; 3]>) {
@@ -330,6 +337,30 @@ mod tests {
                 let wrapped =
                     internal_force_and_tangent(&geometry, &u, material.as_ref(), true).unwrap();
                 assert_eq!((wrapped.force, wrapped.stiffness), (force, k));
+            }
+        }
+    }
+
+    /// A force-only evaluation (the material's stress alone) gives the
+    /// force of the evaluation with the tangent bit for bit, for materials
+    /// with and without their own stress-only path (Ogden, neo-Hookean).
+    #[test]
+    fn force_alone_equals_the_force_with_the_tangent() {
+        let materials: [Box<dyn Material>; 2] = [
+            Box::new(
+                Ogden::new(vec![0.4095, 0.003, 0.01], vec![1.3, 5.0, -2.0], 4.0, "m").unwrap(),
+            ),
+            Box::new(NeoHookean::new(100.0, 0.45, "m").unwrap()),
+        ];
+        for kind in [ElementKind::Tet4, ElementKind::Hex8] {
+            let (geometry, u) = element(kind);
+            for material in &materials {
+                let full =
+                    internal_force_and_tangent(&geometry, &u, material.as_ref(), true).unwrap();
+                let alone =
+                    internal_force_and_tangent(&geometry, &u, material.as_ref(), false).unwrap();
+                assert_eq!(alone.force, full.force, "{kind:?} {}", material.name());
+                assert!(alone.stiffness.is_empty());
             }
         }
     }

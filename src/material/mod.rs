@@ -18,6 +18,7 @@
 
 use nalgebra::{Matrix3, Matrix6, Vector6};
 
+mod eigen3;
 mod isotropic;
 mod linear_elastic;
 mod neo_hookean;

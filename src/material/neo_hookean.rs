@@ -43,6 +43,21 @@ impl NeoHookean {
     pub fn lame(&self) -> (f64, f64) {
         self.params.lame()
     }
+
+    /// `S = μ(I − C⁻¹) + λ ln J C⁻¹` with the symmetrised `C⁻¹` and `ln J`
+    /// that the tangent reuses; `None` where `J ≤ 0` or `C` is singular.
+    fn stress(&self, f: &Mat3) -> Option<(Mat3, Mat3, f64)> {
+        let (lambda, mu) = self.params.lame();
+        let j = f.determinant();
+        if !(j > 0.0 && j.is_finite()) {
+            return None;
+        }
+        let c_inv = (f.transpose() * f).try_inverse()?;
+        let c_inv = (c_inv + c_inv.transpose()) * 0.5;
+        let ln_j = j.ln();
+        let s = (Mat3::identity() - c_inv) * mu + c_inv * (lambda * ln_j);
+        Some((s, c_inv, ln_j))
+    }
 }
 
 impl Material for NeoHookean {
@@ -63,20 +78,18 @@ impl Material for NeoHookean {
 
     fn stress_and_tangent(&self, f: &Mat3) -> (Mat3, Mat6) {
         let (lambda, mu) = self.params.lame();
-        let j = f.determinant();
-        if !(j > 0.0 && j.is_finite()) {
-            return nan_response();
-        }
-        let c = f.transpose() * f;
-        let Some(c_inv) = c.try_inverse() else {
+        let Some((s, c_inv, ln_j)) = self.stress(f) else {
             return nan_response();
         };
-        let c_inv = (c_inv + c_inv.transpose()) * 0.5;
-        let ln_j = j.ln();
-        let s = (Mat3::identity() - c_inv) * mu + c_inv * (lambda * ln_j);
         let d = outer_voigt(&c_inv, &c_inv) * lambda
             + sym_product_voigt(&c_inv) * (2.0 * (mu - lambda * ln_j));
         (s, d)
+    }
+
+    /// `S` alone, without `𝔻` (the same numbers as [`Self::stress_and_tangent`]).
+    fn second_piola_kirchhoff(&self, f: &Mat3) -> Mat3 {
+        self.stress(f)
+            .map_or_else(|| nan_response().0, |(s, _, _)| s)
     }
 
     fn reference_youngs_modulus(&self) -> f64 {

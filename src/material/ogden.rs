@@ -1,9 +1,10 @@
 //! Compressible Ogden hyperelasticity, computed in principal stretches.
 
+use super::eigen3::symmetric_eigen;
 use super::{key_path, nan_response, voigt_from_sym, Mat3, Mat6, Material, Vec6};
 use crate::input::number;
 use crate::{Error, Result};
-use nalgebra::{SymmetricEigen, Vector3};
+use nalgebra::Vector3;
 
 /// Compressible Ogden material with `N ≥ 1` terms, split into an isochoric
 /// and a volumetric part:
@@ -19,7 +20,7 @@ use nalgebra::{SymmetricEigen, Vector3};
 ///
 /// ## Stress and tangent
 /// `W` is written as a function `W(c₁, c₂, c₃)` of the eigenvalues of `C`
-/// (nalgebra [`SymmetricEigen`]), with `w_i = ∂W/∂c_i`,
+/// (cyclic Jacobi, [`symmetric_eigen`]), with `w_i = ∂W/∂c_i`,
 /// `w_ij = ∂²W/∂c_i∂c_j`, `M_i = N_i⊗N_i` and
 /// `B_ij = ½(N_i⊗N_j + N_j⊗N_i)`:
 ///
@@ -56,7 +57,7 @@ pub struct Ogden {
 }
 
 /// First and second derivatives of `W(c₁, c₂, c₃)` and the quotients
-/// `θ_ij`.
+/// `θ_ij` (filled for `i < j`).
 struct Derivatives {
     w: [f64; 3],
     ww: [[f64; 3]; 3],
@@ -189,7 +190,10 @@ impl Ogden {
         w
     }
 
-    fn derivatives(&self, c: &Vector3<f64>, j: f64) -> Derivatives {
+    /// `w_i`, and with `second` also `w_ij` and `θ_ij` (`i < j` only: the
+    /// tangent reads those). `w` is summed in the same order either way, so
+    /// the stress alone equals the stress of the full evaluation bit for bit.
+    fn derivatives(&self, c: &Vector3<f64>, j: f64, second: bool) -> Derivatives {
         let mut d = Derivatives {
             w: [0.0; 3],
             ww: [[0.0; 3]; 3],
@@ -203,13 +207,16 @@ impl Ogden {
             let g: [f64; 3] = std::array::from_fn(|i| pm1[i] - sum / (3.0 * c[i]));
             for i in 0..3 {
                 d.w[i] += k * g[i];
+                if !second {
+                    continue;
+                }
                 for jj in 0..3 {
                     let mut v = -a / 3.0 * g[i] / c[jj] - a * pm1[jj] / (3.0 * c[i]);
                     if i == jj {
                         v += (a - 1.0) * pm1[i] / c[i] + sum / (3.0 * c[i] * c[i]);
                     }
                     d.ww[i][jj] += k * v;
-                    if i != jj {
+                    if i < jj {
                         d.theta[i][jj] += k
                             * (power_divided_difference(c[i], c[jj], a - 1.0)
                                 + sum / (3.0 * c[i] * c[jj]));
@@ -221,12 +228,15 @@ impl Ogden {
         let up = kappa * (j - 1.0); // U'(J)
         for i in 0..3 {
             d.w[i] += up * j / (2.0 * c[i]);
+            if !second {
+                continue;
+            }
             for jj in 0..3 {
                 let cc = c[i] * c[jj];
                 d.ww[i][jj] += kappa * j * j / (4.0 * cc) + up * j / (4.0 * cc);
                 if i == jj {
                     d.ww[i][jj] -= up * j / (2.0 * c[i] * c[i]);
-                } else {
+                } else if i < jj {
                     d.theta[i][jj] -= up * j / (2.0 * cc);
                 }
             }
@@ -257,13 +267,11 @@ impl Material for Ogden {
         if !(j > 0.0 && j.is_finite()) {
             return nan_response();
         }
-        let eig = SymmetricEigen::new(f.transpose() * f);
-        let c = eig.eigenvalues;
+        let (c, n) = symmetric_eigen(&(f.transpose() * f));
         if !c.iter().all(|&ci| ci > 0.0) {
             return nan_response();
         }
-        let n = eig.eigenvectors;
-        let d = self.derivatives(&c, j);
+        let d = self.derivatives(&c, j, true);
 
         let m: [Mat3; 3] = std::array::from_fn(|i| {
             let ni = n.column(i);
@@ -286,6 +294,27 @@ impl Material for Ogden {
         // Exact symmetry (rounding in the products above is not symmetric).
         let tangent = (tangent + tangent.transpose()) * 0.5;
         (s, tangent)
+    }
+
+    /// `S = Σ_i 2 w_i M_i` alone (no `w_ij`, `θ_ij` or `𝔻`): what a
+    /// force-only evaluation (line search, convergence check) needs; equal
+    /// bit for bit to the `S` of [`Material::stress_and_tangent`].
+    fn second_piola_kirchhoff(&self, f: &Mat3) -> Mat3 {
+        let j = f.determinant();
+        if !(j > 0.0 && j.is_finite()) {
+            return nan_response().0;
+        }
+        let (c, n) = symmetric_eigen(&(f.transpose() * f));
+        if !c.iter().all(|&ci| ci > 0.0) {
+            return nan_response().0;
+        }
+        let d = self.derivatives(&c, j, false);
+        let mut s = Mat3::zeros();
+        for i in 0..3 {
+            let ni = n.column(i);
+            s += (ni * ni.transpose()) * (2.0 * d.w[i]);
+        }
+        s
     }
 
     fn reference_youngs_modulus(&self) -> f64 {
@@ -417,6 +446,24 @@ mod tests {
     fn derivatives_match_finite_differences() {
         for m in materials() {
             check::check_derivatives(&m);
+        }
+    }
+
+    /// The stress-only path (no `w_ij`, `θ_ij`, `𝔻`) returns the `S` of
+    /// the full evaluation bit for bit, so a force-only assembly (line
+    /// search, convergence check) gives the force of the full one; and NaN
+    /// where `J ≤ 0`.
+    #[test]
+    fn stress_alone_equals_the_full_evaluation() {
+        for m in materials() {
+            for (label, f) in check::deformations() {
+                let (s, _) = m.stress_and_tangent(&f);
+                assert_eq!(m.second_piola_kirchhoff(&f), s, "{label}");
+            }
+            assert!(m
+                .second_piola_kirchhoff(&(-Mat3::identity()))
+                .iter()
+                .all(|x| x.is_nan()));
         }
     }
 

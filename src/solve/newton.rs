@@ -94,6 +94,9 @@ impl<P: NonlinearProblem> Newton<'_, P> {
         let nonsymmetric = problem.has_nonsymmetric_tangent();
         let signs = (blocks.dimension() > problem.num_dofs()).then(|| blocks.pivot_signs());
         let mut chatter = super::chattering::ChatterDetector::default();
+        // the line search's full-step trial, evaluated with its tangent: the
+        // next iteration's evaluation when that step is taken
+        let mut ahead: Option<Evaluation<P::Report>> = None;
         for iteration in 0..=settings.max_iterations {
             // the prescribed values still to be reached (all of the jump at first)
             let jump: Vec<f64> = (0..u.len())
@@ -113,11 +116,14 @@ impl<P: NonlinearProblem> Newton<'_, P> {
                 .last()
                 .is_none_or(|r| r.residual < 1e3 * settings.residual_tolerance);
             let mut have_tangent = !(at_target && may_converge);
-            let evaluation =
-                match problem.evaluate(t, u, state, have_tangent.then_some(&mut k_values[..])) {
+            let evaluation = match ahead.take() {
+                Some(e) if have_tangent => e,
+                _ => match problem.evaluate(t, u, state, have_tangent.then_some(&mut k_values[..]))
+                {
                     Ok(e) => e,
                     Err(f) => return (Err(f), records),
-                };
+                },
+            };
             // every contact node open (status 0 mod 4): nothing but supports holds the body
             let all_open =
                 !evaluation.statuses.is_empty() && evaluation.statuses.iter().all(|s| s % 4 == 0);
@@ -255,7 +261,16 @@ impl<P: NonlinearProblem> Newton<'_, P> {
                     records,
                 );
             }
-            let step_length = self.line_search(u, &du, &out_of_balance, relative, state);
+            let (step_length, full_step) = self.line_search(
+                u,
+                &du,
+                &out_of_balance,
+                relative,
+                state,
+                &target,
+                &mut k_values,
+            );
+            ahead = full_step;
             let scaled: Vec<f64> = du.iter().map(|d| step_length * d).collect();
             problem.advance_state(t, u, &scaled, state);
             for (ui, di) in u.iter_mut().zip(&scaled) {
@@ -304,6 +319,13 @@ impl<P: NonlinearProblem> Newton<'_, P> {
     /// an element. Skipped near the tolerance, where the full step keeps
     /// the quadratic rate. At most six trials; the one with the smallest
     /// `|s|` is taken if none passes.
+    ///
+    /// The full step is tried first and evaluated with its tangent (into
+    /// `k`, the prescribed dofs on their `target`): when it is taken, that
+    /// evaluation is returned as the next iteration's, which needs the
+    /// tangent there anyway (the line search runs only far from the
+    /// tolerance), so a taken full step costs no evaluation of its own.
+    #[allow(clippy::too_many_arguments)]
     fn line_search(
         &self,
         u: &[f64],
@@ -311,11 +333,13 @@ impl<P: NonlinearProblem> Newton<'_, P> {
         r: &[f64],
         relative: f64,
         state: &P::State,
-    ) -> f64 {
+        target: &[f64],
+        k: &mut [f64],
+    ) -> (f64, Option<Evaluation<P::Report>>) {
         let (problem, t) = (self.problem, self.t);
         let settings = problem.settings();
         if !settings.line_search || relative < 1e3 * settings.residual_tolerance {
-            return 1.0;
+            return (1.0, None);
         }
         let r0 = norm(r);
         // the slope of the potential along the line, over the displacements
@@ -331,10 +355,20 @@ impl<P: NonlinearProblem> Newton<'_, P> {
             for ((x, u0), d) in trial.iter_mut().zip(u).zip(&step) {
                 *x = u0 + d;
             }
+            let full = alpha == 1.0;
+            if full {
+                // where Newton lands after a full step
+                for ((x, &c), v) in trial.iter_mut().zip(self.constrained).zip(target) {
+                    if c {
+                        *x = *v;
+                    }
+                }
+            }
             // the local contact unknowns follow the trial step too
             let mut trial_state = state.clone();
             problem.advance_state(t, u, &step, &mut trial_state);
-            let Ok(evaluation) = problem.evaluate(t, &trial, &trial_state, None) else {
+            let tangent = full.then_some(&mut *k);
+            let Ok(evaluation) = problem.evaluate(t, &trial, &trial_state, tangent) else {
                 // an inverted element: shorter, and remember it in case all fail
                 if best.0 == f64::INFINITY {
                     best.1 = 0.5 * alpha;
@@ -342,11 +376,11 @@ impl<P: NonlinearProblem> Newton<'_, P> {
                 alpha *= 0.5;
                 continue;
             };
-            let mut ra = evaluation.residual;
+            let mut ra = evaluation.residual.clone();
             zero_constrained(&mut ra, self.constrained);
             let sa = slope(&ra);
             if norm(&ra) < r0 || (s0 < 0.0 && sa.abs() <= 0.5 * s0.abs()) {
-                return alpha;
+                return (alpha, full.then_some(evaluation));
             }
             if sa.abs() < best.0 {
                 best = (sa.abs(), alpha);
@@ -358,7 +392,7 @@ impl<P: NonlinearProblem> Newton<'_, P> {
                 0.5 * alpha
             };
         }
-        best.1
+        (best.1, None)
     }
 }
 

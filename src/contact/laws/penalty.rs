@@ -11,12 +11,7 @@
 //! the tests, where the opposite sign fails). The law leaves a penetration
 //! `t_N/ε` at equilibrium.
 
-use super::{GapGeometry, NodeContribution};
-
-/// Pressure `t_N = ε⟨−g⟩`.
-pub fn pressure(signed_gap: f64, epsilon: f64) -> f64 {
-    epsilon * (-signed_gap).max(0.0)
-}
+use super::{uzawa, GapGeometry, NodeContribution};
 
 /// Potential `A_s ε/2 ⟨−g⟩²` whose gradient is the residual.
 pub fn potential(area: f64, gap: &GapGeometry, epsilon: f64) -> f64 {
@@ -26,21 +21,10 @@ pub fn potential(area: f64, gap: &GapGeometry, epsilon: f64) -> f64 {
 
 /// Residual and tangent of one node; active iff `g ≤ 0`. A node exactly in
 /// touch (`g = 0`) takes the closed branch's tangent, so that a body that
-/// rests on the obstacle with no other support is not singular.
+/// rests on the obstacle with no other support is not singular. The
+/// formulas are Uzawa's with `λ = 0` ([`uzawa::contribution`]).
 pub fn contribution(area: f64, gap: &GapGeometry, epsilon: f64) -> NodeContribution {
-    if !(gap.signed_gap <= 0.0) {
-        return NodeContribution::zero();
-    }
-    let t = pressure(gap.signed_gap, epsilon);
-    let n = gap.normal;
-    NodeContribution {
-        r_u: -area * t * n,
-        k_uu: area * epsilon * n * n.transpose() - area * t * gap.hessian,
-        pressure: t,
-        pressure_gradient: -epsilon * n,
-        active: true,
-        ..NodeContribution::zero()
-    }
+    uzawa::contribution(area, gap, 0.0, epsilon)
 }
 
 #[cfg(test)]

@@ -29,8 +29,8 @@
 use crate::contact::closest_point_on_triangle;
 use crate::contact::friction::MaterialPoint;
 use crate::contact::triangle::TriangleProjection;
-use crate::contact::triangle_gap::{is_degenerate, split_quadrangle, triangle_gap, TriangleGap};
-use crate::mesh::{FacetKind, Mesh};
+use crate::contact::triangle_gap::{facet_triangles, is_degenerate, triangle_gap, TriangleGap};
+use crate::mesh::Mesh;
 use nalgebra::Vector3;
 use rstar::primitives::{GeomWithData, Rectangle};
 use rstar::RTree;
@@ -73,14 +73,7 @@ impl PrimarySurface {
     /// has no such set.
     pub fn from_mesh(mesh: &Mesh, surface: &str) -> Option<Self> {
         let set = mesh.surface(surface)?;
-        let mut triangles = Vec::new();
-        for f in &set.facets {
-            let n = &f.nodes;
-            match f.kind {
-                FacetKind::Tri3 => triangles.push([n[0], n[1], n[2]]),
-                FacetKind::Quad4 => triangles.extend(split_quadrangle([n[0], n[1], n[2], n[3]])),
-            }
-        }
+        let triangles = facet_triangles(&set.facets, |n| n);
         let area: f64 = triangles
             .iter()
             .map(|t| {

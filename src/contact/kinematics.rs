@@ -35,6 +35,7 @@ use super::friction::{
 };
 use super::gap::GapGeometry;
 use super::laws::{NodeContactState, NormalLaw};
+use super::primary::PrimarySurface;
 use nalgebra::{SMatrix, SVector, Vector3};
 
 /// Most mesh nodes in one secondary node's contribution: itself, its
@@ -56,9 +57,7 @@ pub struct SecondaryNode<'a> {
 impl SecondaryNode<'_> {
     /// Current position `x_s = X_s + u_s`.
     pub fn position(&self) -> Vector3<f64> {
-        let s = self.mesh_node;
-        Vector3::from(self.reference[s])
-            + Vector3::new(self.x[3 * s], self.x[3 * s + 1], self.x[3 * s + 2])
+        PrimarySurface::position(self.reference, self.x, self.mesh_node)
     }
 }
 

@@ -535,30 +535,14 @@ impl ContactInterface {
         tangential | self.augment_normal(ctx, states)
     }
 
-    /// Exact stick's outer loop (see [`augment`](Self::augment)).
+    /// Exact stick's outer loop (see [`augment`](Self::augment)): every
+    /// node's tangential multiplier augmented at `ctx` (`λ_T ← t_T`,
+    /// [`GapProducer::augment`]) unless the largest multiplier residual
+    /// `|t_T − T λ_T|/ε_T` is within the tolerance.
     fn augment_friction(&self, ctx: &ContactContext, states: &mut [NodeContactState]) -> bool {
         if !(self.has_friction() && self.exact_stick()) {
             return false;
         }
-        let tolerance = 1e-9 * self.element_size;
-        let (worst, augmented) = self.augmented_friction(ctx, states);
-        if worst <= tolerance {
-            return false;
-        }
-        for (state, history) in states.iter_mut().zip(augmented) {
-            state.friction = history;
-        }
-        true
-    }
-
-    /// Every node's history with its tangential multiplier augmented at
-    /// `ctx` (`λ_T ← t_T`, [`GapProducer::augment`]), and the largest
-    /// multiplier residual `|t_T − T λ_T|/ε_T` before the update.
-    fn augmented_friction(
-        &self,
-        ctx: &ContactContext,
-        states: &[NodeContactState],
-    ) -> (f64, Vec<FrictionHistory>) {
         let mut worst = 0.0_f64;
         let mut augmented = Vec::with_capacity(self.nodes.len());
         with_producer!(self, ctx.t, p => {
@@ -574,7 +558,13 @@ impl ContactInterface {
                 augmented.push(p.augment(node, &state.friction, response));
             });
         });
-        (worst, augmented)
+        if worst <= 1e-9 * self.element_size {
+            return false;
+        }
+        for (state, history) in states.iter_mut().zip(augmented) {
+            state.friction = history;
+        }
+        true
     }
 
     /// Uzawa's outer loop (see [`augment`](Self::augment)).

@@ -193,12 +193,16 @@ pub trait GapProducer<const Q: usize> {
     ) -> SlipFrame<Q>;
 
     /// `Σ_k (∂B_kᵀ/∂q) t` for a traction `t` at fixed `q`-derivative of `t`:
-    /// the lever's own change (zero for a rigid obstacle).
+    /// the lever's own change (`None`, the default: a constant lever, as
+    /// against a rigid obstacle).
     fn lever_stiffness(
         &self,
         kinematics: &GapKinematics<Q, Self::Point>,
         traction: &Vector3<f64>,
-    ) -> Option<SMatrix<f64, Q, Q>>;
+    ) -> Option<SMatrix<f64, Q, Q>> {
+        let _ = (kinematics, traction);
+        None
+    }
 
     /// The stick stiffness `−A_s ∂t_T/∂q` in stick, scaled by the slip
     /// ratio [`TangentialResponse::stick_scale`] in slip, that the
@@ -229,14 +233,17 @@ pub trait GapProducer<const Q: usize> {
     }
 
     /// The material point a node anchors its friction to after an increment
-    /// converged (`None` against a rigid obstacle), with the committed
-    /// `traction` carried by it.
+    /// converged, with the committed `traction` carried by it (`None`, the
+    /// default: none, as against a rigid obstacle).
     fn anchor(
         &self,
         node: &SecondaryNode,
         kinematics: Option<&GapKinematics<Q, Self::Point>>,
         traction: &Vector3<f64>,
-    ) -> Option<MaterialPoint>;
+    ) -> Option<MaterialPoint> {
+        let _ = (node, kinematics, traction);
+        None
+    }
 }
 
 /// One secondary node evaluated: its kinematics, the normal law and the

@@ -71,7 +71,7 @@ use super::{rockafellar, GapGeometry, NodeContribution};
 use nalgebra::{Matrix2, Matrix3, SMatrix, SVector, Vector2, Vector3};
 
 /// Local slack unknowns of one secondary node.
-#[derive(Clone, Copy, Debug, PartialEq, serde::Serialize, serde::Deserialize)]
+#[derive(Clone, Copy, Debug, Default, PartialEq, serde::Serialize, serde::Deserialize)]
 pub struct SlackState {
     /// Slack `s` (admissible `s ≤ 0`; `s = −g` on a free node).
     pub s: f64,

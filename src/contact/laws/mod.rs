@@ -38,9 +38,6 @@ pub mod rockafellar;
 pub mod slack;
 pub mod uzawa;
 
-#[cfg(test)]
-pub(crate) mod fd;
-
 pub use crate::contact::gap::GapGeometry;
 pub use slack::SlackState;
 

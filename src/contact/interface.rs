@@ -22,7 +22,7 @@
 
 use super::friction::{self, ContactStatus, Coulomb, FrictionHistory, TangentialResponse};
 use super::gap::GapGeometry;
-use super::kinematics::{self, GapKinematics, GapProducer, NodeEvaluation, SecondaryNode};
+use super::kinematics::{GapKinematics, GapProducer, NodeEvaluation, SecondaryNode};
 use super::laws::{uzawa, NodeContactState, NormalLaw};
 use super::obstacle::RigidObstacle;
 use super::primary::PrimarySurface;
@@ -260,24 +260,52 @@ impl ContactInterface {
         }
     }
 
-    /// Node `i`'s kinematics through its normal and friction laws.
+    /// Node `i`'s kinematics through its normal law and, closed, its
+    /// friction law (the chain rule of [`kinematics`](super::kinematics)).
     fn evaluate<const Q: usize, G: GapProducer<Q>>(
         &self,
         producer: &G,
         node: &SecondaryNode,
-        kinematics: GapKinematics<Q, G::Point>,
+        mut kinematics: GapKinematics<Q, G::Point>,
         state: &NodeContactState,
     ) -> NodeEvaluation<Q, G::Point> {
-        let i = node.index;
-        kinematics::evaluate(
-            producer,
-            node,
+        let area = self.areas[node.index];
+        let mut response = kinematics.normal_response(&self.law_at(node.index), area, state);
+        // a closed node at zero pressure sticks at its anchor (the return
+        // mapping with a zero bound): its tangential stiffness holds a body
+        // whose only tangential support is friction before the load arrives
+        let (tangential, frame) = match (response.active, self.friction_at(node.index)) {
+            (false, _) => (None, None),
+            (true, None) => {
+                let stick = TangentialResponse {
+                    status: ContactStatus::Stick,
+                    ..TangentialResponse::none()
+                };
+                (Some(stick), None)
+            }
+            (true, Some(coulomb)) => {
+                let mut frame = producer.slip(node, &mut kinematics, &state.friction);
+                if state.friction.status == ContactStatus::Open {
+                    let (g, grad) = (kinematics.gap, &kinematics.gradient);
+                    friction::first_contact(&mut frame.kinematics, state.gap, g, grad);
+                }
+                let t = friction::return_map_on(&coulomb, &frame.kinematics, &response.pressure);
+                let lever_t = frame.lever.transpose();
+                response.residual -= area * lever_t * t.traction;
+                response.stiffness -= area * lever_t * t.traction_gradient;
+                if let Some(k) = producer.lever_stiffness(&kinematics, &(area * t.traction)) {
+                    response.stiffness += k;
+                }
+                response.multiplier_column -= area * lever_t * t.traction_multiplier_derivative;
+                (Some(t), Some(frame))
+            }
+        };
+        NodeEvaluation {
             kinematics,
-            &self.law_at(i),
-            self.friction_at(i),
-            self.areas[i],
-            state,
-        )
+            response,
+            tangential,
+            frame,
+        }
     }
 
     /// The signed gap of every secondary node at time `t` and unknowns `x`

@@ -30,7 +30,7 @@
 //! lever's own change ([`GapProducer::lever_stiffness`]), `K_qλ −= A_s Bᵀ ∂t_T/∂λ`.
 
 use super::friction::{
-    self, ContactStatus, Coulomb, FrictionHistory, MaterialPoint, NormalPressure, SlipKinematics,
+    self, Coulomb, FrictionHistory, MaterialPoint, NormalPressure, SlipKinematics,
     TangentialResponse,
 };
 use super::gap::GapGeometry;
@@ -258,53 +258,4 @@ pub struct NodeEvaluation<const Q: usize, P> {
     pub tangential: Option<TangentialResponse<Q>>,
     /// The slip frame where the node is closed with friction.
     pub frame: Option<SlipFrame<Q>>,
-}
-
-/// Evaluate `kinematics` of `node` (area `area`, state `state`) through the
-/// normal `law` and, closed, the friction law `coulomb`.
-pub fn evaluate<const Q: usize, G: GapProducer<Q>>(
-    producer: &G,
-    node: &SecondaryNode,
-    mut kinematics: GapKinematics<Q, G::Point>,
-    law: &NormalLaw,
-    coulomb: Option<Coulomb>,
-    area: f64,
-    state: &NodeContactState,
-) -> NodeEvaluation<Q, G::Point> {
-    let mut response = kinematics.normal_response(law, area, state);
-    // a closed node at zero pressure sticks at its anchor (the return
-    // mapping with a zero bound): its tangential stiffness holds a body
-    // whose only tangential support is friction before the load arrives
-    let (tangential, frame) = match (response.active, coulomb) {
-        (false, _) => (None, None),
-        (true, None) => {
-            let stick = TangentialResponse {
-                status: ContactStatus::Stick,
-                ..TangentialResponse::none()
-            };
-            (Some(stick), None)
-        }
-        (true, Some(coulomb)) => {
-            let mut frame = producer.slip(node, &mut kinematics, &state.friction);
-            if state.friction.status == ContactStatus::Open {
-                let (g, grad) = (kinematics.gap, &kinematics.gradient);
-                friction::first_contact(&mut frame.kinematics, state.gap, g, grad);
-            }
-            let t = friction::return_map_on(&coulomb, &frame.kinematics, &response.pressure);
-            let lever_t = frame.lever.transpose();
-            response.residual -= area * lever_t * t.traction;
-            response.stiffness -= area * lever_t * t.traction_gradient;
-            if let Some(k) = producer.lever_stiffness(&kinematics, &(area * t.traction)) {
-                response.stiffness += k;
-            }
-            response.multiplier_column -= area * lever_t * t.traction_multiplier_derivative;
-            (Some(t), Some(frame))
-        }
-    };
-    NodeEvaluation {
-        kinematics,
-        response,
-        tangential,
-        frame,
-    }
 }

@@ -257,11 +257,6 @@ impl TriangulatedSurface {
         self.face_normals[t]
     }
 
-    /// Unit angle-weighted pseudo-normal of vertex `v`.
-    pub fn vertex_normal(&self, v: usize) -> Vector3<f64> {
-        self.vertex_normals[v]
-    }
-
     /// The surface moved rigidly by `d` (the search tree is built again).
     pub fn translated(&self, d: &Vector3<f64>) -> Self {
         let mut moved = self.clone();

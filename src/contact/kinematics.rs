@@ -35,7 +35,6 @@ use super::friction::{
 };
 use super::gap::GapGeometry;
 use super::laws::{NodeContactState, NormalLaw};
-use super::primary::PrimarySurface;
 use nalgebra::{SMatrix, SVector, Vector3};
 
 /// Most mesh nodes in one secondary node's contribution: itself, its
@@ -57,8 +56,17 @@ pub struct SecondaryNode<'a> {
 impl SecondaryNode<'_> {
     /// Current position `x_s = X_s + u_s`.
     pub fn position(&self) -> Vector3<f64> {
-        PrimarySurface::position(self.reference, self.x, self.mesh_node)
+        current_position(self.reference, self.x, self.mesh_node)
     }
+}
+
+/// Current position `X_n + u_n` of mesh node `n` at unknowns `x`.
+pub fn current_position(reference: &[[f64; 3]], x: &[f64], n: usize) -> Vector3<f64> {
+    Vector3::new(
+        reference[n][0] + x[3 * n],
+        reference[n][1] + x[3 * n + 1],
+        reference[n][2] + x[3 * n + 2],
+    )
 }
 
 /// The gap of one secondary node as a function of the `Q` unknowns `q`

@@ -55,7 +55,9 @@
 use super::friction::{
     Coulomb, FrictionHistory, MaterialPoint, SlipKinematics, TangentialResponse,
 };
-use super::kinematics::{GapKinematics, GapProducer, SecondaryNode, SlipFrame, MAX_NODES};
+use super::kinematics::{
+    current_position, GapKinematics, GapProducer, SecondaryNode, SlipFrame, MAX_NODES,
+};
 use super::laws::NodeContactState;
 use super::primary::PrimarySurface;
 use super::triangle_gap::TriangleGap;
@@ -95,10 +97,7 @@ impl GapProducer<Q> for SurfaceGap<'_> {
         node: &SecondaryNode,
         state: &NodeContactState,
     ) -> Option<GapKinematics<Q, TriangleGap>> {
-        let x_s = node.position();
-        let (t, gap) =
-            self.primary
-                .projection(node.reference, node.x, node.index, &x_s, state.facet)?;
+        let (t, gap) = self.primary.projection(node, state.facet)?;
         let [a, b, c] = self.primary.triangles[t];
         let mut nodes = [node.mesh_node; MAX_NODES];
         nodes[1..4].copy_from_slice(&[a, b, c]);
@@ -134,7 +133,7 @@ impl GapProducer<Q> for SurfaceGap<'_> {
         kinematics: &mut GapKinematics<Q, TriangleGap>,
         history: &FrictionHistory,
     ) -> SlipFrame<Q> {
-        let position = |n| PrimarySurface::position(node.reference, node.x, n);
+        let position = |n| current_position(node.reference, node.x, n);
         let point = self.material_point(node.index, history);
         let current = [1, 2, 3].map(|a| kinematics.nodes[a]);
         let anchor_nodes = point.map_or(current, |m| self.primary.triangles[m.triangle]);
@@ -274,12 +273,7 @@ impl GapProducer<Q> for SurfaceGap<'_> {
                 shape: k.weights,
                 traction: [0.0; 2],
             },
-            None => self.primary.closest_material_point(
-                node.reference,
-                node.x,
-                node.index,
-                &node.position(),
-            )?,
+            None => self.primary.closest_material_point(node)?,
         };
         let y = self.primary.corners(node.reference, node.x, point.triangle);
         Some(MaterialPoint {

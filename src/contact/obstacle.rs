@@ -127,28 +127,14 @@ impl RigidObstacle {
 
     /// The obstacle moved rigidly by `d` (prescribed obstacle motion).
     pub fn translated(&self, d: &Vector3<f64>) -> Self {
-        match self {
-            RigidObstacle::Plane { point, normal } => RigidObstacle::Plane {
-                point: point + d,
-                normal: *normal,
-            },
-            RigidObstacle::Sphere { center, radius } => RigidObstacle::Sphere {
-                center: center + d,
-                radius: *radius,
-            },
-            RigidObstacle::Cylinder {
-                point_on_axis,
-                axis,
-                radius,
-            } => RigidObstacle::Cylinder {
-                point_on_axis: point_on_axis + d,
-                axis: *axis,
-                radius: *radius,
-            },
-            RigidObstacle::Triangulated(surface) => {
-                RigidObstacle::Triangulated(surface.translated(d))
-            }
+        let mut moved = self.clone();
+        match &mut moved {
+            RigidObstacle::Plane { point, .. } => *point += d,
+            RigidObstacle::Sphere { center, .. } => *center += d,
+            RigidObstacle::Cylinder { point_on_axis, .. } => *point_on_axis += d,
+            RigidObstacle::Triangulated(surface) => *surface = surface.translated(d),
         }
+        moved
     }
 
     /// Projects the spatial point `x` onto the obstacle (see the module

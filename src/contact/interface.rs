@@ -133,8 +133,8 @@ impl ContactInterface {
     /// The law of secondary node `i` (the interface's law with the node's
     /// parameter factor).
     pub fn law_at(&self, i: usize) -> NormalLaw {
-        self.law
-            .scaled(self.node_scale.get(i).copied().unwrap_or(1.0))
+        let f = self.node_scale.get(i).copied().unwrap_or(1.0);
+        self.law.scaled(f)
     }
 
     /// The friction law of secondary node `i` (its tangential penalty
@@ -167,14 +167,6 @@ impl ContactInterface {
         } else {
             0
         }
-    }
-
-    /// The node lists coupled to each multiplier (one node each), for the
-    /// sparsity pattern.
-    pub fn multiplier_couplings(&self) -> Vec<Vec<usize>> {
-        (0..self.num_multipliers())
-            .map(|i| self.coupled_nodes(i))
-            .collect()
     }
 
     /// Secondary node `i` with the primary nodes it may touch in this

@@ -235,8 +235,10 @@ impl GapProducer<Q> for SurfaceGap<'_> {
         response: Option<(&TangentialResponse<Q>, &Vector3<f64>)>,
     ) -> FrictionHistory {
         let traction = response.map_or_else(Vector3::zeros, |(r, _)| r.traction);
-        let material_point = match (self.material_point(node.index, history), response) {
-            (Some(m), Some((_, n))) => {
+        let material_point = match self.material_point(node.index, history) {
+            Some(m) => {
+                // open (no response): t_T = 0, and so are its components
+                let n = response.map_or_else(Vector3::zeros, |(_, n)| *n);
                 let y = self.primary.corners(node.reference, node.x, m.triangle);
                 let projector = Matrix3::identity() - n * n.transpose();
                 let (a1, a2) = (projector * (y[1] - y[0]), projector * (y[2] - y[0]));
@@ -245,11 +247,7 @@ impl GapProducer<Q> for SurfaceGap<'_> {
                     ..m
                 })
             }
-            (Some(m), None) => Some(MaterialPoint {
-                traction: [0.0; 2],
-                ..m
-            }),
-            (None, _) => history.material_point,
+            None => history.material_point,
         };
         FrictionHistory {
             traction,

@@ -111,4 +111,12 @@ impl Error {
             source,
         }
     }
+
+    /// Contact input that cannot be used, naming the obstacle or file `what`.
+    pub fn contact_input(what: &str, message: String) -> Self {
+        Error::ContactInput {
+            what: what.to_string(),
+            message,
+        }
+    }
 }

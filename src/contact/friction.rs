@@ -432,21 +432,13 @@ pub fn commit<const K: usize>(
     response: Option<&TangentialResponse<K>>,
     relative_position: Vector3<f64>,
 ) -> FrictionHistory {
-    match response {
-        Some(r) => FrictionHistory {
-            traction: r.traction,
-            anchor: relative_position,
-            slip: history.slip + r.slip_increment,
-            status: r.status,
-            material_point: None,
-        },
-        None => FrictionHistory {
-            traction: Vector3::zeros(),
-            anchor: relative_position,
-            slip: history.slip,
-            status: ContactStatus::Open,
-            material_point: None,
-        },
+    let r = response.copied().unwrap_or_else(TangentialResponse::none);
+    FrictionHistory {
+        traction: r.traction,
+        anchor: relative_position,
+        slip: history.slip + r.slip_increment,
+        status: r.status,
+        material_point: None,
     }
 }
 

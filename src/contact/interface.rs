@@ -22,7 +22,7 @@
 
 use super::friction::{self, ContactStatus, Coulomb, FrictionHistory, TangentialResponse};
 use super::gap::GapGeometry;
-use super::kinematics::{self, GapKinematics, GapProducer, NodeEvaluation, SecondaryNode};
+use super::kinematics::{GapKinematics, GapProducer, NodeEvaluation, SecondaryNode};
 use super::laws::{uzawa, NodeContactState, NormalLaw};
 use super::obstacle::RigidObstacle;
 use super::primary::PrimarySurface;
@@ -133,8 +133,8 @@ impl ContactInterface {
     /// The law of secondary node `i` (the interface's law with the node's
     /// parameter factor).
     pub fn law_at(&self, i: usize) -> NormalLaw {
-        self.law
-            .scaled(self.node_scale.get(i).copied().unwrap_or(1.0))
+        let f = self.node_scale.get(i).copied().unwrap_or(1.0);
+        self.law.scaled(f)
     }
 
     /// The friction law of secondary node `i` (its tangential penalty
@@ -167,14 +167,6 @@ impl ContactInterface {
         } else {
             0
         }
-    }
-
-    /// The node lists coupled to each multiplier (one node each), for the
-    /// sparsity pattern.
-    pub fn multiplier_couplings(&self) -> Vec<Vec<usize>> {
-        (0..self.num_multipliers())
-            .map(|i| self.coupled_nodes(i))
-            .collect()
     }
 
     /// Secondary node `i` with the primary nodes it may touch in this
@@ -260,24 +252,52 @@ impl ContactInterface {
         }
     }
 
-    /// Node `i`'s kinematics through its normal and friction laws.
+    /// Node `i`'s kinematics through its normal law and, closed, its
+    /// friction law (the chain rule of [`kinematics`](super::kinematics)).
     fn evaluate<const Q: usize, G: GapProducer<Q>>(
         &self,
         producer: &G,
         node: &SecondaryNode,
-        kinematics: GapKinematics<Q, G::Point>,
+        mut kinematics: GapKinematics<Q, G::Point>,
         state: &NodeContactState,
     ) -> NodeEvaluation<Q, G::Point> {
-        let i = node.index;
-        kinematics::evaluate(
-            producer,
-            node,
+        let area = self.areas[node.index];
+        let mut response = kinematics.normal_response(&self.law_at(node.index), area, state);
+        // a closed node at zero pressure sticks at its anchor (the return
+        // mapping with a zero bound): its tangential stiffness holds a body
+        // whose only tangential support is friction before the load arrives
+        let (tangential, frame) = match (response.active, self.friction_at(node.index)) {
+            (false, _) => (None, None),
+            (true, None) => {
+                let stick = TangentialResponse {
+                    status: ContactStatus::Stick,
+                    ..TangentialResponse::none()
+                };
+                (Some(stick), None)
+            }
+            (true, Some(coulomb)) => {
+                let mut frame = producer.slip(node, &mut kinematics, &state.friction);
+                if state.friction.status == ContactStatus::Open {
+                    let (g, grad) = (kinematics.gap, &kinematics.gradient);
+                    friction::first_contact(&mut frame.kinematics, state.gap, g, grad);
+                }
+                let t = friction::return_map_on(&coulomb, &frame.kinematics, &response.pressure);
+                let lever_t = frame.lever.transpose();
+                response.residual -= area * lever_t * t.traction;
+                response.stiffness -= area * lever_t * t.traction_gradient;
+                if let Some(k) = producer.lever_stiffness(&kinematics, &(area * t.traction)) {
+                    response.stiffness += k;
+                }
+                response.multiplier_column -= area * lever_t * t.traction_multiplier_derivative;
+                (Some(t), Some(frame))
+            }
+        };
+        NodeEvaluation {
             kinematics,
-            &self.law_at(i),
-            self.friction_at(i),
-            self.areas[i],
-            state,
-        )
+            response,
+            tangential,
+            frame,
+        }
     }
 
     /// The signed gap of every secondary node at time `t` and unknowns `x`
@@ -535,30 +555,14 @@ impl ContactInterface {
         tangential | self.augment_normal(ctx, states)
     }
 
-    /// Exact stick's outer loop (see [`augment`](Self::augment)).
+    /// Exact stick's outer loop (see [`augment`](Self::augment)): every
+    /// node's tangential multiplier augmented at `ctx` (`λ_T ← t_T`,
+    /// [`GapProducer::augment`]) unless the largest multiplier residual
+    /// `|t_T − T λ_T|/ε_T` is within the tolerance.
     fn augment_friction(&self, ctx: &ContactContext, states: &mut [NodeContactState]) -> bool {
         if !(self.has_friction() && self.exact_stick()) {
             return false;
         }
-        let tolerance = 1e-9 * self.element_size;
-        let (worst, augmented) = self.augmented_friction(ctx, states);
-        if worst <= tolerance {
-            return false;
-        }
-        for (state, history) in states.iter_mut().zip(augmented) {
-            state.friction = history;
-        }
-        true
-    }
-
-    /// Every node's history with its tangential multiplier augmented at
-    /// `ctx` (`λ_T ← t_T`, [`GapProducer::augment`]), and the largest
-    /// multiplier residual `|t_T − T λ_T|/ε_T` before the update.
-    fn augmented_friction(
-        &self,
-        ctx: &ContactContext,
-        states: &[NodeContactState],
-    ) -> (f64, Vec<FrictionHistory>) {
         let mut worst = 0.0_f64;
         let mut augmented = Vec::with_capacity(self.nodes.len());
         with_producer!(self, ctx.t, p => {
@@ -574,7 +578,13 @@ impl ContactInterface {
                 augmented.push(p.augment(node, &state.friction, response));
             });
         });
-        (worst, augmented)
+        if worst <= 1e-9 * self.element_size {
+            return false;
+        }
+        for (state, history) in states.iter_mut().zip(augmented) {
+            state.friction = history;
+        }
+        true
     }
 
     /// Uzawa's outer loop (see [`augment`](Self::augment)).

@@ -30,7 +30,7 @@
 //! lever's own change ([`GapProducer::lever_stiffness`]), `K_qλ −= A_s Bᵀ ∂t_T/∂λ`.
 
 use super::friction::{
-    self, ContactStatus, Coulomb, FrictionHistory, MaterialPoint, NormalPressure, SlipKinematics,
+    self, Coulomb, FrictionHistory, MaterialPoint, NormalPressure, SlipKinematics,
     TangentialResponse,
 };
 use super::gap::GapGeometry;
@@ -56,10 +56,17 @@ pub struct SecondaryNode<'a> {
 impl SecondaryNode<'_> {
     /// Current position `x_s = X_s + u_s`.
     pub fn position(&self) -> Vector3<f64> {
-        let s = self.mesh_node;
-        Vector3::from(self.reference[s])
-            + Vector3::new(self.x[3 * s], self.x[3 * s + 1], self.x[3 * s + 2])
+        current_position(self.reference, self.x, self.mesh_node)
     }
+}
+
+/// Current position `X_n + u_n` of mesh node `n` at unknowns `x`.
+pub fn current_position(reference: &[[f64; 3]], x: &[f64], n: usize) -> Vector3<f64> {
+    Vector3::new(
+        reference[n][0] + x[3 * n],
+        reference[n][1] + x[3 * n + 1],
+        reference[n][2] + x[3 * n + 2],
+    )
 }
 
 /// The gap of one secondary node as a function of the `Q` unknowns `q`
@@ -194,12 +201,16 @@ pub trait GapProducer<const Q: usize> {
     ) -> SlipFrame<Q>;
 
     /// `Σ_k (∂B_kᵀ/∂q) t` for a traction `t` at fixed `q`-derivative of `t`:
-    /// the lever's own change (zero for a rigid obstacle).
+    /// the lever's own change (`None`, the default: a constant lever, as
+    /// against a rigid obstacle).
     fn lever_stiffness(
         &self,
         kinematics: &GapKinematics<Q, Self::Point>,
         traction: &Vector3<f64>,
-    ) -> Option<SMatrix<f64, Q, Q>>;
+    ) -> Option<SMatrix<f64, Q, Q>> {
+        let _ = (kinematics, traction);
+        None
+    }
 
     /// The stick stiffness `−A_s ∂t_T/∂q` in stick, scaled by the slip
     /// ratio [`TangentialResponse::stick_scale`] in slip, that the
@@ -230,14 +241,17 @@ pub trait GapProducer<const Q: usize> {
     }
 
     /// The material point a node anchors its friction to after an increment
-    /// converged (`None` against a rigid obstacle), with the committed
-    /// `traction` carried by it.
+    /// converged, with the committed `traction` carried by it (`None`, the
+    /// default: none, as against a rigid obstacle).
     fn anchor(
         &self,
         node: &SecondaryNode,
         kinematics: Option<&GapKinematics<Q, Self::Point>>,
         traction: &Vector3<f64>,
-    ) -> Option<MaterialPoint>;
+    ) -> Option<MaterialPoint> {
+        let _ = (node, kinematics, traction);
+        None
+    }
 }
 
 /// One secondary node evaluated: its kinematics, the normal law and the
@@ -252,53 +266,4 @@ pub struct NodeEvaluation<const Q: usize, P> {
     pub tangential: Option<TangentialResponse<Q>>,
     /// The slip frame where the node is closed with friction.
     pub frame: Option<SlipFrame<Q>>,
-}
-
-/// Evaluate `kinematics` of `node` (area `area`, state `state`) through the
-/// normal `law` and, closed, the friction law `coulomb`.
-pub fn evaluate<const Q: usize, G: GapProducer<Q>>(
-    producer: &G,
-    node: &SecondaryNode,
-    mut kinematics: GapKinematics<Q, G::Point>,
-    law: &NormalLaw,
-    coulomb: Option<Coulomb>,
-    area: f64,
-    state: &NodeContactState,
-) -> NodeEvaluation<Q, G::Point> {
-    let mut response = kinematics.normal_response(law, area, state);
-    // a closed node at zero pressure sticks at its anchor (the return
-    // mapping with a zero bound): its tangential stiffness holds a body
-    // whose only tangential support is friction before the load arrives
-    let (tangential, frame) = match (response.active, coulomb) {
-        (false, _) => (None, None),
-        (true, None) => {
-            let stick = TangentialResponse {
-                status: ContactStatus::Stick,
-                ..TangentialResponse::none()
-            };
-            (Some(stick), None)
-        }
-        (true, Some(coulomb)) => {
-            let mut frame = producer.slip(node, &mut kinematics, &state.friction);
-            if state.friction.status == ContactStatus::Open {
-                let (g, grad) = (kinematics.gap, &kinematics.gradient);
-                friction::first_contact(&mut frame.kinematics, state.gap, g, grad);
-            }
-            let t = friction::return_map_on(&coulomb, &frame.kinematics, &response.pressure);
-            let lever_t = frame.lever.transpose();
-            response.residual -= area * lever_t * t.traction;
-            response.stiffness -= area * lever_t * t.traction_gradient;
-            if let Some(k) = producer.lever_stiffness(&kinematics, &(area * t.traction)) {
-                response.stiffness += k;
-            }
-            response.multiplier_column -= area * lever_t * t.traction_multiplier_derivative;
-            (Some(t), Some(frame))
-        }
-    };
-    NodeEvaluation {
-        kinematics,
-        response,
-        tangential,
-        frame,
-    }
 }

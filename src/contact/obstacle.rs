@@ -59,22 +59,11 @@ pub enum RigidObstacle {
     Triangulated(TriangulatedSurface),
 }
 
-fn invalid(what: &str, message: String) -> Error {
-    Error::ContactInput {
-        what: what.to_string(),
-        message,
-    }
-}
-
-fn finite(v: &Vector3<f64>) -> bool {
-    v.iter().all(|x| x.is_finite())
-}
-
 /// `v/|v|`, or an error naming `name` if `v` is zero or not finite.
 fn unit(v: Vector3<f64>, what: &str, name: &str) -> Result<Vector3<f64>> {
     let len = v.norm();
     if !(len > 0.0) || !len.is_finite() {
-        return Err(invalid(
+        return Err(Error::contact_input(
             what,
             format!(
                 "the {name} must be a non-zero finite vector, got [{}, {}, {}]",
@@ -87,7 +76,7 @@ fn unit(v: Vector3<f64>, what: &str, name: &str) -> Result<Vector3<f64>> {
 
 fn positive_radius(radius: f64, what: &str) -> Result<f64> {
     if !(radius > 0.0) || !radius.is_finite() {
-        return Err(invalid(
+        return Err(Error::contact_input(
             what,
             format!("the radius must be positive and finite, got {radius}"),
         ));
@@ -96,8 +85,11 @@ fn positive_radius(radius: f64, what: &str) -> Result<f64> {
 }
 
 fn finite_point(p: Vector3<f64>, what: &str, name: &str) -> Result<Vector3<f64>> {
-    if !finite(&p) {
-        return Err(invalid(what, format!("the {name} must be finite")));
+    if !p.iter().all(|x| x.is_finite()) {
+        return Err(Error::contact_input(
+            what,
+            format!("the {name} must be finite"),
+        ));
     }
     Ok(p)
 }
@@ -135,60 +127,39 @@ impl RigidObstacle {
 
     /// The obstacle moved rigidly by `d` (prescribed obstacle motion).
     pub fn translated(&self, d: &Vector3<f64>) -> Self {
-        match self {
-            RigidObstacle::Plane { point, normal } => RigidObstacle::Plane {
-                point: point + d,
-                normal: *normal,
-            },
-            RigidObstacle::Sphere { center, radius } => RigidObstacle::Sphere {
-                center: center + d,
-                radius: *radius,
-            },
-            RigidObstacle::Cylinder {
-                point_on_axis,
-                axis,
-                radius,
-            } => RigidObstacle::Cylinder {
-                point_on_axis: point_on_axis + d,
-                axis: *axis,
-                radius: *radius,
-            },
-            RigidObstacle::Triangulated(surface) => {
-                RigidObstacle::Triangulated(surface.translated(d))
-            }
+        let mut moved = self.clone();
+        match &mut moved {
+            RigidObstacle::Plane { point, .. } => *point += d,
+            RigidObstacle::Sphere { center, .. } => *center += d,
+            RigidObstacle::Cylinder { point_on_axis, .. } => *point_on_axis += d,
+            RigidObstacle::Triangulated(surface) => *surface = surface.translated(d),
         }
+        moved
     }
 
     /// Projects the spatial point `x` onto the obstacle (see the module
     /// documentation for the formulas).
     pub fn project(&self, x: &Vector3<f64>) -> Projection {
-        match self {
+        // a sphere or a cylinder: the centre `c` (on the axis) nearest `x`,
+        // `r = x − c` across the axis, the projector `P` on the directions
+        // across it (`I`, `I − a aᵀ`) and the normal at the centre
+        let (centre, r, projector, radius, at_centre) = match self {
             RigidObstacle::Plane { point, normal } => {
                 let gap = (x - point).dot(normal);
-                Projection {
+                return Projection {
                     point: x - normal * gap,
                     normal: *normal,
                     gap,
                     curvature: Matrix3::zeros(),
-                }
-            }
-            RigidObstacle::Sphere { center, radius } => {
-                let r = x - center;
-                let d = r.norm();
-                let (normal, curvature) = if d > 1e-14 * radius {
-                    let n = r / d;
-                    (n, (Matrix3::identity() - n * n.transpose()) / d)
-                } else {
-                    (Vector3::z(), Matrix3::zeros())
                 };
-                let point = center + normal * *radius;
-                Projection {
-                    point,
-                    normal,
-                    gap: (x - point).dot(&normal),
-                    curvature,
-                }
             }
+            RigidObstacle::Sphere { center, radius } => (
+                *center,
+                x - center,
+                Matrix3::identity(),
+                radius,
+                Vector3::z(),
+            ),
             RigidObstacle::Cylinder {
                 point_on_axis,
                 axis,
@@ -196,24 +167,32 @@ impl RigidObstacle {
             } => {
                 let r = x - point_on_axis;
                 let along = axis.dot(&r);
-                let perp = r - axis * along;
-                let d = perp.norm();
-                let (normal, curvature) = if d > 1e-14 * radius {
-                    let n = perp / d;
-                    let p = Matrix3::identity() - axis * axis.transpose() - n * n.transpose();
-                    (n, p / d)
-                } else {
-                    (perpendicular_unit(axis), Matrix3::zeros())
-                };
-                let point = point_on_axis + axis * along + normal * *radius;
-                Projection {
-                    point,
-                    normal,
-                    gap: (x - point).dot(&normal),
-                    curvature,
-                }
+                let projector = Matrix3::identity() - axis * axis.transpose();
+                let centre = point_on_axis + axis * along;
+                (
+                    centre,
+                    r - axis * along,
+                    projector,
+                    radius,
+                    perpendicular_unit(axis),
+                )
             }
-            RigidObstacle::Triangulated(surface) => surface.project(x),
+            RigidObstacle::Triangulated(surface) => return surface.project(x),
+        };
+        // n = r/|r|, H = (P − n nᵀ)/|r|, x̄ = c + R n
+        let d = r.norm();
+        let (normal, curvature) = if d > 1e-14 * radius {
+            let n = r / d;
+            (n, (projector - n * n.transpose()) / d)
+        } else {
+            (at_centre, Matrix3::zeros())
+        };
+        let point = centre + normal * *radius;
+        Projection {
+            point,
+            normal,
+            gap: (x - point).dot(&normal),
+            curvature,
         }
     }
 }

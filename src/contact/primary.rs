@@ -28,9 +28,10 @@
 
 use crate::contact::closest_point_on_triangle;
 use crate::contact::friction::MaterialPoint;
+use crate::contact::kinematics::{current_position, SecondaryNode};
 use crate::contact::triangle::TriangleProjection;
-use crate::contact::triangle_gap::{is_degenerate, split_quadrangle, triangle_gap, TriangleGap};
-use crate::mesh::{FacetKind, Mesh};
+use crate::contact::triangle_gap::{facet_triangles, is_degenerate, triangle_gap, TriangleGap};
+use crate::mesh::Mesh;
 use nalgebra::Vector3;
 use rstar::primitives::{GeomWithData, Rectangle};
 use rstar::RTree;
@@ -73,14 +74,7 @@ impl PrimarySurface {
     /// has no such set.
     pub fn from_mesh(mesh: &Mesh, surface: &str) -> Option<Self> {
         let set = mesh.surface(surface)?;
-        let mut triangles = Vec::new();
-        for f in &set.facets {
-            let n = &f.nodes;
-            match f.kind {
-                FacetKind::Tri3 => triangles.push([n[0], n[1], n[2]]),
-                FacetKind::Quad4 => triangles.extend(split_quadrangle([n[0], n[1], n[2], n[3]])),
-            }
-        }
+        let triangles = facet_triangles(&set.facets, |n| n);
         let area: f64 = triangles
             .iter()
             .map(|t| {
@@ -99,18 +93,9 @@ impl PrimarySurface {
         })
     }
 
-    /// Current position of mesh node `n`.
-    pub fn position(reference: &[[f64; 3]], x: &[f64], n: usize) -> Vector3<f64> {
-        Vector3::new(
-            reference[n][0] + x[3 * n],
-            reference[n][1] + x[3 * n + 1],
-            reference[n][2] + x[3 * n + 2],
-        )
-    }
-
     /// Current corners of triangle `t`.
     pub fn corners(&self, reference: &[[f64; 3]], x: &[f64], t: usize) -> [Vector3<f64>; 3] {
-        self.triangles[t].map(|n| Self::position(reference, x, n))
+        self.triangles[t].map(|n| current_position(reference, x, n))
     }
 
     /// Recompute every secondary node's candidates at configuration `x`,
@@ -140,7 +125,7 @@ impl PrimarySurface {
             .collect();
         let points: Vec<Vector3<f64>> = secondary
             .iter()
-            .map(|&s| Self::position(reference, x, s))
+            .map(|&s| current_position(reference, x, s))
             .collect();
         let candidates = boxes_containing(&boxes, &points);
         let changed = candidates != self.candidates;
@@ -153,7 +138,7 @@ impl PrimarySurface {
         changed
     }
 
-    /// Secondary node `i` at `x_s` against its primary triangle: `kept`
+    /// Secondary node `node` at `x_s` against its primary triangle: `kept`
     /// (the triangle it was projected on before) while it is still among
     /// the node's candidates and the node stays over it within
     /// [`STICKY_BAND`], else the nearest candidate ([`nearest_gap`](Self::nearest_gap)).
@@ -162,67 +147,48 @@ impl PrimarySurface {
     /// with negative weights on the primary nodes).
     pub fn projection(
         &self,
-        reference: &[[f64; 3]],
-        x: &[f64],
-        i: usize,
-        x_s: &Vector3<f64>,
+        node: &SecondaryNode,
         kept: Option<usize>,
     ) -> Option<(usize, TriangleGap)> {
         let kept = kept.and_then(|t| {
-            self.candidates.get(i)?.contains(&t).then_some(())?;
-            self.gap_within_band(reference, x, t, x_s)
+            self.candidates
+                .get(node.index)?
+                .contains(&t)
+                .then_some(())?;
+            self.gap_within_band(node, t)
         });
-        kept.or_else(|| self.nearest_gap(reference, x, i, x_s))
+        kept.or_else(|| self.nearest_gap(node))
     }
 
-    /// The gap of `x_p` against triangle `t` where its projection is on the
+    /// The gap of `node` against triangle `t` where its projection is on the
     /// triangle within [`STICKY_BAND`].
-    fn gap_within_band(
-        &self,
-        reference: &[[f64; 3]],
-        x: &[f64],
-        t: usize,
-        x_p: &Vector3<f64>,
-    ) -> Option<(usize, TriangleGap)> {
-        let c = self.corners(reference, x, t);
-        let gap = triangle_gap(x_p, [&c[0], &c[1], &c[2]])?;
+    fn gap_within_band(&self, node: &SecondaryNode, t: usize) -> Option<(usize, TriangleGap)> {
+        let c = self.corners(node.reference, node.x, t);
+        let gap = triangle_gap(&node.position(), [&c[0], &c[1], &c[2]])?;
         gap.shape
             .iter()
             .all(|&n| n >= -STICKY_BAND)
             .then_some((t, gap))
     }
 
-    /// The nearest of the candidate triangles of secondary node `i`
-    /// ([`best_triangle`]) to the point `x_p`, with the point's gap against
-    /// it; `None` without
-    /// usable candidates (degenerate triangles are skipped), or off the
-    /// triangle by more than the band of the triangle choice (beyond the
-    /// surface's edge).
-    pub fn nearest_gap(
-        &self,
-        reference: &[[f64; 3]],
-        x: &[f64],
-        i: usize,
-        x_p: &Vector3<f64>,
-    ) -> Option<(usize, TriangleGap)> {
-        let mut usable = self.candidate_corners(reference, x, i)?;
+    /// The nearest of the candidate triangles of secondary node `node`
+    /// ([`best_triangle`]) to its position, with its gap against it; `None`
+    /// without usable candidates (degenerate triangles are skipped), or off
+    /// the triangle by more than the band of the triangle choice (beyond
+    /// the surface's edge).
+    pub fn nearest_gap(&self, node: &SecondaryNode) -> Option<(usize, TriangleGap)> {
+        let mut usable = self.candidate_corners(node)?;
         usable.retain(|(_, c)| !is_degenerate([&c[0], &c[1], &c[2]]));
-        let (t, _) = best_triangle(x_p, &usable)?;
-        self.gap_within_band(reference, x, t, x_p)
+        let (t, _) = best_triangle(&node.position(), &usable)?;
+        self.gap_within_band(node, t)
     }
 
-    /// The point of the candidate triangles of secondary node `i` closest
-    /// to `x_p`, as a material point (triangle and barycentric weights,
-    /// each in `[0, 1]`); `None` without candidates. Where a node over no
-    /// triangle (beyond the surface's edge) anchors its friction.
-    pub fn closest_material_point(
-        &self,
-        reference: &[[f64; 3]],
-        x: &[f64],
-        i: usize,
-        x_p: &Vector3<f64>,
-    ) -> Option<MaterialPoint> {
-        let (triangle, p) = best_triangle(x_p, &self.candidate_corners(reference, x, i)?)?;
+    /// The point of the candidate triangles of secondary node `node`
+    /// closest to it, as a material point (triangle and barycentric
+    /// weights, each in `[0, 1]`); `None` without candidates. Where a node
+    /// over no triangle (beyond the surface's edge) anchors its friction.
+    pub fn closest_material_point(&self, node: &SecondaryNode) -> Option<MaterialPoint> {
+        let (triangle, p) = best_triangle(&node.position(), &self.candidate_corners(node)?)?;
         Some(MaterialPoint {
             triangle,
             shape: p.barycentric,
@@ -230,19 +196,14 @@ impl PrimarySurface {
         })
     }
 
-    /// The candidate triangles of secondary node `i` with their current
+    /// The candidate triangles of secondary node `node` with their current
     /// corners; `None` before a search.
-    fn candidate_corners(
-        &self,
-        reference: &[[f64; 3]],
-        x: &[f64],
-        i: usize,
-    ) -> Option<Vec<(usize, [Vector3<f64>; 3])>> {
+    fn candidate_corners(&self, node: &SecondaryNode) -> Option<Vec<(usize, [Vector3<f64>; 3])>> {
         Some(
             self.candidates
-                .get(i)?
+                .get(node.index)?
                 .iter()
-                .map(|&t| (t, self.corners(reference, x, t)))
+                .map(|&t| (t, self.corners(node.reference, node.x, t)))
                 .collect(),
         )
     }

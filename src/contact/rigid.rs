@@ -7,9 +7,7 @@
 //! obstacle (no copy of a triangulated surface and its tree); gap, normal
 //! and curvature are unchanged by it.
 
-use super::friction::{
-    Coulomb, FrictionHistory, MaterialPoint, SlipKinematics, TangentialResponse,
-};
+use super::friction::{Coulomb, FrictionHistory, SlipKinematics, TangentialResponse};
 use super::kinematics::{GapKinematics, GapProducer, SecondaryNode, SlipFrame, MAX_NODES};
 use super::laws::NodeContactState;
 use super::obstacle::RigidObstacle;
@@ -69,10 +67,6 @@ impl GapProducer<3> for RigidGap<'_> {
         }
     }
 
-    fn lever_stiffness(&self, _: &GapKinematics<3>, _: &Vector3<f64>) -> Option<Matrix3<f64>> {
-        None
-    }
-
     /// `−A_s β J*`, the trial derivative scaled by the slip ratio `β`
     /// (`A_s β ε_T T` on a plane).
     fn stick_stiffness(
@@ -84,14 +78,5 @@ impl GapProducer<3> for RigidGap<'_> {
         area: f64,
     ) -> Matrix3<f64> {
         -area * response.stick_scale * response.trial_gradient
-    }
-
-    fn anchor(
-        &self,
-        _: &SecondaryNode,
-        _: Option<&GapKinematics<3>>,
-        _: &Vector3<f64>,
-    ) -> Option<MaterialPoint> {
-        None
     }
 }

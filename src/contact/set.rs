@@ -63,6 +63,7 @@ impl<'a> IntoIterator for &'a ContactSet {
 /// The sparsity couplings of the contact interfaces: node groups (each
 /// secondary node of a deformable interface with its candidates' nodes) and
 /// the nodes each multiplier couples to.
+#[derive(Default)]
 pub struct Couplings {
     pub groups: Vec<Vec<usize>>,
     pub multipliers: Vec<Vec<usize>>,
@@ -86,15 +87,13 @@ impl ContactSet {
 
     /// The sparsity couplings of the interfaces.
     pub fn couplings(&self) -> Couplings {
-        let mut out = Couplings {
-            groups: Vec::new(),
-            multipliers: Vec::new(),
-        };
+        let mut out = Couplings::default();
         for c in self.iter() {
-            out.multipliers.extend(c.multiplier_couplings());
+            let groups = (0..c.nodes.len()).map(|i| c.coupled_nodes(i));
+            out.multipliers
+                .extend(groups.clone().take(c.num_multipliers()));
             if matches!(c.primary, Primary::Surface(_)) {
-                out.groups
-                    .extend((0..c.nodes.len()).map(|i| c.coupled_nodes(i)));
+                out.groups.extend(groups);
             }
         }
         out

@@ -55,11 +55,13 @@
 use super::friction::{
     Coulomb, FrictionHistory, MaterialPoint, SlipKinematics, TangentialResponse,
 };
-use super::kinematics::{GapKinematics, GapProducer, SecondaryNode, SlipFrame, MAX_NODES};
+use super::kinematics::{
+    current_position, GapKinematics, GapProducer, SecondaryNode, SlipFrame, MAX_NODES,
+};
 use super::laws::NodeContactState;
 use super::primary::PrimarySurface;
 use super::triangle_gap::TriangleGap;
-use nalgebra::{Matrix3, SMatrix, SVector, Vector3};
+use nalgebra::{Matrix3, SMatrix, Vector3};
 
 /// Unknowns of one node's contribution: `q = (x_s, x1, x2, x3, y1, y2, y3)`,
 /// the secondary node, its triangle and its friction anchor's triangle.
@@ -95,31 +97,18 @@ impl GapProducer<Q> for SurfaceGap<'_> {
         node: &SecondaryNode,
         state: &NodeContactState,
     ) -> Option<GapKinematics<Q, TriangleGap>> {
-        let x_s = node.position();
-        let (t, gap) =
-            self.primary
-                .projection(node.reference, node.x, node.index, &x_s, state.facet)?;
+        let (t, gap) = self.primary.projection(node, state.facet)?;
         let [a, b, c] = self.primary.triangles[t];
         let mut nodes = [node.mesh_node; MAX_NODES];
         nodes[1..4].copy_from_slice(&[a, b, c]);
-        let mut gradient = SVector::<f64, Q>::zeros();
-        gradient.fixed_rows_mut::<12>(0).copy_from(&gap.gradient);
-        let mut hessian = SMatrix::<f64, Q, Q>::zeros();
-        hessian
-            .fixed_view_mut::<12, 12>(0, 0)
-            .copy_from(&gap.hessian);
-        let mut normal_gradient = SMatrix::<f64, 3, Q>::zeros();
-        normal_gradient
-            .fixed_view_mut::<3, 12>(0, 0)
-            .copy_from(&gap.normal_gradient);
         Some(GapKinematics {
             nodes,
             used: 4,
             gap: gap.gap,
-            gradient,
-            hessian,
+            gradient: padded(&gap.gradient),
+            hessian: padded(&gap.hessian),
             normal: gap.normal,
-            normal_gradient,
+            normal_gradient: padded(&gap.normal_gradient),
             facet: Some(t),
             weights: gap.shape,
             point: gap,
@@ -144,31 +133,17 @@ impl GapProducer<Q> for SurfaceGap<'_> {
         kinematics: &mut GapKinematics<Q, TriangleGap>,
         history: &FrictionHistory,
     ) -> SlipFrame<Q> {
-        let position = |n: usize| {
-            SecondaryNode {
-                mesh_node: n,
-                ..*node
-            }
-            .position()
-        };
+        let position = |n| current_position(node.reference, node.x, n);
         let point = self.material_point(node.index, history);
-        let anchor_nodes = point.map_or_else(
-            || {
-                [
-                    kinematics.nodes[1],
-                    kinematics.nodes[2],
-                    kinematics.nodes[3],
-                ]
-            },
-            |m| self.primary.triangles[m.triangle],
-        );
+        let current = [1, 2, 3].map(|a| kinematics.nodes[a]);
+        let anchor_nodes = point.map_or(current, |m| self.primary.triangles[m.triangle]);
         kinematics.nodes[4..].copy_from_slice(&anchor_nodes);
         kinematics.used = 7;
         let mut offset = node.position();
         let mut offset_gradient = SMatrix::<f64, 3, Q>::zeros();
         offset_gradient
             .fixed_view_mut::<3, 3>(0, 0)
-            .copy_from(&Matrix3::identity());
+            .fill_diagonal(1.0);
         let mut traction = history.traction;
         let mut traction_gradient = SMatrix::<f64, 3, Q>::zeros();
         match point {
@@ -177,7 +152,7 @@ impl GapProducer<Q> for SurfaceGap<'_> {
                     offset -= weight * position(y);
                     offset_gradient
                         .fixed_view_mut::<3, 3>(0, 12 + 3 * j)
-                        .copy_from(&(-weight * Matrix3::identity()));
+                        .fill_diagonal(-weight);
                 }
                 // t_T,n = τ¹ (y2 − y1) + τ² (y3 − y1), carried by the surface
                 let [t1, t2] = m.traction;
@@ -186,7 +161,7 @@ impl GapProducer<Q> for SurfaceGap<'_> {
                 for (j, w) in [-(t1 + t2), t1, t2].into_iter().enumerate() {
                     traction_gradient
                         .fixed_view_mut::<3, 3>(0, 12 + 3 * j)
-                        .copy_from(&(w * Matrix3::identity()));
+                        .fill_diagonal(w);
                 }
             }
             // no material point: slip from the node's own committed
@@ -260,8 +235,10 @@ impl GapProducer<Q> for SurfaceGap<'_> {
         response: Option<(&TangentialResponse<Q>, &Vector3<f64>)>,
     ) -> FrictionHistory {
         let traction = response.map_or_else(Vector3::zeros, |(r, _)| r.traction);
-        let material_point = match (self.material_point(node.index, history), response) {
-            (Some(m), Some((_, n))) => {
+        let material_point = match self.material_point(node.index, history) {
+            Some(m) => {
+                // open (no response): t_T = 0, and so are its components
+                let n = response.map_or_else(Vector3::zeros, |(_, n)| *n);
                 let y = self.primary.corners(node.reference, node.x, m.triangle);
                 let projector = Matrix3::identity() - n * n.transpose();
                 let (a1, a2) = (projector * (y[1] - y[0]), projector * (y[2] - y[0]));
@@ -270,11 +247,7 @@ impl GapProducer<Q> for SurfaceGap<'_> {
                     ..m
                 })
             }
-            (Some(m), None) => Some(MaterialPoint {
-                traction: [0.0; 2],
-                ..m
-            }),
-            (None, _) => history.material_point,
+            None => history.material_point,
         };
         FrictionHistory {
             traction,
@@ -298,12 +271,7 @@ impl GapProducer<Q> for SurfaceGap<'_> {
                 shape: k.weights,
                 traction: [0.0; 2],
             },
-            None => self.primary.closest_material_point(
-                node.reference,
-                node.x,
-                node.index,
-                &node.position(),
-            )?,
+            None => self.primary.closest_material_point(node)?,
         };
         let y = self.primary.corners(node.reference, node.x, point.triangle);
         Some(MaterialPoint {
@@ -318,15 +286,19 @@ impl GapProducer<Q> for SurfaceGap<'_> {
 /// opposite, to the current projection point.
 fn contact_point_lever(gap: &TriangleGap) -> SMatrix<f64, 3, Q> {
     let mut lever = SMatrix::<f64, 3, Q>::zeros();
-    lever
-        .fixed_view_mut::<3, 3>(0, 0)
-        .copy_from(&Matrix3::identity());
+    lever.fixed_view_mut::<3, 3>(0, 0).fill_diagonal(1.0);
     for (k, &n) in gap.shape.iter().enumerate() {
-        lever
-            .fixed_view_mut::<3, 3>(0, 3 + 3 * k)
-            .copy_from(&(-n * Matrix3::identity()));
+        lever.fixed_view_mut::<3, 3>(0, 3 + 3 * k).fill_diagonal(-n);
     }
     lever
+}
+
+/// `m` in the top-left corner of a zero matrix: the triangle's 12 unknowns
+/// `(x_s, x1, x2, x3)` among the 21 of `q`.
+fn padded<const R: usize, const C: usize, const R2: usize, const C2: usize>(
+    m: &SMatrix<f64, R, C>,
+) -> SMatrix<f64, R2, C2> {
+    SMatrix::from_fn(|i, j| if i < R && j < C { m[(i, j)] } else { 0.0 })
 }
 
 /// The components `τ = (τ¹, τ²)` of the vector `t` on the edges `a1`, `a2`

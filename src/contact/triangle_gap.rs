@@ -54,6 +54,7 @@
 //! [`split_quadrangle`] splits a quadrangle facet (a Hex8 face) into two
 //! triangles with its orientation kept (formulation note §4).
 
+use crate::mesh::{Facet, FacetKind};
 use nalgebra::{Matrix2, Matrix3, SMatrix, SVector, Vector2, Vector3};
 
 /// A triangle is degenerate when `ℓ = |a1 × a2| ≤ DEGENERACY · (longest edge)²`.
@@ -191,6 +192,20 @@ pub fn triangle_gap(x_s: &Vector3<f64>, x: [&Vector3<f64>; 3]) -> Option<Triangl
 /// points to); on a warped quadrangle the split is one of two choices.
 pub fn split_quadrangle(q: [usize; 4]) -> [[usize; 3]; 2] {
     [[q[0], q[1], q[2]], [q[0], q[2], q[3]]]
+}
+
+/// The surface facets `facets` as triangles (a quadrangle as the two of
+/// [`split_quadrangle`]), their nodes numbered by `node`.
+pub fn facet_triangles(facets: &[Facet], node: impl Fn(usize) -> usize) -> Vec<[usize; 3]> {
+    let mut triangles = Vec::new();
+    for f in facets {
+        let n: Vec<usize> = f.nodes.iter().map(|&n| node(n)).collect();
+        match f.kind {
+            FacetKind::Tri3 => triangles.push([n[0], n[1], n[2]]),
+            FacetKind::Quad4 => triangles.extend(split_quadrangle([n[0], n[1], n[2], n[3]])),
+        }
+    }
+    triangles
 }
 
 #[cfg(test)]

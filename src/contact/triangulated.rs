@@ -46,9 +46,9 @@
 
 use crate::contact::projection::Projection;
 use crate::contact::triangle::{closest_point_on_triangle, Feature, TriangleProjection};
-use crate::contact::triangle_gap::split_quadrangle;
+use crate::contact::triangle_gap::facet_triangles;
 use crate::error::{Error, Result};
-use crate::mesh::{FacetKind, Mesh};
+use crate::mesh::Mesh;
 use nalgebra::{Matrix3, Vector3};
 use rstar::{PointDistance, RTree, RTreeObject, AABB};
 use std::collections::HashMap;
@@ -76,13 +76,6 @@ pub struct TriangulatedSurface {
     tiny: f64,
 }
 
-fn invalid(what: &str, message: String) -> Error {
-    Error::ContactInput {
-        what: what.to_string(),
-        message,
-    }
-}
-
 impl TriangulatedSurface {
     /// A surface from vertex positions and triangles (indices into
     /// `vertices`, right-hand normal toward the body). Errors on no
@@ -95,20 +88,23 @@ impl TriangulatedSurface {
     /// `new`, with `what` naming the source in error messages.
     fn build(vertices: Vec<Vector3<f64>>, triangles: Vec<[usize; 3]>, what: &str) -> Result<Self> {
         if triangles.is_empty() {
-            return Err(invalid(what, "the surface has no triangles".into()));
+            return Err(Error::contact_input(
+                what,
+                "the surface has no triangles".into(),
+            ));
         }
         if let Some(v) = vertices
             .iter()
             .position(|v| !v.iter().all(|x| x.is_finite()))
         {
-            return Err(invalid(
+            return Err(Error::contact_input(
                 what,
                 format!("vertex {v} has a non-finite coordinate"),
             ));
         }
         for (t, tri) in triangles.iter().enumerate() {
             if let Some(&i) = tri.iter().find(|&&i| i >= vertices.len()) {
-                return Err(invalid(
+                return Err(Error::contact_input(
                     what,
                     format!(
                         "triangle {t} refers to vertex {i}, but there are {} vertices",
@@ -128,7 +124,7 @@ impl TriangulatedSurface {
                 .max((c - a).norm_squared())
                 .max((c - b).norm_squared());
             if !(cross.norm_squared() > 1e-24 * scale * scale) {
-                return Err(invalid(
+                return Err(Error::contact_input(
                     what,
                     format!(
                         "triangle {t} (vertices {}, {}, {}) has zero area",
@@ -147,7 +143,7 @@ impl TriangulatedSurface {
             for i in 0..3 {
                 let (p, q) = (tri[i], tri[(i + 1) % 3]);
                 if let Some(other) = directed.insert((p, q), t) {
-                    return Err(invalid(
+                    return Err(Error::contact_input(
                         what,
                         format!(
                             "triangles {other} and {t} both run along edge {p}→{q}: \
@@ -242,14 +238,7 @@ impl TriangulatedSurface {
             .iter()
             .map(|&n| Vector3::from(mesh.nodes[n]))
             .collect();
-        let mut triangles = Vec::new();
-        for f in &set.facets {
-            let v: Vec<usize> = f.nodes.iter().map(|n| local[n]).collect();
-            match f.kind {
-                FacetKind::Tri3 => triangles.push([v[0], v[1], v[2]]),
-                FacetKind::Quad4 => triangles.extend(split_quadrangle([v[0], v[1], v[2], v[3]])),
-            }
-        }
+        let triangles = facet_triangles(&set.facets, |n| local[&n]);
         Self::build(vertices, triangles, &format!("surface set '{surface}'"))
     }
 
@@ -266,11 +255,6 @@ impl TriangulatedSurface {
     /// Unit right-hand normal of triangle `t`.
     pub fn face_normal(&self, t: usize) -> Vector3<f64> {
         self.face_normals[t]
-    }
-
-    /// Unit angle-weighted pseudo-normal of vertex `v`.
-    pub fn vertex_normal(&self, v: usize) -> Vector3<f64> {
-        self.vertex_normals[v]
     }
 
     /// The surface moved rigidly by `d` (the search tree is built again).

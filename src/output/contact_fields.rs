@@ -7,6 +7,7 @@
 
 use crate::contact::friction::ContactStatus;
 use crate::contact::interface::{ContactInterface, NodeReport, Primary};
+use crate::contact::kinematics::SecondaryNode;
 use crate::contact::laws::NodeContactState;
 use crate::contact::primary::PrimarySurface;
 use crate::output::summary::InterfaceSummary;
@@ -257,8 +258,13 @@ impl ContactFields {
             }
             self.status[n] = self.status[n].max(status[n] as f64);
             if !self.secondary[n] {
-                let here = PrimarySurface::position(reference, x, n);
-                if let Some((_, g)) = reverse.nearest_gap(reference, x, k, &here) {
+                let here = SecondaryNode {
+                    reference,
+                    x,
+                    index: k,
+                    mesh_node: n,
+                };
+                if let Some((_, g)) = reverse.nearest_gap(&here) {
                     self.gap[n] = g.gap;
                 }
             }

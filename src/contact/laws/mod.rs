@@ -38,9 +38,6 @@ pub mod rockafellar;
 pub mod slack;
 pub mod uzawa;
 
-#[cfg(test)]
-pub(crate) mod fd;
-
 pub use crate::contact::gap::GapGeometry;
 pub use slack::SlackState;
 
@@ -124,10 +121,7 @@ impl NodeContactState {
     pub fn initial(law: &NormalLaw, signed_gap: f64) -> Self {
         let slack = match *law {
             NormalLaw::Slack { p, k } => SlackState::consistent(signed_gap, 0.0, p, k),
-            _ => SlackState {
-                s: 0.0,
-                lambda1: 0.0,
-            },
+            _ => SlackState::default(),
         };
         Self {
             lambda: 0.0,

@@ -8,15 +8,10 @@
 //! ```
 //! The curvature term follows from `r_u = −A_s t_N(x) n(x)` and
 //! `∂n/∂x = H`: it is `−A_s t_N H` (checked against finite differences in
-//! the tests, where the opposite sign fails). The law leaves a penetration
-//! `t_N/ε` at equilibrium.
+//! `tests/contact_laws.rs`, where the opposite sign fails). The law leaves
+//! a penetration `t_N/ε` at equilibrium.
 
-use super::{GapGeometry, NodeContribution};
-
-/// Pressure `t_N = ε⟨−g⟩`.
-pub fn pressure(signed_gap: f64, epsilon: f64) -> f64 {
-    epsilon * (-signed_gap).max(0.0)
-}
+use super::{uzawa, GapGeometry, NodeContribution};
 
 /// Potential `A_s ε/2 ⟨−g⟩²` whose gradient is the residual.
 pub fn potential(area: f64, gap: &GapGeometry, epsilon: f64) -> f64 {
@@ -26,82 +21,19 @@ pub fn potential(area: f64, gap: &GapGeometry, epsilon: f64) -> f64 {
 
 /// Residual and tangent of one node; active iff `g ≤ 0`. A node exactly in
 /// touch (`g = 0`) takes the closed branch's tangent, so that a body that
-/// rests on the obstacle with no other support is not singular.
+/// rests on the obstacle with no other support is not singular. The
+/// formulas are Uzawa's with `λ = 0` ([`uzawa::contribution`]).
 pub fn contribution(area: f64, gap: &GapGeometry, epsilon: f64) -> NodeContribution {
-    if !(gap.signed_gap <= 0.0) {
-        return NodeContribution::zero();
-    }
-    let t = pressure(gap.signed_gap, epsilon);
-    let n = gap.normal;
-    NodeContribution {
-        r_u: -area * t * n,
-        k_uu: area * epsilon * n * n.transpose() - area * t * gap.hessian,
-        pressure: t,
-        pressure_gradient: -epsilon * n,
-        active: true,
-        ..NodeContribution::zero()
-    }
+    uzawa::contribution(area, gap, 0.0, epsilon)
 }
 
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::contact::laws::fd::{self, check_state, Dofs, Obstacle};
-    use nalgebra::{DMatrix, Matrix3, Vector3};
+    use nalgebra::{Matrix3, Vector3};
 
     const AREA: f64 = 0.37;
     const EPS: f64 = 1.0e3;
-
-    fn law(g: &GapGeometry, _l: f64) -> NodeContribution {
-        contribution(AREA, g, EPS)
-    }
-    fn pot(g: &GapGeometry, _l: f64) -> f64 {
-        potential(AREA, g, EPS)
-    }
-
-    #[test]
-    fn residual_and_tangent_match_finite_differences() {
-        let dir = Vector3::new(0.2, 0.3, 1.0);
-        for obstacle in [Obstacle::tilted_plane(), Obstacle::unit_sphere()] {
-            for (g, active) in [(-0.05, true), (-1e-3, true), (0.02, false)] {
-                let x = obstacle.point_at_gap(g, &dir);
-                let c = check_state(&obstacle, &x, 0.0, &law, Some(&pot), Dofs::Position, 1e-6);
-                assert_eq!(c.active, active);
-                if active {
-                    assert!((c.pressure - EPS * (-g)).abs() < 1e-9 * EPS);
-                } else {
-                    assert_eq!(c, NodeContribution::zero());
-                }
-            }
-        }
-    }
-
-    /// Evidence for the sign of the curvature term: with `+A_s t_N H` the
-    /// tangent misses the FD Jacobian by about `2 A_s t_N |H| / |K|`.
-    #[test]
-    fn curvature_term_enters_with_a_minus_sign() {
-        let obstacle = Obstacle::unit_sphere();
-        let x = obstacle.point_at_gap(-0.05, &Vector3::new(0.2, 0.3, 1.0));
-        let g = obstacle.geometry(&x);
-        let right = contribution(AREA, &g, EPS);
-        let mut wrong = right;
-        wrong.k_uu += 2.0 * AREA * right.pressure * g.hessian;
-        let f = |z: &nalgebra::DVector<f64>| {
-            let c = contribution(
-                AREA,
-                &obstacle.geometry(&Vector3::new(z[0], z[1], z[2])),
-                EPS,
-            );
-            fd::residual_vector(&c).rows(0, 3).into_owned()
-        };
-        let z = nalgebra::DVector::from_column_slice(x.as_slice());
-        let jac = fd::jacobian(&f, &z, &[1e-6; 3]);
-        let err = |k: &Matrix3<f64>| {
-            fd::relative_error(&DMatrix::from_column_slice(3, 3, k.as_slice()), &jac)
-        };
-        assert!(err(&right.k_uu) < 1e-7, "{}", err(&right.k_uu));
-        assert!(err(&wrong.k_uu) > 1e-2, "{}", err(&wrong.k_uu));
-    }
 
     /// A node on a roller (tangential stiffness `k_t T` only), pushed into a
     /// tilted plane by `F` along `−n`: Newton converges to the penetration

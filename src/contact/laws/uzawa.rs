@@ -77,43 +77,10 @@ pub fn penetration_converged(signed_gaps: impl IntoIterator<Item = f64>, toleran
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::contact::laws::fd::{check_state, Dofs, Obstacle};
     use nalgebra::Vector3;
 
     const AREA: f64 = 0.37;
     const EPS: f64 = 1.0e3;
-
-    #[test]
-    fn residual_and_tangent_match_finite_differences() {
-        let dir = Vector3::new(0.2, 0.3, 1.0);
-        // (g, λ, active): penetrating, open but pre-loaded by λ, open and unloaded.
-        let states = [
-            (-0.05, 3.0, true),
-            (0.002, 3.0, true),
-            (0.02, 3.0, false),
-            (-0.01, 0.0, true),
-        ];
-        for obstacle in [Obstacle::tilted_plane(), Obstacle::unit_sphere()] {
-            for (g, lambda, active) in states {
-                let x = obstacle.point_at_gap(g, &dir);
-                let law = |geo: &GapGeometry, l: f64| contribution(AREA, geo, l, EPS);
-                let pot = |geo: &GapGeometry, l: f64| potential(AREA, geo, l, EPS);
-                let c = check_state(
-                    &obstacle,
-                    &x,
-                    lambda,
-                    &law,
-                    Some(&pot),
-                    Dofs::Position,
-                    1e-6,
-                );
-                assert_eq!(c.active, active);
-                assert!((c.pressure - (lambda - EPS * g).max(0.0)).abs() < 1e-9 * EPS);
-                assert_eq!(c.r_lambda, 0.0);
-                assert_eq!(c.k_ulambda, Vector3::zeros());
-            }
-        }
-    }
 
     #[test]
     fn stopping_test_uses_the_largest_penetration() {

@@ -3,6 +3,9 @@
 
     scripts/compare_examples.py OLD_BINARY NEW_BINARY [EXAMPLE ...]
 
+EXAMPLE: a folder of examples/ (its case.toml) or a case file in one,
+such as cattaneo-mindlin/coarse.toml.
+
 A behaviour-preserving change (a refactoring, a new backend that must give
 the same numbers) is checked with it: both binaries run each
 `examples/*/case.toml` (with `--threads 1`, so that the parallel
@@ -148,7 +151,9 @@ def main():
     failed = False
     with tempfile.TemporaryDirectory() as tmp:
         for name in names:
-            case = ROOT / "examples" / name / "case.toml"
+            # an example's folder (its case.toml) or one of its case files
+            case = ROOT / "examples" / (name if name.endswith(".toml") else f"{name}/case.toml")
+            name = name.replace("/", "-")
             dirs = []
             for tag, binary in (("old", old_bin), ("new", new_bin)):
                 out = pathlib.Path(tmp) / f"{name}-{tag}"

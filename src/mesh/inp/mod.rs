@@ -534,9 +534,12 @@ impl Reader<'_> {
         if field.is_empty() {
             return Ok(0.0);
         }
-        field
-            .replace(['d', 'D'], "e")
-            .parse::<f64>()
+        let parsed = if field.contains(['d', 'D']) {
+            field.replace(['d', 'D'], "e").parse::<f64>()
+        } else {
+            field.parse::<f64>()
+        };
+        parsed
             .ok()
             .filter(|v| v.is_finite())
             .ok_or_else(|| self.err(line, format!("expected a number, found '{field}'")))
@@ -545,7 +548,7 @@ impl Reader<'_> {
 
 /// The comma-separated fields of a data line, without the empty field a
 /// trailing comma leaves.
-fn data_fields(line: &Line) -> Vec<String> {
+fn data_fields(line: &Line) -> Vec<&str> {
     let mut fields = split_fields(&line.text);
     while fields.last().is_some_and(|f| f.is_empty()) {
         fields.pop();

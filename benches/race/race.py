@@ -312,8 +312,9 @@ def ensure_ccx():
 
 
 def measured(cmd, cwd, env, log, timeout):
-    """Run cmd; return (wall s, peak RSS MiB, exit status). The peak RSS is
-    ru_maxrss of the child from wait4 (KiB on Linux)."""
+    """Run cmd; return (wall s, peak RSS MiB, exit status, CPU s). The peak
+    RSS is ru_maxrss of the child from wait4 (KiB on Linux), the CPU time
+    its user + system time (all its threads)."""
     with open(log, "w") as out:
         start = time.perf_counter()
         proc = subprocess.Popen(cmd, cwd=cwd, env=env, stdout=out, stderr=subprocess.STDOUT)
@@ -329,7 +330,7 @@ def measured(cmd, cwd, env, log, timeout):
             time.sleep(0.05)
         wall = time.perf_counter() - start
     proc.returncode = os.waitstatus_to_exitcode(status)
-    return wall, usage.ru_maxrss / 1024.0, proc.returncode
+    return wall, usage.ru_maxrss / 1024.0, proc.returncode, usage.ru_utime + usage.ru_stime
 
 
 def run_ccx(work, threads, timeout):
@@ -505,9 +506,11 @@ def self_check(binary, work, mesh, ccx_nodes):
 
 def fmt_row(label, runs, res, h, hmin):
     walls = [r[0] for r in runs]
+    cpus = [r[3] for r in runs]
     mems = [r[1] for r in runs]
     return (
         f"| {label} | {statistics.median(walls):.2f} ({', '.join(f'{w:.1f}' for w in walls)}) "
+        f"| {statistics.median(cpus):.2f} ({', '.join(f'{c:.1f}' for c in cpus)}) "
         f"| {max(mems):.0f} | {res['iterations']} ({res['increments']} inc, {res['cuts']} cuts) "
         f"| {res['force']:.4f} | {h['a_fit']:.5f} ({100 * (h['a_fit'] / h['a'] - 1):+.2f} %; "
         f"deformed r {100 * (h['a_deformed'] / h['a'] - 1):+.2f} %) "
@@ -549,13 +552,15 @@ def main():
                 else:
                     r = run_signorini(args.signorini, work, args.threads, args.timeout)
                 loads.append(os.getloadavg()[0])
-                print(f"  {who:9s} run {rep + 1}: {r[0]:8.2f} s, {r[1]:7.0f} MiB, exit {r[2]}, load {loads[-1]:.1f}", flush=True)
+                print(f"  {who:9s} run {rep + 1}: {r[0]:8.2f} s wall, {r[3]:8.2f} s CPU, {r[1]:7.0f} MiB, exit {r[2]}, "
+                      f"load {loads[-1]:.1f}", flush=True)
                 if r[2] != 0:
                     sys.exit(f"error: {who} failed (exit {r[2]}); see {work / (who + '.log')}")
                 runs[who].append(r)
         res = {"ccx": ccx_results(work, mesh), "signorini": signorini_results(work, mesh)}
         h = {k: hertz(v) for k, v in res.items()}
         med = {k: statistics.median(r[0] for r in v) for k, v in runs.items()}
+        cpu = {k: statistics.median(r[3] for r in v) for k, v in runs.items()}
         pairs = [c[0] / s[0] for c, s in zip(runs["ccx"], runs["signorini"])]
         print()
         commit = subprocess.run(["git", "rev-parse", "--short", "HEAD"], cwd=ROOT, capture_output=True, text=True).stdout.strip()
@@ -564,13 +569,13 @@ def main():
               f"h = {hmin} at the pole; {args.threads} threads; {args.repeat} runs each, alternating; "
               f"1-min load {min(loads):.1f}-{max(loads):.1f}")
         print(f"Hertz (R = {R}, E* = {E_STAR:.2f}) from each run's own total force F")
-        print("| solver | wall s, median (runs) | peak MiB | Newton its | F | contact radius (ellipse fit, reference r) vs Hertz | peak pressure (ellipse fit) vs p0 | largest penetration |")
-        print("|---|---|---|---|---|---|---|---|")
+        print("| solver | wall s, median (runs) | CPU s (user + sys), median (runs) | peak MiB | Newton its | F | contact radius (ellipse fit, reference r) vs Hertz | peak pressure (ellipse fit) vs p0 | largest penetration |")
+        print("|---|---|---|---|---|---|---|---|---|")
         print(fmt_row("CalculiX " + ccx_version(), runs["ccx"], res["ccx"], h["ccx"], hmin))
         print(fmt_row("signorini", runs["signorini"], res["signorini"], h["signorini"], hmin))
         print(f"ratio CalculiX / signorini: wall {med['ccx'] / med['signorini']:.2f}x of the medians, "
               f"{statistics.median(pairs):.2f}x the median of the pairs ("
-              f"{', '.join(f'{p:.2f}' for p in pairs)}), peak memory "
+              f"{', '.join(f'{p:.2f}' for p in pairs)}); CPU {cpu['ccx'] / cpu['signorini']:.2f}x of the medians; peak memory "
               f"{max(r[1] for r in runs['ccx']) / max(r[1] for r in runs['signorini']):.2f}x")
         print(f"Hertz: a = {h['signorini']['a']:.5f} (signorini's F), {h['ccx']['a']:.5f} (CalculiX's F); "
               f"p0 = {h['signorini']['p0']:.3f}, {h['ccx']['p0']:.3f}")

@@ -1,5 +1,5 @@
 //! `NAME.checkpoint`: the state of a run after its last converged
-//! increment, rewritten (atomically, [`write_atomically`]) after each one,
+//! increment, rewritten (atomically, [`write_atomically_synced`]) after each one,
 //! from which `signorini run CASE --restart DIR` goes on
 //! ([`crate::run::RunOptions::restart`]) to the final state an
 //! uninterrupted run reaches.
@@ -30,7 +30,7 @@ use std::path::{Path, PathBuf};
 use serde::{Deserialize, Serialize};
 
 use super::profile::StepProfile;
-use super::write_atomically;
+use super::write_atomically_synced;
 use crate::problem::ContactState;
 use crate::solve::stepping::Stepping;
 use crate::{Error, Result};
@@ -83,7 +83,8 @@ pub fn path(dir: &Path, name: &str) -> PathBuf {
     dir.join(format!("{name}.checkpoint"))
 }
 
-/// Write `checkpoint` to `path`, atomically.
+/// Write `checkpoint` to `path`, atomically and synced to the disk
+/// ([`write_atomically_synced`]).
 pub fn write(path: &Path, checkpoint: &Checkpoint) -> Result<()> {
     let payload = postcard::to_stdvec(checkpoint).map_err(|e| {
         Error::io(
@@ -92,7 +93,7 @@ pub fn write(path: &Path, checkpoint: &Checkpoint) -> Result<()> {
             std::io::Error::new(std::io::ErrorKind::InvalidData, e.to_string()),
         )
     })?;
-    write_atomically(path, |w| {
+    write_atomically_synced(path, |w| {
         w.write_all(MAGIC)?;
         w.write_all(&FORMAT_VERSION.to_le_bytes())?;
         w.write_all(&(payload.len() as u64).to_le_bytes())?;

@@ -341,6 +341,16 @@ const MAX_TRAILING: usize = 4000;
 /// factorisation is most of the run there.
 const MIXED_PRECISION_UNKNOWNS: usize = 10_000;
 
+/// Below this many unknowns the one factorisation of `K̃` and its solves
+/// run on one thread (faer's `Par::Seq`) whatever the run's thread count:
+/// on the small race mesh (19 100 unknowns, 11.4 M factor entries) the
+/// f32 factorisation took 0.13–0.14 s on one thread at any load, on two
+/// 0.11 s on an idle machine but 0.24–0.32 s beside two compiling
+/// processes (1-minute load 4), the supernodes being too small for the
+/// threads' synchronisation to pay; at 108 k unknowns (145 M entries) two
+/// threads do pay.
+const PARALLEL_FACTOR_UNKNOWNS: usize = 50_000;
+
 /// Refinement steps at most on an f32 factor before the f64 fallback.
 const MIXED_REFINEMENTS: usize = 10;
 
@@ -394,7 +404,9 @@ impl Condensation {
         let trailing = Self::nearest_normal_dofs(problem, &nodes, &constrained);
         let mut marked = vec![false; dimension];
         trailing.iter().for_each(|&i| marked[i] = true);
-        let mut ldlt = SparseLdlt::new(trailing_ordering(pattern, &marked)?, 0);
+        // 1: one thread (`Par::Seq`), 0: the run's pool
+        let threads = usize::from(dimension < PARALLEL_FACTOR_UNKNOWNS);
+        let mut ldlt = SparseLdlt::new(trailing_ordering(pattern, &marked)?, threads);
         let single = match problem.settings.linear {
             LinearMethod::Mixed => true,
             LinearMethod::Auto => dimension >= MIXED_PRECISION_UNKNOWNS,

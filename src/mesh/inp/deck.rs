@@ -159,7 +159,7 @@ impl Deck {
         for field in fields.filter(|f| !f.is_empty()) {
             let (key, value) = match field.split_once('=') {
                 Some((k, v)) => (k.trim(), Some(unquote(v.trim()).to_string())),
-                None => (field.as_str(), None),
+                None => (field, None),
             };
             params.push((key.to_ascii_uppercase(), value));
         }
@@ -167,22 +167,24 @@ impl Deck {
     }
 }
 
-/// Splits a line at commas outside double quotes; fields trimmed.
-pub(super) fn split_fields(text: &str) -> Vec<String> {
+/// Splits a line at commas outside double quotes; fields trimmed (quotes
+/// kept), borrowed from `text`.
+pub(super) fn split_fields(text: &str) -> Vec<&str> {
     let mut fields = Vec::new();
-    let mut current = String::new();
+    let mut start = 0;
     let mut quoted = false;
-    for c in text.chars() {
-        match c {
-            '"' => {
-                quoted = !quoted;
-                current.push(c);
+    // '"' and ',' are ASCII: their bytes never occur inside a UTF-8 sequence
+    for (i, b) in text.bytes().enumerate() {
+        match b {
+            b'"' => quoted = !quoted,
+            b',' if !quoted => {
+                fields.push(text[start..i].trim());
+                start = i + 1;
             }
-            ',' if !quoted => fields.push(std::mem::take(&mut current).trim().to_string()),
-            _ => current.push(c),
+            _ => {}
         }
     }
-    fields.push(current.trim().to_string());
+    fields.push(text[start..].trim());
     fields
 }
 
@@ -191,4 +193,20 @@ pub(super) fn unquote(s: &str) -> &str {
     s.strip_prefix('"')
         .and_then(|s| s.strip_suffix('"'))
         .unwrap_or(s)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::split_fields;
+
+    #[test]
+    fn fields_split_at_commas_outside_quotes() {
+        assert_eq!(
+            split_fields(r#" *NSET , NSET="a, b" ,GENERATE,"#),
+            [" *NSET", r#"NSET="a, b""#, "GENERATE", ""].map(str::trim)
+        );
+        assert_eq!(split_fields("1, 0.5, -2e-3"), ["1", "0.5", "-2e-3"]);
+        assert_eq!(split_fields("é,ü"), ["é", "ü"]);
+        assert_eq!(split_fields(""), [""]);
+    }
 }

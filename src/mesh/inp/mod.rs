@@ -210,7 +210,7 @@ impl Reader<'_> {
                     ),
                 ));
             }
-            let id = self.id(l, &fields[0], "node id")?;
+            let id = self.id(l, fields[0], "node id")?;
             let mut x = [0.0; 3];
             for (c, f) in x.iter_mut().zip(&fields[1..]) {
                 *c = self.number(l, f)?;
@@ -266,7 +266,7 @@ impl Reader<'_> {
                     ),
                 ));
             }
-            let id = self.id(first, &fields[0], "element id")?;
+            let id = self.id(first, fields[0], "element id")?;
             let nodes = fields[1..]
                 .iter()
                 .map(|f| self.id(first, f, "node id"))
@@ -316,8 +316,8 @@ impl Reader<'_> {
                         ),
                     ));
                 }
-                let first = self.id(l, &fields[0], "first id")?;
-                let last = self.id(l, &fields[1], "last id")?;
+                let first = self.id(l, fields[0], "first id")?;
+                let last = self.id(l, fields[1], "last id")?;
                 let step = match fields.get(2) {
                     Some(f) => self.id(l, f, "step")?,
                     None => 1,
@@ -452,7 +452,7 @@ impl Reader<'_> {
                     )
                 })?],
                 Err(_) => {
-                    let set = unquote(&fields[0]);
+                    let set = unquote(fields[0]);
                     self.builder
                         .element_sets
                         .get(set)
@@ -534,9 +534,12 @@ impl Reader<'_> {
         if field.is_empty() {
             return Ok(0.0);
         }
-        field
-            .replace(['d', 'D'], "e")
-            .parse::<f64>()
+        let parsed = if field.contains(['d', 'D']) {
+            field.replace(['d', 'D'], "e").parse::<f64>()
+        } else {
+            field.parse::<f64>()
+        };
+        parsed
             .ok()
             .filter(|v| v.is_finite())
             .ok_or_else(|| self.err(line, format!("expected a number, found '{field}'")))
@@ -545,7 +548,7 @@ impl Reader<'_> {
 
 /// The comma-separated fields of a data line, without the empty field a
 /// trailing comma leaves.
-fn data_fields(line: &Line) -> Vec<String> {
+fn data_fields(line: &Line) -> Vec<&str> {
     let mut fields = split_fields(&line.text);
     while fields.last().is_some_and(|f| f.is_empty()) {
         fields.pop();

@@ -261,15 +261,13 @@ impl<P: NonlinearProblem> Newton<'_, P> {
                     records,
                 );
             }
-            let (step_length, full_step) = self.line_search(
+            let line = NewtonStep {
                 u,
-                &du,
-                &out_of_balance,
-                relative,
-                state,
-                &target,
-                &mut k_values,
-            );
+                du: &du,
+                target: &target,
+            };
+            let (step_length, full_step) =
+                self.line_search(line, &out_of_balance, relative, state, &mut k_values);
             ahead = full_step;
             let scaled: Vec<f64> = du.iter().map(|d| step_length * d).collect();
             problem.advance_state(t, u, &scaled, state);
@@ -325,17 +323,15 @@ impl<P: NonlinearProblem> Newton<'_, P> {
     /// evaluation is returned as the next iteration's, which needs the
     /// tangent there anyway (the line search runs only far from the
     /// tolerance), so a taken full step costs no evaluation of its own.
-    #[allow(clippy::too_many_arguments)]
     fn line_search(
         &self,
-        u: &[f64],
-        du: &[f64],
+        line: NewtonStep<'_>,
         r: &[f64],
         relative: f64,
         state: &P::State,
-        target: &[f64],
         k: &mut [f64],
     ) -> (f64, Option<Evaluation<P::Report>>) {
+        let NewtonStep { u, du, target } = line;
         let (problem, t) = (self.problem, self.t);
         let settings = problem.settings();
         if !settings.line_search || relative < 1e3 * settings.residual_tolerance {
@@ -394,6 +390,15 @@ impl<P: NonlinearProblem> Newton<'_, P> {
         }
         (best.1, None)
     }
+}
+
+/// The line a line search walks: from the iterate `u` along Newton's
+/// correction `δu`; a full step puts the prescribed dofs on `target`.
+#[derive(Clone, Copy)]
+struct NewtonStep<'a> {
+    u: &'a [f64],
+    du: &'a [f64],
+    target: &'a [f64],
 }
 
 fn zero_constrained(v: &mut [f64], constrained: &[bool]) {

@@ -7,9 +7,14 @@ use signorini::run::{run, RunOptions, RunOutcome};
 use std::path::Path;
 
 /// `examples/<example>/case.toml` with its mesh replaced by `mesh` (a path
-/// from the crate's root) and `[solver] linear = method`, run in a
-/// temporary folder.
-fn run_with(example: &str, mesh: Option<(&str, &str)>, method: &str) -> RunOutcome {
+/// from the crate's root), each `(old, new)` of `edits` replaced, and
+/// `[solver] linear = method`, run in a temporary folder.
+fn run_with(
+    example: &str,
+    mesh: Option<(&str, &str)>,
+    edits: &[(&str, &str)],
+    method: &str,
+) -> RunOutcome {
     let root = Path::new(env!("CARGO_MANIFEST_DIR"));
     let folder = root.join("examples").join(example);
     let mut text = std::fs::read_to_string(folder.join("case.toml")).unwrap();
@@ -19,6 +24,10 @@ fn run_with(example: &str, mesh: Option<(&str, &str)>, method: &str) -> RunOutco
             old,
             &format!("file = {:?}", root.join(new).display().to_string()),
         );
+    }
+    for (old, new) in edits {
+        assert!(text.contains(old), "{old}");
+        text = text.replace(old, new);
     }
     assert!(!text.contains("[solver]"));
     // the linear solver of Newton's corrections: the monolithic path
@@ -63,8 +72,8 @@ fn mixed_precision_equals_f64_on_hertz() {
         "file = \"hemisphere.msh\"",
         "tests/data/hemisphere_coarse.msh",
     ));
-    let double = run_with("hertz", mesh, "ldlt");
-    let mixed = run_with("hertz", mesh, "mixed");
+    let double = run_with("hertz", mesh, &[], "ldlt");
+    let mixed = run_with("hertz", mesh, &[], "mixed");
     let scale = max_abs(&double.displacement);
     assert!(scale > 0.01, "{scale}");
     let difference = double
@@ -99,27 +108,80 @@ fn mixed_precision_equals_f64_on_hertz() {
     );
 }
 
-/// examples/ogden-plate (large deformation, an indefinite tangent in its
-/// first Newton iterations, where the LDLᵀ without pivoting breaks down
-/// and the sparse LU solves): the f32 factorisations there fall back to
-/// f64 (counted), and the run ends in the f64 run's state to its Newton
-/// tolerance (1e-8 relative: the two runs' iterates differ from the
-/// first fallback on, at round-off, and stop at different iterations).
-#[test]
-fn mixed_precision_falls_back_on_the_indefinite_ogden_tangent() {
-    let double = run_with("ogden-plate", None, "ldlt");
-    let mixed = run_with("ogden-plate", None, "mixed");
-    let m = &mixed.summary;
-    assert!(m.mixed_precision_fallbacks >= 1, "no fallback");
-    // every fallback ended at the LU (the f64 LDLᵀ breaks down too) as in
-    // the f64 run
-    assert_eq!(m.lu_solves, m.mixed_precision_fallbacks);
-    assert_eq!(double.summary.lu_solves, m.lu_solves);
-    let scale = max_abs(&double.displacement);
-    let difference = double
+/// Largest nodal difference between two runs' final displacements,
+/// relative to the first's largest displacement.
+fn relative_difference(a: &RunOutcome, b: &RunOutcome) -> f64 {
+    let difference = a
         .displacement
         .iter()
-        .zip(&mixed.displacement)
-        .fold(0.0f64, |m, (a, b)| m.max((a - b).abs()));
-    assert!(difference <= 1e-8 * scale, "{difference:e} of {scale:e}");
+        .zip(&b.displacement)
+        .fold(0.0f64, |m, (x, y)| m.max((x - y).abs()));
+    difference / max_abs(&a.displacement)
+}
+
+/// Newton iterations per increment.
+fn iterations(o: &RunOutcome) -> Vec<usize> {
+    o.summary.increments.iter().map(|i| i.iterations).collect()
+}
+
+/// examples/ogden-plate (large deformation): the tangents of its first
+/// Newton iterations are indefinite (negative pivots among the
+/// displacements, which the LDLᵀ keeps: only the multipliers' pivots are
+/// regularised, `SparsityPattern::pivot_signs`). Their f32 factors refine
+/// to the f64 solution like the others: no fallback, no LU, one f32
+/// factorisation per iteration, and the run ends where the f64 LDLᵀ's and
+/// the sparse LU's (partial pivoting, every iteration) end, to 1e-10 of
+/// the largest displacement, in the same Newton iterations.
+#[test]
+fn mixed_precision_refines_the_indefinite_ogden_tangent() {
+    let lu = run_with("ogden-plate", None, &[], "lu");
+    let double = run_with("ogden-plate", None, &[], "ldlt");
+    let mixed = run_with("ogden-plate", None, &[], "mixed");
+    let (l, d, m) = (&lu.summary, &double.summary, &mixed.summary);
+    let newton: usize = iterations(&lu).iter().sum();
+    assert_eq!(l.lu_solves, newton);
+    assert_eq!((d.lu_solves, d.mixed_precision_fallbacks), (0, 0));
+    assert_eq!((m.lu_solves, m.mixed_precision_fallbacks), (0, 0));
+    assert_eq!(m.single_factorisations, m.factorisations);
+    assert_eq!(m.factorisations, d.factorisations);
+    for run in [&double, &mixed] {
+        assert_eq!(iterations(run), iterations(&lu));
+        let difference = relative_difference(&lu, run);
+        assert!(difference <= 1e-10, "{difference:e}");
+    }
+}
+
+/// The coarse Ogden plate made nearly incompressible (`κ = 1000`,
+/// `κ/μ ≈ 2400`): the tangent's condition number times f32's 6e-8 is no
+/// longer small, refinement on the f32 factor stalls above 1e-12 on some
+/// iterations, and the solver factorises those again in f64 by itself
+/// (counted). The run equals the f64 LDLᵀ's to 1e-10, in the same Newton
+/// iterations and cuts.
+#[test]
+fn mixed_precision_falls_back_on_a_nearly_incompressible_ogden_tangent() {
+    let mesh = Some((
+        "file = \"plate.msh\"",
+        "examples/ogden-plate/plate-coarse.msh",
+    ));
+    let stiff = [("bulk_modulus = 4.0 ", "bulk_modulus = 1000.0 ")];
+    let double = run_with("ogden-plate", mesh, &stiff, "ldlt");
+    let mixed = run_with("ogden-plate", mesh, &stiff, "mixed");
+    let (d, m) = (&double.summary, &mixed.summary);
+    assert!(m.mixed_precision_fallbacks >= 1, "no fallback");
+    assert!(
+        m.mixed_precision_fallbacks < m.single_factorisations,
+        "{} fallbacks of {} f32 factorisations",
+        m.mixed_precision_fallbacks,
+        m.single_factorisations
+    );
+    assert_eq!(d.mixed_precision_fallbacks, 0);
+    // every fallback is one more f64 factorisation of the same tangent
+    assert_eq!(
+        m.factorisations,
+        m.single_factorisations + m.mixed_precision_fallbacks
+    );
+    assert_eq!(m.single_factorisations, d.factorisations);
+    assert_eq!(iterations(&double), iterations(&mixed));
+    let difference = relative_difference(&double, &mixed);
+    assert!(difference <= 1e-10, "{difference:e}");
 }

@@ -8,7 +8,8 @@
 //! displacement dofs of a list of nodes and to itself. The resulting saddle
 //! system is symmetric indefinite; [`SparsityPattern::dof_ordering`] orders
 //! each multiplier right after its nodes, and
-//! [`SparsityPattern::pivot_signs`] gives the expected LDLᵀ pivot signs.
+//! [`SparsityPattern::pivot_signs`] gives the LDLᵀ pivot signs to
+//! regularise towards (the multipliers' only).
 
 use faer::sparse::SymbolicSparseColMat;
 use std::sync::atomic::{AtomicU64, Ordering};
@@ -178,11 +179,23 @@ impl SparsityPattern {
         self.symbolic.col_ptr()[column + 1] - 1
     }
 
-    /// Expected signs of the LDLᵀ pivots: +1 for displacement dofs, −1 for
-    /// multipliers (the saddle point's negative block), for faer's dynamic
-    /// regularisation.
+    /// Expected signs of the LDLᵀ pivots, for faer's dynamic
+    /// regularisation (a pivot `d` of the wrong sign or `|d| ≤ ε` becomes
+    /// `±δ` of the expected sign): −1 for multipliers, 0 (none expected)
+    /// for displacement dofs.
+    ///
+    /// A multiplier's diagonal is 0 on an active node (`K_λλ = 0`); when the
+    /// ordering eliminates it before its node (AMD may), its pivot is 0 and
+    /// only the regularisation `−δ` lets the factorisation go on (the
+    /// refinement then removes the perturbation). A displacement pivot has
+    /// no sign to expect: the tangent of a large-deformation or deformable
+    /// contact state is indefinite (examples/ogden-plate's first
+    /// iterations), and pushing its negative pivots to `+δ` factorises
+    /// another matrix, which no refinement recovers. With 0 they are kept;
+    /// faer's supernodal kernel still moves a pivot with `|d| ≤ ε` to `±δ`
+    /// of its own sign.
     pub fn pivot_signs(&self) -> Vec<i8> {
-        let mut signs = vec![1i8; 3 * self.num_nodes()];
+        let mut signs = vec![0i8; 3 * self.num_nodes()];
         signs.resize(self.dimension(), -1);
         signs
     }

@@ -183,4 +183,71 @@ mod tests {
             assert_eq!((s.factorisations, s.lu_solves), (fallbacks, 0));
         }
     }
+
+    /// One node with the 3 × 3 block `k_uu` and one multiplier on its `z`
+    /// dof (`K_uλ = e_z`, `K_λλ = 0`: an active contact node), with the
+    /// pattern's pivot signs.
+    fn saddle(k_uu: [[f64; 3]; 3]) -> (SparsityPattern, Vec<f64>) {
+        let nodes = [0usize];
+        let pattern = SparsityPattern::with_multipliers(1, std::iter::once(&nodes[..]), &[vec![0]]);
+        let mut k = vec![0.0; pattern.nnz()];
+        for (i, row) in k_uu.iter().enumerate() {
+            for (j, &v) in row.iter().enumerate() {
+                k[pattern.block_entry(0, i, 0, j).unwrap()] = v;
+            }
+        }
+        let e = pattern.multiplier_entries(0, 0).unwrap();
+        k[e.node_rows[2]] = 1.0;
+        k[e.multiplier_row[2]] = 1.0;
+        (pattern, k)
+    }
+
+    /// Solve the saddle system of `k_uu` for `x = (1, −2, 3, 4)` with
+    /// `signs` and assert the solution to 1e-14; the solver's statistics.
+    fn solve_saddle(k_uu: [[f64; 3]; 3], signs: Option<&[i8]>) -> SolverStatistics {
+        let (pattern, k) = saddle(k_uu);
+        let x_true = [1.0, -2.0, 3.0, 4.0];
+        let mut rhs = [0.0; 4];
+        multiply(pattern.symbolic(), &k, &x_true, &mut rhs);
+        let own_signs = pattern.pivot_signs();
+        let system = LinearSystem {
+            pattern: pattern.symbolic(),
+            matrix: &k,
+            symmetric_neighbour: None,
+            pivot_signs: Some(signs.unwrap_or(&own_signs)),
+        };
+        let mut solver = DirectLdlt::new(Ordering::Amd, 1);
+        let mut x = [0.0; 4];
+        solver.solve(&system, &rhs, &mut x).unwrap();
+        for (a, b) in x.iter().zip(&x_true) {
+            assert!((a - b).abs() < 1e-14, "{x:?}");
+        }
+        solver.statistics()
+    }
+
+    /// An indefinite displacement block (pivot −2, as in the tangent of a
+    /// large-deformation trial state) in a saddle system: the pattern's
+    /// signs regularise the multiplier's pivot only, so the LDLᵀ factorises
+    /// the matrix as it is and solves it, without the LU. Regularised
+    /// towards +1, the pivot −2 would become `+δ` and the factor another
+    /// matrix's: only the LU would solve it.
+    #[test]
+    fn an_indefinite_displacement_block_needs_no_lu() {
+        let k_uu = [[1.0, 0.0, 0.0], [0.0, -2.0, 0.0], [0.0, 0.0, 3.0]];
+        let s = solve_saddle(k_uu, None);
+        assert_eq!((s.factorisations, s.lu_solves), (1, 0));
+        let s = solve_saddle(k_uu, Some(&[1, 1, 1, -1]));
+        assert_eq!(s.lu_solves, 1);
+    }
+
+    /// A true breakdown: the displacement block `[[0, 1], [1, 0]]` has a
+    /// zero pivot in any symmetric order. The LDLᵀ without pivoting cannot
+    /// factorise it and the LU with partial pivoting, kept as the last
+    /// resort, solves it.
+    #[test]
+    fn a_zero_pivot_is_solved_by_the_lu() {
+        let k_uu = [[0.0, 1.0, 0.0], [1.0, 0.0, 0.0], [0.0, 0.0, 3.0]];
+        let s = solve_saddle(k_uu, None);
+        assert_eq!(s.lu_solves, 1);
+    }
 }

@@ -18,6 +18,18 @@ use faer::sparse::{SparseColMatRef, SymbolicSparseColMat};
 use faer::{MatMut, Par, Side, Spec};
 use std::time::{Duration, Instant};
 
+/// Below this many factor entries a numeric factorisation and its solves
+/// run on one thread (faer's `Par::Seq`) whatever the solver's thread
+/// count: the supernodes are too small for the threads' synchronisation to
+/// pay, and beside other processes a waiting thread costs more than it
+/// saves. Measured: examples/ogden-plate (6 448 unknowns, 1.6 M entries,
+/// 18 factorisations, machine load 8–10) 0.93–0.98 s on one thread, 1.7–2.7
+/// s on two; the condensed path's small race mesh (11.4 M entries) 0.13 s
+/// on one thread at any load, 0.11 s on two idle and 0.24–0.32 s on two
+/// beside two builds (`src/problem/condensed.rs`, which decides by the
+/// number of unknowns for its one factorisation).
+pub const PARALLEL_FACTOR_ENTRIES: usize = 12_000_000;
+
 /// Fill-reducing ordering for the symbolic analysis.
 #[derive(Clone, Debug, Default)]
 pub enum Ordering {
@@ -201,6 +213,15 @@ impl SparseLdlt {
         self.precision
     }
 
+    /// The parallelism of factorisations and solves: the solver's, or one
+    /// thread below [`PARALLEL_FACTOR_ENTRIES`] factor entries.
+    fn par(&self) -> Par {
+        match &self.symbolic {
+            Some(s) if s.len_val() < PARALLEL_FACTOR_ENTRIES => Par::Seq,
+            _ => self.par,
+        }
+    }
+
     /// Number of stored entries of the factor `L` (after analysis).
     pub fn factor_nnz(&self) -> usize {
         self.factor.len()
@@ -245,6 +266,7 @@ impl SparseLdlt {
     ) -> Result<()> {
         self.analyse(pattern)?;
         let start = Instant::now();
+        let par = self.par();
         let symbolic = self
             .symbolic
             .as_ref()
@@ -254,14 +276,7 @@ impl SparseLdlt {
         match precision {
             Precision::Double => {
                 let a = SparseColMatRef::new(pattern.as_ref(), values);
-                numeric_ldlt(
-                    symbolic,
-                    &mut self.factor,
-                    a,
-                    signs,
-                    (delta, epsilon),
-                    self.par,
-                )?;
+                numeric_ldlt(symbolic, &mut self.factor, a, signs, (delta, epsilon), par)?;
                 self.timings.factorisations += 1;
             }
             Precision::Single => {
@@ -276,7 +291,7 @@ impl SparseLdlt {
                     a,
                     signs,
                     regularization,
-                    self.par,
+                    par,
                 )?;
                 self.timings.single_factorisations += 1;
             }
@@ -290,6 +305,7 @@ impl SparseLdlt {
     /// Solve `A x = b` in place with the last factorisation.
     pub fn solve_in_place(&mut self, rhs: &mut [f64]) -> Result<()> {
         let start = Instant::now();
+        let par = self.par();
         let symbolic = self
             .symbolic
             .as_ref()
@@ -298,16 +314,16 @@ impl SparseLdlt {
         match self.precision {
             Precision::Double => {
                 let ldlt = LdltRef::<'_, usize, f64>::new(symbolic, &self.factor);
-                let mut mem = MemBuffer::new(symbolic.solve_in_place_scratch::<f64>(1, self.par));
+                let mut mem = MemBuffer::new(symbolic.solve_in_place_scratch::<f64>(1, par));
                 let x = MatMut::from_column_major_slice_mut(rhs, n, 1);
-                ldlt.solve_in_place_with_conj(faer::Conj::No, x, self.par, MemStack::new(&mut mem));
+                ldlt.solve_in_place_with_conj(faer::Conj::No, x, par, MemStack::new(&mut mem));
             }
             Precision::Single => {
                 let ldlt = LdltRef::<'_, usize, f32>::new(symbolic, &self.factor_single);
-                let mut mem = MemBuffer::new(symbolic.solve_in_place_scratch::<f32>(1, self.par));
+                let mut mem = MemBuffer::new(symbolic.solve_in_place_scratch::<f32>(1, par));
                 let mut single: Vec<f32> = rhs.iter().map(|&v| v as f32).collect();
                 let x = MatMut::from_column_major_slice_mut(&mut single, n, 1);
-                ldlt.solve_in_place_with_conj(faer::Conj::No, x, self.par, MemStack::new(&mut mem));
+                ldlt.solve_in_place_with_conj(faer::Conj::No, x, par, MemStack::new(&mut mem));
                 rhs.iter_mut()
                     .zip(&single)
                     .for_each(|(r, &s)| *r = s as f64);
@@ -332,6 +348,7 @@ impl SparseLdlt {
     /// sides).
     pub fn solve_columns_in_place(&mut self, rhs: &mut [f64], columns: usize) -> Result<()> {
         let start = Instant::now();
+        let par = self.par();
         let symbolic = self
             .symbolic
             .as_ref()
@@ -345,18 +362,16 @@ impl SparseLdlt {
         match self.precision {
             Precision::Double => {
                 let ldlt = LdltRef::<'_, usize, f64>::new(symbolic, &self.factor);
-                let mut mem =
-                    MemBuffer::new(symbolic.solve_in_place_scratch::<f64>(columns, self.par));
+                let mut mem = MemBuffer::new(symbolic.solve_in_place_scratch::<f64>(columns, par));
                 let x = MatMut::from_column_major_slice_mut(rhs, n, columns);
-                ldlt.solve_in_place_with_conj(faer::Conj::No, x, self.par, MemStack::new(&mut mem));
+                ldlt.solve_in_place_with_conj(faer::Conj::No, x, par, MemStack::new(&mut mem));
             }
             Precision::Single => {
                 let ldlt = LdltRef::<'_, usize, f32>::new(symbolic, &self.factor_single);
-                let mut mem =
-                    MemBuffer::new(symbolic.solve_in_place_scratch::<f32>(columns, self.par));
+                let mut mem = MemBuffer::new(symbolic.solve_in_place_scratch::<f32>(columns, par));
                 let mut single: Vec<f32> = rhs.iter().map(|&v| v as f32).collect();
                 let x = MatMut::from_column_major_slice_mut(&mut single, n, columns);
-                ldlt.solve_in_place_with_conj(faer::Conj::No, x, self.par, MemStack::new(&mut mem));
+                ldlt.solve_in_place_with_conj(faer::Conj::No, x, par, MemStack::new(&mut mem));
                 rhs.iter_mut()
                     .zip(&single)
                     .for_each(|(r, &s)| *r = s as f64);

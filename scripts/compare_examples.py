@@ -14,10 +14,12 @@ compares, increment by increment, what `summary.json` reports — the status,
 the increment times and sizes, Newton iterations, cuts, every interface's
 contact force, tangential force, closed/stick/slip counts, contact area and
 largest penetration, the reaction forces of every surface set — and the
-`displacement` field of the last VTU. Numbers must agree within 1e-10
-relative to the largest magnitude of that quantity in the run (absolute
-below it: a penetration of 1e-27 against 1e-26 is the same zero); counts
-must be equal. Exit status 1 lists every difference.
+`displacement` field of the last VTU (against the largest displacement
+of the run). Numbers must agree within 1e-10
+relative to the largest magnitude of that quantity in the run (of any
+component for a force, of any set's reaction for a reaction, of the final
+displacement for the largest penetration: a penetration of 1e-27 against
+1e-26 is the same zero); counts must be equal. Exit status 1 lists every difference.
 
 Only the standard library is needed (the VTU reader decodes the inline
 base64 arrays that `src/output/vtu.rs` writes, compressed or not).
@@ -104,11 +106,22 @@ def numbers(summary):
     return out
 
 
-def scale_of(key, pairs):
-    """The largest magnitude of the same quantity over the run."""
+def family(key):
+    """What a number is compared against: the same quantity over the run,
+    all components of a force together, and all reaction forces together
+    (a reaction component that is zero up to round-off, 1e-17 beside a
+    load of 1, is compared with the run's reactions, not with itself)."""
     kind = re.sub(r"^increment \d+ ", "", key)
+    if kind.startswith("reaction "):
+        return "reaction"
+    return re.sub(r"\[\d+\]$", "", kind)
+
+
+def scale_of(key, pairs):
+    """The largest magnitude of the quantity's family over the run."""
+    kind = family(key)
     return max(
-        (abs(v) for k, v in pairs if isinstance(v, float) and re.sub(r"^increment \d+ ", "", k) == kind),
+        (abs(v) for k, v in pairs if isinstance(v, float) and family(k) == kind),
         default=0.0,
     )
 
@@ -121,22 +134,35 @@ def compare(old_dir, new_dir):
     if [k for k, _ in a] != [k for k, _ in b]:
         only = sorted(set(k for k, _ in a) ^ set(k for k, _ in b))
         return [f"different quantities: {only[:5]}"]
+    u0 = u1 = None
+    if old["increments"] and new["increments"]:
+        u0 = read_point_field(old_dir / old["increments"][-1]["file"], "displacement")
+        u1 = read_point_field(new_dir / new["increments"][-1]["file"], "displacement")
+    # the largest displacement of the run (a load there and back ends at
+    # zero up to round-off): the scale of the final field's difference and
+    # of a penetration, zero to round-off at 1e-27 against 1e-24
+    length = max(map(abs, (u0 or []) + (u1 or [])), default=0.0)
+    for inc in old["increments"][:-1]:
+        if not inc.get("file") or not (old_dir / inc["file"]).exists():
+            continue
+        u = read_point_field(old_dir / inc["file"], "displacement") or []
+        length = max(length, max(map(abs, u), default=0.0))
     for (key, x), (_, y) in zip(a, b):
         if isinstance(x, float):
-            tolerance = RELATIVE * max(scale_of(key, a), scale_of(key, b), 1e-300)
+            scale = max(scale_of(key, a), scale_of(key, b), 1e-300)
+            if key.endswith("largest_penetration"):
+                scale = max(scale, length)
+            tolerance = RELATIVE * scale
             if not abs(x - y) <= tolerance:
                 diffs.append(f"{key}: {x!r} vs {y!r}")
         elif x != y:
             diffs.append(f"{key}: {x!r} vs {y!r}")
     if old["increments"] and new["increments"]:
-        u0 = read_point_field(old_dir / old["increments"][-1]["file"], "displacement")
-        u1 = read_point_field(new_dir / new["increments"][-1]["file"], "displacement")
         if u0 is None or u1 is None:
             return diffs + ["no displacement field in the last VTU"]
-        largest = max(map(abs, u0 + u1), default=0.0)
         worst = max((abs(p - q) for p, q in zip(u0, u1)), default=0.0)
-        if len(u0) != len(u1) or worst > RELATIVE * largest:
-            diffs.append(f"final displacement differs by {worst:.3e} (largest {largest:.3e})")
+        if len(u0) != len(u1) or worst > RELATIVE * length:
+            diffs.append(f"final displacement differs by {worst:.3e} (largest {length:.3e})")
     return diffs
 
 

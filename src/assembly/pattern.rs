@@ -185,9 +185,11 @@ impl SparsityPattern {
     /// for displacement dofs.
     ///
     /// A multiplier's diagonal is 0 on an active node (`K_λλ = 0`); when the
-    /// ordering eliminates it before its node (AMD may), its pivot is 0 and
-    /// only the regularisation `−δ` lets the factorisation go on (the
-    /// refinement then removes the perturbation). A displacement pivot has
+    /// ordering eliminates it before its node (AMD may;
+    /// [`Self::dof_ordering`] does not), or when its coupling is gone (its
+    /// node's dofs prescribed: their rows and columns become the identity),
+    /// its pivot is 0 and only the regularisation `−δ` lets the
+    /// factorisation go on (the refinement then removes the perturbation). A displacement pivot has
     /// no sign to expect: the tangent of a large-deformation or deformable
     /// contact state is indefinite (examples/ogden-plate's first
     /// iterations), and pushing its negative pivots to `+δ` factorises

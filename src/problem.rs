@@ -220,15 +220,10 @@ impl Problem {
     /// primary nodes it may touch, and of the multipliers.
     fn rebuild_pattern(&mut self) {
         let couplings = self.contacts.couplings();
-        let mesh = &self.model.mesh;
-        self.model.pattern = crate::assembly::pattern::SparsityPattern::with_multipliers(
-            mesh.num_nodes(),
-            mesh.elements
-                .iter()
-                .map(|e| e.nodes.as_slice())
-                .chain(couplings.groups.iter().map(|g| g.as_slice())),
-            &couplings.multipliers,
-        );
+        self.model.pattern = self
+            .model
+            .pattern
+            .coupled(&couplings.groups, &couplings.multipliers);
     }
 
     /// Pair the secondary nodes with the primary triangles they may touch

@@ -90,13 +90,20 @@ impl Model {
             .collect::<Vec<_>>()
             .into_iter()
             .collect::<Result<Vec<_>, _>>()?; // in order: the first failing element, see `assemble_internal`
-        let pattern = SparsityPattern::from_elements(
-            mesh.num_nodes(),
-            mesh.elements.iter().map(|e| e.nodes.as_slice()),
-        );
-        let colouring = ElementColouring::new(
-            mesh.num_nodes(),
-            mesh.elements.iter().map(|e| e.nodes.as_slice()),
+                                              // two independent walks over the elements, side by side
+        let (pattern, colouring) = rayon::join(
+            || {
+                SparsityPattern::from_elements(
+                    mesh.num_nodes(),
+                    mesh.elements.iter().map(|e| e.nodes.as_slice()),
+                )
+            },
+            || {
+                ElementColouring::new(
+                    mesh.num_nodes(),
+                    mesh.elements.iter().map(|e| e.nodes.as_slice()),
+                )
+            },
         );
         let constant = element_material
             .iter()

@@ -13,6 +13,7 @@
 
 use faer::sparse::SymbolicSparseColMat;
 use std::sync::atomic::{AtomicU64, Ordering};
+use std::sync::Arc;
 
 /// Source of [`SparsityPattern::id`]: every pattern built gets the next one.
 static NEXT_PATTERN_ID: AtomicU64 = AtomicU64::new(0);
@@ -23,7 +24,10 @@ static NEXT_PATTERN_ID: AtomicU64 = AtomicU64::new(0);
 #[derive(Debug)]
 pub struct SparsityPattern {
     /// Sorted neighbour nodes of each node (itself included).
-    neighbours: Vec<Vec<usize>>,
+    neighbours: Arc<Vec<Vec<usize>>>,
+    /// The part of `neighbours` that the elements make (shared with the
+    /// patterns [`SparsityPattern::coupled`] makes from this one).
+    elements: Arc<Vec<Vec<usize>>>,
     /// Sorted multipliers coupled to each node.
     node_multipliers: Vec<Vec<usize>>,
     /// Sorted nodes coupled to each multiplier.
@@ -73,6 +77,47 @@ impl SparsityPattern {
             list.sort_unstable();
             list.dedup();
         }
+        let elements = Arc::new(neighbours);
+        Self::from_neighbours(Arc::clone(&elements), elements, multiplier_nodes)
+    }
+
+    /// This pattern's element couplings (those it was first built from,
+    /// not the groups of an earlier [`Self::coupled`]) plus every pair of
+    /// nodes in one of `groups`, and the multipliers `multiplier_nodes`
+    /// ([`Self::with_multipliers`] without walking the elements again).
+    pub fn coupled(&self, groups: &[Vec<usize>], multiplier_nodes: &[Vec<usize>]) -> Self {
+        if groups.is_empty() {
+            let elements = Arc::clone(&self.elements);
+            return Self::from_neighbours(Arc::clone(&elements), elements, multiplier_nodes);
+        }
+        let mut neighbours: Vec<Vec<usize>> = (*self.elements).clone();
+        let mut touched = vec![false; neighbours.len()];
+        for nodes in groups {
+            for &a in nodes {
+                neighbours[a].extend_from_slice(nodes);
+                touched[a] = true;
+            }
+        }
+        for (list, _) in neighbours.iter_mut().zip(&touched).filter(|(_, &t)| t) {
+            list.sort_unstable();
+            list.dedup();
+        }
+        Self::from_neighbours(
+            Arc::new(neighbours),
+            Arc::clone(&self.elements),
+            multiplier_nodes,
+        )
+    }
+
+    /// The pattern of the sorted node adjacency `neighbours` (each node
+    /// its own neighbour) and the multipliers; `elements` the element part
+    /// of the adjacency, kept for [`Self::coupled`].
+    fn from_neighbours(
+        neighbours: Arc<Vec<Vec<usize>>>,
+        elements: Arc<Vec<Vec<usize>>>,
+        multiplier_nodes: &[Vec<usize>],
+    ) -> Self {
+        let num_nodes = neighbours.len();
         let multiplier_nodes: Vec<Vec<usize>> = multiplier_nodes
             .iter()
             .map(|l| {
@@ -91,7 +136,10 @@ impl SparsityPattern {
         let first_multiplier = 3 * num_nodes;
         let n = first_multiplier + multiplier_nodes.len();
         let mut col_ptr = Vec::with_capacity(n + 1);
-        let mut row_idx = Vec::new();
+        let entries = 9 * neighbours.iter().map(Vec::len).sum::<usize>()
+            + 7 * multiplier_nodes.iter().map(Vec::len).sum::<usize>()
+            + multiplier_nodes.len();
+        let mut row_idx = Vec::with_capacity(entries);
         col_ptr.push(0);
         for (list, multipliers) in neighbours.iter().zip(&node_multipliers) {
             for _j in 0..3 {
@@ -110,21 +158,10 @@ impl SparsityPattern {
             col_ptr.push(row_idx.len());
         }
         let symbolic = SymbolicSparseColMat::new_checked(n, n, col_ptr, None, row_idx);
-        let (cp, ri) = (symbolic.col_ptr(), symbolic.row_idx());
-        // entry (j, i) for each (i, j): rows are sorted in every column
-        let mirror = (0..n)
-            .flat_map(|j| (cp[j]..cp[j + 1]).map(move |k| (ri[k], j)))
-            .map(|(i, j)| {
-                let column = &ri[cp[i]..cp[i + 1]];
-                #[allow(clippy::expect_used)] // element blocks are square: (i, j) ⇒ (j, i)
-                let k = column
-                    .binary_search(&j)
-                    .expect("the pattern is structurally symmetric");
-                cp[i] + k
-            })
-            .collect();
+        let mirror = transpose_positions(&symbolic);
         SparsityPattern {
             neighbours,
+            elements,
             node_multipliers,
             multiplier_nodes,
             symbolic,
@@ -302,6 +339,24 @@ impl SparsityPattern {
     }
 }
 
+/// `mirror[k]`: the position of entry `(j, i)` for entry `k = (i, j)` of a
+/// structurally symmetric pattern with sorted rows: walking the columns in
+/// order meets the entries `(i, j)` of row `i` with `j` increasing, which
+/// is the order of column `i`'s rows, so a cursor per column places them
+/// (a transpose by counting, `O(nnz)`).
+fn transpose_positions(symbolic: &SymbolicSparseColMat<usize>) -> Vec<usize> {
+    let (cp, ri) = (symbolic.col_ptr(), symbolic.row_idx());
+    let mut cursor: Vec<usize> = cp[..symbolic.ncols()].to_vec();
+    let mut mirror = vec![0; ri.len()];
+    for j in 0..symbolic.ncols() {
+        for (k, &i) in ri.iter().enumerate().take(cp[j + 1]).skip(cp[j]) {
+            mirror[k] = cursor[i];
+            cursor[i] += 1;
+        }
+    }
+    mirror
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
@@ -339,6 +394,38 @@ mod tests {
         for j in 0..12 {
             for k in cp[j]..cp[j + 1] {
                 assert_eq!(sym[k], 2.0 * ri[k] as f64 * j as f64);
+            }
+        }
+    }
+
+    /// A pattern coupled from an element pattern equals the one built from
+    /// the elements and the groups at once, and each entry's mirror is the
+    /// transposed entry.
+    #[test]
+    fn coupled_pattern_equals_the_one_built_at_once() {
+        let elements: Vec<Vec<usize>> = vec![vec![0, 1, 2], vec![1, 2, 3], vec![3, 4]];
+        let groups: Vec<Vec<usize>> = vec![vec![0, 4], vec![2, 5]];
+        let multipliers: Vec<Vec<usize>> = vec![vec![4, 0], vec![5]];
+        let base = SparsityPattern::from_elements(6, elements.iter().map(|e| e.as_slice()));
+        let all = elements.iter().chain(&groups).map(|e| e.as_slice());
+        let at_once = SparsityPattern::with_multipliers(6, all, &multipliers);
+        let coupled = base.coupled(&groups, &multipliers);
+        let again = coupled.coupled(&[], &multipliers);
+        assert_eq!(coupled.symbolic().col_ptr(), at_once.symbolic().col_ptr());
+        assert_eq!(coupled.symbolic().row_idx(), at_once.symbolic().row_idx());
+        assert!(
+            again.block_entry(0, 0, 4, 0).is_none(),
+            "the groups are not kept"
+        );
+        assert_eq!(again.dimension(), 20);
+        for p in [&coupled, &again, &base] {
+            let (cp, ri) = (p.symbolic().col_ptr(), p.symbolic().row_idx());
+            for j in 0..p.dimension() {
+                for k in cp[j]..cp[j + 1] {
+                    let m = p.mirror[k];
+                    assert_eq!(ri[m], j);
+                    assert!(m >= cp[ri[k]] && m < cp[ri[k] + 1]);
+                }
             }
         }
     }

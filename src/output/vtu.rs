@@ -318,7 +318,7 @@ fn data_array<T: Scalar>(
 const BLOCK: usize = 32 * 1024;
 
 /// The compressed form of an array of `bytes` bytes (module docs): the
-/// blocks deflated one by one, then the header and the blocks written as
+/// blocks deflated side by side, then the header and the blocks written as
 /// two base64 runs.
 fn write_compressed<T: Scalar>(
     w: &mut dyn Write,
@@ -326,26 +326,20 @@ fn write_compressed<T: Scalar>(
     bytes: usize,
 ) -> io::Result<()> {
     use flate2::{write::ZlibEncoder, Compression};
-    let mut blocks: Vec<Vec<u8>> = Vec::with_capacity(bytes.div_ceil(BLOCK));
-    let mut raw = Vec::with_capacity(BLOCK + 8);
-    let mut flush = |raw: &mut Vec<u8>| -> io::Result<()> {
-        let mut z = ZlibEncoder::new(Vec::new(), Compression::fast());
-        z.write_all(raw)?;
-        blocks.push(z.finish()?);
-        raw.clear();
-        Ok(())
-    };
+    use rayon::prelude::*;
+    let mut raw = Vec::with_capacity(bytes);
     for value in values {
         value.push_le(&mut raw);
-        if raw.len() >= BLOCK {
-            let rest = raw.split_off(BLOCK);
-            flush(&mut raw)?;
-            raw = rest;
-        }
     }
-    if !raw.is_empty() {
-        flush(&mut raw)?;
-    }
+    // the blocks are independent: deflated side by side, in order
+    let blocks: Vec<Vec<u8>> = raw
+        .par_chunks(BLOCK)
+        .map(|block| {
+            let mut z = ZlibEncoder::new(Vec::new(), Compression::fast());
+            z.write_all(block)?;
+            z.finish()
+        })
+        .collect::<io::Result<_>>()?;
     let mut header: Vec<u8> = Vec::with_capacity(8 * (3 + blocks.len()));
     for n in [blocks.len(), BLOCK, bytes % BLOCK]
         .into_iter()

@@ -66,6 +66,7 @@ use crate::contact::laws::{NormalLaw, SlackState};
 use crate::contact::obstacle::RigidObstacle;
 use crate::material::Kinematics;
 use crate::solve::complementarity::solve_lcp;
+use crate::solve::decoupled::{decoupled_first, Decoupled};
 use crate::solve::linear::{multiply, Precision, SparseLdlt};
 use crate::solve::linear_solver::SolverStatistics;
 use crate::solve::newton::{apply_identity_rows, IterationRecord};
@@ -302,6 +303,8 @@ struct Condensation {
     /// a scaled identity `s`).
     k: Vec<f64>,
     k_tilde: Vec<f64>,
+    /// `K̃` without the couplings of its identity rows, as factorised.
+    decoupled: Decoupled,
     scale: f64,
     constrained: Vec<bool>,
     nodes: Vec<ContactNode>,
@@ -382,40 +385,44 @@ impl Condensation {
 
     /// Assemble `K` at `u = 0`, make `K̃` (prescribed rows and columns a
     /// scaled identity `s`, plus `ρ = s` on the diagonal of the `shifted`
-    /// dofs) and factorise it once; `nodes` are the columns of `E`.
+    /// dofs) and factorise it once; `nodes` are the columns of `E`. The
+    /// assembly and the ordering with its symbolic analysis (which read
+    /// only the pattern) run side by side on the run's threads.
     fn factorise(problem: &Problem, nodes: Vec<ContactNode>, shifted: &[usize]) -> Result<Self> {
         let pattern = &problem.model.pattern;
         let dimension = pattern.dimension();
-        let mut k = vec![0.0; pattern.nnz()];
-        let mut force = vec![0.0; dimension];
-        problem
-            .model
-            .assemble_internal(&vec![0.0; dimension], &mut force, Some(&mut k))
-            .map_err(|f| Error::LinearSolver(problem.describe_failure(&f)))?;
         let mut constrained = problem.constrained_dofs();
         let dofs = problem.model.num_dofs();
         constrained[dofs..].iter_mut().for_each(|c| *c = true);
+        let (k, analysed) = rayon::join(
+            || {
+                let mut k = vec![0.0; pattern.nnz()];
+                let mut force = vec![0.0; dimension];
+                problem
+                    .model
+                    .assemble_internal(&vec![0.0; dimension], &mut force, Some(&mut k))
+                    .map_err(|f| Error::LinearSolver(problem.describe_failure(&f)))
+                    .map(|()| k)
+            },
+            || Self::analyse(problem, &nodes, &constrained),
+        );
+        let (k, (trailing, decoupled, mut ldlt)) = (k?, analysed?);
         let mut k_tilde = k.clone();
         let scale = apply_identity_rows(problem, &constrained, &mut k_tilde);
         for &d in shifted {
             k_tilde[pattern.diagonal_entry(d)] += scale;
         }
         let count = nodes.len();
-        let trailing = Self::nearest_normal_dofs(problem, &nodes, &constrained);
-        let mut marked = vec![false; dimension];
-        trailing.iter().for_each(|&i| marked[i] = true);
-        // 1: one thread (`Par::Seq`), 0: the run's pool
-        let threads = usize::from(dimension < PARALLEL_FACTOR_UNKNOWNS);
-        let mut ldlt = SparseLdlt::new(trailing_ordering(pattern, &marked)?, threads);
         let single = match problem.settings.linear {
             LinearMethod::Mixed => true,
             LinearMethod::Auto => dimension >= MIXED_PRECISION_UNKNOWNS,
             _ => false,
         };
+        let values = decoupled.values(&k_tilde);
         if single {
-            ldlt.factorize_single(pattern.symbolic(), &k_tilde, None)?;
+            ldlt.factorize_single(decoupled.symbolic(), &values, None)?;
         } else {
-            ldlt.factorize(pattern.symbolic(), &k_tilde, None)?;
+            ldlt.factorize(decoupled.symbolic(), &values, None)?;
         }
         let trailing_dofs = trailing;
         let trailing = TrailingInverse::of(&ldlt, &trailing_dofs)?;
@@ -425,6 +432,7 @@ impl Condensation {
             trailing_dofs,
             k,
             k_tilde,
+            decoupled,
             scale,
             constrained,
             nodes,
@@ -435,6 +443,30 @@ impl Condensation {
             active_set_iterations: 0,
             fallbacks: 0,
         })
+    }
+
+    /// The factorisation's ordering and symbolic analysis: the normal dofs
+    /// of the nearest contact nodes last ([`Self::nearest_normal_dofs`]),
+    /// the decoupled identity rows of `constrained` first and without
+    /// their couplings ([`Decoupled`]). Returns those trailing dofs, the
+    /// decoupled structure and the analysed solver.
+    fn analyse(
+        problem: &Problem,
+        nodes: &[ContactNode],
+        constrained: &[bool],
+    ) -> Result<(Vec<usize>, Decoupled, SparseLdlt)> {
+        let pattern = &problem.model.pattern;
+        let dimension = pattern.dimension();
+        let trailing = Self::nearest_normal_dofs(problem, nodes, constrained);
+        let mut marked = vec![false; dimension];
+        trailing.iter().for_each(|&i| marked[i] = true);
+        // 1: one thread (`Par::Seq`), 0: the run's pool
+        let threads = usize::from(dimension < PARALLEL_FACTOR_UNKNOWNS);
+        let ordering = decoupled_first(trailing_ordering(pattern, &marked)?, constrained);
+        let mut ldlt = SparseLdlt::new(ordering, threads);
+        let decoupled = Decoupled::new(pattern.symbolic(), constrained);
+        ldlt.analyse(decoupled.symbolic())?;
+        Ok((trailing, decoupled, ldlt))
     }
 
     /// The free dofs on which the normals of the contact nodes nearest to
@@ -540,30 +572,39 @@ impl Condensation {
             .collect()
     }
 
-    /// `K̃ u = rhs`, refined; on an f32 factor whose refinement stalls
-    /// above 1e-12, `K̃` factorised again in f64 (and `W` made again from
-    /// it) and solved with that.
+    /// `K̃ u = rhs`, refined ([`Self::solve_from`] the factor's solution).
     fn solve(&mut self, problem: &Problem, rhs: &mut [f64]) -> Result<()> {
+        let b = rhs.to_vec();
+        self.ldlt.solve_in_place(rhs)?;
+        self.solve_from(problem, &b, rhs)
+    }
+
+    /// `K̃ x = b` refined from the approximate solution `x` (from the
+    /// solution for a nearby `b` it takes fewer refinement steps than a
+    /// fresh solve); on an f32 factor whose refinement stalls above 1e-12,
+    /// `K̃` factorised again in f64 (and `W` made again from it) and
+    /// solved with that.
+    fn solve_from(&mut self, problem: &Problem, b: &[f64], x: &mut [f64]) -> Result<()> {
         let pattern = problem.model.pattern.symbolic();
-        if self.ldlt.precision() == Precision::Single {
-            let b = rhs.to_vec();
-            let relative =
-                self.ldlt
-                    .refine(pattern, &self.k_tilde, rhs, MIXED_REFINEMENTS, true)?;
-            if relative <= 1e-12 {
-                return Ok(());
-            }
+        let single = self.ldlt.precision() == Precision::Single;
+        let refinements = if single { MIXED_REFINEMENTS } else { 3 };
+        let mut relative =
+            self.ldlt
+                .refine_from(pattern, &self.k_tilde, b, x, refinements, single)?;
+        if single && relative > 1e-12 {
             self.fallbacks += 1;
-            self.ldlt.factorize(pattern, &self.k_tilde, None)?;
+            let values = self.decoupled.values(&self.k_tilde);
+            self.ldlt
+                .factorize(self.decoupled.symbolic(), &values, None)?;
             self.trailing = TrailingInverse::of(&self.ldlt, &self.trailing_dofs)?;
             let directions: Vec<Direction> =
                 self.candidates.iter().map(|&a| self.direction(a)).collect();
             let n = self.constrained.len();
             let none = DMatrix::zeros(0, 0);
             self.w = grow_flexibility(&mut self.ldlt, &self.trailing, &none, &directions, n)?;
-            rhs.copy_from_slice(&b);
+            x.copy_from_slice(b);
+            relative = self.ldlt.solve_refined(pattern, &self.k_tilde, x, 3)?;
         }
-        let relative = self.ldlt.solve_refined(pattern, &self.k_tilde, rhs, 3)?;
         if relative > 1e-10 {
             return Err(Error::LinearSolver(format!(
                 "the condensed stiffness solve left a relative residual of {relative:.1e}"
@@ -636,6 +677,7 @@ impl Condensation {
         // defect corrections before the splitting is taken as diverging
         const MAX_CORRECTIONS: usize = 50;
         let mut previous_change = f64::INFINITY;
+        let mut previous = u0;
         for _ in 0..MAX_CORRECTIONS {
             let q: Vec<f64> = self.candidates.iter().map(|&a| g0[a] + defect[a]).collect();
             let mut w = self.w.clone();
@@ -653,13 +695,17 @@ impl Condensation {
             .map_err(Error::LinearSolver)?;
             self.active_set_iterations += solution.iterations;
             self.active = solution.active;
-            let mut u = b.clone();
+            let mut rhs = b.clone();
             let mut forces = vec![0.0; self.nodes.len()];
             for (i, &a) in self.candidates.iter().enumerate() {
                 forces[a] = solution.lambda[i];
-                self.add_column(a, solution.lambda[i], &mut u);
+                self.add_column(a, solution.lambda[i], &mut rhs);
             }
-            self.solve(problem, &mut u)?;
+            // from the last pass's displacements: its forces differ by
+            // the defect's correction only
+            let mut u = previous;
+            self.solve_from(problem, &rhs, &mut u)?;
+            previous = u.clone();
             let g = self.gaps(problem, t, &u);
             let mut change = 0.0f64;
             for (i, &a) in self.candidates.iter().enumerate() {

@@ -6,6 +6,7 @@ pub mod backend;
 pub mod chattering;
 pub mod complementarity;
 pub mod cone;
+pub mod decoupled;
 pub mod direct;
 pub mod failure;
 pub mod gmres;

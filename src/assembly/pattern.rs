@@ -5,7 +5,9 @@
 //! Besides the 3 displacement dofs of every node, the pattern can hold
 //! scalar *multiplier* unknowns (contact pressures, constraint forces),
 //! numbered after the displacements (`3N + k`), each coupled to the
-//! displacement dofs of a list of nodes and to itself. The resulting saddle
+//! displacement dofs of a list of nodes, to itself and to the other
+//! multipliers of its group (a contact node's normal and tangential
+//! multipliers, [`SparsityPattern::with_multiplier_groups`]). The resulting saddle
 //! system is symmetric indefinite; [`SparsityPattern::dof_ordering`] orders
 //! each multiplier right after its nodes, and
 //! [`SparsityPattern::pivot_signs`] gives the expected LDLᵀ pivot signs.
@@ -27,6 +29,8 @@ pub struct SparsityPattern {
     node_multipliers: Vec<Vec<usize>>,
     /// Sorted nodes coupled to each multiplier.
     multiplier_nodes: Vec<Vec<usize>>,
+    /// Sorted multipliers coupled to each multiplier (itself included).
+    multiplier_group: Vec<Vec<usize>>,
     /// Symbolic CSC structure, all entries (both triangles).
     symbolic: SymbolicSparseColMat<usize>,
     /// `mirror[k]` is the index of entry (j, i) for entry `k` = (i, j).
@@ -62,6 +66,19 @@ impl SparsityPattern {
         element_nodes: impl Iterator<Item = &'a [usize]>,
         multiplier_nodes: &[Vec<usize>],
     ) -> Self {
+        Self::with_multiplier_groups(num_nodes, element_nodes, multiplier_nodes, &[])
+    }
+
+    /// [`with_multipliers`](Self::with_multipliers) where multiplier `k`
+    /// is also coupled to the multipliers `groups[k]` (a dense block
+    /// among the multipliers of one contact node; the relation is made
+    /// symmetric, and a missing entry of `groups` means none).
+    pub fn with_multiplier_groups<'a>(
+        num_nodes: usize,
+        element_nodes: impl Iterator<Item = &'a [usize]>,
+        multiplier_nodes: &[Vec<usize>],
+        groups: &[Vec<usize>],
+    ) -> Self {
         let mut neighbours: Vec<Vec<usize>> = (0..num_nodes).map(|n| vec![n]).collect();
         for nodes in element_nodes {
             for &a in nodes {
@@ -87,6 +104,18 @@ impl SparsityPattern {
                 node_multipliers[a].push(k);
             }
         }
+        let mut multiplier_group: Vec<Vec<usize>> =
+            (0..multiplier_nodes.len()).map(|k| vec![k]).collect();
+        for (k, group) in groups.iter().enumerate() {
+            for &l in group {
+                multiplier_group[k].push(l);
+                multiplier_group[l].push(k);
+            }
+        }
+        for list in &mut multiplier_group {
+            list.sort_unstable();
+            list.dedup();
+        }
         let first_multiplier = 3 * num_nodes;
         let n = first_multiplier + multiplier_nodes.len();
         let mut col_ptr = Vec::with_capacity(n + 1);
@@ -101,11 +130,11 @@ impl SparsityPattern {
                 col_ptr.push(row_idx.len());
             }
         }
-        for (k, nodes) in multiplier_nodes.iter().enumerate() {
+        for (nodes, group) in multiplier_nodes.iter().zip(&multiplier_group) {
             for &a in nodes {
                 row_idx.extend([3 * a, 3 * a + 1, 3 * a + 2]);
             }
-            row_idx.push(first_multiplier + k);
+            row_idx.extend(group.iter().map(|l| first_multiplier + l));
             col_ptr.push(row_idx.len());
         }
         let symbolic = SymbolicSparseColMat::new_checked(n, n, col_ptr, None, row_idx);
@@ -126,6 +155,7 @@ impl SparsityPattern {
             neighbours,
             node_multipliers,
             multiplier_nodes,
+            multiplier_group,
             symbolic,
             mirror,
             id: NEXT_PATTERN_ID.fetch_add(1, Ordering::Relaxed),
@@ -174,8 +204,16 @@ impl SparsityPattern {
 
     /// Index of the diagonal entry of multiplier `k`.
     pub fn multiplier_diagonal(&self, k: usize) -> usize {
+        self.multiplier_pair(k, k).unwrap_or(0)
+    }
+
+    /// Index of the entry (row `3N + l`, column `3N + k`) coupling
+    /// multipliers `l` and `k` of one group, or `None` if they are not.
+    pub fn multiplier_pair(&self, l: usize, k: usize) -> Option<usize> {
+        let group = &self.multiplier_group[k];
+        let position = group.binary_search(&l).ok()?;
         let column = 3 * self.num_nodes() + k;
-        self.symbolic.col_ptr()[column + 1] - 1
+        Some(self.symbolic.col_ptr()[column + 1] - group.len() + position)
     }
 
     /// Expected signs of the LDLᵀ pivots: +1 for displacement dofs, −1 for

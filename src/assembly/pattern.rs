@@ -329,6 +329,53 @@ impl SparsityPattern {
 mod tests {
     use super::*;
 
+    /// Multipliers of one group (a contact node's normal and tangential
+    /// ones) couple to each other: every pair's entry is where the
+    /// symbolic structure has it, the diagonal too, and the pattern stays
+    /// structurally symmetric.
+    #[test]
+    fn multiplier_groups_couple_their_members() {
+        let elements: Vec<Vec<usize>> = vec![vec![0, 1, 2], vec![1, 2, 3]];
+        let nodes = vec![vec![1], vec![2], vec![1], vec![1], vec![2], vec![2]];
+        // as the contact set lists them: every member its whole group
+        let (a, b) = (vec![0, 2, 3], vec![1, 4, 5]);
+        let groups = vec![a.clone(), b.clone(), a.clone(), a, b.clone(), b];
+        let p = SparsityPattern::with_multiplier_groups(
+            4,
+            elements.iter().map(|e| e.as_slice()),
+            &nodes,
+            &groups,
+        );
+        let (cp, ri) = (p.symbolic().col_ptr(), p.symbolic().row_idx());
+        let first = 12;
+        for (k, group) in [
+            [0, 2, 3],
+            [1, 4, 5],
+            [0, 2, 3],
+            [0, 2, 3],
+            [1, 4, 5],
+            [1, 4, 5],
+        ]
+        .iter()
+        .enumerate()
+        {
+            for l in 0..6 {
+                let entry = p.multiplier_pair(l, k);
+                assert_eq!(entry.is_some(), group.contains(&l), "({l}, {k})");
+                if let Some(e) = entry {
+                    assert_eq!(ri[e], first + l);
+                    assert!(e >= cp[first + k] && e < cp[first + k + 1]);
+                }
+            }
+            assert_eq!(ri[p.multiplier_diagonal(k)], first + k);
+            assert_eq!(p.diagonal_entry(first + k), p.multiplier_diagonal(k));
+        }
+        // the mirror of every entry exists: the pattern is symmetric
+        let values: Vec<f64> = (0..p.nnz()).map(|k| k as f64).collect();
+        let sym = p.symmetric_part(&values);
+        assert_eq!(sym.len(), p.nnz());
+    }
+
     #[test]
     fn block_lookup_matches_row_indices() {
         let elements: Vec<Vec<usize>> = vec![vec![0, 1, 2], vec![1, 2, 3]];

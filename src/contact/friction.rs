@@ -53,7 +53,9 @@
 //! Uzawa, Rockafellar, slack), where asked for
 //! ([`ContactInterface::exact_stick`](super::interface::ContactInterface::exact_stick)),
 //! the old traction of the trial becomes a
-//! tangential multiplier `λ_T`, held fixed during Newton and updated after
+//! tangential multiplier `λ_T`; with [`FrictionMultiplier::Outer`] (and
+//! always with Uzawa, which has no multiplier unknowns) it is held fixed
+//! during Newton and updated after
 //! each converged Newton solve, nested with Uzawa's normal update when the
 //! law has one (Simo & Laursen, *An augmented Lagrangian treatment of
 //! contact problems involving friction*, Comput. Struct. 42 (1992) 97–116;
@@ -77,6 +79,36 @@
 //! tangential stiffness at the node). Within Newton the law is the return
 //! mapping above with `λ_T` fixed, so its consistent tangent is unchanged.
 //! The penalty law keeps the regularised law (elastic slip `t_T/ε_T`).
+//!
+//! ## Exact stick in one Newton solve: the multiplier as an unknown (Alart–Curnier)
+//! By default ([`FrictionMultiplier::Newton`], with the laws that have a
+//! normal multiplier dof: Rockafellar, slack) `λ_T` is not held and
+//! updated but solved for: two unknowns `ℓ` per node beside the normal
+//! multiplier, `λ_T = ε_T (ℓ¹ e₁ + ℓ² e₂)` on two fixed coordinate axes
+//! ([`TangentialMultiplier`]), with the equations of Alart and Curnier's
+//! complementarity function (Alart & Curnier, *A mixed formulation for
+//! frictional contact problems prone to Newton like solution methods*,
+//! CMAME 92 (1991) 353–375; Wriggers, *Computational Contact Mechanics*,
+//! 2006, §6.3)
+//! ```text
+//! C_T = T λ_T − P_μt_N(T λ_T − ε_T T d) = T λ_T − t_T,    r_ℓ = −A_s Eᵀ C_T
+//! ```
+//! ([`multiplier_rows`]), Newton on `(u, λ, ℓ)` together: at a solution
+//! the fixed point of the outer loop, in one Newton solve. The force on
+//! the node stays the return mapping's `t_T` with `λ_T` for `t_T,n`, so
+//! the displacement rows, the stick/slip switch and the slip predictor
+//! are this module's return mapping; what the multiplier adds is
+//! `∂t_T/∂λ_T` ([`TangentialResponse::multiplier_gradient`]). The
+//! multiplier block of a node (normal and tangential) is dense in slip
+//! (`∂r_ℓ/∂ℓ` couples `ℓ¹, ℓ²` unless `m` lies on an axis, `∂r_ℓ/∂λ ≠ 0`):
+//! the sparsity pattern holds a 3 × 3 block per node
+//! ([`SparsityPattern::with_multiplier_groups`](crate::assembly::pattern::SparsityPattern::with_multiplier_groups)),
+//! so the tangent is exact (a diagonal block on a slip-aligned basis, the
+//! other way, needs a basis that turns with `m` within the increment). A
+//! node that was open at the last commit keeps `λ_T = 0` for the increment
+//! (its stick equation after [`first_contact`] is met by `g = 0` alone, see
+//! `ContactInterface`'s `first_contact_pending`), as the outer loop's
+//! fixed point has it.
 //!
 //! ## History
 //! [`FrictionHistory`] (traction, anchor, accumulated slip, status) is read,

@@ -7,6 +7,7 @@
 
 use crate::assembly::loads::pressure_facet;
 use crate::assembly::{ElementFailure, Model};
+use crate::contact::friction::FrictionMultiplier;
 use crate::contact::interface::{ContactContext, ContactInterface, NodeReport};
 use crate::contact::set::ContactSet;
 use crate::mesh::Facet;
@@ -216,14 +217,33 @@ impl Problem {
         self.rebuild_pattern();
     }
 
+    /// Exact stick's tangential multipliers kept in the friction history
+    /// (Simo–Laursen's form, [`FrictionMultiplier::Outer`]) rather than as
+    /// unknowns of Newton: the condensed path solves the frictional
+    /// problem itself and hands its fixed point to the history, which the
+    /// problem's evaluation then reads. Renumbers the multipliers and
+    /// rebuilds the pattern where that changes them.
+    pub fn keep_friction_multipliers_in_history(&mut self) {
+        if !self.contacts.iter().any(|c| c.tangential_multipliers()) {
+            return;
+        }
+        let mut contacts: Vec<ContactInterface> = self.contacts.iter().cloned().collect();
+        for c in &mut contacts {
+            c.friction_multiplier = FrictionMultiplier::Outer;
+        }
+        self.contacts.install(contacts);
+        self.rebuild_pattern();
+    }
+
     /// The sparsity pattern of the elements, of each secondary node with the
     /// primary nodes it may touch, and of the multipliers.
     fn rebuild_pattern(&mut self) {
         let couplings = self.contacts.couplings();
-        self.model.pattern = self
-            .model
-            .pattern
-            .coupled(&couplings.groups, &couplings.multipliers);
+        self.model.pattern = self.model.pattern.coupled(
+            &couplings.groups,
+            &couplings.multipliers,
+            &couplings.multiplier_groups,
+        );
     }
 
     /// Pair the secondary nodes with the primary triangles they may touch

@@ -126,7 +126,7 @@ pub struct Simulation {
 impl Simulation {
     /// From a case: builds the problem and validates the output requests.
     pub fn from_case(case: &Case) -> Result<Self> {
-        let problem = case.build_problem()?;
+        let mut problem = case.build_problem()?;
         let requests = case.output_requests(&problem)?;
         let (nodal_fields, cell_fields) = case.output_fields();
         let every = case.output_every()?;
@@ -135,6 +135,9 @@ impl Simulation {
             message,
         })?;
         let strategy = distributed::strategy_for_petsc(&problem, strategy);
+        if strategy.path == SolvePath::Condensed {
+            problem.keep_friction_multipliers_in_history();
+        }
         let case_key = restart::case_key(case, &problem);
         Ok(Simulation {
             case_label: case.path.display().to_string(),

@@ -11,7 +11,7 @@ use common::{
     every_method, fix, frictional_blocks, problem, run, support_stacked_blocks, surface_interface,
     two_bodies, write_stacked_blocks_case, CaseRun,
 };
-use signorini::contact::friction::Coulomb;
+use signorini::contact::friction::{Coulomb, FrictionMultiplier};
 use signorini::contact::laws::NormalLaw;
 use signorini::material::{LinearElastic, NeoHookean};
 use signorini::mesh::structured::box_mesh;
@@ -521,7 +521,7 @@ impl Drag {
 /// between them. Returns the reaction at the end of the press and every
 /// increment of the drag.
 fn drag_block(friction: Option<Coulomb>) -> (f64, Vec<Drag>) {
-    let (pr, last) = drag_block_by(DRAG_LAW, friction, false, 2.0, 0.05);
+    let (pr, last) = drag_block_by(DRAG_LAW, friction, None, 2.0, 0.05);
     drag_records(&pr, &last)
 }
 
@@ -533,11 +533,12 @@ const DRAG_LAW: NormalLaw = NormalLaw::Rockafellar {
 
 /// The block of [`drag_block`] pressed and dragged by `distance` in
 /// increments of `increment` (of the drag step's unit pseudo-time), with
-/// exact stick where asked for: the problem and its last state.
+/// exact stick where asked for (with its tangential multiplier in the
+/// given form; `None`: the regularised law): the problem and its last state.
 fn drag_block_by(
     law: NormalLaw,
     friction: Option<Coulomb>,
-    exact_stick: bool,
+    exact_stick: Option<FrictionMultiplier>,
     distance: f64,
     increment: f64,
 ) -> (Problem, common::Last) {
@@ -580,7 +581,8 @@ fn drag_block_by(
     ];
     let mut c = surface_interface(&pr, "slider.zmin", "base.zmax", law);
     c.friction = friction;
-    c.exact_stick_requested = exact_stick;
+    c.exact_stick_requested = exact_stick.is_some();
+    c.friction_multiplier = exact_stick.unwrap_or_default();
     pr.set_contacts(vec![c]);
     let last = run(&mut pr);
     (pr, last)
@@ -716,16 +718,19 @@ fn assert_coulomb_drag(pressed: f64, drag: &[Drag]) {
 /// triangle while nodes cross facets, passes the same checks (action and
 /// reaction, no snagging, Coulomb's ratio once the whole contact slips);
 /// measured: 9–13 Newton corrections per drag increment, outer updates
-/// included.
+/// included. The same with the tangential multipliers as unknowns of
+/// Newton (the default).
 #[test]
 fn block_slides_across_facets_with_exact_stick() {
     let coulomb = Coulomb {
         coefficient: MU,
         tangential_penalty: 4.0 * E,
     };
-    let (pr, last) = drag_block_by(DRAG_LAW, Some(coulomb), true, 2.0, 0.05);
-    let (pressed, drag) = drag_records(&pr, &last);
-    assert_coulomb_drag(pressed, &drag);
+    for form in [FrictionMultiplier::Outer, FrictionMultiplier::Newton] {
+        let (pr, last) = drag_block_by(DRAG_LAW, Some(coulomb), Some(form), 2.0, 0.05);
+        let (pressed, drag) = drag_records(&pr, &last);
+        assert_coulomb_drag(pressed, &drag);
+    }
 }
 
 /// Exact stick between deformable bodies does not depend on `ε_T`: the
@@ -742,19 +747,23 @@ fn block_slides_across_facets_with_exact_stick() {
 /// there every node sticks.
 #[test]
 fn exact_stick_between_bodies_does_not_depend_on_the_tangential_penalty() {
-    let solve = |exact: bool, eps: f64| {
+    let solve = |exact: Option<FrictionMultiplier>, eps: f64| {
         let coulomb = Coulomb {
             coefficient: MU,
             tangential_penalty: eps,
         };
         drag_block_by(DRAG_LAW, Some(coulomb), exact, 0.004, 0.5)
     };
-    for exact in [true, false] {
+    for exact in [
+        Some(FrictionMultiplier::Newton),
+        Some(FrictionMultiplier::Outer),
+        None,
+    ] {
         let (pr, soft) = solve(exact, E);
         let (_, stiff) = solve(exact, 100.0 * E);
         let c = soft.change_to(&stiff, 3 * pr.model.mesh.num_nodes());
         let (size, change) = (c.size, c.displacement);
-        if !exact {
+        if exact.is_none() {
             assert!(
                 change > 1e-4 * size,
                 "regularised, yet {change:.3e} of {size:.3e}"

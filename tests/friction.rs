@@ -9,11 +9,11 @@
 mod common;
 
 use common::{
-    assert_open_stick_and_slip, assert_quadratic, assert_tangent_matches_fd, every_method, fix,
-    interface, perturbed_state, problem, run, Last,
+    assert_corrected_tangent_matches_fd, assert_open_stick_and_slip, assert_quadratic,
+    assert_tangent_matches_fd, every_method, fix, interface, perturbed_state, problem, run, Last,
 };
 use nalgebra::Vector3;
-use signorini::contact::friction::{ContactStatus, Coulomb};
+use signorini::contact::friction::{ContactStatus, Coulomb, FrictionMultiplier, STICK_SHIFT};
 use signorini::contact::laws::NormalLaw;
 use signorini::contact::RigidObstacle;
 use signorini::material::{LinearElastic, NeoHookean};
@@ -231,27 +231,43 @@ fn gentle_pull_leaves_every_node_stuck() {
 /// traction (against μ p_max); measured 1.5e-9 of 1.4e-2 — and the sticking
 /// nodes did not move in the last increment; the penalty law's regularised
 /// answer does depend on ε_T (1.1e-3 of 1.4e-2).
+///
+/// Both forms of the tangential multiplier where the law has a multiplier
+/// dof: unknowns of Newton (Alart–Curnier, the default) and the outer loop.
 #[test]
 fn lagrangian_methods_do_not_depend_on_the_tangential_penalty() {
-    let solve = |law: NormalLaw, eps: f64| {
+    let solve = |law: NormalLaw, eps: f64, form: FrictionMultiplier| {
         let mut pr = block_on_plane(law, Some(0.01), 0.0);
         for step in &mut pr.steps {
             (step.initial_increment, step.max_increment) = (0.125, 0.125);
         }
-        pr.contacts[0].friction = Some(Coulomb {
+        let mut c = pr.contacts[0].clone();
+        c.friction = Some(Coulomb {
             tangential_penalty: eps,
             ..coulomb()
         });
-        pr.contacts[0].exact_stick_requested = true;
+        c.exact_stick_requested = true;
+        c.friction_multiplier = form;
+        pr.set_contacts(vec![c]);
         let last = run(&mut pr);
         let (_, reports) = pr.residual_in(2.0, &last.x, &last.contact, None).unwrap();
         (pr, last, reports)
     };
-    for (name, law) in every_method(E / H) {
+    let forms = [FrictionMultiplier::Newton, FrictionMultiplier::Outer];
+    let cases = every_method(E / H).into_iter().flat_map(|(name, law)| {
+        let forms = if law.has_multiplier_dof() {
+            &forms[..]
+        } else {
+            &forms[1..]
+        };
+        forms.iter().map(move |&form| (name, law, form))
+    });
+    for (name, law, form) in cases {
+        let name = &format!("{name} ({form:?})");
         // Uzawa with its automatic ε = 100 E/h (fewer normal updates)
         let law = law.scaled(if law.has_outer_loop() { 100.0 } else { 1.0 });
-        let (pr, soft, reports) = solve(law, E / H);
-        let (_, stiff, _) = solve(law, 100.0 * E / H);
+        let (pr, soft, reports) = solve(law, E / H, form);
+        let (_, stiff, _) = solve(law, 100.0 * E / H, form);
         let c = soft.change_to(&stiff, 3 * pr.model.mesh.num_nodes());
         let (size, change, traction_change) = (c.size, c.displacement, c.traction);
         let p_max = reports[0].iter().map(|r| r.pressure).fold(0.0, f64::max);
@@ -449,5 +465,59 @@ fn frictional_tangent_matches_finite_differences_in_stick_and_slip() {
         let (_, reports) = pr.residual_in(t, &x, &state, None).unwrap();
         assert_open_stick_and_slip(&reports[0], name);
         assert_tangent_matches_fd(&pr, t, &x, &state, name);
+    }
+}
+
+/// Exact stick with the tangential multiplier as a Newton unknown
+/// (Alart–Curnier, `FrictionMultiplier::Newton`): the assembled tangent,
+/// with the tangential multiplier rows and columns, is the derivative of
+/// the assembled residual on the curved obstacle of the test above, with
+/// open, sticking and slipping nodes, for the laws that have it.
+#[test]
+fn tangential_multiplier_tangent_matches_finite_differences() {
+    for (name, law) in every_method(E / H).into_iter().skip(2) {
+        let mesh = box_mesh(ElementKind::Hex8, [2, 2, 1], [1.0, 1.0, 0.5]);
+        let mut pr = problem(mesh, Arc::new(NeoHookean::new(E, 0.3, "m").unwrap()));
+        let sphere = RigidObstacle::sphere(Vector3::new(0.4, 0.6, -2.96), 3.0).unwrap();
+        let mut c = interface(&pr, H, "zmin", sphere, law);
+        c.friction = Some(coulomb());
+        c.exact_stick_requested = true;
+        pr.set_contacts(vec![c]);
+        assert!(pr.contacts[0].tangential_multipliers());
+        let n = pr.contacts[0].nodes.len();
+        assert_eq!(pr.num_unknowns(), pr.model.num_dofs() + 3 * n);
+        let mut x = perturbed_state(&pr, 0.01, name == "slack");
+        let t = 0.5;
+        let c = &pr.contacts[0];
+        let translation = c.translation_at(t);
+        let mut state = pr.initial_contact_state(&x);
+        // alternate nodes anchored far away (slip) or nearby with a
+        // multiplier inside the cone (stick)
+        let first = pr.model.num_dofs() + n;
+        for (i, s) in state.interfaces[0].iter_mut().enumerate() {
+            let here = c.relative_position(&pr.model.mesh.nodes, &translation, &x, i);
+            let offset = if i % 2 == 0 {
+                Vector3::new(0.05, 0.02, 0.0)
+            } else {
+                x[first + 2 * i] = 1e-4;
+                x[first + 2 * i + 1] = -2e-4;
+                Vector3::new(1e-5, 0.0, 0.0)
+            };
+            s.friction.anchor = here - offset;
+        }
+        let (_, reports) = pr.residual_in(t, &x, &state, None).unwrap();
+        assert_open_stick_and_slip(&reports[0], name);
+        // the shift −δ, δ = 1e-6 A_s ε_T, is in the tangent only
+        let shift = |k: &mut [f64]| {
+            for (i, r) in reports[0].iter().enumerate() {
+                if r.status != ContactStatus::Open {
+                    for m in [first + 2 * i, first + 2 * i + 1] {
+                        let d = pr.model.pattern.diagonal_entry(m);
+                        k[d] += STICK_SHIFT * c.areas[i] * coulomb().tangential_penalty;
+                    }
+                }
+            }
+        };
+        assert_corrected_tangent_matches_fd(&pr, t, &x, &state, name, shift);
     }
 }

@@ -5,7 +5,9 @@
 //! Besides the 3 displacement dofs of every node, the pattern can hold
 //! scalar *multiplier* unknowns (contact pressures, constraint forces),
 //! numbered after the displacements (`3N + k`), each coupled to the
-//! displacement dofs of a list of nodes and to itself. The resulting saddle
+//! displacement dofs of a list of nodes, to itself and to the other
+//! multipliers of its group (a contact node's normal and tangential
+//! multipliers, [`SparsityPattern::with_multiplier_groups`]). The resulting saddle
 //! system is symmetric indefinite; [`SparsityPattern::dof_ordering`] orders
 //! each multiplier right after its nodes, and
 //! [`SparsityPattern::pivot_signs`] gives the LDLᵀ pivot signs to
@@ -32,6 +34,8 @@ pub struct SparsityPattern {
     node_multipliers: Vec<Vec<usize>>,
     /// Sorted nodes coupled to each multiplier.
     multiplier_nodes: Vec<Vec<usize>>,
+    /// Sorted multipliers coupled to each multiplier (itself included).
+    multiplier_group: Vec<Vec<usize>>,
     /// Symbolic CSC structure, all entries (both triangles).
     symbolic: SymbolicSparseColMat<usize>,
     /// `mirror[k]` is the index of entry (j, i) for entry `k` = (i, j).
@@ -67,6 +71,19 @@ impl SparsityPattern {
         element_nodes: impl Iterator<Item = &'a [usize]>,
         multiplier_nodes: &[Vec<usize>],
     ) -> Self {
+        Self::with_multiplier_groups(num_nodes, element_nodes, multiplier_nodes, &[])
+    }
+
+    /// [`with_multipliers`](Self::with_multipliers) where multiplier `k`
+    /// is also coupled to the multipliers `groups[k]` (a dense block
+    /// among the multipliers of one contact node; the relation is made
+    /// symmetric, and a missing entry of `groups` means none).
+    pub fn with_multiplier_groups<'a>(
+        num_nodes: usize,
+        element_nodes: impl Iterator<Item = &'a [usize]>,
+        multiplier_nodes: &[Vec<usize>],
+        groups: &[Vec<usize>],
+    ) -> Self {
         let mut neighbours: Vec<Vec<usize>> = (0..num_nodes).map(|n| vec![n]).collect();
         for nodes in element_nodes {
             for &a in nodes {
@@ -78,17 +95,28 @@ impl SparsityPattern {
             list.dedup();
         }
         let elements = Arc::new(neighbours);
-        Self::from_neighbours(Arc::clone(&elements), elements, multiplier_nodes)
+        Self::from_neighbours(Arc::clone(&elements), elements, multiplier_nodes, groups)
     }
 
     /// This pattern's element couplings (those it was first built from,
     /// not the groups of an earlier [`Self::coupled`]) plus every pair of
     /// nodes in one of `groups`, and the multipliers `multiplier_nodes`
-    /// ([`Self::with_multipliers`] without walking the elements again).
-    pub fn coupled(&self, groups: &[Vec<usize>], multiplier_nodes: &[Vec<usize>]) -> Self {
+    /// coupled within `multiplier_groups`
+    /// ([`Self::with_multiplier_groups`] without walking the elements again).
+    pub fn coupled(
+        &self,
+        groups: &[Vec<usize>],
+        multiplier_nodes: &[Vec<usize>],
+        multiplier_groups: &[Vec<usize>],
+    ) -> Self {
         if groups.is_empty() {
             let elements = Arc::clone(&self.elements);
-            return Self::from_neighbours(Arc::clone(&elements), elements, multiplier_nodes);
+            return Self::from_neighbours(
+                Arc::clone(&elements),
+                elements,
+                multiplier_nodes,
+                multiplier_groups,
+            );
         }
         let mut neighbours: Vec<Vec<usize>> = (*self.elements).clone();
         let mut touched = vec![false; neighbours.len()];
@@ -106,16 +134,19 @@ impl SparsityPattern {
             Arc::new(neighbours),
             Arc::clone(&self.elements),
             multiplier_nodes,
+            multiplier_groups,
         )
     }
 
     /// The pattern of the sorted node adjacency `neighbours` (each node
-    /// its own neighbour) and the multipliers; `elements` the element part
-    /// of the adjacency, kept for [`Self::coupled`].
+    /// its own neighbour) and the multipliers, multiplier `k` coupled to
+    /// the multipliers `groups[k]`; `elements` the element part of the
+    /// adjacency, kept for [`Self::coupled`].
     fn from_neighbours(
         neighbours: Arc<Vec<Vec<usize>>>,
         elements: Arc<Vec<Vec<usize>>>,
         multiplier_nodes: &[Vec<usize>],
+        groups: &[Vec<usize>],
     ) -> Self {
         let num_nodes = neighbours.len();
         let multiplier_nodes: Vec<Vec<usize>> = multiplier_nodes
@@ -133,12 +164,24 @@ impl SparsityPattern {
                 node_multipliers[a].push(k);
             }
         }
+        let mut multiplier_group: Vec<Vec<usize>> =
+            (0..multiplier_nodes.len()).map(|k| vec![k]).collect();
+        for (k, group) in groups.iter().enumerate() {
+            for &l in group {
+                multiplier_group[k].push(l);
+                multiplier_group[l].push(k);
+            }
+        }
+        for list in &mut multiplier_group {
+            list.sort_unstable();
+            list.dedup();
+        }
         let first_multiplier = 3 * num_nodes;
         let n = first_multiplier + multiplier_nodes.len();
         let mut col_ptr = Vec::with_capacity(n + 1);
         let entries = 9 * neighbours.iter().map(Vec::len).sum::<usize>()
             + 7 * multiplier_nodes.iter().map(Vec::len).sum::<usize>()
-            + multiplier_nodes.len();
+            + multiplier_group.iter().map(Vec::len).sum::<usize>();
         let mut row_idx = Vec::with_capacity(entries);
         col_ptr.push(0);
         for (list, multipliers) in neighbours.iter().zip(&node_multipliers) {
@@ -150,11 +193,11 @@ impl SparsityPattern {
                 col_ptr.push(row_idx.len());
             }
         }
-        for (k, nodes) in multiplier_nodes.iter().enumerate() {
+        for (nodes, group) in multiplier_nodes.iter().zip(&multiplier_group) {
             for &a in nodes {
                 row_idx.extend([3 * a, 3 * a + 1, 3 * a + 2]);
             }
-            row_idx.push(first_multiplier + k);
+            row_idx.extend(group.iter().map(|l| first_multiplier + l));
             col_ptr.push(row_idx.len());
         }
         let symbolic = SymbolicSparseColMat::new_checked(n, n, col_ptr, None, row_idx);
@@ -164,6 +207,7 @@ impl SparsityPattern {
             elements,
             node_multipliers,
             multiplier_nodes,
+            multiplier_group,
             symbolic,
             mirror,
             id: NEXT_PATTERN_ID.fetch_add(1, Ordering::Relaxed),
@@ -212,8 +256,16 @@ impl SparsityPattern {
 
     /// Index of the diagonal entry of multiplier `k`.
     pub fn multiplier_diagonal(&self, k: usize) -> usize {
+        self.multiplier_pair(k, k).unwrap_or(0)
+    }
+
+    /// Index of the entry (row `3N + l`, column `3N + k`) coupling
+    /// multipliers `l` and `k` of one group, or `None` if they are not.
+    pub fn multiplier_pair(&self, l: usize, k: usize) -> Option<usize> {
+        let group = &self.multiplier_group[k];
+        let position = group.binary_search(&l).ok()?;
         let column = 3 * self.num_nodes() + k;
-        self.symbolic.col_ptr()[column + 1] - 1
+        Some(self.symbolic.col_ptr()[column + 1] - group.len() + position)
     }
 
     /// Expected signs of the LDLᵀ pivots, for faer's dynamic
@@ -360,6 +412,53 @@ fn transpose_positions(symbolic: &SymbolicSparseColMat<usize>) -> Vec<usize> {
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    /// Multipliers of one group (a contact node's normal and tangential
+    /// ones) couple to each other: every pair's entry is where the
+    /// symbolic structure has it, the diagonal too, and the pattern stays
+    /// structurally symmetric.
+    #[test]
+    fn multiplier_groups_couple_their_members() {
+        let elements: Vec<Vec<usize>> = vec![vec![0, 1, 2], vec![1, 2, 3]];
+        let nodes = vec![vec![1], vec![2], vec![1], vec![1], vec![2], vec![2]];
+        // as the contact set lists them: every member its whole group
+        let (a, b) = (vec![0, 2, 3], vec![1, 4, 5]);
+        let groups = vec![a.clone(), b.clone(), a.clone(), a, b.clone(), b];
+        let p = SparsityPattern::with_multiplier_groups(
+            4,
+            elements.iter().map(|e| e.as_slice()),
+            &nodes,
+            &groups,
+        );
+        let (cp, ri) = (p.symbolic().col_ptr(), p.symbolic().row_idx());
+        let first = 12;
+        for (k, group) in [
+            [0, 2, 3],
+            [1, 4, 5],
+            [0, 2, 3],
+            [0, 2, 3],
+            [1, 4, 5],
+            [1, 4, 5],
+        ]
+        .iter()
+        .enumerate()
+        {
+            for l in 0..6 {
+                let entry = p.multiplier_pair(l, k);
+                assert_eq!(entry.is_some(), group.contains(&l), "({l}, {k})");
+                if let Some(e) = entry {
+                    assert_eq!(ri[e], first + l);
+                    assert!(e >= cp[first + k] && e < cp[first + k + 1]);
+                }
+            }
+            assert_eq!(ri[p.multiplier_diagonal(k)], first + k);
+            assert_eq!(p.diagonal_entry(first + k), p.multiplier_diagonal(k));
+        }
+        // the mirror of every entry exists: the pattern is symmetric
+        let values: Vec<f64> = (0..p.nnz()).map(|k| k as f64).collect();
+        let sym = p.symmetric_part(&values);
+        assert_eq!(sym.len(), p.nnz());
+    }
 
     #[test]
     fn block_lookup_matches_row_indices() {

@@ -10,6 +10,7 @@ pub mod schema;
 mod tagged;
 
 use crate::assembly::Model;
+use crate::contact::friction::FrictionMultiplier;
 use crate::contact::interface::ContactInterface;
 use crate::contact::setup::{Enforcement, Method, SetupError};
 use crate::contact::{RigidObstacle, TriangulatedSurface};
@@ -21,7 +22,9 @@ use crate::problem::{
 };
 use crate::{Error, Result};
 use nalgebra::Vector3;
-use schema::{AmplitudeRef, CaseFile, ContactMethod, MaterialModel, ObstacleShape};
+use schema::{
+    AmplitudeRef, CaseFile, ContactMethod, FrictionMultiplierSpec, MaterialModel, ObstacleShape,
+};
 use std::path::{Path, PathBuf};
 use std::sync::Arc;
 
@@ -896,7 +899,28 @@ impl Case {
                 friction_coefficient,
                 tangential_penalty: positive(c.tangential_penalty, "tangential_penalty")?,
                 exact_stick: c.exact_stick,
+                friction_multiplier: match (c.friction_multiplier, c.method) {
+                    (Some(FrictionMultiplierSpec::Newton), _) => FrictionMultiplier::Newton,
+                    (None, ContactMethod::Rockafellar | ContactMethod::Slack) => {
+                        FrictionMultiplier::Newton
+                    }
+                    _ => FrictionMultiplier::Outer,
+                },
             };
+            if let Some(spec) = c.friction_multiplier {
+                let why = if !c.exact_stick {
+                    Some("it applies to exact stick only: add exact_stick = true or remove it")
+                } else if spec == FrictionMultiplierSpec::Newton
+                    && !matches!(c.method, ContactMethod::Rockafellar | ContactMethod::Slack)
+                {
+                    Some("the tangential multipliers are unknowns of Newton beside the normal ones, which this method does not have: use friction_multiplier = \"outer\" or method = \"rockafellar\" or \"slack\"")
+                } else {
+                    None
+                };
+                if let Some(why) = why {
+                    return Err(self.err(format!("{key}.friction_multiplier: {why}")));
+                }
+            }
             if c.exact_stick {
                 let why = if friction_coefficient.is_none() {
                     Some("it needs friction: give friction_coefficient")

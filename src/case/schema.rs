@@ -285,6 +285,14 @@ pub enum ContactMethod {
     Slack,
 }
 
+/// `[[contact]] friction_multiplier`.
+#[derive(Clone, Copy, Debug, Deserialize, PartialEq, Eq)]
+#[serde(rename_all = "snake_case")]
+pub enum FrictionMultiplierSpec {
+    Newton,
+    Outer,
+}
+
 /// `[[contact]]`: frictionless node-to-surface contact of a surface set
 /// of the body (its nodes are the secondary nodes) with an obstacle.
 #[derive(Debug, Deserialize)]
@@ -323,6 +331,12 @@ pub struct ContactSpec {
     /// an obstacle or a primary surface.
     #[serde(default)]
     pub exact_stick: bool,
+    /// How exact stick finds its tangential multiplier: `"newton"` (the
+    /// default with rockafellar and slack: two unknowns of Newton per node,
+    /// Alart–Curnier's form, one Newton solve per increment) or `"outer"`
+    /// (Simo–Laursen's loop of Newton solves, the tangential multiplier
+    /// updated after each; uzawa's only one). Only with `exact_stick = true`.
+    pub friction_multiplier: Option<FrictionMultiplierSpec>,
     /// Largest initial penetration accepted; default 1 % of the contact
     /// element size.
     pub initial_penetration_tolerance: Option<f64>,

@@ -53,7 +53,9 @@
 //! Uzawa, Rockafellar, slack), where asked for
 //! ([`ContactInterface::exact_stick`](super::interface::ContactInterface::exact_stick)),
 //! the old traction of the trial becomes a
-//! tangential multiplier `λ_T`, held fixed during Newton and updated after
+//! tangential multiplier `λ_T`; with [`FrictionMultiplier::Outer`] (and
+//! always with Uzawa, which has no multiplier unknowns) it is held fixed
+//! during Newton and updated after
 //! each converged Newton solve, nested with Uzawa's normal update when the
 //! law has one (Simo & Laursen, *An augmented Lagrangian treatment of
 //! contact problems involving friction*, Comput. Struct. 42 (1992) 97–116;
@@ -78,6 +80,36 @@
 //! mapping above with `λ_T` fixed, so its consistent tangent is unchanged.
 //! The penalty law keeps the regularised law (elastic slip `t_T/ε_T`).
 //!
+//! ## Exact stick in one Newton solve: the multiplier as an unknown (Alart–Curnier)
+//! By default ([`FrictionMultiplier::Newton`], with the laws that have a
+//! normal multiplier dof: Rockafellar, slack) `λ_T` is not held and
+//! updated but solved for: two unknowns `ℓ` per node beside the normal
+//! multiplier, `λ_T = ε_T (ℓ¹ e₁ + ℓ² e₂)` on two fixed coordinate axes
+//! ([`TangentialMultiplier`]), with the equations of Alart and Curnier's
+//! complementarity function (Alart & Curnier, *A mixed formulation for
+//! frictional contact problems prone to Newton like solution methods*,
+//! CMAME 92 (1991) 353–375; Wriggers, *Computational Contact Mechanics*,
+//! 2006, §6.3)
+//! ```text
+//! C_T = T λ_T − P_μt_N(T λ_T − ε_T T d) = T λ_T − t_T,    r_ℓ = −A_s Eᵀ C_T
+//! ```
+//! ([`multiplier_rows`]), Newton on `(u, λ, ℓ)` together: at a solution
+//! the fixed point of the outer loop, in one Newton solve. The force on
+//! the node stays the return mapping's `t_T` with `λ_T` for `t_T,n`, so
+//! the displacement rows, the stick/slip switch and the slip predictor
+//! are this module's return mapping; what the multiplier adds is
+//! `∂t_T/∂λ_T` ([`TangentialResponse::multiplier_gradient`]). The
+//! multiplier block of a node (normal and tangential) is dense in slip
+//! (`∂r_ℓ/∂ℓ` couples `ℓ¹, ℓ²` unless `m` lies on an axis, `∂r_ℓ/∂λ ≠ 0`):
+//! the sparsity pattern holds a 3 × 3 block per node
+//! ([`SparsityPattern::with_multiplier_groups`](crate::assembly::pattern::SparsityPattern::with_multiplier_groups)),
+//! so the tangent is exact (a diagonal block on a slip-aligned basis, the
+//! other way, needs a basis that turns with `m` within the increment). A
+//! node that was open at the last commit keeps `λ_T = 0` for the increment
+//! (its stick equation after [`first_contact`] is met by `g = 0` alone, see
+//! `ContactInterface`'s `first_contact_pending`), as the outer loop's
+//! fixed point has it.
+//!
 //! ## History
 //! [`FrictionHistory`] (traction, anchor, accumulated slip, status) is read,
 //! never written, during the Newton iterations of an increment; the outer
@@ -86,7 +118,7 @@
 //! iteration (as the paper says) breaks path independence.
 
 use super::gap::GapGeometry;
-use nalgebra::{Matrix3, SMatrix, SVector, Vector3};
+use nalgebra::{Matrix2, Matrix3, SMatrix, SVector, Vector2, Vector3};
 
 /// Coulomb's law with its regularising tangential penalty.
 #[derive(Clone, Copy, Debug, PartialEq)]
@@ -221,6 +253,10 @@ pub struct TangentialResponse<const K: usize = 3> {
     pub traction_gradient: SMatrix<f64, 3, K>,
     /// `∂t_T/∂λ`.
     pub traction_multiplier_derivative: Vector3<f64>,
+    /// `∂t_T/∂t_T,n`, the derivative with respect to the committed traction
+    /// (the tangential multiplier `λ_T` of exact stick): `T` in stick,
+    /// `β (I − m mᵀ) T` in slip.
+    pub multiplier_gradient: Matrix3<f64>,
     /// `J* = ∂t_T*/∂q`, the trial (stick) derivative, whatever the
     /// status: the tangential stiffness a preconditioner may use in slip.
     pub trial_gradient: SMatrix<f64, 3, K>,
@@ -247,6 +283,7 @@ impl<const K: usize> TangentialResponse<K> {
             status: ContactStatus::Open,
             traction_gradient: SMatrix::zeros(),
             traction_multiplier_derivative: Vector3::zeros(),
+            multiplier_gradient: Matrix3::zeros(),
             trial_gradient: SMatrix::zeros(),
             stick_scale: 1.0,
             multiplier_residual: Vector3::zeros(),
@@ -348,6 +385,7 @@ pub fn return_map_on<const K: usize>(
             status: ContactStatus::Stick,
             traction_gradient: trial_gradient,
             traction_multiplier_derivative: Vector3::zeros(),
+            multiplier_gradient: projector,
             trial_gradient,
             stick_scale: 1.0,
             multiplier_residual: -slip,
@@ -365,6 +403,7 @@ pub fn return_map_on<const K: usize>(
             * trial_gradient
             + mu * m * pressure.gradient.transpose(),
         traction_multiplier_derivative: mu * pressure.multiplier_derivative * m,
+        multiplier_gradient: (bound / size) * (Matrix3::identity() - m * m.transpose()) * projector,
         trial_gradient,
         stick_scale: bound / size,
         multiplier_residual: (traction - old) / eps,
@@ -421,6 +460,131 @@ pub fn augment<const K: usize>(
     FrictionHistory {
         traction: response.map_or_else(Vector3::zeros, |r| r.traction),
         ..*history
+    }
+}
+
+/// How exact stick finds its tangential multiplier `λ_T` (`[[contact]]
+/// friction_multiplier`; see the module docs, "Exact stick").
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+pub enum FrictionMultiplier {
+    /// Two unknowns of Newton per node beside the normal multiplier
+    /// (Alart–Curnier's monolithic form, [`multiplier_rows`]): one Newton
+    /// solve per increment. The laws with a multiplier dof (Rockafellar,
+    /// slack).
+    #[default]
+    Newton,
+    /// Simo–Laursen's outer loop: `λ_T` held fixed during Newton, updated
+    /// after each converged solve ([`augment`]).
+    Outer,
+}
+
+/// Relative size of the diagonal shift `−δ`, `δ = 1e-6 A_s ε_T`, that
+/// [`multiplier_rows`] puts in the Jacobian (not the residual) of a closed
+/// node's tangential rows: their block `∂r_ℓ/∂ℓ` is zero in stick, and
+/// `(β − 1) A_s ε_T → 0` across the slip direction when a node has just
+/// reached the cone (`β → 1`), so where the node's tangential motion is
+/// prescribed (a node on a symmetry plane: no coupling to its
+/// displacement either) the rows would be singular. Newton's step changes
+/// by `O(1e-6)` relative, its rate stays.
+pub const STICK_SHIFT: f64 = 1e-6;
+
+/// The tangential multiplier of a node as two unknowns of Newton: scaled
+/// components `ℓ = (ℓ¹, ℓ²)` on a fixed orthonormal pair `(e₁, e₂)`,
+/// `λ_T = ε_T (ℓ¹ e₁ + ℓ² e₂)` (a length, like the normal `λ = t_N/k`:
+/// `ε_T` is a pure scaling, as `k` is). The return mapping reads the
+/// projection `T λ_T` on the current tangent plane, so the pair need not
+/// be tangent, only not normal to it.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct TangentialMultiplier {
+    /// `(e₁, e₂)`.
+    pub basis: [Vector3<f64>; 2],
+    /// `ε_T`.
+    pub scale: f64,
+    /// `(ℓ¹, ℓ²)`.
+    pub values: [f64; 2],
+}
+
+impl TangentialMultiplier {
+    /// `λ_T = ε_T (ℓ¹ e₁ + ℓ² e₂)`.
+    pub fn vector(&self) -> Vector3<f64> {
+        self.scale * (self.values[0] * self.basis[0] + self.values[1] * self.basis[1])
+    }
+
+    /// `ε_T E`, `E = [e₁ e₂]`: `∂λ_T/∂ℓ`.
+    fn gradient(&self) -> SMatrix<f64, 3, 2> {
+        self.scale * SMatrix::<f64, 3, 2>::from_columns(&self.basis)
+    }
+}
+
+/// The equations of a tangential multiplier ([`multiplier_rows`]) and
+/// their derivatives.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct MultiplierRows<const K: usize> {
+    /// `r_ℓ = A_s Eᵀ (t_T − T λ_T)`.
+    pub residual: Vector2<f64>,
+    /// `∂r_ℓ/∂q`.
+    pub gradient: SMatrix<f64, 2, K>,
+    /// `∂r_ℓ/∂ℓ` (with the shift [`STICK_SHIFT`] where closed).
+    pub multiplier: Matrix2<f64>,
+    /// `∂r_ℓ/∂λ` (the normal multiplier; nonzero in slip).
+    pub normal_multiplier: Vector2<f64>,
+    /// `A_s ∂t_T/∂ℓ = A_s (∂t_T/∂λ_T) ε_T E`: the node's rows get `−Bᵀ`
+    /// of it (`B` the lever of [`SlipFrame`](super::kinematics::SlipFrame)).
+    pub force_gradient: SMatrix<f64, 3, 2>,
+}
+
+/// Alart–Curnier's tangential equations of one node of area `A_s` with
+/// the multiplier `λ_T` of `multiplier`, at the return mapping (the
+/// response) of the kinematics in `closed`, whose committed traction is
+/// `λ_T` (`None`: the node is open). The complementarity function
+/// ```text
+/// C_T(λ_T, q) = λ_T − P_{μ t_N}(T λ_T − ε_T T d) = T λ_T − t_T
+/// r_ℓ = −A_s Eᵀ C_T = A_s Eᵀ (t_T − T λ_T)       (closed)
+/// r_ℓ = −A_s ε_T ℓ                                (open: λ_T = 0)
+/// ```
+/// vanishes in stick where `T d = 0` (the node does not move: `r_ℓ =
+/// −A_s ε_T Eᵀ T d`), in slip where `T λ_T = μ t_N m` on the cone with the
+/// slip `T d` along `−m`: Coulomb's law exactly, whatever `ε_T`. The force
+/// on the node is the return mapping's `t_T`, so in stick on a plane the
+/// blocks `∂r_q/∂ℓ = −A_s ε_T T E` and `∂r_ℓ/∂q = −A_s ε_T Eᵀ T` are each
+/// other's transpose. Derivatives (`T' = ∂(T v)/∂q` at fixed `v`,
+/// [`projection_derivative`]):
+/// ```text
+/// ∂r_ℓ/∂q = A_s Eᵀ (∂t_T/∂q − T' λ_T − T ∂λ_T/∂q)
+/// ∂r_ℓ/∂ℓ = A_s ε_T Eᵀ (∂t_T/∂λ_T − T) E      (0 in stick; −A_s ε_T along m and
+///                                              (β − 1) A_s ε_T across it in slip)
+/// ∂r_ℓ/∂λ = A_s Eᵀ ∂t_T/∂λ
+/// ```
+pub fn multiplier_rows<const K: usize>(
+    multiplier: &TangentialMultiplier,
+    closed: Option<(&SlipKinematics<K>, &TangentialResponse<K>)>,
+    area: f64,
+) -> MultiplierRows<K> {
+    let e = multiplier.gradient() / multiplier.scale;
+    let dlambda = multiplier.gradient();
+    let Some((kinematics, r)) = closed else {
+        let block = -area * multiplier.scale * e.transpose() * e;
+        return MultiplierRows {
+            residual: block * Vector2::from(multiplier.values),
+            gradient: SMatrix::zeros(),
+            multiplier: block,
+            normal_multiplier: Vector2::zeros(),
+            force_gradient: SMatrix::zeros(),
+        };
+    };
+    let lambda = multiplier.vector();
+    let n = kinematics.normal;
+    let projector = Matrix3::identity() - n * n.transpose();
+    let projected_gradient =
+        projection_derivative(kinematics, &lambda) + projector * kinematics.traction_gradient;
+    let block = area * e.transpose() * (r.multiplier_gradient - projector) * dlambda
+        - STICK_SHIFT * area * multiplier.scale * Matrix2::identity();
+    MultiplierRows {
+        residual: area * e.transpose() * (r.traction - projector * lambda),
+        gradient: area * e.transpose() * (r.traction_gradient - projected_gradient),
+        multiplier: block,
+        normal_multiplier: area * e.transpose() * r.traction_multiplier_derivative,
+        force_gradient: area * r.multiplier_gradient * dlambda,
     }
 }
 
@@ -625,6 +789,153 @@ mod tests {
             let rate = k_s / (k_s + eps);
             let expected = (1e-13_f64.ln() / rate.ln()).ceil() as usize + 3;
             assert!(updates <= expected, "ε_T = {eps}: {updates} updates");
+        }
+    }
+
+    /// The tangential multiplier's equations ([`multiplier_rows`]) of one
+    /// node against a rigid obstacle, with `λ_T` from `ℓ` (basis `x`, `y`):
+    /// `(r_ℓ, r_q)`, `r_q = −A_s t_T` the node's friction force.
+    fn multiplier_equations(
+        geometry: fn(&Vector3<f64>) -> GapGeometry,
+        x: &Vector3<f64>,
+        l: [f64; 2],
+        lambda: f64,
+        anchor: &Vector3<f64>,
+    ) -> (
+        Vector2<f64>,
+        Vector3<f64>,
+        MultiplierRows<3>,
+        TangentialResponse,
+    ) {
+        let area = 0.7;
+        let multiplier = TangentialMultiplier {
+            basis: [Vector3::x(), Vector3::y()],
+            scale: EPS_T,
+            values: l,
+        };
+        let history = FrictionHistory {
+            traction: multiplier.vector(),
+            ..FrictionHistory::at(*anchor)
+        };
+        let g = geometry(x);
+        let kinematics = SlipKinematics::rigid(&history, x, &g.normal, &g.hessian);
+        let t = return_map_on(&law(), &kinematics, &pressure_at(&g, lambda));
+        let rows = multiplier_rows(&multiplier, Some((&kinematics, &t)), area);
+        (rows.residual, -area * t.traction, rows, t)
+    }
+
+    /// `∂r_ℓ/∂(x, ℓ, λ)` and `∂r_q/∂ℓ` of [`multiplier_rows`] against
+    /// central differences (the shift `−δ` of the `ℓ` block taken out).
+    fn check_multiplier_rows(
+        geometry: fn(&Vector3<f64>) -> GapGeometry,
+        x: Vector3<f64>,
+        l: [f64; 2],
+        lambda: f64,
+        anchor: Vector3<f64>,
+        expect: ContactStatus,
+    ) {
+        let (_, _, rows, t) = multiplier_equations(geometry, &x, l, lambda, &anchor);
+        assert_eq!(t.status, expect);
+        let h = 1e-8;
+        let scale = rows.gradient.norm().max(rows.multiplier.norm()).max(1.0);
+        let close = |fd: Vector2<f64>, exact: Vector2<f64>, what: &str| {
+            assert!(
+                (fd - exact).norm() < 1e-6 * scale,
+                "{expect:?} {what}: fd {fd:?} vs {exact:?}"
+            );
+        };
+        for j in 0..3 {
+            let mut e = Vector3::zeros();
+            e[j] = h;
+            let (rp, _, _, _) = multiplier_equations(geometry, &(x + e), l, lambda, &anchor);
+            let (rm, _, _, _) = multiplier_equations(geometry, &(x - e), l, lambda, &anchor);
+            close(
+                (rp - rm) / (2.0 * h),
+                rows.gradient.column(j).into(),
+                "∂r_ℓ/∂x",
+            );
+        }
+        let shift = STICK_SHIFT * 0.7 * EPS_T * Matrix2::identity();
+        for j in 0..2 {
+            let (mut lp, mut lm) = (l, l);
+            lp[j] += h;
+            lm[j] -= h;
+            let (rp, fp, _, _) = multiplier_equations(geometry, &x, lp, lambda, &anchor);
+            let (rm, fm, _, _) = multiplier_equations(geometry, &x, lm, lambda, &anchor);
+            let exact = (rows.multiplier + shift).column(j).into();
+            close((rp - rm) / (2.0 * h), exact, "∂r_ℓ/∂ℓ");
+            let fd = (fp - fm) / (2.0 * h);
+            let exact = -rows.force_gradient.column(j);
+            assert!(
+                (fd - exact).norm() < 1e-6 * scale,
+                "∂r_q/∂ℓ: {fd:?} vs {exact:?}"
+            );
+        }
+        let (rp, _, _, _) = multiplier_equations(geometry, &x, l, lambda + h, &anchor);
+        let (rm, _, _, _) = multiplier_equations(geometry, &x, l, lambda - h, &anchor);
+        close((rp - rm) / (2.0 * h), rows.normal_multiplier, "∂r_ℓ/∂λ");
+    }
+
+    /// The tangential multiplier's equations in stick (a multiplier inside
+    /// the cone, a small motion), in slip (a long motion), at the cone's
+    /// tip (`t_N` a thousandth of the trial's bound) and at its edge (a
+    /// trial `1e-6` outside the cone, and one `1e-6` inside), on a plane
+    /// and on a sphere; and their solution is Coulomb's law: in stick
+    /// `r_ℓ = −A_s ε_T Eᵀ T d`.
+    #[test]
+    fn tangential_multiplier_rows_match_finite_differences() {
+        for geometry in [plane as fn(&Vector3<f64>) -> GapGeometry, sphere] {
+            let x = Vector3::new(0.05, 0.02, -0.003);
+            let (near, far) = (
+                Vector3::new(1e-5, 2e-5, 0.0),
+                Vector3::new(0.02, -0.01, 0.0),
+            );
+            check_multiplier_rows(
+                geometry,
+                x,
+                [2e-4, -1e-4],
+                0.1,
+                x - near,
+                ContactStatus::Stick,
+            );
+            check_multiplier_rows(
+                geometry,
+                x,
+                [2e-4, -1e-4],
+                0.1,
+                x - far,
+                ContactStatus::Slip,
+            );
+            // the tip: t_N = K λ − P g = 1e-3 |t*|/μ
+            let g = geometry(&x);
+            let (_, _, _, t) = multiplier_equations(geometry, &x, [0.0, 0.0], 0.1, &(x - far));
+            let size = t.traction.norm() / t.stick_scale;
+            let lambda = (1e-3 * size / MU + P * g.signed_gap) / K;
+            check_multiplier_rows(
+                geometry,
+                x,
+                [0.0, 0.0],
+                lambda,
+                x - far,
+                ContactStatus::Slip,
+            );
+            // the edge: |t*| = (1 ± 1e-6) μ t_N
+            for (factor, status) in [
+                (1.0 + 1e-6, ContactStatus::Slip),
+                (1.0 - 1e-6, ContactStatus::Stick),
+            ] {
+                let lambda = (size / (MU * factor) + P * g.signed_gap) / K;
+                check_multiplier_rows(geometry, x, [0.0, 0.0], lambda, x - far, status);
+            }
+            // stick: the equations say the node does not move
+            let (r, _, _, _) = multiplier_equations(geometry, &x, [2e-4, -1e-4], 0.1, &(x - near));
+            let n = g.normal;
+            let slip = near - n * n.dot(&near);
+            let expected = -0.7 * EPS_T * Vector2::new(slip.x, slip.y);
+            assert!(
+                (r - expected).norm() < 1e-12 * EPS_T,
+                "{r:?} vs {expected:?}"
+            );
         }
     }
 

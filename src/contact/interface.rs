@@ -20,7 +20,10 @@
 //! stick preconditioner, the slack law's advance, the gaps, the initial
 //! states and Uzawa's augmentation.
 
-use super::friction::{self, ContactStatus, Coulomb, FrictionHistory, TangentialResponse};
+use super::friction::{
+    self, ContactStatus, Coulomb, FrictionHistory, FrictionMultiplier, TangentialMultiplier,
+    TangentialResponse,
+};
 use super::gap::GapGeometry;
 use super::kinematics::{GapKinematics, GapProducer, NodeEvaluation, SecondaryNode};
 use super::laws::{uzawa, NodeContactState, NormalLaw};
@@ -77,6 +80,10 @@ pub struct ContactInterface {
     /// Friction with exact stick asked for (`[[contact]] exact_stick`);
     /// it applies where [`exact_stick`](Self::exact_stick) says.
     pub exact_stick_requested: bool,
+    /// How exact stick finds its tangential multiplier (`[[contact]]
+    /// friction_multiplier`): as unknowns of Newton where
+    /// [`tangential_multipliers`](Self::tangential_multipliers) says.
+    pub friction_multiplier: FrictionMultiplier,
 }
 
 /// What one node of an interface looks like in a state, for output.
@@ -155,6 +162,18 @@ impl ContactInterface {
         self.exact_stick_requested && self.law.augments_friction()
     }
 
+    /// Whether exact stick's tangential multipliers are unknowns of Newton
+    /// (two per node, numbered after the `n` normal multipliers of the
+    /// interface: its multiplier `n + 2i + α` is node `i`'s `ℓ^α`,
+    /// [`TangentialMultiplier`]): with friction, exact stick, the law's
+    /// multiplier dof and [`FrictionMultiplier::Newton`].
+    pub fn tangential_multipliers(&self) -> bool {
+        self.has_friction()
+            && self.exact_stick()
+            && self.law.has_multiplier_dof()
+            && self.friction_multiplier == FrictionMultiplier::Newton
+    }
+
     /// Whether friction makes the tangent nonsymmetric.
     pub fn has_friction(&self) -> bool {
         self.friction.is_some_and(|c| c.coefficient > 0.0)
@@ -162,10 +181,22 @@ impl ContactInterface {
 
     /// Number of multiplier unknowns this interface adds.
     pub fn num_multipliers(&self) -> usize {
-        if self.law.has_multiplier_dof() {
-            self.nodes.len()
-        } else {
-            0
+        match (self.law.has_multiplier_dof(), self.tangential_multipliers()) {
+            (false, _) => 0,
+            (true, false) => self.nodes.len(),
+            (true, true) => 3 * self.nodes.len(),
+        }
+    }
+
+    /// The multipliers of node `i` (indices among the interface's own):
+    /// its normal one, then its two tangential ones where they are
+    /// unknowns; they couple to each other (one dense block).
+    pub fn node_multipliers(&self, i: usize) -> Vec<usize> {
+        let n = self.nodes.len();
+        match self.num_multipliers() / n.max(1) {
+            0 => Vec::new(),
+            1 => vec![i],
+            _ => vec![i, n + 2 * i, n + 2 * i + 1],
         }
     }
 
@@ -219,8 +250,42 @@ impl ContactInterface {
             .then_some(ctx.first_multiplier + self.multiplier_offset + i)
     }
 
-    /// The node's state with its multiplier taken from the unknowns
-    /// where the law has a multiplier dof.
+    /// Node `i`'s tangential multiplier from the unknowns at `ctx` with the
+    /// global index of its first component, where it is an unknown of
+    /// Newton ([`tangential_multipliers`](Self::tangential_multipliers)):
+    /// components on the two coordinate axes other than the state's
+    /// [`normal_axis`](NodeContactState::normal_axis), scaled by `ε_T`.
+    fn tangential_multiplier(
+        &self,
+        ctx: &ContactContext,
+        state: &NodeContactState,
+        i: usize,
+    ) -> Option<(usize, TangentialMultiplier)> {
+        if !self.tangential_multipliers() {
+            return None;
+        }
+        let coulomb = self.friction_at(i)?;
+        let m = ctx.first_multiplier + self.multiplier_offset + self.nodes.len() + 2 * i;
+        let axis = state.normal_axis % 3;
+        let basis = [(axis + 1) % 3, (axis + 2) % 3].map(|j| {
+            let mut e = Vector3::zeros();
+            e[j] = 1.0;
+            e
+        });
+        let values = [ctx.x[m], ctx.x[m + 1]];
+        Some((
+            m,
+            TangentialMultiplier {
+                basis,
+                scale: coulomb.tangential_penalty,
+                values,
+            },
+        ))
+    }
+
+    /// The node's state with its multipliers taken from the unknowns
+    /// where the law has a multiplier dof (the tangential one, where it is
+    /// an unknown, as the friction history's traction `λ_T`).
     pub fn node_state(
         &self,
         ctx: &ContactContext,
@@ -230,6 +295,10 @@ impl ContactInterface {
         let mut state = states[i];
         if let Some(m) = self.multiplier(ctx, i) {
             state.lambda = ctx.x[m];
+        }
+        match self.tangential_multiplier(ctx, &state, i) {
+            Some((_, t)) if !first_contact_pending(&state) => state.friction.traction = t.vector(),
+            _ => {}
         }
         state
     }
@@ -277,7 +346,12 @@ impl ContactInterface {
             }
             (true, Some(coulomb)) => {
                 let mut frame = producer.slip(node, &mut kinematics, &state.friction);
-                if state.friction.status == ContactStatus::Open {
+                if self.tangential_multipliers() {
+                    // the multiplier λ_T, an unknown (not carried by the surface)
+                    frame.kinematics.traction = state.friction.traction;
+                    frame.kinematics.traction_gradient = nalgebra::SMatrix::zeros();
+                }
+                if first_contact_pending(state) {
                     let (g, grad) = (kinematics.gap, &kinematics.gradient);
                     friction::first_contact(&mut frame.kinematics, state.gap, g, grad);
                 }
@@ -347,6 +421,9 @@ impl ContactInterface {
             self.for_each_node(p, &ctx, blank, |node, _, k| {
                 let g = k.as_ref().map_or(p.open_gap(), |k| k.gap);
                 let mut state = NodeContactState::initial(&self.law_at(node.index), g);
+                if let Some(k) = &k {
+                    state.normal_axis = k.normal.iamax();
+                }
                 state.friction = FrictionHistory::at(p.relative_position(node));
                 state.friction.material_point = p.anchor(node, k.as_ref(), &Vector3::zeros());
                 states.push(state);
@@ -386,6 +463,11 @@ impl ContactInterface {
                                 open.k_lambdalambda;
                         }
                     }
+                    if let Some((m, t)) = self.tangential_multiplier(ctx, &state, i) {
+                        let rows = friction::multiplier_rows::<3>(&t, None, self.areas[i]);
+                        let tangent = tangent.as_mut().map(|(p, v)| (*p, &mut **v));
+                        scatter_tangential(ctx, &rows, m, multiplier, &[], None, residual, tangent);
+                    }
                     reports.push(NodeReport {
                         gap: p.open_gap(),
                         ..Default::default()
@@ -406,6 +488,18 @@ impl ContactInterface {
                         add_multiplier_block(pattern, values, m, nodes, |a| column[a], |a| row[a], all);
                         values[pattern.multiplier_diagonal(m)] += c.k_lambdalambda;
                     }
+                }
+                if let Some((m, t)) = self.tangential_multiplier(ctx, &state, i) {
+                    let closed = e.frame.as_ref().zip(e.tangential.as_ref());
+                    let closed = closed.filter(|_| !first_contact_pending(&state));
+                    let rows = friction::multiplier_rows(
+                        &t,
+                        closed.map(|(f, r)| (&f.kinematics, r)),
+                        self.areas[i],
+                    );
+                    let lever = closed.map(|(f, _)| &f.lever);
+                    let tangent = tangent.as_mut().map(|(p, v)| (*p, &mut **v));
+                    scatter_tangential(ctx, &rows, m, multiplier, nodes, lever, residual, tangent);
                 }
                 let force = e.kinematics.normal * (self.areas[i] * c.pressure.value);
                 let t = e.tangential.unwrap_or_else(TangentialResponse::none);
@@ -560,7 +654,7 @@ impl ContactInterface {
     /// [`GapProducer::augment`]) unless the largest multiplier residual
     /// `|t_T − T λ_T|/ε_T` is within the tolerance.
     fn augment_friction(&self, ctx: &ContactContext, states: &mut [NodeContactState]) -> bool {
-        if !(self.has_friction() && self.exact_stick()) {
+        if !(self.has_friction() && self.exact_stick()) || self.tangential_multipliers() {
             return false;
         }
         let mut worst = 0.0_f64;
@@ -600,5 +694,65 @@ impl ContactInterface {
             state.lambda = self.law_at(i).augmented_multiplier(state.lambda, *g);
         }
         true
+    }
+}
+
+/// Whether the node was open at the last commit, at a positive gap: it
+/// may close in this increment, its slip counted from its first contact
+/// ([`friction::first_contact`]), which leaves its stick equation
+/// `(1 − α) T d = 0` met by `g = 0` whatever its tangential motion, so
+/// its tangential multiplier stays zero for the increment, as the outer
+/// loop's does (`λ_T ← t_T = 0`): the node carries no friction until
+/// the commit anchors it.
+fn first_contact_pending(state: &NodeContactState) -> bool {
+    state.friction.status == ContactStatus::Open && state.gap > 0.0
+}
+
+/// Scatter node `i`'s tangential multiplier equations `rows` (global
+/// indices `m`, `m + 1`; its normal multiplier `normal`) over the node's
+/// `nodes`: their residual, the rows `∂r_ℓ/∂q`, the columns
+/// `∂r_q/∂ℓ = −A_s Bᵀ ∂t_T/∂ℓ` (`lever` the node's `B`, `None` when open)
+/// and the block among the node's multipliers.
+#[allow(clippy::too_many_arguments)]
+fn scatter_tangential<const Q: usize>(
+    ctx: &ContactContext,
+    rows: &friction::MultiplierRows<Q>,
+    m: usize,
+    normal: Option<usize>,
+    nodes: &[usize],
+    lever: Option<&nalgebra::SMatrix<f64, 3, Q>>,
+    residual: &mut [f64],
+    tangent: Option<(&SparsityPattern, &mut [f64])>,
+) {
+    residual[m] += rows.residual[0];
+    residual[m + 1] += rows.residual[1];
+    let Some((pattern, values)) = tangent else {
+        return;
+    };
+    let first = m - ctx.first_multiplier;
+    let column = lever.map(|b| -(b.transpose() * rows.force_gradient));
+    for alpha in 0..2 {
+        if let Some(column) = &column {
+            let (c, r) = (column.column(alpha), rows.gradient.row(alpha));
+            add_multiplier_block(
+                pattern,
+                values,
+                first + alpha,
+                nodes,
+                |a| c[a],
+                |a| r[a],
+                |_| true,
+            );
+        }
+        for beta in 0..2 {
+            if let Some(k) = pattern.multiplier_pair(first + alpha, first + beta) {
+                values[k] += rows.multiplier[(alpha, beta)];
+            }
+        }
+        if let Some(k) =
+            normal.and_then(|n| pattern.multiplier_pair(first + alpha, n - ctx.first_multiplier))
+        {
+            values[k] += rows.normal_multiplier[alpha];
+        }
     }
 }

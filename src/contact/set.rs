@@ -62,11 +62,13 @@ impl<'a> IntoIterator for &'a ContactSet {
 
 /// The sparsity couplings of the contact interfaces: node groups (each
 /// secondary node of a deformable interface with its candidates' nodes) and
-/// the nodes each multiplier couples to.
+/// the nodes each multiplier couples to, and the multipliers each
+/// multiplier couples to (a node's normal and tangential multipliers).
 #[derive(Default)]
 pub struct Couplings {
     pub groups: Vec<Vec<usize>>,
     pub multipliers: Vec<Vec<usize>>,
+    pub multiplier_groups: Vec<Vec<usize>>,
 }
 
 impl ContactSet {
@@ -90,8 +92,18 @@ impl ContactSet {
         let mut out = Couplings::default();
         for c in self.iter() {
             let groups = (0..c.nodes.len()).map(|i| c.coupled_nodes(i));
+            let first = out.multipliers.len();
             out.multipliers
-                .extend(groups.clone().take(c.num_multipliers()));
+                .resize(first + c.num_multipliers(), Vec::new());
+            out.multiplier_groups
+                .resize(first + c.num_multipliers(), Vec::new());
+            for (i, nodes) in groups.clone().enumerate() {
+                let own = c.node_multipliers(i);
+                for &k in &own {
+                    out.multipliers[first + k] = nodes.clone();
+                    out.multiplier_groups[first + k] = own.iter().map(|l| first + l).collect();
+                }
+            }
             if matches!(c.primary, Primary::Surface(_)) {
                 out.groups.extend(groups);
             }

@@ -35,7 +35,7 @@
 //! body against an obstacle. (The geometric mean `√(k_s k_p)` was tried
 //! too: 1060 iterations and 9 cuts in ironing.)
 
-use super::friction::{self, Coulomb};
+use super::friction::{self, Coulomb, FrictionMultiplier};
 use super::interface::{ContactInterface, Primary};
 use super::laws::{automatic_parameters, uzawa, NormalLaw};
 use super::obstacle::RigidObstacle;
@@ -76,6 +76,9 @@ pub struct Enforcement {
     /// Exact stick by the tangential augmented Lagrangian (the Lagrangian
     /// methods against a rigid obstacle); `false`: the regularised law.
     pub exact_stick: bool,
+    /// How exact stick finds its tangential multiplier (Newton unknowns
+    /// by default).
+    pub friction_multiplier: FrictionMultiplier,
 }
 
 impl From<NormalLaw> for Enforcement {
@@ -96,6 +99,7 @@ impl From<NormalLaw> for Enforcement {
             friction_coefficient: None,
             tangential_penalty: None,
             exact_stick: false,
+            friction_multiplier: FrictionMultiplier::default(),
         }
     }
 }
@@ -206,6 +210,7 @@ impl ContactInterface {
             node_scale: Vec::new(),
             multiplier_offset: 0,
             exact_stick_requested: enforcement.exact_stick,
+            friction_multiplier: enforcement.friction_multiplier,
         };
         enforcement.apply(&mut c);
         if let Primary::Surface(p) = &mut c.primary {

@@ -363,9 +363,24 @@ pub fn assert_tangent_matches_fd(
     state: &ContactState,
     label: &str,
 ) {
+    assert_corrected_tangent_matches_fd(pr, t, x, state, label, |_| {});
+}
+
+/// [`assert_tangent_matches_fd`] after `correct` changed the assembled
+/// values (to take out what the tangent holds on purpose and the
+/// residual does not, such as a diagonal shift).
+pub fn assert_corrected_tangent_matches_fd(
+    pr: &Problem,
+    t: f64,
+    x: &[f64],
+    state: &ContactState,
+    label: &str,
+    correct: impl Fn(&mut [f64]),
+) {
     let n = pr.num_unknowns();
     let mut k = vec![0.0; pr.model.pattern.nnz()];
     pr.residual_in(t, x, state, Some(&mut k)).unwrap();
+    correct(&mut k);
     let pattern = pr.model.pattern.symbolic();
     let h = 1e-7;
     for j in 0..n {

@@ -109,6 +109,16 @@ pub struct NodeContactState {
     /// initial gap): where a node that was open finds its first contact
     /// ([`friction::first_contact`](crate::contact::friction::first_contact)).
     pub gap: f64,
+    /// The coordinate axis nearest the node's normal at the start (2, `z`,
+    /// without a primary then): the node's tangential multiplier
+    /// ([`TangentialMultiplier`](crate::contact::friction::TangentialMultiplier))
+    /// has its components on the other two axes.
+    #[serde(default = "z_axis")]
+    pub normal_axis: usize,
+}
+
+fn z_axis() -> usize {
+    2
 }
 
 impl NodeContactState {
@@ -129,6 +139,7 @@ impl NodeContactState {
             friction: Default::default(),
             facet: None,
             gap: signed_gap,
+            normal_axis: z_axis(),
         }
     }
 }

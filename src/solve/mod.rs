@@ -9,6 +9,7 @@ pub mod cone;
 pub mod direct;
 pub mod failure;
 pub mod gmres;
+pub mod josephy;
 pub mod krylov;
 pub mod linear;
 pub mod linear_solver;

@@ -14,6 +14,7 @@ use crate::mesh::Facet;
 pub use crate::solve::settings::{LinearMethod, NonsymmetricSolver, SolverSettings, Step};
 
 pub mod condensed;
+mod constraints;
 mod nonlinear;
 
 pub use crate::contact::set::ContactState;

@@ -45,6 +45,7 @@ use crate::output::writer::{Restored, ResultWriter, SeriesContent};
 use crate::problem::condensed::{self, Path as SolvePath};
 use crate::problem::{ContactState, Problem};
 use crate::solve::backend::try_linear_solver;
+use crate::solve::josephy::Josephy;
 use crate::solve::linear_solver::SolverStatistics;
 use crate::solve::stepping::{resume_steps, Resume};
 use crate::{Error, Result};
@@ -295,14 +296,16 @@ impl Simulation {
                 .observers
                 .on_message(&format!("linear solver: {about_solver}"));
         }
+        let mut josephy = Josephy::default();
         let result = resume_steps(
             &mut self.problem,
             &mut *solver,
+            &mut josephy,
             recorder,
             output.to_path_buf(),
             resume,
         );
-        Ok((result, solver.statistics()))
+        Ok((result, solver.statistics() + josephy.statistics()))
     }
 
     /// The result files and the log, when the run has an output folder

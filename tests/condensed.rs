@@ -7,6 +7,9 @@ use signorini::output::{ConvergedIncrement, StepObserver, Summary};
 use signorini::run::{RunOptions, RunOutcome, Simulation};
 use std::path::Path;
 
+mod common;
+use common::relative_difference;
+
 /// Per converged increment: the nodal contact force (`A_s t_N n`, 3 per
 /// node) of every interface node (`.0`), the contact traction `t_N n + t_T`
 /// (`.1`), the contact status (`.2`) and the displacements (`.3`).
@@ -60,16 +63,6 @@ fn run_adjusted(
     };
     let outcome = simulation.run(&options, &mut forces)?;
     Ok((outcome, forces))
-}
-
-/// `max |a − b| / max |b|`.
-fn relative_difference(a: &[f64], b: &[f64]) -> f64 {
-    assert_eq!(a.len(), b.len());
-    let scale = b.iter().fold(0.0f64, |m, v| m.max(v.abs()));
-    a.iter()
-        .zip(b)
-        .fold(0.0f64, |m, (x, y)| m.max((x - y).abs()))
-        / scale
 }
 
 /// The condensed run's displacements and nodal contact forces (at every

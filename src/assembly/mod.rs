@@ -158,6 +158,12 @@ impl Model {
         self.share.as_ref().is_none_or(Share::is_lead)
     }
 
+    /// Whether the elements are shared among processes (a distributed
+    /// run: this process assembles its part `K^p` of the tangent only).
+    pub fn is_shared(&self) -> bool {
+        self.share.is_some()
+    }
+
     /// Complete a product with this process's part of the tangent,
     /// `v ← Σ_p K^p w` (nothing to do without a share).
     pub fn sum_over_processes(&self, v: &mut [f64]) {

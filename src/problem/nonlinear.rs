@@ -7,7 +7,7 @@ use crate::assembly::pattern::SparsityPattern;
 use crate::assembly::ElementFailure;
 use crate::contact::interface::NodeReport;
 use crate::solve::failure::IncrementFailure;
-use crate::solve::nonlinear::{Evaluation, NonlinearProblem};
+use crate::solve::nonlinear::{Evaluation, Linearisation, NonlinearProblem};
 
 impl Problem {
     /// An element failure as a failed increment, with the element's mesh id.
@@ -107,6 +107,17 @@ impl NonlinearProblem for Problem {
     }
     fn moving_coupled_nodes(&self) -> Vec<usize> {
         self.deformable_contact_nodes()
+    }
+    /// [`Problem::linearised_contact`].
+    fn linearise_constraints(
+        &self,
+        t: f64,
+        x: &[f64],
+        state: &ContactState,
+        tangent: &mut [f64],
+    ) -> Result<Option<Linearisation>, IncrementFailure> {
+        self.linearised_contact(t, x, state, tangent)
+            .map_err(|f| self.element_failure(&f))
     }
     fn sum_over_processes(&self, v: &mut [f64]) {
         self.model.sum_over_processes(v)

@@ -10,6 +10,7 @@ pub mod decoupled;
 pub mod direct;
 pub mod failure;
 pub mod gmres;
+pub mod josephy;
 pub mod krylov;
 pub mod linear;
 pub mod linear_solver;

@@ -7,8 +7,10 @@
 
 use super::failure::IncrementFailure;
 use super::gmres::{dot, norm};
+use super::josephy::{HeldTangent, Josephy, JosephyStep};
 use super::linear_solver::{LinearFigures, LinearSolver, LinearSystem};
 use super::nonlinear::{Evaluation, NonlinearProblem};
+use super::settings::Predictor;
 
 /// One Newton iteration as reported to the user.
 #[derive(Clone, Debug, serde::Serialize)]
@@ -52,6 +54,9 @@ pub struct Newton<'a, P: NonlinearProblem> {
     /// logs); returns whether to go on (`false`: the run is cancelled, and
     /// the increment ends with [`IncrementFailure::Cancelled`]).
     pub on_iteration: Option<&'a mut dyn FnMut(&IterationRecord) -> bool>,
+    /// The factor of the Josephy–Newton steps (`[solver] predictor =
+    /// "contact"`), kept over the run.
+    pub josephy: &'a mut Josephy,
 }
 
 impl<P: NonlinearProblem> Newton<'_, P> {
@@ -188,47 +193,65 @@ impl<P: NonlinearProblem> Newton<'_, P> {
             if iteration >= 3 && relative > 1e3 * reference.max(settings.residual_tolerance) {
                 return (Err(IncrementFailure::Diverging { relative }), records);
             }
-            if !have_tangent {
-                if let Err(f) = problem.evaluate(t, u, state, Some(&mut k_values[..])) {
-                    return (Err(f), records);
-                }
-                have_tangent = true;
-            }
-            debug_assert!(have_tangent);
-            // the preconditioner of a nonsymmetric solve: the symmetric part,
-            // with friction's slip blocks replaced by stick blocks
-            let neighbour = nonsymmetric.then(|| {
-                let mut p = blocks.symmetric_part(&k_values);
-                problem.symmetric_neighbour(t, u, state, constrained, &mut p);
-                apply_identity_rows(problem, constrained, &mut p);
-                p
-            });
-            // rhs: −(r_f + K_fc d) on the free dofs, (diagonal scale) · d on the prescribed ones
-            let diagonal = apply_identity_rows(problem, constrained, &mut k_values);
-            let rhs: Vec<f64> = (0..u.len())
-                .map(|i| {
-                    if constrained[i] {
-                        diagonal * jump[i]
-                    } else {
-                        -out_of_balance[i]
+            // the first correction as a Josephy–Newton step where asked for
+            // and where the problem linearises its constraints
+            let contact_step = ((iteration == 0 || switched > 0)
+                && settings.predictor == Predictor::Contact)
+                .then(|| self.josephy_correction(&jump, u, state))
+                .flatten();
+            let josephy = contact_step.is_some();
+            let mut du = match contact_step {
+                Some(step) => {
+                    if let Some(rec) = records.last_mut() {
+                        rec.linear = step.figures;
                     }
-                })
-                .collect();
-            let mut du = rhs.clone();
-            let system = LinearSystem {
-                pattern: blocks.symbolic(),
-                matrix: &k_values,
-                symmetric_neighbour: neighbour.as_deref(),
-                pivot_signs: signs.as_deref(),
+                    step.correction
+                }
+                None => {
+                    if !have_tangent {
+                        if let Err(f) = problem.evaluate(t, u, state, Some(&mut k_values[..])) {
+                            return (Err(f), records);
+                        }
+                        have_tangent = true;
+                    }
+                    debug_assert!(have_tangent);
+                    // the preconditioner of a nonsymmetric solve: the symmetric part,
+                    // with friction's slip blocks replaced by stick blocks
+                    let neighbour = nonsymmetric.then(|| {
+                        let mut p = blocks.symmetric_part(&k_values);
+                        problem.symmetric_neighbour(t, u, state, constrained, &mut p);
+                        apply_identity_rows(problem, constrained, &mut p);
+                        p
+                    });
+                    // rhs: −(r_f + K_fc d) on the free dofs, (diagonal scale) · d on the prescribed ones
+                    let diagonal = apply_identity_rows(problem, constrained, &mut k_values);
+                    let rhs: Vec<f64> = (0..u.len())
+                        .map(|i| {
+                            if constrained[i] {
+                                diagonal * jump[i]
+                            } else {
+                                -out_of_balance[i]
+                            }
+                        })
+                        .collect();
+                    let mut du = rhs.clone();
+                    let system = LinearSystem {
+                        pattern: blocks.symbolic(),
+                        matrix: &k_values,
+                        symmetric_neighbour: neighbour.as_deref(),
+                        pivot_signs: signs.as_deref(),
+                    };
+                    let before = self.solver.statistics();
+                    let solved = self.solver.solve(&system, &rhs, &mut du);
+                    if let Some(rec) = records.last_mut() {
+                        rec.linear = self.solver.statistics().since(&before);
+                    }
+                    if let Err(reason) = solved {
+                        return (Err(IncrementFailure::LinearSolve(reason)), records);
+                    }
+                    du
+                }
             };
-            let before = self.solver.statistics();
-            let solved = self.solver.solve(&system, &rhs, &mut du);
-            if let Some(rec) = records.last_mut() {
-                rec.linear = self.solver.statistics().since(&before);
-            }
-            if let Err(reason) = solved {
-                return (Err(IncrementFailure::LinearSolve(reason)), records);
-            }
             for (i, d) in du.iter_mut().enumerate() {
                 if constrained[i] {
                     *d = jump[i];
@@ -266,8 +289,12 @@ impl<P: NonlinearProblem> Newton<'_, P> {
                 du: &du,
                 target: &target,
             };
-            let (step_length, full_step) =
-                self.line_search(line, &out_of_balance, relative, state, &mut k_values);
+            // the Josephy–Newton step solves its constraints exactly: taken whole
+            let (step_length, full_step) = if josephy {
+                (1.0, None)
+            } else {
+                self.line_search(line, &out_of_balance, relative, state, &mut k_values)
+            };
             ahead = full_step;
             let scaled: Vec<f64> = du.iter().map(|d| step_length * d).collect();
             problem.advance_state(t, u, &scaled, state);
@@ -303,6 +330,52 @@ impl<P: NonlinearProblem> Newton<'_, P> {
             }),
             records,
         )
+    }
+
+    /// The first correction of an increment as a Josephy–Newton step
+    /// ([`super::josephy`]) from `u`, with `jump` the prescribed values
+    /// still to be reached; `None` (Newton's plain step then) where the
+    /// problem does not linearise its constraints or the step fails.
+    fn josephy_correction(
+        &mut self,
+        jump: &[f64],
+        u: &[f64],
+        state: &P::State,
+    ) -> Option<JosephyStep> {
+        let problem = self.problem;
+        let blocks = problem.pattern();
+        let mut k = vec![0.0; blocks.nnz()];
+        let linearisation = problem
+            .linearise_constraints(self.t, u, state, &mut k)
+            .ok()??;
+        // K_fc d, then the prescribed unknowns and every multiplier held
+        let mut kd = vec![0.0; u.len()];
+        super::linear::multiply(blocks.symbolic(), &k, jump, &mut kd);
+        let mut held = self.constrained.to_vec();
+        held[problem.num_dofs()..]
+            .iter_mut()
+            .for_each(|h| *h = true);
+        let scale = apply_identity_rows(problem, &held, &mut k);
+        let rhs: Vec<f64> = (0..u.len())
+            .map(|i| {
+                if self.constrained[i] {
+                    scale * jump[i]
+                } else if held[i] {
+                    0.0
+                } else {
+                    -(linearisation.residual[i] + kd[i])
+                }
+            })
+            .collect();
+        let tangent = HeldTangent {
+            pattern: blocks,
+            values: &k,
+            scale,
+            held: &held,
+        };
+        self.josephy
+            .step(tangent, &rhs, u, &linearisation.constraints)
+            .ok()
     }
 
     /// Line search along the Newton direction `δu`.

@@ -34,6 +34,29 @@ impl<R> Evaluation<R> {
     }
 }
 
+/// One unilateral constraint of a problem, linearised at an iterate `x`:
+/// the gap `g(x + δ) ≈ gap + sign · δ[dof] ≥ 0` along one displacement
+/// unknown, and the force `f = force_per_multiplier · x[multiplier] ≥ 0`
+/// that acts along `sign · e_dof` where the gap closes (`f g = 0`).
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct NormalConstraint {
+    pub dof: usize,
+    pub sign: f64,
+    pub gap: f64,
+    pub multiplier: usize,
+    pub force_per_multiplier: f64,
+}
+
+/// The problem at `x` without its unilateral constraints (the residual
+/// `f_int − f_ext` over all unknowns, zero on the multipliers; the
+/// tangent alongside) and those constraints linearised there: what a
+/// Josephy–Newton step solves ([`super::josephy`]).
+#[derive(Clone, Debug)]
+pub struct Linearisation {
+    pub residual: Vec<f64>,
+    pub constraints: Vec<NormalConstraint>,
+}
+
 /// A nonlinear problem `r(t, x; state) = 0` solved by Newton in load
 /// increments. `State` is the history carried between increments (contact
 /// multipliers held by an outer loop, friction's committed slip), advanced
@@ -107,6 +130,19 @@ pub trait NonlinearProblem {
     /// The nodes whose motion sets the search margin of
     /// [`NonlinearProblem::refresh_pattern`].
     fn moving_coupled_nodes(&self) -> Vec<usize>;
+    /// The problem at `x` without its unilateral constraints, its tangent
+    /// written into `tangent`, and the constraints linearised at `x`
+    /// ([`Linearisation`]); `Ok(None)` where they cannot be written so
+    /// (the default: Newton then takes its plain step).
+    fn linearise_constraints(
+        &self,
+        _t: f64,
+        _x: &[f64],
+        _state: &Self::State,
+        _tangent: &mut [f64],
+    ) -> Result<Option<Linearisation>, IncrementFailure> {
+        Ok(None)
+    }
     /// In a distributed run, where each process holds its part `K^p` of
     /// the tangent: complete a product with it, `v ← Σ_p v^p`
     /// (`v = K^p w` on entry). Nothing to do in a serial run.

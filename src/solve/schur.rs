@@ -64,29 +64,21 @@ pub fn trailing_ordering(pattern: &SparsityPattern, trailing: &[bool]) -> Result
     Ok(Ordering::Custom(front))
 }
 
-/// `(K⁻¹)_TT`, read from the factor of `K` whose ordering put the
-/// unknowns `T` last ([`trailing_ordering`]).
-#[derive(Clone, Debug)]
-pub struct TrailingInverse {
+/// The trailing block of an LDLᵀ factor: `L_TT` (unit lower, dense) and
+/// `D_T`, whose product `L_TT D_T L_TTᵀ` is the Schur complement `S`.
+struct TrailingFactor {
     /// Index of each unknown in the block (`usize::MAX`: not in `T`).
     position: Vec<usize>,
-    block: Mat<f64>,
+    l: Mat<f64>,
+    d: Vec<f64>,
 }
 
-impl TrailingInverse {
-    /// No block: every direction is solved with the factor.
-    pub fn empty(dimension: usize) -> Self {
-        TrailingInverse {
-            position: vec![usize::MAX; dimension],
-            block: Mat::zeros(0, 0),
-        }
-    }
-
-    /// `(K⁻¹)_TT = L_TT⁻ᵀ D_T⁻¹ L_TT⁻¹` from the last factorisation of
-    /// `ldlt` (in f64 arithmetic from an f32 factor's values: then the
-    /// inverse of the f32 factor's Schur complement), for the unknowns `trailing` (all of them in the last
-    /// `trailing.len()` positions of its ordering, else an error).
-    pub fn of(ldlt: &SparseLdlt, trailing: &[usize]) -> Result<Self> {
+impl TrailingFactor {
+    /// `L_TT` and `D_T` from the last factorisation of `ldlt` (in f64
+    /// arithmetic from an f32 factor's values), for the unknowns `trailing`
+    /// (all of them in the last `trailing.len()` positions of its ordering,
+    /// else an error; a zero pivot among them is an error too).
+    fn of(ldlt: &SparseLdlt, trailing: &[usize]) -> Result<Self> {
         let (symbolic, values) = ldlt.factor_parts().ok_or_else(|| {
             Error::LinearSolver("the trailing block needs a factorisation".into())
         })?;
@@ -159,33 +151,45 @@ impl TrailingInverse {
                 "a zero pivot in the trailing block".into(),
             ));
         }
+        Ok(TrailingFactor { position, l, d })
+    }
+}
+
+/// `(K⁻¹)_TT`, read from the factor of `K` whose ordering put the
+/// unknowns `T` last ([`trailing_ordering`]).
+#[derive(Clone, Debug)]
+pub struct TrailingInverse {
+    /// Index of each unknown in the block (`usize::MAX`: not in `T`).
+    position: Vec<usize>,
+    block: Mat<f64>,
+}
+
+impl TrailingInverse {
+    /// No block: every direction is solved with the factor.
+    pub fn empty(dimension: usize) -> Self {
+        TrailingInverse {
+            position: vec![usize::MAX; dimension],
+            block: Mat::zeros(0, 0),
+        }
+    }
+
+    /// `(K⁻¹)_TT = L_TT⁻ᵀ D_T⁻¹ L_TT⁻¹` from the last factorisation of
+    /// `ldlt` (in f64 arithmetic from an f32 factor's values: then the
+    /// inverse of the f32 factor's Schur complement), for the unknowns `trailing` (all of them in the last
+    /// `trailing.len()` positions of its ordering, else an error).
+    pub fn of(ldlt: &SparseLdlt, trailing: &[usize]) -> Result<Self> {
+        let TrailingFactor { position, l, d } = TrailingFactor::of(ldlt, trailing)?;
+        let c = trailing.len();
         // M = L_TT⁻¹, then (K⁻¹)_TT = Mᵀ D⁻¹ M
-        let par = if c < PARALLEL_TRAILING {
-            Par::Seq
-        } else {
-            Par::rayon(rayon::current_num_threads())
-        };
+        let par = trailing_par(c);
         let mut m = Mat::<f64>::identity(c, c);
         faer::linalg::triangular_solve::solve_unit_lower_triangular_in_place(
             l.as_ref(),
             m.as_mut(),
             par,
         );
-        let mut scaled = m.clone();
-        for j in 0..c {
-            for i in 0..c {
-                scaled[(i, j)] /= d[i];
-            }
-        }
-        let mut block = Mat::<f64>::zeros(c, c);
-        faer::linalg::matmul::matmul(
-            block.as_mut(),
-            faer::Accum::Replace,
-            m.transpose(),
-            scaled.as_ref(),
-            1.0,
-            par,
-        );
+        let inverse_pivots: Vec<f64> = d.iter().map(|v| 1.0 / v).collect();
+        let block = weighted_gram(m.as_ref(), &inverse_pivots, par);
         Ok(TrailingInverse { position, block })
     }
 
@@ -216,6 +220,51 @@ impl TrailingInverse {
             })
             .sum()
     }
+}
+
+/// The Schur complement `S = C − Bᵀ A⁻¹ B = L_TT D_T L_TTᵀ` of the
+/// unknowns `trailing`, read from the last factorisation of `ldlt` whose
+/// ordering put them last ([`trailing_ordering`]), in the order of
+/// `trailing`: the stiffness of `K` condensed onto `T` (`c³/3` flops, no
+/// inverse).
+pub fn trailing_schur(ldlt: &SparseLdlt, trailing: &[usize]) -> Result<DMatrix<f64>> {
+    let TrailingFactor { position, l, d } = TrailingFactor::of(ldlt, trailing)?;
+    let c = trailing.len();
+    let par = trailing_par(c);
+    let mut unit = l;
+    for i in 0..c {
+        unit[(i, i)] = 1.0;
+    }
+    let schur = weighted_gram(unit.transpose(), &d, par);
+    Ok(DMatrix::from_fn(c, c, |a, b| {
+        schur[(position[trailing[a]], position[trailing[b]])]
+    }))
+}
+
+/// The threads of the dense work on `c` trailing unknowns
+/// ([`PARALLEL_TRAILING`]).
+fn trailing_par(c: usize) -> Par {
+    if c < PARALLEL_TRAILING {
+        Par::Seq
+    } else {
+        Par::rayon(rayon::current_num_threads())
+    }
+}
+
+/// `Aᵀ diag(w) A` for a square `A`.
+fn weighted_gram(a: faer::MatRef<'_, f64>, w: &[f64], par: Par) -> Mat<f64> {
+    let c = a.nrows();
+    let scaled = Mat::<f64>::from_fn(c, a.ncols(), |i, j| w[i] * a[(i, j)]);
+    let mut product = Mat::<f64>::zeros(a.ncols(), a.ncols());
+    faer::linalg::matmul::matmul(
+        product.as_mut(),
+        faer::Accum::Replace,
+        a.transpose(),
+        scaled.as_ref(),
+        1.0,
+        par,
+    );
+    product
 }
 
 /// `eᵀ v`.
@@ -384,6 +433,22 @@ mod tests {
                 }
             }
             assert!(largest > 1e-2);
+            // the Schur complement is the inverse of the trailing block
+            let schur = trailing_schur(&ldlt, &trailing).unwrap();
+            let c = trailing.len();
+            for i in 0..c {
+                for j in 0..c {
+                    let e = vec![(trailing[j], 1.0)];
+                    let product: f64 = (0..c)
+                        .map(|k| schur[(i, k)] * inverse.product(&vec![(trailing[k], 1.0)], &e))
+                        .sum();
+                    let identity = f64::from(u8::from(i == j));
+                    assert!(
+                        (product - identity).abs() < 1e-12,
+                        "n = {n}: (S W)[{i},{j}]"
+                    );
+                }
+            }
         }
         // one simplicial and one supernodal factor were read
         assert_eq!(kinds, [false, true]);

@@ -6,6 +6,7 @@
 //! `on_converged` callback as each increment converges.
 
 use super::failure::IncrementFailure;
+use super::josephy::Josephy;
 use super::linear_solver::{LinearSolver, SolverStatistics};
 use super::newton::{IterationRecord, Newton, NewtonOutcome};
 use super::nonlinear::{Evaluation, NonlinearProblem};
@@ -108,7 +109,14 @@ pub fn run_steps<P: NonlinearProblem>(
     observer: &mut dyn StepObserver<P>,
     output: PathBuf,
 ) -> Result<Vec<f64>> {
-    resume_steps(problem, solver, observer, output, None)
+    resume_steps(
+        problem,
+        solver,
+        &mut Josephy::default(),
+        observer,
+        output,
+        None,
+    )
 }
 
 /// [`run_steps`] from a converged increment `from` (`None`: from the
@@ -119,6 +127,7 @@ pub fn run_steps<P: NonlinearProblem>(
 pub fn resume_steps<P: NonlinearProblem>(
     problem: &mut P,
     solver: &mut dyn LinearSolver,
+    josephy: &mut Josephy,
     observer: &mut dyn StepObserver<P>,
     output: PathBuf,
     from: Option<Resume<P::State>>,
@@ -184,10 +193,14 @@ pub fn resume_steps<P: NonlinearProblem>(
                 t: t_new,
                 force_scale,
                 on_iteration: Some(&mut tell),
+                josephy: &mut *josephy,
             };
-            let extrapolate = secant
-                .as_ref()
-                .filter(|_| problem.settings().predictor == Predictor::Secant);
+            let extrapolate = secant.as_ref().filter(|_| {
+                matches!(
+                    problem.settings().predictor,
+                    Predictor::Secant | Predictor::Contact
+                )
+            });
             predict(
                 problem,
                 t_new,
@@ -254,7 +267,7 @@ pub fn resume_steps<P: NonlinearProblem>(
                         secant: secant.clone(),
                         last_motion,
                     };
-                    observer.on_stepping(&stepping, &solver.statistics());
+                    observer.on_stepping(&stepping, &(solver.statistics() + josephy.statistics()));
                     observer.on_converged(problem, &record, &u, &evaluation, &state)?;
                 }
                 Err(IncrementFailure::Cancelled) => return Err(cancelled(t)),

@@ -768,3 +768,13 @@ pub fn assert_contact_pressure_nonnegative(outcome: &signorini::run::RunOutcome)
     assert!(written > 0, "no increment written");
     largest
 }
+
+/// `max |a − b| / max |b|`.
+pub fn relative_difference(a: &[f64], b: &[f64]) -> f64 {
+    assert_eq!(a.len(), b.len());
+    let scale = b.iter().fold(0.0f64, |m, v| m.max(v.abs()));
+    a.iter()
+        .zip(b)
+        .fold(0.0f64, |m, (x, y)| m.max((x - y).abs()))
+        / scale
+}

@@ -508,8 +508,8 @@ mod tests {
         let base = SparsityPattern::from_elements(6, elements.iter().map(|e| e.as_slice()));
         let all = elements.iter().chain(&groups).map(|e| e.as_slice());
         let at_once = SparsityPattern::with_multipliers(6, all, &multipliers);
-        let coupled = base.coupled(&groups, &multipliers);
-        let again = coupled.coupled(&[], &multipliers);
+        let coupled = base.coupled(&groups, &multipliers, &[]);
+        let again = coupled.coupled(&[], &multipliers, &[]);
         assert_eq!(coupled.symbolic().col_ptr(), at_once.symbolic().col_ptr());
         assert_eq!(coupled.symbolic().row_idx(), at_once.symbolic().row_idx());
         assert!(

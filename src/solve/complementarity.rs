@@ -16,7 +16,7 @@
 //! changes (Murty's rule, finite for a positive definite `W`). The answer
 //! is exact up to round-off: `g_A = 0`, `λ_I = 0`.
 
-use nalgebra::{DMatrix, DVector};
+use nalgebra::DMatrix;
 
 /// Steps without a smaller number of violations before the single-index
 /// (Murty) rule takes over.
@@ -92,30 +92,35 @@ pub fn solve_lcp(
 }
 
 /// `λ_A = −W_AA⁻¹ q_A`, `λ_I = 0`, and `g = q + W λ` with `g_A = 0` exactly.
+/// `W_AA` is factorised by faer's blocked dense Cholesky (on the large race
+/// mesh `|A|` ≈ 850 at every step of every defect pass: nalgebra's
+/// unblocked one took 6 % of the run).
 fn solve_on(w: &DMatrix<f64>, q: &[f64], active: &[bool]) -> Result<(Vec<f64>, Vec<f64>), String> {
+    use faer::linalg::solvers::Solve;
     let m = q.len();
     let index: Vec<usize> = (0..m).filter(|&i| active[i]).collect();
     let mut lambda = vec![0.0; m];
     if !index.is_empty() {
-        let a = DMatrix::from_fn(index.len(), index.len(), |r, c| w[(index[r], index[c])]);
-        let rhs = DVector::from_iterator(index.len(), index.iter().map(|&i| -q[i]));
-        let cholesky = a.cholesky().ok_or_else(|| {
+        let n = index.len();
+        let a = faer::Mat::<f64>::from_fn(n, n, |r, c| w[(index[r], index[c])]);
+        let cholesky = a.llt(faer::Side::Lower).map_err(|_| {
             "the condensed contact flexibility W is not positive definite".to_string()
         })?;
-        let x = cholesky.solve(&rhs);
+        let mut x = faer::Mat::<f64>::from_fn(n, 1, |r, _| -q[index[r]]);
+        cholesky.solve_in_place(x.as_mut());
         for (k, &i) in index.iter().enumerate() {
-            lambda[i] = x[k];
+            lambda[i] = x[(k, 0)];
         }
     }
-    let gap = (0..m)
-        .map(|i| {
-            if active[i] {
-                0.0
-            } else {
-                q[i] + index.iter().map(|&j| w[(i, j)] * lambda[j]).sum::<f64>()
-            }
-        })
-        .collect();
+    // g = q + Σ_{j ∈ A} W e_j λ_j, column by column (contiguous in memory)
+    let mut gap = q.to_vec();
+    for &j in &index {
+        let column = w.column(j);
+        for (g, wij) in gap.iter_mut().zip(column.iter()) {
+            *g += wij * lambda[j];
+        }
+    }
+    index.iter().for_each(|&i| gap[i] = 0.0);
     Ok((lambda, gap))
 }
 

@@ -102,7 +102,10 @@ impl StepObserver for Record {
 fn cattaneo_mindlin_partial_slip() {
     let out = tempfile::tempdir().unwrap();
     let case = Path::new(env!("CARGO_MANIFEST_DIR")).join("examples/cattaneo-mindlin/coarse.toml");
-    let record = run_recorded(&case, out.path());
+    let record = run_recorded(
+        &pinned(&case, out.path(), "newton"),
+        &out.path().join("newton"),
+    );
     let end_of_press = record
         .comparisons
         .iter()
@@ -172,7 +175,7 @@ fn cattaneo_mindlin_partial_slip() {
     assert!(slipping > 0, "no node slipped");
 
     // the log's note of a sparse-LU fallback, on the increments that had one
-    let log = std::fs::read_to_string(out.path().join("cattaneo.log")).unwrap();
+    let log = std::fs::read_to_string(out.path().join("newton/cattaneo.log")).unwrap();
     let lines: Vec<&str> = log
         .lines()
         .filter(|l| l.starts_with("step '") && l.contains("converged in"))
@@ -182,21 +185,11 @@ fn cattaneo_mindlin_partial_slip() {
         assert_eq!(line.contains("sparse LU fallback"), lu > 0, "{line}");
     }
 
-    // the outer loop's answer
-    let text = std::fs::read_to_string(&case).unwrap();
-    let mesh = case.with_file_name("coarse.msh");
-    let text = text
-        .replace(
-            "file = \"coarse.msh\"",
-            &format!("file = {:?}", mesh.display().to_string()),
-        )
-        .replace(
-            "exact_stick = true",
-            "exact_stick = true\nfriction_multiplier = \"outer\"",
-        );
-    let outer_case = out.path().join("outer.toml");
-    std::fs::write(&outer_case, text).unwrap();
-    let outer = run_recorded(&outer_case, &out.path().join("outer"));
+    // the outer loop's answer, on the same increments
+    let outer = run_recorded(
+        &pinned(&case, out.path(), "outer"),
+        &out.path().join("outer"),
+    );
     let largest = |v: &[f64]| v.iter().fold(0.0f64, |m, x| m.max(x.abs()));
     let difference = |a: &[f64], b: &[f64]| {
         a.iter()
@@ -231,6 +224,33 @@ fn cattaneo_mindlin_partial_slip() {
             .collect::<Vec<_>>()
     };
     assert_eq!(statuses(&record), statuses(&outer), "stick and slip sets");
+}
+
+/// A copy of the case `case` in `folder` (named `form.toml`) with the
+/// tangential multiplier of exact stick in `form` (`newton` or `outer`)
+/// and the increments pinned to the first of each step (0.25 in the
+/// press, 0.2 in the shear: friction is path dependent, so two runs
+/// compare on the same increments), its mesh named by its full path.
+fn pinned(case: &Path, folder: &Path, form: &str) -> std::path::PathBuf {
+    let text = std::fs::read_to_string(case).unwrap();
+    let mesh = case.with_file_name("coarse.msh");
+    let mut text = text
+        .replace(
+            "file = \"coarse.msh\"",
+            &format!("file = {:?}", mesh.display().to_string()),
+        )
+        .replace(
+            "exact_stick = true",
+            &format!("exact_stick = true\nfriction_multiplier = {form:?}"),
+        );
+    for first in ["0.25", "0.2"] {
+        let line = format!("initial_increment = {first}\n");
+        assert!(text.contains(&line), "{line}");
+        text = text.replace(&line, &format!("{line}max_increment = {first}\n"));
+    }
+    let path = folder.join(format!("{form}.toml"));
+    std::fs::write(&path, text).unwrap();
+    path
 }
 
 /// Run the case `case` into `output`, recording every increment.

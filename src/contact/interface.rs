@@ -466,7 +466,7 @@ impl ContactInterface {
                     if let Some((m, t)) = self.tangential_multiplier(ctx, &state, i) {
                         let rows = friction::multiplier_rows::<3>(&t, None, self.areas[i]);
                         let tangent = tangent.as_mut().map(|(p, v)| (*p, &mut **v));
-                        scatter_tangential(ctx, &rows, m, multiplier, &[], None, residual, tangent);
+                        scatter_tangential(ctx, &rows, (m, multiplier), None, residual, tangent);
                     }
                     reports.push(NodeReport {
                         gap: p.open_gap(),
@@ -497,9 +497,9 @@ impl ContactInterface {
                         closed.map(|(f, r)| (&f.kinematics, r)),
                         self.areas[i],
                     );
-                    let lever = closed.map(|(f, _)| &f.lever);
+                    let lever = closed.map(|(f, _)| (nodes, &f.lever));
                     let tangent = tangent.as_mut().map(|(p, v)| (*p, &mut **v));
-                    scatter_tangential(ctx, &rows, m, multiplier, nodes, lever, residual, tangent);
+                    scatter_tangential(ctx, &rows, (m, multiplier), lever, residual, tangent);
                 }
                 let force = e.kinematics.normal * (self.areas[i] * c.pressure.value);
                 let t = e.tangential.unwrap_or_else(TangentialResponse::none);
@@ -708,19 +708,16 @@ fn first_contact_pending(state: &NodeContactState) -> bool {
     state.friction.status == ContactStatus::Open && state.gap > 0.0
 }
 
-/// Scatter node `i`'s tangential multiplier equations `rows` (global
-/// indices `m`, `m + 1`; its normal multiplier `normal`) over the node's
-/// `nodes`: their residual, the rows `∂r_ℓ/∂q`, the columns
-/// `∂r_q/∂ℓ = −A_s Bᵀ ∂t_T/∂ℓ` (`lever` the node's `B`, `None` when open)
-/// and the block among the node's multipliers.
-#[allow(clippy::too_many_arguments)]
+/// Scatter a node's tangential multiplier equations `rows` (global
+/// indices `m`, `m + 1`; its normal multiplier `normal`): their residual,
+/// the rows `∂r_ℓ/∂q` and the columns `∂r_q/∂ℓ = −A_s Bᵀ ∂t_T/∂ℓ` over the
+/// node's mesh `nodes` with its lever `B` (`lever`, `None` when the node
+/// is open), and the block among the node's multipliers.
 fn scatter_tangential<const Q: usize>(
     ctx: &ContactContext,
     rows: &friction::MultiplierRows<Q>,
-    m: usize,
-    normal: Option<usize>,
-    nodes: &[usize],
-    lever: Option<&nalgebra::SMatrix<f64, 3, Q>>,
+    (m, normal): (usize, Option<usize>),
+    lever: Option<(&[usize], &nalgebra::SMatrix<f64, 3, Q>)>,
     residual: &mut [f64],
     tangent: Option<(&SparsityPattern, &mut [f64])>,
 ) {
@@ -730,9 +727,9 @@ fn scatter_tangential<const Q: usize>(
         return;
     };
     let first = m - ctx.first_multiplier;
-    let column = lever.map(|b| -(b.transpose() * rows.force_gradient));
+    let column = lever.map(|(nodes, b)| (nodes, -(b.transpose() * rows.force_gradient)));
     for alpha in 0..2 {
-        if let Some(column) = &column {
+        if let Some((nodes, column)) = &column {
             let (c, r) = (column.column(alpha), rows.gradient.row(alpha));
             add_multiplier_block(
                 pattern,

@@ -161,9 +161,9 @@ impl Josephy {
             .map(|c| c.gap + c.sign * delta[c.dof])
             .collect();
         // Ŝ in the constraints' signs, M = Ŝ − ρ I, c = −Ŝ q
-        let s_hat = DMatrix::from_fn(m, m, |a, b| chosen[a].sign * chosen[b].sign * schur[(a, b)]);
+        let s_hat = |a: usize, b: usize| chosen[a].sign * chosen[b].sign * schur[(a, b)];
         let stiffness = DMatrix::from_fn(m, m, |a, b| {
-            let mean = 0.5 * (s_hat[(a, b)] + s_hat[(b, a)]);
+            let mean = 0.5 * (s_hat(a, b) + s_hat(b, a));
             if a == b {
                 mean - rho
             } else {
@@ -171,7 +171,7 @@ impl Josephy {
             }
         });
         let constant: Vec<f64> = (0..m)
-            .map(|a| -(0..m).map(|b| s_hat[(a, b)] * q[b]).sum::<f64>())
+            .map(|a| -(0..m).map(|b| s_hat(a, b) * q[b]).sum::<f64>())
             .collect();
         let largest = |v: &[f64]| v.iter().fold(0.0f64, |l, x| l.max(x.abs()));
         let (force_tolerance, gap_tolerance) = (

@@ -199,7 +199,6 @@ impl<P: NonlinearProblem> Newton<'_, P> {
                 && settings.predictor == Predictor::Contact)
                 .then(|| self.josephy_correction(&jump, u, state))
                 .flatten();
-            let josephy = contact_step.is_some();
             let mut du = match contact_step {
                 Some(step) => {
                     if let Some(rec) = records.last_mut() {
@@ -289,12 +288,8 @@ impl<P: NonlinearProblem> Newton<'_, P> {
                 du: &du,
                 target: &target,
             };
-            // the Josephy–Newton step solves its constraints exactly: taken whole
-            let (step_length, full_step) = if josephy {
-                (1.0, None)
-            } else {
-                self.line_search(line, &out_of_balance, relative, state, &mut k_values)
-            };
+            let (step_length, full_step) =
+                self.line_search(line, &out_of_balance, relative, state, &mut k_values);
             ahead = full_step;
             let scaled: Vec<f64> = du.iter().map(|d| step_length * d).collect();
             problem.advance_state(t, u, &scaled, state);

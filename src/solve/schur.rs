@@ -188,8 +188,7 @@ impl TrailingInverse {
             m.as_mut(),
             par,
         );
-        let inverse_pivots: Vec<f64> = d.iter().map(|v| 1.0 / v).collect();
-        let block = weighted_gram(m.as_ref(), &inverse_pivots, par);
+        let block = weighted_gram(m.as_ref(), |i, v| v / d[i], par);
         Ok(TrailingInverse { position, block })
     }
 
@@ -235,7 +234,7 @@ pub fn trailing_schur(ldlt: &SparseLdlt, trailing: &[usize]) -> Result<DMatrix<f
     for i in 0..c {
         unit[(i, i)] = 1.0;
     }
-    let schur = weighted_gram(unit.transpose(), &d, par);
+    let schur = weighted_gram(unit.transpose(), |i, v| v * d[i], par);
     Ok(DMatrix::from_fn(c, c, |a, b| {
         schur[(position[trailing[a]], position[trailing[b]])]
     }))
@@ -251,10 +250,15 @@ fn trailing_par(c: usize) -> Par {
     }
 }
 
-/// `Aᵀ diag(w) A` for a square `A`.
-fn weighted_gram(a: faer::MatRef<'_, f64>, w: &[f64], par: Par) -> Mat<f64> {
+/// `Aᵀ W A` for a square `A` and a diagonal `W`, whose product with row
+/// `i`'s entry `v` of `A` is `weigh(i, v)`.
+fn weighted_gram(
+    a: faer::MatRef<'_, f64>,
+    weigh: impl Fn(usize, f64) -> f64,
+    par: Par,
+) -> Mat<f64> {
     let c = a.nrows();
-    let scaled = Mat::<f64>::from_fn(c, a.ncols(), |i, j| w[i] * a[(i, j)]);
+    let scaled = Mat::<f64>::from_fn(c, a.ncols(), |i, j| weigh(i, a[(i, j)]));
     let mut product = Mat::<f64>::zeros(a.ncols(), a.ncols());
     faer::linalg::matmul::matmul(
         product.as_mut(),

@@ -80,14 +80,15 @@ pub enum Predictor {
     /// set-ups; the follower-pressure test's bound is not a reason (it
     /// holds in the corrections).
     Secant,
-    /// From the converged state, the first correction solving the contact
-    /// constraints linearised there exactly (a Josephy–Newton step,
-    /// [`crate::solve::josephy`]): Newton starts on the active set of the
-    /// linearised problem instead of finding it one iteration at a time.
-    /// Where the problem cannot linearise its contact that way (friction,
-    /// other laws or obstacles than a frictionless Rockafellar contact
-    /// against axis-aligned planes) or the step fails, as
-    /// [`Predictor::None`].
+    /// From the secant's start ([`Predictor::Secant`]), the first
+    /// correction, and every one while the contact statuses still change,
+    /// solves the contact constraints linearised at the iterate exactly (a
+    /// Josephy–Newton step, [`crate::solve::josephy`]): Newton lands on the
+    /// active set of the linearised problem instead of finding it one
+    /// iteration at a time. Where the problem cannot linearise its contact
+    /// that way (friction, other laws or obstacles than a frictionless
+    /// Rockafellar contact against axis-aligned planes) or the step fails,
+    /// Newton's plain step, as with [`Predictor::Secant`].
     Contact,
 }
 

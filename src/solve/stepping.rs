@@ -124,6 +124,8 @@ pub fn run_steps<P: NonlinearProblem>(
 /// progress goes on from its time with its next increment size, and every
 /// later increment is the one an uninterrupted run would have taken.
 /// `from.unknowns` has the pattern's dimension (the caller checks it).
+/// `josephy` keeps the factor of the Josephy–Newton steps over the run
+/// (its statistics are the caller's to add to the linear solver's).
 pub fn resume_steps<P: NonlinearProblem>(
     problem: &mut P,
     solver: &mut dyn LinearSolver,

@@ -95,10 +95,13 @@ impl StepObserver for Record {
 /// choose GMRES, so any LU solve is a fallback).
 ///
 /// The same case with Simo–Laursen's outer loop instead of the tangential
-/// multipliers as unknowns of Newton (`friction_multiplier = "outer"`)
-/// ends at the same state: displacements within 1e-6 of the largest,
-/// nodal contact tractions within 1e-5 of `μ p₀`, the same stick and slip
-/// sets.
+/// multipliers as unknowns of Newton (`friction_multiplier = "outer"`), on
+/// the same increments, ends at the same state: displacements within 1e-6
+/// of the largest (measured 5.6e-10), nodal contact tractions within 5e-5
+/// of `μ p₀` (measured 7.4e-6: Newton's residual tolerance, 1e-8 of the
+/// force scale, allows about 1e-5 of `μ p₀` at a node of this mesh), the
+/// same stick and slip sets; the outer loop took 6–18 iterations per
+/// increment (6, 14, 13, 12 in the press, 16–18 in the shear).
 #[test]
 fn cattaneo_mindlin_partial_slip() {
     let out = tempfile::tempdir().unwrap();
@@ -215,7 +218,7 @@ fn cattaneo_mindlin_partial_slip() {
             .collect::<Vec<_>>()
     );
     assert!(du < 1e-6, "displacements differ by {du:e}");
-    assert!(dt < 1e-5, "tractions differ by {dt:e} of μp0");
+    assert!(dt < 5e-5, "tractions differ by {dt:e} of μp0");
     let statuses = |r: &Record| {
         r.slips
             .last()

@@ -548,7 +548,7 @@ pub struct MultiplierRows<const K: usize> {
 /// on the node is the return mapping's `t_T`, so in stick on a plane the
 /// blocks `∂r_q/∂ℓ = −A_s ε_T T E` and `∂r_ℓ/∂q = −A_s ε_T Eᵀ T` are each
 /// other's transpose. Derivatives (`T' = ∂(T v)/∂q` at fixed `v`,
-/// [`projection_derivative`]):
+/// `projection_derivative`):
 /// ```text
 /// ∂r_ℓ/∂q = A_s Eᵀ (∂t_T/∂q − T' λ_T − T ∂λ_T/∂q)
 /// ∂r_ℓ/∂ℓ = A_s ε_T Eᵀ (∂t_T/∂λ_T − T) E      (0 in stick; −A_s ε_T along m and

@@ -193,9 +193,14 @@ fn contact(c: &ContactInterface) -> String {
     } else {
         " (scaled per node by E/h_s with the node's own size)"
     };
+    let stick = match (c.exact_stick(), c.tangential_multipliers()) {
+        (false, _) => "",
+        (true, true) => ", exact stick (tangential multipliers solved by Newton)",
+        (true, false) => ", exact stick",
+    };
     let friction = match c.friction {
         Some(f) if f.coefficient > 0.0 => format!(
-            "; Coulomb friction μ = {}, tangential penalty ε_T = {:.4e}",
+            "; Coulomb friction μ = {}, tangential penalty ε_T = {:.4e}{stick}",
             f.coefficient, f.tangential_penalty
         ),
         _ => "; frictionless".to_string(),

@@ -12,11 +12,13 @@
 //!
 //! Other parts of the solver may read the cached `K` through
 //! [`Model::constant_stiffness`](super::Model::constant_stiffness): the
-//! element part only (no contact, no follower load), on the whole pattern
-//! (both triangles, zero in the multiplier rows and columns).
+//! element part only (no contact, no follower load), its lower triangle
+//! ([`super::triangle`]: half the entries of the whole pattern; zero in the
+//! multiplier rows), from which `f = K u` is one symmetric product
+//! ([`super::triangle::multiply`]) and a whole tangent a copy through each
+//! entry's mirror.
 
 use super::pattern::SparsityPattern;
-use rayon::prelude::*;
 use std::sync::{Arc, Mutex, PoisonError};
 
 /// `K` on the pattern it was assembled for.
@@ -43,37 +45,4 @@ impl StiffnessCache {
         *slot = Some((pattern.id(), Arc::clone(&k)));
         Some(k)
     }
-}
-
-/// `f = K u` over the first `displacement_dofs` unknowns (the rest of `f`
-/// set to zero): `f_j = Σ_i K_ji u_i`, column `j` of the CSC values read
-/// as row `j`, which holds because `K` is symmetric (bitwise: the element
-/// blocks are mirrored and both triangles summed in the same order). One
-/// task per entry of `f`, so the result does not depend on the threads.
-pub fn multiply_symmetric(
-    pattern: &SparsityPattern,
-    k: &[f64],
-    displacement_dofs: usize,
-    u: &[f64],
-    f: &mut [f64],
-) {
-    let symbolic = pattern.symbolic();
-    let (cp, ri) = (symbolic.col_ptr(), symbolic.row_idx());
-    let (head, tail) = f.split_at_mut(displacement_dofs);
-    tail.iter_mut().for_each(|v| *v = 0.0);
-    head.par_iter_mut()
-        .with_min_len(256)
-        .enumerate()
-        .for_each(|(j, fj)| {
-            let mut sum = 0.0;
-            // rows are sorted: the multiplier rows come last
-            for p in cp[j]..cp[j + 1] {
-                let i = ri[p];
-                if i >= displacement_dofs {
-                    break;
-                }
-                sum += k[p] * u[i];
-            }
-            *fj = sum;
-        });
 }

@@ -367,6 +367,12 @@ impl SparsityPattern {
         (xadj, adjncy)
     }
 
+    /// Index of entry `(j, i)` for entry `k = (i, j)`.
+    #[inline]
+    pub fn mirror(&self, k: usize) -> usize {
+        self.mirror[k]
+    }
+
     /// The symmetric part `½ (A + Aᵀ)` of values on this pattern.
     pub fn symmetric_part(&self, values: &[f64]) -> Vec<f64> {
         self.mirror

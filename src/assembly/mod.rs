@@ -59,9 +59,10 @@ pub struct Model {
     colouring: ElementColouring,
     /// The scatter map of the pattern it was last built for.
     scatter_map: Mutex<Option<Arc<ScatterMap>>>,
-    /// The lower triangle of the pattern it was last built for, with the
-    /// scatter map into it.
-    lower: Mutex<Option<(Arc<LowerTriangle>, Arc<ScatterMap>)>>,
+    /// The lower triangle of the pattern it was last built for, and the
+    /// scatter map into it (built at the first assembly into it).
+    lower: Mutex<Option<Arc<LowerTriangle>>>,
+    lower_map: Mutex<Option<Arc<ScatterMap>>>,
     /// `Some` when every element's material has a constant tangent.
     constant: Option<StiffnessCache>,
     /// In a distributed run: the elements this process assembles
@@ -128,6 +129,7 @@ impl Model {
             colouring,
             scatter_map: Mutex::new(None),
             lower: Mutex::new(None),
+            lower_map: Mutex::new(None),
             constant,
             share: None,
         })
@@ -275,25 +277,34 @@ impl Model {
     /// The lower triangle of the current pattern (built at the first call
     /// for it).
     pub fn lower_triangle(&self) -> Arc<LowerTriangle> {
-        Arc::clone(&self.lower_triangle_and_map().0)
+        let mut slot = self.lower.lock().unwrap_or_else(PoisonError::into_inner);
+        match slot.as_ref() {
+            Some(lower) if lower.is_for(&self.pattern) => Arc::clone(lower),
+            _ => {
+                let lower = Arc::new(LowerTriangle::of(&self.pattern));
+                *slot = Some(Arc::clone(&lower));
+                lower
+            }
+        }
     }
 
     /// The lower triangle of the current pattern and the element scatter
-    /// map into it.
+    /// map into it (each built at the first call for the pattern).
     fn lower_triangle_and_map(&self) -> (Arc<LowerTriangle>, Arc<ScatterMap>) {
-        let mut slot = self.lower.lock().unwrap_or_else(PoisonError::into_inner);
+        let lower = self.lower_triangle();
+        let mut slot = self
+            .lower_map
+            .lock()
+            .unwrap_or_else(PoisonError::into_inner);
         match slot.as_ref() {
-            Some((lower, map)) if lower.is_for(&self.pattern) => {
-                (Arc::clone(lower), Arc::clone(map))
-            }
+            Some(map) if map.is_for(&self.pattern) => (lower, Arc::clone(map)),
             _ => {
-                let lower = Arc::new(LowerTriangle::of(&self.pattern));
                 let map = Arc::new(ScatterMap::lower(
                     &self.pattern,
                     &lower,
                     self.mesh.elements.iter().map(|e| e.nodes.as_slice()),
                 ));
-                *slot = Some((Arc::clone(&lower), Arc::clone(&map)));
+                *slot = Some(Arc::clone(&map));
                 (lower, map)
             }
         }

@@ -61,15 +61,16 @@
 //! `summary.json` say why.
 
 use super::{ContactState, Problem};
+use crate::assembly::triangle::{self, LowerTriangle};
 use crate::contact::interface::Primary;
 use crate::contact::laws::{NormalLaw, SlackState};
 use crate::contact::obstacle::RigidObstacle;
 use crate::material::Kinematics;
 use crate::solve::complementarity::solve_lcp;
 use crate::solve::decoupled::{decoupled_first, Decoupled};
-use crate::solve::linear::{multiply, Precision, SparseLdlt};
+use crate::solve::linear::{scaled_identity_rows, Precision, SparseLdlt};
 use crate::solve::linear_solver::SolverStatistics;
-use crate::solve::newton::{apply_identity_rows, IterationRecord};
+use crate::solve::newton::IterationRecord;
 use crate::solve::nonlinear::NonlinearProblem;
 use crate::solve::schur::{grow_flexibility, trailing_ordering, Direction, TrailingInverse};
 use crate::solve::settings::{LinearMethod, Step, Strategy};
@@ -77,6 +78,7 @@ use crate::solve::stepping::{next_increment, IncrementRecord, StepObserver};
 use crate::{Error, Result};
 use nalgebra::{DMatrix, Matrix6, Vector3, Vector6};
 use std::path::PathBuf;
+use std::sync::Arc;
 
 mod friction;
 
@@ -299,9 +301,11 @@ struct Condensation {
     /// without solves ([`crate::solve::schur`]).
     trailing: TrailingInverse,
     trailing_dofs: Vec<usize>,
-    /// `K` as assembled and `K̃` (prescribed rows, columns and multipliers
-    /// a scaled identity `s`).
-    k: Vec<f64>,
+    /// The lower triangle of the pattern, and on it `K` as assembled and
+    /// `K̃` (prescribed rows, columns and multipliers a scaled identity
+    /// `s`): what the factorisation and the products read.
+    lower: Arc<LowerTriangle>,
+    k: Arc<Vec<f64>>,
     k_tilde: Vec<f64>,
     /// `K̃` without the couplings of its identity rows, as factorised.
     decoupled: Decoupled,
@@ -394,7 +398,7 @@ impl Condensation {
         Self::factorise(problem, nodes, &[], TRAILING_FRACTION)
     }
 
-    /// Assemble `K` at `u = 0`, make `K̃` (prescribed rows and columns a
+    /// Assemble `K` at `u = 0` (its lower triangle), make `K̃` (prescribed rows and columns a
     /// scaled identity `s`, plus `ρ = s` on the diagonal of the `shifted`
     /// dofs) and factorise it once; `nodes` are the columns of `E`, the
     /// nearest `fraction` of them ordered last. The assembly and the
@@ -411,23 +415,29 @@ impl Condensation {
         let mut constrained = problem.constrained_dofs();
         let dofs = problem.model.num_dofs();
         constrained[dofs..].iter_mut().for_each(|c| *c = true);
+        let lower = problem.model.lower_triangle();
         let (k, analysed) = rayon::join(
-            || {
-                let mut k = vec![0.0; pattern.nnz()];
-                let mut force = vec![0.0; dimension];
-                problem
-                    .model
-                    .assemble_internal(&vec![0.0; dimension], &mut force, Some(&mut k))
-                    .map_err(|f| Error::LinearSolver(problem.describe_failure(&f)))
-                    .map(|()| k)
+            || match problem.model.constant_stiffness() {
+                Some(k) => Ok(k),
+                None => {
+                    let mut k = vec![0.0; lower.nnz()];
+                    let mut force = vec![0.0; dimension];
+                    problem
+                        .model
+                        .assemble_internal_lower(&vec![0.0; dimension], &mut force, &mut k)
+                        .map_err(|f| Error::LinearSolver(problem.describe_failure(&f)))
+                        .map(|()| Arc::new(k))
+                }
             },
-            || Self::analyse(problem, &nodes, &constrained, fraction),
+            || Self::analyse(problem, &lower, &nodes, &constrained, fraction),
         );
         let (k, (trailing, decoupled, mut ldlt)) = (k?, analysed?);
-        let mut k_tilde = k.clone();
-        let scale = apply_identity_rows(problem, &constrained, &mut k_tilde);
+        let mut k_tilde = k.to_vec();
+        let diagonal = |d: usize| lower.diagonal_entry(d);
+        let scale =
+            scaled_identity_rows(lower.symbolic(), diagonal, dofs, &constrained, &mut k_tilde);
         for &d in shifted {
-            k_tilde[pattern.diagonal_entry(d)] += scale;
+            k_tilde[lower.diagonal_entry(d)] += scale;
         }
         let count = nodes.len();
         let single = match problem.settings.linear {
@@ -447,6 +457,7 @@ impl Condensation {
             ldlt,
             trailing,
             trailing_dofs,
+            lower,
             k,
             k_tilde,
             decoupled,
@@ -469,6 +480,7 @@ impl Condensation {
     /// decoupled structure and the analysed solver.
     fn analyse(
         problem: &Problem,
+        lower: &LowerTriangle,
         nodes: &[ContactNode],
         constrained: &[bool],
         fraction: f64,
@@ -482,7 +494,7 @@ impl Condensation {
         let threads = usize::from(dimension < PARALLEL_FACTOR_UNKNOWNS);
         let ordering = decoupled_first(trailing_ordering(pattern, &marked)?, constrained);
         let mut ldlt = SparseLdlt::new(ordering, threads);
-        let decoupled = Decoupled::new(pattern.symbolic(), constrained);
+        let decoupled = Decoupled::new(lower.symbolic(), constrained);
         ldlt.analyse(decoupled.symbolic())?;
         Ok((trailing, decoupled, ldlt))
     }
@@ -594,10 +606,10 @@ impl Condensation {
     }
 
     /// `K̃ u = rhs`, refined ([`Self::solve_from`] the factor's solution).
-    fn solve(&mut self, problem: &Problem, rhs: &mut [f64]) -> Result<()> {
+    fn solve(&mut self, rhs: &mut [f64]) -> Result<()> {
         let b = rhs.to_vec();
         self.ldlt.solve_in_place(rhs)?;
-        self.solve_from(problem, &b, rhs)
+        self.solve_from(&b, rhs)
     }
 
     /// `K̃ x = b` refined from the approximate solution `x` (from the
@@ -605,13 +617,13 @@ impl Condensation {
     /// fresh solve); on an f32 factor whose refinement stalls above 1e-12,
     /// `K̃` factorised again in f64 (and `W` made again from it) and
     /// solved with that.
-    fn solve_from(&mut self, problem: &Problem, b: &[f64], x: &mut [f64]) -> Result<()> {
-        let pattern = problem.model.pattern.symbolic();
+    fn solve_from(&mut self, b: &[f64], x: &mut [f64]) -> Result<()> {
         let single = self.ldlt.precision() == Precision::Single;
         let refinements = if single { MIXED_REFINEMENTS } else { 3 };
-        let mut relative =
-            self.ldlt
-                .refine_from(pattern, &self.k_tilde, b, x, refinements, single)?;
+        let (lower, k_tilde) = (&self.lower, &self.k_tilde);
+        let product =
+            |v: &[f64], y: &mut [f64]| triangle::multiply(lower.symbolic(), k_tilde, v, y);
+        let mut relative = self.ldlt.refine_with(product, b, x, refinements, single)?;
         if single && relative > 1e-12 {
             self.fallbacks += 1;
             let values = self.decoupled.values(&self.k_tilde);
@@ -624,7 +636,8 @@ impl Condensation {
             let none = DMatrix::zeros(0, 0);
             self.w = grow_flexibility(&mut self.ldlt, &self.trailing, &none, &directions, n)?;
             x.copy_from_slice(b);
-            relative = self.ldlt.solve_refined(pattern, &self.k_tilde, x, 3)?;
+            self.ldlt.solve_in_place(x)?;
+            relative = self.ldlt.refine_with(product, b, x, 3, false)?;
         }
         if relative > 1e-10 {
             return Err(Error::LinearSolver(format!(
@@ -637,13 +650,17 @@ impl Condensation {
     /// `b(t)`: `f_ext(t) − K_fp ū(t)` on the free dofs, `s ū(t)` on the
     /// prescribed ones, 0 on the multipliers.
     fn load(&self, problem: &Problem, t: f64) -> Vec<f64> {
-        let pattern = problem.model.pattern.symbolic();
         let dimension = self.constrained.len();
         let mut prescribed = vec![0.0; dimension];
         problem.apply_prescribed(t, &mut prescribed);
         let dofs = problem.model.num_dofs();
         let mut k_prescribed = vec![0.0; dimension];
-        multiply(pattern, &self.k, &prescribed, &mut k_prescribed);
+        triangle::multiply(
+            self.lower.symbolic(),
+            &self.k,
+            &prescribed,
+            &mut k_prescribed,
+        );
         let f = problem.external_force(t, &prescribed[..dofs], None);
         (0..dimension)
             .map(|i| {
@@ -689,7 +706,7 @@ impl Condensation {
     fn solve_increment(&mut self, problem: &Problem, t: f64) -> Result<(Vec<f64>, Vec<f64>)> {
         let b = self.load(problem, t);
         let mut u0 = b.clone();
-        self.solve(problem, &mut u0)?;
+        self.solve(&mut u0)?;
         let g0 = self.gaps(problem, t, &u0);
         let tolerance = 1e-12 * problem.model.size();
         let entering = self.entering(&g0, tolerance);
@@ -725,7 +742,7 @@ impl Condensation {
             // from the last pass's displacements: its forces differ by
             // the defect's correction only
             let mut u = previous;
-            self.solve_from(problem, &rhs, &mut u)?;
+            self.solve_from(&rhs, &mut u)?;
             previous = u.clone();
             let g = self.gaps(problem, t, &u);
             let mut change = 0.0f64;

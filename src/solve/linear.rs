@@ -440,6 +440,21 @@ impl SparseLdlt {
         max_refinements: usize,
         stop_on_stall: bool,
     ) -> Result<f64> {
+        let product = |v: &[f64], y: &mut [f64]| multiply(pattern, values, v, y);
+        self.refine_with(product, b, x, max_refinements, stop_on_stall)
+    }
+
+    /// [`Self::refine_from`] with the product `y = A x` given: for a matrix
+    /// stored otherwise than on its whole pattern (a symmetric one's lower
+    /// triangle, [`crate::assembly::triangle::multiply`]).
+    pub fn refine_with(
+        &mut self,
+        product: impl Fn(&[f64], &mut [f64]),
+        b: &[f64],
+        x: &mut [f64],
+        max_refinements: usize,
+        stop_on_stall: bool,
+    ) -> Result<f64> {
         let b_norm = b
             .iter()
             .map(|v| v * v)
@@ -449,7 +464,7 @@ impl SparseLdlt {
         let mut ax = vec![0.0; b.len()];
         let mut relative = f64::INFINITY;
         for k in 0..=max_refinements {
-            multiply(pattern, values, x, &mut ax);
+            product(x, &mut ax);
             let mut r: Vec<f64> = b.iter().zip(&ax).map(|(bi, ai)| bi - ai).collect();
             let previous = relative;
             relative = r.iter().map(|v| v * v).sum::<f64>().sqrt() / b_norm;
@@ -527,6 +542,43 @@ fn max_abs_diagonal(pattern: &SymbolicSparseColMat<usize>, values: &[f64]) -> f6
         .map(|k| values[k].abs())
         .fold(0.0, f64::max)
         .max(f64::MIN_POSITIVE)
+}
+
+/// Make the rows and columns of the `constrained` unknowns of `values`
+/// (a symmetric matrix stored on `pattern`, whole or its lower triangle;
+/// `diagonal(d)` the index of entry `(d, d)`) a scaled identity `s I`:
+/// their diagonal `s`, their other entries 0. `s` is the mean `|K_dd|` over
+/// the free unknowns among the first `dofs` (the displacements: a
+/// multiplier's diagonal may be 0), 1 if there is none; returned.
+pub fn scaled_identity_rows(
+    pattern: &SymbolicSparseColMat<usize>,
+    diagonal: impl Fn(usize) -> usize,
+    dofs: usize,
+    constrained: &[bool],
+    values: &mut [f64],
+) -> f64 {
+    let (cp, ri) = (pattern.col_ptr(), pattern.row_idx());
+    let (mut sum, mut count) = (0.0, 0usize);
+    for (d, &c) in constrained.iter().enumerate().take(dofs) {
+        if !c {
+            sum += values[diagonal(d)].abs();
+            count += 1;
+        }
+    }
+    let scale = if count > 0 && sum > 0.0 {
+        sum / count as f64
+    } else {
+        1.0
+    };
+    for j in 0..pattern.ncols() {
+        for idx in cp[j]..cp[j + 1] {
+            let i = ri[idx];
+            if constrained[i] || constrained[j] {
+                values[idx] = if i == j { scale } else { 0.0 };
+            }
+        }
+    }
+    scale
 }
 
 /// `y = A x` for a full-pattern CSC matrix.

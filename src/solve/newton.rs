@@ -486,28 +486,12 @@ pub fn apply_identity_rows<P: NonlinearProblem>(
     k: &mut [f64],
 ) -> f64 {
     let blocks = problem.pattern();
-    let pattern = blocks.symbolic();
-    let (cp, ri) = (pattern.col_ptr(), pattern.row_idx());
-    let (mut sum, mut count) = (0.0, 0usize);
-    // the displacement dofs set the scale (multiplier diagonals may be 0)
-    for (d, &c) in constrained.iter().enumerate().take(problem.num_dofs()) {
-        if !c {
-            sum += k[blocks.diagonal_entry(d)].abs();
-            count += 1;
-        }
-    }
-    let scale = if count > 0 && sum > 0.0 {
-        sum / count as f64
-    } else {
-        1.0
-    };
-    for j in 0..pattern.ncols() {
-        for idx in cp[j]..cp[j + 1] {
-            let i = ri[idx];
-            if constrained[i] || constrained[j] {
-                k[idx] = if i == j { scale } else { 0.0 };
-            }
-        }
-    }
-    scale
+    let diagonal = |d: usize| blocks.diagonal_entry(d);
+    super::linear::scaled_identity_rows(
+        blocks.symbolic(),
+        diagonal,
+        problem.num_dofs(),
+        constrained,
+        k,
+    )
 }

@@ -237,7 +237,7 @@ impl FrictionalCondensation {
     ) -> Result<(Vec<f64>, Vec<Vector3<f64>>)> {
         let b = self.base.load(problem, t);
         let mut u0 = b.clone();
-        self.base.solve(problem, &mut u0)?;
+        self.base.solve(&mut u0)?;
         let mut prescribed_all = vec![0.0; b.len()];
         problem.apply_prescribed(t, &mut prescribed_all);
         let tolerance = touching(problem);
@@ -326,7 +326,7 @@ impl FrictionalCondensation {
             for (s, &a) in self.candidates.iter().enumerate() {
                 self.traction[a] = solution.traction[s];
             }
-            self.base.solve(problem, &mut u)?;
+            self.base.solve(&mut u)?;
             // nodes outside the candidates that penetrate join them
             let reference = &problem.model.mesh.nodes;
             let gaps: Vec<Vec<f64>> = problem

@@ -331,10 +331,7 @@ impl Model {
 
     /// The element loop of [`Model::assemble_internal`]: colour after
     /// colour, the elements of a colour in parallel, each evaluated on the
-    /// stack and added straight into `force` and `tangent`. Only the entries
-    /// on and below the diagonal are added (the element stiffness is
-    /// symmetric); on the whole pattern those above are then copied from
-    /// their mirrors. On failure, the
+    /// stack and added straight into `force` and `tangent`. On failure, the
     /// first failing element in mesh order is named (whatever the threads).
     fn assemble_elements(
         &self,
@@ -343,7 +340,11 @@ impl Model {
         tangent: Option<(&mut [f64], Storage)>,
     ) -> Result<(), ElementFailure> {
         force.iter_mut().for_each(|x| *x = 0.0);
-        let (mut tangent, storage) = tangent.unzip();
+        let (tangent, storage) = tangent.unzip();
+        let tangent = tangent.map(|k| {
+            k.iter_mut().for_each(|x| *x = 0.0);
+            DisjointSlice::new(k)
+        });
         let (lower, map) = match storage {
             None => (None, None),
             Some(Storage::Full) => (None, Some(self.scatter_map())),
@@ -352,37 +353,28 @@ impl Model {
                 (Some(lower), Some(map))
             }
         };
-        let mut first_failure: Option<ElementFailure> = None;
-        {
-            let values = tangent.as_deref_mut().map(|k| {
-                k.iter_mut().for_each(|x| *x = 0.0);
-                DisjointSlice::new(k)
+        let force = DisjointSlice::new(force);
+        let target = tangent
+            .as_ref()
+            .zip(map.as_deref())
+            .map(|(values, map)| Target {
+                values,
+                map,
+                lower: lower.as_deref(),
             });
-            let force = DisjointSlice::new(force);
-            let target = values
-                .as_ref()
-                .zip(map.as_deref())
-                .map(|(values, map)| Target {
-                    values,
-                    map,
-                    lower: lower.as_deref(),
-                });
-            for colour in self.colouring.colours() {
-                let owned = |e: &&usize| self.share.as_ref().is_none_or(|s| s.owned[**e]);
-                let failure = colour
-                    .par_iter()
-                    .with_min_len(16)
-                    .filter(owned)
-                    .filter_map(|&e| self.add_element(e, u, &force, target.as_ref()).err())
-                    .min_by_key(|f| f.element);
-                first_failure = match (first_failure, failure) {
-                    (Some(a), Some(b)) => Some(if b.element < a.element { b } else { a }),
-                    (a, b) => a.or(b),
-                };
-            }
-        }
-        if let (Some(k), Some(Storage::Full)) = (tangent, storage) {
-            self.pattern.mirror_lower_into_upper(k);
+        let mut first_failure: Option<ElementFailure> = None;
+        for colour in self.colouring.colours() {
+            let owned = |e: &&usize| self.share.as_ref().is_none_or(|s| s.owned[**e]);
+            let failure = colour
+                .par_iter()
+                .with_min_len(16)
+                .filter(owned)
+                .filter_map(|&e| self.add_element(e, u, &force, target.as_ref()).err())
+                .min_by_key(|f| f.element);
+            first_failure = match (first_failure, failure) {
+                (Some(a), Some(b)) => Some(if b.element < a.element { b } else { a }),
+                (a, b) => a.or(b),
+            };
         }
         first_failure.map_or(Ok(()), Err)
     }
@@ -426,28 +418,39 @@ impl Model {
             return Ok(());
         };
         let (values, starts) = (target.values, target.map.element(e));
-        for (a, &na) in nodes.iter().enumerate() {
-            for (b, &nb) in nodes.iter().enumerate() {
-                if na < nb {
-                    continue; // above the diagonal: not stored, or its mirror's
-                }
-                let start = starts[a * n + b];
-                let offsets = match target.lower {
-                    Some(lower) => lower.node_column_offsets(nb),
-                    None => {
-                        let stride = self.pattern.node_column_length(nb);
-                        [0, stride, 2 * stride]
+        if let Some(lower) = target.lower {
+            for (a, &na) in nodes.iter().enumerate() {
+                for (b, &nb) in nodes.iter().enumerate() {
+                    let start = starts[a * n + b];
+                    if start == ScatterMap::ABOVE {
+                        continue;
                     }
-                };
-                for (j, offset) in offsets.iter().enumerate() {
-                    // a diagonal block: its rows from the diagonal on
-                    let first = if na == nb { j } else { 0 };
-                    for i in first..3 {
+                    let offsets = lower.node_column_offsets(nb);
+                    for (j, offset) in offsets.iter().enumerate() {
+                        // a diagonal block: its rows from the diagonal on
+                        let first = if na == nb { j } else { 0 };
+                        for i in first..3 {
+                            // SAFETY: as below, one entry of the nodes na, nb
+                            unsafe {
+                                values.add(start + offset + i, ke[(3 * a + i) * dofs + 3 * b + j])
+                            };
+                        }
+                    }
+                }
+            }
+            return Ok(());
+        }
+        for a in 0..n {
+            for (b, &nb) in nodes.iter().enumerate() {
+                let start = starts[a * n + b];
+                let stride = self.pattern.node_column_length(nb);
+                for j in 0..3 {
+                    for i in 0..3 {
                         // SAFETY: entry (3 na + i, 3 nb + j) couples two nodes
                         // of this element; no other element of the colour has
                         // either node
                         unsafe {
-                            values.add(start + offset + i, ke[(3 * a + i) * dofs + 3 * b + j])
+                            values.add(start + j * stride + i, ke[(3 * a + i) * dofs + 3 * b + j])
                         };
                     }
                 }

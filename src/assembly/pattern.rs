@@ -373,6 +373,21 @@ impl SparsityPattern {
         self.mirror[k]
     }
 
+    /// Set each entry above the diagonal of `values` to its mirror's
+    /// (`A_ij = A_ji` for `i < j`): the whole symmetric matrix from its
+    /// lower triangle.
+    pub fn mirror_lower_into_upper(&self, values: &mut [f64]) {
+        let (cp, ri) = (self.symbolic.col_ptr(), self.symbolic.row_idx());
+        for j in 0..self.dimension() {
+            for k in cp[j]..cp[j + 1] {
+                if ri[k] >= j {
+                    break; // sorted: the rest is on and below the diagonal
+                }
+                values[k] = values[self.mirror[k]];
+            }
+        }
+    }
+
     /// The symmetric part `½ (A + Aᵀ)` of values on this pattern.
     pub fn symmetric_part(&self, values: &[f64]) -> Vec<f64> {
         self.mirror

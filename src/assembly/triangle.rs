@@ -128,19 +128,15 @@ impl LowerTriangle {
     }
 
     /// The whole symmetric matrix on `pattern` from its lower triangle
-    /// `lower`: each entry above the diagonal is its mirror's.
+    /// `lower`: each column's tail copied, then each entry above the
+    /// diagonal set to its mirror's.
     pub fn expand_into(&self, pattern: &SparsityPattern, lower: &[f64], full: &mut [f64]) {
-        let (cp, ri) = (pattern.symbolic().col_ptr(), pattern.symbolic().row_idx());
-        for j in 0..self.above.len() {
-            for k in cp[j]..cp[j + 1] {
-                let i = ri[k];
-                full[k] = if i >= j {
-                    lower[self.position(pattern, k, j)]
-                } else {
-                    lower[self.position(pattern, pattern.mirror(k), i)]
-                };
-            }
+        let (cp, full_cp) = (self.symbolic.col_ptr(), pattern.symbolic().col_ptr());
+        for (j, &s) in self.above.iter().enumerate() {
+            let start = full_cp[j] + s;
+            full[start..full_cp[j + 1]].copy_from_slice(&lower[cp[j]..cp[j + 1]]);
         }
+        pattern.mirror_lower_into_upper(full);
     }
 }
 

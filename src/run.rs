@@ -461,5 +461,10 @@ pub fn run_observed(
         output: Some(options.output.clone().unwrap_or(folder)),
         ..options.clone()
     };
-    simulation.run(&options, observer)
+    let outcome = simulation.run(&options, observer);
+    // the problem (mesh, pattern, matrices) is freed on another thread:
+    // the caller has its outcome without waiting for that (here if no
+    // thread can be started)
+    let _ = std::thread::Builder::new().spawn(move || drop(simulation));
+    outcome
 }

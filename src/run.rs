@@ -367,9 +367,11 @@ impl Simulation {
         let mut writer = writer
             .compress(self.compress)
             .checkpoint(self.case_key.clone());
-        if let Some(pieces) = pieces {
-            writer = writer.pieces(pieces);
-        }
+        writer = match pieces {
+            Some(pieces) => writer.pieces(pieces),
+            // the mesh's points and cells encoded beside the solve
+            None => writer.prepare_mesh(Arc::clone(&self.problem.model.mesh)),
+        };
         Ok((Some(writer), Some(log), None))
     }
 

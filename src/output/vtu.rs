@@ -174,11 +174,6 @@ impl MeshArrays {
             text,
         })
     }
-
-    /// How they were written (compressed or not).
-    pub fn options(&self) -> VtuOptions {
-        self.options
-    }
 }
 
 /// [`write_vtu_with`] on a mesh's points and cells encoded before, with

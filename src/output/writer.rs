@@ -46,7 +46,7 @@ pub struct ResultWriter {
     pieces: Option<Pieces>,
     /// The mesh of the VTU files and its points and cells, encoded once
     /// per series ([`Self::prepare_mesh`], else at the first file).
-    mesh_arrays: Option<(Arc<Mesh>, SharedMeshArrays)>,
+    mesh_arrays: Option<(Arc<Mesh>, vtu::VtuOptions, SharedMeshArrays)>,
 }
 
 /// What a restart restores of the result files: the increments so far
@@ -169,16 +169,11 @@ impl ResultWriter {
     /// form, made empty when new.
     fn arrays_of(&mut self, mesh: &Arc<Mesh>) -> SharedMeshArrays {
         let options = self.vtu;
-        let same = |(m, a): &(Arc<Mesh>, SharedMeshArrays)| {
-            Arc::ptr_eq(m, mesh)
-                && a.get()
-                    .is_none_or(|r| r.as_ref().is_ok_and(|r| r.options() == options))
-        };
         match &self.mesh_arrays {
-            Some(cached) if same(cached) => Arc::clone(&cached.1),
+            Some((m, o, arrays)) if Arc::ptr_eq(m, mesh) && *o == options => Arc::clone(arrays),
             _ => {
                 let arrays = SharedMeshArrays::default();
-                self.mesh_arrays = Some((Arc::clone(mesh), Arc::clone(&arrays)));
+                self.mesh_arrays = Some((Arc::clone(mesh), options, Arc::clone(&arrays)));
                 arrays
             }
         }

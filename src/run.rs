@@ -367,9 +367,11 @@ impl Simulation {
         let mut writer = writer
             .compress(self.compress)
             .checkpoint(self.case_key.clone());
-        if let Some(pieces) = pieces {
-            writer = writer.pieces(pieces);
-        }
+        writer = match pieces {
+            Some(pieces) => writer.pieces(pieces),
+            // the mesh's points and cells encoded beside the solve
+            None => writer.prepare_mesh(Arc::clone(&self.problem.model.mesh)),
+        };
         Ok((Some(writer), Some(log), None))
     }
 
@@ -461,5 +463,10 @@ pub fn run_observed(
         output: Some(options.output.clone().unwrap_or(folder)),
         ..options.clone()
     };
-    simulation.run(&options, observer)
+    let outcome = simulation.run(&options, observer);
+    // the problem (mesh, pattern, matrices) is freed on another thread:
+    // the caller has its outcome without waiting for that (here if no
+    // thread can be started)
+    let _ = std::thread::Builder::new().spawn(move || drop(simulation));
+    outcome
 }

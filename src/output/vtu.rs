@@ -81,49 +81,53 @@ pub fn write_vtu_with(
     cell_data: &[Field],
     options: VtuOptions,
 ) -> crate::Result<()> {
-    let num_points = mesh.nodes.len();
-    let num_cells = mesh.elements.len();
-    validate(path, "point", point_data, num_points)?;
-    validate(path, "cell", cell_data, num_cells)?;
-    for element in &mesh.elements {
-        let bad_count = element.nodes.len() != element.kind.num_nodes();
-        if bad_count || element.nodes.iter().any(|&n| n >= num_points) {
-            let message = if bad_count {
-                format!(
-                    "element {} has {} nodes, a {:?} has {}",
-                    element.id,
-                    element.nodes.len(),
-                    element.kind,
-                    element.kind.num_nodes()
-                )
-            } else {
-                format!(
-                    "element {} refers to a node index beyond the {} nodes of the mesh",
-                    element.id, num_points
-                )
-            };
-            return Err(crate::Error::io("write", path, invalid_input(message)));
+    let arrays = MeshArrays::new(mesh, options).map_err(|e| crate::Error::io("write", path, e))?;
+    write_vtu_on(path, &arrays, point_data, cell_data)
+}
+
+/// The points and cells of a mesh as every VTU file of it holds them (the
+/// `<Points>` and `<Cells>` elements, encoded): the same bytes at every
+/// increment of a run, so a series encodes them once
+/// ([`super::writer::ResultWriter`], beside the solve).
+#[derive(Debug)]
+pub struct MeshArrays {
+    num_points: usize,
+    num_cells: usize,
+    options: VtuOptions,
+    /// The encoded `<Points>` and `<Cells>` elements.
+    text: Vec<u8>,
+}
+
+impl MeshArrays {
+    /// The encoded points and cells of `mesh` (reference configuration,
+    /// every volume element); an error if an element has the wrong number
+    /// of nodes or refers to a node that does not exist.
+    pub fn new(mesh: &Mesh, options: VtuOptions) -> io::Result<Self> {
+        let num_points = mesh.nodes.len();
+        let num_cells = mesh.elements.len();
+        for element in &mesh.elements {
+            let bad_count = element.nodes.len() != element.kind.num_nodes();
+            if bad_count || element.nodes.iter().any(|&n| n >= num_points) {
+                let message = if bad_count {
+                    format!(
+                        "element {} has {} nodes, a {:?} has {}",
+                        element.id,
+                        element.nodes.len(),
+                        element.kind,
+                        element.kind.num_nodes()
+                    )
+                } else {
+                    format!(
+                        "element {} refers to a node index beyond the {} nodes of the mesh",
+                        element.id, num_points
+                    )
+                };
+                return Err(invalid_input(message));
+            }
         }
-    }
-
-    let compress = options.compress;
-    write_atomically(path, |w| {
-        writeln!(w, r#"<?xml version="1.0"?>"#)?;
-        let compressor = if compress {
-            r#" compressor="vtkZLibDataCompressor""#
-        } else {
-            ""
-        };
-        writeln!(
-            w,
-            r#"<VTKFile type="UnstructuredGrid" version="1.0" byte_order="LittleEndian" header_type="UInt64"{compressor}>"#
-        )?;
-        writeln!(w, "  <UnstructuredGrid>")?;
-        writeln!(
-            w,
-            r#"    <Piece NumberOfPoints="{num_points}" NumberOfCells="{num_cells}">"#
-        )?;
-
+        let compress = options.compress;
+        let mut text = Vec::new();
+        let w: &mut dyn Write = &mut text;
         writeln!(w, "      <Points>")?;
         data_array(
             w,
@@ -163,6 +167,44 @@ pub fn write_vtu_with(
             num_cells,
         )?;
         writeln!(w, "      </Cells>")?;
+        Ok(MeshArrays {
+            num_points,
+            num_cells,
+            options,
+            text,
+        })
+    }
+}
+
+/// [`write_vtu_with`] on a mesh's points and cells encoded before, with
+/// the point and cell data in the same form (compressed or not).
+pub fn write_vtu_on(
+    path: &Path,
+    mesh: &MeshArrays,
+    point_data: &[Field],
+    cell_data: &[Field],
+) -> crate::Result<()> {
+    let (num_points, num_cells) = (mesh.num_points, mesh.num_cells);
+    validate(path, "point", point_data, num_points)?;
+    validate(path, "cell", cell_data, num_cells)?;
+    let compress = mesh.options.compress;
+    write_atomically(path, |w| {
+        writeln!(w, r#"<?xml version="1.0"?>"#)?;
+        let compressor = if compress {
+            r#" compressor="vtkZLibDataCompressor""#
+        } else {
+            ""
+        };
+        writeln!(
+            w,
+            r#"<VTKFile type="UnstructuredGrid" version="1.0" byte_order="LittleEndian" header_type="UInt64"{compressor}>"#
+        )?;
+        writeln!(w, "  <UnstructuredGrid>")?;
+        writeln!(
+            w,
+            r#"    <Piece NumberOfPoints="{num_points}" NumberOfCells="{num_cells}">"#
+        )?;
+        w.write_all(&mesh.text)?;
 
         for (tag, fields) in [("PointData", point_data), ("CellData", cell_data)] {
             if fields.is_empty() {

@@ -6,6 +6,7 @@
 use std::borrow::Cow;
 use std::collections::BTreeSet;
 use std::path::{Path, PathBuf};
+use std::sync::{Arc, OnceLock};
 
 use super::checkpoint::{self, CaseKey, Checkpoint};
 use super::fields::{CellField, ConvergedIncrement, NodalField};
@@ -16,7 +17,12 @@ use super::profile::{file_part, Profile};
 use super::pvtu::{data_set_file, IncrementArrays, Pieces};
 use super::summary::Summary;
 use super::{plot, pvd::PvdCollection, vtu};
+use crate::mesh::Mesh;
 use crate::{Error, Result};
+
+/// A mesh's encoded VTU points and cells, made once (by whichever of the
+/// background job and the first VTU file comes first).
+type SharedMeshArrays = Arc<OnceLock<std::io::Result<vtu::MeshArrays>>>;
 
 /// Writes a run's results into one folder.
 pub struct ResultWriter {
@@ -38,6 +44,9 @@ pub struct ResultWriter {
     /// In a distributed run (rank 0): its piece of each `.pvtu`, which it
     /// writes with the `.pvtu`; `None`: whole `.vtu` files.
     pieces: Option<Pieces>,
+    /// The mesh of the VTU files and its points and cells, encoded once
+    /// per series ([`Self::prepare_mesh`], else at the first file).
+    mesh_arrays: Option<(Arc<Mesh>, vtu::VtuOptions, SharedMeshArrays)>,
 }
 
 /// What a restart restores of the result files: the increments so far
@@ -139,7 +148,35 @@ impl ResultWriter {
             name: name.to_string(),
             case_key: None,
             pieces: None,
+            mesh_arrays: None,
         })
+    }
+
+    /// Encode `mesh`'s VTU points and cells now, on the run's threads
+    /// (`rayon::spawn`), while the problem is solved: the first VTU file
+    /// then only writes them (or waits for them). Call it after
+    /// [`Self::compress`].
+    pub fn prepare_mesh(mut self, mesh: Arc<Mesh>) -> Self {
+        let arrays = self.arrays_of(&mesh);
+        let options = self.vtu;
+        rayon::spawn(move || {
+            arrays.get_or_init(|| vtu::MeshArrays::new(&mesh, options));
+        });
+        self
+    }
+
+    /// The shared encoded points and cells of `mesh` in this writer's
+    /// form, made empty when new.
+    fn arrays_of(&mut self, mesh: &Arc<Mesh>) -> SharedMeshArrays {
+        let options = self.vtu;
+        match &self.mesh_arrays {
+            Some((m, o, arrays)) if Arc::ptr_eq(m, mesh) && *o == options => Arc::clone(arrays),
+            _ => {
+                let arrays = SharedMeshArrays::default();
+                self.mesh_arrays = Some((Arc::clone(mesh), options, Arc::clone(&arrays)));
+                arrays
+            }
+        }
     }
 
     /// Write `NAME.checkpoint` after every increment, for the case `key`
@@ -176,13 +213,16 @@ impl ResultWriter {
         self.manifest.claim(file)?;
         let mesh = &increment.problem.model.mesh;
         let Some(pieces) = &self.pieces else {
-            return vtu::write_vtu_with(
-                &self.dir.join(file),
-                mesh,
-                &point_data,
-                &cell_data,
-                self.vtu,
-            );
+            let path = self.dir.join(file);
+            let options = self.vtu;
+            let shared = self.arrays_of(mesh);
+            let arrays = shared
+                .get_or_init(|| vtu::MeshArrays::new(mesh, options))
+                .as_ref()
+                .map_err(|e| {
+                    Error::io("write", &path, std::io::Error::new(e.kind(), e.to_string()))
+                })?;
+            return vtu::write_vtu_on(&path, arrays, &point_data, &cell_data);
         };
         for rank in 0..pieces.parts {
             self.manifest.claim(&Pieces::piece_file(file, rank))?;

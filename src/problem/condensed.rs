@@ -359,14 +359,17 @@ const TRAILING_FRACTION: f64 = 0.5;
 /// factorisation is most of the run there.
 const MIXED_PRECISION_UNKNOWNS: usize = 10_000;
 
-/// Below this many unknowns the one factorisation of `K̃` and its solves
-/// run on one thread (faer's `Par::Seq`) whatever the run's thread count:
-/// on the small race mesh (19 100 unknowns, 11.4 M factor entries) the
-/// f32 factorisation took 0.13–0.14 s on one thread at any load, on two
-/// 0.11 s on an idle machine but 0.24–0.32 s beside two compiling
-/// processes (1-minute load 4), the supernodes being too small for the
-/// threads' synchronisation to pay; at 108 k unknowns (145 M entries) two
-/// threads do pay.
+/// Below this many unknowns the one factorisation of `K̃`, its solves and
+/// `(K̃⁻¹)_TT` run on one thread (faer's `Par::Seq`) whatever the run's
+/// thread count, from it on the run's threads: the one constant of that
+/// choice ([`SparseLdlt::threads_as_given`]; the dense `(K̃⁻¹)_TT` follows
+/// the factor's threads). On the small race mesh (19 100 unknowns, 9.0 M
+/// factor entries) the f32 factorisation took 0.13–0.14 s on one thread at
+/// any load, on two 0.11 s on an idle machine but 0.24–0.32 s beside two
+/// compiling processes (1-minute load 4), the supernodes being too small
+/// for the threads' synchronisation to pay; at 108 k unknowns (121 M
+/// entries) two threads do pay. 10 000 puts the small race on two threads
+/// (BENCHMARKS.md, "Session 9").
 const PARALLEL_FACTOR_UNKNOWNS: usize = 50_000;
 
 /// Refinement steps at most on an f32 factor before the f64 fallback.
@@ -493,7 +496,7 @@ impl Condensation {
         // 1: one thread (`Par::Seq`), 0: the run's pool
         let threads = usize::from(dimension < PARALLEL_FACTOR_UNKNOWNS);
         let ordering = decoupled_first(trailing_ordering(pattern, &marked)?, constrained);
-        let mut ldlt = SparseLdlt::new(ordering, threads);
+        let mut ldlt = SparseLdlt::new(ordering, threads).threads_as_given();
         let decoupled = Decoupled::new(lower.symbolic(), constrained);
         ldlt.analyse(decoupled.symbolic())?;
         Ok((trailing, decoupled, ldlt))
@@ -697,16 +700,22 @@ impl Condensation {
     ///
     /// `W` may be inexact (from an f32 factor): the complementarity problem
     /// is solved on `W̃` with the gaps shifted by the defect
-    /// `d = g(u(λ)) − (g₀ + W̃λ) = (W − W̃)λ` of the last solution, `g(u)`
-    /// the gaps of the refined (f64) displacements, until `d` changes by
+    /// `d = g(u(λ)) − (g₀ + W̃λ) = (W − W̃)λ + (g(K̃⁻¹b) − g₀)` of the last
+    /// solution, `g(u)` the gaps of the refined (f64) displacements and `g₀`
+    /// those of the factor's unrefined `u₀` (its error, constant, is taken
+    /// up by the first defect; refining `u₀` took two of the small race's
+    /// eight solves with the factor), until `d` changes by
     /// less than a thousandth of the gap tolerance: then `g(u) = g₀ + Wλ` and the solution
     /// is the one of the exact `W` (a splitting iteration, contracting
     /// while `‖W̃⁻¹(W − W̃)‖ < 1`). With an f64 `W` the first `d` is
     /// round-off and one pass is enough.
     fn solve_increment(&mut self, problem: &Problem, t: f64) -> Result<(Vec<f64>, Vec<f64>)> {
         let b = self.load(problem, t);
+        // the factor's solution, unrefined: `g₀` enters the complementarity
+        // problem only in `q = g₀ + d`, and the defect `d` of the refined
+        // `u` takes up its error exactly, as it does `W̃`'s
         let mut u0 = b.clone();
-        self.solve(&mut u0)?;
+        self.ldlt.solve_in_place(&mut u0)?;
         let g0 = self.gaps(problem, t, &u0);
         let tolerance = 1e-12 * problem.model.size();
         let entering = self.entering(&g0, tolerance);
@@ -778,7 +787,7 @@ impl Condensation {
 /// the multipliers of the laws that have them) and the trial contact state
 /// at time `t` from the committed `state`, so that the problem's own
 /// evaluation reports (and checks) the answer.
-trait IncrementSolver {
+trait IncrementSolver: Send {
     fn increment(
         &mut self,
         problem: &Problem,
@@ -846,6 +855,9 @@ pub fn run_steps(
     };
     let result = run_increments(problem, &mut *solver, observer, output);
     let (statistics, iterations) = solver.statistics();
+    // the factor (tens of MB) is freed on another thread, beside the
+    // run's last writes
+    rayon::spawn(move || drop(solver));
     (result, statistics, iterations)
 }
 

@@ -77,6 +77,9 @@ pub struct SparseLdlt {
     /// Which factor the last factorisation made (the one solves use).
     precision: Precision,
     par: Par,
+    /// One thread below [`PARALLEL_FACTOR_ENTRIES`] whatever `par` says
+    /// (off: [`Self::threads_as_given`]).
+    small_on_one_thread: bool,
     pub timings: SolverTimings,
 }
 
@@ -130,8 +133,18 @@ impl SparseLdlt {
             values_single: Vec::new(),
             precision: Precision::Double,
             par,
+            small_on_one_thread: true,
             timings: SolverTimings::default(),
         }
+    }
+
+    /// The solver on the threads it was made with whatever the factor's
+    /// size, for a caller that decides itself (the condensed path, by its
+    /// number of unknowns: `PARALLEL_FACTOR_UNKNOWNS` in
+    /// `src/problem/condensed.rs`).
+    pub fn threads_as_given(mut self) -> Self {
+        self.small_on_one_thread = false;
+        self
     }
 
     /// The symbolic analysis, done again only when the pattern changes
@@ -215,10 +228,13 @@ impl SparseLdlt {
     }
 
     /// The parallelism of factorisations and solves: the solver's, or one
-    /// thread below [`PARALLEL_FACTOR_ENTRIES`] factor entries.
-    fn par(&self) -> Par {
+    /// thread below [`PARALLEL_FACTOR_ENTRIES`] factor entries (unless
+    /// [`Self::threads_as_given`]).
+    pub fn parallelism(&self) -> Par {
         match &self.symbolic {
-            Some(s) if s.len_val() < PARALLEL_FACTOR_ENTRIES => Par::Seq,
+            Some(s) if self.small_on_one_thread && s.len_val() < PARALLEL_FACTOR_ENTRIES => {
+                Par::Seq
+            }
             _ => self.par,
         }
     }
@@ -267,7 +283,7 @@ impl SparseLdlt {
     ) -> Result<()> {
         self.analyse(pattern)?;
         let start = Instant::now();
-        let par = self.par();
+        let par = self.parallelism();
         let symbolic = self
             .symbolic
             .as_ref()
@@ -306,7 +322,7 @@ impl SparseLdlt {
     /// Solve `A x = b` in place with the last factorisation.
     pub fn solve_in_place(&mut self, rhs: &mut [f64]) -> Result<()> {
         let start = Instant::now();
-        let par = self.par();
+        let par = self.parallelism();
         let symbolic = self
             .symbolic
             .as_ref()
@@ -349,7 +365,7 @@ impl SparseLdlt {
     /// sides).
     pub fn solve_columns_in_place(&mut self, rhs: &mut [f64], columns: usize) -> Result<()> {
         let start = Instant::now();
-        let par = self.par();
+        let par = self.parallelism();
         let symbolic = self
             .symbolic
             .as_ref()

@@ -39,10 +39,13 @@ use faer::sparse::linalg::cholesky::SymbolicCholeskyRaw;
 use faer::{Mat, Par};
 use nalgebra::DMatrix;
 
-/// From this many trailing unknowns `(K⁻¹)_TT` is made on the run's
-/// threads, below on one: at `c` = 737 (the small race; `L_TT⁻¹` and the
-/// product, about `2.3 c³` = 0.9 GFLOP) one thread made the whole run 3 %
-/// faster beside builders (8 pairs, load 7.6).
+/// From this many trailing unknowns the Schur complement of
+/// [`trailing_schur`] is made on the run's threads, below on one.
+/// `(K⁻¹)_TT` ([`TrailingInverse::of`]) instead runs on the factor's own
+/// threads ([`SparseLdlt::parallelism`]), so that one constant decides
+/// for both on the condensed path: at `c` = 737 (the small race; `L_TT⁻¹`
+/// and the product, about `2.3 c³` = 0.9 GFLOP) one thread made the whole
+/// run 3 % faster beside builders (8 pairs, load 7.6).
 const PARALLEL_TRAILING: usize = 1500;
 
 /// A direction `e`: `(unknown, component)` pairs.
@@ -180,8 +183,8 @@ impl TrailingInverse {
     pub fn of(ldlt: &SparseLdlt, trailing: &[usize]) -> Result<Self> {
         let TrailingFactor { position, l, d } = TrailingFactor::of(ldlt, trailing)?;
         let c = trailing.len();
-        // M = L_TT⁻¹, then (K⁻¹)_TT = Mᵀ D⁻¹ M
-        let par = trailing_par(c);
+        // M = L_TT⁻¹, then (K⁻¹)_TT = Mᵀ D⁻¹ M, on the factor's threads
+        let par = ldlt.parallelism();
         let mut m = Mat::<f64>::identity(c, c);
         faer::linalg::triangular_solve::solve_unit_lower_triangular_in_place(
             l.as_ref(),
@@ -240,7 +243,7 @@ pub fn trailing_schur(ldlt: &SparseLdlt, trailing: &[usize]) -> Result<DMatrix<f
     }))
 }
 
-/// The threads of the dense work on `c` trailing unknowns
+/// The threads of the Schur complement on `c` trailing unknowns
 /// ([`PARALLEL_TRAILING`]).
 fn trailing_par(c: usize) -> Par {
     if c < PARALLEL_TRAILING {

@@ -57,6 +57,10 @@ pub struct Newton<'a, P: NonlinearProblem> {
     /// The factor of the Josephy–Newton steps (`[solver] predictor =
     /// "contact"`), kept over the run.
     pub josephy: &'a mut Josephy,
+    /// The predictor that runs (`[solver] predictor` resolved:
+    /// [`Predictor::chosen`]): [`Predictor::Contact`] takes the
+    /// Josephy–Newton steps.
+    pub predictor: Predictor,
 }
 
 impl<P: NonlinearProblem> Newton<'_, P> {
@@ -196,7 +200,7 @@ impl<P: NonlinearProblem> Newton<'_, P> {
             // the first correction as a Josephy–Newton step where asked for
             // and where the problem linearises its constraints
             let contact_step = ((iteration == 0 || switched > 0)
-                && settings.predictor == Predictor::Contact)
+                && self.predictor == Predictor::Contact)
                 .then(|| self.josephy_correction(&jump, u, state))
                 .flatten();
             let mut du = match contact_step {

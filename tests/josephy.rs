@@ -1,6 +1,6 @@
 //! `[solver] predictor = "contact"`: Newton's first correction of an
-//! increment (and every one while the contact set still changes) solves
-//! the contact problem linearised at the iterate exactly, a
+//! increment solves the contact problem linearised at the iterate
+//! exactly, a
 //! Josephy–Newton step (`src/solve/josephy.rs`). It changes Newton's path,
 //! not the answer, and takes at most 5 iterations per increment where the
 //! plain start takes more. The default, `predictor = "auto"`, takes it

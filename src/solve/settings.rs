@@ -88,8 +88,8 @@ pub enum Predictor {
     /// holds in the corrections).
     Secant,
     /// From the secant's start ([`Predictor::Secant`]), the first
-    /// correction, and every one while the contact statuses still change,
-    /// solves the contact constraints linearised at the iterate exactly (a
+    /// correction solves the contact constraints linearised at the
+    /// iterate exactly (a
     /// Josephy–Newton step, [`crate::solve::josephy`]): Newton lands on the
     /// active set of the linearised problem instead of finding it one
     /// iteration at a time. Where the problem cannot linearise its contact

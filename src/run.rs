@@ -290,6 +290,16 @@ impl Simulation {
                 try_linear_solver(&self.problem.settings, ordering, 0, Some(coordinates))?
             }
         };
+        let (predictor, reason) = self
+            .problem
+            .settings
+            .predictor
+            .chosen(self.problem.contact_linearisation());
+        recorder.summary.predictor = predictor.name().into();
+        recorder.summary.predictor_reason = reason.clone();
+        recorder
+            .observers
+            .on_message(&format!("predictor: {} ({reason})", predictor.name()));
         let about_solver = solver.description();
         if !about_solver.is_empty() {
             recorder

@@ -180,31 +180,43 @@ fn one_step(end_time: f64) -> impl Fn(String) -> String {
 /// (its displacement pivots are not regularised towards a sign, only the
 /// multipliers'), so no iteration needs the sparse LU (before, the
 /// regularised factor was another matrix and the LU solved those
-/// iterations; before that fallback the stepper cut the increment). The
-/// run equals the one solved by the LU with partial pivoting in every
-/// iteration to 1e-10 of the largest displacement, in as many iterations,
-/// and the three-step run to 1e-6 (the problem is path independent:
-/// hyperelastic, frictionless).
+/// iterations; before that fallback the stepper cut the increment). From
+/// the plain start (`predictor = "none"`, every correction by the linear
+/// solver), the run equals the one solved by the LU with partial pivoting
+/// in every iteration to 1e-10 of the largest displacement, in as many
+/// iterations; the default start (the contact predictor: its
+/// Josephy–Newton steps factorise their own shifted tangent) ends on the
+/// same state to 1e-10, and the three-step run to 1e-6 (the problem is
+/// path independent: hyperelastic, frictionless).
 #[test]
 fn whole_load_at_once_converges() {
     let (_dir, _case, at_once) = run_case("plate.msh", one_step(1.0));
     let summary = &at_once.summary;
     assert_eq!(summary.status, "completed");
+    assert_eq!(summary.predictor, "contact");
     assert_eq!(summary.steps.len(), 1);
     assert_eq!(summary.increments.last().unwrap().time, 1.0);
     assert_eq!(summary.lu_solves, 0, "{:?}", summary.steps);
-    let (_dir, _case, by_lu) = run_case("plate.msh", |t| {
-        one_step(1.0)(t) + "\n[solver]\nlinear = \"lu\"\n"
-    });
+    let plain_with = |linear: &'static str| {
+        move |t| one_step(1.0)(t) + &format!("\n[solver]\npredictor = \"none\"\n{linear}\n")
+    };
+    let (_dir, _case, plain) = run_case("plate.msh", plain_with(""));
+    assert_eq!(plain.summary.lu_solves, 0, "{:?}", plain.summary.steps);
+    let (_dir, _case, by_lu) = run_case("plate.msh", plain_with("linear = \"lu\""));
     let iterations = |o: &RunOutcome| -> Vec<usize> {
         o.summary.increments.iter().map(|i| i.iterations).collect()
     };
-    assert_eq!(iterations(&by_lu), iterations(&at_once));
+    assert_eq!(iterations(&by_lu), iterations(&plain));
     let newton: usize = iterations(&by_lu).iter().sum();
     assert_eq!(by_lu.summary.lu_solves, newton);
     let scale = max_abs(&by_lu.displacement);
-    let difference = max_difference(&at_once.displacement, &by_lu.displacement);
+    let difference = max_difference(&plain.displacement, &by_lu.displacement);
     assert!(difference < 1e-10 * scale, "against the LU: {difference:e}");
+    let difference = max_difference(&at_once.displacement, &plain.displacement);
+    assert!(
+        difference < 1e-10 * scale,
+        "default against plain: {difference:e}"
+    );
     let (_dir, _case, stepped) = run_case("plate.msh", |t| t);
     let scale = max_abs(&stepped.displacement);
     let difference = max_difference(&at_once.displacement, &stepped.displacement);

@@ -389,8 +389,11 @@ pub struct SolverSpec {
     /// The linear solver: `auto` (default: LDLᵀ for a symmetric tangent,
     /// `nonsymmetric` for the others), `ldlt`, `mixed`, `gmres` or `lu`.
     pub linear: Option<crate::problem::LinearMethod>,
-    /// Where Newton starts an increment: `none` (default, the converged
-    /// state) or `secant` (extrapolated from the last increment).
+    /// Where Newton starts an increment: `auto` (default: `contact` where
+    /// it applies, else `none`), `none` (the converged state), `secant`
+    /// (extrapolated from the last increment) or `contact` (the secant's
+    /// start, the first correction solving the linearised contact
+    /// exactly).
     pub predictor: Option<crate::solve::settings::Predictor>,
     /// `auto` (default: the condensed contact path where it applies),
     /// `monolithic` or `condensed`.

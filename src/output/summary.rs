@@ -138,6 +138,14 @@ pub struct Summary {
     /// the other one was not taken.
     pub strategy: String,
     pub strategy_reason: String,
+    /// Where Newton started each increment on the monolithic path
+    /// (`[solver] predictor` resolved: `none`, `secant` or `contact`), and
+    /// why (`auto`'s choice, or as asked); empty on the condensed path,
+    /// which has no Newton iterations.
+    #[serde(default)]
+    pub predictor: String,
+    #[serde(default)]
+    pub predictor_reason: String,
     /// Condensed path: active-set steps (dense Cholesky solves of the
     /// contact problem) over the run; 0 on the monolithic path.
     pub active_set_iterations: usize,
@@ -198,6 +206,8 @@ impl Summary {
             mixed_precision_fallbacks: 0,
             strategy: String::new(),
             strategy_reason: String::new(),
+            predictor: String::new(),
+            predictor_reason: String::new(),
             active_set_iterations: 0,
             steps: Vec::new(),
             increments: Vec::new(),

@@ -108,6 +108,10 @@ impl NonlinearProblem for Problem {
     fn moving_coupled_nodes(&self) -> Vec<usize> {
         self.deformable_contact_nodes()
     }
+    /// [`Problem::contact_linearisation`].
+    fn constraints_linearise(&self) -> Result<(), String> {
+        self.contact_linearisation()
+    }
     /// [`Problem::linearised_contact`].
     fn linearise_constraints(
         &self,

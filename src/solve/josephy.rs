@@ -74,14 +74,22 @@ pub struct JosephyStep {
 
 /// The tangent `K` without the constraints (`values` on `pattern`), whose
 /// rows and columns of the `held` unknowns (the prescribed ones and every
-/// multiplier) are a scaled identity `scale`.
+/// multiplier) are a scaled identity `scale`; `single`: factorise `K̂` in
+/// f32 and refine its solves against the f64 `K̂` (half the factor's
+/// memory and time, as the linear solver's mixed precision; the Schur
+/// complement then carries f32's error, which Newton's next correction
+/// removes).
 #[derive(Clone, Copy)]
 pub struct HeldTangent<'a> {
     pub pattern: &'a SparsityPattern,
     pub values: &'a [f64],
     pub scale: f64,
     pub held: &'a [bool],
+    pub single: bool,
 }
+
+/// Refinement steps of a solve with `K̂`'s factor: f64, f32.
+const REFINEMENTS: [usize; 2] = [3, 10];
 
 /// The factorisations of the Josephy–Newton steps of a run: the factor of
 /// `K̂` with the constrained unknowns last, its ordering and symbolic
@@ -122,6 +130,7 @@ impl Josephy {
             values: tangent,
             scale,
             held,
+            single,
         } = k;
         let failed = |why: &str| crate::Error::LinearSolver(format!("Josephy–Newton step: {why}"));
         let n = pattern.dimension();
@@ -146,7 +155,12 @@ impl Josephy {
         }
         let before = self.statistics();
         let ldlt = self.factor(pattern, &marked, &chosen)?;
-        ldlt.factorize(pattern.symbolic(), &shifted, None)?;
+        if single {
+            ldlt.factorize_single(pattern.symbolic(), &shifted, None)?;
+        } else {
+            ldlt.factorize(pattern.symbolic(), &shifted, None)?;
+        }
+        let refinements = REFINEMENTS[usize::from(single)];
         let dofs: Vec<usize> = chosen.iter().map(|c| c.dof).collect();
         let schur = trailing_schur(ldlt, &dofs)?;
         let m = chosen.len();
@@ -155,7 +169,7 @@ impl Josephy {
         for c in &chosen {
             delta[c.dof] -= rho * c.sign * c.gap;
         }
-        ldlt.solve_refined(pattern.symbolic(), &shifted, &mut delta, 3)?;
+        ldlt.solve_refined(pattern.symbolic(), &shifted, &mut delta, refinements)?;
         let q: Vec<f64> = chosen
             .iter()
             .map(|c| c.gap + c.sign * delta[c.dof])
@@ -192,7 +206,7 @@ impl Josephy {
         for (a, c) in chosen.iter().enumerate() {
             rest[c.dof] = c.sign * (forces[a].max(0.0) + rho * gaps[a]);
         }
-        ldlt.solve_refined(pattern.symbolic(), &shifted, &mut rest, 3)?;
+        ldlt.solve_refined(pattern.symbolic(), &shifted, &mut rest, refinements)?;
         for (d, r) in delta.iter_mut().zip(&rest) {
             *d += r;
         }
@@ -311,6 +325,7 @@ mod tests {
                         values: &k,
                         scale: 1.0,
                         held: &held,
+                        single: false,
                     },
                     &rhs,
                     &x,

@@ -5,12 +5,13 @@
 //! and columns of `K` are replaced by a scaled identity, so the sparsity
 //! pattern (and its symbolic factorisation) never changes.
 
+use super::backend::MIXED_PRECISION_DOFS;
 use super::failure::IncrementFailure;
 use super::gmres::{dot, norm};
 use super::josephy::{HeldTangent, Josephy, JosephyStep};
 use super::linear_solver::{LinearFigures, LinearSolver, LinearSystem};
 use super::nonlinear::{Evaluation, NonlinearProblem};
-use super::settings::Predictor;
+use super::settings::{LinearMethod, Predictor};
 
 /// One Newton iteration as reported to the user.
 #[derive(Clone, Debug, serde::Serialize)]
@@ -57,6 +58,10 @@ pub struct Newton<'a, P: NonlinearProblem> {
     /// The factor of the Josephy–Newton steps (`[solver] predictor =
     /// "contact"`), kept over the run.
     pub josephy: &'a mut Josephy,
+    /// The predictor that runs (`[solver] predictor` resolved:
+    /// [`Predictor::chosen`]): [`Predictor::Contact`] takes the
+    /// Josephy–Newton steps.
+    pub predictor: Predictor,
 }
 
 impl<P: NonlinearProblem> Newton<'_, P> {
@@ -195,8 +200,7 @@ impl<P: NonlinearProblem> Newton<'_, P> {
             }
             // the first correction as a Josephy–Newton step where asked for
             // and where the problem linearises its constraints
-            let contact_step = ((iteration == 0 || switched > 0)
-                && settings.predictor == Predictor::Contact)
+            let contact_step = (iteration == 0 && self.predictor == Predictor::Contact)
                 .then(|| self.josephy_correction(&jump, u, state))
                 .flatten();
             let mut du = match contact_step {
@@ -330,7 +334,15 @@ impl<P: NonlinearProblem> Newton<'_, P> {
     /// The first correction of an increment as a Josephy–Newton step
     /// ([`super::josephy`]) from `u`, with `jump` the prescribed values
     /// still to be reached; `None` (Newton's plain step then) where the
-    /// problem does not linearise its constraints or the step fails.
+    /// problem does not linearise its constraints or the step fails. Its
+    /// `K̂` is factorised in f32 where the linear solver would factorise
+    /// the tangent so (`linear = "mixed"`, or `"auto"` from
+    /// [`MIXED_PRECISION_DOFS`] unknowns). Only the first: once the step
+    /// has found the linearised problem's contact set, Newton's plain
+    /// steps (one factorisation of the saddle-point tangent each, smaller
+    /// than `K̂`'s with the contact dofs last) took as many iterations on
+    /// every case measured (BENCHMARKS.md, "Issue 13 item 4, fourth
+    /// round").
     fn josephy_correction(
         &mut self,
         jump: &[f64],
@@ -367,6 +379,11 @@ impl<P: NonlinearProblem> Newton<'_, P> {
             values: &k,
             scale,
             held: &held,
+            single: match problem.settings().linear {
+                LinearMethod::Mixed => true,
+                LinearMethod::Auto => blocks.dimension() >= MIXED_PRECISION_DOFS,
+                _ => false,
+            },
         };
         self.josephy
             .step(tangent, &rhs, u, &linearisation.constraints)

@@ -130,6 +130,12 @@ pub trait NonlinearProblem {
     /// The nodes whose motion sets the search margin of
     /// [`NonlinearProblem::refresh_pattern`].
     fn moving_coupled_nodes(&self) -> Vec<usize>;
+    /// Whether [`linearise_constraints`](Self::linearise_constraints)
+    /// writes the problem's constraints (`Ok`) or why it cannot (the
+    /// default: it never does).
+    fn constraints_linearise(&self) -> Result<(), String> {
+        Err("the problem does not linearise its constraints".into())
+    }
     /// The problem at `x` without its unilateral constraints, its tangent
     /// written into `tangent`, and the constraints linearised at `x`
     /// ([`Linearisation`]); `Ok(None)` where they cannot be written so

@@ -65,9 +65,16 @@ pub enum Strategy {
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq, serde::Deserialize)]
 #[serde(rename_all = "lowercase")]
 pub enum Predictor {
-    /// At the converged state of the last increment (the prescribed values'
-    /// jump is linearised into the first correction). The default.
+    /// [`Predictor::Contact`] where the problem linearises its contact
+    /// constraints (every interface frictionless Rockafellar against a
+    /// rigid plane with a coordinate-axis normal, a serial run), else
+    /// [`AUTO_FALLBACK`] ([`Predictor::chosen`]). The default: the same
+    /// converged states, fewer Newton iterations (BENCHMARKS.md, "Issue 13
+    /// item 4, fourth round").
     #[default]
+    Auto,
+    /// At the converged state of the last increment (the prescribed values'
+    /// jump is linearised into the first correction).
     None,
     /// At `u + (Δt / Δt_last) Δu_last`: the last converged increment,
     /// scaled by the ratio of the increments (a secant extrapolation; the
@@ -81,8 +88,8 @@ pub enum Predictor {
     /// holds in the corrections).
     Secant,
     /// From the secant's start ([`Predictor::Secant`]), the first
-    /// correction, and every one while the contact statuses still change,
-    /// solves the contact constraints linearised at the iterate exactly (a
+    /// correction solves the contact constraints linearised at the
+    /// iterate exactly (a
     /// Josephy–Newton step, [`crate::solve::josephy`]): Newton lands on the
     /// active set of the linearised problem instead of finding it one
     /// iteration at a time. Where the problem cannot linearise its contact
@@ -90,6 +97,45 @@ pub enum Predictor {
     /// Rockafellar contact against axis-aligned planes) or the step fails,
     /// Newton's plain step, as with [`Predictor::Secant`].
     Contact,
+}
+
+/// What [`Predictor::Auto`] runs where the contact predictor does not
+/// apply: the plain start, which keeps those runs' Newton paths (and so
+/// their increments and path-dependent frictional answers) as they were
+/// (BENCHMARKS.md, "Issue 13 item 4, fourth round": the secant moves the
+/// final state of ironing by 5e-3 and of cattaneo-mindlin's coarse case
+/// by 3e-4, and takes the latter 96 iterations instead of 35).
+pub const AUTO_FALLBACK: Predictor = Predictor::None;
+
+impl Predictor {
+    /// The predictor that runs and why: [`Predictor::Auto`] resolved by
+    /// `contact`, whether the problem linearises its contact constraints
+    /// (`Ok`) or why not; any other one as asked for.
+    pub fn chosen(self, contact: Result<(), String>) -> (Predictor, String) {
+        match (self, contact) {
+            (Predictor::Auto, Ok(())) => (
+                Predictor::Contact,
+                "auto: frictionless Rockafellar contact against axis-aligned rigid planes".into(),
+            ),
+            (Predictor::Auto, Err(why)) => (AUTO_FALLBACK, format!("auto: {why}")),
+            (asked, _) => (asked, "as [solver] predictor asks".into()),
+        }
+    }
+
+    /// The case file's name of the predictor.
+    pub fn name(self) -> &'static str {
+        match self {
+            Predictor::Auto => "auto",
+            Predictor::None => "none",
+            Predictor::Secant => "secant",
+            Predictor::Contact => "contact",
+        }
+    }
+
+    /// Whether the increment starts from the secant's extrapolation.
+    pub fn extrapolates(self) -> bool {
+        matches!(self, Predictor::Secant | Predictor::Contact)
+    }
 }
 
 /// How a nonsymmetric tangent is solved.
@@ -145,7 +191,7 @@ impl Default for SolverSettings {
             easy_iterations: 5,
             nonsymmetric: NonsymmetricSolver::Gmres,
             linear: LinearMethod::Auto,
-            predictor: Predictor::None,
+            predictor: Predictor::Auto,
             strategy: Strategy::Auto,
             petsc_options: String::new(),
         }

@@ -10,7 +10,7 @@ use super::josephy::Josephy;
 use super::linear_solver::{LinearSolver, SolverStatistics};
 use super::newton::{IterationRecord, Newton, NewtonOutcome};
 use super::nonlinear::{Evaluation, NonlinearProblem};
-use super::settings::{Predictor, Step};
+use super::settings::Step;
 use crate::{Error, Result};
 use std::path::PathBuf;
 
@@ -152,6 +152,10 @@ pub fn resume_steps<P: NonlinearProblem>(
     // largest nodal displacement of the last converged increment, and its length
     let mut last_motion: Option<(f64, f64)> = resumed.last_motion;
     let steps = problem.steps().to_vec();
+    let (predictor, _) = problem
+        .settings()
+        .predictor
+        .chosen(problem.constraints_linearise());
     let mut start = Vec::with_capacity(u.len());
     // the change of the unknowns over the last converged increment, and its
     // length (the predictor's secant)
@@ -196,13 +200,9 @@ pub fn resume_steps<P: NonlinearProblem>(
                 force_scale,
                 on_iteration: Some(&mut tell),
                 josephy: &mut *josephy,
+                predictor,
             };
-            let extrapolate = secant.as_ref().filter(|_| {
-                matches!(
-                    problem.settings().predictor,
-                    Predictor::Secant | Predictor::Contact
-                )
-            });
+            let extrapolate = secant.as_ref().filter(|_| predictor.extrapolates());
             predict(
                 problem,
                 t_new,
@@ -354,12 +354,12 @@ fn cancelled(t: f64) -> Error {
     }
 }
 
-/// The secant predictor ([`Predictor::Secant`]): the first Newton
+/// The secant predictor ([`super::settings::Predictor::Secant`]): the first Newton
 /// iterate of an increment of length `dt` from the converged `u` is
 /// `u + (dt / Δt) Δu`, the last converged increment `Δu` (length `Δt`)
 /// scaled by the ratio of the increments (the history `state` carried
 /// along it); `u` itself at the first increment or without `secant`
-/// ([`Predictor::None`]). Newton then starts near the solution of a
+/// ([`super::settings::Predictor::None`]). Newton then starts near the solution of a
 /// smoothly loaded path; the converged state is the same (only Newton's
 /// path changes).
 fn predict<P: NonlinearProblem>(
@@ -417,7 +417,7 @@ mod tests {
     use crate::assembly::pattern::SparsityPattern;
     use crate::solve::backend::linear_solver;
     use crate::solve::linear::Ordering;
-    use crate::solve::settings::{SolverSettings, Step};
+    use crate::solve::settings::{Predictor, SolverSettings, Step};
 
     /// Three uncoupled hardening springs, `r_i = k x_i + c x_i³ − t f_i`:
     /// a [`NonlinearProblem`] that is not the finite-element `Problem`, with

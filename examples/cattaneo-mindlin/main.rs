@@ -8,7 +8,10 @@
 //!   Mindlin's `q(r)` and the slip bound `μp`;
 //! - `stick_radius.svg`: the fitted stick radius of every shear increment
 //!   against `c = a (1 − Q/(μP))^{1/3}`;
-//! - `mindlin.csv`: the figures of every increment.
+//! - `mindlin.csv`: the figures of every increment;
+//! - `mindlin_nodes.csv`: the secondary nodes at the end of the shear
+//!   (reference `x` from the contact's centre and `y`, `r`, `p`, `q`, `q_y`,
+//!   status).
 //!
 //! ```sh
 //! cargo run --release --example cattaneo-mindlin [-- CASE [OUTPUT]]
@@ -83,7 +86,16 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
         );
     }
     std::fs::write(output.join("mindlin.csv"), csv)?;
+    let mut nodes = String::from("x,y,r,pressure,traction,traction_y,status\n");
+    for n in &last.nodes {
+        nodes += &format!(
+            "{},{},{},{},{},{},{:?}\n",
+            n.x, n.y_reference, n.r, n.pressure, n.traction, n.traction_y, n.status
+        );
+    }
+    std::fs::write(output.join("mindlin_nodes.csv"), nodes)?;
     println!("{}", last.describe());
+    println!("{}", last.diagnostics());
     for (r, mean, reference) in last.rings() {
         println!(
             "  ring r = {r:.4}: mean q {mean:.4}, Mindlin {reference:.4} ({:+.2} % of μp0)",
@@ -91,7 +103,7 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
         );
     }
     println!(
-        "wrote {}, {} and mindlin.csv",
+        "wrote {}, {}, mindlin.csv and mindlin_nodes.csv",
         output.join("mindlin_traction.svg").display(),
         output.join("stick_radius.svg").display()
     );

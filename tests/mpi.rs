@@ -247,7 +247,9 @@ name = "block"
     #[test]
     fn two_processes_give_the_serial_answer_without_friction() {
         let dir = tempfile::tempdir().unwrap();
-        let case = block_case(dir.path(), false, "", "");
+        // Newton's own start in both runs: `auto` takes the contact
+        // predictor in a serial run only, in other iterations
+        let case = block_case(dir.path(), false, "", "predictor = \"none\"");
         let faer = serial(&case, &dir.path().join("serial"));
         let mumps = run_distributed(&case, &dir.path().join("mpi"), &[]);
         assert_same(

@@ -17,6 +17,17 @@ use crate::Result;
 /// saves (measured in BENCHMARKS.md, "Mixed precision").
 pub const MIXED_PRECISION_DOFS: usize = 20_000;
 
+/// When `[solver] linear = method` factorises a symmetric tangent in f32:
+/// `mixed` always, `auto` from [`MIXED_PRECISION_DOFS`] unknowns, the
+/// others never (also the rule of Newton's Josephy–Newton factor).
+pub fn mixed_precision(method: LinearMethod) -> MixedPrecision {
+    match method {
+        LinearMethod::Auto => MixedPrecision::FromDofs(MIXED_PRECISION_DOFS),
+        LinearMethod::Mixed => MixedPrecision::Always,
+        _ => MixedPrecision::Never,
+    }
+}
+
 /// The linear solver `settings` ask for, with fill-reducing `ordering` and
 /// `threads` threads (0 = rayon's pool). A backend that cannot start
 /// (PETSc) gives a solver whose every solve fails with the reason; a run
@@ -43,13 +54,14 @@ pub fn try_linear_solver(
         LinearMethod::Auto => Box::new(Auto {
             nonsymmetric: settings.nonsymmetric,
             direct: DirectLdlt::new(ordering.clone(), threads)
-                .with_mixed_precision(MixedPrecision::FromDofs(MIXED_PRECISION_DOFS)),
+                .with_mixed_precision(mixed_precision(LinearMethod::Auto)),
             gmres: PreconditionedGmres::new(ordering, threads),
             lu: SparseLu::default(),
         }),
         LinearMethod::Ldlt => Box::new(DirectLdlt::new(ordering, threads)),
         LinearMethod::Mixed => Box::new(
-            DirectLdlt::new(ordering, threads).with_mixed_precision(MixedPrecision::Always),
+            DirectLdlt::new(ordering, threads)
+                .with_mixed_precision(mixed_precision(LinearMethod::Mixed)),
         ),
         LinearMethod::Gmres => Box::new(PreconditionedGmres::new(ordering, threads)),
         LinearMethod::Lu => Box::new(SparseLu::default()),

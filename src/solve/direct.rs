@@ -35,6 +35,17 @@ pub enum MixedPrecision {
     FromDofs(usize),
 }
 
+impl MixedPrecision {
+    /// Whether a system of `dofs` unknowns is factorised in f32 first.
+    pub fn applies(self, dofs: usize) -> bool {
+        match self {
+            MixedPrecision::Never => false,
+            MixedPrecision::Always => true,
+            MixedPrecision::FromDofs(n) => dofs >= n,
+        }
+    }
+}
+
 /// `K = L D Lᵀ`, refined; the LU when the factorisation fails or leaves a
 /// relative residual above 1e-8. An indefinite tangent that the LDLᵀ
 /// without pivoting cannot factorise (the curvature term `f ∇²g` of
@@ -95,12 +106,7 @@ impl LinearSolver for DirectLdlt {
         rhs: &[f64],
         x: &mut [f64],
     ) -> Result<(), String> {
-        let mixed = match self.mixed {
-            MixedPrecision::Never => false,
-            MixedPrecision::Always => true,
-            MixedPrecision::FromDofs(n) => rhs.len() >= n,
-        };
-        if mixed {
+        if self.mixed.applies(rhs.len()) {
             if self.solve_mixed(system, rhs, x) {
                 return Ok(());
             }

@@ -5,13 +5,13 @@
 //! and columns of `K` are replaced by a scaled identity, so the sparsity
 //! pattern (and its symbolic factorisation) never changes.
 
-use super::backend::MIXED_PRECISION_DOFS;
+use super::backend::mixed_precision;
 use super::failure::IncrementFailure;
 use super::gmres::{dot, norm};
 use super::josephy::{HeldTangent, Josephy, JosephyStep};
 use super::linear_solver::{LinearFigures, LinearSolver, LinearSystem};
 use super::nonlinear::{Evaluation, NonlinearProblem};
-use super::settings::{LinearMethod, Predictor};
+use super::settings::Predictor;
 
 /// One Newton iteration as reported to the user.
 #[derive(Clone, Debug, serde::Serialize)]
@@ -336,8 +336,8 @@ impl<P: NonlinearProblem> Newton<'_, P> {
     /// still to be reached; `None` (Newton's plain step then) where the
     /// problem does not linearise its constraints or the step fails. Its
     /// `K̂` is factorised in f32 where the linear solver would factorise
-    /// the tangent so (`linear = "mixed"`, or `"auto"` from
-    /// [`MIXED_PRECISION_DOFS`] unknowns). Only the first: once the step
+    /// the tangent so ([`mixed_precision`]: `linear = "mixed"`, or `"auto"`
+    /// from `MIXED_PRECISION_DOFS` unknowns). Only the first: once the step
     /// has found the linearised problem's contact set, Newton's plain
     /// steps (one factorisation of the saddle-point tangent each, smaller
     /// than `K̂`'s with the contact dofs last) took as many iterations on
@@ -379,11 +379,7 @@ impl<P: NonlinearProblem> Newton<'_, P> {
             values: &k,
             scale,
             held: &held,
-            single: match problem.settings().linear {
-                LinearMethod::Mixed => true,
-                LinearMethod::Auto => blocks.dimension() >= MIXED_PRECISION_DOFS,
-                _ => false,
-            },
+            single: mixed_precision(problem.settings().linear).applies(blocks.dimension()),
         };
         self.josephy
             .step(tangent, &rhs, u, &linearisation.constraints)

@@ -104,8 +104,9 @@ impl<P: NonlinearProblem> Newton<'_, P> {
         let nonsymmetric = problem.has_nonsymmetric_tangent();
         let signs = (blocks.dimension() > problem.num_dofs()).then(|| blocks.pivot_signs());
         let mut chatter = super::chattering::ChatterDetector::default();
-        // the line search's full-step trial, evaluated with its tangent: the
-        // next iteration's evaluation when that step is taken
+        // the line search's trial that was taken, evaluated with its tangent
+        // (the full step, or a shorter step of the contact predictor): the
+        // next iteration's evaluation
         let mut ahead: Option<Evaluation<P::Report>> = None;
         for iteration in 0..=settings.max_iterations {
             // the prescribed values still to be reached (all of the jump at first)
@@ -203,6 +204,7 @@ impl<P: NonlinearProblem> Newton<'_, P> {
             let contact_step = (iteration == 0 && self.predictor == Predictor::Contact)
                 .then(|| self.josephy_correction(&jump, u, state))
                 .flatten();
+            let predictor = contact_step.is_some();
             let mut du = match contact_step {
                 Some(step) => {
                     if let Some(rec) = records.last_mut() {
@@ -291,10 +293,11 @@ impl<P: NonlinearProblem> Newton<'_, P> {
                 u,
                 du: &du,
                 target: &target,
+                predictor,
             };
-            let (step_length, full_step) =
+            let (step_length, taken) =
                 self.line_search(line, &out_of_balance, relative, state, &mut k_values);
-            ahead = full_step;
+            ahead = taken;
             let scaled: Vec<f64> = du.iter().map(|d| step_length * d).collect();
             problem.advance_state(t, u, &scaled, state);
             for (ui, di) in u.iter_mut().zip(&scaled) {
@@ -399,11 +402,24 @@ impl<P: NonlinearProblem> Newton<'_, P> {
     /// the quadratic rate. At most six trials; the one with the smallest
     /// `|s|` is taken if none passes.
     ///
+    /// The contact predictor's step (`predictor`: the Josephy–Newton step
+    /// at the first correction, the linearised answer for the whole
+    /// increment) is taken only where it lowers `‖r‖`: a step that raises
+    /// the residual and overshoots the potential's minimum along it
+    /// (`s(1) > 0 > s(0)`, the material stiffer than its tangent at the
+    /// start) goes to the secant zero of `s` instead of being kept by the
+    /// `½` rule. On examples/ogden-plate's first increment (rest to half
+    /// the load) the full step raised `‖r‖` by 8 % with `s(1) = −0.33 s(0)`;
+    /// `α = 0.754` took that increment from 6 Newton iterations to 5
+    /// (BENCHMARKS.md, "Session 10: the plate's first increment").
+    ///
     /// The full step is tried first and evaluated with its tangent (into
     /// `k`, the prescribed dofs on their `target`): when it is taken, that
     /// evaluation is returned as the next iteration's, which needs the
     /// tangent there anyway (the line search runs only far from the
     /// tolerance), so a taken full step costs no evaluation of its own.
+    /// The predictor's shorter trials are evaluated with their tangent
+    /// too, and the one taken likewise serves as the next iteration's.
     fn line_search(
         &self,
         line: NewtonStep<'_>,
@@ -412,7 +428,12 @@ impl<P: NonlinearProblem> Newton<'_, P> {
         state: &P::State,
         k: &mut [f64],
     ) -> (f64, Option<Evaluation<P::Report>>) {
-        let NewtonStep { u, du, target } = line;
+        let NewtonStep {
+            u,
+            du,
+            target,
+            predictor,
+        } = line;
         let (problem, t) = (self.problem, self.t);
         let settings = problem.settings();
         if !settings.line_search || relative < 1e3 * settings.residual_tolerance {
@@ -444,7 +465,8 @@ impl<P: NonlinearProblem> Newton<'_, P> {
             // the local contact unknowns follow the trial step too
             let mut trial_state = state.clone();
             problem.advance_state(t, u, &step, &mut trial_state);
-            let tangent = full.then_some(&mut *k);
+            let with_tangent = full || predictor;
+            let tangent = with_tangent.then_some(&mut *k);
             let Ok(evaluation) = problem.evaluate(t, &trial, &trial_state, tangent) else {
                 // an inverted element: shorter, and remember it in case all fail
                 if best.0 == f64::INFINITY {
@@ -456,8 +478,9 @@ impl<P: NonlinearProblem> Newton<'_, P> {
             let mut ra = evaluation.residual.clone();
             zero_constrained(&mut ra, self.constrained);
             let sa = slope(&ra);
-            if norm(&ra) < r0 || (s0 < 0.0 && sa.abs() <= 0.5 * s0.abs()) {
-                return (alpha, full.then_some(evaluation));
+            let energy_test = !predictor && s0 < 0.0 && sa.abs() <= 0.5 * s0.abs();
+            if norm(&ra) < r0 || energy_test {
+                return (alpha, with_tangent.then_some(evaluation));
             }
             if sa.abs() < best.0 {
                 best = (sa.abs(), alpha);
@@ -474,12 +497,14 @@ impl<P: NonlinearProblem> Newton<'_, P> {
 }
 
 /// The line a line search walks: from the iterate `u` along Newton's
-/// correction `δu`; a full step puts the prescribed dofs on `target`.
+/// correction `δu`; a full step puts the prescribed dofs on `target`;
+/// `predictor`: `δu` is the contact predictor's step.
 #[derive(Clone, Copy)]
 struct NewtonStep<'a> {
     u: &'a [f64],
     du: &'a [f64],
     target: &'a [f64],
+    predictor: bool,
 }
 
 fn zero_constrained(v: &mut [f64], constrained: &[bool]) {

@@ -417,6 +417,8 @@ impl Model {
         let Some(target) = tangent else {
             return Ok(());
         };
+        // K_e is exactly symmetric: entry (3a + i, 3b + j) is read as
+        // (3b + j, 3a + i), contiguous in i like the global column
         let (values, starts) = (target.values, target.map.element(e));
         if let Some(lower) = target.lower {
             for (a, &na) in nodes.iter().enumerate() {
@@ -432,7 +434,7 @@ impl Model {
                         for i in first..3 {
                             // SAFETY: as below, one entry of the nodes na, nb
                             unsafe {
-                                values.add(start + offset + i, ke[(3 * a + i) * dofs + 3 * b + j])
+                                values.add(start + offset + i, ke[(3 * b + j) * dofs + 3 * a + i])
                             };
                         }
                     }
@@ -450,7 +452,7 @@ impl Model {
                         // of this element; no other element of the colour has
                         // either node
                         unsafe {
-                            values.add(start + j * stride + i, ke[(3 * a + i) * dofs + 3 * b + j])
+                            values.add(start + j * stride + i, ke[(3 * b + j) * dofs + 3 * a + i])
                         };
                     }
                 }

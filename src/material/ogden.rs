@@ -316,20 +316,26 @@ impl Material for Ogden {
         });
         let mv: [Vec6; 3] = std::array::from_fn(|i| voigt_from_sym(&m[i]));
         let mut s = Mat3::zeros();
-        let mut tangent = Mat6::zeros();
-        for i in 0..3 {
-            s += m[i] * (2.0 * d.w[i]);
-            for jj in 0..3 {
-                tangent += mv[i] * mv[jj].transpose() * (4.0 * d.ww[i][jj]);
-            }
+        for (mi, wi) in m.iter().zip(d.w) {
+            s += mi * (2.0 * wi);
         }
-        for (i, jj) in [(0, 1), (1, 2), (0, 2)] {
-            let nij = n.column(i) * n.column(jj).transpose();
-            let b = voigt_from_sym(&nij); // voigt of ½(N_i⊗N_j + N_j⊗N_i)
-            tangent += b * b.transpose() * (8.0 * d.theta[i][jj]);
-        }
-        // Exact symmetry (rounding in the products above is not symmetric).
-        let tangent = (tangent + tangent.transpose()) * 0.5;
+        // 𝔻_rc = Σ_i M_i,r u_i,c + Σ_{i<j} 8 θ_ij B_ij,r B_ij,c with
+        // u_i = Σ_j 4 w_ij M_j: the upper triangle r ≤ c, mirrored (exactly
+        // symmetric)
+        let u: [Vec6; 3] = std::array::from_fn(|i| {
+            (0..3).fold(Vec6::zeros(), |acc, jj| acc + mv[jj] * (4.0 * d.ww[i][jj]))
+        });
+        let pairs = [(0, 1), (1, 2), (0, 2)];
+        // Voigt of ½(N_i⊗N_j + N_j⊗N_i)
+        let b: [Vec6; 3] =
+            pairs.map(|(i, jj)| voigt_from_sym(&(n.column(i) * n.column(jj).transpose())));
+        let theta8 = pairs.map(|(i, jj)| 8.0 * d.theta[i][jj]);
+        let tangent = Mat6::from_fn(|r, c| {
+            let (r, c) = (r.min(c), r.max(c));
+            (0..3)
+                .map(|i| mv[i][r] * u[i][c] + theta8[i] * b[i][r] * b[i][c])
+                .sum()
+        });
         (s, tangent)
     }
 

@@ -27,6 +27,13 @@ use nalgebra::{Matrix3, Vector3};
 /// Most sweeps: far beyond the quadratic convergence's need.
 const MAX_SWEEPS: usize = 32;
 
+/// Above this `|τ|` a rotation is `t = 1/(2τ)`, `c = 1`: then
+/// `√(1 + τ²) = |τ| (1 + 1/(2τ²) + …)` and `1/√(1 + t²)` differ from `|τ|`
+/// and 1 by less than `1/(2τ²) < ε/2`, so the general formula would give
+/// the same numbers to rounding. The last sweeps of Jacobi's quadratic
+/// convergence are such tiny rotations.
+const SMALL_ANGLE_TAU: f64 = 1e8;
+
 /// Eigenvalues (unsorted) and orthonormal eigenvectors (the columns, in
 /// the same order) of the symmetric `a` (its upper triangle is read).
 pub fn symmetric_eigen(a: &Matrix3<f64>) -> (Vector3<f64>, Matrix3<f64>) {
@@ -45,8 +52,13 @@ pub fn symmetric_eigen(a: &Matrix3<f64>) -> (Vector3<f64>, Matrix3<f64>) {
             }
             rotated = true;
             let tau = (m[q][q] - m[p][p]) / (2.0 * apq);
-            let t = tau.signum() / (tau.abs() + (1.0 + tau * tau).sqrt());
-            let c = 1.0 / (1.0 + t * t).sqrt();
+            let (t, c) = if tau.abs() > SMALL_ANGLE_TAU {
+                // t = 1/(2τ) and c = 1 to rounding: no square roots
+                (0.5 / tau, 1.0)
+            } else {
+                let t = tau.signum() / (tau.abs() + (1.0 + tau * tau).sqrt());
+                (t, 1.0 / (1.0 + t * t).sqrt())
+            };
             let s = t * c;
             // A ← Jᵀ A J: of rows and columns p, q only the diagonal (by
             // the rotation's defining `a_pq' = 0`) and the third index r's

@@ -26,10 +26,21 @@ pub enum KernelFailure {
     Inverted { quadrature_point: usize, det_f: f64 },
 }
 
-/// Reference gradients `∂N_a/∂X` at one quadrature point and `det(∂X/∂ξ)·w`.
+/// Reference gradients `∂N_a/∂X` at one quadrature point and `det(∂X/∂ξ)·w`,
+/// stored inline (an element's points are one contiguous block: the
+/// kernel reads them without chasing a pointer per point).
 pub struct PointGeometry {
-    pub gradients: Vec<Vector3<f64>>,
+    gradients: [Vector3<f64>; MAX_NODES],
+    nodes: usize,
     pub dv: f64,
+}
+
+impl PointGeometry {
+    /// `∂N_a/∂X` of the element's nodes `a`.
+    #[inline]
+    pub fn gradients(&self) -> &[Vector3<f64>] {
+        &self.gradients[..self.nodes]
+    }
 }
 
 /// Reference geometry of every quadrature point of an element: `∂N_a/∂X`
@@ -54,11 +65,13 @@ pub fn reference_geometry(
                 });
             }
             let inv_t = j0.try_inverse().unwrap_or_else(Matrix3::zeros).transpose();
+            let mut gradients = [Vector3::zeros(); MAX_NODES];
+            for (g_x, g) in gradients.iter_mut().zip(&r.gradients[q]) {
+                *g_x = inv_t * Vector3::from(*g);
+            }
             Ok(PointGeometry {
-                gradients: r.gradients[q]
-                    .iter()
-                    .map(|g| inv_t * Vector3::from(*g))
-                    .collect(),
+                gradients,
+                nodes: r.gradients[q].len().min(MAX_NODES),
                 dv: det * r.weights[q],
             })
         })
@@ -72,20 +85,6 @@ pub fn deformation_gradient(gradients: &[Vector3<f64>], displacements: &[[f64; 3
         f += Vector3::from(*u) * g.transpose();
     }
     f
-}
-
-/// The 6×3 block `B_a` of `δE = Σ_a B_a δu_a` for deformation gradient `F`.
-fn strain_operator(f: &Mat3, g: &Vector3<f64>) -> nalgebra::Matrix6x3<f64> {
-    let mut b = nalgebra::Matrix6x3::zeros();
-    for i in 0..3 {
-        b[(0, i)] = f[(i, 0)] * g[0];
-        b[(1, i)] = f[(i, 1)] * g[1];
-        b[(2, i)] = f[(i, 2)] * g[2];
-        b[(3, i)] = f[(i, 0)] * g[1] + f[(i, 1)] * g[0];
-        b[(4, i)] = f[(i, 1)] * g[2] + f[(i, 2)] * g[1];
-        b[(5, i)] = f[(i, 0)] * g[2] + f[(i, 2)] * g[0];
-    }
-    b
 }
 
 /// What an element evaluation returns: internal force `f` (length `3n`,
@@ -123,29 +122,76 @@ pub fn internal_force_and_tangent(
     Ok(out)
 }
 
+/// The tangent's blocks `K_ab` for `b ≥ a` of an element of at most
+/// [`MAX_NODES`] nodes, `3 × 3` each (row: a-dof `i`, column: b-dof `k`,
+/// row-major), in the order `(0,0), (0,1), …, (0,n−1), (1,1), …`.
+type UpperBlocks = [[f64; 9]; MAX_NODES * (MAX_NODES + 1) / 2];
+
+/// The first elasticity tensor of one quadrature point times its volume
+/// weight, `𝔸_iJkL dV₀ = (F_iI F_kK ℂ_IJKL + δ_ik S_JL) dV₀` (without
+/// `S` for a small-strain material, `F = I`), stored `a[J][L][3i + k]`:
+/// the tangent of the point is `K_ab,ik = Σ_JL G_aJ 𝔸_iJkL G_bL dV₀`
+/// (`ℂ_IJKL = 𝔻_αβ` with `α = (IJ)`, `β = (KL)` Voigt; the `(I, J)` ↔
+/// `(K, L)` symmetry of `𝔻` makes `a[L][J][3k + i] = a[J][L][3i + k]`,
+/// computed for `J ≤ L` and copied).
+fn first_elasticity(f: &Mat3, s: Option<&Mat3>, d: &Mat6, dv: f64) -> [[[f64; 9]; 3]; 3] {
+    // Voigt index of (I, J)
+    const V: [[usize; 3]; 3] = [[0, 3, 5], [3, 1, 4], [5, 4, 2]];
+    let mut a = [[[0.0; 9]; 3]; 3];
+    for jj in 0..3 {
+        for ll in jj..3 {
+            // t[I][k] = Σ_K ℂ_IJKL F_kK
+            let mut t = [[0.0; 3]; 3];
+            for (ii, t_i) in t.iter_mut().enumerate() {
+                let alpha = V[ii][jj];
+                for (k, t_ik) in t_i.iter_mut().enumerate() {
+                    *t_ik = (0..3).map(|kk| d[(alpha, V[kk][ll])] * f[(k, kk)]).sum();
+                }
+            }
+            let mut block = [0.0; 9];
+            for i in 0..3 {
+                for k in 0..3 {
+                    let material: f64 = (0..3).map(|ii| f[(i, ii)] * t[ii][k]).sum();
+                    let geometric = match s {
+                        Some(s) if i == k => s[(jj, ll)],
+                        _ => 0.0,
+                    };
+                    block[3 * i + k] = (material + geometric) * dv;
+                }
+            }
+            a[jj][ll] = block;
+            a[ll][jj] = std::array::from_fn(|m| block[3 * (m % 3) + m / 3]);
+        }
+    }
+    a
+}
+
 /// [`internal_force_and_tangent`] into `force` (length `3n`) and, if
-/// given, `stiffness` (`3n × 3n`, row-major), both overwritten, without a
-/// heap allocation: the strain operators `B_a` of the at most
-/// [`MAX_NODES`] nodes live in a fixed-size array on the stack.
+/// given, `stiffness` (`3n × 3n`, row-major, exactly symmetric), both
+/// overwritten, without a heap allocation: the blocks `K_ab`, `b ≥ a`,
+/// are summed over the points on the stack and mirrored once at the end.
+///
+/// At each point `𝔸 dV₀` is formed once ([`first_elasticity`]), then for
+/// each node `a` the `3 × 9` contraction `h_a[L][3i + k] = Σ_J G_aJ 𝔸_iJkL`
+/// and for each `b ≥ a` `K_ab,ik += Σ_L h_a[L][3i + k] G_bL`: the same
+/// tangent as `Σ B_aᵀ 𝔻 B_b + (G_aᵀ S G_b) I` in about two thirds of the
+/// operations, with `𝔻` symmetric (every material here is hyperelastic
+/// or linear).
 pub fn internal_force_and_tangent_into(
     geometry: &[PointGeometry],
     displacements: &[[f64; 3]],
     material: &dyn Material,
     force: &mut [f64],
-    mut stiffness: Option<&mut [f64]>,
+    stiffness: Option<&mut [f64]>,
 ) -> Result<(), KernelFailure> {
     let n = displacements.len();
     let dofs = 3 * n;
     assert!(n <= MAX_NODES, "an element of {n} nodes");
     force.iter_mut().for_each(|v| *v = 0.0);
-    if let Some(k) = stiffness.as_deref_mut() {
-        k.iter_mut().for_each(|v| *v = 0.0);
-    }
     let small = material.kinematics() == Kinematics::SmallStrain;
-    let mut scratch = [nalgebra::Matrix6x3::zeros(); MAX_NODES];
-    let b = &mut scratch[..n];
+    let mut upper: UpperBlocks = [[0.0; 9]; MAX_NODES * (MAX_NODES + 1) / 2];
     for (q, p) in geometry.iter().enumerate() {
-        let f = deformation_gradient(&p.gradients, displacements);
+        let f = deformation_gradient(p.gradients(), displacements);
         let det_f = f.determinant();
         let admissible = det_f > 0.0 && det_f.is_finite();
         if !small && !admissible {
@@ -166,41 +212,52 @@ pub fn internal_force_and_tangent_into(
         // f_a = ∫ (F S) G_a dV₀
         let pk1 = kin * s;
         for a in 0..n {
-            let fa = pk1 * p.gradients[a] * p.dv;
+            let fa = pk1 * p.gradients()[a] * p.dv;
             for i in 0..3 {
                 force[3 * a + i] += fa[i];
             }
         }
-        let (Some(k), Some(d)) = (stiffness.as_deref_mut(), d) else {
+        let Some(d) = d else {
             continue;
         };
-        for (b_a, g_a) in b.iter_mut().zip(&p.gradients) {
-            *b_a = strain_operator(&kin, g_a);
+        let tangent = first_elasticity(&kin, (!small).then_some(&s), &d, p.dv);
+        let mut block = 0;
+        for (a, g_a) in p.gradients().iter().enumerate() {
+            // h[L][m] = Σ_J G_aJ 𝔸[J][L][m]
+            let h: [[f64; 9]; 3] = std::array::from_fn(|l| {
+                std::array::from_fn(|m| {
+                    g_a[0] * tangent[0][l][m]
+                        + g_a[1] * tangent[1][l][m]
+                        + g_a[2] * tangent[2][l][m]
+                })
+            });
+            for g_b in &p.gradients()[a..] {
+                let k_ab = &mut upper[block];
+                for m in 0..9 {
+                    k_ab[m] += h[0][m] * g_b[0] + h[1][m] * g_b[1] + h[2][m] * g_b[2];
+                }
+                block += 1;
+            }
         }
-        // the tangent is symmetric: compute the blocks b ≥ a, mirror the rest
-        for (a, b_a) in b.iter().enumerate() {
-            let db_a = (d * b_a) * p.dv; // 6×3
-            let sg_a = if small {
-                Vector3::zeros()
-            } else {
-                s * p.gradients[a] * p.dv
-            };
-            for (bb, b_b) in b.iter().enumerate().skip(a) {
-                let kab = b_b.transpose() * db_a; // 3×3 (row: b-dof, col: a-dof)
-                let geo = sg_a.dot(&p.gradients[bb]);
+    }
+    if let Some(k) = stiffness {
+        // K_ba = K_abᵀ; a diagonal block's upper half mirrored onto its lower
+        let mut block = 0;
+        for a in 0..n {
+            for b in a..n {
+                let k_ab = &upper[block];
                 for i in 0..3 {
                     for j in 0..3 {
-                        // K[(a,i),(b,j)] = (B_aᵀ 𝔻 B_b)_{ij} + δ_ij G_aᵀ S G_b
-                        let mut v = kab[(j, i)];
-                        if i == j {
-                            v += geo;
-                        }
-                        k[(3 * a + i) * dofs + 3 * bb + j] += v;
-                        if bb != a {
-                            k[(3 * bb + j) * dofs + 3 * a + i] += v;
-                        }
+                        let v = if a == b && j < i {
+                            k_ab[3 * j + i]
+                        } else {
+                            k_ab[3 * i + j]
+                        };
+                        k[(3 * a + i) * dofs + 3 * b + j] = v;
+                        k[(3 * b + j) * dofs + 3 * a + i] = v;
                     }
                 }
+                block += 1;
             }
         }
     }
@@ -218,7 +275,7 @@ pub fn element_cauchy_stress(
     let mut sum = Mat3::zeros();
     let mut vol = 0.0;
     for p in geometry {
-        let f = deformation_gradient(&p.gradients, displacements);
+        let f = deformation_gradient(p.gradients(), displacements);
         let s = material.second_piola_kirchhoff(&f);
         let sigma = if small {
             s
@@ -234,7 +291,21 @@ pub fn element_cauchy_stress(
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::material::{LinearElastic, NeoHookean, Ogden};
+    use crate::material::{LinearElastic, NeoHookean, Ogden, SaintVenantKirchhoff};
+
+    /// The 6×3 block `B_a` of `δE = Σ_a B_a δu_a` for deformation gradient `F`.
+    fn strain_operator(f: &Mat3, g: &Vector3<f64>) -> nalgebra::Matrix6x3<f64> {
+        let mut b = nalgebra::Matrix6x3::zeros();
+        for i in 0..3 {
+            b[(0, i)] = f[(i, 0)] * g[0];
+            b[(1, i)] = f[(i, 1)] * g[1];
+            b[(2, i)] = f[(i, 2)] * g[2];
+            b[(3, i)] = f[(i, 0)] * g[1] + f[(i, 1)] * g[0];
+            b[(4, i)] = f[(i, 1)] * g[2] + f[(i, 2)] * g[1];
+            b[(5, i)] = f[(i, 0)] * g[2] + f[(i, 2)] * g[0];
+        }
+        b
+    }
 
     /// A distorted element of `kind` and a displacement of a few percent.
     fn element(kind: ElementKind) -> (Vec<PointGeometry>, Vec<[f64; 3]>) {
@@ -266,14 +337,19 @@ mod tests {
     /// The fixed-size kernel (no heap allocation) against the formula
     /// evaluated densely: `f = Σ_q P Gₐ dV`, `K = Σ_q (Bᵀ 𝔻 B + (Gₐ·S G_b) I) dV`
     /// with the full `6 × 3n` operator `B` (nalgebra's dynamic matrices, no
-    /// symmetric half), to 1e-13 relative, for Tet4 and Hex8, small-strain
-    /// and finite-strain materials; and the allocating wrapper gives the
-    /// same numbers.
+    /// symmetric half, no first elasticity tensor), to 1e-13 relative, for
+    /// Tet4 and Hex8, the small-strain and the three finite-strain
+    /// materials; `K` exactly symmetric; and the allocating wrapper gives
+    /// the same numbers.
     #[test]
     fn fixed_size_kernel_equals_the_dense_formula() {
-        let materials: [Box<dyn Material>; 2] = [
+        let materials: [Box<dyn Material>; 4] = [
             Box::new(LinearElastic::new(1000.0, 0.3, "m").unwrap()),
             Box::new(NeoHookean::new(100.0, 0.45, "m").unwrap()),
+            Box::new(SaintVenantKirchhoff::new(100.0, 0.3, "m").unwrap()),
+            Box::new(
+                Ogden::new(vec![0.4095, 0.003, 0.01], vec![1.3, 5.0, -2.0], 4.0, "m").unwrap(),
+            ),
         ];
         for kind in [ElementKind::Tet4, ElementKind::Hex8] {
             let (geometry, u) = element(kind);
@@ -293,11 +369,11 @@ mod tests {
                 let mut f_ref = nalgebra::DVector::<f64>::zeros(3 * n);
                 let mut k_ref = nalgebra::DMatrix::<f64>::zeros(3 * n, 3 * n);
                 for p in &geometry {
-                    let f = deformation_gradient(&p.gradients, &u);
+                    let f = deformation_gradient(p.gradients(), &u);
                     let (s, d) = material.stress_and_tangent(&f);
                     let kin = if small { Mat3::identity() } else { f };
                     let mut b = nalgebra::DMatrix::<f64>::zeros(6, 3 * n);
-                    for (a, g) in p.gradients.iter().enumerate() {
+                    for (a, g) in p.gradients().iter().enumerate() {
                         b.view_mut((0, 3 * a), (6, 3))
                             .copy_from(&strain_operator(&kin, g));
                         let fa = kin * s * g * p.dv;
@@ -308,8 +384,8 @@ mod tests {
                     let d = nalgebra::DMatrix::from_iterator(6, 6, d.iter().copied());
                     k_ref += b.transpose() * d * &b * p.dv;
                     if !small {
-                        for (a, ga) in p.gradients.iter().enumerate() {
-                            for (c, gc) in p.gradients.iter().enumerate() {
+                        for (a, ga) in p.gradients().iter().enumerate() {
+                            for (c, gc) in p.gradients().iter().enumerate() {
                                 let geo = ga.dot(&(s * gc)) * p.dv;
                                 for i in 0..3 {
                                     k_ref[(3 * a + i, 3 * c + i)] += geo;
@@ -332,6 +408,11 @@ mod tests {
                             (v - k_ref[(r, c)]).abs() <= 1e-13 * k_scale,
                             "{kind:?} K[{r},{c}]"
                         );
+                    }
+                }
+                for r in 0..3 * n {
+                    for c in 0..r {
+                        assert_eq!(k[r * 3 * n + c], k[c * 3 * n + r], "{kind:?} K symmetric");
                     }
                 }
                 let wrapped =

@@ -342,7 +342,8 @@ impl Model {
         force.iter_mut().for_each(|x| *x = 0.0);
         let (tangent, storage) = tangent.unzip();
         let tangent = tangent.map(|k| {
-            k.iter_mut().for_each(|x| *x = 0.0);
+            // the whole tangent (megabytes) zeroed on the threads too
+            k.par_chunks_mut(ZERO_CHUNK).for_each(|c| c.fill(0.0));
             DisjointSlice::new(k)
         });
         let (lower, map) = match storage {
@@ -417,6 +418,8 @@ impl Model {
         let Some(target) = tangent else {
             return Ok(());
         };
+        // K_e is exactly symmetric: entry (3a + i, 3b + j) is read as
+        // (3b + j, 3a + i), contiguous in i like the global column
         let (values, starts) = (target.values, target.map.element(e));
         if let Some(lower) = target.lower {
             for (a, &na) in nodes.iter().enumerate() {
@@ -432,7 +435,7 @@ impl Model {
                         for i in first..3 {
                             // SAFETY: as below, one entry of the nodes na, nb
                             unsafe {
-                                values.add(start + offset + i, ke[(3 * a + i) * dofs + 3 * b + j])
+                                values.add(start + offset + i, ke[(3 * b + j) * dofs + 3 * a + i])
                             };
                         }
                     }
@@ -450,7 +453,7 @@ impl Model {
                         // of this element; no other element of the colour has
                         // either node
                         unsafe {
-                            values.add(start + j * stride + i, ke[(3 * a + i) * dofs + 3 * b + j])
+                            values.add(start + j * stride + i, ke[(3 * b + j) * dofs + 3 * a + i])
                         };
                     }
                 }
@@ -498,6 +501,9 @@ impl Model {
         w
     }
 }
+
+/// Entries of the tangent one thread zeroes at a time before an assembly.
+const ZERO_CHUNK: usize = 1 << 15;
 
 /// How an assembled tangent is stored: on the whole pattern, or its lower
 /// triangle alone ([`LowerTriangle`]).

@@ -6,7 +6,10 @@
 //! Each rotation `J_pq(θ)` zeroes `a_pq` of `A ← Jᵀ A J` with
 //! `τ = (a_qq − a_pp)/(2 a_pq)`, `t = sign(τ)/(|τ| + √(1 + τ²))`,
 //! `c = 1/√(1 + t²)`, `s = t c` (Golub & Van Loan §8.5, the form that keeps
-//! `|θ| ≤ π/4`); the eigenvectors accumulate as `V ← V J`. Sweeps over the
+//! `|θ| ≤ π/4`), which changes `a_pp ← a_pp − t a_pq`, `a_qq ← a_qq + t a_pq`
+//! and, `r` the third index, `a_rp ← c a_rp − s a_rq`,
+//! `a_rq ← s a_rp + c a_rq` (Rutishauser's updates: the diagonal moves by
+//! `t a_pq` alone); the eigenvectors accumulate as `V ← V J`. Sweeps over the
 //! three pairs repeat until every off-diagonal entry is negligible beside
 //! its diagonal ones (`|a_pq| ≤ ε (|a_pp| + |a_qq|) / 4`, Jacobi's
 //! high relative accuracy) or is exactly zero; Jacobi converges
@@ -23,6 +26,13 @@ use nalgebra::{Matrix3, Vector3};
 
 /// Most sweeps: far beyond the quadratic convergence's need.
 const MAX_SWEEPS: usize = 32;
+
+/// Above this `|τ|` a rotation is `t = 1/(2τ)`, `c = 1`: then
+/// `√(1 + τ²) = |τ| (1 + 1/(2τ²) + …)` and `1/√(1 + t²)` differ from `|τ|`
+/// and 1 by less than `1/(2τ²) < ε/2`, so the general formula would give
+/// the same numbers to rounding. The last sweeps of Jacobi's quadratic
+/// convergence are such tiny rotations.
+const SMALL_ANGLE_TAU: f64 = 1e8;
 
 /// Eigenvalues (unsorted) and orthonormal eigenvectors (the columns, in
 /// the same order) of the symmetric `a` (its upper triangle is read).
@@ -42,20 +52,27 @@ pub fn symmetric_eigen(a: &Matrix3<f64>) -> (Vector3<f64>, Matrix3<f64>) {
             }
             rotated = true;
             let tau = (m[q][q] - m[p][p]) / (2.0 * apq);
-            let t = tau.signum() / (tau.abs() + (1.0 + tau * tau).sqrt());
-            let c = 1.0 / (1.0 + t * t).sqrt();
+            let (t, c) = if tau.abs() > SMALL_ANGLE_TAU {
+                // t = 1/(2τ) and c = 1 to rounding: no square roots
+                (0.5 / tau, 1.0)
+            } else {
+                let t = tau.signum() / (tau.abs() + (1.0 + tau * tau).sqrt());
+                (t, 1.0 / (1.0 + t * t).sqrt())
+            };
             let s = t * c;
-            // A ← Jᵀ A J on rows and columns p, q
-            for row in &mut m {
-                let (akp, akq) = (row[p], row[q]);
-                row[p] = c * akp - s * akq;
-                row[q] = s * akp + c * akq;
-            }
-            let (row_p, row_q) = (m[p], m[q]);
-            m[p] = std::array::from_fn(|k| c * row_p[k] - s * row_q[k]);
-            m[q] = std::array::from_fn(|k| s * row_p[k] + c * row_q[k]);
+            // A ← Jᵀ A J: of rows and columns p, q only the diagonal (by
+            // the rotation's defining `a_pq' = 0`) and the third index r's
+            // entries change
+            let r = 3 - p - q;
+            let (arp, arq) = (m[r][p], m[r][q]);
+            m[p][p] -= t * apq;
+            m[q][q] += t * apq;
             m[p][q] = 0.0;
             m[q][p] = 0.0;
+            m[r][p] = c * arp - s * arq;
+            m[p][r] = m[r][p];
+            m[r][q] = s * arp + c * arq;
+            m[q][r] = m[r][q];
             // V ← V J
             for row in &mut v {
                 let (vp, vq) = (row[p], row[q]);

@@ -230,6 +230,9 @@ impl Ogden {
         // and its divided differences need `ln(c_i/c_j)` (pairs i < j)
         let ln_c = [c[0].ln(), c[1].ln(), c[2].ln()];
         let ln_j = j.ln();
+        // 1/c_i, 1/(3 c_i): products instead of the many quotients below
+        let inv_c = [1.0 / c[0], 1.0 / c[1], 1.0 / c[2]];
+        let third_inv_c = inv_c.map(|v| v / 3.0);
         let mut ratios = [[LogRatio::default(); 3]; 3];
         if second {
             for (i, jj) in [(0, 1), (0, 2), (1, 2)] {
@@ -241,22 +244,23 @@ impl Ogden {
             let k = mu / alpha * (-alpha / 3.0 * ln_j).exp(); // (2μ/α²)·a·φ
             let pm1 = ln_c.map(|l| ((a - 1.0) * l).exp());
             let sum: f64 = (0..3).map(|i| pm1[i] * c[i]).sum();
-            let g: [f64; 3] = std::array::from_fn(|i| pm1[i] - sum / (3.0 * c[i]));
+            let g: [f64; 3] = std::array::from_fn(|i| pm1[i] - sum * third_inv_c[i]);
             for i in 0..3 {
                 d.w[i] += k * g[i];
                 if !second {
                     continue;
                 }
                 for jj in 0..3 {
-                    let mut v = -a / 3.0 * g[i] / c[jj] - a * pm1[jj] / (3.0 * c[i]);
+                    let mut v = -a * (g[i] * third_inv_c[jj] + pm1[jj] * third_inv_c[i]);
                     if i == jj {
-                        v += (a - 1.0) * pm1[i] / c[i] + sum / (3.0 * c[i] * c[i]);
+                        v += ((a - 1.0) * pm1[i] + sum * third_inv_c[i]) * inv_c[i];
                     }
                     d.ww[i][jj] += k * v;
                     if i < jj {
                         // Δ(c^(a−1))(c_i, c_j), with c_j^(a−2) = pm1[j]/c_j
-                        let dd = divided_difference_with(pm1[jj] / c[jj], ratios[i][jj], a - 1.0);
-                        d.theta[i][jj] += k * (dd + sum / (3.0 * c[i] * c[jj]));
+                        let dd =
+                            divided_difference_with(pm1[jj] * inv_c[jj], ratios[i][jj], a - 1.0);
+                        d.theta[i][jj] += k * (dd + sum * third_inv_c[i] * inv_c[jj]);
                     }
                 }
             }
@@ -264,17 +268,17 @@ impl Ogden {
         let kappa = self.bulk_modulus;
         let up = kappa * (j - 1.0); // U'(J)
         for i in 0..3 {
-            d.w[i] += up * j / (2.0 * c[i]);
+            d.w[i] += 0.5 * up * j * inv_c[i];
             if !second {
                 continue;
             }
             for jj in 0..3 {
-                let cc = c[i] * c[jj];
-                d.ww[i][jj] += kappa * j * j / (4.0 * cc) + up * j / (4.0 * cc);
+                let inv_cc = inv_c[i] * inv_c[jj];
+                d.ww[i][jj] += 0.25 * (kappa * j * j + up * j) * inv_cc;
                 if i == jj {
-                    d.ww[i][jj] -= up * j / (2.0 * c[i] * c[i]);
+                    d.ww[i][jj] -= 0.5 * up * j * inv_cc;
                 } else if i < jj {
-                    d.theta[i][jj] -= up * j / (2.0 * cc);
+                    d.theta[i][jj] -= 0.5 * up * j * inv_cc;
                 }
             }
         }
@@ -316,20 +320,26 @@ impl Material for Ogden {
         });
         let mv: [Vec6; 3] = std::array::from_fn(|i| voigt_from_sym(&m[i]));
         let mut s = Mat3::zeros();
-        let mut tangent = Mat6::zeros();
-        for i in 0..3 {
-            s += m[i] * (2.0 * d.w[i]);
-            for jj in 0..3 {
-                tangent += mv[i] * mv[jj].transpose() * (4.0 * d.ww[i][jj]);
-            }
+        for (mi, wi) in m.iter().zip(d.w) {
+            s += mi * (2.0 * wi);
         }
-        for (i, jj) in [(0, 1), (1, 2), (0, 2)] {
-            let nij = n.column(i) * n.column(jj).transpose();
-            let b = voigt_from_sym(&nij); // voigt of ½(N_i⊗N_j + N_j⊗N_i)
-            tangent += b * b.transpose() * (8.0 * d.theta[i][jj]);
-        }
-        // Exact symmetry (rounding in the products above is not symmetric).
-        let tangent = (tangent + tangent.transpose()) * 0.5;
+        // 𝔻_rc = Σ_i M_i,r u_i,c + Σ_{i<j} 8 θ_ij B_ij,r B_ij,c with
+        // u_i = Σ_j 4 w_ij M_j: the upper triangle r ≤ c, mirrored (exactly
+        // symmetric)
+        let u: [Vec6; 3] = std::array::from_fn(|i| {
+            (0..3).fold(Vec6::zeros(), |acc, jj| acc + mv[jj] * (4.0 * d.ww[i][jj]))
+        });
+        let pairs = [(0, 1), (1, 2), (0, 2)];
+        // Voigt of ½(N_i⊗N_j + N_j⊗N_i)
+        let b: [Vec6; 3] =
+            pairs.map(|(i, jj)| voigt_from_sym(&(n.column(i) * n.column(jj).transpose())));
+        let theta8 = pairs.map(|(i, jj)| 8.0 * d.theta[i][jj]);
+        let tangent = Mat6::from_fn(|r, c| {
+            let (r, c) = (r.min(c), r.max(c));
+            (0..3)
+                .map(|i| mv[i][r] * u[i][c] + theta8[i] * b[i][r] * b[i][c])
+                .sum()
+        });
         (s, tangent)
     }
 

@@ -41,7 +41,7 @@ use crate::output::observer::{Observers, StepObserver};
 use crate::output::pvtu::{PieceWriter, Pieces};
 use crate::output::summary::Summary;
 use crate::output::vtu::VtuOptions;
-use crate::output::writer::{Restored, ResultWriter, SeriesContent};
+use crate::output::writer::{MeshEncoding, Restored, ResultWriter, SeriesContent};
 use crate::problem::condensed::{self, Path as SolvePath};
 use crate::problem::{ContactState, Problem};
 use crate::solve::backend::try_linear_solver;
@@ -122,6 +122,9 @@ pub struct Simulation {
     warnings: Vec<String>,
     /// What ties a checkpoint to this case.
     case_key: CaseKey,
+    /// The VTU points and cells of the mesh, encoding since the case was
+    /// read ([`run_observed`]); `None`: the writer starts it.
+    mesh_encoding: Option<MeshEncoding>,
 }
 
 impl Simulation {
@@ -154,6 +157,7 @@ impl Simulation {
             warnings: case.diagnose(&problem),
             case_key,
             problem,
+            mesh_encoding: None,
         })
     }
 
@@ -379,8 +383,12 @@ impl Simulation {
             .checkpoint(self.case_key.clone());
         writer = match pieces {
             Some(pieces) => writer.pieces(pieces),
-            // the mesh's points and cells encoded beside the solve
-            None => writer.prepare_mesh(Arc::clone(&self.problem.model.mesh)),
+            // the mesh's points and cells encoded beside the set-up (or
+            // the solve)
+            None => match &self.mesh_encoding {
+                Some(encoding) => writer.encoded_mesh(encoding.clone()),
+                None => writer.prepare_mesh(Arc::clone(&self.problem.model.mesh)),
+            },
         };
         Ok((Some(writer), Some(log), None))
     }
@@ -463,7 +471,15 @@ pub fn run_observed(
     options: &RunOptions,
     observer: &mut (dyn StepObserver + Send),
 ) -> Result<RunOutcome> {
-    let mut simulation = Simulation::from_file(case_path)?;
+    let case = case::load(case_path)?;
+    // the VTU points and cells are encoded on the core that building the
+    // problem leaves idle (not under mpirun: each rank writes its piece)
+    let compress = case.spec.output.compress.unwrap_or(true);
+    let encoding = launched_rank()
+        .is_none()
+        .then(|| MeshEncoding::start(Arc::clone(&case.mesh), VtuOptions { compress }));
+    let mut simulation = Simulation::from_case(&case)?;
+    simulation.mesh_encoding = encoding;
     // a restart goes on in the folder it resumes from
     let folder = options
         .restart

@@ -5,6 +5,7 @@
 //! components and whether it needs contact) and one arm of
 //! [`ConvergedIncrement::nodal`] or [`ConvergedIncrement::cells`].
 
+use rayon::prelude::*;
 use std::borrow::Cow;
 
 use super::contact_fields::ContactFields;
@@ -255,7 +256,7 @@ impl ConvergedIncrement<'_> {
             Vec::new()
         };
         fields
-            .iter()
+            .par_iter()
             .map(|field| match field {
                 CellField::Region => {
                     let mut region = vec![0.0; mesh.elements.len()];
@@ -268,7 +269,11 @@ impl ConvergedIncrement<'_> {
                 }
                 CellField::CauchyStress => stresses
                     .iter()
-                    .flat_map(|s| s.transpose().iter().copied().collect::<Vec<_>>())
+                    .flat_map(|s| {
+                        // row-major: the transpose's columns
+                        let t = s.transpose();
+                        (0..9).map(move |i| t[i])
+                    })
                     .collect(),
                 CellField::VonMises => stresses.iter().map(crate::material::von_mises).collect(),
             })

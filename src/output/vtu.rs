@@ -188,6 +188,22 @@ pub fn write_vtu_on(
     validate(path, "point", point_data, num_points)?;
     validate(path, "cell", cell_data, num_cells)?;
     let compress = mesh.options.compress;
+    // every array encoded side by side (their sizes differ: the stress is
+    // most of the bytes), then written in order
+    let encoded: Vec<Vec<u8>> = {
+        use rayon::prelude::*;
+        point_data
+            .par_iter()
+            .chain(cell_data.par_iter())
+            .map(|field| {
+                let mut text = Vec::new();
+                field_array(&mut text, compress, field)?;
+                Ok(text)
+            })
+            .collect::<io::Result<_>>()
+            .map_err(|e| crate::Error::io("write", path, e))?
+    };
+    let (point_text, cell_text) = encoded.split_at(point_data.len());
     write_atomically(path, |w| {
         writeln!(w, r#"<?xml version="1.0"?>"#)?;
         let compressor = if compress {
@@ -206,28 +222,13 @@ pub fn write_vtu_on(
         )?;
         w.write_all(&mesh.text)?;
 
-        for (tag, fields) in [("PointData", point_data), ("CellData", cell_data)] {
-            if fields.is_empty() {
+        for (tag, texts) in [("PointData", point_text), ("CellData", cell_text)] {
+            if texts.is_empty() {
                 continue;
             }
             writeln!(w, "      <{tag}>")?;
-            for field in fields {
-                match field.kind {
-                    ArrayKind::Float64 => data_array(
-                        w,
-                        compress,
-                        ("Float64", field.name, field.components),
-                        field.values.iter().copied(),
-                        field.values.len(),
-                    )?,
-                    ArrayKind::Int64 => data_array(
-                        w,
-                        compress,
-                        ("Int64", field.name, field.components),
-                        field.values.iter().map(|&v| v as i64),
-                        field.values.len(),
-                    )?,
-                }
+            for text in texts {
+                w.write_all(text)?;
             }
             writeln!(w, "      </{tag}>")?;
         }
@@ -301,6 +302,27 @@ impl Scalar for u8 {
     const SIZE: usize = 1;
     fn push_le(self, buffer: &mut Vec<u8>) {
         buffer.push(self);
+    }
+}
+
+/// The `<DataArray>` element of `field`, in its number type.
+fn field_array(w: &mut dyn Write, compress: bool, field: &Field) -> io::Result<()> {
+    let (name, components, len) = (field.name, field.components, field.values.len());
+    match field.kind {
+        ArrayKind::Float64 => data_array(
+            w,
+            compress,
+            ("Float64", name, components),
+            field.values.iter().copied(),
+            len,
+        ),
+        ArrayKind::Int64 => data_array(
+            w,
+            compress,
+            ("Int64", name, components),
+            field.values.iter().map(|&v| v as i64),
+            len,
+        ),
     }
 }
 

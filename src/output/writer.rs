@@ -24,6 +24,34 @@ use crate::{Error, Result};
 /// background job and the first VTU file comes first).
 type SharedMeshArrays = Arc<OnceLock<std::io::Result<vtu::MeshArrays>>>;
 
+/// A mesh's VTU points and cells being encoded on the rayon pool it was
+/// started from ([`MeshEncoding::start`]), for a [`ResultWriter`] made
+/// later ([`ResultWriter::encoded_mesh`]): started while the problem is
+/// still being built, the encoding runs on a core that the set-up leaves
+/// idle instead of beside the solve's first parallel phase.
+#[derive(Clone)]
+pub struct MeshEncoding {
+    mesh: Arc<Mesh>,
+    options: vtu::VtuOptions,
+    arrays: SharedMeshArrays,
+}
+
+impl MeshEncoding {
+    /// Starts encoding `mesh` with `options` (`rayon::spawn`).
+    pub fn start(mesh: Arc<Mesh>, options: vtu::VtuOptions) -> Self {
+        let arrays = SharedMeshArrays::default();
+        let (job_mesh, job_arrays) = (Arc::clone(&mesh), Arc::clone(&arrays));
+        rayon::spawn(move || {
+            job_arrays.get_or_init(|| vtu::MeshArrays::new(&job_mesh, options));
+        });
+        MeshEncoding {
+            mesh,
+            options,
+            arrays,
+        }
+    }
+}
+
 /// Writes a run's results into one folder.
 pub struct ResultWriter {
     dir: PathBuf,
@@ -156,12 +184,17 @@ impl ResultWriter {
     /// (`rayon::spawn`), while the problem is solved: the first VTU file
     /// then only writes them (or waits for them). Call it after
     /// [`Self::compress`].
-    pub fn prepare_mesh(mut self, mesh: Arc<Mesh>) -> Self {
-        let arrays = self.arrays_of(&mesh);
-        let options = self.vtu;
-        rayon::spawn(move || {
-            arrays.get_or_init(|| vtu::MeshArrays::new(&mesh, options));
-        });
+    pub fn prepare_mesh(self, mesh: Arc<Mesh>) -> Self {
+        let encoding = MeshEncoding::start(mesh, self.vtu);
+        self.encoded_mesh(encoding)
+    }
+
+    /// The VTU files' mesh and its points and cells as `encoding` makes
+    /// them (started earlier, [`MeshEncoding::start`]); the first file
+    /// encodes them afresh if the writer's options are not the
+    /// encoding's. Call it after [`Self::compress`].
+    pub fn encoded_mesh(mut self, encoding: MeshEncoding) -> Self {
+        self.mesh_arrays = Some((encoding.mesh, encoding.options, encoding.arrays));
         self
     }
 

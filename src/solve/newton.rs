@@ -144,7 +144,12 @@ impl<P: NonlinearProblem> Newton<'_, P> {
             // the out-of-balance force, with the linearised effect of the
             // prescribed values still to be reached: r_f + K_fc d
             if have_tangent {
-                super::linear::multiply(blocks.symbolic(), &k_values, &jump, &mut kd);
+                if at_target {
+                    // nothing to multiply once the prescribed values are reached
+                    kd.iter_mut().for_each(|x| *x = 0.0);
+                } else {
+                    super::linear::multiply(blocks.symbolic(), &k_values, &jump, &mut kd);
+                }
                 // distributed: K_fc d from every process's part of K
                 problem.sum_over_processes(&mut kd);
             } else {

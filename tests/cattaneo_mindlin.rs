@@ -233,6 +233,85 @@ fn cattaneo_mindlin_partial_slip() {
     assert_eq!(statuses(&record), statuses(&outer), "stick and slip sets");
 }
 
+/// The light press on its coarse mesh (`light-coarse.toml`,
+/// `light-coarse.msh`: the committed case's contact scaled by 1/5, so
+/// `a/R ≈ 0.022` and `p₀/E ≈ 0.014`, `smin = 0.0024 ≈ 0.11 a`; `ν = 0`,
+/// where Mindlin's solution is exact; README "A light press"), on the
+/// pinned increments, against Hertz and Mindlin. Tolerances ("measured":
+/// 2026-11-26):
+/// - `Q/(μP)` within 0.45 … 0.55 (measured 0.5101);
+/// - the contact radius (fit of `p²`) at the end of the press within 2 %
+///   of Hertz's (measured +1.33 %; the committed light mesh +0.83 %);
+/// - the stick radius within 1 % of Mindlin's `c` (measured −0.23 %;
+///   the committed light mesh +0.35 %), Mindlin's `c` between the
+///   outermost sticking node (at most 2 % beyond it) and the innermost
+///   slipping one (at most 4 % inside it);
+/// - the ring means of `q` within 2 % of `μp₀` in every ring but the one
+///   that holds `c` (measured 1.56 %; the committed light mesh 0.68 %),
+///   and within 7.5 % in that one (measured 6.00 %; 2.54 % on the
+///   committed light mesh; issue 18's target is 2 %);
+/// - at most 7 Newton iterations per increment (measured 7, 5, 6, 6 in the
+///   press and 5, 4, 4, 4, 4 in the shear).
+#[test]
+fn cattaneo_mindlin_light_press() {
+    let out = tempfile::tempdir().unwrap();
+    let case =
+        Path::new(env!("CARGO_MANIFEST_DIR")).join("examples/cattaneo-mindlin/light-coarse.toml");
+    let record = run_recorded(
+        &pinned(&case, out.path(), "newton"),
+        &out.path().join("newton"),
+    );
+    for c in &record.comparisons {
+        eprintln!("{}", c.describe());
+    }
+    let end_of_press = record
+        .comparisons
+        .iter()
+        .find(|c| (c.time - 1.0).abs() < 1e-12)
+        .expect("an increment ends the press");
+    let last = record.comparisons.last().unwrap();
+    eprintln!("{}", last.diagnostics());
+    let m = &last.mindlin;
+    assert!((0.45..=0.55).contains(&m.ratio), "Q/(μP) = {}", m.ratio);
+    let a = end_of_press.mindlin.hertz.radius;
+    assert!(
+        (end_of_press.contact_radius / a - 1.0).abs() < 0.02,
+        "contact radius {} vs Hertz {a}",
+        end_of_press.contact_radius
+    );
+    let c = m.stick_radius;
+    assert!(
+        (last.stick_radius / c - 1.0).abs() < 0.01,
+        "stick radius {} vs Mindlin {c}",
+        last.stick_radius
+    );
+    assert!(
+        last.outermost_stick < 1.02 * c && last.innermost_slip > 0.96 * c,
+        "Mindlin's c = {c} outside the nodes' stick–slip boundary {} … {}",
+        last.outermost_stick,
+        last.innermost_slip
+    );
+    let scale = m.mu * m.hertz.peak_pressure;
+    let width = 0.1 * m.hertz.radius;
+    for (r, mean, reference) in last.rings() {
+        let holds_c = (r - c).abs() <= 0.5 * width;
+        let bound = if holds_c { 0.075 } else { 0.02 };
+        let error = (mean - reference).abs() / scale;
+        assert!(
+            error < bound,
+            "ring r = {r}: {error} of μp0 (holds c: {holds_c})"
+        );
+    }
+    for c in &record.comparisons {
+        assert!(
+            c.iterations <= 7,
+            "t = {}: {} iterations",
+            c.time,
+            c.iterations
+        );
+    }
+}
+
 /// A copy of the case `case` in `folder` (named `form.toml`) with the
 /// tangential multiplier of exact stick in `form` (`newton` or `outer`)
 /// and the increments pinned to the first of each step (0.25 in the
@@ -240,12 +319,13 @@ fn cattaneo_mindlin_partial_slip() {
 /// compare on the same increments), its mesh named by its full path.
 fn pinned(case: &Path, folder: &Path, form: &str) -> std::path::PathBuf {
     let text = std::fs::read_to_string(case).unwrap();
-    let mesh = case.with_file_name("coarse.msh");
+    let line = text
+        .lines()
+        .find(|l| l.starts_with("file = \""))
+        .expect("the case names its mesh");
+    let mesh = case.with_file_name(line.trim_start_matches("file = ").trim_matches('"'));
     let mut text = text
-        .replace(
-            "file = \"coarse.msh\"",
-            &format!("file = {:?}", mesh.display().to_string()),
-        )
+        .replace(line, &format!("file = {:?}", mesh.display().to_string()))
         .replace(
             "exact_stick = true",
             &format!("exact_stick = true\nfriction_multiplier = {form:?}"),

@@ -29,6 +29,24 @@ struct Record {
     traction: Vec<f64>,
 }
 
+impl Record {
+    /// The increments that end the press (`t = 1`) and the shear, after
+    /// printing every increment's figures and the last one's diagnostics.
+    fn ends(&self) -> (&Comparison, &Comparison) {
+        for c in &self.comparisons {
+            eprintln!("{}", c.describe());
+        }
+        let end_of_press = self
+            .comparisons
+            .iter()
+            .find(|c| (c.time - 1.0).abs() < 1e-12)
+            .expect("an increment ends the press");
+        let last = self.comparisons.last().unwrap();
+        eprintln!("{}", last.diagnostics());
+        (end_of_press, last)
+    }
+}
+
 impl StepObserver for Record {
     fn on_increment(&mut self, inc: &ConvergedIncrement, _: &Summary) -> signorini::Result<()> {
         self.comparisons.push(Comparison::of(inc));
@@ -112,16 +130,7 @@ fn cattaneo_mindlin_partial_slip() {
         &pinned(&case, out.path(), "newton"),
         &out.path().join("newton"),
     );
-    let end_of_press = record
-        .comparisons
-        .iter()
-        .find(|c| (c.time - 1.0).abs() < 1e-12)
-        .expect("an increment ends the press");
-    let last = record.comparisons.last().unwrap();
-    for c in &record.comparisons {
-        eprintln!("{}", c.describe());
-    }
-    eprintln!("{}", last.diagnostics());
+    let (end_of_press, last) = record.ends();
     let m = &last.mindlin;
     assert!((0.45..=0.55).contains(&m.ratio), "Q/(μP) = {}", m.ratio);
     // the press: all closed nodes stick, the fit is the contact radius
@@ -261,16 +270,7 @@ fn cattaneo_mindlin_light_press() {
         &pinned(&case, out.path(), "newton"),
         &out.path().join("newton"),
     );
-    for c in &record.comparisons {
-        eprintln!("{}", c.describe());
-    }
-    let end_of_press = record
-        .comparisons
-        .iter()
-        .find(|c| (c.time - 1.0).abs() < 1e-12)
-        .expect("an increment ends the press");
-    let last = record.comparisons.last().unwrap();
-    eprintln!("{}", last.diagnostics());
+    let (end_of_press, last) = record.ends();
     let m = &last.mindlin;
     assert!((0.45..=0.55).contains(&m.ratio), "Q/(μP) = {}", m.ratio);
     let a = end_of_press.mindlin.hertz.radius;

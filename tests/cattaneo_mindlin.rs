@@ -3,6 +3,8 @@
 //! committed example, `case.toml`, uses `smin = 0.008`, see its README):
 //! two identical elastic hemispheres pressed together, then sheared to
 //! `Q/(μP) ≈ 0.5`, against Hertz and Mindlin (`examples/cattaneo-mindlin/mindlin.rs`).
+//! Also the light press's coarse twin (`light-coarse.toml`, README "A light
+//! press"), the case that shows issue 18's targets on its finer mesh.
 //! Also the slip output of issue 18 item 5 (`slip_increment`,
 //! `accumulated_slip`) and the log's note of a sparse-LU fallback.
 
@@ -125,11 +127,7 @@ impl StepObserver for Record {
 #[test]
 fn cattaneo_mindlin_partial_slip() {
     let out = tempfile::tempdir().unwrap();
-    let case = Path::new(env!("CARGO_MANIFEST_DIR")).join("examples/cattaneo-mindlin/coarse.toml");
-    let record = run_recorded(
-        &pinned(&case, out.path(), "newton"),
-        &out.path().join("newton"),
-    );
+    let (case, record) = run_newton("coarse.toml", out.path());
     let (end_of_press, last) = record.ends();
     let m = &last.mindlin;
     assert!((0.45..=0.55).contains(&m.ratio), "Q/(μP) = {}", m.ratio);
@@ -243,33 +241,29 @@ fn cattaneo_mindlin_partial_slip() {
 }
 
 /// The light press on its coarse mesh (`light-coarse.toml`,
-/// `light-coarse.msh`: the committed case's contact scaled by 1/5, so
+/// `light-coarse.msh`: `case.toml`'s contact scaled by 1/5, so
 /// `a/R ≈ 0.022` and `p₀/E ≈ 0.014`, `smin = 0.0024 ≈ 0.11 a`; `ν = 0`,
 /// where Mindlin's solution is exact; README "A light press"), on the
 /// pinned increments, against Hertz and Mindlin. Tolerances ("measured":
 /// 2026-11-26):
 /// - `Q/(μP)` within 0.45 … 0.55 (measured 0.5101);
 /// - the contact radius (fit of `p²`) at the end of the press within 2 %
-///   of Hertz's (measured +1.33 %; the committed light mesh +0.83 %);
+///   of Hertz's (measured +1.33 %; `light.toml`, `smin = 0.0014`, +0.62 %);
 /// - the stick radius within 1 % of Mindlin's `c` (measured −0.23 %;
-///   the committed light mesh +0.35 %), Mindlin's `c` between the
+///   `light.toml` +0.52 %), Mindlin's `c` between the
 ///   outermost sticking node (at most 2 % beyond it) and the innermost
 ///   slipping one (at most 4 % inside it);
 /// - the ring means of `q` within 2 % of `μp₀` in every ring but the one
-///   that holds `c` (measured 1.56 %; the committed light mesh 0.68 %),
-///   and within 7.5 % in that one (measured 6.00 %; 2.54 % on the
-///   committed light mesh; issue 18's target is 2 %);
+///   that holds `c` (measured 1.56 %; `light.toml` 0.85 %),
+///   and within 7.5 % in that one (measured 6.00 %; `light.toml` 1.62 %,
+///   issue 18's target is 2 %);
 /// - at most 7 Newton iterations per increment (measured 7, 5, 6, 6 in the
-///   press and 5, 4, 4, 4, 4 in the shear).
+///   press and 5, 4, 4, 4, 4 in the shear; `light.toml`, from a first
+///   press increment of 0.0625, at most 6).
 #[test]
 fn cattaneo_mindlin_light_press() {
     let out = tempfile::tempdir().unwrap();
-    let case =
-        Path::new(env!("CARGO_MANIFEST_DIR")).join("examples/cattaneo-mindlin/light-coarse.toml");
-    let record = run_recorded(
-        &pinned(&case, out.path(), "newton"),
-        &out.path().join("newton"),
-    );
+    let (_, record) = run_newton("light-coarse.toml", out.path());
     let (end_of_press, last) = record.ends();
     let m = &last.mindlin;
     assert!((0.45..=0.55).contains(&m.ratio), "Q/(μP) = {}", m.ratio);
@@ -338,6 +332,17 @@ fn pinned(case: &Path, folder: &Path, form: &str) -> std::path::PathBuf {
     let path = folder.join(format!("{form}.toml"));
     std::fs::write(&path, text).unwrap();
     path
+}
+
+/// The example's case `file` (in `examples/cattaneo-mindlin`) on pinned
+/// increments with the tangential multipliers as unknowns of Newton
+/// ([`pinned`]), run into `folder/newton`; and the case's path.
+fn run_newton(file: &str, folder: &Path) -> (std::path::PathBuf, Record) {
+    let case = Path::new(env!("CARGO_MANIFEST_DIR"))
+        .join("examples/cattaneo-mindlin")
+        .join(file);
+    let record = run_recorded(&pinned(&case, folder, "newton"), &folder.join("newton"));
+    (case, record)
 }
 
 /// Run the case `case` into `output`, recording every increment.

@@ -16,11 +16,14 @@
 //
 // gmsh -3 spheres.geo -format msh41 -o spheres.msh
 // gmsh -3 spheres.geo -setnumber smin 0.012 -format msh41 -o coarse.msh   (the test's)
+// The light press of the README ("A light press", light.toml): the contact's
+// lengths x 1/5, the gap x 1/25:
+// gmsh -3 spheres.geo -setnumber smin 0.0014 -setnumber dmin 0.026 -setnumber rc 0.032 -setnumber g0 4e-7 -format msh41 -o light.msh
+// gmsh -3 spheres.geo -setnumber smin 0.0024 -setnumber dmin 0.026 -setnumber rc 0.032 -setnumber g0 4e-7 -format msh41 -o light-coarse.msh
 SetFactory("OpenCASCADE");
-DefineConstant[ rc = 0.16, smin = 0.008, dmin = 0.13, dmax = 0.6, smax = 0.2 ];
+DefineConstant[ rc = 0.16, smin = 0.008, dmin = 0.13, dmax = 0.6, smax = 0.2, g0 = 1e-5 ];
 Geometry.AutoCoherence = 0;
 R = 1.0;
-g0 = 1e-5;
 eps = 1e-6;
 zc = R - Sqrt(R * R - rc * rc);
 Sphere(1) = {0, 0, R, R};

@@ -102,12 +102,37 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
             100.0 * (mean - reference) / (last.mindlin.mu * last.mindlin.hertz.peak_pressure)
         );
     }
+    println!("{}", verdict(&compare.0, last));
     println!(
         "wrote {}, {}, mindlin.csv and mindlin_nodes.csv",
         output.join("mindlin_traction.svg").display(),
         output.join("stick_radius.svg").display()
     );
     Ok(())
+}
+
+/// Issue 18's three figures at the end of the shear, each with its bound
+/// and whether this run meets it: the fitted stick radius within 1 % of
+/// Mindlin's `c = a (1 − Q/(μP))^{1/3}`, every ring mean of `q` within 2 %
+/// of `μ p₀`, at most 6 Newton iterations in any increment (README,
+/// "A light press": `light.toml` meets the three, `case.toml` not the ring).
+fn verdict(all: &[Comparison], last: &Comparison) -> String {
+    let stick = (last.stick_radius - last.mindlin.stick_radius) / last.mindlin.stick_radius;
+    let ring = last.worst_ring();
+    let iterations = all.iter().map(|c| c.iterations).max().unwrap_or(0);
+    let mark = |met: bool| if met { "met" } else { "NOT met" };
+    format!(
+        "targets at Q/(μP) = {:.3}: stick radius {:+.2} % of Mindlin's (≤ 1 %: {}), \
+         worst ring {:.2} % of μp0 (≤ 2 %: {}), at most {} Newton iterations in an increment \
+         (≤ 6: {})",
+        last.mindlin.ratio,
+        100.0 * stick,
+        mark(stick.abs() <= 0.01),
+        100.0 * ring,
+        mark(ring <= 0.02),
+        iterations,
+        mark(iterations <= 6)
+    )
 }
 
 /// `q` of the nodes on the load axis against Mindlin's `q(r)` and `μ p(r)`.

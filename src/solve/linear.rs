@@ -297,14 +297,7 @@ impl SparseLdlt {
                 self.timings.factorisations += 1;
             }
             Precision::Single => {
-                if self.factor_single.is_empty() {
-                    // zeroed by the allocator (fresh pages, no memset of
-                    // the whole factor on the calling thread before the
-                    // factorisation writes it: 36 MB on the small race)
-                    self.factor_single = vec![0.0; symbolic.len_val()];
-                } else {
-                    self.factor_single.resize(symbolic.len_val(), 0.0);
-                }
+                self.factor_single.resize(symbolic.len_val(), 0.0);
                 self.values_single.clear();
                 self.values_single.extend(values.iter().map(|&v| v as f32));
                 let a = SparseColMatRef::new(pattern.as_ref(), &self.values_single[..]);

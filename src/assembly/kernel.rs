@@ -26,21 +26,10 @@ pub enum KernelFailure {
     Inverted { quadrature_point: usize, det_f: f64 },
 }
 
-/// Reference gradients `∂N_a/∂X` at one quadrature point and `det(∂X/∂ξ)·w`,
-/// stored inline (an element's points are one contiguous block: the
-/// kernel reads them without chasing a pointer per point).
+/// Reference gradients `∂N_a/∂X` at one quadrature point and `det(∂X/∂ξ)·w`.
 pub struct PointGeometry {
-    gradients: [Vector3<f64>; MAX_NODES],
-    nodes: usize,
+    pub gradients: Vec<Vector3<f64>>,
     pub dv: f64,
-}
-
-impl PointGeometry {
-    /// `∂N_a/∂X` of the element's nodes `a`.
-    #[inline]
-    pub fn gradients(&self) -> &[Vector3<f64>] {
-        &self.gradients[..self.nodes]
-    }
 }
 
 /// Reference geometry of every quadrature point of an element: `∂N_a/∂X`
@@ -65,13 +54,11 @@ pub fn reference_geometry(
                 });
             }
             let inv_t = j0.try_inverse().unwrap_or_else(Matrix3::zeros).transpose();
-            let mut gradients = [Vector3::zeros(); MAX_NODES];
-            for (g_x, g) in gradients.iter_mut().zip(&r.gradients[q]) {
-                *g_x = inv_t * Vector3::from(*g);
-            }
             Ok(PointGeometry {
-                gradients,
-                nodes: r.gradients[q].len().min(MAX_NODES),
+                gradients: r.gradients[q]
+                    .iter()
+                    .map(|g| inv_t * Vector3::from(*g))
+                    .collect(),
                 dv: det * r.weights[q],
             })
         })
@@ -191,7 +178,7 @@ pub fn internal_force_and_tangent_into(
     let small = material.kinematics() == Kinematics::SmallStrain;
     let mut upper: UpperBlocks = [[0.0; 9]; MAX_NODES * (MAX_NODES + 1) / 2];
     for (q, p) in geometry.iter().enumerate() {
-        let f = deformation_gradient(p.gradients(), displacements);
+        let f = deformation_gradient(&p.gradients, displacements);
         let det_f = f.determinant();
         let admissible = det_f > 0.0 && det_f.is_finite();
         if !small && !admissible {
@@ -212,7 +199,7 @@ pub fn internal_force_and_tangent_into(
         // f_a = ∫ (F S) G_a dV₀
         let pk1 = kin * s;
         for a in 0..n {
-            let fa = pk1 * p.gradients()[a] * p.dv;
+            let fa = pk1 * p.gradients[a] * p.dv;
             for i in 0..3 {
                 force[3 * a + i] += fa[i];
             }
@@ -222,7 +209,7 @@ pub fn internal_force_and_tangent_into(
         };
         let tangent = first_elasticity(&kin, (!small).then_some(&s), &d, p.dv);
         let mut block = 0;
-        for (a, g_a) in p.gradients().iter().enumerate() {
+        for (a, g_a) in p.gradients.iter().enumerate() {
             // h[L][m] = Σ_J G_aJ 𝔸[J][L][m]
             let h: [[f64; 9]; 3] = std::array::from_fn(|l| {
                 std::array::from_fn(|m| {
@@ -231,7 +218,7 @@ pub fn internal_force_and_tangent_into(
                         + g_a[2] * tangent[2][l][m]
                 })
             });
-            for g_b in &p.gradients()[a..] {
+            for g_b in &p.gradients[a..] {
                 let k_ab = &mut upper[block];
                 for m in 0..9 {
                     k_ab[m] += h[0][m] * g_b[0] + h[1][m] * g_b[1] + h[2][m] * g_b[2];
@@ -275,7 +262,7 @@ pub fn element_cauchy_stress(
     let mut sum = Mat3::zeros();
     let mut vol = 0.0;
     for p in geometry {
-        let f = deformation_gradient(p.gradients(), displacements);
+        let f = deformation_gradient(&p.gradients, displacements);
         let s = material.second_piola_kirchhoff(&f);
         let sigma = if small {
             s
@@ -369,11 +356,11 @@ mod tests {
                 let mut f_ref = nalgebra::DVector::<f64>::zeros(3 * n);
                 let mut k_ref = nalgebra::DMatrix::<f64>::zeros(3 * n, 3 * n);
                 for p in &geometry {
-                    let f = deformation_gradient(p.gradients(), &u);
+                    let f = deformation_gradient(&p.gradients, &u);
                     let (s, d) = material.stress_and_tangent(&f);
                     let kin = if small { Mat3::identity() } else { f };
                     let mut b = nalgebra::DMatrix::<f64>::zeros(6, 3 * n);
-                    for (a, g) in p.gradients().iter().enumerate() {
+                    for (a, g) in p.gradients.iter().enumerate() {
                         b.view_mut((0, 3 * a), (6, 3))
                             .copy_from(&strain_operator(&kin, g));
                         let fa = kin * s * g * p.dv;
@@ -384,8 +371,8 @@ mod tests {
                     let d = nalgebra::DMatrix::from_iterator(6, 6, d.iter().copied());
                     k_ref += b.transpose() * d * &b * p.dv;
                     if !small {
-                        for (a, ga) in p.gradients().iter().enumerate() {
-                            for (c, gc) in p.gradients().iter().enumerate() {
+                        for (a, ga) in p.gradients.iter().enumerate() {
+                            for (c, gc) in p.gradients.iter().enumerate() {
                                 let geo = ga.dot(&(s * gc)) * p.dv;
                                 for i in 0..3 {
                                     k_ref[(3 * a + i, 3 * c + i)] += geo;

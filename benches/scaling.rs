@@ -542,6 +542,7 @@ fn run_case(spec: &Spec) -> Value {
         nodal_forces: Vec::new(),
         contacts: Default::default(),
         timings: Default::default(),
+        dissection: None,
         steps: vec![Step {
             name: "load".into(),
             end_time: 1.0,

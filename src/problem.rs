@@ -10,7 +10,11 @@ use crate::assembly::{ElementFailure, Model};
 use crate::contact::friction::FrictionMultiplier;
 use crate::contact::interface::{ContactContext, ContactInterface, NodeReport};
 use crate::contact::set::ContactSet;
+use crate::contact::interface::Primary;
+use crate::contact::obstacle::RigidObstacle;
 use crate::mesh::Facet;
+use crate::solve::ordering::{EarlyDissection, AMD_DOFS};
+use crate::solve::settings::Strategy;
 pub use crate::solve::settings::{LinearMethod, NonsymmetricSolver, SolverSettings, Step};
 
 pub mod condensed;
@@ -83,6 +87,10 @@ pub struct Problem {
     pub settings: SolverSettings,
     /// Time spent in assembly and contact, for reports and benchmarks.
     pub timings: PhaseTimings,
+    /// The nested dissection of the element graph, started while the rest
+    /// of the problem is built ([`Problem::start_dissection`]); `None`:
+    /// each ordering computes its own.
+    pub dissection: Option<EarlyDissection>,
 }
 
 /// Time spent in the assembly phases (element kernels and scatter; contact
@@ -205,6 +213,33 @@ impl Problem {
             }
         }
         f
+    }
+
+    /// Start the nested dissection of the element graph on the idle core
+    /// ([`EarlyDissection`]) when the run will order that graph by it, with
+    /// `contacts` about to be installed: the condensed path (every contact
+    /// against a rigid plane, its trailing ordering whatever the size), a
+    /// saddle system (multipliers) or more than [`AMD_DOFS`] unknowns —
+    /// not with contact between bodies (their couplings make another
+    /// graph) nor for PETSc (which orders its own systems), where the
+    /// ordering is made where it is used, as before. Small penalty
+    /// contact against a curved obstacle is the one case where this
+    /// dissection may go unused (AMD orders it).
+    pub fn start_dissection(&mut self, contacts: &[ContactInterface]) {
+        let strategy = self.settings.strategy;
+        let petsc = self.settings.linear == LinearMethod::Petsc && strategy != Strategy::Condensed;
+        let rigid = contacts
+            .iter()
+            .all(|c| matches!(c.primary, Primary::Rigid(_)));
+        let planes = contacts
+            .iter()
+            .all(|c| matches!(c.primary, Primary::Rigid(RigidObstacle::Plane { .. })));
+        let condensed = !contacts.is_empty() && planes && strategy != Strategy::Monolithic;
+        let saddle = contacts.iter().any(|c| c.num_multipliers() > 0);
+        let large = self.model.num_dofs() > AMD_DOFS;
+        if !petsc && rigid && (condensed || saddle || large) {
+            self.dissection = Some(EarlyDissection::start(&self.model.pattern));
+        }
     }
 
     /// Install contact interfaces ([`ContactSet::install`]), pair them at the

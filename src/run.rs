@@ -456,7 +456,11 @@ fn condensed_restart_refused(strategy: &condensed::Choice, options: &RunOptions)
 /// The fill-reducing ordering of `problem`'s pattern
 /// ([`crate::solve::ordering::fill_reducing_ordering`]).
 pub fn fill_reducing_ordering(problem: &Problem) -> Result<crate::solve::linear::Ordering> {
-    crate::solve::ordering::fill_reducing_ordering(&problem.model.pattern, problem.model.num_dofs())
+    crate::solve::ordering::fill_reducing_ordering(
+        &problem.model.pattern,
+        problem.model.num_dofs(),
+        problem.dissection.as_ref(),
+    )
 }
 
 /// Run a case file end to end, writing the results into `options.output`

@@ -44,6 +44,32 @@ pub struct SparsityPattern {
     id: u64,
 }
 
+/// A pattern's node adjacency (each node its own neighbour), shared with
+/// the pattern it came from: what a fill-reducing ordering of the nodes
+/// reads.
+#[derive(Clone, Debug)]
+pub struct NodeGraph(Arc<Vec<Vec<usize>>>);
+
+impl NodeGraph {
+    /// The adjacency without self-loops, in CSR form `(xadj, adjncy)`.
+    pub fn csr(&self) -> (Vec<usize>, Vec<usize>) {
+        let mut xadj = Vec::with_capacity(self.0.len() + 1);
+        let mut adjncy = Vec::new();
+        xadj.push(0);
+        for (n, list) in self.0.iter().enumerate() {
+            adjncy.extend(list.iter().copied().filter(|&m| m != n));
+            xadj.push(adjncy.len());
+        }
+        (xadj, adjncy)
+    }
+
+    /// Whether `other` is this very graph (the same shared adjacency, not
+    /// an equal copy): then an ordering of one orders the other.
+    pub fn is(&self, other: &NodeGraph) -> bool {
+        Arc::ptr_eq(&self.0, &other.0)
+    }
+}
+
 /// Where the entries coupling multiplier `k` and node `a` are stored.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct MultiplierEntries {
@@ -357,14 +383,16 @@ impl SparsityPattern {
     /// The node adjacency without self-loops, in CSR form `(xadj, adjncy)`,
     /// for graph orderings.
     pub fn node_graph(&self) -> (Vec<usize>, Vec<usize>) {
-        let mut xadj = Vec::with_capacity(self.neighbours.len() + 1);
-        let mut adjncy = Vec::new();
-        xadj.push(0);
-        for (n, list) in self.neighbours.iter().enumerate() {
-            adjncy.extend(list.iter().copied().filter(|&m| m != n));
-            xadj.push(adjncy.len());
-        }
-        (xadj, adjncy)
+        self.graph().csr()
+    }
+
+    /// The node adjacency (elements and contact couplings) as a shared
+    /// graph: the patterns [`Self::coupled`] makes without node groups
+    /// (rigid obstacles only) share their elements' graph, so an ordering
+    /// of it started from the first pattern fits them
+    /// ([`NodeGraph::is`]).
+    pub fn graph(&self) -> NodeGraph {
+        NodeGraph(Arc::clone(&self.neighbours))
     }
 
     /// Index of entry `(j, i)` for entry `k = (i, j)`.

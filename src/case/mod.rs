@@ -703,8 +703,10 @@ impl Case {
             steps,
             settings,
             timings: Default::default(),
+            dissection: None,
         };
         let contacts = self.contacts(&problem)?;
+        problem.start_dissection(&contacts);
         if !contacts.is_empty() {
             problem.set_contacts(contacts);
         }

@@ -498,9 +498,12 @@ impl Condensation {
         trailing.iter().for_each(|&i| marked[i] = true);
         // 1: one thread (`Par::Seq`), 0: the run's pool
         let threads = usize::from(dimension < PARALLEL_FACTOR_UNKNOWNS);
-        let ordering = decoupled_first(trailing_ordering(pattern, &marked)?, constrained);
-        let mut ldlt = SparseLdlt::new(ordering, threads).threads_as_given();
+        // the structure first: the dissection may still be running
+        // ([`Problem::start_dissection`])
         let decoupled = Decoupled::new(lower.symbolic(), constrained);
+        let ordering = trailing_ordering(pattern, &marked, problem.dissection.as_ref())?;
+        let ordering = decoupled_first(ordering, constrained);
+        let mut ldlt = SparseLdlt::new(ordering, threads).threads_as_given();
         ldlt.analyse(decoupled.symbolic())?;
         Ok((trailing, decoupled, ldlt))
     }

@@ -236,7 +236,7 @@ impl Josephy {
         let key = (pattern.id(), dofs);
         if self.ordered_for.as_ref() != Some(&key) || self.ldlt.is_none() {
             let threads = usize::from(pattern.dimension() < PARALLEL_UNKNOWNS);
-            let ldlt = SparseLdlt::new(trailing_ordering(pattern, marked)?, threads);
+            let ldlt = SparseLdlt::new(trailing_ordering(pattern, marked, None)?, threads);
             if let Some(old) = self.ldlt.replace(ldlt) {
                 self.earlier = self.earlier + SolverStatistics::of_ldlt(&old);
             }

@@ -32,7 +32,7 @@
 //! before.
 
 use super::linear::{Ordering, SparseLdlt};
-use super::ordering::nested_dissection;
+use super::ordering::{node_dissection, EarlyDissection};
 use crate::assembly::pattern::SparsityPattern;
 use crate::{Error, Result};
 use faer::sparse::linalg::cholesky::SymbolicCholeskyRaw;
@@ -56,10 +56,14 @@ const BLOCK: usize = 64;
 
 /// The nested-dissection ordering of `pattern`'s node graph (each node's
 /// dofs together, each multiplier after its node), with the unknowns
-/// marked in `trailing` moved to the end in the same relative order.
-pub fn trailing_ordering(pattern: &SparsityPattern, trailing: &[bool]) -> Result<Ordering> {
-    let (xadj, adjncy) = pattern.node_graph();
-    let nodes = nested_dissection(&xadj, &adjncy)?;
+/// marked in `trailing` moved to the end in the same relative order
+/// (the dissection `early`'s when it is of that graph).
+pub fn trailing_ordering(
+    pattern: &SparsityPattern,
+    trailing: &[bool],
+    early: Option<&EarlyDissection>,
+) -> Result<Ordering> {
+    let nodes = node_dissection(pattern, early)?;
     let forward = pattern.dof_ordering(&nodes);
     let (mut front, back): (Vec<usize>, Vec<usize>) =
         forward.into_iter().partition(|&i| !trailing[i]);
@@ -404,7 +408,7 @@ mod tests {
             let trailing: Vec<usize> = (0..dim).filter(|i| i % 3 == 2 && i % 7 < 3).collect();
             let mut marked = vec![false; dim];
             trailing.iter().for_each(|&i| marked[i] = true);
-            let ordering = trailing_ordering(&pattern, &marked).unwrap();
+            let ordering = trailing_ordering(&pattern, &marked, None).unwrap();
             let mut ldlt = SparseLdlt::new(ordering, 1);
             ldlt.factorize(pattern.symbolic(), &k, None).unwrap();
             let inverse = TrailingInverse::of(&ldlt, &trailing).unwrap();

@@ -181,6 +181,7 @@ pub fn resume_steps<P: NonlinearProblem>(
                 solver.set_ordering(super::ordering::fill_reducing_ordering(
                     problem.pattern(),
                     problem.num_dofs(),
+                    None,
                 )?);
             }
             let problem: &P = problem;

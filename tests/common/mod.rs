@@ -36,6 +36,7 @@ pub fn problem(mesh: Mesh, material: Arc<dyn Material>) -> Problem {
         nodal_forces: Vec::new(),
         contacts: Default::default(),
         timings: Default::default(),
+        dissection: None,
         steps: vec![Step {
             name: "load".into(),
             end_time: 1.0,

@@ -8,10 +8,10 @@
 use crate::assembly::loads::pressure_facet;
 use crate::assembly::{ElementFailure, Model};
 use crate::contact::friction::FrictionMultiplier;
-use crate::contact::interface::{ContactContext, ContactInterface, NodeReport};
-use crate::contact::set::ContactSet;
 use crate::contact::interface::Primary;
+use crate::contact::interface::{ContactContext, ContactInterface, NodeReport};
 use crate::contact::obstacle::RigidObstacle;
+use crate::contact::set::ContactSet;
 use crate::mesh::Facet;
 use crate::solve::ordering::{EarlyDissection, AMD_DOFS};
 use crate::solve::settings::Strategy;

@@ -54,7 +54,10 @@ fn metis_node_nd(xadj: &[usize], adjncy: &[usize]) -> std::result::Result<Vec<us
         i32::try_from(v).map_err(|_| "graph too large for 32-bit METIS indices".to_string())
     };
     let mut x: Vec<i32> = xadj.iter().map(|&v| to_idx(v)).collect::<Result<_, _>>()?;
-    let mut a: Vec<i32> = adjncy.iter().map(|&v| to_idx(v)).collect::<Result<_, _>>()?;
+    let mut a: Vec<i32> = adjncy
+        .iter()
+        .map(|&v| to_idx(v))
+        .collect::<Result<_, _>>()?;
     let mut nv = to_idx(n)?;
     let mut perm = vec![0i32; n];
     let mut iperm = vec![0i32; n];

@@ -182,6 +182,31 @@ fn auto_takes_the_condensed_path_exactly_where_it_applies() {
     );
 }
 
+/// The nested dissection started while the problem is built
+/// (`Problem::start_dissection`) is of the graph the run orders: on the
+/// condensed Hertz and frictional press-pull (after their patterns were
+/// rebuilt with the multipliers) and on press-pull against a sphere
+/// (monolithic, a saddle system); none is started for two deformable
+/// bodies (their contact couples the graph).
+#[test]
+fn the_early_dissection_fits_the_pattern_the_run_orders() {
+    let fits = |s: &Simulation| {
+        let p = s.problem();
+        p.dissection.as_ref().map(|d| d.fits(&p.model.pattern))
+    };
+    let root = Path::new(env!("CARGO_MANIFEST_DIR"));
+    let hertz = Simulation::from_file(&root.join("examples/hertz/case.toml")).unwrap();
+    assert_eq!(fits(&hertz), Some(true));
+    assert_eq!(fits(&press_pull_problem(&[])), Some(true));
+    let sphere = [(
+        "shape = \"plane\"\npoint = [0.0, 0.0, 0.0]\nnormal = [0.0, 0.0, 1.0]",
+        "shape = \"sphere\"\ncenter = [2.0, 0.0, -100.0]\nradius = 100.0".to_string(),
+    )];
+    assert_eq!(fits(&press_pull_problem(&sphere)), Some(true));
+    let pair = Simulation::from_file(&root.join("examples/two-spheres/case.toml")).unwrap();
+    assert_eq!(fits(&pair), None);
+}
+
 /// The frictionless condensed answer does not depend on the increments:
 /// Hertz in 1, 4 and 10 equal increments ends at the same displacements and
 /// contact forces to 1e-12 relative.

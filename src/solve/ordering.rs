@@ -118,11 +118,16 @@ impl EarlyDissection {
         early
     }
 
+    /// Whether `pattern`'s node graph is the one it dissects.
+    pub fn fits(&self, pattern: &SparsityPattern) -> bool {
+        self.graph.is(&pattern.graph())
+    }
+
     /// The node ordering, when `pattern`'s node graph is the one it
     /// dissects (waiting for the task if it is running, computing it if
     /// the task has not started).
     fn nodes_for(&self, pattern: &SparsityPattern) -> Option<Result<Vec<usize>>> {
-        self.graph.is(&pattern.graph()).then(|| {
+        self.fits(pattern).then(|| {
             self.nodes
                 .get_or_init(|| dissect(&self.graph))
                 .clone()
@@ -209,13 +214,13 @@ mod tests {
         let own = dissect_here(&pattern);
         assert_eq!(node_dissection(&pattern, Some(&early)).unwrap(), own);
         let with_multipliers = pattern.coupled(&[], &[vec![3], vec![7]], &[]);
-        assert!(early.nodes_for(&with_multipliers).is_some());
+        assert!(early.fits(&with_multipliers));
         assert_eq!(
             node_dissection(&with_multipliers, Some(&early)).unwrap(),
             own
         );
         let grouped = pattern.coupled(&[vec![0, 42], vec![10, 30]], &[], &[]);
-        assert!(early.nodes_for(&grouped).is_none());
+        assert!(!early.fits(&grouped));
         assert_eq!(
             node_dissection(&grouped, Some(&early)).unwrap(),
             dissect_here(&grouped)

@@ -15,7 +15,7 @@
 
 use faer::sparse::SymbolicSparseColMat;
 use std::sync::atomic::{AtomicU64, Ordering};
-use std::sync::Arc;
+use std::sync::{Arc, OnceLock};
 
 /// Source of [`SparsityPattern::id`]: every pattern built gets the next one.
 static NEXT_PATTERN_ID: AtomicU64 = AtomicU64::new(0);
@@ -38,8 +38,11 @@ pub struct SparsityPattern {
     multiplier_group: Vec<Vec<usize>>,
     /// Symbolic CSC structure, all entries (both triangles).
     symbolic: SymbolicSparseColMat<usize>,
-    /// `mirror[k]` is the index of entry (j, i) for entry `k` = (i, j).
-    mirror: Vec<usize>,
+    /// `mirror[k]` is the index of entry (j, i) for entry `k` = (i, j),
+    /// made at its first use ([`Self::mirrors`]): the condensed path
+    /// never reads it, and the pattern that the contact multipliers
+    /// replace never did.
+    mirror: OnceLock<Vec<usize>>,
     /// Unique among the patterns of a process ([`SparsityPattern::id`]).
     id: u64,
 }
@@ -227,7 +230,6 @@ impl SparsityPattern {
             col_ptr.push(row_idx.len());
         }
         let symbolic = SymbolicSparseColMat::new_checked(n, n, col_ptr, None, row_idx);
-        let mirror = transpose_positions(&symbolic);
         SparsityPattern {
             neighbours,
             elements,
@@ -235,7 +237,7 @@ impl SparsityPattern {
             multiplier_nodes,
             multiplier_group,
             symbolic,
-            mirror,
+            mirror: OnceLock::new(),
             id: NEXT_PATTERN_ID.fetch_add(1, Ordering::Relaxed),
         }
     }
@@ -398,7 +400,13 @@ impl SparsityPattern {
     /// Index of entry `(j, i)` for entry `k = (i, j)`.
     #[inline]
     pub fn mirror(&self, k: usize) -> usize {
-        self.mirror[k]
+        self.mirrors()[k]
+    }
+
+    /// [`Self::mirror`] of every entry (made at the first call).
+    fn mirrors(&self) -> &[usize] {
+        self.mirror
+            .get_or_init(|| transpose_positions(&self.symbolic))
     }
 
     /// Set each entry above the diagonal of `values` to its mirror's
@@ -406,19 +414,20 @@ impl SparsityPattern {
     /// lower triangle.
     pub fn mirror_lower_into_upper(&self, values: &mut [f64]) {
         let (cp, ri) = (self.symbolic.col_ptr(), self.symbolic.row_idx());
+        let mirror = self.mirrors();
         for j in 0..self.dimension() {
             for k in cp[j]..cp[j + 1] {
                 if ri[k] >= j {
                     break; // sorted: the rest is on and below the diagonal
                 }
-                values[k] = values[self.mirror[k]];
+                values[k] = values[mirror[k]];
             }
         }
     }
 
     /// The symmetric part `½ (A + Aᵀ)` of values on this pattern.
     pub fn symmetric_part(&self, values: &[f64]) -> Vec<f64> {
-        self.mirror
+        self.mirrors()
             .iter()
             .enumerate()
             .map(|(k, &m)| 0.5 * (values[k] + values[m]))
@@ -570,7 +579,7 @@ mod tests {
             let (cp, ri) = (p.symbolic().col_ptr(), p.symbolic().row_idx());
             for j in 0..p.dimension() {
                 for k in cp[j]..cp[j + 1] {
-                    let m = p.mirror[k];
+                    let m = p.mirror(k);
                     assert_eq!(ri[m], j);
                     assert!(m >= cp[ri[k]] && m < cp[ri[k] + 1]);
                 }

@@ -4,10 +4,14 @@
 //! [`internal_force_and_tangent_into`] with buffers reused across
 //! elements (no heap allocation), force and tangent, for Tet4 and Hex8
 //! with a small-strain and a finite-strain material. Prints one line per
-//! case: microseconds per element, the median of 5 repetitions.
+//! case: microseconds per element, the median of 5 repetitions. Then the
+//! tangent of `linear_elastic` in closed form ([`hooke_stiffness`], what
+//! the constant stiffness of a Hooke model is assembled with) against the
+//! kernel's tangent alone at `u = 0`.
 //!
 //! `cargo bench --bench element_kernel`
 
+use signorini::assembly::hooke::hooke_stiffness;
 use signorini::assembly::kernel::{
     internal_force_and_tangent, internal_force_and_tangent_into, reference_geometry,
 };
@@ -31,6 +35,22 @@ fn median_micros(mut run: impl FnMut()) -> f64 {
     times[2]
 }
 
+/// The unit reference element of `kind`.
+fn corners(kind: ElementKind) -> Vec<[f64; 3]> {
+    match kind {
+        ElementKind::Tet4 => vec![[0.0; 3], [1.0, 0.0, 0.0], [0.0, 1.0, 0.0], [0.0, 0.0, 1.0]],
+        ElementKind::Hex8 => (0..8)
+            .map(|a| {
+                [
+                    ((a & 1) ^ (a >> 1 & 1)) as f64,
+                    (a >> 1 & 1) as f64,
+                    (a >> 2) as f64,
+                ]
+            })
+            .collect(),
+    }
+}
+
 fn main() {
     let materials: [(&str, Box<dyn Material>); 2] = [
         (
@@ -44,18 +64,7 @@ fn main() {
     ];
     println!("kind  material        allocating µs  into µs  ratio");
     for kind in [ElementKind::Tet4, ElementKind::Hex8] {
-        let corners: Vec<[f64; 3]> = match kind {
-            ElementKind::Tet4 => vec![[0.0; 3], [1.0, 0.0, 0.0], [0.0, 1.0, 0.0], [0.0, 0.0, 1.0]],
-            ElementKind::Hex8 => (0..8)
-                .map(|a| {
-                    [
-                        ((a & 1) ^ (a >> 1 & 1)) as f64,
-                        (a >> 1 & 1) as f64,
-                        (a >> 2) as f64,
-                    ]
-                })
-                .collect(),
-        };
+        let corners = corners(kind);
         let geometry = reference_geometry(kind, &corners).unwrap();
         let u: Vec<[f64; 3]> = (0..corners.len())
             .map(|a| [0.01 * a as f64, -0.02, 0.005 * a as f64])
@@ -94,5 +103,43 @@ fn main() {
                 into / allocating
             );
         }
+    }
+    let hooke = LinearElastic::new(1000.0, 0.3, "m").unwrap();
+    let (lambda, mu) = hooke.lame();
+    println!("kind  linear_elastic tangent at u = 0: kernel µs  closed form µs  ratio");
+    for kind in [ElementKind::Tet4, ElementKind::Hex8] {
+        let geometry = reference_geometry(kind, &corners(kind)).unwrap();
+        let n = geometry[0].gradients.len();
+        let u = vec![[0.0; 3]; n];
+        let (mut force, mut k) = (vec![0.0; 3 * n], vec![0.0; 9 * n * n]);
+        let kernel = median_micros(|| {
+            for _ in 0..ELEMENTS {
+                internal_force_and_tangent_into(
+                    black_box(&geometry),
+                    &u,
+                    &hooke,
+                    &mut force,
+                    Some(&mut k),
+                )
+                .unwrap();
+                black_box((&force, &k));
+            }
+        });
+        let closed = median_micros(|| {
+            for _ in 0..ELEMENTS {
+                match kind {
+                    ElementKind::Tet4 => {
+                        black_box(hooke_stiffness::<4, 10>(black_box(&geometry), lambda, mu));
+                    }
+                    ElementKind::Hex8 => {
+                        black_box(hooke_stiffness::<8, 36>(black_box(&geometry), lambda, mu));
+                    }
+                }
+            }
+        });
+        println!(
+            "{kind:?}  {kernel:>42.3}  {closed:>14.3}  {:>5.2}",
+            closed / kernel
+        );
     }
 }

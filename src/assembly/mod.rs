@@ -26,6 +26,7 @@
 pub mod amplitude;
 pub mod colouring;
 pub mod constant_stiffness;
+pub mod hooke;
 pub mod kernel;
 pub mod loads;
 pub mod pattern;
@@ -262,9 +263,24 @@ impl Model {
     /// the current pattern's [`Model::lower_triangle`] when every
     /// element's material has a constant tangent (`None` otherwise):
     /// assembled at the first call for a pattern and shared after that.
-    /// Holds the element part only (no contact, no loads).
+    /// Holds the element part only (no contact, no loads). With Hooke's
+    /// law on every element, in closed form
+    /// ([`constant_stiffness::assemble_hooke_lower`]).
     pub fn constant_stiffness(&self) -> Option<Arc<Vec<f64>>> {
         self.constant.as_ref()?.get_or_build(&self.pattern, || {
+            let hooke: Option<Vec<(f64, f64)>> =
+                self.materials.iter().map(|m| m.hooke_lame()).collect();
+            if let Some(lame) = hooke {
+                let (lower, map) = self.lower_triangle_and_map();
+                return Some(constant_stiffness::assemble_hooke_lower(
+                    &self.mesh.elements,
+                    &self.geometry,
+                    |e| lame[self.element_material[e]],
+                    |e| self.share.as_ref().is_none_or(|s| s.owned[e]),
+                    &lower,
+                    &map,
+                ));
+            }
             let zero = vec![0.0; self.pattern.dimension()];
             let mut force = vec![0.0; self.pattern.dimension()];
             let mut k = vec![0.0; self.lower_triangle().nnz()];

@@ -63,6 +63,10 @@ impl Material for LinearElastic {
         true
     }
 
+    fn hooke_lame(&self) -> Option<(f64, f64)> {
+        Some(self.params.lame())
+    }
+
     fn strain_energy(&self, f: &Mat3) -> f64 {
         self.params.hooke_energy(&Self::strain(f))
     }
@@ -116,6 +120,7 @@ mod tests {
         assert!((s_skew - sigma_u).amax() < 1e-12);
         assert!(sigma.iter().all(|x| x.is_finite()));
         assert_eq!(m.reference_youngs_modulus(), 210.0);
+        assert_eq!(m.hooke_lame(), Some((lambda, mu)));
     }
 
     #[test]

@@ -73,6 +73,15 @@ pub trait Material: Send + Sync + std::fmt::Debug {
         false
     }
 
+    /// The Lamé parameters `(λ, μ)` when this law is small-strain
+    /// isotropic Hooke (`σ = λ tr(ε) I + 2μ ε`, constant
+    /// `ℂ = λ I⊗I + 2μ 𝕀`), `None` for every other law: the assembly then
+    /// writes the element stiffness in closed form (`assembly::hooke`)
+    /// instead of contracting `ℂ` point by point.
+    fn hooke_lame(&self) -> Option<(f64, f64)> {
+        None
+    }
+
     /// Strain energy per unit reference volume, `W(F)`.
     fn strain_energy(&self, f: &Mat3) -> f64;
 

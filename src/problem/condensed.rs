@@ -438,20 +438,38 @@ impl Condensation {
             || Self::analyse(problem, &lower, &nodes, &constrained, fraction),
         );
         let (k, (trailing, decoupled, mut ldlt)) = (k?, analysed?);
-        let mut k_tilde = k.to_vec();
-        let diagonal = |d: usize| lower.diagonal_entry(d);
-        let scale =
-            scaled_identity_rows(lower.symbolic(), diagonal, dofs, &constrained, &mut k_tilde);
-        for &d in shifted {
-            k_tilde[lower.diagonal_entry(d)] += scale;
-        }
         let count = nodes.len();
         let single = match problem.settings.linear {
             LinearMethod::Mixed => true,
             LinearMethod::Auto => dimension >= MIXED_PRECISION_UNKNOWNS,
             _ => false,
         };
-        let values = decoupled.values(&k_tilde);
+        let precision = if single {
+            Precision::Single
+        } else {
+            Precision::Double
+        };
+        // the factor's storage sized (its pages touched) on one thread
+        // while the other makes `K̃` and its values
+        let (_, (k_tilde, scale, values)) = rayon::join(
+            || ldlt.reserve(precision),
+            || {
+                let mut k_tilde = k.to_vec();
+                let diagonal = |d: usize| lower.diagonal_entry(d);
+                let scale = scaled_identity_rows(
+                    lower.symbolic(),
+                    diagonal,
+                    dofs,
+                    &constrained,
+                    &mut k_tilde,
+                );
+                for &d in shifted {
+                    k_tilde[lower.diagonal_entry(d)] += scale;
+                }
+                let values = decoupled.values(&k_tilde);
+                (k_tilde, scale, values)
+            },
+        );
         if single {
             ldlt.factorize_single(decoupled.symbolic(), &values, None)?;
         } else {

@@ -11,8 +11,8 @@ use crate::{Error, Result};
 use faer::dyn_stack::{MemBuffer, MemStack};
 use faer::linalg::cholesky::ldlt::factor::{LdltParams, LdltRegularization};
 use faer::sparse::linalg::cholesky::{
-    factorize_symbolic_cholesky, CholeskySymbolicParams, LdltRef, SymbolicCholesky,
-    SymmetricOrdering,
+    factorize_symbolic_cholesky, supernodal, CholeskySymbolicParams, LdltRef, SymbolicCholesky,
+    SymbolicCholeskyRaw, SymmetricOrdering,
 };
 use faer::sparse::{SparseColMatRef, SymbolicSparseColMat};
 use faer::{MatMut, Par, Side, Spec};
@@ -70,10 +70,8 @@ pub struct SparseLdlt {
     /// Fingerprint of the pattern the symbolic analysis was made for.
     analysed: Option<u64>,
     factor: Vec<f64>,
-    /// The f32 factor of [`Self::factorize_single`] and the f32 copy of the
-    /// matrix it factorised.
+    /// The f32 factor of [`Self::factorize_single`].
     factor_single: Vec<f32>,
-    values_single: Vec<f32>,
     /// Which factor the last factorisation made (the one solves use).
     precision: Precision,
     par: Par,
@@ -130,7 +128,6 @@ impl SparseLdlt {
             analysed: None,
             factor: Vec::new(),
             factor_single: Vec::new(),
-            values_single: Vec::new(),
             precision: Precision::Double,
             par,
             small_on_one_thread: true,
@@ -196,7 +193,9 @@ impl SparseLdlt {
             CholeskySymbolicParams::default(),
         )
         .map_err(|e| Error::LinearSolver(format!("symbolic analysis: {e:?}")))?;
-        self.factor = vec![0.0; symbolic.len_val()];
+        // sized at the first factorisation in its precision (beside the
+        // values' permutation, [`NumericInput::factorize`])
+        self.factor = Vec::new();
         self.factor_single = Vec::new();
         self.symbolic = Some(symbolic);
         self.analysed = Some(fingerprint);
@@ -241,7 +240,7 @@ impl SparseLdlt {
 
     /// Number of stored entries of the factor `L` (after analysis).
     pub fn factor_nnz(&self) -> usize {
-        self.factor.len()
+        self.symbolic.as_ref().map_or(0, |s| s.len_val())
     }
 
     /// Factorise `A = L D Lᵀ`. `signs`, if given, asks for dynamic
@@ -290,26 +289,21 @@ impl SparseLdlt {
             .ok_or_else(|| Error::LinearSolver("factorisation before analysis".into()))?;
         let scale = max_abs_diagonal(pattern, values);
         let (delta, epsilon) = (1e-10 * scale, 1e-13 * scale);
+        let input = NumericInput {
+            symbolic,
+            pattern,
+            values,
+            signs,
+            par,
+        };
         match precision {
             Precision::Double => {
-                let a = SparseColMatRef::new(pattern.as_ref(), values);
-                numeric_ldlt(symbolic, &mut self.factor, a, signs, (delta, epsilon), par)?;
+                input.factorize(&mut self.factor, |v| v, (delta, epsilon))?;
                 self.timings.factorisations += 1;
             }
             Precision::Single => {
-                self.factor_single.resize(symbolic.len_val(), 0.0);
-                self.values_single.clear();
-                self.values_single.extend(values.iter().map(|&v| v as f32));
-                let a = SparseColMatRef::new(pattern.as_ref(), &self.values_single[..]);
                 let regularization = (delta as f32, epsilon as f32);
-                numeric_ldlt(
-                    symbolic,
-                    &mut self.factor_single,
-                    a,
-                    signs,
-                    regularization,
-                    par,
-                )?;
+                input.factorize(&mut self.factor_single, |v| v as f32, regularization)?;
                 self.timings.single_factorisations += 1;
             }
         }
@@ -317,6 +311,22 @@ impl SparseLdlt {
         self.timings.numeric = start.elapsed();
         self.timings.numeric_total += self.timings.numeric;
         Ok(())
+    }
+
+    /// Size the storage of a factor in `precision` for the analysed
+    /// pattern, its pages touched (zeroed), unless it has that size: what
+    /// the next factorisation in `precision` would do first, for a caller
+    /// that has it done on another thread beside its own preparation of
+    /// the values (36 MB of f32 on the small race mesh, about 9 000 page
+    /// faults). Without an analysis, nothing.
+    pub fn reserve(&mut self, precision: Precision) {
+        let Some(len) = self.symbolic.as_ref().map(|s| s.len_val()) else {
+            return;
+        };
+        match precision {
+            Precision::Double => sized(&mut self.factor, len),
+            Precision::Single => sized(&mut self.factor_single, len),
+        }
     }
 
     /// Solve `A x = b` in place with the last factorisation.
@@ -498,43 +508,187 @@ impl SparseLdlt {
     }
 }
 
-/// The numeric LDLᵀ of `a` in `T` arithmetic on `symbolic` into `factor`,
-/// with dynamic regularisation `(δ, ε)` towards `signs` when given.
-fn numeric_ldlt<T: faer::traits::RealField + faer::traits::ComplexField<Real = T>>(
-    symbolic: &SymbolicCholesky<usize>,
-    factor: &mut [T],
-    a: SparseColMatRef<'_, usize, T>,
-    signs: Option<&[i8]>,
-    (delta, epsilon): (T, T),
+/// `v` with `len` entries, each zero, unless it has `len` already (its
+/// values are then left as they are: a factorisation overwrites them).
+fn sized<T: Copy + Default>(v: &mut Vec<T>, len: usize) {
+    if v.len() != len {
+        v.clear();
+        v.resize(len, T::default());
+    }
+}
+
+/// `a` and then `b`, or both at once on the rayon pool when `par` is.
+fn beside(par: Par, a: impl FnOnce() + Send, b: impl FnOnce() + Send) {
+    match par {
+        Par::Seq => {
+            a();
+            b();
+        }
+        Par::Rayon(_) => {
+            rayon::join(a, b);
+        }
+    }
+}
+
+/// The lower triangle of `P A Pᵀ` from `A`'s `values` on `pattern` (whole
+/// or its lower triangle), each rounded by `convert`: entry `(i, j)`,
+/// `i ≥ j`, of `A` is entry `(max(pᵢ, pⱼ), min(pᵢ, pⱼ))` of `P A Pᵀ` (`p`
+/// the inverse permutation, `p[old] = new`, none: the identity), rows
+/// unsorted within a column, as faer's supernodal factorisation reads it
+/// (each entry added once into a zeroed block: the order of a column's
+/// rows does not change the factor). The values go straight into the
+/// factor's order and arithmetic beside the sizing of the factor's storage
+/// (faer would copy, then permute them after it, on the same thread).
+fn permuted_lower<T: Copy + Default>(
+    pattern: &SymbolicSparseColMat<usize>,
+    inverse: Option<&[usize]>,
+    values: &[f64],
+    convert: impl Fn(f64) -> T,
+) -> (SymbolicSparseColMat<usize>, Vec<T>) {
+    let n = pattern.ncols();
+    let (cp, ri) = (pattern.col_ptr(), pattern.row_idx());
+    let at = |i: usize| inverse.map_or(i, |p| p[i]);
+    // (entry, column, row) in P A Pᵀ of every lower entry of A
+    let lower = |j: usize| {
+        (cp[j]..cp[j + 1])
+            .filter(move |&k| ri[k] >= j)
+            .map(move |k| {
+                let (a, b) = (at(ri[k]), at(j));
+                (k, a.min(b), a.max(b))
+            })
+    };
+    let mut col_ptr = vec![0usize; n + 1];
+    (0..n)
+        .flat_map(lower)
+        .for_each(|(_, c, _)| col_ptr[c + 1] += 1);
+    for c in 0..n {
+        col_ptr[c + 1] += col_ptr[c];
+    }
+    let nnz = col_ptr[n];
+    let mut next = col_ptr[..n].to_vec();
+    let (mut row_idx, mut permuted) = (vec![0usize; nnz], vec![T::default(); nnz]);
+    for (k, c, r) in (0..n).flat_map(lower) {
+        row_idx[next[c]] = r;
+        permuted[next[c]] = convert(values[k]);
+        next[c] += 1;
+    }
+    let symbolic = SymbolicSparseColMat::new_unsorted_checked(n, n, col_ptr, None, row_idx);
+    (symbolic, permuted)
+}
+
+/// What a numeric factorisation reads: the analysis, the matrix's values
+/// on `pattern` and the solver's threads.
+struct NumericInput<'a> {
+    symbolic: &'a SymbolicCholesky<usize>,
+    pattern: &'a SymbolicSparseColMat<usize>,
+    values: &'a [f64],
+    signs: Option<&'a [i8]>,
     par: Par,
-) -> Result<()> {
-    let params: Spec<LdltParams, T> = Default::default();
-    let mut mem = MemBuffer::new(symbolic.factorize_numeric_ldlt_scratch::<T>(par, params));
-    let regularization = match signs {
+}
+
+impl NumericInput<'_> {
+    /// The numeric LDLᵀ in `T` arithmetic (`convert` rounding each value)
+    /// into `factor`, with dynamic
+    /// regularisation `(δ, ε)` towards the signs when given. On a
+    /// supernodal analysis the factor's storage is sized (its pages
+    /// touched) on one thread while the other writes the values in the
+    /// factor's order ([`permuted_lower`]); a simplicial (small) one
+    /// lets faer permute them.
+    fn factorize<T>(
+        self,
+        factor: &mut Vec<T>,
+        convert: impl Fn(f64) -> T + Send,
+        (delta, epsilon): (T, T),
+    ) -> Result<()>
+    where
+        T: faer::traits::RealField + faer::traits::ComplexField<Real = T> + Copy + Default,
+    {
+        let NumericInput {
+            symbolic,
+            pattern,
+            values,
+            signs,
+            par,
+        } = self;
+        let len = symbolic.len_val();
+        let params: Spec<LdltParams, T> = Default::default();
+        let SymbolicCholeskyRaw::Supernodal(supernodal) = symbolic.raw() else {
+            sized(factor, len);
+            let input: Vec<T> = values.iter().map(|&v| convert(v)).collect();
+            let a = SparseColMatRef::new(pattern.as_ref(), &input[..]);
+            let mut mem = MemBuffer::new(symbolic.factorize_numeric_ldlt_scratch::<T>(par, params));
+            let regularization = regularization(signs, delta, epsilon);
+            return symbolic
+                .factorize_numeric_ldlt(
+                    factor,
+                    a,
+                    Side::Lower,
+                    regularization,
+                    par,
+                    MemStack::new(&mut mem),
+                    params,
+                )
+                .map(|_| ())
+                .map_err(factorisation_failed);
+        };
+        let perm = symbolic.perm().map(|p| p.arrays());
+        let mut permuted = None;
+        beside(
+            par,
+            || sized(factor, len),
+            || {
+                let inverse = perm.map(|(_, inverse)| inverse);
+                permuted = Some(permuted_lower(pattern, inverse, values, convert));
+            },
+        );
+        let (structure, input) = permuted
+            .ok_or_else(|| Error::LinearSolver("the permuted input was not made".into()))?;
+        let a = SparseColMatRef::new(structure.as_ref(), &input[..]);
+        // the signs in the factor's order, as faer's own permutation
+        let signs: Option<Vec<i8>> = signs.map(|s| match perm {
+            Some((forward, _)) => forward.iter().map(|&old| s[old]).collect(),
+            None => s.to_vec(),
+        });
+        let regularization = regularization(signs.as_deref(), delta, epsilon);
+        let mut mem = MemBuffer::new(supernodal::factorize_supernodal_numeric_ldlt_scratch::<
+            usize,
+            T,
+        >(supernodal, par, params));
+        supernodal::factorize_supernodal_numeric_ldlt(
+            factor,
+            a,
+            regularization,
+            supernodal,
+            par,
+            MemStack::new(&mut mem),
+            params,
+        )
+        .map(|_| ())
+        .map_err(factorisation_failed)
+    }
+}
+
+/// Dynamic regularisation `(δ, ε)` towards `signs`, none without them.
+fn regularization<T: faer::traits::RealField>(
+    signs: Option<&[i8]>,
+    delta: T,
+    epsilon: T,
+) -> LdltRegularization<'_, T> {
+    match signs {
         Some(s) => LdltRegularization {
             dynamic_regularization_signs: Some(s),
             dynamic_regularization_delta: delta,
             dynamic_regularization_epsilon: epsilon,
         },
         None => LdltRegularization::default(),
-    };
-    symbolic
-        .factorize_numeric_ldlt(
-            factor,
-            a,
-            Side::Lower,
-            regularization,
-            par,
-            MemStack::new(&mut mem),
-            params,
-        )
-        .map_err(|e| {
-            Error::LinearSolver(format!(
-                "LDLᵀ factorisation failed ({e:?}): the tangent is singular; \
-                 check that the boundary conditions remove every rigid-body motion"
-            ))
-        })?;
-    Ok(())
+    }
+}
+
+fn factorisation_failed(e: faer::linalg::cholesky::ldlt::factor::LdltError) -> Error {
+    Error::LinearSolver(format!(
+        "LDLᵀ factorisation failed ({e:?}): the tangent is singular; \
+         check that the boundary conditions remove every rigid-body motion"
+    ))
 }
 
 /// A hash of a pattern's structure (FNV-1a over its dimensions, column
@@ -641,5 +795,89 @@ mod tests {
             }
         }
         assert_eq!(solver.timings.analyses, 1);
+    }
+
+    /// The factor through [`permuted_lower`] (supernodal) equals faer's own
+    /// permute-then-factorise bitwise, in f64 and f32, with and without
+    /// regularisation signs.
+    #[test]
+    fn permuted_input_gives_faers_factor_bitwise() {
+        let m: usize = 11;
+        let n = m * m * m;
+        let id = |i: usize, j: usize, k: usize| i + m * (j + m * k);
+        let (mut cp, mut ri, mut v) = (vec![0], Vec::new(), Vec::new());
+        for c in 0..n {
+            let (i, j, k) = (c % m, (c / m) % m, c / (m * m));
+            let mut rows = vec![(c, 6.5 + (c % 7) as f64 * 0.1)];
+            for (di, dj, dk) in [(1, 0, 0), (0, 1, 0), (0, 0, 1)] {
+                if i >= di && j >= dj && k >= dk {
+                    rows.push((id(i - di, j - dj, k - dk), -1.0 - 0.01 * (c % 3) as f64));
+                }
+                if i + di < m && j + dj < m && k + dk < m {
+                    rows.push((id(i + di, j + dj, k + dk), -1.0));
+                }
+            }
+            rows.sort_by_key(|r| r.0);
+            for (r, _) in &rows {
+                ri.push(*r);
+            }
+            // symmetric values: the lower entry of each pair decides
+            for &(r, _) in &rows {
+                let (a, b) = (r.max(c), r.min(c));
+                v.push(if a == b {
+                    6.5 + (a % 7) as f64 * 0.1
+                } else {
+                    -1.0 - 0.01 * (a % 3) as f64
+                });
+            }
+            cp.push(ri.len());
+        }
+        let pattern = SymbolicSparseColMat::new_checked(n, n, cp, None, ri);
+        let signs = vec![1i8; n];
+        for sign in [None, Some(&signs[..])] {
+            let mut solver = SparseLdlt::new(Ordering::Amd, 1);
+            solver.factorize(&pattern, &v, sign).unwrap();
+            let mut single = SparseLdlt::new(Ordering::Amd, 1);
+            single.factorize_single(&pattern, &v, sign).unwrap();
+            let symbolic = solver.symbolic.as_ref().unwrap();
+            assert!(matches!(symbolic.raw(), SymbolicCholeskyRaw::Supernodal(_)));
+            let scale = max_abs_diagonal(&pattern, &v);
+            let params: Spec<LdltParams, f64> = Default::default();
+            let mut mem =
+                MemBuffer::new(symbolic.factorize_numeric_ldlt_scratch::<f64>(Par::Seq, params));
+            let mut factor = vec![0.0; symbolic.len_val()];
+            let a = SparseColMatRef::new(pattern.as_ref(), &v[..]);
+            symbolic
+                .factorize_numeric_ldlt(
+                    &mut factor,
+                    a,
+                    Side::Lower,
+                    regularization(sign, 1e-10 * scale, 1e-13 * scale),
+                    Par::Seq,
+                    MemStack::new(&mut mem),
+                    params,
+                )
+                .unwrap();
+            assert_eq!(factor, solver.factor);
+            let v32: Vec<f32> = v.iter().map(|&x| x as f32).collect();
+            let params: Spec<LdltParams, f32> = Default::default();
+            let mut mem =
+                MemBuffer::new(symbolic.factorize_numeric_ldlt_scratch::<f32>(Par::Seq, params));
+            let mut factor = vec![0.0f32; symbolic.len_val()];
+            let a = SparseColMatRef::new(pattern.as_ref(), &v32[..]);
+            let (d, e) = ((1e-10 * scale) as f32, (1e-13 * scale) as f32);
+            symbolic
+                .factorize_numeric_ldlt(
+                    &mut factor,
+                    a,
+                    Side::Lower,
+                    regularization(sign, d, e),
+                    Par::Seq,
+                    MemStack::new(&mut mem),
+                    params,
+                )
+                .unwrap();
+            assert_eq!(factor, single.factor_single);
+        }
     }
 }

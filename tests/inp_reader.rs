@@ -290,6 +290,29 @@ fn malformed_decks_give_file_and_line() {
             11,
             "*SURFACE 's': 'skin' holds no C3D4 or C3D8 element",
         ),
+        // the data lines are parsed side by side: of two bad lines, the
+        // first in the deck is the one reported
+        (
+            "two_bad_numbers.inp",
+            "*NODE\n1, 0, 0, 0\n2, 1, zero, 0\n3, 1, 1, one\n".into(),
+            "two_bad_numbers.inp",
+            3,
+            "expected a number, found 'zero'",
+        ),
+        (
+            "two_short_elements.inp",
+            format!("{NODES}*ELEMENT, TYPE=C3D4\n1, 1, 2, 3, 4\n2, 1, 2, 3\n3, 1, 2\n"),
+            "two_short_elements.inp",
+            8,
+            "'id' and 4 node ids; found 4 fields",
+        ),
+        (
+            "continued_then_missing.inp",
+            format!("{NODES}*ELEMENT, TYPE=C3D4\n1, 1, 2,\n3, 4\n2, 1, 2, 3, 9\n3, 1, 2, 3, 8\n"),
+            "continued_then_missing.inp",
+            9,
+            "element 2 refers to node 9",
+        ),
         (
             "data_first.inp",
             "1, 0, 0, 0\n".into(),

@@ -4,24 +4,38 @@
 //! keeps its file and 1-based line number for the errors.
 
 use crate::{Error, Result};
+use std::ops::Range;
 use std::path::{Path, PathBuf};
+use std::sync::Arc;
 
 /// How deep `*INCLUDE`s may nest (a guard against runaway recursion; a
 /// cycle is reported as such before this is reached).
 const MAX_INCLUDE_DEPTH: usize = 32;
 
-/// One significant line of the deck.
+/// One significant line of the deck: a range of its file's text (no
+/// allocation per line), or the joined text of a continued keyword line.
 pub(super) struct Line {
     /// Index into [`Deck::files`].
     file: usize,
     /// 1-based line number in that file.
     pub(super) number: usize,
-    pub(super) text: String,
+    /// The file's text and the line's (trimmed) byte range in it.
+    source: Arc<str>,
+    range: Range<usize>,
+    /// A keyword line joined with its continuation lines.
+    joined: Option<String>,
 }
 
 impl Line {
+    /// The line, trimmed.
+    pub(super) fn text(&self) -> &str {
+        match &self.joined {
+            Some(text) => text,
+            None => &self.source[self.range.clone()],
+        }
+    }
     pub(super) fn is_keyword(&self) -> bool {
-        self.text.starts_with('*')
+        self.text().starts_with('*')
     }
 }
 
@@ -70,26 +84,37 @@ impl Deck {
         let file = self.files.len();
         self.files.push(path.to_path_buf());
         stack.push(path.canonicalize().unwrap_or_else(|_| path.to_path_buf()));
-        let text = String::from_utf8_lossy(bytes);
-        let mut raw = text
+        let source: Arc<str> = Arc::from(String::from_utf8_lossy(bytes));
+        let base = source.as_ptr() as usize;
+        let mut raw = source
             .lines()
             .enumerate()
             .map(|(i, l)| (i + 1, l.trim()))
             .filter(|(_, l)| !l.is_empty() && !l.starts_with("**"))
             .peekable();
         while let Some((number, first)) = raw.next() {
-            let mut text = first.to_string();
             // a keyword line ending with a comma continues on the next line
-            while text.starts_with('*') && text.ends_with(',') {
+            let mut joined: Option<String> = None;
+            while first.starts_with('*') && joined.as_deref().unwrap_or(first).ends_with(',') {
                 match raw.peek() {
                     Some((_, next)) if !next.starts_with('*') => {
-                        text.push_str(next);
+                        joined
+                            .get_or_insert_with(|| first.to_string())
+                            .push_str(next);
                         raw.next();
                     }
                     _ => break,
                 }
             }
-            let line = Line { file, number, text };
+            // `first` is a slice of `source`: its offset is where it starts
+            let start = first.as_ptr() as usize - base;
+            let line = Line {
+                file,
+                number,
+                source: Arc::clone(&source),
+                range: start..start + first.len(),
+                joined,
+            };
             if line.is_keyword() && self.keyword(&line)?.name == "INCLUDE" {
                 self.include(&line, stack)?;
             } else {
@@ -144,7 +169,7 @@ impl Deck {
 
     /// Parses the keyword line `line`.
     pub(super) fn keyword(&self, line: &Line) -> Result<Keyword> {
-        let mut fields = split_fields(&line.text[1..]).into_iter();
+        let mut fields = split_fields(&line.text()[1..]).into_iter();
         let name = fields
             .next()
             .unwrap_or_default()

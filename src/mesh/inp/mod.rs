@@ -60,6 +60,7 @@ use crate::Result;
 use builder::{kind_name, Builder, Member};
 use deck::{split_fields, unquote, Deck, Keyword, Line};
 use element_type::{element_type, face_count, outward_face, Shape};
+use rayon::prelude::*;
 use std::path::Path;
 
 /// The most ids one `GENERATE` line may list (a guard against a typo
@@ -94,7 +95,7 @@ pub fn read_inp(path: &Path) -> Result<InpMesh> {
                 line,
                 format!(
                     "a data line before any keyword: '{}'; a deck starts with a keyword line such as *NODE",
-                    line.text
+                    line.text()
                 ),
             ));
         }
@@ -197,30 +198,40 @@ impl Reader<'_> {
             }
         }
         let nset = keyword.param("NSET").map(str::to_string);
+        // the lines parsed side by side, then added in order (the first
+        // error in the deck's order is the one reported)
+        let parsed: Vec<Result<(u64, [f64; 3])>> =
+            data.par_iter().map(|l| self.node_line(l)).collect();
         let mut added = Vec::with_capacity(data.len());
-        for l in data {
-            let fields = data_fields(l);
-            if fields.len() < 2 || fields.len() > 4 {
-                return Err(self.err(
-                    l,
-                    format!(
-                        "a *NODE line is 'id, x, y, z'; found {} fields in '{}'",
-                        fields.len(),
-                        l.text
-                    ),
-                ));
-            }
-            let id = self.id(l, fields[0], "node id")?;
-            let mut x = [0.0; 3];
-            for (c, f) in x.iter_mut().zip(&fields[1..]) {
-                *c = self.number(l, f)?;
-            }
+        for (l, p) in data.iter().zip(parsed) {
+            let (id, x) = p?;
             added.push(self.builder.add_node(id, x).map_err(|m| self.err(l, m))?);
         }
         if let Some(name) = nset {
             self.builder.node_sets.entry(&name).extend(added);
         }
         Ok(())
+    }
+
+    /// A `*NODE` data line: `id, x, y, z` (missing coordinates are 0).
+    fn node_line(&self, l: &Line) -> Result<(u64, [f64; 3])> {
+        let fields = data_fields(l);
+        if fields.len() < 2 || fields.len() > 4 {
+            return Err(self.err(
+                l,
+                format!(
+                    "a *NODE line is 'id, x, y, z'; found {} fields in '{}'",
+                    fields.len(),
+                    l.text()
+                ),
+            ));
+        }
+        let id = self.id(l, fields[0], "node id")?;
+        let mut x = [0.0; 3];
+        for (c, f) in x.iter_mut().zip(&fields[1..]) {
+            *c = self.number(l, f)?;
+        }
+        Ok((id, x))
     }
 
     /// `*ELEMENT, TYPE=…`: `id, n1, …, nk`, continued on the next line after
@@ -242,35 +253,43 @@ impl Reader<'_> {
             }
         }
         let elset = keyword.param("ELSET").map(str::to_string);
-        let mut added = Vec::new();
-        let mut i = 0;
-        while i < data.len() {
-            let first = &data[i];
-            let mut fields = data_fields(first);
-            // a line ending with a comma continues on the next one
-            while fields.len() < element.nodes + 1
-                && data[i].text.trim_end().ends_with(',')
-                && i + 1 < data.len()
-            {
+        // an element per line, parsed side by side; a line ending with a
+        // comma continues on the next one (then the lines are joined in
+        // order first)
+        let mut records: Vec<(&Line, Vec<&str>)> = Vec::new();
+        let continued = data.iter().any(|l| l.text().trim_end().ends_with(','));
+        let parsed: Vec<Result<(u64, Vec<u64>)>> = if continued {
+            let mut i = 0;
+            while i < data.len() {
+                let first = &data[i];
+                let mut fields = data_fields(first);
+                while fields.len() < element.nodes + 1
+                    && data[i].text().trim_end().ends_with(',')
+                    && i + 1 < data.len()
+                {
+                    i += 1;
+                    fields.extend(data_fields(&data[i]));
+                }
                 i += 1;
-                fields.extend(data_fields(&data[i]));
+                records.push((first, fields));
             }
-            i += 1;
-            if fields.len() != element.nodes + 1 {
-                return Err(self.err(
-                    first,
-                    format!(
-                        "a {type_name} element line is 'id' and {} node ids; found {} fields",
-                        element.nodes,
-                        fields.len()
-                    ),
-                ));
-            }
-            let id = self.id(first, fields[0], "element id")?;
-            let nodes = fields[1..]
-                .iter()
-                .map(|f| self.id(first, f, "node id"))
-                .collect::<Result<Vec<u64>>>()?;
+            records
+                .par_iter()
+                .map(|(first, fields)| self.element_line(first, fields, &type_name, element.nodes))
+                .collect()
+        } else {
+            data.par_iter()
+                .map(|l| self.element_line(l, &data_fields(l), &type_name, element.nodes))
+                .collect()
+        };
+        let firsts: Vec<&Line> = if continued {
+            records.iter().map(|(first, _)| *first).collect()
+        } else {
+            data.iter().collect()
+        };
+        let mut added = Vec::with_capacity(parsed.len());
+        for (first, p) in firsts.into_iter().zip(parsed) {
+            let (id, nodes) = p?;
             let member = self
                 .builder
                 .add_element(id, element.shape, &nodes)
@@ -281,6 +300,32 @@ impl Reader<'_> {
             self.builder.element_sets.entry(&name).extend(added);
         }
         Ok(())
+    }
+
+    /// An element's fields (`id` and its `nodes` node ids) read from the
+    /// line `first` (where it starts).
+    fn element_line(
+        &self,
+        first: &Line,
+        fields: &[&str],
+        type_name: &str,
+        nodes: usize,
+    ) -> Result<(u64, Vec<u64>)> {
+        if fields.len() != nodes + 1 {
+            return Err(self.err(
+                first,
+                format!(
+                    "a {type_name} element line is 'id' and {nodes} node ids; found {} fields",
+                    fields.len()
+                ),
+            ));
+        }
+        let id = self.id(first, fields[0], "element id")?;
+        let ids = fields[1..]
+            .iter()
+            .map(|f| self.id(first, f, "node id"))
+            .collect::<Result<Vec<u64>>>()?;
+        Ok((id, ids))
     }
 
     /// The members a set's data lines list: ids (`by_id`) and names of sets
@@ -440,7 +485,7 @@ impl Reader<'_> {
                     l,
                     format!(
                         "a *SURFACE line is 'element or element set, face' (e.g. '12, S3'); found '{}'",
-                        l.text
+                        l.text()
                     ),
                 ));
             }
@@ -549,7 +594,7 @@ impl Reader<'_> {
 /// The comma-separated fields of a data line, without the empty field a
 /// trailing comma leaves.
 fn data_fields(line: &Line) -> Vec<&str> {
-    let mut fields = split_fields(&line.text);
+    let mut fields = split_fields(line.text());
     while fields.last().is_some_and(|f| f.is_empty()) {
         fields.pop();
     }

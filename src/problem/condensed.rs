@@ -499,7 +499,7 @@ impl Condensation {
         // 1: one thread (`Par::Seq`), 0: the run's pool
         let threads = usize::from(dimension < PARALLEL_FACTOR_UNKNOWNS);
         // the structure first: the dissection may still be running
-        // ([`Problem::start_dissection`])
+        // ([`crate::problem::dissects_element_graph`])
         let decoupled = Decoupled::new(lower.symbolic(), constrained);
         let ordering = trailing_ordering(pattern, &marked, problem.dissection.as_ref())?;
         let ordering = decoupled_first(ordering, constrained);

@@ -409,7 +409,8 @@ impl Condensation {
     /// dofs) and factorise it once; `nodes` are the columns of `E`, the
     /// nearest `fraction` of them ordered last. The assembly and the
     /// ordering with its symbolic analysis (which read only the pattern)
-    /// run side by side on the run's threads.
+    /// run side by side on the run's threads, the ordering's nested
+    /// dissection mostly done before ([`Problem::dissection`]).
     fn factorise(
         problem: &Problem,
         nodes: Vec<ContactNode>,

@@ -462,3 +462,27 @@ impl Problem {
 pub fn norm(v: &[f64]) -> f64 {
     v.iter().map(|x| x * x).sum::<f64>().sqrt()
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// The dissection starts for contact against rigid obstacles at any
+    /// size and for large problems; not for small ones without contact
+    /// (AMD), contact between bodies, or PETSc unless condensed is asked for.
+    #[test]
+    fn the_dissection_starts_where_the_run_orders_the_element_graph() {
+        use LinearMethod::{Auto, Lu, Petsc};
+        use Strategy::{Auto as Either, Condensed, Monolithic};
+        let starts = |linear, strategy, dofs, rigid: &[bool]| {
+            dissects_element_graph(linear, strategy, dofs, rigid.iter().copied())
+        };
+        assert!(starts(Auto, Either, 900, &[true]));
+        assert!(starts(Lu, Monolithic, 900, &[true, true]));
+        assert!(starts(Auto, Either, AMD_DOFS + 3, &[]));
+        assert!(starts(Petsc, Condensed, 900, &[true]));
+        assert!(!starts(Auto, Either, AMD_DOFS, &[]));
+        assert!(!starts(Auto, Either, 3 * AMD_DOFS, &[true, false]));
+        assert!(!starts(Petsc, Either, 3 * AMD_DOFS, &[true]));
+    }
+}

@@ -8,9 +8,7 @@
 use crate::assembly::loads::pressure_facet;
 use crate::assembly::{ElementFailure, Model};
 use crate::contact::friction::FrictionMultiplier;
-use crate::contact::interface::Primary;
 use crate::contact::interface::{ContactContext, ContactInterface, NodeReport};
-use crate::contact::obstacle::RigidObstacle;
 use crate::contact::set::ContactSet;
 use crate::mesh::Facet;
 use crate::solve::ordering::{EarlyDissection, AMD_DOFS};
@@ -24,6 +22,29 @@ mod nonlinear;
 pub use crate::contact::set::ContactState;
 
 pub use crate::assembly::amplitude::Amplitude;
+
+/// Whether a run orders its elements' node graph by nested dissection,
+/// from what is known before the problem is built (its solver settings,
+/// `num_dofs` displacement unknowns, and of each contact whether it is
+/// against a rigid obstacle): then [`Problem::dissection`] is started as
+/// soon as that graph exists. So it is with contacts all against rigid
+/// obstacles (the condensed path's trailing ordering, and a saddle system,
+/// at any size) or more than [`AMD_DOFS`] unknowns; not with contact
+/// between bodies (their couplings make another graph) nor for PETSc
+/// (which orders its own systems; the condensed path excepted), where the
+/// ordering is made where it is used, as before. Small penalty contact
+/// decided monolithic is ordered by AMD: its dissection, of fewer than
+/// [`AMD_DOFS`]` / 3` nodes, goes unused on the idle core.
+pub fn dissects_element_graph(
+    linear: LinearMethod,
+    strategy: Strategy,
+    num_dofs: usize,
+    mut against_rigid: impl ExactSizeIterator<Item = bool>,
+) -> bool {
+    let petsc = linear == LinearMethod::Petsc && strategy != Strategy::Condensed;
+    let contact = against_rigid.len() > 0;
+    !petsc && against_rigid.all(|rigid| rigid) && (contact || num_dofs > AMD_DOFS)
+}
 
 /// Prescribed displacement components on the nodes of a surface set or a
 /// node set: `u_i = value_i · amplitude(t)`.
@@ -87,9 +108,9 @@ pub struct Problem {
     pub settings: SolverSettings,
     /// Time spent in assembly and contact, for reports and benchmarks.
     pub timings: PhaseTimings,
-    /// The nested dissection of the element graph, started while the rest
-    /// of the problem is built ([`Problem::start_dissection`]); `None`:
-    /// each ordering computes its own.
+    /// The nested dissection of the elements' node graph, started as soon
+    /// as it exists, while the rest of the problem is built
+    /// ([`dissects_element_graph`]); `None`: each ordering computes its own.
     pub dissection: Option<EarlyDissection>,
 }
 
@@ -213,33 +234,6 @@ impl Problem {
             }
         }
         f
-    }
-
-    /// Start the nested dissection of the element graph on the idle core
-    /// ([`EarlyDissection`]) when the run will order that graph by it, with
-    /// `contacts` about to be installed: the condensed path (every contact
-    /// against a rigid plane, its trailing ordering whatever the size), a
-    /// saddle system (multipliers) or more than [`AMD_DOFS`] unknowns —
-    /// not with contact between bodies (their couplings make another
-    /// graph) nor for PETSc (which orders its own systems), where the
-    /// ordering is made where it is used, as before. Small penalty
-    /// contact against a curved obstacle is the one case where this
-    /// dissection may go unused (AMD orders it).
-    pub fn start_dissection(&mut self, contacts: &[ContactInterface]) {
-        let strategy = self.settings.strategy;
-        let petsc = self.settings.linear == LinearMethod::Petsc && strategy != Strategy::Condensed;
-        let rigid = contacts
-            .iter()
-            .all(|c| matches!(c.primary, Primary::Rigid(_)));
-        let planes = contacts
-            .iter()
-            .all(|c| matches!(c.primary, Primary::Rigid(RigidObstacle::Plane { .. })));
-        let condensed = !contacts.is_empty() && planes && strategy != Strategy::Monolithic;
-        let saddle = contacts.iter().any(|c| c.num_multipliers() > 0);
-        let large = self.model.num_dofs() > AMD_DOFS;
-        if !petsc && rigid && (condensed || saddle || large) {
-            self.dissection = Some(EarlyDissection::start(&self.model.pattern));
-        }
     }
 
     /// Install contact interfaces ([`ContactSet::install`]), pair them at the
@@ -467,4 +461,28 @@ impl Problem {
 /// Euclidean norm.
 pub fn norm(v: &[f64]) -> f64 {
     v.iter().map(|x| x * x).sum::<f64>().sqrt()
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// The dissection starts for contact against rigid obstacles at any
+    /// size and for large problems; not for small ones without contact
+    /// (AMD), contact between bodies, or PETSc unless condensed is asked for.
+    #[test]
+    fn the_dissection_starts_where_the_run_orders_the_element_graph() {
+        use LinearMethod::{Auto, Lu, Petsc};
+        use Strategy::{Auto as Either, Condensed, Monolithic};
+        let starts = |linear, strategy, dofs, rigid: &[bool]| {
+            dissects_element_graph(linear, strategy, dofs, rigid.iter().copied())
+        };
+        assert!(starts(Auto, Either, 900, &[true]));
+        assert!(starts(Lu, Monolithic, 900, &[true, true]));
+        assert!(starts(Auto, Either, AMD_DOFS + 3, &[]));
+        assert!(starts(Petsc, Condensed, 900, &[true]));
+        assert!(!starts(Auto, Either, AMD_DOFS, &[]));
+        assert!(!starts(Auto, Either, 3 * AMD_DOFS, &[true, false]));
+        assert!(!starts(Petsc, Either, 3 * AMD_DOFS, &[true]));
+    }
 }

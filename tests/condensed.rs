@@ -183,7 +183,7 @@ fn auto_takes_the_condensed_path_exactly_where_it_applies() {
 }
 
 /// The nested dissection started while the problem is built
-/// (`Problem::start_dissection`) is of the graph the run orders: on the
+/// (`signorini::problem::dissects_element_graph`) is of the graph the run orders: on the
 /// condensed Hertz and frictional press-pull (after their patterns were
 /// rebuilt with the multipliers) and on press-pull against a sphere
 /// (monolithic, a saddle system); none is started for two deformable

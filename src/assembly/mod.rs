@@ -40,7 +40,7 @@ use crate::mesh::Mesh;
 use colouring::{DisjointSlice, ElementColouring};
 use constant_stiffness::StiffnessCache;
 use kernel::{KernelFailure, PointGeometry, MAX_NODES};
-use pattern::SparsityPattern;
+use pattern::{NodeGraph, SparsityPattern};
 use rayon::prelude::*;
 use scatter_map::ScatterMap;
 use share::Share;
@@ -88,6 +88,19 @@ impl Model {
         materials: Vec<Arc<dyn Material>>,
         element_material: Vec<usize>,
     ) -> Result<Self, ElementFailure> {
+        Self::with_graph(mesh, materials, element_material, |_| ())
+    }
+
+    /// [`Self::new`], handing the elements' node graph to `on_graph` as
+    /// soon as it exists (before the pattern's compressed columns and
+    /// while the colouring runs): what reads only the graph (a
+    /// fill-reducing ordering) can start there.
+    pub fn with_graph(
+        mesh: Arc<Mesh>,
+        materials: Vec<Arc<dyn Material>>,
+        element_material: Vec<usize>,
+        on_graph: impl FnOnce(&NodeGraph) + Send,
+    ) -> Result<Self, ElementFailure> {
         let geometry = mesh
             .elements
             .par_iter()
@@ -105,10 +118,12 @@ impl Model {
                                               // two independent walks over the elements, side by side
         let (pattern, colouring) = rayon::join(
             || {
-                SparsityPattern::from_elements(
+                let graph = NodeGraph::of_elements(
                     mesh.num_nodes(),
                     mesh.elements.iter().map(|e| e.nodes.as_slice()),
-                )
+                );
+                on_graph(&graph);
+                SparsityPattern::from_graph(&graph)
             },
             || {
                 ElementColouring::new(

@@ -54,6 +54,26 @@ pub struct SparsityPattern {
 pub struct NodeGraph(Arc<Vec<Vec<usize>>>);
 
 impl NodeGraph {
+    /// The graph of the nodes that share an element (`element_nodes`
+    /// yields each element's node list): each node's sorted neighbours,
+    /// itself included.
+    pub fn of_elements<'a>(
+        num_nodes: usize,
+        element_nodes: impl Iterator<Item = &'a [usize]>,
+    ) -> Self {
+        let mut neighbours: Vec<Vec<usize>> = (0..num_nodes).map(|n| vec![n]).collect();
+        for nodes in element_nodes {
+            for &a in nodes {
+                neighbours[a].extend_from_slice(nodes);
+            }
+        }
+        for list in &mut neighbours {
+            list.sort_unstable();
+            list.dedup();
+        }
+        NodeGraph(Arc::new(neighbours))
+    }
+
     /// The adjacency without self-loops, in CSR form `(xadj, adjncy)`.
     pub fn csr(&self) -> (Vec<usize>, Vec<usize>) {
         let mut xadj = Vec::with_capacity(self.0.len() + 1);
@@ -113,18 +133,15 @@ impl SparsityPattern {
         multiplier_nodes: &[Vec<usize>],
         groups: &[Vec<usize>],
     ) -> Self {
-        let mut neighbours: Vec<Vec<usize>> = (0..num_nodes).map(|n| vec![n]).collect();
-        for nodes in element_nodes {
-            for &a in nodes {
-                neighbours[a].extend_from_slice(nodes);
-            }
-        }
-        for list in &mut neighbours {
-            list.sort_unstable();
-            list.dedup();
-        }
-        let elements = Arc::new(neighbours);
-        Self::from_neighbours(Arc::clone(&elements), elements, multiplier_nodes, groups)
+        let graph = NodeGraph::of_elements(num_nodes, element_nodes);
+        Self::from_neighbours(Arc::clone(&graph.0), graph.0, multiplier_nodes, groups)
+    }
+
+    /// [`Self::from_elements`] from the elements' graph
+    /// ([`NodeGraph::of_elements`]), which it shares
+    /// ([`Self::graph`]`.is(graph)`).
+    pub fn from_graph(graph: &NodeGraph) -> Self {
+        Self::from_neighbours(Arc::clone(&graph.0), Arc::clone(&graph.0), &[], &[])
     }
 
     /// This pattern's element couplings (those it was first built from,

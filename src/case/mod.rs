@@ -9,6 +9,7 @@ pub mod output;
 pub mod schema;
 mod tagged;
 
+use crate::assembly::pattern::NodeGraph;
 use crate::assembly::Model;
 use crate::contact::friction::FrictionMultiplier;
 use crate::contact::interface::ContactInterface;
@@ -20,6 +21,7 @@ use crate::problem::{
     Amplitude, BodyForce, LinearMethod, NodalForce, PrescribedDisplacement, PressureLoad, Problem,
     SolverSettings, Step,
 };
+use crate::solve::ordering::EarlyDissection;
 use crate::{Error, Result};
 use nalgebra::Vector3;
 use schema::{
@@ -493,7 +495,23 @@ impl Case {
             })
             .collect::<Result<Vec<_>>>()?;
 
-        let model = Model::new(mesh.clone(), materials, element_material).map_err(|f| {
+        // the nested dissection of the elements' graph, on the idle core
+        // as soon as that graph exists, if the run will order it so
+        let defaults = SolverSettings::default();
+        let dissect = crate::problem::dissects_element_graph(
+            spec.solver.linear.unwrap_or(defaults.linear),
+            spec.solver.strategy.unwrap_or(defaults.strategy),
+            3 * mesh.num_nodes(),
+            spec.contact.iter().map(|c| c.obstacle.is_some()),
+        );
+        let mut dissection = None;
+        let on_graph = |graph: &NodeGraph| {
+            if dissect {
+                dissection = Some(EarlyDissection::start(graph));
+            }
+        };
+        let model = Model::with_graph(mesh.clone(), materials, element_material, on_graph);
+        let model = model.map_err(|f| {
             let (quadrature_point, det_j) = match f.failure {
                 crate::assembly::kernel::KernelFailure::ReferenceInverted {
                     quadrature_point,
@@ -703,10 +721,9 @@ impl Case {
             steps,
             settings,
             timings: Default::default(),
-            dissection: None,
+            dissection,
         };
         let contacts = self.contacts(&problem)?;
-        problem.start_dissection(&contacts);
         if !contacts.is_empty() {
             problem.set_contacts(contacts);
         }

@@ -409,7 +409,8 @@ impl Condensation {
     /// dofs) and factorise it once; `nodes` are the columns of `E`, the
     /// nearest `fraction` of them ordered last. The assembly and the
     /// ordering with its symbolic analysis (which read only the pattern)
-    /// run side by side on the run's threads.
+    /// run side by side on the run's threads, the ordering's nested
+    /// dissection mostly done before ([`Problem::dissection`]).
     fn factorise(
         problem: &Problem,
         nodes: Vec<ContactNode>,
@@ -517,7 +518,7 @@ impl Condensation {
         // 1: one thread (`Par::Seq`), 0: the run's pool
         let threads = usize::from(dimension < PARALLEL_FACTOR_UNKNOWNS);
         // the structure first: the dissection may still be running
-        // ([`Problem::start_dissection`])
+        // ([`crate::problem::dissects_element_graph`])
         let decoupled = Decoupled::new(lower.symbolic(), constrained);
         let ordering = trailing_ordering(pattern, &marked, problem.dissection.as_ref())?;
         let ordering = decoupled_first(ordering, constrained);

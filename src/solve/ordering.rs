@@ -84,10 +84,10 @@ fn metis_node_nd(xadj: &[usize], adjncy: &[usize]) -> std::result::Result<Vec<us
     Ok(perm.iter().map(|&node| node as usize).collect())
 }
 
-/// The nested dissection of a pattern's node graph, started on the
-/// current thread pool as soon as the pattern exists
-/// ([`EarlyDissection::start`]): it reads only the graph, which the mesh
-/// gives, while the factorisation that needs it comes after the contacts,
+/// The nested dissection of a pattern's node graph, started on a thread
+/// of its own as soon as the graph exists
+/// ([`EarlyDissection::start`], from [`crate::assembly::Model::with_graph`]):
+/// it reads only the graph, which the mesh gives, while the factorisation that needs it comes after the contacts,
 /// the output set-up and the assembly, so it runs on a core those leave
 /// idle. Whoever asks first computes it — the task, or
 /// [`node_dissection`] when the task has not started yet (the task then
@@ -100,21 +100,26 @@ pub struct EarlyDissection {
 }
 
 impl EarlyDissection {
-    /// Start the dissection of `pattern`'s node graph on the current
-    /// pool (once every holder of the returned handle is gone, a task not
-    /// yet started does nothing).
-    pub fn start(pattern: &SparsityPattern) -> Self {
+    /// Start the dissection of `graph` on a thread of its own (not a
+    /// pool's: a pool thread waiting in a `join` would run a task queued
+    /// on it before returning). Once every holder of the returned handle
+    /// is gone, a task not yet started does nothing; a thread that cannot
+    /// be started leaves the work to the first who asks.
+    pub fn start(graph: &NodeGraph) -> Self {
         let early = EarlyDissection {
-            graph: pattern.graph(),
+            graph: graph.clone(),
             nodes: Arc::default(),
         };
         let graph = early.graph.clone();
         let nodes = Arc::downgrade(&early.nodes);
-        rayon::spawn(move || {
+        let task = move || {
             if let Some(nodes) = nodes.upgrade() {
                 nodes.get_or_init(|| dissect(&graph));
             }
-        });
+        };
+        let _ = std::thread::Builder::new()
+            .name("dissection".into())
+            .spawn(task);
         early
     }
 
@@ -206,7 +211,7 @@ mod tests {
         // a chain of 40 tetrahedra-like elements of 4 nodes each, overlapping
         let elements: Vec<Vec<usize>> = (0..40).map(|e| (e..e + 4).collect()).collect();
         let pattern = SparsityPattern::from_elements(43, elements.iter().map(Vec::as_slice));
-        let early = EarlyDissection::start(&pattern);
+        let early = EarlyDissection::start(&pattern.graph());
         let dissect_here = |p: &SparsityPattern| {
             let (xadj, adjncy) = p.node_graph();
             nested_dissection(&xadj, &adjncy).unwrap()

@@ -274,13 +274,8 @@ impl StepObserver for Progress {
 
 fn check(case: PathBuf) -> signorini::Result<()> {
     let loaded = signorini::case::load(&case)?;
-    let mut problem = loaded.build_problem()?;
-    // as the run will have it: the condensed path keeps exact stick's
-    // tangential multipliers in the history
-    let path = signorini::problem::condensed::choose(&problem).map(|c| c.path);
-    if path == Ok(signorini::problem::condensed::Path::Condensed) {
-        problem.keep_friction_multipliers_in_history();
-    }
+    // as the run will have it (its solution path chosen)
+    let (problem, _) = signorini::run::problem_as_run(&loaded)?;
     let requests = loaded.output_requests(&problem)?;
     let mesh = &problem.model.mesh;
     for note in &loaded.notes {

@@ -127,21 +127,32 @@ pub struct Simulation {
     mesh_encoding: Option<MeshEncoding>,
 }
 
+/// The problem of `case` as a run solves it, and the path chosen for it
+/// (`[solver] strategy`, [`condensed::choose`], with PETSc's own rule):
+/// on the condensed path exact stick's tangential multipliers are kept in
+/// the friction history ([`Problem::keep_friction_multipliers_in_history`]).
+/// [`Simulation::from_case`] and `signorini check` both build it here, so
+/// that the check describes the model the run solves.
+pub fn problem_as_run(case: &Case) -> Result<(Problem, condensed::Choice)> {
+    let mut problem = case.build_problem()?;
+    let strategy = condensed::choose(&problem).map_err(|message| Error::Case {
+        path: case.path.clone(),
+        message,
+    })?;
+    let strategy = distributed::strategy_for_petsc(&problem, strategy);
+    if strategy.path == SolvePath::Condensed {
+        problem.keep_friction_multipliers_in_history();
+    }
+    Ok((problem, strategy))
+}
+
 impl Simulation {
     /// From a case: builds the problem and validates the output requests.
     pub fn from_case(case: &Case) -> Result<Self> {
-        let mut problem = case.build_problem()?;
+        let (problem, strategy) = problem_as_run(case)?;
         let requests = case.output_requests(&problem)?;
         let (nodal_fields, cell_fields) = case.output_fields();
         let every = case.output_every()?;
-        let strategy = condensed::choose(&problem).map_err(|message| Error::Case {
-            path: case.path.clone(),
-            message,
-        })?;
-        let strategy = distributed::strategy_for_petsc(&problem, strategy);
-        if strategy.path == SolvePath::Condensed {
-            problem.keep_friction_multipliers_in_history();
-        }
         let case_key = restart::case_key(case, &problem);
         Ok(Simulation {
             case_label: case.path.display().to_string(),

@@ -598,3 +598,18 @@ fn errors_after_parsing_name_the_line_of_their_key() {
         )],
     );
 }
+
+/// `signorini check` refuses what the run refuses when choosing its path:
+/// `strategy = "condensed"` on a case it does not apply to (finite-strain
+/// material, no contact) fails both with the reason and the fix.
+#[test]
+fn check_refuses_a_condensed_strategy_that_does_not_apply() {
+    expect_failure(
+        &format!("{CASE}\n[solver]\nstrategy = \"condensed\"\n"),
+        &[
+            "solver.strategy = \"condensed\" does not apply",
+            "there is no contact",
+            "use strategy = \"auto\"",
+        ],
+    );
+}

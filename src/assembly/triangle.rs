@@ -142,28 +142,14 @@ impl LowerTriangle {
 
 /// `y = A x` for the symmetric `A` whose lower triangle (CSC, rows `≥ j`
 /// in column `j`, the diagonal first) is `values` on `lower`:
-/// `y = L x + Lᵀ x − D x`. `yᵢ` is the sum, in the order of the columns
-/// `j < i`, of the scatters `aᵢⱼ xⱼ` (`L x` without the diagonal), plus
-/// column `i`'s dot product `Σ_{k ≥ i} aₖᵢ xₖ` (`Lᵀ x`) last: on the
-/// rayon pool's threads the scatters and the dot products are two passes
-/// over the columns side by side ([`scatter_below`], [`column_dots`]),
-/// on one thread one pass; the same sums in the same order, so `y` does
-/// not depend on the threads (bitwise). A shorter `x` multiplies the
-/// leading block of its size (the displacements of a matrix with
-/// multipliers after them) and `y` is zero below it.
+/// `y = L x + Lᵀ x − D x`, one pass over the columns (serial: the result
+/// does not depend on the threads). A shorter `x` multiplies the leading
+/// block of its size (the displacements of a matrix with multipliers
+/// after them) and `y` is zero below it.
 pub fn multiply(lower: &SymbolicSparseColMat<usize>, values: &[f64], x: &[f64], y: &mut [f64]) {
     y.iter_mut().for_each(|v| *v = 0.0);
-    let m = x.len().min(lower.ncols());
-    if rayon::current_num_threads() > 1 {
-        let mut dots = vec![0.0; m];
-        rayon::join(
-            || scatter_below(lower, values, x, y),
-            || column_dots(lower, values, x, &mut dots),
-        );
-        y.iter_mut().zip(&dots).for_each(|(yj, d)| *yj += d);
-        return;
-    }
     let (cp, ri) = (lower.col_ptr(), lower.row_idx());
+    let m = x.len().min(lower.ncols());
     for j in 0..m {
         let xj = x[j];
         let mut dot = 0.0;
@@ -179,42 +165,6 @@ pub fn multiply(lower: &SymbolicSparseColMat<usize>, values: &[f64], x: &[f64], 
             }
         }
         y[j] += dot;
-    }
-}
-
-/// `yᵢ += aᵢⱼ xⱼ` for every entry below the diagonal of the leading block
-/// of `x`'s size, column by column.
-fn scatter_below(lower: &SymbolicSparseColMat<usize>, values: &[f64], x: &[f64], y: &mut [f64]) {
-    let (cp, ri) = (lower.col_ptr(), lower.row_idx());
-    let m = x.len().min(lower.ncols());
-    for (j, &xj) in x.iter().enumerate().take(m) {
-        for k in cp[j]..cp[j + 1] {
-            let i = ri[k];
-            if i >= m {
-                break;
-            }
-            if i != j {
-                y[i] += values[k] * xj;
-            }
-        }
-    }
-}
-
-/// `dⱼ = Σ_{i ≥ j} aᵢⱼ xᵢ` (in the order of the rows) for the columns `j`
-/// of the leading block of `d`'s size.
-fn column_dots(lower: &SymbolicSparseColMat<usize>, values: &[f64], x: &[f64], d: &mut [f64]) {
-    let (cp, ri) = (lower.col_ptr(), lower.row_idx());
-    let m = d.len();
-    for (j, dj) in d.iter_mut().enumerate() {
-        let mut dot = 0.0;
-        for k in cp[j]..cp[j + 1] {
-            let i = ri[k];
-            if i >= m {
-                break;
-            }
-            dot += values[k] * x[i];
-        }
-        *dj = dot;
     }
 }
 
@@ -296,35 +246,6 @@ mod tests {
         let scale = y_full.iter().fold(0.0f64, |m, v| m.max(v.abs()));
         for (a, b) in y.iter().zip(&y_full) {
             assert!((a - b).abs() <= 1e-14 * scale, "{a} against {b}");
-        }
-    }
-
-    /// The product on two threads (scatters and dot products side by
-    /// side) is the one-thread product bitwise, for the whole `x` and for
-    /// a leading block.
-    #[test]
-    fn the_product_does_not_depend_on_the_threads() {
-        let (p, full) = pattern_and_values();
-        let t = LowerTriangle::of(&p);
-        let lower = t.values(&full);
-        let n = p.dimension();
-        for m in [n, n - 2, 7] {
-            let x: Vec<f64> = (0..m).map(|i| (1.3 * i as f64).cos() / 3.0).collect();
-            let product = |threads: usize| {
-                let pool = rayon::ThreadPoolBuilder::new()
-                    .num_threads(threads)
-                    .build()
-                    .unwrap();
-                let mut y = vec![f64::NAN; n];
-                pool.install(|| multiply(t.symbolic(), &lower, &x, &mut y));
-                y
-            };
-            let (one, two) = (product(1), product(2));
-            assert!(one
-                .iter()
-                .zip(&two)
-                .all(|(a, b)| a.to_bits() == b.to_bits()));
-            assert!(one[m..].iter().all(|v| *v == 0.0));
         }
     }
 }

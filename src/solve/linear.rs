@@ -510,10 +510,18 @@ impl SparseLdlt {
 
 /// `v` with `len` entries, each zero, unless it has `len` already (its
 /// values are then left as they are: a factorisation overwrites them).
+/// A new one is zeroed by the allocator (fresh pages, for a large one)
+/// and written once per 4 KiB page, so that its page faults are taken
+/// here (on the thread that calls this) without a memset of the whole.
 fn sized<T: Copy + Default>(v: &mut Vec<T>, len: usize) {
     if v.len() != len {
-        v.clear();
-        v.resize(len, T::default());
+        *v = vec![T::default(); len];
+        // opaque: the writes below are not known to store what is there
+        let fresh = std::hint::black_box(&mut v[..]);
+        let page = (4096 / std::mem::size_of::<T>().max(1)).max(1);
+        for i in (0..len).step_by(page) {
+            fresh[i] = T::default();
+        }
     }
 }
 

@@ -1,7 +1,7 @@
 //! Global assembly: element kernels evaluated in parallel (rayon) and
 //! scattered into a fixed sparsity pattern.
 //!
-//! The elements are coloured once per mesh ([`colouring`]: no two elements
+//! The elements are coloured once per mesh, at the first assembly that needs it ([`colouring`]: no two elements
 //! of a colour share a node); the elements of a colour are evaluated and
 //! scattered in parallel, straight into the global values, colour after
 //! colour. Every global entry is therefore summed in the same order (colour
@@ -44,7 +44,7 @@ use pattern::{NodeGraph, SparsityPattern};
 use rayon::prelude::*;
 use scatter_map::ScatterMap;
 use share::Share;
-use std::sync::{Arc, Mutex, PoisonError};
+use std::sync::{Arc, Mutex, OnceLock, PoisonError};
 use triangle::LowerTriangle;
 
 /// A mesh with a material on every element and the precomputed reference
@@ -57,7 +57,9 @@ pub struct Model {
     pub element_material: Vec<usize>,
     geometry: Vec<Vec<PointGeometry>>,
     pub pattern: SparsityPattern,
-    colouring: ElementColouring,
+    /// Made at the first assembly through it ([`Self::colouring`]): a
+    /// constant stiffness in closed form is assembled without it.
+    colouring: OnceLock<ElementColouring>,
     /// The scatter map of the pattern it was last built for.
     scatter_map: Mutex<Option<Arc<ScatterMap>>>,
     /// The lower triangle of the pattern it was last built for, and the
@@ -101,22 +103,9 @@ impl Model {
         element_material: Vec<usize>,
         on_graph: impl FnOnce(&NodeGraph) + Send,
     ) -> Result<Self, ElementFailure> {
-        let geometry = mesh
-            .elements
-            .par_iter()
-            .enumerate()
-            .map(|(e, el)| {
-                let coords: Vec<[f64; 3]> = el.nodes.iter().map(|&n| mesh.nodes[n]).collect();
-                kernel::reference_geometry(el.kind, &coords).map_err(|failure| ElementFailure {
-                    element: e,
-                    failure,
-                })
-            })
-            .collect::<Vec<_>>()
-            .into_iter()
-            .collect::<Result<Vec<_>, _>>()?; // in order: the first failing element, see `assemble_internal`
-                                              // two independent walks over the elements, side by side
-        let (pattern, colouring) = rayon::join(
+        // the elements' graph first (the ordering waits for it), beside
+        // the geometry
+        let (pattern, geometry) = rayon::join(
             || {
                 let graph = NodeGraph::of_elements(
                     mesh.num_nodes(),
@@ -126,12 +115,24 @@ impl Model {
                 SparsityPattern::from_graph(&graph)
             },
             || {
-                ElementColouring::new(
-                    mesh.num_nodes(),
-                    mesh.elements.iter().map(|e| e.nodes.as_slice()),
-                )
+                mesh.elements
+                    .par_iter()
+                    .enumerate()
+                    .map(|(e, el)| {
+                        let coords: Vec<[f64; 3]> =
+                            el.nodes.iter().map(|&n| mesh.nodes[n]).collect();
+                        kernel::reference_geometry(el.kind, &coords).map_err(|failure| {
+                            ElementFailure {
+                                element: e,
+                                failure,
+                            }
+                        })
+                    })
+                    .collect::<Vec<_>>()
             },
         );
+        // in order: the first failing element, see `assemble_internal`
+        let geometry = geometry.into_iter().collect::<Result<Vec<_>, _>>()?;
         let constant = element_material
             .iter()
             .all(|&m| materials[m].constant_tangent())
@@ -142,12 +143,23 @@ impl Model {
             element_material,
             geometry,
             pattern,
-            colouring,
+            colouring: OnceLock::new(),
             scatter_map: Mutex::new(None),
             lower: Mutex::new(None),
             lower_map: Mutex::new(None),
             constant,
             share: None,
+        })
+    }
+
+    /// The elements in colours, no two elements of a colour sharing a node
+    /// ([`ElementColouring`]), made at the first call.
+    fn colouring(&self) -> &ElementColouring {
+        self.colouring.get_or_init(|| {
+            ElementColouring::new(
+                self.mesh.num_nodes(),
+                self.mesh.elements.iter().map(|e| e.nodes.as_slice()),
+            )
         })
     }
 
@@ -395,7 +407,7 @@ impl Model {
                 lower: lower.as_deref(),
             });
         let mut first_failure: Option<ElementFailure> = None;
-        for colour in self.colouring.colours() {
+        for colour in self.colouring().colours() {
             let owned = |e: &&usize| self.share.as_ref().is_none_or(|s| s.owned[**e]);
             let failure = colour
                 .par_iter()

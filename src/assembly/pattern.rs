@@ -14,6 +14,7 @@
 //! regularise towards (the multipliers' only).
 
 use faer::sparse::SymbolicSparseColMat;
+use rayon::prelude::*;
 use std::sync::atomic::{AtomicU64, Ordering};
 use std::sync::{Arc, OnceLock};
 
@@ -61,16 +62,38 @@ impl NodeGraph {
         num_nodes: usize,
         element_nodes: impl Iterator<Item = &'a [usize]>,
     ) -> Self {
-        let mut neighbours: Vec<Vec<usize>> = (0..num_nodes).map(|n| vec![n]).collect();
-        for nodes in element_nodes {
-            for &a in nodes {
-                neighbours[a].extend_from_slice(nodes);
+        // every element's nodes listed under each of its nodes, in one
+        // flat array (counted first: no list grows), then each node's
+        // list sorted and deduplicated side by side
+        let elements: Vec<&[usize]> = element_nodes.collect();
+        let mut start = vec![0usize; num_nodes + 1];
+        for nodes in &elements {
+            for &a in *nodes {
+                start[a + 1] += nodes.len();
             }
         }
-        for list in &mut neighbours {
-            list.sort_unstable();
-            list.dedup();
+        for a in 0..num_nodes {
+            start[a + 1] += start[a];
         }
+        let mut flat = vec![0usize; start[num_nodes]];
+        let mut next = start[..num_nodes].to_vec();
+        for nodes in &elements {
+            for &a in *nodes {
+                flat[next[a]..next[a] + nodes.len()].copy_from_slice(nodes);
+                next[a] += nodes.len();
+            }
+        }
+        let neighbours: Vec<Vec<usize>> = (0..num_nodes)
+            .into_par_iter()
+            .map(|a| {
+                let mut list = Vec::with_capacity(start[a + 1] - start[a] + 1);
+                list.push(a);
+                list.extend_from_slice(&flat[start[a]..start[a + 1]]);
+                list.sort_unstable();
+                list.dedup();
+                list
+            })
+            .collect();
         NodeGraph(Arc::new(neighbours))
     }
 

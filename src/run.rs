@@ -29,6 +29,7 @@
 //! ```
 
 mod distributed;
+mod fallback;
 mod recorder;
 mod restart;
 
@@ -47,6 +48,8 @@ use crate::problem::{ContactState, Problem};
 use crate::solve::backend::try_linear_solver;
 use crate::solve::josephy::Josephy;
 use crate::solve::linear_solver::SolverStatistics;
+use crate::solve::method::{IncrementMethod, Monolithic};
+use crate::solve::settings::Strategy;
 use crate::solve::stepping::{resume_steps, Resume};
 use crate::{Error, Result};
 use distributed::Distribution;
@@ -265,15 +268,7 @@ impl Simulation {
             SolvePath::Monolithic => {
                 self.run_monolithic(&mut recorder, resume, &output, distribution.as_ref())?
             }
-            SolvePath::Condensed => {
-                if resume.is_some() {
-                    return Err(condensed_restart_refused(&strategy, options));
-                }
-                let (result, statistics, steps) =
-                    condensed::run_steps(&mut self.problem, &mut recorder, output.clone());
-                recorder.summary.active_set_iterations = steps;
-                (result, statistics)
-            }
+            SolvePath::Condensed => self.run_condensed(&mut recorder, resume, &output),
         };
         let result = result.map_err(|e| case::diagnosis::explain_failure(e, &self.warnings));
         update_totals(
@@ -322,15 +317,53 @@ impl Simulation {
                 .on_message(&format!("linear solver: {about_solver}"));
         }
         let mut josephy = Josephy::default();
+        let mut newton = Monolithic::new(&self.problem, &mut *solver, &mut josephy);
         let result = resume_steps(
             &mut self.problem,
-            &mut *solver,
-            &mut josephy,
+            &mut newton,
+            None,
             recorder,
             output.to_path_buf(),
             resume,
         );
-        Ok((result, solver.statistics() + josephy.statistics()))
+        Ok((result, IncrementMethod::<Problem>::statistics(&newton)))
+    }
+
+    /// The condensed path's load steps ([`condensed::Condensed`], one
+    /// factorisation per run) by the same stepper as Newton's; under
+    /// `strategy = "auto"` an increment it fails is solved again on
+    /// Newton's path ([`fallback`]). The result and the figures of both.
+    fn run_condensed(
+        &mut self,
+        recorder: &mut Recorder,
+        resume: Option<Resume<ContactState>>,
+        output: &Path,
+    ) -> (Result<Vec<f64>>, SolverStatistics) {
+        let mut method = match condensed::Condensed::new(&self.problem) {
+            Ok(method) => method,
+            Err(e) => return (Err(e), SolverStatistics::default()),
+        };
+        let auto = self.problem.settings.strategy == Strategy::Auto;
+        let mut newton = fallback::NewtonOnDemand::default();
+        let fallback = auto.then_some(&mut newton as &mut dyn IncrementMethod<Problem>);
+        let result = resume_steps(
+            &mut self.problem,
+            &mut method,
+            fallback,
+            recorder,
+            output.to_path_buf(),
+            resume,
+        );
+        let earlier = recorder
+            .earlier
+            .as_ref()
+            .map_or(0, |e| e.active_set_iterations);
+        recorder.summary.active_set_iterations = earlier + method.contact_iterations();
+        let statistics = method.statistics() + newton.statistics();
+        // the factor (tens of MB) is freed on another thread, beside the
+        // run's last writes
+        rayon::spawn(move || drop(method));
+        (result, statistics)
     }
 
     /// The result files and the log, when the run has an output folder
@@ -449,19 +482,6 @@ fn announce_strategy(strategy: &condensed::Choice, recorder: &mut Recorder) -> R
         .observers
         .on_message(&format!("strategy: {path} ({reason})"));
     recorder.observers.on_start(&recorder.summary)
-}
-
-/// Why a case on the condensed path cannot restart.
-fn condensed_restart_refused(strategy: &condensed::Choice, options: &RunOptions) -> Error {
-    Error::Restart {
-        path: options.restart.clone().unwrap_or_default(),
-        message: format!(
-            "a restart resumes Newton's path, and this case runs on the \
-             condensed contact path ({}); set [solver] strategy = \
-             \"monolithic\" to restart it",
-            strategy.reason
-        ),
-    }
 }
 
 /// The fill-reducing ordering of `problem`'s pattern

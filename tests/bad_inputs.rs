@@ -1848,7 +1848,7 @@ fn restarts(c: &mut Catalogue) {
         "restart: another format version",
         base(),
         Some(future),
-        &["format version 99", "reads version 1"],
+        &["format version 99", "reads version 2"],
     );
     restart_entry(
         c,

@@ -38,7 +38,7 @@ use crate::{Error, Result};
 /// The first 8 bytes of a checkpoint.
 pub const MAGIC: &[u8; 8] = b"SIGNCKPT";
 /// The version of the format this build writes and reads.
-pub const FORMAT_VERSION: u32 = 1;
+pub const FORMAT_VERSION: u32 = 2;
 /// Bytes before the payload: magic, version, payload length.
 const HEADER: usize = 8 + 4 + 8;
 

@@ -36,6 +36,15 @@ pub struct IncrementSummary {
     /// `Σ (f_int − f_ext)` over the nodes of each surface set: the reaction
     /// force where displacements are prescribed.
     pub reaction_forces: BTreeMap<String, [f64; 3]>,
+    /// The path that solved the increment, `monolithic` or `condensed`
+    /// (its iterations are then the contact solve's active-set or
+    /// semismooth Newton iterations, the last residual the evaluation's).
+    #[serde(default)]
+    pub method: String,
+    /// When `auto`'s condensed path failed the increment and Newton's path
+    /// solved it again: why the condensed solve failed.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub retried: Option<String>,
 }
 
 /// Where the time went, seconds.
@@ -149,6 +158,10 @@ pub struct Summary {
     /// Condensed path: active-set steps (dense Cholesky solves of the
     /// contact problem) over the run; 0 on the monolithic path.
     pub active_set_iterations: usize,
+    /// Increments that `auto`'s condensed path failed and Newton's path
+    /// solved again (`increments[i].retried` says why).
+    #[serde(default)]
+    pub fallback_increments: usize,
     /// Per load step, totals over its increments.
     pub steps: Vec<StepSummary>,
     pub increments: Vec<IncrementSummary>,
@@ -209,6 +222,7 @@ impl Summary {
             predictor: String::new(),
             predictor_reason: String::new(),
             active_set_iterations: 0,
+            fallback_increments: 0,
             steps: Vec::new(),
             increments: Vec::new(),
         }

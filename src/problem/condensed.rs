@@ -62,22 +62,23 @@
 
 use super::{ContactState, Problem};
 use crate::assembly::triangle::{self, LowerTriangle};
+use crate::contact::interface::NodeReport;
 use crate::contact::interface::Primary;
 use crate::contact::laws::{NormalLaw, SlackState};
 use crate::contact::obstacle::RigidObstacle;
 use crate::material::Kinematics;
 use crate::solve::complementarity::solve_lcp;
 use crate::solve::decoupled::{decoupled_first, Decoupled};
+use crate::solve::failure::IncrementFailure;
 use crate::solve::linear::{scaled_identity_rows, Precision, SparseLdlt};
 use crate::solve::linear_solver::SolverStatistics;
-use crate::solve::newton::IterationRecord;
+use crate::solve::method::{Increment, IncrementMethod, WarmStart};
+use crate::solve::newton::{IterationRecord, NewtonOutcome};
 use crate::solve::nonlinear::NonlinearProblem;
 use crate::solve::schur::{grow_flexibility, trailing_ordering, Direction, TrailingInverse};
-use crate::solve::settings::{LinearMethod, Step, Strategy};
-use crate::solve::stepping::{next_increment, IncrementRecord, StepObserver};
+use crate::solve::settings::{LinearMethod, Strategy};
 use crate::{Error, Result};
 use nalgebra::{DMatrix, Matrix6, Vector3, Vector6};
-use std::path::PathBuf;
 use std::sync::Arc;
 
 mod friction;
@@ -315,6 +316,8 @@ struct Condensation {
     /// Candidate nodes (indices into `nodes`), `W` over them, and the
     /// last active set.
     candidates: Vec<usize>,
+    /// The candidates in the batches they joined in (a restart's replay).
+    batches: Vec<Vec<usize>>,
     is_candidate: Vec<bool>,
     w: DMatrix<f64>,
     active: Vec<bool>,
@@ -490,6 +493,7 @@ impl Condensation {
             constrained,
             nodes,
             candidates: Vec::new(),
+            batches: Vec::new(),
             is_candidate: vec![false; count],
             w: DMatrix::zeros(0, 0),
             active: Vec::new(),
@@ -600,6 +604,9 @@ impl Condensation {
     /// `(K̃⁻¹)_TT` or by block solves with the factor
     /// ([`grow_flexibility`]).
     fn grow(&mut self, new: &[usize]) -> Result<()> {
+        if !new.is_empty() {
+            self.batches.push(new.to_vec());
+        }
         self.candidates.extend_from_slice(new);
         new.iter().for_each(|&a| self.is_candidate[a] = true);
         let directions: Vec<Direction> =
@@ -734,7 +741,12 @@ impl Condensation {
     /// is the one of the exact `W` (a splitting iteration, contracting
     /// while `‖W̃⁻¹(W − W̃)‖ < 1`). With an f64 `W` the first `d` is
     /// round-off and one pass is enough.
-    fn solve_increment(&mut self, problem: &Problem, t: f64) -> Result<(Vec<f64>, Vec<f64>)> {
+    fn solve_increment(
+        &mut self,
+        problem: &Problem,
+        t: f64,
+        history: &mut Vec<IterationRecord>,
+    ) -> Result<(Vec<f64>, Vec<f64>)> {
         let b = self.load(problem, t);
         // the factor's solution, unrefined: `g₀` enters the complementarity
         // problem only in `q = g₀ + d`, and the defect `d` of the refined
@@ -767,6 +779,7 @@ impl Condensation {
             .map_err(Error::LinearSolver)?;
             self.active_set_iterations += solution.iterations;
             self.active = solution.active;
+            history.extend(solution.history);
             let mut rhs = b.clone();
             let mut forces = vec![0.0; self.nodes.len()];
             for (i, &a) in self.candidates.iter().enumerate() {
@@ -811,7 +824,8 @@ impl Condensation {
 /// One increment of a condensed path: the unknowns `x` (displacements and
 /// the multipliers of the laws that have them) and the trial contact state
 /// at time `t` from the committed `state`, so that the problem's own
-/// evaluation reports (and checks) the answer.
+/// evaluation reports (and checks) the answer; the contact solve's
+/// iterations pushed to `history`.
 trait IncrementSolver: Send {
     fn increment(
         &mut self,
@@ -820,11 +834,20 @@ trait IncrementSolver: Send {
         state: &ContactState,
         x: &mut [f64],
         trial: &mut ContactState,
+        history: &mut Vec<IterationRecord>,
     ) -> Result<()>;
 
     /// The factorisation's statistics and the iterations of the contact
     /// solves (active-set steps, semismooth Newton iterations).
     fn statistics(&self) -> (SolverStatistics, usize);
+
+    /// The candidates in the order they joined, the active set and the
+    /// last answer: what the next increment starts from.
+    fn warm_start(&self) -> WarmStart;
+
+    /// Take up a checkpointed warm start: the candidates added again in
+    /// the same batches (so `W` is the same to the bit), the rest copied.
+    fn resume(&mut self, warm: &WarmStart) -> Result<()>;
 }
 
 impl IncrementSolver for Condensation {
@@ -835,8 +858,9 @@ impl IncrementSolver for Condensation {
         _: &ContactState,
         x: &mut [f64],
         trial: &mut ContactState,
+        history: &mut Vec<IterationRecord>,
     ) -> Result<()> {
-        let (u, forces) = self.solve_increment(problem, t)?;
+        let (u, forces) = self.solve_increment(problem, t, history)?;
         let mut pressures = zero_per_node(problem);
         for (a, c) in self.nodes.iter().enumerate() {
             pressures[c.interface][c.index] =
@@ -853,136 +877,150 @@ impl IncrementSolver for Condensation {
         };
         (statistics, self.active_set_iterations)
     }
+
+    fn warm_start(&self) -> WarmStart {
+        WarmStart {
+            batches: self.batches.clone(),
+            active: self.active.clone(),
+            ..WarmStart::default()
+        }
+    }
+
+    fn resume(&mut self, warm: &WarmStart) -> Result<()> {
+        for batch in &warm.batches {
+            self.grow(batch)?;
+        }
+        self.active.clone_from(&warm.active);
+        Ok(())
+    }
 }
 
-/// Run every step of `problem` on the condensed path (the caller checked
-/// [`not_applicable`]): increments as the stepper makes them for easy ones
-/// (the first of each step `initial_increment`, then grown by
-/// `growth_factor` up to `max_increment`; with friction, which is path
-/// dependent, all `initial_increment`), each solved exactly (frictional
-/// contact by [`friction`], frictionless by the complementarity problem),
-/// evaluated once for its residual and reports, and given to `observer`.
-/// Returns the final unknowns, the linear solver's statistics and the
-/// iterations of the contact solves.
-pub fn run_steps(
-    problem: &mut Problem,
-    observer: &mut dyn StepObserver<Problem>,
-    output: PathBuf,
-) -> (Result<Vec<f64>>, SolverStatistics, usize) {
-    let solver: Result<Box<dyn IncrementSolver>> = if has_friction(problem) {
-        friction::FrictionalCondensation::new(problem).map(|c| Box::new(c) as Box<_>)
-    } else {
-        Condensation::new(problem).map(|c| Box::new(c) as Box<_>)
-    };
-    let mut solver = match solver {
-        Ok(c) => c,
-        Err(e) => return (Err(e), SolverStatistics::default(), 0),
-    };
-    let result = run_increments(problem, &mut *solver, observer, output);
-    let (statistics, iterations) = solver.statistics();
-    // the factor (tens of MB) is freed on another thread, beside the
-    // run's last writes
-    rayon::spawn(move || drop(solver));
-    (result, statistics, iterations)
+/// The condensed contact path as a method of the stepper
+/// ([`crate::solve::stepping::resume_steps`]): each increment solved
+/// exactly (frictional contact by [`friction`], frictionless by the
+/// complementarity problem) with the one factorisation of the run,
+/// evaluated once by the problem for its residual (within the Newton
+/// tolerance, else the increment fails: `auto` then retries it on Newton's
+/// path) and reports. Its iterations are the contact solve's (active-set
+/// steps, semismooth Newton iterations), the last record the evaluation.
+/// Frictionless increments grow after every increment (each is solved
+/// exactly); frictional ones stay the case's (friction is path dependent,
+/// and they are the ones Newton takes where it needs no cut).
+pub struct Condensed {
+    solver: Box<dyn IncrementSolver>,
+    path_dependent: bool,
+}
+
+impl Condensed {
+    /// The condensation of `problem` (the caller checked
+    /// [`not_applicable`]): `K̃` assembled and factorised once.
+    pub fn new(problem: &Problem) -> Result<Self> {
+        let path_dependent = has_friction(problem);
+        let solver: Box<dyn IncrementSolver> = if path_dependent {
+            Box::new(friction::FrictionalCondensation::new(problem)?)
+        } else {
+            Box::new(Condensation::new(problem)?)
+        };
+        Ok(Condensed {
+            solver,
+            path_dependent,
+        })
+    }
+
+    /// The iterations of the contact solves over the run.
+    pub fn contact_iterations(&self) -> usize {
+        self.solver.statistics().1
+    }
+}
+
+impl IncrementMethod<Problem> for Condensed {
+    fn name(&self) -> &'static str {
+        Path::Condensed.name()
+    }
+
+    fn solve(
+        &mut self,
+        problem: &Problem,
+        increment: &Increment<'_>,
+        u: &[f64],
+        state: &mut ContactState,
+        x: &mut Vec<f64>,
+        on_iteration: &mut dyn FnMut(&IterationRecord) -> bool,
+    ) -> NewtonOutcome<Vec<Vec<NodeReport>>> {
+        let t = increment.time;
+        let committed = state.clone();
+        x.clear();
+        x.extend_from_slice(u);
+        let mut history = Vec::new();
+        let solved = self
+            .solver
+            .increment(problem, t, &committed, x, state, &mut history);
+        for record in &history {
+            if !on_iteration(record) {
+                return (Err(IncrementFailure::Cancelled), history);
+            }
+        }
+        if let Err(e) = solved {
+            return (Err(IncrementFailure::Condensed(e.to_string())), history);
+        }
+        let evaluation = match problem.evaluate(t, x, state, None) {
+            Ok(e) => e,
+            Err(f) => return (Err(f), history),
+        };
+        let constrained = problem.constrained_dofs();
+        let free: f64 = (evaluation.residual.iter().zip(&constrained))
+            .filter(|(_, &c)| !c)
+            .map(|(r, _)| r * r)
+            .sum();
+        let scale = evaluation
+            .force_scale()
+            .max(increment.force_scale)
+            .max(f64::MIN_POSITIVE);
+        let relative = free.sqrt() / scale;
+        // the solution is exact: only round-off (≈ 1e-12 on Hertz) remains
+        let tolerance = problem.settings.residual_tolerance.max(RESIDUAL_FLOOR);
+        let record = IterationRecord {
+            residual: relative,
+            correction: 0.0,
+            step_length: 1.0,
+            switched: 0,
+            linear: Default::default(),
+        };
+        let going_on = on_iteration(&record);
+        history.push(record);
+        if !going_on {
+            return (Err(IncrementFailure::Cancelled), history);
+        }
+        if !(relative <= tolerance) {
+            let failure = IncrementFailure::CondensedResidual {
+                relative,
+                tolerance,
+            };
+            return (Err(failure), history);
+        }
+        (Ok(evaluation), history)
+    }
+
+    fn grows(&self, _: &[IterationRecord], _: usize) -> bool {
+        !self.path_dependent
+    }
+
+    fn statistics(&self) -> SolverStatistics {
+        self.solver.statistics().0
+    }
+
+    fn warm_start(&self) -> Option<WarmStart> {
+        Some(self.solver.warm_start())
+    }
+
+    fn resume(&mut self, _: &Problem, warm: &WarmStart) -> Result<()> {
+        self.solver.resume(warm)
+    }
 }
 
 /// Whether any interface has Coulomb friction (`μ > 0`).
 fn has_friction(problem: &Problem) -> bool {
     problem.contacts.iter().any(|c| c.has_friction())
-}
-
-fn run_increments(
-    problem: &Problem,
-    solver: &mut dyn IncrementSolver,
-    observer: &mut dyn StepObserver<Problem>,
-    output: PathBuf,
-) -> Result<Vec<f64>> {
-    let dimension = problem.num_unknowns();
-    let mut x = vec![0.0; dimension];
-    problem.apply_prescribed(0.0, &mut x);
-    let mut state = NonlinearProblem::initial_state(problem, &x);
-    let mut t = 0.0;
-    let mut force_scale = 0.0f64;
-    let settings = problem.settings.clone();
-    let steps: Vec<Step> = problem.steps.clone();
-    let path_dependent = has_friction(problem);
-    for (s, step) in steps.iter().enumerate() {
-        let mut dt = step.initial_increment.min(step.end_time - t);
-        while t < step.end_time - 1e-12 * step.end_time.abs().max(1.0) {
-            let t_new;
-            (dt, t_new) = next_increment(step, t, dt);
-            if observer.cancelled() {
-                return Err(Error::Interrupted {
-                    reason: format!(
-                        "cancelled; the increments converged up to time {t:.6} are kept"
-                    ),
-                });
-            }
-            let mut trial = state.clone();
-            solver.increment(problem, t_new, &state, &mut x, &mut trial)?;
-            let evaluation = problem
-                .evaluate(t_new, &x, &trial, None)
-                .map_err(|f| Error::LinearSolver(f.to_string()))?;
-            let mut r = evaluation.residual.clone();
-            for (ri, &c) in r.iter_mut().zip(&problem.constrained_dofs()) {
-                if c {
-                    *ri = 0.0;
-                }
-            }
-            let scale = evaluation
-                .force_scale()
-                .max(force_scale)
-                .max(f64::MIN_POSITIVE);
-            let relative = super::norm(&r) / scale;
-            // the solution is exact: only round-off (≈ 1e-12 on Hertz) remains
-            let tolerance = settings.residual_tolerance.max(RESIDUAL_FLOOR);
-            if !(relative <= tolerance) {
-                return Err(Error::NoConvergence {
-                    step: step.name.clone(),
-                    time: t_new,
-                    cuts: 0,
-                    increment: t_new - t,
-                    reason: format!(
-                        "the condensed solution leaves a relative residual of {relative:.1e} \
-                         (tolerance {tolerance:.1e}); run with [solver] strategy = \"monolithic\""
-                    ),
-                    last_converged_time: (t > 0.0).then_some(t),
-                    output,
-                });
-            }
-            force_scale = force_scale.max(evaluation.force_scale());
-            problem.commit(t_new, &x, &mut trial);
-            state = trial;
-            let newton = vec![IterationRecord {
-                residual: relative,
-                correction: 0.0,
-                step_length: 1.0,
-                switched: 0,
-                linear: Default::default(),
-            }];
-            // the increment's one solve, as Newton's iterations are told
-            observer.on_iteration(&step.name, t_new, &newton[0]);
-            let record = IncrementRecord {
-                step: s,
-                step_name: step.name.clone(),
-                time: t_new,
-                increment: t_new - t,
-                iterations: 1,
-                newton,
-                cuts: 0,
-                lu_solves: 0,
-            };
-            t = t_new;
-            observer.on_converged(problem, &record, &x, &evaluation, &state)?;
-            // friction is path dependent: its increments stay the case's
-            // own (the ones Newton takes where it converges without cuts),
-            // so that `auto` does not change the answer
-            if !path_dependent {
-                dt = (dt * settings.growth_factor).min(step.max_increment);
-            }
-        }
-    }
-    Ok(x)
 }
 
 /// A zero per secondary node of every interface.

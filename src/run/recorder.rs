@@ -249,7 +249,10 @@ impl stepping::StepObserver<Problem> for Recorder<'_> {
             contact: increment.contact_fields.summaries.clone(),
             file,
             reaction_forces: increment.reaction_forces().into_iter().collect(),
+            method: record.method.into(),
+            retried: record.retried.clone(),
         });
+        self.summary.fallback_increments += usize::from(record.retried.is_some());
         self.summary.update_step_totals();
         self.last = now;
         // the totals so far (fields apart: `increment` borrows `stepping`)
@@ -278,6 +281,13 @@ impl stepping::StepObserver<Problem> for Recorder<'_> {
     fn on_iteration(&mut self, step: &str, time: f64, record: &IterationRecord) {
         self.observers
             .on_iteration(&Iteration { step, time, record });
+    }
+
+    fn on_fallback(&mut self, step: &str, time: f64, by: &str, reason: &IncrementFailure) {
+        self.observers.on_message(&format!(
+            "step '{step}'  t = {time:.6}: the condensed path failed the increment ({reason}); \
+             solving it again on the {by} path"
+        ));
     }
 
     fn on_cut(&mut self, step: &str, time: f64, increment: f64, reason: &IncrementFailure) {

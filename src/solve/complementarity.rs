@@ -16,6 +16,7 @@
 //! changes (Murty's rule, finite for a positive definite `W`). The answer
 //! is exact up to round-off: `g_A = 0`, `λ_I = 0`.
 
+use super::newton::IterationRecord;
 use nalgebra::DMatrix;
 
 /// Steps without a smaller number of violations before the single-index
@@ -33,6 +34,13 @@ pub struct Complementarity {
     pub active: Vec<bool>,
     /// Active-set steps (dense Cholesky solves).
     pub iterations: usize,
+    /// Per step, as reported to the user ([`crate::solve::method`]): the
+    /// largest violation in force units relative to the force scale `F`,
+    /// `max(max_{i∈A} ⟨−λ_i⟩, max_{i∉A} ⟨−g_i⟩ / W_ii) / F`, with
+    /// `F = max(max λ, max ⟨−q_i⟩ / W_ii)` (the force that closes the
+    /// deepest penetration alone); the change `|Δλ|∞ / F` from the last
+    /// step (at least ε: a solve was taken); the statuses flipped.
+    pub history: Vec<IterationRecord>,
 }
 
 /// Solve `g = q + W λ ≥ 0 ⊥ λ ≥ 0` for a symmetric positive definite `W`
@@ -56,6 +64,10 @@ pub fn solve_lcp(
     let (mut best, mut backup) = (usize::MAX, BACKUP_STEPS);
     // Murty's rule ends in at most 2^m steps; block steps end far sooner
     let limit = 50 + 10 * m;
+    let closing = |i: usize, g: f64| (-g).max(0.0) / w[(i, i)];
+    let deepest = (0..m).map(|i| closing(i, q[i])).fold(0.0f64, f64::max);
+    let mut history = Vec::new();
+    let mut last = vec![0.0; m];
     for iteration in 1..=limit {
         let (lambda, gap) = solve_on(w, q, &active)?;
         let violations: Vec<usize> = (0..m)
@@ -67,12 +79,37 @@ pub fn solve_lcp(
                 }
             })
             .collect();
+        let scale = lambda
+            .iter()
+            .fold(deepest, |s, &l| s.max(l))
+            .max(f64::MIN_POSITIVE);
+        let violation = (0..m)
+            .map(|i| {
+                if active[i] {
+                    (-lambda[i]).max(0.0)
+                } else {
+                    closing(i, gap[i])
+                }
+            })
+            .fold(0.0f64, f64::max);
+        let change = (0..m)
+            .map(|i| (lambda[i] - last[i]).abs())
+            .fold(0.0f64, f64::max);
+        history.push(IterationRecord {
+            residual: violation / scale,
+            correction: (change / scale).max(f64::EPSILON),
+            step_length: 1.0,
+            switched: violations.len(),
+            linear: Default::default(),
+        });
+        last.clone_from(&lambda);
         if violations.is_empty() {
             return Ok(Complementarity {
                 lambda: lambda.iter().map(|&l| l.max(0.0)).collect(),
                 gap,
                 active,
                 iterations: iteration,
+                history,
             });
         }
         if violations.len() < best {

@@ -295,6 +295,12 @@ pub struct ConeSolution {
     pub status: Vec<ContactStatus>,
     /// Newton iterations (dense LU solves).
     pub iterations: usize,
+    /// Per Newton iteration, as reported to the user
+    /// ([`crate::solve::method`]): `|L|∞` relative to the traction scale
+    /// at its start, the step `α |δz|∞` relative to the largest `|z|∞`
+    /// (at least ε: a solve was taken), `α`, and the nodes whose status
+    /// (open, stick, slip) the step changed.
+    pub history: Vec<crate::solve::newton::IterationRecord>,
 }
 
 /// Where component `d` of a node's traction comes from.
@@ -457,6 +463,7 @@ pub fn solve_cone(
         .map(|(i, q)| (q / problem.nodes[problem.columns[i].0].area).abs())
         .fold(f64::MIN_POSITIVE, f64::max);
     let (mut r, mut laws, mut t) = problem.residual(&condensed, &z);
+    let mut history = Vec::new();
     for iteration in 1..=MAX_ITERATIONS {
         let scale = t.iter().map(|v| v.amax()).fold(load_scale, f64::max);
         let largest = r.iter().fold(0.0f64, |m, v| m.max(v.abs()));
@@ -466,6 +473,7 @@ pub fn solve_cone(
                 traction: t,
                 status: laws.iter().map(|l| l.status).collect(),
                 iterations: iteration - 1,
+                history,
             });
         }
         let jacobian = problem.jacobian(&condensed, &laws);
@@ -494,7 +502,25 @@ pub fn solve_cone(
             alpha *= 0.5;
         }
         // no decrease along the step: take it whole
-        (z, r, laws, t) = accepted.unwrap_or_else(|| trial(1.0));
+        let (length, next) = match accepted {
+            Some(next) => (alpha, next),
+            None => (1.0, trial(1.0)),
+        };
+        let size = z.iter().fold(f64::MIN_POSITIVE, |m, v| m.max(v.abs()));
+        let moved = (0..z.len()).fold(0.0f64, |m, i| m.max((next.0[i] - z[i]).abs()));
+        let switched = laws
+            .iter()
+            .zip(&next.2)
+            .filter(|(a, b)| a.status != b.status)
+            .count();
+        history.push(crate::solve::newton::IterationRecord {
+            residual: largest / scale,
+            correction: (moved / size).max(f64::EPSILON),
+            step_length: length,
+            switched,
+            linear: Default::default(),
+        });
+        (z, r, laws, t) = next;
     }
     Err(format!(
         "the condensed Coulomb problem did not converge in {MAX_ITERATIONS} Newton iterations"

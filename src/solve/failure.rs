@@ -47,6 +47,11 @@ pub enum IncrementFailure {
     PairsMoved,
     /// The outer (Uzawa) loop did not reach its tolerance in `updates`.
     OuterLoopLimit { updates: usize },
+    /// The condensed contact solve failed (its message).
+    Condensed(String),
+    /// The condensed solution leaves a relative residual above the
+    /// tolerance (a floating body's ill-conditioned shift, say).
+    CondensedResidual { relative: f64, tolerance: f64 },
     /// The run was cancelled (its cancel flag set) between two Newton
     /// iterations: not cut, the run ends.
     Cancelled,
@@ -145,6 +150,17 @@ impl std::fmt::Display for IncrementFailure {
             IncrementFailure::OuterLoopLimit { updates } => write!(
                 f,
                 "the Uzawa multipliers did not reach the penetration tolerance in {updates} updates"
+            ),
+            IncrementFailure::Condensed(message) => {
+                write!(f, "the condensed contact solve failed: {message}")
+            }
+            IncrementFailure::CondensedResidual {
+                relative,
+                tolerance,
+            } => write!(
+                f,
+                "the condensed solution leaves a relative residual of {relative:.1e} \
+                 (tolerance {tolerance:.1e})"
             ),
             IncrementFailure::Cancelled => write!(f, "cancelled between two Newton iterations"),
         }

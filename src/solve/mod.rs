@@ -15,6 +15,7 @@ pub mod krylov;
 pub mod linear;
 pub mod linear_solver;
 pub mod lu;
+pub mod method;
 pub mod newton;
 pub mod nonlinear;
 pub mod ordering;

@@ -14,7 +14,7 @@ use super::nonlinear::{Evaluation, NonlinearProblem};
 use super::settings::Predictor;
 
 /// One Newton iteration as reported to the user.
-#[derive(Clone, Debug, serde::Serialize)]
+#[derive(Clone, Debug, PartialEq, serde::Serialize)]
 pub struct IterationRecord {
     /// `‖r_free‖ / max(‖f_ext‖, ‖f_int‖)` at the start of the iteration.
     pub residual: f64,

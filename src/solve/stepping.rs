@@ -8,7 +8,8 @@
 use super::failure::IncrementFailure;
 use super::josephy::Josephy;
 use super::linear_solver::{LinearSolver, SolverStatistics};
-use super::newton::{IterationRecord, Newton, NewtonOutcome};
+use super::method::{Increment, IncrementMethod, Monolithic, WarmStart};
+use super::newton::IterationRecord;
 use super::nonlinear::{Evaluation, NonlinearProblem};
 use super::settings::Step;
 use crate::{Error, Result};
@@ -34,6 +35,11 @@ pub struct IncrementRecord {
     /// attempts included (chosen by `[solver]`, or the fallback of GMRES or
     /// of an LDLᵀ that broke down).
     pub lu_solves: usize,
+    /// The method that solved it (`"monolithic"` or `"condensed"`).
+    pub method: &'static str,
+    /// Why the run's own method failed it, when the fallback solved it
+    /// (`auto`'s condensed path retried on Newton's).
+    pub retried: Option<String>,
 }
 
 /// What the stepper carries from one converged increment to the next
@@ -56,6 +62,9 @@ pub struct Stepping {
     /// The largest nodal motion of the coupled nodes over the last
     /// increment and its length (the pair search's margin).
     pub last_motion: Option<(f64, f64)>,
+    /// The method's warm start (the condensed path's candidates, active
+    /// set and last answer), so that it resumes bit for bit.
+    pub warm: Option<WarmStart>,
 }
 
 /// A converged state to resume a run from: the unknowns, the committed
@@ -82,6 +91,9 @@ pub trait StepObserver<P: NonlinearProblem> {
         evaluation: &Evaluation<P::Report>,
         state: &P::State,
     ) -> Result<()>;
+    /// The run's method failed the increment aiming at `time` for
+    /// `reason`, and method `by` solves it again before any cut.
+    fn on_fallback(&mut self, _step: &str, _time: f64, _by: &str, _reason: &IncrementFailure) {}
     /// An increment failed and is cut.
     fn on_cut(&mut self, _step: &str, _time: f64, _increment: f64, _reason: &IncrementFailure) {}
     /// A Newton iteration of the increment aiming at `time` took its
@@ -99,42 +111,38 @@ pub trait StepObserver<P: NonlinearProblem> {
     fn on_stepping(&mut self, _stepping: &Stepping, _statistics: &SolverStatistics) {}
 }
 
-/// Run every step of `problem` from `u = 0` (except the prescribed values).
-/// Returns the final displacement. `problem` is mutable for the contact
-/// pairs of deformable interfaces, searched again at the start of every
-/// increment attempt (and the sparsity pattern with them).
+/// Run every step of `problem` from `u = 0` (except the prescribed values)
+/// by Newton on the whole system ([`Monolithic`]). Returns the final
+/// displacement. `problem` is mutable for the contact pairs of deformable
+/// interfaces, searched again at the start of every increment attempt (and
+/// the sparsity pattern with them).
 pub fn run_steps<P: NonlinearProblem>(
     problem: &mut P,
     solver: &mut dyn LinearSolver,
     observer: &mut dyn StepObserver<P>,
     output: PathBuf,
 ) -> Result<Vec<f64>> {
-    resume_steps(
-        problem,
-        solver,
-        &mut Josephy::default(),
-        observer,
-        output,
-        None,
-    )
+    let mut josephy = Josephy::default();
+    let mut newton = Monolithic::new(problem, solver, &mut josephy);
+    resume_steps(problem, &mut newton, None, observer, output, None)
 }
 
-/// [`run_steps`] from a converged increment `from` (`None`: from the
-/// start): the steps before `from.stepping.step` are skipped, the step in
-/// progress goes on from its time with its next increment size, and every
-/// later increment is the one an uninterrupted run would have taken.
-/// `from.unknowns` has the pattern's dimension (the caller checks it).
-/// `josephy` keeps the factor of the Josephy–Newton steps over the run
-/// (its statistics are the caller's to add to the linear solver's).
+/// [`run_steps`] with `method` solving each increment (and `fallback`
+/// retrying an increment that `method` failed, before any cut), from a
+/// converged increment `from` (`None`: from the start): the steps before
+/// `from.stepping.step` are skipped, the step in progress goes on from its
+/// time with its next increment size (and the method from its warm start),
+/// and every later increment is the one an uninterrupted run would have
+/// taken. `from.unknowns` has the pattern's dimension (the caller checks
+/// it).
 pub fn resume_steps<P: NonlinearProblem>(
     problem: &mut P,
-    solver: &mut dyn LinearSolver,
-    josephy: &mut Josephy,
+    method: &mut dyn IncrementMethod<P>,
+    mut fallback: Option<&mut dyn IncrementMethod<P>>,
     observer: &mut dyn StepObserver<P>,
     output: PathBuf,
     from: Option<Resume<P::State>>,
 ) -> Result<Vec<f64>> {
-    let constrained = problem.constrained_dofs();
     let resuming = from.is_some();
     let (mut u, mut state, resumed) = match from {
         Some(r) => (r.unknowns, r.state, r.stepping),
@@ -145,6 +153,9 @@ pub fn resume_steps<P: NonlinearProblem>(
             (u, state, Stepping::default())
         }
     };
+    if let Some(warm) = &resumed.warm {
+        method.resume(problem, warm)?;
+    }
     let mut any_converged = resuming;
     let mut trial = Vec::with_capacity(u.len());
     let mut t = resumed.time;
@@ -152,16 +163,19 @@ pub fn resume_steps<P: NonlinearProblem>(
     // largest nodal displacement of the last converged increment, and its length
     let mut last_motion: Option<(f64, f64)> = resumed.last_motion;
     let steps = problem.steps().to_vec();
-    let (predictor, _) = problem
-        .settings()
-        .predictor
-        .chosen(problem.constraints_linearise());
-    let mut start = Vec::with_capacity(u.len());
     // the change of the unknowns over the last converged increment, and its
     // length (the predictor's secant)
     let mut secant: Option<(Vec<f64>, f64)> = resumed.secant;
+    let statistics = |method: &dyn IncrementMethod<P>,
+                      fallback: &Option<&mut dyn IncrementMethod<P>>| {
+        method.statistics()
+            + fallback
+                .as_ref()
+                .map(|f| f.statistics())
+                .unwrap_or_default()
+    };
     // the LU solves counted when the last increment converged
-    let mut lu_solves = solver.statistics().lu_solves;
+    let mut lu_solves = statistics(method, &fallback).lu_solves;
     for (s, step) in steps.iter().enumerate() {
         if resuming && s < resumed.step {
             continue;
@@ -177,51 +191,51 @@ pub fn resume_steps<P: NonlinearProblem>(
             (dt, t_new) = next_increment(step, t, dt);
             let motion = last_motion.map_or(0.0, |(m, last_dt)| m * (t_new - t) / last_dt);
             if problem.refresh_pattern(&u, motion) {
-                // new couplings: order them (each multiplier after its nodes)
-                solver.set_ordering(super::ordering::fill_reducing_ordering(
-                    problem.pattern(),
-                    problem.num_dofs(),
-                    None,
-                )?);
+                method.pattern_changed(problem)?;
+                if let Some(f) = fallback.as_deref_mut() {
+                    f.pattern_changed(problem)?;
+                }
             }
             let problem: &P = problem;
-            let mut trial_state = state.clone();
             if observer.cancelled() {
                 return Err(cancelled(t));
             }
-            let mut tell = |record: &IterationRecord| {
-                observer.on_iteration(&step.name, t_new, record);
-                !observer.cancelled()
-            };
-            let mut newton = Newton {
-                problem,
-                solver: &mut *solver,
-                constrained: &constrained,
-                t: t_new,
+            let increment = Increment {
+                step,
+                start: t,
+                time: t_new,
                 force_scale,
-                on_iteration: Some(&mut tell),
-                josephy: &mut *josephy,
-                predictor,
+                secant: secant.as_ref(),
             };
-            let extrapolate = secant.as_ref().filter(|_| predictor.extrapolates());
-            predict(
+            let mut trial_state = state.clone();
+            let (mut outcome, mut iterations) = attempt(
                 problem,
-                t_new,
+                method,
+                &increment,
                 &u,
-                extrapolate,
-                t_new - t,
                 &mut trial_state,
-                &mut start,
+                &mut trial,
+                observer,
             );
-            let (outcome, iterations) =
-                solve_with_augmentation(&mut newton, &start, &u, &mut trial_state, &mut trial);
-            let outcome = outcome.and_then(|evaluation| {
-                if problem.couplings_hold(&trial, &trial_state) {
-                    Ok(evaluation)
-                } else {
-                    Err(IncrementFailure::PairsMoved)
+            let mut solved_by = method.name();
+            let mut retried = None;
+            if let (Err(failure), Some(f)) = (&outcome, fallback.as_deref_mut()) {
+                if *failure != IncrementFailure::Cancelled {
+                    observer.on_fallback(&step.name, t_new, f.name(), failure);
+                    retried = Some(failure.to_string());
+                    trial_state = state.clone();
+                    (outcome, iterations) = attempt(
+                        problem,
+                        f,
+                        &increment,
+                        &u,
+                        &mut trial_state,
+                        &mut trial,
+                        observer,
+                    );
+                    solved_by = f.name();
                 }
-            });
+            }
             match outcome {
                 Ok(evaluation) => {
                     let moved = problem
@@ -242,6 +256,7 @@ pub fn resume_steps<P: NonlinearProblem>(
                     state = trial_state;
                     force_scale = force_scale.max(evaluation.force_scale());
                     any_converged = true;
+                    let totals = statistics(method, &fallback);
                     let record = IncrementRecord {
                         step: s,
                         step_name: step.name.clone(),
@@ -253,12 +268,19 @@ pub fn resume_steps<P: NonlinearProblem>(
                         iterations: iterations.iter().filter(|r| r.correction > 0.0).count(),
                         newton: iterations,
                         cuts,
-                        lu_solves: solver.statistics().lu_solves - lu_solves,
+                        lu_solves: totals.lu_solves - lu_solves,
+                        method: solved_by,
+                        retried,
                     };
                     lu_solves += record.lu_solves;
                     t = t_new;
                     let settings = problem.settings();
-                    if cuts == 0 && converged_well(&record.newton, settings.easy_iterations) {
+                    let grows = if solved_by == method.name() {
+                        method.grows(&record.newton, settings.easy_iterations)
+                    } else {
+                        converged_well(&record.newton, settings.easy_iterations)
+                    };
+                    if cuts == 0 && grows {
                         dt = (dt * settings.growth_factor).min(step.max_increment);
                     }
                     cuts = 0;
@@ -269,8 +291,9 @@ pub fn resume_steps<P: NonlinearProblem>(
                         force_scale,
                         secant: secant.clone(),
                         last_motion,
+                        warm: method.warm_start(),
                     };
-                    observer.on_stepping(&stepping, &(solver.statistics() + josephy.statistics()));
+                    observer.on_stepping(&stepping, &totals);
                     observer.on_converged(problem, &record, &u, &evaluation, &state)?;
                 }
                 Err(IncrementFailure::Cancelled) => return Err(cancelled(t)),
@@ -294,6 +317,35 @@ pub fn resume_steps<P: NonlinearProblem>(
         }
     }
     Ok(u)
+}
+
+/// One attempt at `increment` by `method`, its iterations told to
+/// `observer` (which may cancel the run between them); the increment
+/// solved is then checked for the contact pairs it was searched with.
+#[allow(clippy::too_many_arguments)]
+fn attempt<P: NonlinearProblem>(
+    problem: &P,
+    method: &mut dyn IncrementMethod<P>,
+    increment: &Increment<'_>,
+    u: &[f64],
+    state: &mut P::State,
+    trial: &mut Vec<f64>,
+    observer: &mut dyn StepObserver<P>,
+) -> super::newton::NewtonOutcome<P::Report> {
+    let (name, time) = (&increment.step.name, increment.time);
+    let mut tell = |record: &IterationRecord| {
+        observer.on_iteration(name, time, record);
+        !observer.cancelled()
+    };
+    let (outcome, iterations) = method.solve(problem, increment, u, state, trial, &mut tell);
+    let outcome = outcome.and_then(|evaluation| {
+        if problem.couplings_hold(trial, state) {
+            Ok(evaluation)
+        } else {
+            Err(IncrementFailure::PairsMoved)
+        }
+    });
+    (outcome, iterations)
 }
 
 /// The next increment of `step` from `t` when `dt` is asked for: `dt`
@@ -353,63 +405,6 @@ fn cancelled(t: f64) -> Error {
     Error::Interrupted {
         reason: format!("cancelled; the increments converged up to time {t:.6} are kept"),
     }
-}
-
-/// The secant predictor ([`super::settings::Predictor::Secant`]): the first Newton
-/// iterate of an increment of length `dt` from the converged `u` is
-/// `u + (dt / Δt) Δu`, the last converged increment `Δu` (length `Δt`)
-/// scaled by the ratio of the increments (the history `state` carried
-/// along it); `u` itself at the first increment or without `secant`
-/// ([`super::settings::Predictor::None`]). Newton then starts near the solution of a
-/// smoothly loaded path; the converged state is the same (only Newton's
-/// path changes).
-fn predict<P: NonlinearProblem>(
-    problem: &P,
-    t: f64,
-    u: &[f64],
-    secant: Option<&(Vec<f64>, f64)>,
-    dt: f64,
-    state: &mut P::State,
-    start: &mut Vec<f64>,
-) {
-    start.clear();
-    start.extend_from_slice(u);
-    if let Some((change, last_dt)) = secant {
-        let ratio = dt / last_dt;
-        let step: Vec<f64> = change.iter().map(|c| ratio * c).collect();
-        problem.advance_state(t, u, &step, state);
-        start.iter_mut().zip(&step).for_each(|(x, d)| *x += d);
-    }
-}
-
-/// Most outer (Uzawa) augmentations of one increment.
-const MAX_AUGMENTATIONS: usize = 200;
-
-/// Newton for one increment from the predicted `start` (the increment
-/// starting at the converged `u_start`); for Uzawa interfaces, followed
-/// by multiplier updates and new Newton solves at the same time until the
-/// largest penetration is within tolerance (formulation note §2.1 item 2).
-fn solve_with_augmentation<P: NonlinearProblem>(
-    newton: &mut Newton<'_, P>,
-    start: &[f64],
-    u_start: &[f64],
-    state: &mut P::State,
-    u: &mut Vec<f64>,
-) -> NewtonOutcome<P::Report> {
-    let (mut outcome, mut records) = newton.solve(start, u_start, state, u);
-    let mut augmentations = 0;
-    while outcome.is_ok() && newton.problem.augment(newton.t, u, state) {
-        augmentations += 1;
-        if augmentations > MAX_AUGMENTATIONS {
-            let updates = MAX_AUGMENTATIONS;
-            return (Err(IncrementFailure::OuterLoopLimit { updates }), records);
-        }
-        let start = u.clone();
-        let (next, more) = newton.solve(&start, u_start, state, u);
-        outcome = next;
-        records.extend(more);
-    }
-    (outcome, records)
 }
 
 #[cfg(test)]

@@ -30,6 +30,8 @@ use crate::contact::laws::NormalLaw;
 use crate::contact::obstacle::RigidObstacle;
 use crate::solve::cone::{solve_cone, ConeNode, ConeProblem, NormalEnforcement, TangentialLaw};
 use crate::solve::linear_solver::SolverStatistics;
+use crate::solve::method::WarmStart;
+use crate::solve::newton::IterationRecord;
 use crate::{Error, Result};
 use nalgebra::Vector3;
 
@@ -52,6 +54,9 @@ pub(super) struct FrictionalCondensation {
     column_owner: Vec<(usize, usize)>,
     /// Candidate nodes (into `contact`), in the order of their columns.
     candidates: Vec<usize>,
+    /// The nodes that joined after the first candidates, in their batches
+    /// (a restart's replay).
+    batches: Vec<Vec<usize>>,
     is_candidate: Vec<bool>,
     /// `Ŵ⁻¹` (a Cholesky inverse), once per `Ŵ`.
     inverse: Option<nalgebra::DMatrix<f64>>,
@@ -158,6 +163,7 @@ impl FrictionalCondensation {
             contact,
             column_owner,
             candidates: Vec::new(),
+            batches: Vec::new(),
             is_candidate: vec![false; count],
             inverse: None,
             shifted: Vec::new(),
@@ -234,6 +240,7 @@ impl FrictionalCondensation {
         problem: &Problem,
         t: f64,
         state: &ContactState,
+        history: &mut Vec<IterationRecord>,
     ) -> Result<(Vec<f64>, Vec<Vector3<f64>>)> {
         let b = self.base.load(problem, t);
         let mut u0 = b.clone();
@@ -310,6 +317,7 @@ impl FrictionalCondensation {
                 ))
             })?;
             self.iterations += solution.iterations;
+            history.extend(solution.history);
             self.inverse = Some(inverse);
             // u = K̂⁻¹ (b + E (A t + ρ P_S u_F))
             let mut u = b.clone();
@@ -347,6 +355,7 @@ impl FrictionalCondensation {
                 }
                 return Ok((u, traction));
             }
+            self.batches.push(entering.clone());
             self.grow(&entering, false)?;
         }
     }
@@ -364,8 +373,9 @@ impl IncrementSolver for FrictionalCondensation {
         state: &ContactState,
         x: &mut [f64],
         trial: &mut ContactState,
+        history: &mut Vec<IterationRecord>,
     ) -> Result<()> {
-        let (u, traction) = self.solve_increment(problem, t, state)?;
+        let (u, traction) = self.solve_increment(problem, t, state, history)?;
         let mut pressures = super::zero_per_node(problem);
         for (a, c) in self.contact.iter().enumerate() {
             let interface = &problem.contacts[c.interface];
@@ -385,5 +395,52 @@ impl IncrementSolver for FrictionalCondensation {
 
     fn statistics(&self) -> (SolverStatistics, usize) {
         (SolverStatistics::of_ldlt(&self.base.ldlt), self.iterations)
+    }
+
+    /// The batches after the first candidates, and per contact node its
+    /// last traction (3 values) then per column its last displacement.
+    fn warm_start(&self) -> WarmStart {
+        let mut values: Vec<f64> = self
+            .traction
+            .iter()
+            .flat_map(|t| t.iter().copied())
+            .collect();
+        let mut set = vec![true; values.len()];
+        for d in &self.displacement {
+            values.push(d.unwrap_or(0.0));
+            set.push(d.is_some());
+        }
+        WarmStart {
+            batches: self.batches.clone(),
+            active: Vec::new(),
+            values,
+            set,
+        }
+    }
+
+    fn resume(&mut self, warm: &WarmStart) -> Result<()> {
+        let (count, columns) = (self.traction.len(), self.displacement.len());
+        if warm.values.len() != 3 * count + columns || warm.set.len() != warm.values.len() {
+            return Err(Error::LinearSolver(
+                "the checkpoint's condensed warm start does not match the case's contact nodes"
+                    .into(),
+            ));
+        }
+        for batch in &warm.batches {
+            self.batches.push(batch.clone());
+            self.grow(batch, false)?;
+        }
+        for (a, t) in self.traction.iter_mut().enumerate() {
+            *t = Vector3::new(
+                warm.values[3 * a],
+                warm.values[3 * a + 1],
+                warm.values[3 * a + 2],
+            );
+        }
+        for (c, d) in self.displacement.iter_mut().enumerate() {
+            let i = 3 * count + c;
+            *d = warm.set[i].then_some(warm.values[i]);
+        }
+        Ok(())
     }
 }

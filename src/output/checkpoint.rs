@@ -348,6 +348,12 @@ mod tests {
                 force_scale: 20.0,
                 secant: Some((vec![1.0; 7], 0.25)),
                 last_motion: None,
+                warm: Some(crate::solve::method::WarmStart {
+                    batches: vec![vec![3, 1], vec![0]],
+                    active: vec![true, false, true],
+                    values: vec![0.5, -1e-300],
+                    set: vec![true, false],
+                }),
             }),
             summary: "{}".into(),
             histories: vec![Cow::Owned(vec![(0.5, vec![1.0, 2.0])])],

@@ -404,7 +404,7 @@ impl Condensation {
                 });
             }
         }
-        Self::factorise(problem, nodes, &[], TRAILING_FRACTION)
+        Self::factorise(problem, nodes, &[], TRAILING_FRACTION, true)
     }
 
     /// Assemble `K` at `u = 0` (its lower triangle), make `K̃` (prescribed rows and columns a
@@ -413,12 +413,18 @@ impl Condensation {
     /// nearest `fraction` of them ordered last. The assembly and the
     /// ordering with its symbolic analysis (which read only the pattern)
     /// run side by side on the run's threads, the ordering's nested
-    /// dissection mostly done before ([`Problem::dissection`]).
+    /// dissection mostly done before ([`Problem::dissection`]). In f32
+    /// (from [`MIXED_PRECISION_UNKNOWNS`], or `linear = "mixed"`) only where
+    /// `single_allowed`: the frictionless solve corrects the contact
+    /// forces for the f32 `W̃` ([`Self::solve_increment`]); the frictional
+    /// one has no such correction and factorises in f64 (on a 10 k-dof
+    /// floating block the f32 `Ŵ` left a residual of 5.7e-7).
     fn factorise(
         problem: &Problem,
         nodes: Vec<ContactNode>,
         shifted: &[usize],
         fraction: f64,
+        single_allowed: bool,
     ) -> Result<Self> {
         let pattern = &problem.model.pattern;
         let dimension = pattern.dimension();
@@ -443,11 +449,12 @@ impl Condensation {
         );
         let (k, (trailing, decoupled, mut ldlt)) = (k?, analysed?);
         let count = nodes.len();
-        let single = match problem.settings.linear {
-            LinearMethod::Mixed => true,
-            LinearMethod::Auto => dimension >= MIXED_PRECISION_UNKNOWNS,
-            _ => false,
-        };
+        let single = single_allowed
+            && match problem.settings.linear {
+                LinearMethod::Mixed => true,
+                LinearMethod::Auto => dimension >= MIXED_PRECISION_UNKNOWNS,
+                _ => false,
+            };
         let precision = if single {
             Precision::Single
         } else {

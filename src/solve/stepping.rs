@@ -560,6 +560,125 @@ mod tests {
         }
     }
 
+    /// A method that fails every increment ending after `from` (as a
+    /// condensed solve whose residual is too large), and solves the others
+    /// by Newton.
+    struct FailsAfter<'a> {
+        newton: Monolithic<'a>,
+        from: f64,
+    }
+
+    impl IncrementMethod<Springs> for FailsAfter<'_> {
+        fn name(&self) -> &'static str {
+            "condensed"
+        }
+        fn solve(
+            &mut self,
+            problem: &Springs,
+            increment: &Increment<'_>,
+            u: &[f64],
+            state: &mut (),
+            x: &mut Vec<f64>,
+            on_iteration: &mut dyn FnMut(&IterationRecord) -> bool,
+        ) -> super::super::newton::NewtonOutcome<()> {
+            if increment.time > self.from {
+                let failure = IncrementFailure::CondensedResidual {
+                    relative: 1e-6,
+                    tolerance: 1e-8,
+                };
+                return (Err(failure), Vec::new());
+            }
+            self.newton
+                .solve(problem, increment, u, state, x, on_iteration)
+        }
+        fn statistics(&self) -> SolverStatistics {
+            IncrementMethod::<Springs>::statistics(&self.newton)
+        }
+    }
+
+    /// Which method solved each increment, whether it was retried, and
+    /// the fallbacks told.
+    #[derive(Default)]
+    struct Methods(Vec<(&'static str, bool)>, usize);
+
+    impl StepObserver<Springs> for Methods {
+        fn on_converged(
+            &mut self,
+            _p: &Springs,
+            record: &IncrementRecord,
+            _u: &[f64],
+            _evaluation: &Evaluation<()>,
+            _state: &(),
+        ) -> Result<()> {
+            self.0.push((record.method, record.retried.is_some()));
+            Ok(())
+        }
+        fn on_fallback(&mut self, _: &str, _: f64, by: &str, _: &IncrementFailure) {
+            assert_eq!(by, "monolithic");
+            self.1 += 1;
+        }
+    }
+
+    /// An increment the run's method fails is solved again by the
+    /// fallback before any cut: the springs end at their roots (1e-10),
+    /// the increments are the ones of an undisturbed run (no cut), and
+    /// each retried increment says so.
+    #[test]
+    fn the_fallback_solves_what_the_method_fails_without_a_cut() {
+        let nodes = [0usize];
+        let mut springs = Springs {
+            settings: SolverSettings {
+                residual_tolerance: 1e-12,
+                ..SolverSettings::default()
+            },
+            steps: vec![Step {
+                name: "load".into(),
+                end_time: 1.0,
+                initial_increment: 0.25,
+                min_increment: 1e-3,
+                max_increment: 0.25,
+            }],
+            pattern: SparsityPattern::from_elements(1, std::iter::once(&nodes[..])),
+            k: 2.0,
+            c: 5.0,
+            f: [1.0, -3.0, 40.0],
+        };
+        let mut first = linear_solver(&springs.settings, Ordering::Amd, 1);
+        let mut second = linear_solver(&springs.settings, Ordering::Amd, 1);
+        let (mut j1, mut j2) = (Josephy::default(), Josephy::default());
+        let mut method = FailsAfter {
+            newton: Monolithic::new(&springs, &mut *first, &mut j1),
+            from: 0.5,
+        };
+        let mut fallback = Monolithic::new(&springs, &mut *second, &mut j2);
+        let mut methods = Methods::default();
+        let x = resume_steps(
+            &mut springs,
+            &mut method,
+            Some(&mut fallback),
+            &mut methods,
+            PathBuf::new(),
+            None,
+        )
+        .unwrap();
+        let mut reference = Residuals::default();
+        let mut solver = linear_solver(&springs.settings, Ordering::Amd, 1);
+        let y = run_steps(&mut springs, &mut *solver, &mut reference, PathBuf::new()).unwrap();
+        for (a, b) in x.iter().zip(&y) {
+            assert!((a - b).abs() < 1e-10, "{a} vs {b}");
+        }
+        assert_eq!(
+            methods.0,
+            [
+                ("condensed", false),
+                ("condensed", false),
+                ("monolithic", true),
+                ("monolithic", true)
+            ]
+        );
+        assert_eq!(methods.1, 2);
+    }
+
     /// Iteration records from residuals, switch counts and step lengths.
     fn records(residuals: &[f64], switched: &[usize], steps: &[f64]) -> Vec<IterationRecord> {
         (0..residuals.len())

@@ -154,7 +154,7 @@ impl FrictionalCondensation {
         } else {
             Vec::new()
         };
-        let base = Condensation::factorise(problem, columns, &shifted_dofs, 1.0)?;
+        let base = Condensation::factorise(problem, columns, &shifted_dofs, 1.0, false)?;
         let shift = if floating { base.scale } else { 0.0 };
         let count = contact.len();
         let columns_count = base.nodes.len();

@@ -354,11 +354,6 @@ impl Simulation {
             output.to_path_buf(),
             resume,
         );
-        let earlier = recorder
-            .earlier
-            .as_ref()
-            .map_or(0, |e| e.active_set_iterations);
-        recorder.summary.active_set_iterations = earlier + method.contact_iterations();
         let statistics = method.statistics() + newton.statistics();
         // the factor (tens of MB) is freed on another thread, beside the
         // run's last writes

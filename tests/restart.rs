@@ -43,8 +43,8 @@ impl StepObserver for StopAfter {
 }
 
 /// The case on Newton's path (`strategy = "monolithic"`): a restart
-/// resumes Newton's increments (press-pull would otherwise run on the
-/// condensed path, which does not restart).
+/// resumes Newton's increments (press-pull's default, the condensed path,
+/// resumes too: tests/stepper.rs).
 fn simulation(case: &str) -> Simulation {
     let case = format!("{case}\n[solver]\nstrategy = \"monolithic\"\n");
     Simulation::from_toml(&case, &example()).unwrap()

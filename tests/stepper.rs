@@ -170,3 +170,121 @@ fn a_block_held_only_by_friction_runs_with_default_settings() {
     assert!((ratio - 0.75).abs() < 1e-8, "{ratio}");
     assert!((last[2].abs() - n).abs() < 1e-8 * n, "{last:?}");
 }
+
+/// Stops the run after its `n`-th converged increment (as a script's
+/// callback returning `False` does, or a kill after the checkpoint).
+struct StopAfter {
+    n: usize,
+    seen: usize,
+}
+
+impl StepObserver for StopAfter {
+    fn on_increment(&mut self, _: &ConvergedIncrement, _: &Summary) -> signorini::Result<()> {
+        self.seen += 1;
+        if self.seen == self.n {
+            return Err(signorini::Error::Interrupted {
+                reason: "stopped by the test".into(),
+            });
+        }
+        Ok(())
+    }
+}
+
+/// Every number of a run's final state as bits: the unknowns, then per
+/// contact node its multiplier, slack unknowns, gap, friction traction,
+/// anchor and slip, and its status.
+fn bits(outcome: &RunOutcome) -> Vec<u64> {
+    let mut values: Vec<f64> = outcome.displacement.clone();
+    let mut statuses = Vec::new();
+    for s in outcome.contact.interfaces.iter().flatten() {
+        values.extend([s.lambda, s.slack.s, s.slack.lambda1, s.gap]);
+        let f = &s.friction;
+        values.extend(f.traction.iter().chain(&f.anchor).chain(&f.slip));
+        statuses.push(u64::from(f.status.code()));
+    }
+    values.iter().map(|v| v.to_bits()).chain(statuses).collect()
+}
+
+/// `examples/<example>/case.toml` as it ships, run uninterrupted into one
+/// folder and, into another, stopped after half its increments and
+/// resumed from the checkpoint (`--restart`): the final states are equal
+/// bit for bit, and so are the increments' times, iterations and
+/// residuals. Returns the uninterrupted run's summary.
+fn resumes_bitwise(example: &str) -> Summary {
+    let folder = Path::new(env!("CARGO_MANIFEST_DIR"))
+        .join("examples")
+        .join(example);
+    let simulation = || Simulation::from_file(&folder.join("case.toml")).unwrap();
+    let (full_dir, cut_dir) = (tempfile::tempdir().unwrap(), tempfile::tempdir().unwrap());
+    let options = |dir: &Path, restart: bool| RunOptions {
+        output: Some(dir.to_path_buf()),
+        threads: Some(1),
+        restart: restart.then(|| dir.to_path_buf()),
+        ..Default::default()
+    };
+    let silent = &mut signorini::output::observer::Silent;
+    let full = simulation()
+        .run(&options(full_dir.path(), false), silent)
+        .unwrap();
+    let n = full.summary.increments.len();
+    let k = n / 2;
+    assert!(k >= 1, "{n} increments");
+    let mut stop = StopAfter { n: k, seen: 0 };
+    let error = simulation()
+        .run(&options(cut_dir.path(), false), &mut stop)
+        .unwrap_err();
+    assert!(
+        matches!(error, signorini::Error::Interrupted { .. }),
+        "{error}"
+    );
+    let mut seen = StopAfter {
+        n: usize::MAX,
+        seen: 0,
+    };
+    let resumed = simulation()
+        .run(&options(cut_dir.path(), true), &mut seen)
+        .unwrap();
+    assert_eq!(seen.seen, n - k);
+    assert_eq!(resumed.summary.strategy, full.summary.strategy);
+    assert!(
+        bits(&full) == bits(&resumed),
+        "{example}: not bitwise equal"
+    );
+    let figures = |s: &Summary| -> Vec<(u64, usize, Vec<u64>)> {
+        s.increments
+            .iter()
+            .map(|i| {
+                let residuals = i.residuals.iter().map(|r| r.to_bits()).collect();
+                (i.time.to_bits(), i.iterations, residuals)
+            })
+            .collect()
+    };
+    assert_eq!(figures(&full.summary), figures(&resumed.summary));
+    assert_eq!(
+        full.summary.active_set_iterations,
+        resumed.summary.active_set_iterations
+    );
+    full.summary
+}
+
+/// `--restart` on examples/press-pull as it ships: the default path is
+/// the frictional condensed one, and it resumes bit for bit.
+#[test]
+fn press_pull_on_the_default_path_resumes_bitwise() {
+    let summary = resumes_bitwise("press-pull");
+    assert_eq!(summary.strategy, "condensed");
+}
+
+/// `--restart` on examples/hertz as it ships (frictionless condensed, an
+/// f32 factor): bit for bit; its iterations are the active-set steps, the
+/// summary's count is the residuals' less the converged evaluation.
+#[test]
+fn hertz_on_the_default_path_resumes_bitwise() {
+    let summary = resumes_bitwise("hertz");
+    assert_eq!(summary.strategy, "condensed");
+    for i in &summary.increments {
+        assert!(i.iterations > 1, "{}", i.iterations);
+        assert_eq!(i.residuals.len(), i.iterations + 1);
+        assert_eq!(i.method, "condensed");
+    }
+}

@@ -156,7 +156,9 @@ pub struct Summary {
     #[serde(default)]
     pub predictor_reason: String,
     /// Condensed path: active-set steps (dense Cholesky solves of the
-    /// contact problem) over the run; 0 on the monolithic path.
+    /// contact problem; with friction, semismooth Newton iterations) of
+    /// its converged increments, the sum of their `iterations`; 0 on the
+    /// monolithic path.
     pub active_set_iterations: usize,
     /// Increments that `auto`'s condensed path failed and Newton's path
     /// solved again (`increments[i].retried` says why).

@@ -933,11 +933,6 @@ impl Condensed {
             path_dependent,
         })
     }
-
-    /// The iterations of the contact solves over the run.
-    pub fn contact_iterations(&self) -> usize {
-        self.solver.statistics().1
-    }
 }
 
 impl IncrementMethod<Problem> for Condensed {

@@ -253,6 +253,10 @@ impl stepping::StepObserver<Problem> for Recorder<'_> {
             retried: record.retried.clone(),
         });
         self.summary.fallback_increments += usize::from(record.retried.is_some());
+        // the condensed path's iterations are its contact solve's steps
+        if record.method == crate::problem::condensed::Path::Condensed.name() {
+            self.summary.active_set_iterations += record.iterations;
+        }
         self.summary.update_step_totals();
         self.last = now;
         // the totals so far (fields apart: `increment` borrows `stepping`)

@@ -39,7 +39,8 @@ pub struct Complementarity {
     /// `max(max_{i∈A} ⟨−λ_i⟩, max_{i∉A} ⟨−g_i⟩ / W_ii) / F`, with
     /// `F = max(max λ, max ⟨−q_i⟩ / W_ii)` (the force that closes the
     /// deepest penetration alone); the change `|Δλ|∞ / F` from the last
-    /// step (at least ε: a solve was taken); the statuses flipped.
+    /// step (from `λ = 0` at the first; at least ε: a solve was taken);
+    /// the statuses flipped.
     pub history: Vec<IterationRecord>,
 }
 

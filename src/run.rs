@@ -268,7 +268,21 @@ impl Simulation {
             SolvePath::Monolithic => {
                 self.run_monolithic(&mut recorder, resume, &output, distribution.as_ref())?
             }
-            SolvePath::Condensed => self.run_condensed(&mut recorder, resume, &output),
+            SolvePath::Condensed => match condensed::Condensed::new(&self.problem) {
+                Ok(method) => self.run_condensed(method, &mut recorder, resume, &output),
+                Err(e) if self.problem.settings.strategy == Strategy::Auto => {
+                    // `auto` is never worse off than monolithic: the run
+                    // goes on Newton's path
+                    let reason = format!("the condensed path could not start: {e}");
+                    let choice = condensed::Choice {
+                        path: SolvePath::Monolithic,
+                        reason,
+                    };
+                    announce_strategy(&choice, &mut recorder)?;
+                    self.run_monolithic(&mut recorder, resume, &output, None)?
+                }
+                Err(e) => (Err(e), SolverStatistics::default()),
+            },
         };
         let result = result.map_err(|e| case::diagnosis::explain_failure(e, &self.warnings));
         update_totals(
@@ -329,20 +343,17 @@ impl Simulation {
         Ok((result, IncrementMethod::<Problem>::statistics(&newton)))
     }
 
-    /// The condensed path's load steps ([`condensed::Condensed`], one
-    /// factorisation per run) by the same stepper as Newton's; under
+    /// The condensed path's load steps (`method`, its one factorisation
+    /// made) by the same stepper as Newton's; under
     /// `strategy = "auto"` an increment it fails is solved again on
     /// Newton's path ([`fallback`]). The result and the figures of both.
     fn run_condensed(
         &mut self,
+        mut method: condensed::Condensed,
         recorder: &mut Recorder,
         resume: Option<Resume<ContactState>>,
         output: &Path,
     ) -> (Result<Vec<f64>>, SolverStatistics) {
-        let mut method = match condensed::Condensed::new(&self.problem) {
-            Ok(method) => method,
-            Err(e) => return (Err(e), SolverStatistics::default()),
-        };
         let auto = self.problem.settings.strategy == Strategy::Auto;
         let mut newton = fallback::NewtonOnDemand::default();
         let fallback = auto.then_some(&mut newton as &mut dyn IncrementMethod<Problem>);

@@ -44,6 +44,7 @@ pub mod laws;
 pub mod obstacle;
 pub mod primary;
 pub mod projection;
+pub mod report;
 pub mod rigid;
 pub mod set;
 pub mod setup;

@@ -36,7 +36,7 @@ pub struct ContactState {
 /// by `Deref`).
 #[derive(Clone, Debug, Default)]
 pub struct ContactSet {
-    interfaces: Vec<ContactInterface>,
+    pub(super) interfaces: Vec<ContactInterface>,
 }
 
 impl Deref for ContactSet {

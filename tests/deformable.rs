@@ -121,7 +121,7 @@ fn reported_primary_weights_are_the_assembled_reaction() {
             None,
         );
         let mut expected = vec![0.0; 3 * pr.model.mesh.num_nodes()];
-        let c = &pr.contacts[0];
+        let c = pr.contacts.interface(0);
         for (&s, report) in c.nodes.iter().zip(&reports[0]) {
             if !report.active {
                 continue;
@@ -514,7 +514,7 @@ fn nodes_beyond_the_primary_edge_stay_open() {
     pr.set_contacts(vec![c]);
     let last = run(&mut pr);
     let (_, reports) = pr.residual_in(1.0, &last.x, &last.contact, None).unwrap();
-    let c = &pr.contacts[0];
+    let c = pr.contacts.interface(0);
     let mut beyond = 0;
     for (i, r) in reports[0].iter().enumerate() {
         let p = pr.model.mesh.nodes[c.nodes[i]];

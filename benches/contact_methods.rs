@@ -330,7 +330,7 @@ fn run_one(case_text: &str, dir: &Path, size: &str, method: &str) -> Row {
     let wall = start.elapsed().as_secs_f64();
     let case = signorini::case::load(&case_path).expect("the case loads");
     let problem = case.build_problem().expect("the problem builds");
-    let interface = &problem.contacts[0];
+    let interface = problem.contacts.interface(0);
     let h = interface.element_size;
     let dofs = problem.model.num_dofs();
     let mut row = Row {

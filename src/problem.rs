@@ -254,7 +254,7 @@ impl Problem {
     /// problem's evaluation then reads. Renumbers the multipliers and
     /// rebuilds the pattern where that changes them.
     pub fn keep_friction_multipliers_in_history(&mut self) {
-        if !self.contacts.iter().any(|c| c.tangential_multipliers()) {
+        if !self.contacts.has_tangential_multipliers() {
             return;
         }
         let mut contacts: Vec<ContactInterface> = self.contacts.iter().cloned().collect();

@@ -149,7 +149,7 @@ fn assert_hertz(
     let (_, reports) = problem
         .residual_in(1.0, x, &problem.initial_contact_state(x), None)
         .unwrap();
-    let interface = &problem.contacts[0];
+    let interface = problem.contacts.interface(0);
     let last = outcome.summary.increments.last().unwrap();
     let force = last.contact[interface_name].force[2];
     let reaction = last.reaction_forces[supported_face][2];

@@ -58,7 +58,9 @@ impl StepObserver for Record {
         let status = inc.nodal(NodalField::ContactStatus);
         let three = |v: &[f64], s: usize| [v[3 * s], v[3 * s + 1], v[3 * s + 2]];
         self.slips.push(
-            inc.problem.contacts[0]
+            inc.problem
+                .contacts
+                .interface(0)
                 .nodes
                 .iter()
                 .map(|&s| {

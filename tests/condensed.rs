@@ -430,7 +430,7 @@ fn frictional_condensed_equals_monolithic_with_regularised_stick() {
 #[test]
 fn frictional_condensed_equals_monolithic_with_exact_stick() {
     let tighter = |p: &mut signorini::problem::Problem| {
-        p.contacts.iter_mut().for_each(|c| c.element_size *= 1e-2)
+        (0..p.contacts.len()).for_each(|i| p.contacts.interface_mut(i).element_size *= 1e-2)
     };
     let mono = press_pull_adjusted(
         "strategy = \"monolithic\"\nresidual_tolerance = 1e-10",

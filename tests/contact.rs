@@ -57,7 +57,7 @@ fn contact_patch_test_and_exactness() {
         for (name, law) in every_method(E / H) {
             let mut pr = pressed_block(kind, law, p);
             let last = run(&mut pr);
-            let c = &pr.contacts[0];
+            let c = pr.contacts.interface(0);
             let (_, reports) = pr.residual_in(1.0, &last.x, &last.contact, None).unwrap();
             for (i, r) in reports[0].iter().enumerate() {
                 assert!(r.active, "{kind:?} {name}: node {} open", c.nodes[i]);
@@ -190,7 +190,7 @@ fn triangulated_plane_matches_the_analytic_plane() {
         })
         .collect();
     let surface = signorini::contact::TriangulatedSurface::new(vertices, triangles).unwrap();
-    let mut contacts = pr.contacts.to_vec();
+    let mut contacts: Vec<_> = pr.contacts.iter().cloned().collect();
     contacts[0].primary = Primary::Rigid(RigidObstacle::Triangulated(surface));
     pr.set_contacts(contacts);
     let last = run(&mut pr);

@@ -99,6 +99,51 @@ fn stacked_blocks_patch_test_and_action_reaction() {
     }
 }
 
+/// The node driver's general coupling: each secondary node reports the
+/// primary nodes of its reaction with their weights (`N_i(ξ)` here), and
+/// these are exactly the primary blocks of the assembled contact residual,
+/// `r_i = Σ_s w_si A_s t_N n_s` (the force `−r` on primary node `i`
+/// balances the secondary force `A_s t_N n_s` share by share), and
+/// `r_s = −A_s t_N n_s` on the secondary nodes: to 1e-12 of the load, on
+/// the converged stacked blocks (frictionless, every method), with the
+/// weights of each node summing to 1.
+#[test]
+fn reported_primary_weights_are_the_assembled_reaction() {
+    for (name, law) in every_method(3.0 * E) {
+        let mut pr = stacked_blocks(law, [0.0, 0.0, 0.5]);
+        let last = run(&mut pr);
+        let n = pr.num_unknowns();
+        let mut r = vec![0.0; n];
+        let reports = pr.contacts.assemble(
+            &pr.contact_context(1.0, &last.x),
+            &last.contact,
+            &mut r,
+            None,
+        );
+        let mut expected = vec![0.0; 3 * pr.model.mesh.num_nodes()];
+        let c = pr.contacts.interface(0);
+        for (&s, report) in c.nodes.iter().zip(&reports[0]) {
+            if !report.active {
+                continue;
+            }
+            let sum: f64 = report.primary.iter().map(|(_, w)| w).sum();
+            assert!((sum - 1.0).abs() < 1e-12, "{name}: weights sum to {sum}");
+            for d in 0..3 {
+                expected[3 * s + d] -= report.force[d];
+                for &(i, w) in &report.primary {
+                    expected[3 * i + d] += w * report.force[d];
+                }
+            }
+        }
+        let worst = expected
+            .iter()
+            .zip(&r)
+            .map(|(a, b)| (a - b).abs())
+            .fold(0.0f64, f64::max);
+        assert!(worst < 1e-12 * P, "{name}: off by {worst}");
+    }
+}
+
 /// The assembled tangent (elasticity, contact on the secondary and the
 /// primary nodes, multipliers) is the derivative of the assembled residual,
 /// on stacked blocks shifted so that no secondary node lies over a primary
@@ -469,7 +514,7 @@ fn nodes_beyond_the_primary_edge_stay_open() {
     pr.set_contacts(vec![c]);
     let last = run(&mut pr);
     let (_, reports) = pr.residual_in(1.0, &last.x, &last.contact, None).unwrap();
-    let c = &pr.contacts[0];
+    let c = pr.contacts.interface(0);
     let mut beyond = 0;
     for (i, r) in reports[0].iter().enumerate() {
         let p = pr.model.mesh.nodes[c.nodes[i]];

@@ -99,7 +99,7 @@ struct Totals {
 }
 
 fn totals(pr: &Problem, t: f64, last: &Last) -> Totals {
-    let c = &pr.contacts[0];
+    let c = pr.contacts.interface(0);
     let (_, reports) = pr.residual_in(t, &last.x, &last.contact, None).unwrap();
     let mut out = Totals {
         normal: Vector3::zeros(),
@@ -241,7 +241,7 @@ fn lagrangian_methods_do_not_depend_on_the_tangential_penalty() {
         for step in &mut pr.steps {
             (step.initial_increment, step.max_increment) = (0.125, 0.125);
         }
-        let mut c = pr.contacts[0].clone();
+        let mut c = pr.contacts.interface(0).clone();
         c.friction = Some(Coulomb {
             tangential_penalty: eps,
             ..coulomb()
@@ -286,11 +286,11 @@ fn lagrangian_methods_do_not_depend_on_the_tangential_penalty() {
             let before = &soft.snapshots[soft.snapshots.len() - 2].x;
             for (i, state) in soft.contact.interfaces[0].iter().enumerate() {
                 if state.friction.status == ContactStatus::Stick {
-                    let node = pr.contacts[0].nodes[i];
+                    let node = pr.contacts.interface(0).nodes[i];
                     let moved = (0..2)
                         .map(|d| (soft.x[3 * node + d] - before[3 * node + d]).abs())
                         .fold(0.0, f64::max);
-                    let tolerance = 1e-9 * pr.contacts[0].element_size;
+                    let tolerance = 1e-9 * pr.contacts.interface(0).element_size;
                     assert!(
                         moved < tolerance,
                         "{name}: stuck node {node} moved {moved:e}"
@@ -315,8 +315,8 @@ fn dragging_the_plane_equals_pulling_the_block() {
     for (name, law) in every_method(E / H) {
         let mut pulled = block_on_plane(law, Some(0.05), 0.3);
         let mut dragged = block_on_plane(law, Some(0.0), 0.3);
-        dragged.contacts[0].motion = Vector3::new(-0.05, 0.0, 0.0);
-        dragged.contacts[0].amplitude = pull();
+        dragged.contacts.interface_mut(0).motion = Vector3::new(-0.05, 0.0, 0.0);
+        dragged.contacts.interface_mut(0).amplitude = pull();
         let (a, b) = (run(&mut pulled), run(&mut dragged));
         let (ta, tb) = (totals(&pulled, 2.0, &a), totals(&dragged, 2.0, &b));
         assert!(
@@ -407,7 +407,7 @@ fn pull_and_release_leaves_residual_slip_where_nodes_slipped() {
             }
         }
         // no pull left, yet the bottom is displaced from the pressed state
-        let c = &pr.contacts[0];
+        let c = pr.contacts.interface(0);
         let shift = c
             .nodes
             .iter()
@@ -450,7 +450,7 @@ fn frictional_tangent_matches_finite_differences_in_stick_and_slip() {
         // history: alternate nodes anchored far away (slip) or nearby with
         // an old traction in the tangent plane (stick)
         let t = 0.5;
-        let c = &pr.contacts[0];
+        let c = pr.contacts.interface(0);
         let translation = c.translation_at(t);
         for (i, s) in state.interfaces[0].iter_mut().enumerate() {
             let here = c.relative_position(&pr.model.mesh.nodes, &translation, &x, i);
@@ -483,12 +483,12 @@ fn tangential_multiplier_tangent_matches_finite_differences() {
         c.friction = Some(coulomb());
         c.exact_stick_requested = true;
         pr.set_contacts(vec![c]);
-        assert!(pr.contacts[0].tangential_multipliers());
-        let n = pr.contacts[0].nodes.len();
+        assert!(pr.contacts.interface(0).tangential_multipliers());
+        let n = pr.contacts.interface(0).nodes.len();
         assert_eq!(pr.num_unknowns(), pr.model.num_dofs() + 3 * n);
         let mut x = perturbed_state(&pr, 0.01, name == "slack");
         let t = 0.5;
-        let c = &pr.contacts[0];
+        let c = pr.contacts.interface(0);
         let translation = c.translation_at(t);
         let mut state = pr.initial_contact_state(&x);
         // alternate nodes anchored far away (slip) or nearby with a

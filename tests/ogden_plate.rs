@@ -96,7 +96,7 @@ fn plate_lifts_off_in_the_middle() {
     let (_, reports) = problem
         .residual_in(1.0, u, &outcome.contact, None)
         .expect("no inverted element");
-    let interface = &problem.contacts[0];
+    let interface = problem.contacts.interface(0);
     let mesh = &case.mesh;
     let at = |x: f64| {
         interface

@@ -119,7 +119,7 @@ fn one_and_two_passes_on_the_stacked_blocks() {
         let names: Vec<&str> = pr.contacts.iter().map(|c| c.name.as_str()).collect();
         if two {
             assert_eq!(names, ["interface", "interface.reverse"]);
-            assert_eq!(pr.contacts[1].surface, "lower.zmax");
+            assert_eq!(pr.contacts.interface(1).surface, "lower.zmax");
             // half of each surface's area (1 × 1) per pass
             for c in &pr.contacts {
                 let area: f64 = c.areas.iter().sum();

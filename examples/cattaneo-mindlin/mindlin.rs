@@ -151,7 +151,7 @@ impl Comparison {
     /// The secondary nodes of interface 0 of a converged increment of the
     /// half model (symmetry plane `y = 0`, load along `+x`), and their fit.
     pub fn of(inc: &ConvergedIncrement) -> Self {
-        let interface = &inc.problem.contacts[0];
+        let interface = inc.problem.contacts.interface(0);
         let reports = &inc.contact_fields.reports[0];
         let summary = inc.contact_fields.summaries.values().next();
         let (force, tangential) = summary.map_or((0.0, 0.0), |s| {

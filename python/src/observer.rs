@@ -30,8 +30,8 @@ struct IncrementData {
     increment: f64,
     iterations: usize,
     cuts: usize,
-    /// Every nodal field: name, values, components per node.
-    nodal: Vec<(NodalField, Vec<f64>)>,
+    /// Every nodal field by name: its values, `components()` per node.
+    nodal: std::collections::HashMap<NodalField, Vec<f64>>,
     reaction_forces: Vec<(String, [f64; 3])>,
     /// The per-interface totals, as in `summary.json`.
     contact: String,
@@ -156,16 +156,14 @@ impl Increment {
 impl Increment {
     fn new(py: Python<'_>, data: IncrementData) -> PyResult<Self> {
         let json = py.import("json")?;
-        let mut nodal = data.nodal.into_iter();
-        let mut next = |expected: NodalField| -> PyResult<PyObject> {
-            // the relay sends every nodal field in `NodalField::ALL` order
-            match nodal.next() {
-                Some((field, values)) if field == expected => {
-                    Ok(convert::array(py, values, field.components())?.unbind())
-                }
-                _ => Err(SignoriniError::new_err(format!(
+        let mut nodal = data.nodal;
+        // the relay sends every nodal field, taken here by name
+        let mut next = |field: NodalField| -> PyResult<PyObject> {
+            match nodal.remove(&field) {
+                Some(values) => Ok(convert::array(py, values, field.components())?.unbind()),
+                None => Err(SignoriniError::new_err(format!(
                     "internal error: the nodal field {} is missing from an increment (please report it)",
-                    expected.name()
+                    field.name()
                 ))),
             }
         };

@@ -38,10 +38,10 @@ impl Case {
     fn interface_index(&self, problem: &Problem, key: &str, name: &str) -> Result<usize> {
         problem
             .contacts
-            .iter()
-            .position(|c| c.name == name)
+            .by_name(name)
+            .map(|(i, _)| i)
             .ok_or_else(|| {
-                let have: Vec<&str> = problem.contacts.iter().map(|c| c.name.as_str()).collect();
+                let have: Vec<&str> = problem.contacts.names().collect();
                 self.err(format!(
                     "{key}: no contact interface named '{name}'; there are: {}",
                     if have.is_empty() {
@@ -255,7 +255,7 @@ impl Case {
                 (None, Some(name)) => {
                     let interface =
                         self.interface_index(problem, &format!("{key}.interface"), name)?;
-                    let nodes = &problem.contacts[interface].nodes;
+                    let nodes = &problem.contacts.interface(interface).nodes;
                     let index = nearest(
                         &nodes.iter().map(|&n| mesh.nodes[n]).collect::<Vec<_>>(),
                         0..nodes.len(),
@@ -305,7 +305,7 @@ impl Case {
             if !(p.width > 0.0) || !p.width.is_finite() {
                 return Err(self.err(super::not_positive(&format!("{key}.width"), p.width)));
             }
-            let contact = &problem.contacts[interface];
+            let contact = problem.contacts.interface(interface);
             let positions: Vec<[f64; 3]> = contact.nodes.iter().map(|&n| mesh.nodes[n]).collect();
             let nodes: Vec<ProfileNode> = nodes_in_band(&positions, p.from, p.to, p.width)
                 .into_iter()

@@ -25,7 +25,9 @@ use super::friction::{
     TangentialResponse,
 };
 use super::gap::GapGeometry;
-use super::kinematics::{GapKinematics, GapProducer, NodeEvaluation, SecondaryNode};
+use super::kinematics::{
+    GapKinematics, GapProducer, NodeEvaluation, PrimaryWeights, SecondaryNode,
+};
 use super::laws::{uzawa, NodeContactState, NormalLaw};
 use super::obstacle::RigidObstacle;
 use super::primary::PrimarySurface;
@@ -56,6 +58,14 @@ pub struct ContactInterface {
     pub nodes: Vec<usize>,
     /// Tributary reference area `A_s` of each secondary node.
     pub areas: Vec<f64>,
+    /// The whole tributary area of each secondary node (`areas` before a
+    /// two-pass interface halves them): what the report divides the node's
+    /// force by for its pressure and traction.
+    pub report_areas: Vec<f64>,
+    /// The secondary surface as triangles (deformable interfaces only): the
+    /// report measures the primary nodes' gaps against it
+    /// ([`primary_gaps`](Self::primary_gaps)).
+    pub secondary_surface: Option<PrimarySurface>,
     /// The rigid obstacle in its initial position, or the primary surface.
     pub primary: Primary,
     /// Rigid translation of the obstacle: `motion · amplitude(t)`.
@@ -87,7 +97,7 @@ pub struct ContactInterface {
 }
 
 /// What one node of an interface looks like in a state, for output.
-#[derive(Clone, Copy, Debug, Default, PartialEq)]
+#[derive(Clone, Debug, Default, PartialEq)]
 pub struct NodeReport {
     pub gap: f64,
     pub pressure: f64,
@@ -98,11 +108,12 @@ pub struct NodeReport {
     pub force: [f64; 3],
     /// Tangential traction `t_T` (zero without friction).
     pub tangential_traction: [f64; 3],
-    /// The primary triangle the node is projected on (deformable
-    /// interfaces only)…
+    /// The primary segment the node is projected on (node-to-surface
+    /// only: [`GapKinematics::facet`]).
     pub facet: Option<usize>,
-    /// …and the weights `N_i(ξ)` of its nodes at the projection.
-    pub weights: [f64; 3],
+    /// The primary nodes the node's reaction acts on, with their weights
+    /// (deformable interfaces only: [`GapKinematics::primary`]).
+    pub primary: PrimaryWeights,
 }
 
 /// Where the contact operations are evaluated: the mesh's reference
@@ -317,6 +328,7 @@ impl ContactInterface {
             let node = self.secondary_node(ctx.reference, ctx.x, i);
             let state = state_of(i);
             let kinematics = producer.kinematics(&node, &state);
+            debug_assert!(kinematics.as_ref().is_none_or(|k| 3 * k.nodes.len() <= Q));
             visit(&node, state, kinematics);
         }
     }
@@ -511,7 +523,7 @@ impl ContactInterface {
                     force: force.into(),
                     tangential_traction: t.traction.into(),
                     facet: e.kinematics.facet,
-                    weights: e.kinematics.weights,
+                    primary: e.kinematics.primary,
                 });
             });
         });

@@ -36,10 +36,20 @@ use super::friction::{
 use super::gap::GapGeometry;
 use super::laws::{NodeContactState, NormalLaw};
 use nalgebra::{SMatrix, SVector, Vector3};
+use smallvec::SmallVec;
 
-/// Most mesh nodes in one secondary node's contribution: itself, its
-/// primary triangle, and its friction anchor's triangle.
-pub const MAX_NODES: usize = 7;
+/// The mesh nodes of one secondary node's contribution, in the order of
+/// its unknowns `q` (three coordinates each, node-major): any number, the
+/// first eight inline (a rigid obstacle's one node, a primary triangle's
+/// four and its friction anchor's three fit without a heap allocation).
+pub type CoupledNodes = SmallVec<[usize; 8]>;
+
+/// The nodes of the primary side that a secondary node's reaction acts on,
+/// with the weight of each: a force `f` on the secondary node is balanced
+/// by `−w_i f` on primary node `i`. `N_i(ξ)` of the triangle the node is
+/// projected on (node-to-surface), `M_jl/D_jj` (dual mortar); none against
+/// a rigid obstacle.
+pub type PrimaryWeights = SmallVec<[(usize, f64); 4]>;
 
 /// One secondary node in a configuration: where the producers look.
 pub struct SecondaryNode<'a> {
@@ -69,13 +79,14 @@ pub fn current_position(reference: &[[f64; 3]], x: &[f64], n: usize) -> Vector3<
     )
 }
 
-/// The gap of one secondary node as a function of the `Q` unknowns `q`
-/// (three coordinates of each of its mesh nodes, node-major).
-#[derive(Clone, Copy, Debug)]
+/// The gap of one secondary node as a function of the unknowns `q` (three
+/// coordinates of each of its mesh nodes, node-major), held in vectors and
+/// matrices of the producer's fixed size `Q ≥ 3 × nodes.len()` (entries
+/// beyond the nodes zero).
+#[derive(Clone, Debug)]
 pub struct GapKinematics<const Q: usize, P = ()> {
-    /// Mesh nodes of `q` (the first `used`; `3 used ≤ Q`).
-    pub nodes: [usize; MAX_NODES],
-    pub used: usize,
+    /// Mesh nodes of `q`, any number with `3 nodes.len() ≤ Q`.
+    pub nodes: CoupledNodes,
     /// Signed gap `g`.
     pub gap: f64,
     /// `∇g = ∂g/∂q`.
@@ -86,10 +97,12 @@ pub struct GapKinematics<const Q: usize, P = ()> {
     pub normal: Vector3<f64>,
     /// `∂n/∂q`.
     pub normal_gradient: SMatrix<f64, 3, Q>,
-    /// The primary triangle the node is projected on (deformable primary
-    /// surfaces only) and the weights `N_i(ξ)` of its nodes there.
+    /// The primary segment the node is projected on and keeps while it
+    /// stays over it (node-to-surface only, recorded in
+    /// [`NodeContactState::facet`]).
     pub facet: Option<usize>,
-    pub weights: [f64; 3],
+    /// The primary nodes of the node's reaction and their weights.
+    pub primary: PrimaryWeights,
     /// What the producer keeps of the projection beyond that.
     pub point: P,
 }
@@ -97,7 +110,7 @@ pub struct GapKinematics<const Q: usize, P = ()> {
 impl<const Q: usize, P> GapKinematics<Q, P> {
     /// The mesh nodes of `q`.
     pub fn nodes(&self) -> &[usize] {
-        &self.nodes[..self.used]
+        &self.nodes
     }
 
     /// The gap's change along a step `dx` of the unknowns, `Δg = ∇g · Δq`.

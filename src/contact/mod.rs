@@ -1,28 +1,41 @@
 //! Contact: the kernels that turn a secondary node's position into a gap, a
-//! normal and a curvature, the weights that turn a contact pressure into
-//! nodal forces, and the per-node normal-contact laws.
+//! normal and a curvature, the per-node normal-contact laws and Coulomb
+//! friction, the node driver that carries them to the nodes' unknowns, and
+//! the interfaces' life cycle and report. Imports point one way, in the
+//! order of this list.
 //!
-//! - [`obstacle`]: rigid obstacles (plane, sphere, cylinder, triangulated
-//!   surface) and their [`Projection`] of a point:
+//! - [`projection`], [`obstacle`]: rigid obstacles (plane, sphere,
+//!   cylinder, triangulated surface) and their [`Projection`] of a point:
 //!   closest point `x̄`, unit outward normal `n`, signed gap `g` and
-//!   curvature `∂²g/∂x²`.
+//!   curvature `∂²g/∂x²`; [`gap`]: that projection as the laws read it.
 //! - [`triangle`]: the closest point on one triangle, with the Voronoi
 //!   feature (face, edge, vertex) it lies on.
-//! - [`triangulated`]: a triangulated surface with a bounding-volume
-//!   hierarchy for the closest-point search and pseudo-normals for the sign;
-//!   read from STL or from a Gmsh surface set.
+//! - [`triangulated`]: a triangulated surface with an R*-tree (`rstar`) for
+//!   the closest-point search and pseudo-normals for the sign; read from
+//!   STL or from a Gmsh surface set.
 //! - [`triangle_gap`]: a secondary node's gap against a deforming primary
 //!   triangle, with its exact gradient and Hessian in all four nodes.
-//! - [`tributary`]: the tributary reference area `A_s` of each secondary node.
+//! - [`tributary`]: the tributary reference area `A_s` of each node of a
+//!   surface.
 //! - [`primary`]: a primary surface of a deformable body as triangles, and
-//!   the per-increment search pairing secondary nodes with them;
-//!   [`surface_contact`] assembles a secondary node against a moving primary
-//!   triangle through the normal laws.
+//!   the per-increment search (an R*-tree of boxes) pairing secondary nodes
+//!   with them.
+//! - [`friction`]: Coulomb friction by return mapping, its consistent
+//!   (nonsymmetric) linearisation and the history committed per increment.
 //! - [`laws`]: per-node enforcement of the normal constraint (penalty, Uzawa
 //!   augmented Lagrangian, Rockafellar augmented Lagrangian, the paper's
 //!   slack-variable Lagrangian), residual and tangent blocks in `(u_s, λ_s)`.
-//! - [`friction`]: Coulomb friction by return mapping, its consistent
-//!   (nonsymmetric) linearisation and the history committed per increment.
+//! - [`kinematics`]: the node driver's algebra: a node's gap over the
+//!   unknowns of its contribution, its coupled nodes and primary weights,
+//!   the laws' chain rule, and what a primary kind supplies
+//!   ([`kinematics::GapProducer`]); its producers [`rigid`] (a rigid
+//!   obstacle) and [`surface_contact`] (a moving primary triangle).
+//! - [`interface`]: one secondary surface against its primary, and the
+//!   node driver's loop; [`set`]: the interfaces of a problem and their
+//!   life cycle; [`setup`]: building interfaces from a mesh; [`report`]:
+//!   what contact reports of a converged increment, per node and per
+//!   interface.
+//! - [`hertz`]: Hertz's solution, the reference of the contact examples.
 //!
 //! ## Conventions (as in the crate root and `formulation.md` §2)
 //! - The obstacle's outward normal `n` points from the obstacle toward the
@@ -30,10 +43,6 @@
 //! - Signed gap `g = (x_s − x̄)·n`: `g ≥ 0` open, `g < 0` penetration.
 //! - In two-body contact the surfaces are *primary* (projected onto) and
 //!   *secondary* (whose nodes are projected).
-//!
-//! [`interface`] ties them together: a secondary surface against a rigid
-//! obstacle, assembled into the Newton system (see DESIGN.md, "Contact
-//! with rigid obstacles").
 
 pub mod friction;
 pub mod gap;
@@ -44,6 +53,7 @@ pub mod laws;
 pub mod obstacle;
 pub mod primary;
 pub mod projection;
+pub mod report;
 pub mod rigid;
 pub mod set;
 pub mod setup;

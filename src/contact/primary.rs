@@ -31,6 +31,7 @@ use crate::contact::friction::MaterialPoint;
 use crate::contact::kinematics::{current_position, SecondaryNode};
 use crate::contact::triangle::TriangleProjection;
 use crate::contact::triangle_gap::{facet_triangles, is_degenerate, triangle_gap, TriangleGap};
+use crate::contact::tributary::tributary_areas;
 use crate::mesh::Mesh;
 use nalgebra::Vector3;
 use rstar::primitives::{GeomWithData, Rectangle};
@@ -56,8 +57,10 @@ pub struct PrimarySurface {
     /// Mesh node indices of each triangle, ordered so that the right-hand
     /// normal points out of the primary body (the mesh's facet orientation).
     pub triangles: Vec<[usize; 3]>,
-    /// The surface's nodes (sorted).
+    /// The surface's nodes (sorted)…
     pub nodes: Vec<usize>,
+    /// …and their tributary reference areas (for the report).
+    pub node_areas: Vec<f64>,
     /// Per secondary node, the candidate triangles (indices into
     /// `triangles`), refreshed by [`refresh`](Self::refresh).
     pub candidates: Vec<Vec<usize>>,
@@ -83,10 +86,12 @@ impl PrimarySurface {
             })
             .sum();
         let element_size = (area / triangles.len().max(1) as f64).sqrt();
+        let (nodes, node_areas) = tributary_areas(mesh, set);
         Some(Self {
             surface: surface.to_string(),
             triangles,
-            nodes: mesh.surface_nodes(set),
+            nodes,
+            node_areas,
             candidates: Vec::new(),
             element_size,
             margin: 2.0 * element_size,

@@ -8,7 +8,7 @@
 //! and curvature are unchanged by it.
 
 use super::friction::{Coulomb, FrictionHistory, SlipKinematics, TangentialResponse};
-use super::kinematics::{GapKinematics, GapProducer, SecondaryNode, SlipFrame, MAX_NODES};
+use super::kinematics::{GapKinematics, GapProducer, PrimaryWeights, SecondaryNode, SlipFrame};
 use super::laws::NodeContactState;
 use super::obstacle::RigidObstacle;
 use nalgebra::{Matrix3, Vector3};
@@ -29,15 +29,14 @@ impl GapProducer<3> for RigidGap<'_> {
     ) -> Option<GapKinematics<3>> {
         let p = self.obstacle.project(&self.relative_position(node));
         Some(GapKinematics {
-            nodes: [node.mesh_node; MAX_NODES],
-            used: 1,
+            nodes: smallvec::smallvec![node.mesh_node],
             gap: p.gap,
             gradient: p.normal,
             hessian: p.curvature,
             normal: p.normal,
             normal_gradient: p.curvature,
             facet: None,
-            weights: [0.0; 3],
+            primary: PrimaryWeights::new(),
             point: (),
         })
     }

@@ -22,7 +22,6 @@
 use super::interface::{ContactContext, ContactInterface, NodeReport, Primary};
 use super::laws::NodeContactState;
 use crate::assembly::pattern::SparsityPattern;
-use std::ops::{Deref, DerefMut};
 
 /// The per-node contact states of every interface (multipliers held fixed
 /// by Uzawa, local slack unknowns): history that Newton reads and the
@@ -32,24 +31,14 @@ pub struct ContactState {
     pub interfaces: Vec<Vec<NodeContactState>>,
 }
 
-/// The contact interfaces of a problem (a slice of [`ContactInterface`]
-/// by `Deref`).
+/// The contact interfaces of a problem, reached through narrow queries
+/// (each interface by index or name, their number, an iterator) and the
+/// operations of the life cycle; no slice of them is lent out, so what
+/// changes the numbering of the multipliers goes through
+/// [`install`](Self::install).
 #[derive(Clone, Debug, Default)]
 pub struct ContactSet {
-    interfaces: Vec<ContactInterface>,
-}
-
-impl Deref for ContactSet {
-    type Target = [ContactInterface];
-    fn deref(&self) -> &[ContactInterface] {
-        &self.interfaces
-    }
-}
-
-impl DerefMut for ContactSet {
-    fn deref_mut(&mut self) -> &mut [ContactInterface] {
-        &mut self.interfaces
-    }
+    pub(super) interfaces: Vec<ContactInterface>,
 }
 
 impl<'a> IntoIterator for &'a ContactSet {
@@ -80,6 +69,53 @@ impl ContactSet {
             offset += c.num_multipliers();
         }
         self.interfaces = interfaces;
+    }
+
+    /// The number of interfaces.
+    pub fn len(&self) -> usize {
+        self.interfaces.len()
+    }
+
+    /// Whether there is no interface.
+    pub fn is_empty(&self) -> bool {
+        self.interfaces.is_empty()
+    }
+
+    /// The interfaces in their order (that of the multipliers and of
+    /// [`ContactState::interfaces`]).
+    pub fn iter(&self) -> std::slice::Iter<'_, ContactInterface> {
+        self.interfaces.iter()
+    }
+
+    /// Interface `i`.
+    pub fn interface(&self, i: usize) -> &ContactInterface {
+        &self.interfaces[i]
+    }
+
+    /// Interface `i`, to change its parameters (motion, amplitude, law's
+    /// parameters, sizes); what changes its number of multipliers (its
+    /// nodes, law kind, friction) needs [`install`](Self::install) again.
+    pub fn interface_mut(&mut self, i: usize) -> &mut ContactInterface {
+        &mut self.interfaces[i]
+    }
+
+    /// The interface named `name` with its index.
+    pub fn by_name(&self, name: &str) -> Option<(usize, &ContactInterface)> {
+        self.interfaces
+            .iter()
+            .enumerate()
+            .find(|(_, c)| c.name == name)
+    }
+
+    /// The interfaces' names, in their order.
+    pub fn names(&self) -> impl Iterator<Item = &str> {
+        self.interfaces.iter().map(|c| c.name.as_str())
+    }
+
+    /// Whether any interface has exact stick's tangential multipliers as
+    /// unknowns ([`ContactInterface::tangential_multipliers`]).
+    pub fn has_tangential_multipliers(&self) -> bool {
+        self.interfaces.iter().any(|c| c.tangential_multipliers())
     }
 
     /// Whether any interface has friction (a nonsymmetric tangent).

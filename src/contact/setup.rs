@@ -200,7 +200,12 @@ impl ContactInterface {
             surface: secondary.to_string(),
             element_size: (total / nodes.len() as f64).sqrt(),
             nodes,
+            report_areas: areas.clone(),
             areas,
+            secondary_surface: match primary {
+                Primary::Surface(_) => PrimarySurface::from_mesh(mesh, secondary),
+                Primary::Rigid(_) => None,
+            },
             primary,
             motion: Vector3::zeros(),
             amplitude: Amplitude::ramp(),

@@ -55,9 +55,7 @@
 use super::friction::{
     Coulomb, FrictionHistory, MaterialPoint, SlipKinematics, TangentialResponse,
 };
-use super::kinematics::{
-    current_position, GapKinematics, GapProducer, SecondaryNode, SlipFrame, MAX_NODES,
-};
+use super::kinematics::{current_position, GapKinematics, GapProducer, SecondaryNode, SlipFrame};
 use super::laws::NodeContactState;
 use super::primary::PrimarySurface;
 use super::triangle_gap::TriangleGap;
@@ -99,18 +97,15 @@ impl GapProducer<Q> for SurfaceGap<'_> {
     ) -> Option<GapKinematics<Q, TriangleGap>> {
         let (t, gap) = self.primary.projection(node, state.facet)?;
         let [a, b, c] = self.primary.triangles[t];
-        let mut nodes = [node.mesh_node; MAX_NODES];
-        nodes[1..4].copy_from_slice(&[a, b, c]);
         Some(GapKinematics {
-            nodes,
-            used: 4,
+            nodes: smallvec::smallvec![node.mesh_node, a, b, c],
             gap: gap.gap,
             gradient: padded(&gap.gradient),
             hessian: padded(&gap.hessian),
             normal: gap.normal,
             normal_gradient: padded(&gap.normal_gradient),
             facet: Some(t),
-            weights: gap.shape,
+            primary: [a, b, c].into_iter().zip(gap.shape).collect(),
             point: gap,
         })
     }
@@ -137,8 +132,8 @@ impl GapProducer<Q> for SurfaceGap<'_> {
         let point = self.material_point(node.index, history);
         let current = [1, 2, 3].map(|a| kinematics.nodes[a]);
         let anchor_nodes = point.map_or(current, |m| self.primary.triangles[m.triangle]);
-        kinematics.nodes[4..].copy_from_slice(&anchor_nodes);
-        kinematics.used = 7;
+        kinematics.nodes.truncate(4);
+        kinematics.nodes.extend_from_slice(&anchor_nodes);
         let mut offset = node.position();
         let mut offset_gradient = SMatrix::<f64, 3, Q>::zeros();
         offset_gradient
@@ -268,7 +263,7 @@ impl GapProducer<Q> for SurfaceGap<'_> {
         let point = match kinematics {
             Some(k) => MaterialPoint {
                 triangle: k.facet?,
-                shape: k.weights,
+                shape: k.point.shape,
                 traction: [0.0; 2],
             },
             None => self.primary.closest_material_point(node)?,

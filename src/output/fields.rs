@@ -55,8 +55,9 @@ pub enum CellField {
 }
 
 impl NodalField {
-    /// Every nodal field, in the order the VTU files list them.
-    /// (New fields go at the end: the Python relay reads them in this order.)
+    /// Every nodal field, in the order the VTU files list them (new fields
+    /// go at the end, so the files keep their order; the Python relay takes
+    /// them by name).
     pub const ALL: [NodalField; 9] = [
         NodalField::Displacement,
         NodalField::ContactPressure,

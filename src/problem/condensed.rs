@@ -871,7 +871,7 @@ impl IncrementSolver for Condensation {
         let mut pressures = zero_per_node(problem);
         for (a, c) in self.nodes.iter().enumerate() {
             pressures[c.interface][c.index] =
-                forces[a] / problem.contacts[c.interface].areas[c.index];
+                forces[a] / problem.contacts.interface(c.interface).areas[c.index];
         }
         set_multipliers(problem, &pressures, &u, t, x, trial);
         Ok(())

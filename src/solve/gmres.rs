@@ -1,8 +1,10 @@
 //! Restarted GMRES with right preconditioning (Saad, *Iterative Methods for
 //! Sparse Linear Systems*, 2nd ed., Algorithm 9.5), for the nonsymmetric
-//! tangents of follower loads (and, later, friction): the preconditioner is
-//! the LDLᵀ of the tangent's symmetric part, so the Krylov method only has
-//! to resolve the small skew part and converges in a few iterations.
+//! tangents of follower loads and friction: the preconditioner is an LDLᵀ
+//! close to the tangent (of its symmetric part for follower loads; with
+//! friction, of the stick preconditioner of
+//! `ContactInterface::shift_to_stick_preconditioner`), so the Krylov method
+//! only has to resolve a small remainder and converges in a few iterations.
 
 /// Outcome of a GMRES solve.
 #[derive(Clone, Copy, Debug)]

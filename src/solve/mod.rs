@@ -1,6 +1,13 @@
-//! The nonlinear solve: Newton–Raphson with a backtracking line search and
-//! adaptive load stepping over a [`nonlinear::NonlinearProblem`], and the
-//! sparse linear solvers behind [`linear_solver::LinearSolver`].
+//! The nonlinear solve: Newton–Raphson with a backtracking line search,
+//! chattering detection and adaptive load stepping with cuts over a
+//! [`nonlinear::NonlinearProblem`]; the sparse linear solvers behind
+//! [`linear_solver::LinearSolver`] (direct LDLᵀ, GMRES preconditioned by
+//! an LDLᵀ, sparse LU, PETSc with the `petsc` feature) with their
+//! orderings and the partition of distributed runs; and the algebra of
+//! the condensed contact path (`K⁻¹` on the contact dofs read off the
+//! factor, the frictionless complementarity problem, the condensed
+//! Coulomb problem in `cone`, the Josephy–Newton step, the factor without
+//! the couplings of decoupled unknowns).
 
 pub mod backend;
 pub mod chattering;

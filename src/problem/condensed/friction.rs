@@ -75,7 +75,10 @@ pub(super) struct FrictionalCondensation {
 fn initial_gaps(problem: &Problem, c: usize) -> Vec<f64> {
     let mut x = vec![0.0; problem.num_unknowns()];
     problem.apply_prescribed(0.0, &mut x);
-    problem.contacts[c].gaps(&problem.model.mesh.nodes, 0.0, &x, None)
+    problem
+        .contacts
+        .interface(c)
+        .gaps(&problem.model.mesh.nodes, 0.0, &x, None)
 }
 
 /// The touching tolerance: 1e-12 of the model size.
@@ -196,7 +199,7 @@ impl FrictionalCondensation {
     /// committed state.
     fn cone_node(&self, problem: &Problem, t: f64, state: &ContactState, a: usize) -> ConeNode {
         let c = &self.contact[a];
-        let interface = &problem.contacts[c.interface];
+        let interface = problem.contacts.interface(c.interface);
         let Primary::Rigid(RigidObstacle::Plane { point, normal }) = &interface.primary else {
             unreachable!("the frictional condensation holds rigid-plane nodes only")
         };
@@ -378,7 +381,7 @@ impl IncrementSolver for FrictionalCondensation {
         let (u, traction) = self.solve_increment(problem, t, state, history)?;
         let mut pressures = super::zero_per_node(problem);
         for (a, c) in self.contact.iter().enumerate() {
-            let interface = &problem.contacts[c.interface];
+            let interface = problem.contacts.interface(c.interface);
             let Primary::Rigid(RigidObstacle::Plane { normal, .. }) = &interface.primary else {
                 continue;
             };

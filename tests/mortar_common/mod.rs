@@ -25,7 +25,11 @@ pub fn grid(
     for (j, y) in ys.iter().enumerate() {
         for (i, x) in xs.iter().enumerate() {
             let interior = i > 0 && i + 1 < nx && j > 0 && j + 1 < ny;
-            let d = if interior { perturb(*x, *y) } else { [0.0, 0.0] };
+            let d = if interior {
+                perturb(*x, *y)
+            } else {
+                [0.0, 0.0]
+            };
             coords.push(Vector3::new(x + d[0], y + d[1], z));
         }
     }
@@ -73,7 +77,10 @@ pub fn linspace(a: f64, b: f64, n: usize) -> Vec<f64> {
 
 /// The consistent nodal integrals `∫ N_k dA` of a surface (Lagrange
 /// functions, face rule), per global node.
-pub fn consistent_integrals(faces: &[SurfaceFace], coords: &[Vector3<f64>]) -> BTreeMap<usize, f64> {
+pub fn consistent_integrals(
+    faces: &[SurfaceFace],
+    coords: &[Vector3<f64>],
+) -> BTreeMap<usize, f64> {
     let mut out = BTreeMap::new();
     for f in faces {
         let face: MortarFace = f.with_coordinates(coords).unwrap();

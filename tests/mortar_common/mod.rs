@@ -81,13 +81,22 @@ pub fn consistent_integrals(
     faces: &[SurfaceFace],
     coords: &[Vector3<f64>],
 ) -> BTreeMap<usize, f64> {
+    nodal_integrals(faces, coords, &|shape, xi| shape.values(xi))
+}
+
+/// `Σ_e ∫_e f_k dA` per global node for the nodal functions `f(shape, ξ)`.
+pub fn nodal_integrals(
+    faces: &[SurfaceFace],
+    coords: &[Vector3<f64>],
+    f: &dyn Fn(FaceShape, [f64; 2]) -> Vec<f64>,
+) -> BTreeMap<usize, f64> {
     let mut out = BTreeMap::new();
-    for f in faces {
-        let face: MortarFace = f.with_coordinates(coords).unwrap();
-        let (points, weights) = f.shape.quadrature();
+    for sf in faces {
+        let face: MortarFace = sf.with_coordinates(coords).unwrap();
+        let (points, weights) = sf.shape.quadrature();
         for (xi, w) in points.iter().zip(&weights) {
             let da = w * face.area_normal(*xi).norm();
-            for (node, n) in f.nodes.iter().zip(f.shape.values(*xi)) {
+            for (node, n) in sf.nodes.iter().zip(f(sf.shape, *xi)) {
                 *out.entry(*node).or_insert(0.0) += n * da;
             }
         }

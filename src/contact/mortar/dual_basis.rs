@@ -12,7 +12,7 @@
 //! and Quad4). On a flat Tri3, `Φ_j = 3N_j − N_k − N_l`; on a
 //! parallelogram Quad4, `Φ_1 = 4N_1 − 2N_2 + N_3 − 2N_4` and cyclic.
 
-use nalgebra::DMatrix;
+use nalgebra::{DMatrix, DVector, Vector3};
 
 use super::face::{FaceShape, MortarFace};
 use super::quadratic;
@@ -31,20 +31,7 @@ impl DualBasis {
     /// rule of [`FaceShape::quadrature`]. A degenerate face (zero area or
     /// a non-positive `∫ Ñ_j`) is an error.
     pub fn of_face(face: &MortarFace) -> Result<DualBasis, MortarError> {
-        let n = face.shape.node_count();
-        let (points, weights) = face.shape.quadrature();
-        let mut mass = DMatrix::<f64>::zeros(n, n);
-        let mut integrals = vec![0.0; n];
-        for (xi, w) in points.iter().zip(&weights) {
-            let da = w * face.area_normal(*xi).norm();
-            let nt = quadratic::mortar_values(face.shape, *xi);
-            for j in 0..n {
-                integrals[j] += nt[j] * da;
-                for k in 0..n {
-                    mass[(j, k)] += nt[j] * nt[k] * da;
-                }
-            }
-        }
+        let (mass, integrals) = face_matrices(face, |xi| face.area_normal(xi).norm());
         let area: f64 = integrals.iter().sum();
         if integrals.iter().any(|i| *i <= 1e-12 * area.abs()) {
             return Err(MortarError::DegenerateFace {
@@ -64,6 +51,29 @@ impl DualBasis {
         })
     }
 
+    /// The directional derivative of `A_e` for node increments `δx_a`
+    /// (Popp et al. 2010, §5.1): `δA = (δD − A δM) M⁻¹`, where `δD` and
+    /// `δM` are `D_e` and `M_e` with the area element `|a|` replaced by its
+    /// derivative `δ|a| = (a/|a|)·δa`.
+    pub fn derivative(
+        &self,
+        face: &MortarFace,
+        dx: &[Vector3<f64>],
+    ) -> Result<DMatrix<f64>, MortarError> {
+        let (mass, _) = face_matrices(face, |xi| face.area_normal(xi).norm());
+        let (d_mass, d_integrals) = face_matrices(face, |xi| {
+            face.unit_normal(xi)
+                .dot(&face.area_normal_derivative(xi, dx))
+        });
+        let inverse = mass
+            .try_inverse()
+            .ok_or_else(|| MortarError::DegenerateFace {
+                what: "the face's mass matrix is singular".to_string(),
+            })?;
+        let d_d = DMatrix::from_diagonal(&DVector::from_vec(d_integrals));
+        Ok((d_d - &self.coefficients * d_mass) * inverse)
+    }
+
     /// `Φ_j = Σ_k a_jk Ñ_k` from the mortar shape function values `Ñ`.
     pub fn values_from(&self, mortar_values: &[f64]) -> Vec<f64> {
         let n = mortar_values.len();
@@ -80,4 +90,27 @@ impl DualBasis {
     pub fn values(&self, xi: [f64; 2]) -> Vec<f64> {
         self.values_from(&quadratic::mortar_values(self.shape, xi))
     }
+}
+
+/// `(M_e)_jk = Σ_q w_q Ñ_j Ñ_k α(ξ_q)` and `(∫ Ñ_j)_j = Σ_q w_q Ñ_j α(ξ_q)`
+/// on the face rule, for an area element `α(ξ)` (`|a|`, or its derivative).
+fn face_matrices(
+    face: &MortarFace,
+    area_element: impl Fn([f64; 2]) -> f64,
+) -> (DMatrix<f64>, Vec<f64>) {
+    let n = face.shape.node_count();
+    let (points, weights) = face.shape.quadrature();
+    let mut mass = DMatrix::<f64>::zeros(n, n);
+    let mut integrals = vec![0.0; n];
+    for (xi, w) in points.iter().zip(&weights) {
+        let da = w * area_element(*xi);
+        let nt = quadratic::mortar_values(face.shape, *xi);
+        for j in 0..n {
+            integrals[j] += nt[j] * da;
+            for k in 0..n {
+                mass[(j, k)] += nt[j] * nt[k] * da;
+            }
+        }
+    }
+    (mass, integrals)
 }

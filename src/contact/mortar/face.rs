@@ -185,6 +185,19 @@ impl MortarFace {
         t1.cross(&t2)
     }
 
+    /// The directional derivative of the area normal for node increments
+    /// `δx_a`: `δa = δx_,ξ × x_,η + x_,ξ × δx_,η`, `δx_,ξ = Σ_a N_a,ξ δx_a`.
+    pub fn area_normal_derivative(&self, xi: [f64; 2], dx: &[Vector3<f64>]) -> Vector3<f64> {
+        let [t1, t2] = self.tangents(xi);
+        let g = self.shape.gradients(xi);
+        let mut dt = [Vector3::zeros(); 2];
+        for (d, g) in dx.iter().zip(&g) {
+            dt[0] += d * g[0];
+            dt[1] += d * g[1];
+        }
+        dt[0].cross(&t2) + t1.cross(&dt[1])
+    }
+
     /// The unit normal `n = a / |a|`.
     pub fn unit_normal(&self, xi: [f64; 2]) -> Vector3<f64> {
         self.area_normal(xi).normalize()
@@ -203,5 +216,32 @@ impl MortarFace {
     /// The corner coordinates (the first 3 or 4 nodes).
     pub fn corners(&self) -> &[Vector3<f64>] {
         &self.coordinates[..self.shape.corner_count()]
+    }
+}
+
+/// A face of a contact surface: its shape and its global node numbers.
+#[derive(Clone, Debug, PartialEq, Eq)]
+pub struct SurfaceFace {
+    pub shape: FaceShape,
+    pub nodes: Vec<usize>,
+}
+
+impl SurfaceFace {
+    /// The face with its nodes' coordinates taken from `coordinates`.
+    pub fn with_coordinates(
+        &self,
+        coordinates: &[Vector3<f64>],
+    ) -> Result<MortarFace, MortarError> {
+        let xs = self
+            .nodes
+            .iter()
+            .map(|&n| {
+                coordinates.get(n).copied().ok_or(MortarError::NodeIndex {
+                    node: n,
+                    count: coordinates.len(),
+                })
+            })
+            .collect::<Result<Vec<_>, _>>()?;
+        MortarFace::new(self.shape, xs)
     }
 }

@@ -10,6 +10,7 @@
 //! - [`auxiliary_plane`], [`clipping`], [`projection`]: the segmentation of
 //!   a face pair in the secondary face's auxiliary plane (Puso & Laursen
 //!   2004; Popp, Gitterle, Gee & Wall 2010).
+//! - [`normals`]: averaged nodal normals and their derivatives.
 //! - [`segment`]: one pair's contributions to `D` and `M`.
 //! - [`weighted_gap`]: the assembled `D`, `M`, averaged nodal normals,
 //!   weighted gaps `g̃_j` and the contact forces of the multipliers.
@@ -22,15 +23,17 @@ pub mod auxiliary_plane;
 pub mod clipping;
 pub mod dual_basis;
 pub mod face;
+pub mod normals;
 pub mod projection;
 pub mod quadratic;
 pub mod segment;
 pub mod weighted_gap;
 
 pub use dual_basis::DualBasis;
-pub use face::{FaceShape, MortarFace};
+pub use face::{FaceShape, MortarFace, SurfaceFace};
+pub use normals::{nodal_normal_derivatives, nodal_normals};
 pub use segment::{integrate_pair, overlap, Overlap, SegmentIntegrals};
-pub use weighted_gap::{all_pairs, mortar_coupling, nodal_normals, MortarCoupling, SurfaceFace};
+pub use weighted_gap::{all_pairs, mortar_coupling, MortarCoupling};
 
 /// What went wrong in a mortar kernel, in the words of the face's data.
 #[derive(Clone, Debug, PartialEq, thiserror::Error)]

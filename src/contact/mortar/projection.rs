@@ -61,3 +61,34 @@ pub fn project_along(
         ),
     })
 }
+
+/// The directional derivative `(δξ, δα)` of a projection `hit` for
+/// increments `dx` of the face's nodes, `d_point` of the projected point
+/// and `d_direction` of the direction (Popp et al. 2010, §5.3, by the
+/// implicit function theorem on `r = 0`):
+///
+/// ```text
+/// [x_,ξ  x_,η  −d] (δξ, δη, δα) = −(Σ_a N_a(ξ) δx_a − δX − α δd).
+/// ```
+pub fn projection_derivative(
+    face: &MortarFace,
+    hit: &FacePoint,
+    direction: &Vector3<f64>,
+    dx: &[Vector3<f64>],
+    d_point: &Vector3<f64>,
+    d_direction: &Vector3<f64>,
+) -> Result<([f64; 2], f64), MortarError> {
+    let [t1, t2] = face.tangents(hit.xi);
+    let n = face.shape.values(hit.xi);
+    let dr: Vector3<f64> = dx.iter().zip(&n).map(|(d, n)| d * *n).sum::<Vector3<f64>>()
+        - d_point
+        - d_direction * hit.distance;
+    let jacobian = Matrix3::from_columns(&[t1, t2, -direction]);
+    let step = jacobian
+        .lu()
+        .solve(&-dr)
+        .ok_or_else(|| MortarError::Projection {
+            what: format!("the face is parallel to the direction {direction:?}"),
+        })?;
+    Ok(([step[0], step[1]], step[2]))
+}

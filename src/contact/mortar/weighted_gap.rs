@@ -25,37 +25,11 @@ use std::collections::BTreeMap;
 use nalgebra::Vector3;
 
 use super::dual_basis::DualBasis;
-use super::face::{FaceShape, MortarFace};
+use super::face::SurfaceFace;
+use super::normals::nodal_normals;
 use super::quadratic;
 use super::segment::integrate_pair;
 use super::MortarError;
-
-/// A face of a contact surface: its shape and its global node numbers.
-#[derive(Clone, Debug, PartialEq, Eq)]
-pub struct SurfaceFace {
-    pub shape: FaceShape,
-    pub nodes: Vec<usize>,
-}
-
-impl SurfaceFace {
-    /// The face with its nodes' coordinates taken from `coordinates`.
-    pub fn with_coordinates(
-        &self,
-        coordinates: &[Vector3<f64>],
-    ) -> Result<MortarFace, MortarError> {
-        let xs = self
-            .nodes
-            .iter()
-            .map(|&n| {
-                coordinates.get(n).copied().ok_or(MortarError::NodeIndex {
-                    node: n,
-                    count: coordinates.len(),
-                })
-            })
-            .collect::<Result<Vec<_>, _>>()?;
-        MortarFace::new(self.shape, xs)
-    }
-}
 
 /// Every (secondary, primary) face index pair: the candidate list when no
 /// search has narrowed it.
@@ -63,23 +37,6 @@ pub fn all_pairs(secondary_count: usize, primary_count: usize) -> Vec<(usize, us
     (0..secondary_count)
         .flat_map(|s| (0..primary_count).map(move |p| (s, p)))
         .collect()
-}
-
-/// The averaged outward nodal normals `n_j` of a surface: the unit face
-/// normals at each node's reference position, summed over the faces that
-/// hold the node, normalised.
-pub fn nodal_normals(
-    faces: &[SurfaceFace],
-    coordinates: &[Vector3<f64>],
-) -> Result<BTreeMap<usize, Vector3<f64>>, MortarError> {
-    let mut sums: BTreeMap<usize, Vector3<f64>> = BTreeMap::new();
-    for face in faces {
-        let f = face.with_coordinates(coordinates)?;
-        for (node, xi) in face.nodes.iter().zip(face.shape.reference_nodes()) {
-            *sums.entry(*node).or_insert_with(Vector3::zeros) += f.unit_normal(*xi);
-        }
-    }
-    Ok(sums.into_iter().map(|(n, s)| (n, s.normalize())).collect())
 }
 
 /// The assembled mortar coupling of two surfaces (global node numbers).

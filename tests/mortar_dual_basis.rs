@@ -61,16 +61,7 @@ fn integrate(face: &MortarFace, f: impl Fn([f64; 2]) -> f64) -> f64 {
     let (points, weights) = if face.shape.is_triangle() {
         quadrature::triangle_collapsed(8)
     } else {
-        let (x, w) = quadrature::gauss_legendre_any(8);
-        let mut p = Vec::new();
-        let mut ws = Vec::new();
-        for (xj, wj) in x.iter().zip(&w) {
-            for (xi, wi) in x.iter().zip(&w) {
-                p.push([*xi, *xj]);
-                ws.push(wi * wj);
-            }
-        }
-        (p, ws)
+        quadrature::quadrilateral_any(8)
     };
     points
         .iter()

@@ -144,3 +144,18 @@ pub fn triangle_collapsed(n: usize) -> (Vec<[f64; 2]>, Vec<f64>) {
     }
     (points, weights)
 }
+
+/// Tensor-product Gauss–Legendre rule with `n` points per direction on
+/// [−1, 1]² for any `n ≥ 1` (exact to degree `2n − 1` per direction).
+pub fn quadrilateral_any(n: usize) -> (Vec<[f64; 2]>, Vec<f64>) {
+    let (x, w) = gauss_legendre_any(n);
+    let mut points = Vec::with_capacity(x.len() * x.len());
+    let mut weights = Vec::with_capacity(x.len() * x.len());
+    for (xj, wj) in x.iter().zip(&w) {
+        for (xi, wi) in x.iter().zip(&w) {
+            points.push([*xi, *xj]);
+            weights.push(wi * wj);
+        }
+    }
+    (points, weights)
+}

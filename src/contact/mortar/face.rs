@@ -120,16 +120,7 @@ impl FaceShape {
         if self.is_triangle() {
             quadrature::triangle_collapsed(FACE_RULE_POINTS)
         } else {
-            let (x, w) = quadrature::gauss_legendre_any(FACE_RULE_POINTS);
-            let mut points = Vec::new();
-            let mut weights = Vec::new();
-            for (xj, wj) in x.iter().zip(&w) {
-                for (xi, wi) in x.iter().zip(&w) {
-                    points.push([*xi, *xj]);
-                    weights.push(wi * wj);
-                }
-            }
-            (points, weights)
+            quadrature::quadrilateral_any(FACE_RULE_POINTS)
         }
     }
 

@@ -38,14 +38,7 @@ pub fn project_along(
     let mut alpha = 0.0;
     for _ in 0..MAX_ITERATIONS {
         let r = face.point(xi) - point - direction * alpha;
-        let [t1, t2] = face.tangents(xi);
-        let jacobian = Matrix3::from_columns(&[t1, t2, -direction]);
-        let step = jacobian
-            .lu()
-            .solve(&-r)
-            .ok_or_else(|| MortarError::Projection {
-                what: format!("the face is parallel to the direction {direction:?}"),
-            })?;
+        let step = newton_step(face, xi, direction, &r)?;
         xi = [xi[0] + step[0], xi[1] + step[1]];
         alpha += step[2];
         if step[0].abs().max(step[1].abs()) < 1e-14 {
@@ -78,17 +71,27 @@ pub fn projection_derivative(
     d_point: &Vector3<f64>,
     d_direction: &Vector3<f64>,
 ) -> Result<([f64; 2], f64), MortarError> {
-    let [t1, t2] = face.tangents(hit.xi);
     let n = face.shape.values(hit.xi);
     let dr: Vector3<f64> = dx.iter().zip(&n).map(|(d, n)| d * *n).sum::<Vector3<f64>>()
         - d_point
         - d_direction * hit.distance;
+    let step = newton_step(face, hit.xi, direction, &dr)?;
+    Ok(([step[0], step[1]], step[2]))
+}
+
+/// Solves `[x_,ξ(ξ)  x_,η(ξ)  −d] s = −r`; a face parallel to `d` is an error.
+fn newton_step(
+    face: &MortarFace,
+    xi: [f64; 2],
+    direction: &Vector3<f64>,
+    r: &Vector3<f64>,
+) -> Result<Vector3<f64>, MortarError> {
+    let [t1, t2] = face.tangents(xi);
     let jacobian = Matrix3::from_columns(&[t1, t2, -direction]);
-    let step = jacobian
+    jacobian
         .lu()
-        .solve(&-dr)
+        .solve(&-r)
         .ok_or_else(|| MortarError::Projection {
             what: format!("the face is parallel to the direction {direction:?}"),
-        })?;
-    Ok(([step[0], step[1]], step[2]))
+        })
 }

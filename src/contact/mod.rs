@@ -50,6 +50,7 @@ pub mod hertz;
 pub mod interface;
 pub mod kinematics;
 pub mod laws;
+pub mod mortar;
 pub mod obstacle;
 pub mod primary;
 pub mod projection;

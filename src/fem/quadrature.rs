@@ -84,3 +84,78 @@ pub fn triangle(n: usize) -> (Vec<[f64; 2]>, Vec<f64>) {
         _ => panic!("triangle rule with {n} points not tabulated (1, 3)"),
     }
 }
+
+/// Gauss–Legendre points and weights on [−1, 1] for any `n ≥ 1`, exact for
+/// polynomials of degree `2n − 1`: the roots `x_i` of the Legendre
+/// polynomial `P_n` by Newton's method from `cos(π (i + ¾)/(n + ½))`, and
+/// `w_i = 2 / ((1 − x_i²) P_n′(x_i)²)`.
+pub fn gauss_legendre_any(n: usize) -> (Vec<f64>, Vec<f64>) {
+    let n = n.max(1);
+    let mut points = vec![0.0; n];
+    let mut weights = vec![0.0; n];
+    for i in 0..n {
+        let mut x = (std::f64::consts::PI * (i as f64 + 0.75) / (n as f64 + 0.5)).cos();
+        let mut derivative = 1.0;
+        for _ in 0..100 {
+            let (p, dp) = legendre_with_derivative(n, x);
+            derivative = dp;
+            let step = p / dp;
+            x -= step;
+            if step.abs() < 1e-16 {
+                derivative = legendre_with_derivative(n, x).1;
+                break;
+            }
+        }
+        points[n - 1 - i] = x;
+        weights[n - 1 - i] = 2.0 / ((1.0 - x * x) * derivative * derivative);
+    }
+    (points, weights)
+}
+
+/// `P_n(x)` and `P_n′(x)` by the three-term recurrence
+/// `k P_k = (2k − 1) x P_{k−1} − (k − 1) P_{k−2}`,
+/// `P_n′ = n (x P_n − P_{n−1}) / (x² − 1)`.
+fn legendre_with_derivative(n: usize, x: f64) -> (f64, f64) {
+    let (mut p_prev, mut p) = (1.0, x);
+    for k in 2..=n {
+        let k = k as f64;
+        let next = ((2.0 * k - 1.0) * x * p - (k - 1.0) * p_prev) / k;
+        p_prev = p;
+        p = next;
+    }
+    (p, n as f64 * (x * p - p_prev) / (x * x - 1.0))
+}
+
+/// Collapsed (Duffy/Stroud conical-product) rule on the unit triangle with
+/// `n × n` points: `ξ = u`, `η = (1 − u) v` with `u, v` Gauss–Legendre on
+/// [0, 1] and weight `w_u w_v (1 − u)`; exact for total degree `2n − 2`.
+/// The weights sum to ½.
+pub fn triangle_collapsed(n: usize) -> (Vec<[f64; 2]>, Vec<f64>) {
+    let (x, w) = gauss_legendre_any(n);
+    let mut points = Vec::with_capacity(x.len() * x.len());
+    let mut weights = Vec::with_capacity(x.len() * x.len());
+    for (xu, wu) in x.iter().zip(&w) {
+        let u = 0.5 * (1.0 + xu);
+        for (xv, wv) in x.iter().zip(&w) {
+            let v = 0.5 * (1.0 + xv);
+            points.push([u, (1.0 - u) * v]);
+            weights.push(0.25 * wu * wv * (1.0 - u));
+        }
+    }
+    (points, weights)
+}
+
+/// Tensor-product Gauss–Legendre rule with `n` points per direction on
+/// [−1, 1]² for any `n ≥ 1` (exact to degree `2n − 1` per direction).
+pub fn quadrilateral_any(n: usize) -> (Vec<[f64; 2]>, Vec<f64>) {
+    let (x, w) = gauss_legendre_any(n);
+    let mut points = Vec::with_capacity(x.len() * x.len());
+    let mut weights = Vec::with_capacity(x.len() * x.len());
+    for (xj, wj) in x.iter().zip(&w) {
+        for (xi, wi) in x.iter().zip(&w) {
+            points.push([*xi, *xj]);
+            weights.push(wi * wj);
+        }
+    }
+    (points, weights)
+}

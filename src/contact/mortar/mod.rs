@@ -1,0 +1,51 @@
+//! Dual mortar contact kernels (issue 28): pure functions of the faces'
+//! current coordinates, not yet wired into Newton.
+//!
+//! - [`face`]: a contact face (Tri3, Quad4, Tri6, Quad8) and its map
+//!   `x(ξ)`, tangents and normal.
+//! - [`quadratic`]: the basis transformation `Ñ = T N` of quadratic
+//!   secondary faces (Popp, Wohlmuth, Gee & Wall 2012), so every `∫ Ñ_j > 0`.
+//! - [`dual_basis`]: the biorthogonal multiplier basis `Φ = A_e Ñ`,
+//!   `A_e = D_e M_e⁻¹` (Wohlmuth 2000).
+//! - [`auxiliary_plane`], [`clipping`], [`projection`]: the segmentation of
+//!   a face pair in the secondary face's auxiliary plane (Puso & Laursen
+//!   2004; Popp, Gitterle, Gee & Wall 2010).
+//! - [`normals`]: averaged nodal normals and their derivatives.
+//! - [`segment`]: one pair's contributions to `D` and `M`.
+//! - [`weighted_gap`]: the assembled `D`, `M`, averaged nodal normals,
+//!   weighted gaps `g̃_j` and the contact forces of the multipliers.
+//!
+//! Conventions as in `formulation.md`: `g̃_j ≥ 0` open, `λ_j ≥ 0`
+//! compressive; the secondary surface's normals point outward (toward the
+//! primary body). See DESIGN.md, "Mortar contact".
+
+pub mod auxiliary_plane;
+pub mod clipping;
+pub mod dual_basis;
+pub mod face;
+pub mod normals;
+pub mod projection;
+pub mod quadratic;
+pub mod segment;
+pub mod weighted_gap;
+
+pub use dual_basis::DualBasis;
+pub use face::{FaceShape, MortarFace, SurfaceFace};
+pub use normals::{nodal_normal_derivatives, nodal_normals};
+pub use segment::{integrate_pair, overlap, Overlap, SegmentIntegrals};
+pub use weighted_gap::{all_pairs, mortar_coupling, MortarCoupling};
+
+/// What went wrong in a mortar kernel, in the words of the face's data.
+#[derive(Clone, Debug, PartialEq, thiserror::Error)]
+pub enum MortarError {
+    #[error("a {shape:?} contact face needs {} nodes, {given} were given", shape.node_count())]
+    NodeCount { shape: FaceShape, given: usize },
+    #[error("contact face node {node} is not among the {count} nodes given")]
+    NodeIndex { node: usize, count: usize },
+    #[error(
+        "degenerate contact face: {what}; check that its nodes are distinct and not collinear"
+    )]
+    DegenerateFace { what: String },
+    #[error("projection onto a contact face failed: {what}; check the face for distortion")]
+    Projection { what: String },
+}

@@ -1,0 +1,112 @@
+//! Meshes and reference integrals shared by the mortar tests.
+#![allow(dead_code)]
+
+use std::collections::BTreeMap;
+
+use nalgebra::Vector3;
+use signorini::contact::mortar::{FaceShape, MortarFace, SurfaceFace};
+
+/// A structured surface on the grid `xs × ys` at height `z`, split into
+/// `shape` faces (two triangles per cell for Tri3/Tri6), with nodes
+/// appended to `coords`. `facing_down` reverses the corner order so the
+/// face normal is −z (a primary surface above a secondary one).
+/// `perturb(x, y)` moves the interior corner nodes in the plane.
+pub fn grid(
+    xs: &[f64],
+    ys: &[f64],
+    z: f64,
+    shape: FaceShape,
+    facing_down: bool,
+    perturb: &dyn Fn(f64, f64) -> [f64; 2],
+    coords: &mut Vec<Vector3<f64>>,
+) -> Vec<SurfaceFace> {
+    let first = coords.len();
+    let (nx, ny) = (xs.len(), ys.len());
+    for (j, y) in ys.iter().enumerate() {
+        for (i, x) in xs.iter().enumerate() {
+            let interior = i > 0 && i + 1 < nx && j > 0 && j + 1 < ny;
+            let d = if interior {
+                perturb(*x, *y)
+            } else {
+                [0.0, 0.0]
+            };
+            coords.push(Vector3::new(x + d[0], y + d[1], z));
+        }
+    }
+    let id = |i: usize, j: usize| first + j * nx + i;
+    let mut corner_sets = Vec::new();
+    for j in 0..ny - 1 {
+        for i in 0..nx - 1 {
+            let q = [id(i, j), id(i + 1, j), id(i + 1, j + 1), id(i, j + 1)];
+            if shape.is_triangle() {
+                corner_sets.push(vec![q[0], q[1], q[2]]);
+                corner_sets.push(vec![q[0], q[2], q[3]]);
+            } else {
+                corner_sets.push(q.to_vec());
+            }
+        }
+    }
+    let mut mids: BTreeMap<(usize, usize), usize> = BTreeMap::new();
+    corner_sets
+        .into_iter()
+        .map(|mut corners| {
+            if facing_down {
+                corners.reverse();
+            }
+            let mut nodes = corners.clone();
+            if shape.is_quadratic() {
+                for e in 0..corners.len() {
+                    let (a, b) = (corners[e], corners[(e + 1) % corners.len()]);
+                    let key = (a.min(b), a.max(b));
+                    let m = *mids.entry(key).or_insert_with(|| {
+                        coords.push((coords[a] + coords[b]) * 0.5);
+                        coords.len() - 1
+                    });
+                    nodes.push(m);
+                }
+            }
+            SurfaceFace { shape, nodes }
+        })
+        .collect()
+}
+
+/// Uniformly spaced points `a, …, b` (`n` intervals).
+pub fn linspace(a: f64, b: f64, n: usize) -> Vec<f64> {
+    (0..=n).map(|i| a + (b - a) * i as f64 / n as f64).collect()
+}
+
+/// The consistent nodal integrals `∫ N_k dA` of a surface (Lagrange
+/// functions, face rule), per global node.
+pub fn consistent_integrals(
+    faces: &[SurfaceFace],
+    coords: &[Vector3<f64>],
+) -> BTreeMap<usize, f64> {
+    nodal_integrals(faces, coords, &|shape, xi| shape.values(xi))
+}
+
+/// `Σ_e ∫_e f_k dA` per global node for the nodal functions `f(shape, ξ)`.
+pub fn nodal_integrals(
+    faces: &[SurfaceFace],
+    coords: &[Vector3<f64>],
+    f: &dyn Fn(FaceShape, [f64; 2]) -> Vec<f64>,
+) -> BTreeMap<usize, f64> {
+    let mut out = BTreeMap::new();
+    for sf in faces {
+        let face: MortarFace = sf.with_coordinates(coords).unwrap();
+        let (points, weights) = sf.shape.quadrature();
+        for (xi, w) in points.iter().zip(&weights) {
+            let da = w * face.area_normal(*xi).norm();
+            for (node, n) in sf.nodes.iter().zip(f(sf.shape, *xi)) {
+                *out.entry(*node).or_insert(0.0) += n * da;
+            }
+        }
+    }
+    out
+}
+
+/// A deterministic pseudo-random number in [−1, 1] from a seed (no `rand`
+/// state needed across calls).
+pub fn hash_unit(seed: f64) -> f64 {
+    let s = (seed * 12.9898 + 78.233).sin() * 43758.5453;
+    2.0 * (s - s.floor()) - 1.0
+}

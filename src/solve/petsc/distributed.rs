@@ -14,6 +14,7 @@
 //! solution is scattered whole to every process (`VecScatterCreateToAll`),
 //! so every process goes on with the same unknowns.
 
+use super::fault::{self, Agreement};
 use super::{make_ksp, message, RowPattern, Tally, MESSAGE, PETSC};
 use crate::assembly::share::Communicator;
 use crate::solve::linear::{pattern_fingerprint, Ordering};
@@ -107,6 +108,8 @@ impl MpiWorld {
         if code != 0 {
             return Err(Error::LinearSolver(message(&err)));
         }
+        drop(_lock);
+        super::fault::initialise(rank as usize, size as usize)?;
         Ok(MpiWorld {
             rank: rank as usize,
             size: size as usize,
@@ -133,8 +136,8 @@ impl Communicator for MpiWorld {
         // SAFETY: v is valid for v.len() doubles, the buffer for its length
         let code = unsafe { ffi::sg_mpi_sum(v.as_mut_ptr(), v.len(), err.as_mut_ptr(), err.len()) };
         if code != 0 {
-            eprintln!("error: rank {}: {}", self.rank, message(&err));
-            std::process::exit(1);
+            drop(_lock);
+            super::fault::fault(&message(&err));
         }
     }
 }
@@ -347,7 +350,45 @@ impl LinearSolver for DistributedPetscSolver {
 
     /// `system.matrix` is this process's part `K^p`; `rhs` the whole
     /// right-hand side (the same on every process); `x` the whole solution.
+    /// The processes agree on the outcome ([`fault::agree`]): a solve that
+    /// failed on one fails on every one, with its message.
     fn solve(
+        &mut self,
+        system: &LinearSystem<'_>,
+        rhs: &[f64],
+        x: &mut [f64],
+    ) -> std::result::Result<(), String> {
+        let local = self.solve_here(system, rhs, x);
+        agreed(local)
+    }
+
+    fn description(&self) -> String {
+        self.description.clone()
+    }
+
+    fn statistics(&self) -> SolverStatistics {
+        self.tally.statistics()
+    }
+}
+
+/// The outcome every process agreed on, given this process's `local` one:
+/// a failure on any process is a failure on all (this process's message,
+/// or the failed one's with its rank); a process that failed alone while
+/// another is stuck ends the run ([`fault::fault`]).
+fn agreed(local: std::result::Result<(), String>) -> std::result::Result<(), String> {
+    match fault::agree(local.as_ref().map(|_| ()).map_err(String::as_str)) {
+        Agreement::Succeeded => Ok(()),
+        Agreement::Failed { rank, message } => match local {
+            Err(mine) => Err(mine),
+            Ok(()) => Err(format!("process {rank}: {message}")),
+        },
+        Agreement::NoAnswer => fault::fault(local.err().as_deref().unwrap_or("no answer")),
+    }
+}
+
+impl DistributedPetscSolver {
+    /// This process's part of [`LinearSolver::solve`].
+    fn solve_here(
         &mut self,
         system: &LinearSystem<'_>,
         rhs: &[f64],
@@ -409,14 +450,6 @@ impl LinearSolver for DistributedPetscSolver {
             *xi = solution[numbering.global[old]];
         }
         self.tally.record(start, iterations, code, &err, x)
-    }
-
-    fn description(&self) -> String {
-        self.description.clone()
-    }
-
-    fn statistics(&self) -> SolverStatistics {
-        self.tally.statistics()
     }
 }
 

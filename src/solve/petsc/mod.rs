@@ -82,6 +82,7 @@ struct SystemArguments {
 static PETSC: Mutex<()> = Mutex::new(());
 
 pub mod distributed;
+pub mod fault;
 
 const MESSAGE: usize = 1024;
 

@@ -20,6 +20,8 @@ _Static_assert(sizeof(PetscInt) == sizeof(int), "signorini passes 32-bit PETSc i
 _Static_assert(sizeof(PetscScalar) == sizeof(double), "signorini needs real double PETSc");
 #include <stdio.h>
 #include <string.h>
+#include <time.h>
+#include <unistd.h>
 
 static int initialised = 0;
 
@@ -415,3 +417,61 @@ int sg_petsc_mpi_solve(void *handle, const DistributedSystem *system,
   CHECK(VecRestoreArrayRead(s->everywhere, &y));
   return 0;
 }
+
+/* ---- faults of a distributed run: src/solve/petsc/distributed.rs ---- */
+
+/* A communicator of its own for the agreement on outcomes, so that a
+ * process waiting there never matches the collectives of a process still
+ * inside a solve or a sum on PETSC_COMM_WORLD. */
+static MPI_Comm fault_comm = MPI_COMM_NULL;
+
+int sg_mpi_fault_init(char *err, size_t err_len) {
+  if (fault_comm == MPI_COMM_NULL) {
+    CHECK(MPI_Comm_dup(PETSC_COMM_WORLD, &fault_comm));
+  }
+  return 0;
+}
+
+/* Every process's record of `record` bytes (a flag byte, 1 when it
+ * failed, then its message) gathered into `records` (size × record)
+ * with a non-blocking gather on the fault communicator, polled. A process
+ * gives up after `timeout` seconds (none when `timeout` <= 0): `*done` 0
+ * then, and the gather stays pending (the caller ends the run). */
+int sg_mpi_agree(const char *message, char *records, size_t record,
+                 double timeout, int *done, char *err, size_t err_len) {
+  /* kept alive while the gather may still read it (one per call site's
+   * lifetime; a pending gather only precedes MPI_Abort) */
+  char *mine = calloc(record, 1);
+  if (!mine) {
+    snprintf(err, err_len, "out of memory for the agreement of the processes");
+    return 1;
+  }
+  if (message) {
+    mine[0] = 1;
+    strncpy(mine + 1, message, record - 2);
+  }
+  MPI_Request request;
+  CHECK(MPI_Iallgather(mine, (int)record, MPI_CHAR, records, (int)record,
+                       MPI_CHAR, fault_comm, &request));
+  double start = MPI_Wtime();
+  int flag = 0;
+  for (long polls = 0;; polls++) {
+    CHECK(MPI_Test(&request, &flag, MPI_STATUS_IGNORE));
+    if (flag) break;
+    if (timeout > 0 && MPI_Wtime() - start > timeout) break;
+    if (polls > 1000) {
+      struct timespec pause = {0, 1000000};
+      nanosleep(&pause, NULL);
+    }
+  }
+  *done = flag;
+  if (flag) free(mine);
+  return 0;
+}
+
+/* End every process of the run (mpirun kills the others). */
+void sg_mpi_abort(int code) { MPI_Abort(PETSC_COMM_WORLD, code); }
+
+/* End this process now, without PETSc's and MPI's finalisation (which
+ * would wait for processes that are gone). */
+void sg_exit_now(int code) { _exit(code); }

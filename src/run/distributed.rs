@@ -11,7 +11,10 @@
 //! distributed matrix ([`DistributedPetscSolver`]) and hands the whole
 //! correction back to every process. Output: each process writes the
 //! `.vtu` piece of its elements, rank 0 the `.pvtu` over them, the `.pvd`,
-//! `summary.json` and the log.
+//! `summary.json` and the log. The processes agree on how the run ended
+//! ([`Distribution::conclude`]); a process that fails alone, or a signal,
+//! ends every process within seconds with `summary.json` marked failed
+//! (`crate::solve::petsc::fault`).
 
 use super::{RunOptions, RunOutcome};
 use crate::problem::condensed::{Choice, Path as SolvePath};

@@ -97,6 +97,11 @@ pub enum Error {
     /// of another format version, or of another case.
     #[error("cannot restart from '{path}': {message}")]
     Restart { path: PathBuf, message: String },
+
+    /// Another process of a distributed run (`mpirun -np N`) failed: its
+    /// rank and message.
+    #[error("the distributed run failed on {0}")]
+    Distributed(String),
 }
 
 /// Result with the crate's [`Error`].

@@ -229,9 +229,24 @@ impl Simulation {
         options: &RunOptions,
         observer: &mut (dyn StepObserver + Send),
     ) -> Result<RunOutcome> {
-        // under mpirun: this process's elements, its rank's share of the files
-        let distribution = Distribution::start(&mut self.problem, &self.case_label)?;
-        let strategy = match &distribution {
+        // under mpirun: this process's elements, its rank's share of the
+        // files, and the processes agree on how the run ended
+        let distribution = Distribution::start(&mut self.problem, &self.case_label, options)?;
+        let result = self.run_with(options, observer, distribution.as_ref());
+        match &distribution {
+            Some(d) => d.conclude(result),
+            None => result,
+        }
+    }
+
+    /// [`run_here`](Self::run_here) for this process's `distribution`, if any.
+    fn run_with(
+        &mut self,
+        options: &RunOptions,
+        observer: &mut (dyn StepObserver + Send),
+        distribution: Option<&Distribution>,
+    ) -> Result<RunOutcome> {
+        let strategy = match distribution {
             Some(d) => d.strategy(&self.problem, self.strategy.clone(), &self.case_label)?,
             None => self.strategy.clone(),
         };
@@ -240,7 +255,7 @@ impl Simulation {
             None => None,
         };
         let (mut writer, mut log, mut piece) =
-            self.file_observers(options, restart.as_ref(), distribution.as_ref())?;
+            self.file_observers(options, restart.as_ref(), distribution)?;
         let mut observers = Observers(vec![observer]);
         if let Some(w) = writer.as_mut() {
             observers.0.insert(0, w);
@@ -257,7 +272,8 @@ impl Simulation {
         }
         let mut recorder = Recorder::new(&self.case_label, &self.problem, observers, &self.name);
         recorder.every = self.every;
-        recorder.cancel = options.cancel.clone();
+        // a distributed run ends on a signal at once (Distribution::watch)
+        recorder.cancel = options.cancel.clone().filter(|_| distribution.is_none());
         if distribution.is_some() {
             recorder.extension = "pvtu";
         }
@@ -266,7 +282,7 @@ impl Simulation {
         let output = options.output.clone().unwrap_or_default();
         let (result, statistics) = match strategy.path {
             SolvePath::Monolithic => {
-                self.run_monolithic(&mut recorder, resume, &output, distribution.as_ref())?
+                self.run_monolithic(&mut recorder, resume, &output, distribution)?
             }
             SolvePath::Condensed => match condensed::Condensed::new(&self.problem) {
                 Ok(method) => self.run_condensed(method, &mut recorder, resume, &output),

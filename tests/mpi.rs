@@ -98,6 +98,14 @@ name = "block"
     /// `mpirun -np 2` with the flags Open MPI needs as root and on a
     /// machine with fewer cores.
     fn mpirun() -> Command {
+        let mut command = mpirun_alone();
+        command.args(["-np", "2"]);
+        command
+    }
+
+    /// `mpirun` with the flags Open MPI needs as root and on a machine
+    /// with fewer cores, without a process count.
+    fn mpirun_alone() -> Command {
         let version = Command::new("mpirun")
             .arg("--version")
             .output()
@@ -106,7 +114,6 @@ name = "block"
         if String::from_utf8_lossy(&version.stdout).contains("Open MPI") {
             command.args(["--allow-run-as-root", "--oversubscribe"]);
         }
-        command.args(["-np", "2"]);
         command
     }
 
@@ -231,6 +238,342 @@ name = "block"
             contact_nodes.iter().all(|&c| c > 0),
             "{what}: the partition does not cut the contact zone: {contact_nodes:?}"
         );
+    }
+
+    /// How a bounded `mpirun` ended: its exit status, standard error,
+    /// wall time and the run's `summary.json`.
+    struct Ended {
+        status: std::process::ExitStatus,
+        stderr: String,
+        summary: serde_json::Value,
+    }
+
+    /// Run `command` (an `mpirun`), its output into files in `out`, and
+    /// fail the test if it has not ended after `limit` (killing it: a
+    /// hang must fail, not block the suite); `during` is called every
+    /// 10 ms with the child while it runs.
+    fn bounded(
+        mut command: Command,
+        out: &Path,
+        limit: std::time::Duration,
+        mut during: impl FnMut(&std::process::Child),
+    ) -> Ended {
+        std::fs::create_dir_all(out).unwrap();
+        let stderr_path = out.join("stderr.txt");
+        let mut child = command
+            .stdout(std::fs::File::create(out.join("stdout.txt")).unwrap())
+            .stderr(std::fs::File::create(&stderr_path).unwrap())
+            .spawn()
+            .unwrap();
+        let start = std::time::Instant::now();
+        let status = loop {
+            if let Some(status) = child.try_wait().unwrap() {
+                break status;
+            }
+            if start.elapsed() > limit {
+                let _ = child.kill();
+                let _ = child.wait();
+                panic!(
+                    "mpirun still running after {limit:?}: {}",
+                    std::fs::read_to_string(&stderr_path).unwrap_or_default()
+                );
+            }
+            during(&child);
+            std::thread::sleep(std::time::Duration::from_millis(10));
+        };
+        let summary = std::fs::read_to_string(out.join("summary.json"))
+            .ok()
+            .and_then(|t| serde_json::from_str(&t).ok())
+            .unwrap_or(serde_json::Value::Null);
+        Ended {
+            status,
+            stderr: std::fs::read_to_string(&stderr_path).unwrap(),
+            summary,
+        }
+    }
+
+    /// `signorini run case --output out` with `args`, after `prefix` (an
+    /// `env VAR=value` for one process) in an `mpirun` app context.
+    fn app(command: &mut Command, prefix: &[&str], case: &Path, out: &Path, args: &[&str]) {
+        command
+            .args(prefix)
+            .arg(env!("CARGO_BIN_EXE_signorini"))
+            .args(["run", case.to_str().unwrap(), "--quiet", "--threads", "1"])
+            .arg("--output")
+            .arg(out)
+            .args(args);
+    }
+
+    /// `mpirun` with rank 0 and rank 1 started apart (an MPMD launch:
+    /// `prefix0` and `prefix1` before each), both on `case`.
+    fn mpirun_apart(case: &Path, out: &Path, prefix0: &[&str], prefix1: &[&str]) -> Command {
+        let mut command = mpirun_alone();
+        command.args(["-np", "1"]);
+        app(&mut command, prefix0, case, out, &[]);
+        command.args([":", "-np", "1"]);
+        app(&mut command, prefix1, case, out, &[]);
+        command
+    }
+
+    /// A failed run as the user sees it: a non-zero exit, `message` on
+    /// the standard error and in `summary.json`, which says `failed`.
+    fn assert_failed(ended: &Ended, message: &str, what: &str) {
+        println!("{what}: {:?}\n{}", ended.status, ended.stderr);
+        assert!(!ended.status.success(), "{what}: {:?}", ended.status);
+        assert!(ended.stderr.contains(message), "{what}: {}", ended.stderr);
+        assert_eq!(
+            ended.summary["status"], "failed",
+            "{what}: {}",
+            ended.summary
+        );
+        let error = ended.summary["error"].as_str().unwrap_or_default();
+        assert!(error.contains(message), "{what}: {error}");
+    }
+
+    /// A process that fails alone, while the other waits in a collective
+    /// for it, ends the run within seconds (it waits `FAILED_WAIT`, 5 s,
+    /// for the others to agree, then aborts): here rank 1's PETSc options
+    /// name a KSP that does not exist, found when its solver is made, and
+    /// rank 0 is already in the first assembly's sum.
+    #[test]
+    fn a_process_that_fails_alone_ends_the_run() {
+        let dir = tempfile::tempdir().unwrap();
+        let case = block_case(dir.path(), false, "", "");
+        let out = dir.path().join("out");
+        let command = mpirun_apart(
+            &case,
+            &out,
+            &[],
+            &["env", "PETSC_OPTIONS=-ksp_type no_such_krylov_method"],
+        );
+        let start = std::time::Instant::now();
+        let ended = bounded(command, &out, std::time::Duration::from_secs(60), |_| {});
+        assert_failed(&ended, "Unknown type", "one process's bad input");
+        assert!(ended.stderr.contains("process 1 of 2"), "{}", ended.stderr);
+        println!("ended after {:?}", start.elapsed());
+    }
+
+    /// A linear solve that fails on one process (rank 1 allows GMRES one
+    /// iteration, rank 0 iterates on) ends the run: rank 1 leaves the
+    /// solve's collectives, rank 0 waits in them, rank 1 ends the run.
+    #[test]
+    fn a_solve_that_fails_on_one_process_ends_the_run() {
+        let dir = tempfile::tempdir().unwrap();
+        let case = block_case(dir.path(), false, "method = \"penalty\"", "");
+        let out = dir.path().join("out");
+        let both = "-ksp_type gmres -pc_type jacobi -ksp_rtol 1e-12";
+        let one = format!("PETSC_OPTIONS={both} -ksp_max_it 1");
+        let all = format!("PETSC_OPTIONS={both}");
+        let command = mpirun_apart(&case, &out, &["env", &all], &["env", &one]);
+        let ended = bounded(command, &out, std::time::Duration::from_secs(60), |_| {});
+        assert_failed(&ended, "did not converge", "one process's failed solve");
+        assert!(ended.stderr.contains("process 1 of 2"), "{}", ended.stderr);
+    }
+
+    /// A solve that fails on every process (GMRES without a
+    /// preconditioner, one iteration) fails every increment alike: the
+    /// processes agree, cut the increment together, and end together with
+    /// Newton's error, rank 0 writing it into `summary.json`: exit code 1
+    /// and no abort.
+    #[test]
+    fn a_solve_that_fails_everywhere_ends_the_run_cleanly() {
+        let dir = tempfile::tempdir().unwrap();
+        let case = block_case(dir.path(), false, "", "");
+        let text = std::fs::read_to_string(&case).unwrap().replace(
+            "initial_increment = 0.5\n",
+            "initial_increment = 0.5\nmin_increment = 0.2\n",
+        );
+        std::fs::write(&case, text).unwrap();
+        let out = dir.path().join("out");
+        let mut command = mpirun();
+        app(
+            &mut command,
+            &[],
+            &case,
+            &out,
+            &[
+                "--",
+                "-ksp_type",
+                "gmres",
+                "-pc_type",
+                "none",
+                "-ksp_max_it",
+                "1",
+            ],
+        );
+        let ended = bounded(command, &out, std::time::Duration::from_secs(120), |_| {});
+        assert_failed(&ended, "did not converge", "a failed solve everywhere");
+        assert_eq!(ended.status.code(), Some(1), "{}", ended.stderr);
+        assert!(!ended.stderr.contains("MPI_ABORT"), "{}", ended.stderr);
+    }
+
+    /// The pid of rank `rank` among the processes started with `mark` in
+    /// their environment (read from /proc).
+    fn rank_pid(mark: &str, rank: usize) -> Option<u32> {
+        let want = format!("OMPI_COMM_WORLD_RANK={rank}");
+        std::fs::read_dir("/proc")
+            .ok()?
+            .flatten()
+            .find_map(|entry| {
+                let pid: u32 = entry.file_name().to_str()?.parse().ok()?;
+                let environ = std::fs::read(entry.path().join("environ")).ok()?;
+                let vars: Vec<&[u8]> = environ.split(|&b| b == 0).collect();
+                let has = |v: &str| vars.contains(&v.as_bytes());
+                (has(mark) && has(&want)).then_some(pid)
+            })
+    }
+
+    /// A distributed run of `case` into `out` whose rank 1 is killed
+    /// (SIGKILL) once `increments` increments are in `summary.json`: how
+    /// it ended and when the kill was sent.
+    fn killed_after(case: &Path, out: &Path, increments: usize) -> (Ended, std::time::Instant) {
+        let mark = format!("SIGNORINI_TEST_MARK={}", out.display());
+        let mut command = mpirun();
+        command.env("SIGNORINI_TEST_MARK", out);
+        app(&mut command, &[], case, out, &[]);
+        let mut killed: Option<std::time::Instant> = None;
+        let ended = bounded(command, out, std::time::Duration::from_secs(120), |_| {
+            if killed.is_some() {
+                return;
+            }
+            let done = std::fs::read_to_string(out.join("summary.json"))
+                .ok()
+                .and_then(|t| serde_json::from_str::<serde_json::Value>(&t).ok())
+                .and_then(|s| s["increments"].as_array().map(Vec::len))
+                .unwrap_or(0);
+            if done >= increments {
+                if let Some(pid) = rank_pid(&mark, 1) {
+                    Command::new("kill")
+                        .args(["-KILL", &pid.to_string()])
+                        .status()
+                        .unwrap();
+                    killed = Some(std::time::Instant::now());
+                }
+            }
+        });
+        (ended, killed.expect("rank 1 was not found and killed"))
+    }
+
+    /// A case of `increments` equal increments in its first step.
+    fn fine_steps(case: &Path, increments: usize) {
+        let dt = 1.0 / increments as f64;
+        let text = std::fs::read_to_string(case).unwrap().replacen(
+            "initial_increment = 0.5\n",
+            &format!("initial_increment = {dt}\nmax_increment = {dt}\n"),
+            1,
+        );
+        std::fs::write(case, text).unwrap();
+    }
+
+    /// Restart under mpirun: a distributed run killed in the middle of its
+    /// first step (rank 1 killed, rank 0 stopped by mpirun) and resumed
+    /// with `--restart` on two processes ends where an uninterrupted
+    /// distributed run does, with the same increments and Newton
+    /// iterations, contact forces and displacements to 1e-10 of the
+    /// largest. Not bit for bit: every process holds the whole state and
+    /// rank 0 checkpoints it exactly, but two uninterrupted 2-process runs
+    /// already differ in the last bits (~1e-16 relative: MUMPS' dynamic
+    /// scheduling between the processes orders its sums by their load).
+    #[test]
+    fn a_killed_distributed_run_restarts_and_ends_as_an_uninterrupted_one() {
+        let dir = tempfile::tempdir().unwrap();
+        let case = block_case(dir.path(), true, "", "");
+        fine_steps(&case, 20);
+        let full = run_distributed(&case, &dir.path().join("full"), &[]);
+        let cut = dir.path().join("cut");
+        let (ended, _) = killed_after(&case, &cut, 4);
+        assert_failed(&ended, "signal", "killed before the restart");
+        let kept = ended.summary["increments"].as_array().unwrap().len();
+        let total = full.summary["increments"].as_array().unwrap().len();
+        assert!(kept >= 4 && kept < total, "{kept} of {total}");
+        // a copy to resume on one process
+        let alone = dir.path().join("alone");
+        std::fs::create_dir(&alone).unwrap();
+        for entry in std::fs::read_dir(&cut).unwrap().flatten() {
+            std::fs::copy(entry.path(), alone.join(entry.file_name())).unwrap();
+        }
+        let resumed = run_distributed(&case, &cut, &["--restart", cut.to_str().unwrap()]);
+        assert_eq!(resumed.summary["status"], "completed");
+        assert!(
+            resumed
+                .log
+                .contains("restart: resuming from the checkpoint"),
+            "{}",
+            resumed.log
+        );
+        // the same increments (times, files, Newton iterations) and, to
+        // 1e-10 of the largest, the same contact forces and displacements
+        let increments = |s: &serde_json::Value| -> Vec<(String, String, u64)> {
+            s["increments"]
+                .as_array()
+                .unwrap()
+                .iter()
+                .map(|i| {
+                    (
+                        i["time"].to_string(),
+                        i["file"].to_string(),
+                        i["iterations"].as_u64().unwrap(),
+                    )
+                })
+                .collect()
+        };
+        assert_eq!(increments(&full.summary), increments(&resumed.summary));
+        let forces = |s: &serde_json::Value| -> Vec<f64> {
+            let list = s["increments"].as_array().unwrap().iter();
+            list.flat_map(|i| {
+                let base = &i["contact"]["base"];
+                let (f, t) = (&base["force"], &base["tangential_force"]);
+                (0..3).flat_map(move |k| [f[k].as_f64().unwrap(), t[k].as_f64().unwrap()])
+            })
+            .collect()
+        };
+        let close = |a: &[f64], b: &[f64], what: &str| {
+            assert_eq!(a.len(), b.len(), "{what}");
+            let scale = a.iter().fold(0.0f64, |m, v| m.max(v.abs()));
+            let worst = a
+                .iter()
+                .zip(b)
+                .fold(0.0f64, |m, (x, y)| m.max((x - y).abs()));
+            println!("{what}: largest difference {worst:.1e} of {scale:.3e}");
+            assert!(worst <= 1e-10 * scale, "{what}: {worst:e} of {scale:e}");
+        };
+        close(
+            &forces(&full.summary),
+            &forces(&resumed.summary),
+            "contact forces",
+        );
+        close(&full.displacement, &resumed.displacement, "displacements");
+        // another process count: the checkpoint holds the whole state, so
+        // one process (faer's solve) resumes it too, to the 1e-8 of the
+        // serial equality above
+        let one = run(
+            &case,
+            &RunOptions {
+                output: Some(alone.clone()),
+                restart: Some(alone.clone()),
+                ..Default::default()
+            },
+        )
+        .unwrap();
+        assert_eq!(one.summary.status, "completed");
+        assert_same(&one, &full, 1e-8, true, "resumed on one process");
+    }
+
+    /// A process killed (SIGKILL) in the middle of a run: mpirun ends the
+    /// other within 10 s with a non-zero code and says which process
+    /// died; rank 0 marks `summary.json` failed.
+    #[test]
+    fn a_killed_process_ends_the_run() {
+        let dir = tempfile::tempdir().unwrap();
+        let case = block_case(dir.path(), false, "", "");
+        fine_steps(&case, 100);
+        let out = dir.path().join("out");
+        let (ended, killed) = killed_after(&case, &out, 3);
+        let after = killed.elapsed();
+        println!("ended {after:?} after the kill");
+        assert!(after < std::time::Duration::from_secs(10), "{after:?}");
+        assert!(ended.summary["increments"].as_array().unwrap().len() < 100);
+        assert_failed(&ended, "signal", "a killed process");
     }
 
     fn serial(case: &Path, out: &Path) -> RunOutcome {

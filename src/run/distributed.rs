@@ -11,13 +11,20 @@
 //! distributed matrix ([`DistributedPetscSolver`]) and hands the whole
 //! correction back to every process. Output: each process writes the
 //! `.vtu` piece of its elements, rank 0 the `.pvtu` over them, the `.pvd`,
-//! `summary.json` and the log.
+//! `summary.json` and the log. The processes agree on how the run ended
+//! ([`Distribution::conclude`]); a process that fails alone, or a signal,
+//! ends every process within seconds with `summary.json` marked failed
+//! (`crate::solve::petsc::fault`).
 
+use super::{RunOptions, RunOutcome};
 use crate::problem::condensed::{Choice, Path as SolvePath};
 use crate::problem::{LinearMethod, Problem};
 use crate::solve::partition::MeshPartition;
 use crate::solve::settings::Strategy;
 use crate::{Error, Result};
+use std::path::{Path, PathBuf};
+use std::sync::atomic::{AtomicBool, Ordering};
+use std::sync::Arc;
 
 /// `[solver] linear = "petsc"` with `strategy = "auto"`: monolithic
 /// Newton, whose systems PETSc solves, where `auto` would have taken the
@@ -62,17 +69,100 @@ pub(super) struct Distribution {
     pub partition: MeshPartition,
     #[cfg(feature = "petsc")]
     world: std::sync::Arc<crate::solve::petsc::distributed::MpiWorld>,
+    /// The run's `summary.json`, which a fault marks failed.
+    summary: Option<PathBuf>,
+    /// Set when the run has ended (the signal watcher stops).
+    ended: Arc<AtomicBool>,
 }
 
 impl Distribution {
     /// Under `mpirun`: join MPI's world (through PETSc), partition the
-    /// mesh and give the model this process's elements. `None` without
+    /// mesh and give the model this process's elements; a fault of any
+    /// process marks `summary.json` in `options.output` failed, and a
+    /// signal ([`Distribution::watch`]) ends this process. `None` without
     /// `mpirun`.
-    pub fn start(problem: &mut Problem, case_label: &str) -> Result<Option<Self>> {
+    pub fn start(
+        problem: &mut Problem,
+        case_label: &str,
+        options: &RunOptions,
+    ) -> Result<Option<Self>> {
         let Some(processes) = launched_processes() else {
             return Ok(None);
         };
-        Self::join(problem, case_label, processes)
+        let Some(mut distribution) = Self::join(problem, case_label, processes)? else {
+            return Ok(None);
+        };
+        distribution.summary = options.output.as_ref().map(|d| d.join("summary.json"));
+        distribution.watch(options.cancel.clone());
+        #[cfg(feature = "petsc")]
+        if let Some(path) = distribution.summary.clone() {
+            let (rank, size) = (distribution.rank, distribution.partition.parts);
+            crate::solve::petsc::fault::on_fault(move |message| {
+                mark_failed(&path, &format!("process {rank} of {size}: {message}"));
+            });
+        }
+        Ok(Some(distribution))
+    }
+
+    /// A signal (SIGINT, SIGTERM: the `cancel` flag the command line sets)
+    /// ends a distributed run at once: `mpirun` sends SIGTERM to every
+    /// process when one fails or is killed, and SIGKILL a second later,
+    /// and a process waiting in a collective for a process that is gone
+    /// would never see the flag between two Newton iterations (nor could
+    /// the processes stop at the same iteration). Rank 0 marks
+    /// `summary.json` failed (the increments converged so far stay
+    /// written), and the process exits with code 1.
+    fn watch(&self, cancel: Option<Arc<AtomicBool>>) {
+        let Some(cancel) = cancel else {
+            return;
+        };
+        let (ended, rank, summary) = (self.ended.clone(), self.rank, self.summary.clone());
+        let watcher = move || loop {
+            std::thread::sleep(std::time::Duration::from_millis(20));
+            if ended.load(Ordering::Relaxed) {
+                return;
+            }
+            if cancel.load(Ordering::Relaxed) {
+                let message = "stopped by a signal: under mpirun this means that another \
+                               process of the run failed or was killed (mpirun's message says \
+                               which), or that the run was interrupted";
+                eprintln!("error: process {rank}: {message}");
+                if let (0, Some(path)) = (rank, &summary) {
+                    mark_failed(path, message);
+                }
+                exit_now(1);
+            }
+        };
+        let _ = std::thread::Builder::new()
+            .name("signal watcher".into())
+            .spawn(watcher);
+    }
+
+    /// The end of a distributed run: the processes agree on its outcome
+    /// ([`crate::solve::petsc::fault::agree`]). A failure on any process
+    /// is the run's failure on every process (rank 0 marks `summary.json`
+    /// failed if its own run succeeded); a process that failed while
+    /// another is stuck ends the run.
+    pub fn conclude(&self, result: Result<RunOutcome>) -> Result<RunOutcome> {
+        self.ended.store(true, Ordering::Relaxed);
+        #[cfg(feature = "petsc")]
+        {
+            use crate::solve::petsc::fault::{agree, fault, Agreement};
+            let local = result.as_ref().map(|_| ()).map_err(|e| e.to_string());
+            match agree(local.as_ref().map(|_| ()).map_err(String::as_str)) {
+                Agreement::Succeeded => result,
+                Agreement::Failed { rank, message } => result.and_then(|_| {
+                    let message = format!("process {rank} of {}: {message}", self.partition.parts);
+                    if let (true, Some(path)) = (self.is_lead(), &self.summary) {
+                        mark_failed(path, &message);
+                    }
+                    Err(Error::Distributed(message))
+                }),
+                Agreement::NoAnswer => fault(local.err().as_deref().unwrap_or("no answer")),
+            }
+        }
+        #[cfg(not(feature = "petsc"))]
+        result
     }
 
     #[cfg(not(feature = "petsc"))]
@@ -109,6 +199,8 @@ impl Distribution {
             rank,
             partition,
             world,
+            summary: None,
+            ended: Arc::new(AtomicBool::new(false)),
         }))
     }
 
@@ -201,4 +293,35 @@ impl Distribution {
         }
         lines
     }
+}
+
+/// Mark the run's `summary.json` at `path` failed with `message`, unless
+/// it says so already (rank 0 wrote its own error): the status a process
+/// that ends the run leaves for the user. Nothing when there is no
+/// summary yet or it does not read.
+fn mark_failed(path: &Path, message: &str) {
+    let Ok(text) = std::fs::read_to_string(path) else {
+        return;
+    };
+    let Ok(mut summary) = serde_json::from_str::<serde_json::Value>(&text) else {
+        return;
+    };
+    if summary["status"] == "failed" {
+        return;
+    }
+    summary["status"] = "failed".into();
+    summary["error"] = message.into();
+    let Ok(text) = serde_json::to_string_pretty(&summary) else {
+        return;
+    };
+    let _ = crate::output::write_atomically(path, |w| w.write_all(text.as_bytes()));
+}
+
+/// End this process at once (no finalisation that would wait for
+/// processes that are gone).
+fn exit_now(code: i32) -> ! {
+    #[cfg(feature = "petsc")]
+    crate::solve::petsc::fault::exit_now(code);
+    #[cfg(not(feature = "petsc"))]
+    std::process::exit(code)
 }

@@ -8,13 +8,21 @@
 //! three dofs together; contact multipliers, if any, keep their places at
 //! the end and belong to the last process), so that each process owns one
 //! contiguous block of PETSc's rows: the rows of its nodes. Each process
-//! adds the nonzero rows of its `K^p` into the matrix (`ADD_VALUES`; rows
-//! of other processes travel through PETSc's stash) and sets the
-//! right-hand side of its own rows; the KSP solves distributed and the
+//! gives PETSc, in coordinate form, the entries of its own rows and of the
+//! rows of other processes that its `K^p` touches when the pattern is new
+//! (its elements' ghost nodes; on rank 0 the contact's rows too)
+//! (`MatSetPreallocationCOO`, the other entries -1); at each solve
+//! `MatSetValuesCOO` takes the values straight from `K^p`'s array, PETSc
+//! summing the processes' parts and sending the ghost rows' to their
+//! owners. An entry of `K^p` outside the given rows that a later solve
+//! finds nonzero (a contact come to a row of another process) is added
+//! through PETSc's stash. Each process sets the right-hand side of its
+//! own rows; the KSP solves distributed and the
 //! solution is scattered whole to every process (`VecScatterCreateToAll`),
 //! so every process goes on with the same unknowns.
 
-use super::{make_ksp, message, RowPattern, Tally, MESSAGE, PETSC};
+use super::fault::{self, Agreement};
+use super::{coordinate_entries, make_ksp, message, Tally, MESSAGE, PETSC};
 use crate::assembly::share::Communicator;
 use crate::solve::linear::{pattern_fingerprint, Ordering};
 use crate::solve::linear_solver::{LinearSolver, LinearSystem, SolverStatistics};
@@ -63,26 +71,29 @@ mod ffi {
     }
 }
 
-/// The matrix layout for the C layer (`DistributedLayout` in `shim.c`).
+/// The matrix layout for the C layer (`DistributedLayout` in `shim.c`):
+/// the entries this process gives, in coordinate form (-1: left out).
 #[repr(C)]
 struct DistributedLayout {
     global: c_int,
     first: c_int,
     local: c_int,
     block_size: c_int,
-    row_start: *const c_int,
-    columns: *const c_int,
+    entries: i64,
+    rows: *mut c_int,
+    columns: *mut c_int,
     coordinates: *const f64,
 }
 
-/// This process's part of a system for the C layer (`DistributedSystem`).
+/// This process's part of a system for the C layer (`DistributedSystem`):
+/// the values of the layout's entries and the strays outside it.
 #[repr(C)]
 struct DistributedSystem {
-    rows: c_int,
-    row_index: *const c_int,
-    row_start: *const c_int,
-    columns: *const c_int,
     values: *const f64,
+    strays: c_int,
+    stray_rows: *const c_int,
+    stray_columns: *const c_int,
+    stray_values: *const f64,
     b: *const f64,
     x: *mut f64,
     iterations: *mut c_int,
@@ -107,6 +118,8 @@ impl MpiWorld {
         if code != 0 {
             return Err(Error::LinearSolver(message(&err)));
         }
+        drop(_lock);
+        super::fault::initialise(rank as usize, size as usize)?;
         Ok(MpiWorld {
             rank: rank as usize,
             size: size as usize,
@@ -133,8 +146,8 @@ impl Communicator for MpiWorld {
         // SAFETY: v is valid for v.len() doubles, the buffer for its length
         let code = unsafe { ffi::sg_mpi_sum(v.as_mut_ptr(), v.len(), err.as_mut_ptr(), err.len()) };
         if code != 0 {
-            eprintln!("error: rank {}: {}", self.rank, message(&err));
-            std::process::exit(1);
+            drop(_lock);
+            super::fault::fault(&message(&err));
         }
     }
 }
@@ -185,50 +198,57 @@ impl Numbering {
     }
 }
 
-/// The pattern in compressed rows of PETSc's numbering, for one pattern
-/// of the tangent (rebuilt when contact pairs change it).
+/// Which rows this process gives PETSc for one pattern of the tangent
+/// (rebuilt when contact pairs change it).
 struct RowLayout {
     fingerprint: u64,
-    /// Every row (old numbering) in compressed rows: its start, the PETSc
-    /// column of each entry and the entry's CSC position.
-    row_start: Vec<usize>,
-    columns: Vec<c_int>,
-    position: Vec<usize>,
+    /// `given[old]`: the entries of row `old` (old numbering) are in this
+    /// process's coordinate entries.
+    given: Vec<bool>,
 }
 
 impl RowLayout {
-    /// The compressed rows of [`RowPattern`] (the transpose of the CSC
-    /// pattern) with PETSc's columns and each entry's CSC position.
-    fn new(pattern: &SymbolicSparseColMat<usize>, numbering: &Numbering) -> Result<Self> {
-        let rows = RowPattern::new(pattern)?;
-        let mut csc = vec![0; rows.position.len()];
-        for (k, &p) in rows.position.iter().enumerate() {
-            csc[p] = k;
+    /// The rows this process gives: its own, and those where its part
+    /// `values` of the tangent (on `pattern`) has a nonzero entry.
+    fn new(pattern: &SymbolicSparseColMat<usize>, values: &[f64], numbering: &Numbering) -> Self {
+        let end = numbering.first + numbering.owned.len();
+        let mut given: Vec<bool> = numbering
+            .global
+            .iter()
+            .map(|g| (numbering.first..end).contains(g))
+            .collect();
+        for (&i, &v) in pattern.row_idx().iter().zip(values) {
+            if v != 0.0 {
+                given[i] = true;
+            }
         }
-        Ok(RowLayout {
-            fingerprint: rows.fingerprint,
-            row_start: rows.row_start.iter().map(|&s| s as usize).collect(),
-            columns: rows
-                .columns
-                .iter()
-                .map(|&j| numbering.global[j as usize] as c_int)
-                .collect(),
-            position: csc,
-        })
+        RowLayout {
+            fingerprint: pattern_fingerprint(pattern),
+            given,
+        }
     }
 
-    /// The preallocation of this process's rows: their starts and sorted
-    /// PETSc columns.
-    fn owned_rows(&self, numbering: &Numbering) -> (Vec<c_int>, Vec<c_int>) {
-        let mut start = vec![0 as c_int];
-        let mut columns = Vec::new();
-        for &old in &numbering.owned {
-            let mut row = self.columns[self.row_start[old]..self.row_start[old + 1]].to_vec();
-            row.sort_unstable();
-            columns.extend(row);
-            start.push(columns.len() as c_int);
+    /// The nonzero entries of `values` in rows this process does not give
+    /// (PETSc's rows and columns, and values).
+    fn strays(
+        &self,
+        pattern: &SymbolicSparseColMat<usize>,
+        values: &[f64],
+        numbering: &Numbering,
+    ) -> (Vec<c_int>, Vec<c_int>, Vec<f64>) {
+        let (col_ptr, row_idx) = (pattern.col_ptr(), pattern.row_idx());
+        let (mut rows, mut columns, mut strays) = (Vec::new(), Vec::new(), Vec::new());
+        for j in 0..pattern.ncols() {
+            for k in col_ptr[j]..col_ptr[j + 1] {
+                let i = row_idx[k];
+                if !self.given[i] && values[k] != 0.0 {
+                    rows.push(numbering.global[i] as c_int);
+                    columns.push(numbering.global[j] as c_int);
+                    strays.push(values[k]);
+                }
+            }
         }
-        (start, columns)
+        (rows, columns, strays)
     }
 }
 
@@ -277,11 +297,14 @@ impl DistributedPetscSolver {
         })
     }
 
-    /// A new pattern: the numbering (when the unknowns changed), the row
-    /// layout and PETSc's matrix, vectors and near-null space.
+    /// A new pattern: the numbering (when the unknowns changed), the rows
+    /// this process gives (from its part `values` of the tangent) and
+    /// PETSc's matrix preallocated from their entries, its vectors and
+    /// near-null space.
     fn lay_out(
         &mut self,
         pattern: &SymbolicSparseColMat<usize>,
+        values: &[f64],
     ) -> std::result::Result<(), String> {
         let unknowns = pattern.nrows();
         if self
@@ -294,8 +317,12 @@ impl DistributedPetscSolver {
         let Some(numbering) = &self.numbering else {
             return Err("no numbering".into());
         };
-        let layout = RowLayout::new(pattern, numbering).map_err(|e| e.to_string())?;
-        let (row_start, columns) = layout.owned_rows(numbering);
+        let layout = RowLayout::new(pattern, values, numbering);
+        let global = &numbering.global;
+        let (mut rows, mut columns) = coordinate_entries(pattern, false, |i, j| {
+            layout.given[i].then(|| (global[i], global[j]))
+        })
+        .map_err(|e| e.to_string())?;
         let displacement_only = 3 * self.partition.node_part.len() == unknowns;
         let coordinates: Vec<f64> = if displacement_only {
             numbering
@@ -311,8 +338,9 @@ impl DistributedPetscSolver {
             first: numbering.first as c_int,
             local: numbering.owned.len() as c_int,
             block_size: if displacement_only { 3 } else { 1 },
-            row_start: row_start.as_ptr(),
-            columns: columns.as_ptr(),
+            entries: rows.len() as i64,
+            rows: rows.as_mut_ptr(),
+            columns: columns.as_mut_ptr(),
             coordinates: if displacement_only {
                 coordinates.as_ptr()
             } else {
@@ -321,7 +349,8 @@ impl DistributedPetscSolver {
         };
         let mut err = [0 as c_char; MESSAGE];
         let _lock = PETSC.lock().unwrap_or_else(|e| e.into_inner());
-        // SAFETY: the arrays live until the call returns; PETSc copies them
+        // SAFETY: the arrays live until the call returns; PETSc keeps its
+        // map from them, not the arrays
         let code = unsafe {
             ffi::sg_petsc_mpi_layout(self.handle, &arguments, err.as_mut_ptr(), err.len())
         };
@@ -347,7 +376,45 @@ impl LinearSolver for DistributedPetscSolver {
 
     /// `system.matrix` is this process's part `K^p`; `rhs` the whole
     /// right-hand side (the same on every process); `x` the whole solution.
+    /// The processes agree on the outcome ([`fault::agree`]): a solve that
+    /// failed on one fails on every one, with its message.
     fn solve(
+        &mut self,
+        system: &LinearSystem<'_>,
+        rhs: &[f64],
+        x: &mut [f64],
+    ) -> std::result::Result<(), String> {
+        let local = self.solve_here(system, rhs, x);
+        agreed(local)
+    }
+
+    fn description(&self) -> String {
+        self.description.clone()
+    }
+
+    fn statistics(&self) -> SolverStatistics {
+        self.tally.statistics()
+    }
+}
+
+/// The outcome every process agreed on, given this process's `local` one:
+/// a failure on any process is a failure on all (this process's message,
+/// or the failed one's with its rank); a process that failed alone while
+/// another is stuck ends the run ([`fault::fault`]).
+fn agreed(local: std::result::Result<(), String>) -> std::result::Result<(), String> {
+    match fault::agree(local.as_ref().map(|_| ()).map_err(String::as_str)) {
+        Agreement::Succeeded => Ok(()),
+        Agreement::Failed { rank, message } => match local {
+            Err(mine) => Err(mine),
+            Ok(()) => Err(format!("process {rank}: {message}")),
+        },
+        Agreement::NoAnswer => fault::fault(local.err().as_deref().unwrap_or("no answer")),
+    }
+}
+
+impl DistributedPetscSolver {
+    /// This process's part of [`LinearSolver::solve`].
+    fn solve_here(
         &mut self,
         system: &LinearSystem<'_>,
         rhs: &[f64],
@@ -360,40 +427,23 @@ impl LinearSolver for DistributedPetscSolver {
             .as_ref()
             .is_none_or(|l| l.fingerprint != fingerprint)
         {
-            self.lay_out(system.pattern)?;
+            self.lay_out(system.pattern, system.matrix)?;
         }
         let (Some(numbering), Some(layout)) = (&self.numbering, &self.layout) else {
             return Err("no matrix layout".into());
         };
-        // the nonzero rows of K^p (a row of another process's node where
-        // this process's elements touch it goes through PETSc's stash)
         let n = rhs.len();
-        let mut row_index = Vec::new();
-        let mut row_start = vec![0 as c_int];
-        let mut columns = Vec::new();
-        let mut values = Vec::new();
-        for old in 0..n {
-            let range = layout.row_start[old]..layout.row_start[old + 1];
-            if layout.position[range.clone()]
-                .iter()
-                .all(|&k| system.matrix[k] == 0.0)
-            {
-                continue;
-            }
-            row_index.push(numbering.global[old] as c_int);
-            columns.extend_from_slice(&layout.columns[range.clone()]);
-            values.extend(layout.position[range].iter().map(|&k| system.matrix[k]));
-            row_start.push(columns.len() as c_int);
-        }
+        let (stray_rows, stray_columns, stray_values) =
+            layout.strays(system.pattern, system.matrix, numbering);
         let b: Vec<f64> = numbering.owned.iter().map(|&old| rhs[old]).collect();
         let mut solution = vec![0.0; n];
         let mut iterations: c_int = 0;
         let arguments = DistributedSystem {
-            rows: row_index.len() as c_int,
-            row_index: row_index.as_ptr(),
-            row_start: row_start.as_ptr(),
-            columns: columns.as_ptr(),
-            values: values.as_ptr(),
+            values: system.matrix.as_ptr(),
+            strays: stray_rows.len() as c_int,
+            stray_rows: stray_rows.as_ptr(),
+            stray_columns: stray_columns.as_ptr(),
+            stray_values: stray_values.as_ptr(),
             b: b.as_ptr(),
             x: solution.as_mut_ptr(),
             iterations: &mut iterations,
@@ -410,19 +460,46 @@ impl LinearSolver for DistributedPetscSolver {
         }
         self.tally.record(start, iterations, code, &err, x)
     }
-
-    fn description(&self) -> String {
-        self.description.clone()
-    }
-
-    fn statistics(&self) -> SolverStatistics {
-        self.tally.statistics()
-    }
 }
 
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    /// Process 0 of two (nodes 0 and 1 its own, 2 and 3 the other's) on a
+    /// pattern coupling every node: it gives its own rows and the rows
+    /// where its part of K is nonzero when the pattern is new; an entry of
+    /// another row that becomes nonzero later is a stray.
+    #[test]
+    fn a_process_gives_its_rows_and_those_it_touches_and_the_rest_are_strays() {
+        use faer::sparse::{SparseColMat, Triplet};
+        let partition = MeshPartition {
+            parts: 2,
+            element_part: vec![0, 1],
+            node_part: vec![0, 0, 1, 1],
+        };
+        let numbering = Numbering::new(&partition, 0, 12);
+        let all: Vec<_> = (0..12)
+            .flat_map(|i| (0..12).map(move |j| Triplet::new(i, j, 0.0)))
+            .collect();
+        let k = SparseColMat::try_new_from_triplets(12, 12, &all).unwrap();
+        let pattern = k.symbolic().to_owned().unwrap();
+        // K^0 touches row 6 (node 2, the other process's) at column 0
+        let mut values = vec![0.0; 144];
+        values[6] = 2.0;
+        let layout = RowLayout::new(&pattern, &values, &numbering);
+        let given: Vec<usize> = (0..12).filter(|&i| layout.given[i]).collect();
+        assert_eq!(given, vec![0, 1, 2, 3, 4, 5, 6]);
+        assert!(layout.strays(&pattern, &values, &numbering).0.is_empty());
+        // later a contact adds (9, 0) and (9, 1): strays; own rows never are
+        values[9] = 3.0;
+        values[12 + 9] = 4.0;
+        values[12 + 1] = 5.0;
+        let (rows, columns, v) = layout.strays(&pattern, &values, &numbering);
+        assert_eq!(rows, vec![9, 9]);
+        assert_eq!(columns, vec![0, 1]);
+        assert_eq!(v, vec![3.0, 4.0]);
+    }
 
     #[test]
     fn the_numbering_gives_each_part_a_block_and_multipliers_go_last() {

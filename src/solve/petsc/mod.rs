@@ -12,8 +12,10 @@
 //!
 //! PETSc's interface is partly C macros, so the calls go through a small C
 //! layer (`shim.c`, compiled by `build.rs` against the installed headers);
-//! this module owns the conversion of faer's column-compressed tangent to
-//! PETSc's compressed rows and the bookkeeping of [`LinearSolver`].
+//! this module owns the bookkeeping of [`LinearSolver`]. The tangent goes
+//! to PETSc in coordinate form (`MatSetPreallocationCOO` once per pattern,
+//! `MatSetValuesCOO` at each solve, straight from the tangent's own array
+//! of values): PETSc holds the one compressed-row copy of it.
 //!
 //! Each solver has an options database of its own (the environment's
 //! `PETSC_OPTIONS`, then the case's options), so two runs in one process
@@ -62,13 +64,15 @@ mod ffi {
 }
 
 /// One linear system for the C layer (`SystemArguments` in `shim.c`, the
-/// same layout): CSR arrays of `n` rows, the right-hand side, the solution
-/// and the Krylov iterations written back.
+/// same layout): the tangent's `entries` in coordinate form (their rows
+/// and columns for a new pattern only, else null), their values, the
+/// right-hand side, the solution and the Krylov iterations written back.
 #[repr(C)]
 struct SystemArguments {
     n: c_int,
-    row_start: *const c_int,
-    columns: *const c_int,
+    entries: i64,
+    rows: *mut c_int,
+    columns: *mut c_int,
     values: *const f64,
     same_pattern: c_int,
     block_size: c_int,
@@ -82,6 +86,7 @@ struct SystemArguments {
 static PETSC: Mutex<()> = Mutex::new(());
 
 pub mod distributed;
+pub mod fault;
 
 const MESSAGE: usize = 1024;
 
@@ -94,53 +99,36 @@ pub(crate) fn message(buffer: &[c_char]) -> String {
         .into_owned()
 }
 
-/// The column-compressed tangent as compressed rows: `row_start`,
-/// `columns` (sorted in each row) and, per CSC entry, its CSR position.
-struct RowPattern {
-    row_start: Vec<c_int>,
-    columns: Vec<c_int>,
-    position: Vec<usize>,
-    fingerprint: u64,
-}
-
-impl RowPattern {
-    /// The transpose of the CSC structure: walking the columns in order
-    /// fills each row's columns in increasing order.
-    fn new(pattern: &SymbolicSparseColMat<usize>) -> Result<Self> {
-        let n = pattern.nrows();
-        let (col_ptr, row_idx) = (pattern.col_ptr(), pattern.row_idx());
-        let nnz = row_idx.len();
-        if nnz > c_int::MAX as usize {
-            return Err(Error::LinearSolver(format!(
-                "{nnz} matrix entries exceed PETSc's 32-bit indices (this PETSc was \
-                 configured without --with-64-bit-indices)"
-            )));
-        }
-        let mut row_start = vec![0 as c_int; n + 1];
-        for &i in row_idx {
-            row_start[i + 1] += 1;
-        }
-        for i in 0..n {
-            row_start[i + 1] += row_start[i];
-        }
-        let mut next: Vec<usize> = row_start[..n].iter().map(|&s| s as usize).collect();
-        let mut columns = vec![0 as c_int; nnz];
-        let mut position = vec![0; nnz];
-        for j in 0..n {
-            for k in col_ptr[j]..col_ptr[j + 1] {
-                let i = row_idx[k];
-                position[k] = next[i];
-                columns[next[i]] = j as c_int;
-                next[i] += 1;
+/// The entries of the column-compressed `pattern` in coordinate form, in
+/// its order: the row and column `index` gives each (row, column), or -1
+/// for both when it gives `None` (an entry PETSc is to ignore). An error
+/// when the unknowns, or with `local` the entries (one process's
+/// compressed rows), do not fit PETSc's 32-bit indices.
+fn coordinate_entries(
+    pattern: &SymbolicSparseColMat<usize>,
+    local: bool,
+    index: impl Fn(usize, usize) -> Option<(usize, usize)>,
+) -> Result<(Vec<c_int>, Vec<c_int>)> {
+    let (col_ptr, row_idx) = (pattern.col_ptr(), pattern.row_idx());
+    let nnz = row_idx.len();
+    if pattern.nrows() > c_int::MAX as usize || (local && nnz > c_int::MAX as usize) {
+        return Err(Error::LinearSolver(format!(
+            "{} unknowns and {nnz} matrix entries exceed PETSc's 32-bit indices (this \
+             PETSc was configured without --with-64-bit-indices)",
+            pattern.nrows()
+        )));
+    }
+    let mut rows = vec![-1 as c_int; nnz];
+    let mut columns = vec![-1 as c_int; nnz];
+    for j in 0..pattern.ncols() {
+        for k in col_ptr[j]..col_ptr[j + 1] {
+            if let Some((r, c)) = index(row_idx[k], j) {
+                rows[k] = r as c_int;
+                columns[k] = c as c_int;
             }
         }
-        Ok(RowPattern {
-            row_start,
-            columns,
-            position,
-            fingerprint: pattern_fingerprint(pattern),
-        })
     }
+    Ok((rows, columns))
 }
 
 /// Initialise PETSc (and MPI: the world of `mpirun`, or a singleton) once
@@ -232,8 +220,8 @@ impl Tally {
 /// PETSc's KSP and PC on the tangent.
 pub struct PetscSolver {
     handle: *mut c_void,
-    rows: Option<RowPattern>,
-    values: Vec<f64>,
+    /// The fingerprint of the pattern PETSc's matrix was preallocated for.
+    fingerprint: Option<u64>,
     /// Reference coordinates of the nodes (3 per node) for GAMG's
     /// rigid-body near-null space, when every unknown is a displacement.
     coordinates: Option<Vec<f64>>,
@@ -260,8 +248,7 @@ impl PetscSolver {
         )?;
         Ok(PetscSolver {
             handle,
-            rows: None,
-            values: Vec::new(),
+            fingerprint: None,
             coordinates,
             description,
             tally: Tally::default(),
@@ -333,20 +320,16 @@ impl LinearSolver for PetscSolver {
         let start = Instant::now();
         let n = rhs.len();
         let fingerprint = pattern_fingerprint(system.pattern);
-        let same_pattern = self
-            .rows
-            .as_ref()
-            .is_some_and(|r| r.fingerprint == fingerprint);
-        if !same_pattern {
-            self.rows = Some(RowPattern::new(system.pattern).map_err(|e| e.to_string())?);
-        }
-        let Some(rows) = &self.rows else {
-            return Err("no matrix pattern".into());
+        let same_pattern = self.fingerprint == Some(fingerprint);
+        // the entries' indices for a new pattern (PETSc keeps its map from
+        // them, not the arrays)
+        let (mut rows, mut columns) = if same_pattern {
+            (Vec::new(), Vec::new())
+        } else {
+            coordinate_entries(system.pattern, true, |i, j| Some((i, j)))
+                .map_err(|e| e.to_string())?
         };
-        self.values.resize(rows.columns.len(), 0.0);
-        for (k, &p) in rows.position.iter().enumerate() {
-            self.values[p] = system.matrix[k];
-        }
+        self.fingerprint = Some(fingerprint);
         let displacement_only = self.coordinates.as_ref().is_some_and(|c| c.len() == n);
         let coordinates = match (&self.coordinates, displacement_only) {
             (Some(c), true) => c.as_ptr(),
@@ -356,11 +339,19 @@ impl LinearSolver for PetscSolver {
         let mut iterations: c_int = 0;
         let mut err = [0 as c_char; MESSAGE];
         let _lock = PETSC.lock().unwrap_or_else(|e| e.into_inner());
+        let pointer = |v: &mut Vec<c_int>| {
+            if v.is_empty() {
+                std::ptr::null_mut()
+            } else {
+                v.as_mut_ptr()
+            }
+        };
         let system = SystemArguments {
             n: n as c_int,
-            row_start: rows.row_start.as_ptr(),
-            columns: rows.columns.as_ptr(),
-            values: self.values.as_ptr(),
+            entries: system.matrix.len() as i64,
+            rows: pointer(&mut rows),
+            columns: pointer(&mut columns),
+            values: system.matrix.as_ptr(),
             same_pattern: same_pattern as c_int,
             block_size,
             coordinates,
@@ -396,7 +387,7 @@ mod tests {
     }
 
     #[test]
-    fn row_pattern_is_the_transpose() {
+    fn coordinate_entries_follow_the_columns() {
         let a = system(
             &[
                 (0, 0, 1.0),
@@ -407,14 +398,15 @@ mod tests {
             ],
             3,
         );
-        let rows = RowPattern::new(&a.symbolic().to_owned().unwrap()).unwrap();
-        assert_eq!(rows.row_start, vec![0, 2, 3, 5]);
-        assert_eq!(rows.columns, vec![0, 2, 1, 0, 2]);
-        let mut values = vec![0.0; 5];
-        for (k, &p) in rows.position.iter().enumerate() {
-            values[p] = a.val()[k];
-        }
-        assert_eq!(values, vec![1.0, 4.0, 3.0, 2.0, 5.0]);
+        let pattern = a.symbolic().to_owned().unwrap();
+        let (rows, columns) = coordinate_entries(&pattern, true, |i, j| Some((i, j))).unwrap();
+        assert_eq!(rows, vec![0, 2, 1, 0, 2]);
+        assert_eq!(columns, vec![0, 0, 1, 2, 2]);
+        // an entry left out is -1 in both; the others are renumbered
+        let (rows, columns) =
+            coordinate_entries(&pattern, true, |i, j| (i != 1).then_some((2 - i, 2 - j))).unwrap();
+        assert_eq!(rows, vec![2, 0, -1, 2, 0]);
+        assert_eq!(columns, vec![2, 2, -1, 0, 0]);
     }
 
     #[test]

@@ -19,7 +19,10 @@
 _Static_assert(sizeof(PetscInt) == sizeof(int), "signorini passes 32-bit PETSc indices");
 _Static_assert(sizeof(PetscScalar) == sizeof(double), "signorini needs real double PETSc");
 #include <stdio.h>
+#include <stdint.h>
 #include <string.h>
+#include <time.h>
+#include <unistd.h>
 
 static int initialised = 0;
 
@@ -156,12 +159,36 @@ static int solve_ksp(KSP ksp, Vec b, Vec x, int *iterations, char *err,
   return 0;
 }
 
+/* Attach the rigid-body modes of the nodes at `coordinates` (3 per
+ * node, `local` of `global` values on this process) to `matrix` as its
+ * near-null space (GAMG's). */
+static int attach_rigid_body_modes(Mat matrix, MPI_Comm comm, PetscInt local,
+                                   PetscInt global, const double *coordinates,
+                                   char *err, size_t err_len) {
+  Vec coords;
+  MatNullSpace rigid;
+  CHECK(VecCreateMPI(comm, local, global, &coords));
+  CHECK(VecSetBlockSize(coords, 3));
+  PetscScalar *c;
+  CHECK(VecGetArray(coords, &c));
+  memcpy(c, coordinates, sizeof(double) * (size_t)local);
+  CHECK(VecRestoreArray(coords, &c));
+  CHECK(MatNullSpaceCreateRigidBody(coords, &rigid));
+  CHECK(MatSetNearNullSpace(matrix, rigid));
+  CHECK(MatNullSpaceDestroy(&rigid));
+  CHECK(VecDestroy(&coords));
+  return 0;
+}
+
 /* One linear system, as `sg_petsc_solve` takes it (the same layout as
- * `SystemArguments` in mod.rs). */
+ * `SystemArguments` in mod.rs): the tangent's `entries` in coordinate
+ * form, `rows` and `columns` of each (for a new pattern only, else NULL;
+ * PETSc may overwrite them) and `values` in the same order. */
 typedef struct {
   int n;
-  const int *row_start;
-  const int *columns;
+  int64_t entries;
+  int *rows;
+  int *columns;
   const double *values;
   int same_pattern;
   int block_size;
@@ -171,24 +198,25 @@ typedef struct {
   int *iterations;
 } SystemArguments;
 
-/* Solve K x = b with K given by CSR arrays (`row_start` of length n + 1,
- * sorted `columns`, `values`). `same_pattern` says the arrays have the
- * pattern of the previous call. `block_size` 3 when the unknowns are
- * nodal displacements only (then `coordinates`, 3 per node, if not NULL,
- * give GAMG the rigid-body near-null space). Returns the Krylov
+/* Solve K x = b with K given entry by entry. A new pattern (`same_pattern`
+ * 0, or none yet) makes the matrix and its coordinate preallocation
+ * (MatSetPreallocationCOO: PETSc keeps the map from each entry to its
+ * nonzero, not the indices); every call sets the values in place
+ * (MatSetValuesCOO), straight from the caller's array, so the tangent is
+ * not copied into compressed rows first. `block_size` 3 when the unknowns
+ * are nodal displacements only (then `coordinates`, 3 per node, if not
+ * NULL, give GAMG the rigid-body near-null space). Returns the Krylov
  * iterations in `iterations`. */
 int sg_petsc_solve(void *handle, const SystemArguments *system, char *err,
                    size_t err_len) {
   Solver *s = handle;
-  int n = system->n, same_pattern = system->same_pattern,
-      block_size = system->block_size;
-  const int *row_start = system->row_start, *columns = system->columns;
-  const double *values = system->values, *coordinates = system->coordinates,
-               *b = system->b;
-  double *x = system->x;
-  int *iterations = system->iterations;
-  PetscInt nnz = row_start[n];
-  if (!(same_pattern && s->matrix && s->n == n && s->nnz == nnz)) {
+  int n = system->n, block_size = system->block_size;
+  PetscInt nnz = (PetscInt)system->entries;
+  if (!(system->same_pattern && s->matrix && s->n == n && s->nnz == nnz)) {
+    if (!system->rows || !system->columns) {
+      snprintf(err, err_len, "a new matrix pattern without its entries' indices");
+      return 1;
+    }
     if (s->matrix) MatDestroy(&s->matrix);
     if (s->rhs) VecDestroy(&s->rhs);
     if (s->solution) VecDestroy(&s->solution);
@@ -197,44 +225,28 @@ int sg_petsc_solve(void *handle, const SystemArguments *system, char *err,
     CHECK(MatSetSizes(s->matrix, n, n, n, n));
     CHECK(MatSetType(s->matrix, MATSEQAIJ));
     if (block_size > 1) CHECK(MatSetBlockSize(s->matrix, block_size));
-    CHECK(MatSeqAIJSetPreallocationCSR(s->matrix, row_start, columns, values));
+    CHECK(MatSetPreallocationCOO(s->matrix, system->entries, system->rows,
+                                 system->columns));
     CHECK(MatCreateVecs(s->matrix, &s->solution, &s->rhs));
     s->n = n;
     s->nnz = nnz;
-    if (coordinates && block_size == 3) {
-      Vec coords;
-      MatNullSpace rigid;
-      CHECK(VecCreateSeq(PETSC_COMM_SELF, n, &coords));
-      CHECK(VecSetBlockSize(coords, 3));
-      PetscScalar *c;
-      CHECK(VecGetArray(coords, &c));
-      memcpy(c, coordinates, sizeof(double) * (size_t)n);
-      CHECK(VecRestoreArray(coords, &c));
-      CHECK(MatNullSpaceCreateRigidBody(coords, &rigid));
-      CHECK(MatSetNearNullSpace(s->matrix, rigid));
-      CHECK(MatNullSpaceDestroy(&rigid));
-      CHECK(VecDestroy(&coords));
+    if (system->coordinates && block_size == 3) {
+      CHECK(attach_rigid_body_modes(s->matrix, PETSC_COMM_SELF, n, n,
+                                    system->coordinates, err, err_len));
     }
-  } else {
-    for (PetscInt i = 0; i < n; i++) {
-      PetscInt count = row_start[i + 1] - row_start[i];
-      CHECK(MatSetValues(s->matrix, 1, &i, count, columns + row_start[i],
-                         values + row_start[i], INSERT_VALUES));
-    }
-    CHECK(MatAssemblyBegin(s->matrix, MAT_FINAL_ASSEMBLY));
-    CHECK(MatAssemblyEnd(s->matrix, MAT_FINAL_ASSEMBLY));
   }
+  CHECK(MatSetValuesCOO(s->matrix, system->values, INSERT_VALUES));
   CHECK(KSPSetOperators(s->ksp, s->matrix, s->matrix));
 
   PetscScalar *a;
   CHECK(VecGetArray(s->rhs, &a));
-  memcpy(a, b, sizeof(double) * (size_t)n);
+  memcpy(a, system->b, sizeof(double) * (size_t)n);
   CHECK(VecRestoreArray(s->rhs, &a));
-  int failed = solve_ksp(s->ksp, s->rhs, s->solution, iterations, err, err_len);
+  int failed = solve_ksp(s->ksp, s->rhs, s->solution, system->iterations, err, err_len);
   if (failed) return failed;
   const PetscScalar *y;
   CHECK(VecGetArrayRead(s->solution, &y));
-  memcpy(x, y, sizeof(double) * (size_t)n);
+  memcpy(system->x, y, sizeof(double) * (size_t)n);
   CHECK(VecRestoreArrayRead(s->solution, &y));
   return 0;
 }
@@ -315,21 +327,25 @@ int sg_petsc_mpi_describe(void *handle, char *text, size_t text_len,
 
 /* The distributed matrix's layout (`DistributedLayout` in
  * distributed.rs): this process owns the global rows [first, first +
- * local) of `global`; `row_start`/`columns` (sorted global columns) give
- * the pattern of those rows for the preallocation; `coordinates` (3 per
- * owned node, or NULL) the rigid-body near-null space when block_size is
- * 3. */
+ * local) of `global`; it gives `entries` entries in coordinate form,
+ * `rows` and `columns` global (-1: an entry this process leaves to the
+ * others; PETSc may overwrite the arrays), every entry of its own rows
+ * and those of other processes' rows that its part of K touches (PETSc
+ * sends those to their owners at each MatSetValuesCOO); `coordinates` (3
+ * per owned node, or NULL) the rigid-body near-null space when
+ * block_size is 3. */
 typedef struct {
   int global;
   int first;
   int local;
   int block_size;
-  const int *row_start;
-  const int *columns;
+  int64_t entries;
+  int *rows;
+  int *columns;
   const double *coordinates;
 } DistributedLayout;
 
-/* Make the matrix (MPIAIJ, preallocated exactly from the pattern), its
+/* Make the matrix (MPIAIJ, preallocated from the coordinate entries), its
  * vectors and the scatter of the solution to every process. */
 int sg_petsc_mpi_layout(void *handle, const DistributedLayout *layout,
                         char *err, size_t err_len) {
@@ -341,40 +357,32 @@ int sg_petsc_mpi_layout(void *handle, const DistributedLayout *layout,
                     layout->global));
   CHECK(MatSetType(s->matrix, MATMPIAIJ));
   if (layout->block_size > 1) CHECK(MatSetBlockSize(s->matrix, layout->block_size));
-  CHECK(MatMPIAIJSetPreallocationCSR(s->matrix, layout->row_start,
-                                     layout->columns, NULL));
+  CHECK(MatSetPreallocationCOO(s->matrix, layout->entries, layout->rows,
+                               layout->columns));
   CHECK(MatSetOption(s->matrix, MAT_NEW_NONZERO_ALLOCATION_ERR, PETSC_TRUE));
   CHECK(MatCreateVecs(s->matrix, &s->solution, &s->rhs));
   CHECK(VecScatterCreateToAll(s->solution, &s->to_all, &s->everywhere));
   if (layout->coordinates && layout->block_size == 3) {
-    Vec coords;
-    MatNullSpace rigid;
-    CHECK(VecCreateMPI(PETSC_COMM_WORLD, layout->local, layout->global, &coords));
-    CHECK(VecSetBlockSize(coords, 3));
-    PetscScalar *c;
-    CHECK(VecGetArray(coords, &c));
-    memcpy(c, layout->coordinates, sizeof(double) * (size_t)layout->local);
-    CHECK(VecRestoreArray(coords, &c));
-    CHECK(MatNullSpaceCreateRigidBody(coords, &rigid));
-    CHECK(MatSetNearNullSpace(s->matrix, rigid));
-    CHECK(MatNullSpaceDestroy(&rigid));
-    CHECK(VecDestroy(&coords));
+    CHECK(attach_rigid_body_modes(s->matrix, PETSC_COMM_WORLD, layout->local,
+                                  layout->global, layout->coordinates, err,
+                                  err_len));
   }
   return 0;
 }
 
 /* This process's part of one system (`DistributedSystem` in
- * distributed.rs): `rows` global rows of its part of K with their
- * entries (`row_start`, global `columns`, `values`), added into the
- * matrix (rows of other processes through PETSc's stash); `b` the
- * right-hand side of its own rows; `x` the whole solution (global
- * numbering) on return, on every process. */
+ * distributed.rs): `values` of the layout's entries (its part of K, in
+ * the layout's order; those of entries left to others are ignored) and
+ * `strays`, entries of its part of K outside the layout (rows of other
+ * processes that a contact came to touch), added one by one through
+ * PETSc's stash; `b` the right-hand side of its own rows; `x` the whole
+ * solution (global numbering) on return, on every process. */
 typedef struct {
-  int rows;
-  const int *row_index;
-  const int *row_start;
-  const int *columns;
   const double *values;
+  int strays;
+  const int *stray_rows;
+  const int *stray_columns;
+  const double *stray_values;
   const double *b;
   double *x;
   int *iterations;
@@ -383,14 +391,13 @@ typedef struct {
 int sg_petsc_mpi_solve(void *handle, const DistributedSystem *system,
                        char *err, size_t err_len) {
   DistributedSolver *s = handle;
-  CHECK(MatZeroEntries(s->matrix));
-  for (int r = 0; r < system->rows; r++) {
-    PetscInt row = system->row_index[r];
-    PetscInt count = system->row_start[r + 1] - system->row_start[r];
-    CHECK(MatSetValues(s->matrix, 1, &row, count,
-                       system->columns + system->row_start[r],
-                       system->values + system->row_start[r], ADD_VALUES));
+  CHECK(MatSetValuesCOO(s->matrix, system->values, INSERT_VALUES));
+  for (int r = 0; r < system->strays; r++) {
+    PetscInt row = system->stray_rows[r], column = system->stray_columns[r];
+    CHECK(MatSetValues(s->matrix, 1, &row, 1, &column, system->stray_values + r,
+                       ADD_VALUES));
   }
+  /* collective: every process, with strays or not */
   CHECK(MatAssemblyBegin(s->matrix, MAT_FINAL_ASSEMBLY));
   CHECK(MatAssemblyEnd(s->matrix, MAT_FINAL_ASSEMBLY));
   CHECK(KSPSetOperators(s->ksp, s->matrix, s->matrix));
@@ -415,3 +422,61 @@ int sg_petsc_mpi_solve(void *handle, const DistributedSystem *system,
   CHECK(VecRestoreArrayRead(s->everywhere, &y));
   return 0;
 }
+
+/* ---- faults of a distributed run: src/solve/petsc/distributed.rs ---- */
+
+/* A communicator of its own for the agreement on outcomes, so that a
+ * process waiting there never matches the collectives of a process still
+ * inside a solve or a sum on PETSC_COMM_WORLD. */
+static MPI_Comm fault_comm = MPI_COMM_NULL;
+
+int sg_mpi_fault_init(char *err, size_t err_len) {
+  if (fault_comm == MPI_COMM_NULL) {
+    CHECK(MPI_Comm_dup(PETSC_COMM_WORLD, &fault_comm));
+  }
+  return 0;
+}
+
+/* Every process's record of `record` bytes (a flag byte, 1 when it
+ * failed, then its message) gathered into `records` (size × record)
+ * with a non-blocking gather on the fault communicator, polled. A process
+ * gives up after `timeout` seconds (none when `timeout` <= 0): `*done` 0
+ * then, and the gather stays pending (the caller ends the run). */
+int sg_mpi_agree(const char *message, char *records, size_t record,
+                 double timeout, int *done, char *err, size_t err_len) {
+  /* kept alive while the gather may still read it (one per call site's
+   * lifetime; a pending gather only precedes MPI_Abort) */
+  char *mine = calloc(record, 1);
+  if (!mine) {
+    snprintf(err, err_len, "out of memory for the agreement of the processes");
+    return 1;
+  }
+  if (message) {
+    mine[0] = 1;
+    strncpy(mine + 1, message, record - 2);
+  }
+  MPI_Request request;
+  CHECK(MPI_Iallgather(mine, (int)record, MPI_CHAR, records, (int)record,
+                       MPI_CHAR, fault_comm, &request));
+  double start = MPI_Wtime();
+  int flag = 0;
+  for (long polls = 0;; polls++) {
+    CHECK(MPI_Test(&request, &flag, MPI_STATUS_IGNORE));
+    if (flag) break;
+    if (timeout > 0 && MPI_Wtime() - start > timeout) break;
+    if (polls > 1000) {
+      struct timespec pause = {0, 1000000};
+      nanosleep(&pause, NULL);
+    }
+  }
+  *done = flag;
+  if (flag) free(mine);
+  return 0;
+}
+
+/* End every process of the run (mpirun kills the others). */
+void sg_mpi_abort(int code) { MPI_Abort(PETSC_COMM_WORLD, code); }
+
+/* End this process now, without PETSc's and MPI's finalisation (which
+ * would wait for processes that are gone). */
+void sg_exit_now(int code) { _exit(code); }

@@ -482,3 +482,101 @@ fn bending_tet10_does_not_lock_and_tet4_does() {
     );
     assert!(w4 / beam < 0.6, "Tet4 tip {w4} against {beam}: no locking?");
 }
+
+fn data(name: &str) -> std::path::PathBuf {
+    std::path::Path::new(env!("CARGO_MANIFEST_DIR"))
+        .join("tests/data")
+        .join(name)
+}
+
+/// The second-order Gmsh meshes of `tests/data` (their `.geo` beside
+/// them): a 4 × 1 × 1 bar of Tet10, of Wedge15 and of Hex20, its end
+/// `x = 4` ("loaded") of Tri6 or Quad8 facets. Each is read with its kinds
+/// and volume 4, and under a tension `σ` on "loaded" (a consistent
+/// pressure `−σ` on its quadratic facets) and the symmetry planes held
+/// normal, Newton gives the uniaxial field `u = σ/E (x, −ν y, −ν z)` to
+/// 1e-10 of its size (an exact field of the quadratic elements).
+#[test]
+fn gmsh_second_order_bars_in_tension() {
+    use signorini::mesh::gmsh::read_msh;
+    let cases = [
+        ("bar_tet10.msh", ElementKind::Tet10, FacetKind::Tri6),
+        ("bar_wedge15.msh", ElementKind::Wedge15, FacetKind::Tri6),
+        ("bar_hex20.msh", ElementKind::Hex20, FacetKind::Quad8),
+    ];
+    let (e, nu, sigma) = (200.0, 0.3, 2.0);
+    for (file, kind, facet) in cases {
+        let mesh = Arc::new(read_msh(&data(file)).unwrap());
+        assert!(mesh.elements.iter().all(|el| el.kind == kind), "{file}");
+        let loaded = mesh.surface("loaded").unwrap();
+        assert!(loaded.facets.iter().all(|f| f.kind == facet), "{file}");
+        let volume: f64 = mesh
+            .elements
+            .iter()
+            .map(|el| {
+                let x: Vec<[f64; 3]> = el.nodes.iter().map(|&a| mesh.nodes[a]).collect();
+                reference_geometry(el.kind, &x)
+                    .unwrap()
+                    .iter()
+                    .map(|p| p.dv)
+                    .sum::<f64>()
+            })
+            .sum();
+        assert!((volume - 4.0).abs() < 1e-12, "{file}: volume {volume}");
+        let mut f_ext = vec![0.0; 3 * mesh.num_nodes()];
+        for f in &loaded.facets {
+            let x: Vec<[f64; 3]> = f.nodes.iter().map(|&a| mesh.nodes[a]).collect();
+            let (force, _) = pressure_facet(f.kind, &x, -sigma, false);
+            for (a, &node) in f.nodes.iter().enumerate() {
+                for i in 0..3 {
+                    f_ext[3 * node + i] += force[3 * a + i];
+                }
+            }
+        }
+        let fixed: Vec<bool> = mesh
+            .nodes
+            .iter()
+            .flat_map(|x| [0, 1, 2].map(|d| x[d].abs() < 1e-12))
+            .collect();
+        let material: Arc<dyn Material> = Arc::new(LinearElastic::new(e, nu, "m").unwrap());
+        let model = Model::new(
+            Arc::clone(&mesh),
+            vec![material],
+            vec![0; mesh.elements.len()],
+        )
+        .unwrap();
+        let mut u = vec![0.0; f_ext.len()];
+        solve(&model, &fixed, &mut u, &f_ext);
+        let strain = sigma / e;
+        let error = mesh.nodes.iter().enumerate().fold(0.0f64, |m, (a, x)| {
+            let exact = [strain * x[0], -nu * strain * x[1], -nu * strain * x[2]];
+            (0..3).fold(m, |m, i| m.max((u[3 * a + i] - exact[i]).abs()))
+        });
+        assert!(error < 1e-10 * 4.0 * strain, "{file}: error {error:e}");
+    }
+}
+
+/// Gmsh's Abaqus deck of the Tet10 bar (C3D10, Abaqus's node order) and
+/// its MSH file (Gmsh's order) give the same elements node for node once
+/// read (by node tag, element by element id): the C3D10 order is mapped.
+#[test]
+fn c3d10_deck_and_msh_agree_node_for_node() {
+    use signorini::mesh::gmsh::read_msh;
+    use signorini::mesh::inp::read_inp;
+    let msh = read_msh(&data("bar_tet10.msh")).unwrap();
+    let inp = read_inp(&data("bar_tet10.inp")).unwrap().mesh;
+    assert_eq!(msh.elements.len(), inp.elements.len());
+    let by_id: std::collections::HashMap<u64, &signorini::mesh::Element> =
+        inp.elements.iter().map(|el| (el.id, el)).collect();
+    let mut matched = 0;
+    // the node tags of an element (the deck and the MSH file share them)
+    let tags = |m: &Mesh, el: &signorini::mesh::Element| -> Vec<u64> {
+        el.nodes.iter().map(|&a| m.node_ids[a]).collect()
+    };
+    for el in &msh.elements {
+        let other = by_id[&el.id];
+        assert_eq!(tags(&inp, other), tags(&msh, el), "element {}", el.id);
+        matched += 1;
+    }
+    assert_eq!(matched, msh.elements.len());
+}

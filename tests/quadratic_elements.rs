@@ -580,3 +580,73 @@ fn c3d10_deck_and_msh_agree_node_for_node() {
     }
     assert_eq!(matched, msh.elements.len());
 }
+
+/// The whole run on the second-order bars through a case file: clamped at
+/// "fixed", a tension `σ = 2` (pressure −2) on "loaded", linear elastic
+/// with `ν = 0` (no lateral contraction: the clamp holds nothing back), so
+/// `u_x = σ x / E` exactly; the run writes its VTU with the quadratic
+/// cells (types 24, 26, 25).
+#[test]
+fn second_order_bars_run_through_a_case_file() {
+    use signorini::run::{RunOptions, Simulation};
+    for (file, vtk_type) in [
+        ("bar_tet10.msh", 24u8),
+        ("bar_wedge15.msh", 26),
+        ("bar_hex20.msh", 25),
+    ] {
+        let text = format!(
+            r#"
+[mesh]
+file = "{file}"
+
+[[material]]
+region = "bar"
+model = "linear_elastic"
+youngs_modulus = 200.0
+poisson_ratio = 0.0
+
+[[displacement]]
+surface = "fixed"
+x = 0.0
+y = 0.0
+z = 0.0
+
+[[pressure]]
+surface = "loaded"
+value = -2.0
+
+[[step]]
+name = "load"
+end_time = 1.0
+
+[output]
+name = "bar"
+"#
+        );
+        let out = tempfile::tempdir().unwrap();
+        let mut simulation = Simulation::from_toml(&text, &data("")).unwrap();
+        let options = RunOptions {
+            output: Some(out.path().to_path_buf()),
+            threads: Some(1),
+            cancel: None,
+            restart: None,
+        };
+        let silent = &mut signorini::output::observer::Silent;
+        let outcome = simulation.run(&options, silent).unwrap();
+        let mesh = &simulation.problem().model.mesh;
+        let error = mesh.nodes.iter().enumerate().fold(0.0f64, |m, (a, x)| {
+            let exact = [2.0 / 200.0 * x[0], 0.0, 0.0];
+            (0..3).fold(m, |m, i| {
+                m.max((outcome.displacement[3 * a + i] - exact[i]).abs())
+            })
+        });
+        assert!(error < 1e-10, "{file}: error {error:e}");
+        let vtu = std::fs::read_dir(&outcome.output_dir)
+            .unwrap()
+            .filter_map(|e| e.ok())
+            .find(|e| e.path().extension().is_some_and(|x| x == "vtu"))
+            .map(|e| e.path());
+        assert!(vtu.is_some(), "{file}: no VTU written");
+        assert!(mesh.elements.iter().all(|e| e.kind.vtk_type() == vtk_type));
+    }
+}

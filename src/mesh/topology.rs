@@ -85,6 +85,18 @@ pub fn vtk_order(kind: ElementKind) -> &'static [usize] {
     }
 }
 
+/// An element's nodes in this crate's order from VTK's order (meshio's,
+/// and Abaqus's): node `vtk_order[i]` is the given node `i`.
+pub fn from_vtk_order(kind: ElementKind, vtk: &[usize]) -> Vec<usize> {
+    let mut nodes = vtk.to_vec();
+    for (i, &internal) in vtk_order(kind).iter().enumerate() {
+        if let (Some(slot), Some(&node)) = (nodes.get_mut(internal), vtk.get(i)) {
+            *slot = node;
+        }
+    }
+    nodes
+}
+
 /// See [`ElementKind::faces`]. A Wedge6's bottom triangle `0, 1, 2` is
 /// counter-clockwise seen from above (Gmsh), so its outward face is
 /// `0, 2, 1`.

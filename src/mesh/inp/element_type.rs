@@ -104,15 +104,10 @@ fn abaqus_faces(kind: ElementKind) -> &'static [&'static [usize]] {
 /// (Abaqus numbers the mid-side nodes of C3D10, C3D20 and C3D15 as VTK
 /// does): node `vtk_order[i]` is the deck's node `i`.
 pub(super) fn from_abaqus_order(kind: ElementKind, deck: Vec<usize>) -> Vec<usize> {
-    let order = kind.vtk_order();
-    if order.len() != deck.len() || !kind.is_quadratic() {
+    if kind.vtk_order().len() != deck.len() || !kind.is_quadratic() {
         return deck;
     }
-    let mut nodes = deck.clone();
-    for (i, &internal) in order.iter().enumerate() {
-        nodes[internal] = deck[i];
-    }
-    nodes
+    crate::mesh::topology::from_vtk_order(kind, &deck)
 }
 
 /// The note for a deck's element type that is read as a kind that is not

@@ -255,26 +255,6 @@ fn consistent_pressure_on_quadratic_faces() {
     }
 }
 
-/// Shape values and reference gradients of `kind` at `xi`.
-fn shape_at(kind: ElementKind, xi: &[f64; 3]) -> (Vec<f64>, Vec<[f64; 3]>) {
-    match kind {
-        ElementKind::Tet4 => (
-            shape::tet4_values(xi).to_vec(),
-            shape::tet4_gradients(xi).to_vec(),
-        ),
-        ElementKind::Hex8 => (
-            shape::hex8_values(xi).to_vec(),
-            shape::hex8_gradients(xi).to_vec(),
-        ),
-        ElementKind::Tet10 => (shape::tet10_values(xi), shape::tet10_gradients(xi)),
-        ElementKind::Hex20 | ElementKind::Hex20R => {
-            (shape::hex20_values(xi), shape::hex20_gradients(xi))
-        }
-        ElementKind::Wedge6 => (shape::wedge6_values(xi), shape::wedge6_gradients(xi)),
-        ElementKind::Wedge15 => (shape::wedge15_values(xi), shape::wedge15_gradients(xi)),
-    }
-}
-
 /// A quadrature rule finer than the elements' own, to measure errors:
 /// 3 Gauss points a direction on the hexahedron; on the tetrahedron the
 /// same rule on the cube collapsed onto it (Duffy: `ξ = s`,
@@ -379,7 +359,7 @@ fn manufactured_errors(kind: ElementKind, cells: usize) -> (f64, f64) {
     for el in &mesh.elements {
         let x: Vec<[f64; 3]> = el.nodes.iter().map(|&a| mesh.nodes[a]).collect();
         for (xi, w) in points.iter().zip(&weights) {
-            let (values, gradients) = shape_at(el.kind, xi);
+            let (values, gradients) = shape::evaluate(el.kind, xi);
             let mut j = nalgebra::Matrix3::zeros();
             for (xa, g) in x.iter().zip(&gradients) {
                 j += Vector3::from(*xa) * Vector3::from(*g).transpose();

@@ -174,6 +174,20 @@ pub fn reference_nodes(kind: ElementKind) -> Vec<[f64; 3]> {
     nodes
 }
 
+/// The shape function values `N_a(ξ)` and reference gradients
+/// `∂N_a/∂ξ` of `kind` at `xi` (any point, not only the quadrature
+/// points of [`super::volume_reference`]).
+pub fn evaluate(kind: ElementKind, xi: &[f64; 3]) -> (Vec<f64>, Vec<[f64; 3]>) {
+    match kind {
+        ElementKind::Tet4 => (tet4_values(xi).to_vec(), tet4_gradients(xi).to_vec()),
+        ElementKind::Hex8 => (hex8_values(xi).to_vec(), hex8_gradients(xi).to_vec()),
+        ElementKind::Tet10 => (tet10_values(xi), tet10_gradients(xi)),
+        ElementKind::Hex20 | ElementKind::Hex20R => (hex20_values(xi), hex20_gradients(xi)),
+        ElementKind::Wedge6 => (wedge6_values(xi), wedge6_gradients(xi)),
+        ElementKind::Wedge15 => (wedge15_values(xi), wedge15_gradients(xi)),
+    }
+}
+
 /// Wedge6 corners: the unit triangle at `ζ = −1`, then at `ζ = 1`.
 const WEDGE6_CORNERS: [[f64; 3]; 6] = [
     [0.0, 0.0, -1.0],

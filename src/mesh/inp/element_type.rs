@@ -205,7 +205,8 @@ mod tests {
     #[test]
     fn abaqus_mid_side_nodes_land_on_their_edges() {
         use crate::mesh::topology::mid_side_node;
-        let cases: [(ElementKind, &[(usize, [usize; 2])]); 3] = [
+        type AbaqusEdges = &'static [(usize, [usize; 2])];
+        let cases: [(ElementKind, AbaqusEdges); 3] = [
             (
                 ElementKind::Tet10,
                 &[

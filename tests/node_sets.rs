@@ -19,6 +19,7 @@ fn deck(mesh: &Mesh, sets: &[(&str, Vec<usize>)]) -> String {
     let kind = match mesh.elements[0].kind {
         ElementKind::Tet4 => "C3D4",
         ElementKind::Hex8 => "C3D8",
+        other => panic!("{other:?}: this helper writes linear decks only"),
     };
     writeln!(s, "*ELEMENT, TYPE={kind}, ELSET=bar").unwrap();
     for e in &mesh.elements {

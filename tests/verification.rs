@@ -98,19 +98,10 @@ fn bar_l2_error(kind: ElementKind, nx: usize) -> f64 {
     for el in &mesh.elements {
         let (points, weights) = match kind {
             ElementKind::Hex8 => signorini::fem::quadrature::hexahedron(3),
-            ElementKind::Tet4 => signorini::fem::quadrature::tetrahedron(4),
+            _ => signorini::fem::quadrature::tetrahedron(4),
         };
         for (xi, w) in points.iter().zip(weights) {
-            let (n, g): (Vec<f64>, Vec<[f64; 3]>) = match kind {
-                ElementKind::Hex8 => (
-                    signorini::fem::shape::hex8_values(xi).to_vec(),
-                    signorini::fem::shape::hex8_gradients(xi).to_vec(),
-                ),
-                ElementKind::Tet4 => (
-                    signorini::fem::shape::tet4_values(xi).to_vec(),
-                    signorini::fem::shape::tet4_gradients(xi).to_vec(),
-                ),
-            };
+            let (n, g) = signorini::fem::shape::evaluate(kind, xi);
             let mut x = nalgebra::Vector3::zeros();
             let mut uh = nalgebra::Vector3::zeros();
             let mut jac = nalgebra::Matrix3::zeros();

@@ -76,9 +76,10 @@ pub fn indices(obj: &Bound<'_, PyAny>, what: &str) -> PyResult<Vec<usize>> {
     to_indices(values, what)
 }
 
-/// Facets: a (k, 3) or (k, 4) integer array, or a sequence of rows of 3
-/// or 4 indices (triangles and quadrangles mixed).
-pub fn facets(obj: &Bound<'_, PyAny>, what: &str) -> PyResult<Vec<Vec<usize>>> {
+/// Rows of indices: a (k, w) integer array with `w` one of `widths`, or a
+/// sequence of rows (of mixed widths: triangles and quadrangles, linear
+/// or quadratic).
+pub fn facets(obj: &Bound<'_, PyAny>, what: &str, widths: &[usize]) -> PyResult<Vec<Vec<usize>>> {
     if obj.is_instance_of::<PyList>() || obj.is_instance_of::<PyTuple>() {
         return obj
             .try_iter()?
@@ -87,9 +88,11 @@ pub fn facets(obj: &Bound<'_, PyAny>, what: &str) -> PyResult<Vec<Vec<usize>>> {
             .collect();
     }
     let (values, shape) = numpy_array::<i64>(obj, "int64", what)?;
-    if shape.len() != 2 || !(shape[1] == 3 || shape[1] == 4) {
+    if shape.len() != 2 || !widths.contains(&shape[1]) {
+        let needed: Vec<String> = widths.iter().map(|w| format!("(k, {w})")).collect();
         return Err(MeshError::new_err(format!(
-            "{what}: the array has shape {shape:?}; it needs shape (k, 3) or (k, 4)"
+            "{what}: the array has shape {shape:?}; it needs shape {}",
+            needed.join(" or ")
         )));
     }
     let values = to_indices(values, what)?;

@@ -90,14 +90,17 @@ impl Case {
     }
 
     /// A case around a mesh given as arrays. `nodes` (n, 3) float;
-    /// `tetrahedra` (m, 4) and/or `hexahedra` (m, 8) node indices (0-based,
-    /// Gmsh/VTK order; elements are numbered tetrahedra first); `regions`
+    /// `tetrahedra` (m, 4), `hexahedra` (m, 8), `tetrahedra10` (m, 10),
+    /// `hexahedra20` (m, 20), `wedges` (m, 6) and/or `wedges15` (m, 15)
+    /// node indices (0-based, VTK's order, as meshio gives them; elements
+    /// are numbered in that order of the arguments); `regions`
     /// {name: element indices} (elements in none form the region
-    /// "default"); `surfaces` {name: (k, 3) or (k, 4) facet node indices};
+    /// "default"); `surfaces` {name: (k, 3), (k, 4), (k, 6) or (k, 8) facet
+    /// node indices};
     /// `spec` the rest of the case file as TOML text or a dict (without
     /// `[mesh]`). Errors are those of a case file.
     #[staticmethod]
-    #[pyo3(signature = (nodes, spec, *, tetrahedra = None, hexahedra = None, regions = None, surfaces = None, base_dir = PathBuf::from(".")))]
+    #[pyo3(signature = (nodes, spec, *, tetrahedra = None, hexahedra = None, regions = None, surfaces = None, base_dir = PathBuf::from("."), tetrahedra10 = None, hexahedra20 = None, wedges = None, wedges15 = None))]
     #[allow(clippy::too_many_arguments)]
     fn from_arrays(
         nodes: &Bound<'_, PyAny>,
@@ -107,6 +110,10 @@ impl Case {
         regions: Option<&Bound<'_, PyDict>>,
         surfaces: Option<&Bound<'_, PyDict>>,
         base_dir: PathBuf,
+        tetrahedra10: Option<&Bound<'_, PyAny>>,
+        hexahedra20: Option<&Bound<'_, PyAny>>,
+        wedges: Option<&Bound<'_, PyAny>>,
+        wedges15: Option<&Bound<'_, PyAny>>,
     ) -> PyResult<Self> {
         let nodes: Vec<[f64; 3]> = convert::rows(nodes, "nodes")?;
         let mut elements: Vec<(ElementKind, Vec<usize>)> = Vec::new();
@@ -118,6 +125,23 @@ impl Case {
             let rows: Vec<[usize; 8]> = convert::index_rows(h, "hexahedra")?;
             elements.extend(rows.iter().map(|r| (ElementKind::Hex8, r.to_vec())));
         }
+        // the other kinds in VTK's (meshio's) node order, then
+        // tetrahedra10, hexahedra20, wedges, wedges15
+        let more = [
+            (tetrahedra10, ElementKind::Tet10, "tetrahedra10"),
+            (hexahedra20, ElementKind::Hex20, "hexahedra20"),
+            (wedges, ElementKind::Wedge6, "wedges"),
+            (wedges15, ElementKind::Wedge15, "wedges15"),
+        ];
+        for (array, kind, name) in more {
+            if let Some(a) = array {
+                let rows = convert::facets(a, name, &[kind.num_nodes()])?;
+                elements.extend(
+                    rows.iter()
+                        .map(|r| (kind, signorini::mesh::topology::from_vtk_order(kind, r))),
+                );
+            }
+        }
         let mut region_list = Vec::new();
         for (name, members) in regions.into_iter().flat_map(|d| d.iter()) {
             let name: String = name.extract()?;
@@ -127,7 +151,7 @@ impl Case {
         let mut surface_list = Vec::new();
         for (name, facets) in surfaces.into_iter().flat_map(|d| d.iter()) {
             let name: String = name.extract()?;
-            let facets = convert::facets(&facets, &format!("surfaces['{name}']"))?;
+            let facets = convert::facets(&facets, &format!("surfaces['{name}']"), &[3, 4, 6, 8])?;
             surface_list.push((name, facets));
         }
         let mesh = Mesh::from_arrays(nodes, elements, region_list, surface_list).map_err(to_py)?;
@@ -150,13 +174,15 @@ impl Case {
     }
 
     /// The elements as consecutive blocks of one kind, in element order:
-    /// a list of (meshio cell type "tetra" or "hexahedron", (m, k) node
-    /// indices).
+    /// a list of (meshio cell type "tetra", "hexahedron", "tetra10",
+    /// "hexahedron20", "wedge" or "wedge15", (m, k) node indices in VTK's
+    /// order).
     #[getter]
     fn cells<'py>(&self, py: Python<'py>) -> PyResult<Vec<(&'static str, Bound<'py, PyAny>)>> {
         let mut blocks: Vec<(ElementKind, Vec<i64>)> = Vec::new();
         for e in &self.inner.mesh.elements {
-            let nodes = e.nodes.iter().map(|&n| n as i64);
+            // meshio's node order is VTK's
+            let nodes = e.kind.vtk_order().iter().map(|&a| e.nodes[a] as i64);
             match blocks.last_mut() {
                 Some((kind, block)) if *kind == e.kind => block.extend(nodes),
                 _ => blocks.push((e.kind, nodes.collect())),
@@ -168,6 +194,10 @@ impl Case {
                 let name = match kind {
                     ElementKind::Tet4 => "tetra",
                     ElementKind::Hex8 => "hexahedron",
+                    ElementKind::Tet10 => "tetra10",
+                    ElementKind::Hex20 | ElementKind::Hex20R => "hexahedron20",
+                    ElementKind::Wedge6 => "wedge",
+                    ElementKind::Wedge15 => "wedge15",
                 };
                 let k = kind.num_nodes();
                 let rows = nodes.len() / k;

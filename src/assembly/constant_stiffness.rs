@@ -63,6 +63,8 @@ impl StiffnessCache {
 /// form ([`hooke_stiffness`]) from each element's reference `geometry`
 /// and Lamé parameters `lame(e)`, over the elements `owned` admits, added
 /// through the scatter map `map` into `lower` ([`ScatterMap::lower`]).
+/// `None` if an element is not a Tet4 or a Hex8 (the other kinds go
+/// through the general kernel).
 ///
 /// One thread, in mesh order: neighbouring elements share nodes, so the
 /// entries they add to are still in cache (three times faster on the race
@@ -77,7 +79,11 @@ pub fn assemble_hooke_lower(
     owned: impl Fn(usize) -> bool,
     lower: &LowerTriangle,
     map: &ScatterMap,
-) -> Vec<f64> {
+) -> Option<Vec<f64>> {
+    let closed_form = |kind| matches!(kind, ElementKind::Tet4 | ElementKind::Hex8);
+    if !elements.iter().all(|e| closed_form(e.kind)) {
+        return None;
+    }
     let mut k = vec![0.0; lower.nnz()];
     for (e, (element, g)) in elements.iter().zip(geometry).enumerate() {
         if !owned(e) {
@@ -90,9 +96,10 @@ pub fn assemble_hooke_lower(
         match element.kind {
             ElementKind::Tet4 => add(&hooke_stiffness::<4, 10>(g, lambda, mu)),
             ElementKind::Hex8 => add(&hooke_stiffness::<8, 36>(g, lambda, mu)),
+            _ => return None,
         }
     }
-    k
+    Some(k)
 }
 
 /// Add an element's blocks `K_ab`, `a ≤ b` (in the order of

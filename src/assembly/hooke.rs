@@ -176,6 +176,7 @@ mod tests {
             let closed: Vec<[f64; 9]> = match kind {
                 ElementKind::Tet4 => hooke_stiffness::<4, 10>(&geometry, lambda, mu).to_vec(),
                 ElementKind::Hex8 => hooke_stiffness::<8, 36>(&geometry, lambda, mu).to_vec(),
+                other => unreachable!("{other:?} has no closed form"),
             };
             let scale = general.iter().fold(0.0f64, |s, v| s.max(v.abs()));
             let mut blocks = closed.iter();

@@ -82,9 +82,13 @@ pub struct ElementOutput {
     pub stiffness: Vec<f64>,
 }
 
-/// Most nodes of an element (Hex8): the size of the kernel's scratch on
-/// the stack.
-pub const MAX_NODES: usize = 8;
+/// Most nodes of an element (Hex20).
+pub const MAX_NODES: usize = 20;
+
+/// Most nodes of a linear element (Hex8): the kernel's scratch for an
+/// element of at most this many nodes is sized for it, so a Tet4 or a
+/// Hex8 never fills a 20-node buffer.
+pub const LINEAR_MAX_NODES: usize = 8;
 
 /// Internal force and (if `with_tangent`) tangent stiffness of one element.
 /// `geometry` comes from [`reference_geometry`]. Allocates the two output
@@ -109,10 +113,15 @@ pub fn internal_force_and_tangent(
     Ok(out)
 }
 
-/// The tangent's blocks `K_ab` for `b ≥ a` of an element of at most
-/// [`MAX_NODES`] nodes, `3 × 3` each (row: a-dof `i`, column: b-dof `k`,
-/// row-major), in the order `(0,0), (0,1), …, (0,n−1), (1,1), …`.
-type UpperBlocks = [[f64; 9]; MAX_NODES * (MAX_NODES + 1) / 2];
+/// The tangent's blocks `K_ab` for `b ≥ a` of an element of at most `M`
+/// nodes (`B = M (M + 1) / 2`), `3 × 3` each (row: a-dof `i`, column:
+/// b-dof `k`, row-major), in the order `(0,0), (0,1), …, (0,n−1), (1,1), …`.
+type UpperBlocks<const B: usize> = [[f64; 9]; B];
+
+/// Blocks of an element of at most [`LINEAR_MAX_NODES`] nodes.
+const LINEAR_BLOCKS: usize = LINEAR_MAX_NODES * (LINEAR_MAX_NODES + 1) / 2;
+/// Blocks of an element of at most [`MAX_NODES`] nodes.
+const MAX_BLOCKS: usize = MAX_NODES * (MAX_NODES + 1) / 2;
 
 /// The first elasticity tensor of one quadrature point times its volume
 /// weight, `𝔸_iJkL dV₀ = (F_iI F_kK ℂ_IJKL + δ_ik S_JL) dV₀` (without
@@ -172,11 +181,58 @@ pub fn internal_force_and_tangent_into(
     stiffness: Option<&mut [f64]>,
 ) -> Result<(), KernelFailure> {
     let n = displacements.len();
-    let dofs = 3 * n;
     assert!(n <= MAX_NODES, "an element of {n} nodes");
+    if n <= LINEAR_MAX_NODES {
+        let mut upper: UpperBlocks<LINEAR_BLOCKS> = [[0.0; 9]; LINEAR_BLOCKS];
+        accumulate(
+            geometry,
+            displacements,
+            material,
+            force,
+            stiffness,
+            &mut upper,
+        )
+    } else {
+        quadratic(geometry, displacements, material, force, stiffness)
+    }
+}
+
+/// [`accumulate`] with the scratch of a 20-node element, in a frame of its
+/// own (the linear elements' frame does not grow).
+#[inline(never)]
+fn quadratic(
+    geometry: &[PointGeometry],
+    displacements: &[[f64; 3]],
+    material: &dyn Material,
+    force: &mut [f64],
+    stiffness: Option<&mut [f64]>,
+) -> Result<(), KernelFailure> {
+    let mut upper: UpperBlocks<MAX_BLOCKS> = [[0.0; 9]; MAX_BLOCKS];
+    accumulate(
+        geometry,
+        displacements,
+        material,
+        force,
+        stiffness,
+        &mut upper,
+    )
+}
+
+/// The body of [`internal_force_and_tangent_into`] with the scratch
+/// `upper` (zeroed, at least `n (n + 1) / 2` blocks).
+#[inline(always)]
+fn accumulate(
+    geometry: &[PointGeometry],
+    displacements: &[[f64; 3]],
+    material: &dyn Material,
+    force: &mut [f64],
+    stiffness: Option<&mut [f64]>,
+    upper: &mut [[f64; 9]],
+) -> Result<(), KernelFailure> {
+    let n = displacements.len();
+    let dofs = 3 * n;
     force.iter_mut().for_each(|v| *v = 0.0);
     let small = material.kinematics() == Kinematics::SmallStrain;
-    let mut upper: UpperBlocks = [[0.0; 9]; MAX_NODES * (MAX_NODES + 1) / 2];
     for (q, p) in geometry.iter().enumerate() {
         let f = deformation_gradient(&p.gradients, displacements);
         let det_f = f.determinant();
@@ -294,21 +350,20 @@ mod tests {
         b
     }
 
-    /// A distorted element of `kind` and a displacement of a few percent.
+    /// A distorted element of `kind` (the reference nodes through
+    /// `X = A ξ + 0.03 (ξ₂², ξ₀ ξ₁, ξ₁²)`: curved for a quadratic kind) and
+    /// a displacement of a few percent.
     fn element(kind: ElementKind) -> (Vec<PointGeometry>, Vec<[f64; 3]>) {
-        let corners: Vec<[f64; 3]> = match kind {
-            ElementKind::Tet4 => vec![[0.0; 3], [1.0, 0.1, 0.0], [0.2, 0.9, 0.1], [0.1, 0.2, 1.1]],
-            ElementKind::Hex8 => (0..8)
-                .map(|a| {
-                    let (x, y, z) = ((a & 1) ^ (a >> 1 & 1), a >> 1 & 1, a >> 2);
-                    [
-                        x as f64 + 0.05 * a as f64,
-                        y as f64 * 0.9,
-                        z as f64 * 1.1 + 0.02 * x as f64,
-                    ]
-                })
-                .collect(),
-        };
+        let corners: Vec<[f64; 3]> = crate::fem::shape::reference_nodes(kind)
+            .iter()
+            .map(|x| {
+                [
+                    x[0] + 0.1 * x[1] + 0.03 * x[2] * x[2],
+                    0.05 * x[0] + 0.9 * x[1] + 0.03 * x[0] * x[1],
+                    0.02 * x[0] + 0.1 * x[1] + 1.1 * x[2] + 0.03 * x[1] * x[1],
+                ]
+            })
+            .collect();
         let u = (0..corners.len())
             .map(|a| {
                 [
@@ -321,11 +376,21 @@ mod tests {
         (reference_geometry(kind, &corners).unwrap(), u)
     }
 
+    const KINDS: [ElementKind; 7] = [
+        ElementKind::Tet4,
+        ElementKind::Hex8,
+        ElementKind::Tet10,
+        ElementKind::Hex20,
+        ElementKind::Hex20R,
+        ElementKind::Wedge6,
+        ElementKind::Wedge15,
+    ];
+
     /// The fixed-size kernel (no heap allocation) against the formula
     /// evaluated densely: `f = Σ_q P Gₐ dV`, `K = Σ_q (Bᵀ 𝔻 B + (Gₐ·S G_b) I) dV`
     /// with the full `6 × 3n` operator `B` (nalgebra's dynamic matrices, no
     /// symmetric half, no first elasticity tensor), to 1e-13 relative, for
-    /// Tet4 and Hex8, the small-strain and the three finite-strain
+    /// every element kind, the small-strain and the three finite-strain
     /// materials; `K` exactly symmetric; and the allocating wrapper gives
     /// the same numbers.
     #[test]
@@ -338,7 +403,7 @@ mod tests {
                 Ogden::new(vec![0.4095, 0.003, 0.01], vec![1.3, 5.0, -2.0], 4.0, "m").unwrap(),
             ),
         ];
-        for kind in [ElementKind::Tet4, ElementKind::Hex8] {
+        for kind in KINDS {
             let (geometry, u) = element(kind);
             let n = u.len();
             for material in &materials {
@@ -420,7 +485,7 @@ mod tests {
             ),
             Box::new(NeoHookean::new(100.0, 0.45, "m").unwrap()),
         ];
-        for kind in [ElementKind::Tet4, ElementKind::Hex8] {
+        for kind in KINDS {
             let (geometry, u) = element(kind);
             for material in &materials {
                 let full =

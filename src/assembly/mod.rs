@@ -39,7 +39,7 @@ use crate::material::{Mat3, Material};
 use crate::mesh::Mesh;
 use colouring::{DisjointSlice, ElementColouring};
 use constant_stiffness::StiffnessCache;
-use kernel::{KernelFailure, PointGeometry, MAX_NODES};
+use kernel::{KernelFailure, PointGeometry, LINEAR_MAX_NODES, MAX_NODES};
 use pattern::{NodeGraph, SparsityPattern};
 use rayon::prelude::*;
 use scatter_map::ScatterMap;
@@ -219,13 +219,29 @@ impl Model {
     }
 
     /// The displacements of element `e`'s nodes (the first
-    /// `nodes.len()` entries), on the stack.
-    fn element_displacements(&self, e: usize, u: &[f64]) -> [[f64; 3]; MAX_NODES] {
-        let mut d = [[0.0; 3]; MAX_NODES];
+    /// `nodes.len()` entries), on the stack, in a buffer of `M ≥ n` nodes.
+    fn element_displacements<const M: usize>(&self, e: usize, u: &[f64]) -> [[f64; 3]; M] {
+        let mut d = [[0.0; 3]; M];
         for (da, &n) in d.iter_mut().zip(&self.mesh.elements[e].nodes) {
             *da = [u[3 * n], u[3 * n + 1], u[3 * n + 2]];
         }
         d
+    }
+
+    /// `f` of the displacements of element `e`'s nodes, held on the stack
+    /// in a buffer sized for a linear element where it is one.
+    fn with_element_displacements<R>(
+        &self,
+        e: usize,
+        u: &[f64],
+        f: impl FnOnce(&[[f64; 3]]) -> R,
+    ) -> R {
+        let n = self.mesh.elements[e].nodes.len();
+        if n <= LINEAR_MAX_NODES {
+            f(&self.element_displacements::<LINEAR_MAX_NODES>(e, u)[..n])
+        } else {
+            f(&self.element_displacements::<MAX_NODES>(e, u)[..n])
+        }
     }
 
     /// Assemble the internal force `f_int(u)` into `force` (overwritten) and,
@@ -299,14 +315,18 @@ impl Model {
                 self.materials.iter().map(|m| m.hooke_lame()).collect();
             if let Some(lame) = hooke {
                 let (lower, map) = self.lower_triangle_and_map();
-                return Some(constant_stiffness::assemble_hooke_lower(
+                let closed_form = constant_stiffness::assemble_hooke_lower(
                     &self.mesh.elements,
                     &self.geometry,
                     |e| lame[self.element_material[e]],
                     |e| self.share.as_ref().is_none_or(|s| s.owned[e]),
                     &lower,
                     &map,
-                ));
+                );
+                // Tet4 and Hex8 only: the other kinds by the general kernel
+                if closed_form.is_some() {
+                    return closed_form;
+                }
             }
             let zero = vec![0.0; self.pattern.dimension()];
             let mut force = vec![0.0; self.pattern.dimension()];
@@ -434,12 +454,44 @@ impl Model {
         force: &DisjointSlice<'_>,
         tangent: Option<&Target<'_>>,
     ) -> Result<(), ElementFailure> {
+        if self.mesh.elements[e].nodes.len() <= LINEAR_MAX_NODES {
+            self.add_element_sized::<LINEAR_MAX_NODES>(e, u, force, tangent)
+        } else {
+            self.add_quadratic_element(e, u, force, tangent)
+        }
+    }
+
+    /// [`Self::add_element_sized`] for an element of more than
+    /// [`LINEAR_MAX_NODES`] nodes, in a frame of its own.
+    #[inline(never)]
+    fn add_quadratic_element(
+        &self,
+        e: usize,
+        u: &[f64],
+        force: &DisjointSlice<'_>,
+        tangent: Option<&Target<'_>>,
+    ) -> Result<(), ElementFailure> {
+        self.add_element_sized::<MAX_NODES>(e, u, force, tangent)
+    }
+
+    /// [`Self::add_element`] with the element's force and stiffness on the
+    /// stack in buffers of `M ≥ n` nodes.
+    #[inline(always)]
+    fn add_element_sized<const M: usize>(
+        &self,
+        e: usize,
+        u: &[f64],
+        force: &DisjointSlice<'_>,
+        tangent: Option<&Target<'_>>,
+    ) -> Result<(), ElementFailure> {
         let nodes = &self.mesh.elements[e].nodes;
         let n = nodes.len();
         let dofs = 3 * n;
-        let displacements = self.element_displacements(e, u);
-        let mut fe = [0.0; 3 * MAX_NODES];
-        let mut ke = [0.0; 9 * MAX_NODES * MAX_NODES];
+        let displacements = self.element_displacements::<M>(e, u);
+        let mut fe = [[0.0; 3]; M];
+        let fe = fe.as_flattened_mut();
+        let mut ke = [[[[0.0; 3]; M]; 3]; M];
+        let ke = ke.as_flattened_mut().as_flattened_mut().as_flattened_mut();
         kernel::internal_force_and_tangent_into(
             &self.geometry[e],
             &displacements[..n],
@@ -510,12 +562,13 @@ impl Model {
         (0..self.mesh.elements.len())
             .into_par_iter()
             .map(|e| {
-                let n = self.mesh.elements[e].nodes.len();
-                kernel::element_cauchy_stress(
-                    &self.geometry[e],
-                    &self.element_displacements(e, u)[..n],
-                    self.materials[self.element_material[e]].as_ref(),
-                )
+                self.with_element_displacements(e, u, |d| {
+                    kernel::element_cauchy_stress(
+                        &self.geometry[e],
+                        d,
+                        self.materials[self.element_material[e]].as_ref(),
+                    )
+                })
             })
             .collect()
     }
@@ -645,7 +698,7 @@ mod tests {
             let n = el.nodes.len();
             let out = kernel::internal_force_and_tangent(
                 &model.geometry[e],
-                &model.element_displacements(e, u)[..n],
+                &model.element_displacements::<MAX_NODES>(e, u)[..n],
                 model.materials[model.element_material[e]].as_ref(),
                 true,
             )

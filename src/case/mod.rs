@@ -957,12 +957,17 @@ impl Case {
             // half of every node's tributary area
             let reverse_pass = " (two_pass: the reverse pass)";
             let setup = |e: SetupError| {
-                let (SetupError::NoArea(s) | SetupError::UnknownSurface(s)) = &e;
+                let (SetupError::NoArea(s)
+                | SetupError::UnknownSurface(s)
+                | SetupError::QuadraticSurface(s)) = &e;
                 let pass = if *s == c.surface { "" } else { reverse_pass };
                 self.err(match e {
                     SetupError::NoArea(_) => format!("{key}{pass}: surface '{s}' has no area"),
                     SetupError::UnknownSurface(_) => {
                         format!("{key}{pass}: the mesh has no surface set '{s}'")
+                    }
+                    SetupError::QuadraticSurface(_) => {
+                        format!("{key}: {}", SetupError::quadratic_surface_message(s))
                     }
                 })
             };

@@ -111,6 +111,31 @@ pub enum SetupError {
     UnknownSurface(String),
     /// The secondary surface has no nodes or no area.
     NoArea(String),
+    /// The surface (secondary or primary) has quadratic faces (Tri6,
+    /// Quad8): node-to-surface contact gives a Tri6's corners no share of
+    /// a uniform pressure (`∫ N_corner dA = 0`), and a Quad8's a negative
+    /// one; they need the mortar method's segment integration.
+    QuadraticSurface(String),
+}
+
+impl SetupError {
+    /// The message of [`SetupError::QuadraticSurface`] for surface `s`.
+    pub fn quadratic_surface_message(s: &str) -> String {
+        format!(
+            "surface '{s}' has quadratic faces (Tri6/Quad8, of Tet10, Hex20 or Wedge15 \
+             elements): node-to-surface contact gives their corner nodes no share of a uniform \
+             pressure, so contact on quadratic faces needs the mortar method, which is coming; \
+             meanwhile mesh the contact bodies with linear elements (Gmsh -order 1; C3D4, C3D8)"
+        )
+    }
+}
+
+/// [`SetupError::QuadraticSurface`] if a facet of `set` is quadratic.
+fn linear_faces(set: &crate::mesh::SurfaceSet) -> Result<(), SetupError> {
+    if set.facets.iter().any(|f| f.kind.is_quadratic()) {
+        return Err(SetupError::QuadraticSurface(set.name.clone()));
+    }
+    Ok(())
 }
 
 /// The automatic stiffness of a contact between two deformable sides of
@@ -190,6 +215,7 @@ impl ContactInterface {
         let set = mesh
             .surface(secondary)
             .ok_or_else(|| SetupError::UnknownSurface(secondary.to_string()))?;
+        linear_faces(set)?;
         let (nodes, areas) = tributary_areas(mesh, set);
         let total: f64 = areas.iter().sum();
         if nodes.is_empty() || !(total > 0.0) {
@@ -244,6 +270,10 @@ impl ContactInterface {
         primary: &str,
         enforcement: &Enforcement,
     ) -> Result<Self, SetupError> {
+        let set = mesh
+            .surface(primary)
+            .ok_or_else(|| SetupError::UnknownSurface(primary.to_string()))?;
+        linear_faces(set)?;
         let surface = PrimarySurface::from_mesh(mesh, primary)
             .ok_or_else(|| SetupError::UnknownSurface(primary.to_string()))?;
         Self::new(mesh, secondary, Primary::Surface(surface), enforcement)

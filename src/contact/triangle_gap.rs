@@ -203,6 +203,9 @@ pub fn facet_triangles(facets: &[Facet], node: impl Fn(usize) -> usize) -> Vec<[
         match f.kind {
             FacetKind::Tri3 => triangles.push([n[0], n[1], n[2]]),
             FacetKind::Quad4 => triangles.extend(split_quadrangle([n[0], n[1], n[2], n[3]])),
+            // a quadratic facet by its corners (contact refuses them at set-up)
+            FacetKind::Tri6 => triangles.push([n[0], n[1], n[2]]),
+            FacetKind::Quad8 => triangles.extend(split_quadrangle([n[0], n[1], n[2], n[3]])),
         }
     }
     triangles

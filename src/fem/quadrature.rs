@@ -67,8 +67,8 @@ pub fn tetrahedron(n: usize) -> (Vec<[f64; 3]>, Vec<f64>) {
     }
 }
 
-/// Symmetric rules on the unit triangle: 1 point (degree 1) or 3 points
-/// (degree 2).
+/// Symmetric rules on the unit triangle: 1 point (degree 1), 3 points
+/// (degree 2) or 6 points (degree 4, Dunavant 1985, table 4).
 pub fn triangle(n: usize) -> (Vec<[f64; 2]>, Vec<f64>) {
     match n {
         1 => (vec![[1.0 / 3.0; 2]], vec![0.5]),
@@ -80,8 +80,61 @@ pub fn triangle(n: usize) -> (Vec<[f64; 2]>, Vec<f64>) {
             ],
             vec![1.0 / 6.0; 3],
         ),
+        6 => {
+            let (a, wa) = (0.445_948_490_915_965, 0.223_381_589_678_011);
+            let (b, wb) = (0.091_576_213_509_771, 0.109_951_743_655_322);
+            let mut points = Vec::new();
+            let mut weights = Vec::new();
+            for (c, w) in [(a, wa), (b, wb)] {
+                let d = 1.0 - 2.0 * c;
+                points.extend([[c, c], [d, c], [c, d]]);
+                weights.extend([0.5 * w; 3]);
+            }
+            (points, weights)
+        }
         #[allow(clippy::panic)] // the rules are chosen in code (per element kind), not by input
-        _ => panic!("triangle rule with {n} points not tabulated (1, 3)"),
+        _ => panic!("triangle rule with {n} points not tabulated (1, 3, 6)"),
+    }
+}
+
+/// The product of the triangle rule of `triangle_points` points and the
+/// Gauss–Legendre rule of `line_points` on the wedge
+/// `{ξ, η ≥ 0, ξ + η ≤ 1} × [−1, 1]` (measure 1).
+pub fn wedge(triangle_points: usize, line_points: usize) -> (Vec<[f64; 3]>, Vec<f64>) {
+    let (tp, tw) = triangle(triangle_points);
+    let (lp, lw) = gauss_legendre(line_points);
+    let mut points = Vec::new();
+    let mut weights = Vec::new();
+    for (z, wz) in lp.iter().zip(&lw) {
+        for (p, w) in tp.iter().zip(&tw) {
+            points.push([p[0], p[1], *z]);
+            weights.push(w * wz);
+        }
+    }
+    (points, weights)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// `∫ ξ^i η^j dA = i! j! / (i + j + 2)!` on the unit triangle, for
+    /// every `i + j ≤ 4` by the 6-point rule.
+    #[test]
+    fn six_point_triangle_rule_is_of_degree_four() {
+        let fact = |n: u32| (1..=n).product::<u32>() as f64;
+        let (p, w) = triangle(6);
+        for i in 0..=4u32 {
+            for j in 0..=(4 - i) {
+                let q: f64 = p
+                    .iter()
+                    .zip(&w)
+                    .map(|(x, w)| w * x[0].powi(i as i32) * x[1].powi(j as i32))
+                    .sum();
+                let exact = fact(i) * fact(j) / fact(i + j + 2);
+                assert!((q - exact).abs() < 1e-14, "ξ^{i} η^{j}: {q} vs {exact}");
+            }
+        }
     }
 }
 

@@ -136,12 +136,12 @@ impl Mesh {
                     .into_iter()
                     .enumerate()
                     .map(|(f, nodes)| {
-                        let kind = match nodes.len() {
-                            3 => FacetKind::Tri3,
-                            4 => FacetKind::Quad4,
-                            k => {
+                        let kind = match FacetKind::of_node_count(nodes.len()) {
+                            Some(kind) => kind,
+                            None => {
                                 return Err(invalid(format!(
-                                    "facet {f} of surface '{name}' has {k} nodes; a facet has 3 (triangle) or 4 (quadrangle)"
+                                    "facet {f} of surface '{name}' has {} nodes; a facet has 3 (triangle), 4 (quadrangle), 6 (quadratic triangle) or 8 (quadratic quadrangle)",
+                                    nodes.len()
                                 )))
                             }
                         };

@@ -12,11 +12,14 @@ pub struct BoundaryFace {
     pub nodes: Vec<usize>,
 }
 
-/// Sorted node list of a face, padded with `usize::MAX` (faces have 3 or
-/// 4 nodes): a key that identifies a face whatever its orientation.
+/// Sorted corner list of a face, padded with `usize::MAX` (faces have 3
+/// or 4 corners; a quadratic face's mid-side nodes follow them and are
+/// not part of the key): a key that identifies a face whatever its
+/// orientation.
 fn face_key(nodes: &[usize]) -> [usize; 4] {
     let mut k = [usize::MAX; 4];
-    for (slot, &n) in k.iter_mut().zip(nodes) {
+    let corners = facet_kind(nodes.len()).num_corners();
+    for (slot, &n) in k.iter_mut().zip(&nodes[..corners.min(nodes.len())]) {
         *slot = n;
     }
     k.sort_unstable();
@@ -24,11 +27,18 @@ fn face_key(nodes: &[usize]) -> [usize; 4] {
 }
 
 fn facet_kind(n: usize) -> FacetKind {
-    if n == 3 {
-        FacetKind::Tri3
-    } else {
-        FacetKind::Quad4
-    }
+    FacetKind::of_node_count(n).unwrap_or(FacetKind::Quad4)
+}
+
+/// The face `nodes` (corners, then mid-side nodes) started at its corner
+/// `start`: corners and mid-side nodes each rotated by `start`, so the
+/// mid-side node `k` stays between the corners `k` and `k + 1`.
+fn rotated(nodes: &[usize], start: usize) -> Vec<usize> {
+    let c = facet_kind(nodes.len()).num_corners().min(nodes.len());
+    let (corners, mids) = nodes.split_at(c);
+    let mut out: Vec<usize> = (0..c).map(|i| corners[(start + i) % c]).collect();
+    out.extend((0..mids.len()).map(|i| mids[(start + i) % mids.len()]));
+    out
 }
 
 /// The faces of the mesh that belong to exactly one element, outward
@@ -140,8 +150,10 @@ impl Mesh {
                         // keep the facet's first node, follow the face's cycle
                         let start = face.nodes.iter().position(|&n| n == facet.nodes[0]);
                         if let Some(s) = start {
-                            let k = face.nodes.len();
-                            facet.nodes = (0..k).map(|i| face.nodes[(s + i) % k]).collect();
+                            // a facet given by its corners takes the face's
+                            // mid-side nodes too
+                            facet.nodes = rotated(&face.nodes, s);
+                            facet.kind = facet_kind(facet.nodes.len());
                         }
                     }
                     None => {

@@ -5,7 +5,9 @@
 //! Node numbering inside an element follows Gmsh (which, for the linear
 //! elements, is also VTK's): Tet4 `0‥3`; Hex8 bottom face `0‥3`
 //! counter-clockwise seen from outside… i.e. from below, top face `4‥7`
-//! above them.
+//! above them; Wedge6 bottom triangle `0‥2`, top `3‥5`. The quadratic
+//! elements (Tet10, Hex20, Wedge15) add their mid-side nodes in Gmsh's
+//! edge order; VTK and Abaqus order them differently ([`topology`]).
 
 pub mod arrays;
 pub mod boundary;
@@ -13,6 +15,7 @@ pub mod gmsh;
 pub mod inp;
 pub mod stl;
 pub mod structured;
+pub mod topology;
 
 use crate::Result;
 use std::path::Path;
@@ -33,15 +36,26 @@ pub fn read_mesh(path: &Path) -> Result<(Mesh, Vec<String>)> {
     }
 }
 
-/// Volume element types. Adding a type (Tet10, Hex20) means a variant here,
-/// its shape functions and quadrature rule in [`crate::fem`], and its Gmsh/VTK
-/// type numbers.
+/// Volume element types. Adding a type means a variant here, its node
+/// orders and faces in [`topology`], its shape functions and quadrature
+/// rule in [`crate::fem`], and its Gmsh/VTK/Abaqus type names.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
 pub enum ElementKind {
     /// 4-node linear tetrahedron.
     Tet4,
     /// 8-node trilinear hexahedron.
     Hex8,
+    /// 10-node quadratic tetrahedron (Abaqus C3D10).
+    Tet10,
+    /// 20-node serendipity hexahedron, 3×3×3 Gauss points (C3D20).
+    Hex20,
+    /// 20-node serendipity hexahedron with 2×2×2 reduced integration
+    /// (C3D20R).
+    Hex20R,
+    /// 6-node linear wedge (prism, C3D6).
+    Wedge6,
+    /// 15-node quadratic wedge (C3D15).
+    Wedge15,
 }
 
 impl ElementKind {
@@ -50,6 +64,10 @@ impl ElementKind {
         match self {
             ElementKind::Tet4 => 4,
             ElementKind::Hex8 => 8,
+            ElementKind::Tet10 => 10,
+            ElementKind::Hex20 | ElementKind::Hex20R => 20,
+            ElementKind::Wedge6 => 6,
+            ElementKind::Wedge15 => 15,
         }
     }
     /// Gmsh element type number.
@@ -57,29 +75,54 @@ impl ElementKind {
         match self {
             ElementKind::Tet4 => 4,
             ElementKind::Hex8 => 5,
+            ElementKind::Tet10 => 11,
+            ElementKind::Hex20 | ElementKind::Hex20R => 17,
+            ElementKind::Wedge6 => 6,
+            ElementKind::Wedge15 => 18,
         }
+    }
+    /// The kind of a Gmsh volume element type number, if supported.
+    pub fn from_gmsh_type(gmsh_type: i64) -> Option<Self> {
+        [
+            ElementKind::Tet4,
+            ElementKind::Hex8,
+            ElementKind::Tet10,
+            ElementKind::Hex20,
+            ElementKind::Wedge6,
+            ElementKind::Wedge15,
+        ]
+        .into_iter()
+        .find(|k| i64::from(k.gmsh_type()) == gmsh_type)
     }
     /// VTK cell type number.
     pub fn vtk_type(self) -> u8 {
         match self {
             ElementKind::Tet4 => 10,
             ElementKind::Hex8 => 12,
+            ElementKind::Tet10 => 24,
+            ElementKind::Hex20 | ElementKind::Hex20R => 25,
+            ElementKind::Wedge6 => 13,
+            ElementKind::Wedge15 => 26,
         }
     }
+    /// VTK's node order: VTK's node `i` is this crate's (Gmsh's) node
+    /// `vtk_order()[i]`. Abaqus/CalculiX number the nodes as VTK does.
+    pub fn vtk_order(self) -> &'static [usize] {
+        topology::vtk_order(self)
+    }
+    /// Whether the element has mid-side nodes.
+    pub fn is_quadratic(self) -> bool {
+        matches!(
+            self,
+            ElementKind::Tet10 | ElementKind::Hex20 | ElementKind::Hex20R | ElementKind::Wedge15
+        )
+    }
     /// The element's faces as lists of local node indices, ordered so that
-    /// the right-hand rule gives the outward normal.
+    /// the right-hand rule on the corners gives the outward normal; a
+    /// quadratic face lists its corners, then its mid-side nodes in the
+    /// order of its edges `(0,1), (1,2), …` (Tri6, Quad8).
     pub fn faces(self) -> &'static [&'static [usize]] {
-        match self {
-            ElementKind::Tet4 => &[&[0, 2, 1], &[0, 1, 3], &[0, 3, 2], &[1, 2, 3]],
-            ElementKind::Hex8 => &[
-                &[0, 3, 2, 1],
-                &[4, 5, 6, 7],
-                &[0, 1, 5, 4],
-                &[1, 2, 6, 5],
-                &[2, 3, 7, 6],
-                &[3, 0, 4, 7],
-            ],
-        }
+        topology::faces(self)
     }
 }
 
@@ -90,6 +133,12 @@ pub enum FacetKind {
     Tri3,
     /// 4-node bilinear quadrangle.
     Quad4,
+    /// 6-node quadratic triangle: corners, then mid-sides `(0,1), (1,2),
+    /// (2,0)`.
+    Tri6,
+    /// 8-node serendipity quadrangle: corners, then mid-sides `(0,1),
+    /// (1,2), (2,3), (3,0)`.
+    Quad8,
 }
 
 impl FacetKind {
@@ -98,13 +147,47 @@ impl FacetKind {
         match self {
             FacetKind::Tri3 => 3,
             FacetKind::Quad4 => 4,
+            FacetKind::Tri6 => 6,
+            FacetKind::Quad8 => 8,
         }
+    }
+    /// Number of corner nodes (the first ones).
+    pub fn num_corners(self) -> usize {
+        match self {
+            FacetKind::Tri3 | FacetKind::Tri6 => 3,
+            FacetKind::Quad4 | FacetKind::Quad8 => 4,
+        }
+    }
+    /// The facet kind of `n` nodes (3, 4, 6 or 8).
+    pub fn of_node_count(n: usize) -> Option<Self> {
+        match n {
+            3 => Some(FacetKind::Tri3),
+            4 => Some(FacetKind::Quad4),
+            6 => Some(FacetKind::Tri6),
+            8 => Some(FacetKind::Quad8),
+            _ => None,
+        }
+    }
+    /// Whether the facet has mid-side nodes.
+    pub fn is_quadratic(self) -> bool {
+        matches!(self, FacetKind::Tri6 | FacetKind::Quad8)
     }
     /// Gmsh element type number.
     pub fn gmsh_type(self) -> i32 {
         match self {
             FacetKind::Tri3 => 2,
             FacetKind::Quad4 => 3,
+            FacetKind::Tri6 => 9,
+            FacetKind::Quad8 => 16,
+        }
+    }
+    /// VTK cell type number.
+    pub fn vtk_type(self) -> u8 {
+        match self {
+            FacetKind::Tri3 => 5,
+            FacetKind::Quad4 => 9,
+            FacetKind::Tri6 => 22,
+            FacetKind::Quad8 => 23,
         }
     }
 }

@@ -1,13 +1,88 @@
 //! Structured box meshes built in code, for tests and benchmarks: a box
-//! `[0, Lx] × [0, Ly] × [0, Lz]` with `nx × ny × nz` cells, as Hex8 or as
-//! Tet4 (six Kuhn tetrahedra per cell, conforming across cells). The region
+//! `[0, Lx] × [0, Ly] × [0, Lz]` with `nx × ny × nz` cells, as Hex8, as
+//! Tet4 (six Kuhn tetrahedra per cell, conforming across cells) or as
+//! Wedge6 (two per cell, split along the cell's diagonal `0–2` in `xy`),
+//! and their quadratic kinds with a node at the middle of each edge
+//! ([`with_mid_side_nodes`]). The region
 //! is `"body"`; the six sides are the surface sets `xmin`, `xmax`, `ymin`,
 //! `ymax`, `zmin`, `zmax`, outward-oriented.
 
-use super::{boundary::boundary_facets, Element, ElementKind, Mesh, Region, SurfaceSet};
+use super::{
+    boundary::boundary_facets, topology, Element, ElementKind, FacetKind, Mesh, Region, SurfaceSet,
+};
+use std::collections::HashMap;
 
 /// A structured box mesh. See the module documentation.
 pub fn box_mesh(kind: ElementKind, cells: [usize; 3], lengths: [f64; 3]) -> Mesh {
+    let linear = box_mesh_linear(topology::linear(kind), cells, lengths);
+    if kind.is_quadratic() {
+        with_mid_side_nodes(&linear, kind)
+    } else {
+        linear
+    }
+}
+
+/// The mesh `linear` with every element whose corners make a `kind`
+/// (its [`topology::linear`] kind) turned into a `kind`, a new node at the
+/// middle of each of its edges (shared by the elements on the edge), and
+/// the facets of the surface sets given their mid-side nodes: the
+/// straight-sided quadratic mesh on the same corners.
+pub fn with_mid_side_nodes(linear: &Mesh, kind: ElementKind) -> Mesh {
+    let mut mesh = linear.clone();
+    let mut mid: HashMap<[usize; 2], usize> = HashMap::new();
+    let mut next_id = mesh.node_ids.iter().max().map_or(1, |m| m + 1);
+    let mut node_on = |mesh: &mut Mesh, a: usize, b: usize| {
+        *mid.entry(sorted_pair(a, b)).or_insert_with(|| {
+            let (xa, xb) = (mesh.nodes[a], mesh.nodes[b]);
+            mesh.nodes
+                .push(std::array::from_fn(|d| 0.5 * (xa[d] + xb[d])));
+            mesh.node_ids.push(next_id);
+            next_id += 1;
+            mesh.nodes.len() - 1
+        })
+    };
+    for e in 0..mesh.elements.len() {
+        if mesh.elements[e].kind != topology::linear(kind) {
+            continue;
+        }
+        let corners = mesh.elements[e].nodes.clone();
+        let mut nodes = corners.clone();
+        for [a, b] in topology::edges(kind) {
+            nodes.push(node_on(&mut mesh, corners[*a], corners[*b]));
+        }
+        mesh.elements[e] = Element {
+            kind,
+            nodes,
+            id: mesh.elements[e].id,
+        };
+    }
+    for s in 0..mesh.surfaces.len() {
+        for f in 0..mesh.surfaces[s].facets.len() {
+            let corners = mesh.surfaces[s].facets[f].nodes.clone();
+            let c = corners.len();
+            let Some(edges) = (0..c)
+                .map(|k| {
+                    mid.get(&sorted_pair(corners[k], corners[(k + 1) % c]))
+                        .copied()
+                })
+                .collect::<Option<Vec<usize>>>()
+            else {
+                continue;
+            };
+            let facet = &mut mesh.surfaces[s].facets[f];
+            facet.nodes.extend(edges);
+            facet.kind = FacetKind::of_node_count(facet.nodes.len()).unwrap_or(facet.kind);
+        }
+    }
+    mesh
+}
+
+fn sorted_pair(a: usize, b: usize) -> [usize; 2] {
+    [a.min(b), a.max(b)]
+}
+
+/// [`box_mesh`] of a linear kind (Tet4, Hex8, Wedge6).
+fn box_mesh_linear(kind: ElementKind, cells: [usize; 3], lengths: [f64; 3]) -> Mesh {
     let [nx, ny, nz] = cells;
     let node = |i: usize, j: usize, k: usize| i + (nx + 1) * (j + (ny + 1) * k);
     let mut nodes = Vec::with_capacity((nx + 1) * (ny + 1) * (nz + 1));
@@ -38,12 +113,16 @@ pub fn box_mesh(kind: ElementKind, cells: [usize; 3], lengths: [f64; 3]) -> Mesh
                     node(i, j + 1, k + 1),
                 ];
                 match kind {
-                    ElementKind::Hex8 => elements.push(c.to_vec()),
                     ElementKind::Tet4 => {
                         for tet in kuhn_tetrahedra(&c) {
                             elements.push(tet.to_vec());
                         }
                     }
+                    ElementKind::Wedge6 => {
+                        elements.push(vec![c[0], c[1], c[2], c[4], c[5], c[6]]);
+                        elements.push(vec![c[0], c[2], c[3], c[4], c[6], c[7]]);
+                    }
+                    _ => elements.push(c.to_vec()),
                 }
             }
         }

@@ -38,11 +38,19 @@ pub fn describe_model(problem: &Problem) -> Vec<String> {
 fn sizes(problem: &Problem) -> Vec<String> {
     let mesh = &problem.model.mesh;
     let count = |kind: ElementKind| mesh.elements.iter().filter(|e| e.kind == kind).count();
-    let kinds: Vec<String> = [(ElementKind::Tet4, "Tet4"), (ElementKind::Hex8, "Hex8")]
-        .into_iter()
-        .filter(|(k, _)| count(*k) > 0)
-        .map(|(k, name)| format!("{} {name}", count(k)))
-        .collect();
+    let kinds: Vec<String> = [
+        (ElementKind::Tet4, "Tet4"),
+        (ElementKind::Hex8, "Hex8"),
+        (ElementKind::Tet10, "Tet10"),
+        (ElementKind::Hex20, "Hex20"),
+        (ElementKind::Hex20R, "Hex20R"),
+        (ElementKind::Wedge6, "Wedge6"),
+        (ElementKind::Wedge15, "Wedge15"),
+    ]
+    .into_iter()
+    .filter(|(k, _)| count(*k) > 0)
+    .map(|(k, name)| format!("{} {name}", count(k)))
+    .collect();
     let prescribed = problem.constrained_dofs().iter().filter(|&&c| c).count();
     vec![format!(
         "model: {} nodes, {} elements ({}), {} dofs ({prescribed} prescribed), {} unknowns with the contact multipliers",

@@ -144,9 +144,11 @@ impl MeshArrays {
             w,
             compress,
             ("Int64", "connectivity", 1),
+            // VTK's node order ([`ElementKind::vtk_order`]: the mid-side
+            // nodes of the quadratic cells differ from Gmsh's)
             mesh.elements
                 .iter()
-                .flat_map(|e| e.nodes.iter().map(|&n| n as i64)),
+                .flat_map(|e| e.kind.vtk_order().iter().map(|&a| e.nodes[a] as i64)),
             connectivity_len,
         )?;
         data_array(
@@ -659,7 +661,7 @@ mod tests {
         let expected: Vec<i64> = mesh
             .elements
             .iter()
-            .flat_map(|e| e.nodes.iter().map(|&n| n as i64))
+            .flat_map(|e| e.kind.vtk_order().iter().map(|&a| e.nodes[a] as i64))
             .collect();
         assert_eq!(connectivity, expected);
         let offsets = find(&arrays, "Cells", "offsets").i64s();
@@ -691,6 +693,40 @@ mod tests {
     #[test]
     fn tet4_round_trip() {
         round_trip(ElementKind::Tet4);
+    }
+
+    /// The quadratic cells (and the wedge) with their VTK types and node
+    /// order ([`ElementKind::vtk_order`]).
+    #[test]
+    fn quadratic_and_wedge_round_trips() {
+        for kind in [
+            ElementKind::Tet10,
+            ElementKind::Hex20,
+            ElementKind::Wedge6,
+            ElementKind::Wedge15,
+        ] {
+            round_trip(kind);
+        }
+    }
+
+    /// In a written Tet10, VTK's node 8 is the middle of the edge 1–3 and
+    /// node 9 of 2–3 (vtkQuadraticTetra), in Gmsh's order the other way
+    /// round.
+    #[test]
+    fn tet10_mid_side_nodes_where_vtk_expects_them() {
+        let mesh = box_mesh(ElementKind::Tet10, [1, 1, 1], [1.0, 1.0, 1.0]);
+        let dir = tempfile::tempdir().unwrap();
+        let path = dir.path().join("tet10.vtu");
+        write_vtu(&path, &mesh, &[], &[]).unwrap();
+        let (_, _, arrays) = read_vtu(&path);
+        let connectivity = find(&arrays, "Cells", "connectivity").i64s();
+        let x = |i: i64| mesh.nodes[i as usize];
+        for cell in connectivity.chunks(10) {
+            for (m, [a, b]) in [(8, [1, 3]), (9, [2, 3])] {
+                let mid: [f64; 3] = std::array::from_fn(|d| 0.5 * (x(cell[a])[d] + x(cell[b])[d]));
+                assert_eq!(x(cell[m]), mid);
+            }
+        }
     }
 
     #[test]

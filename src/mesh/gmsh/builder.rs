@@ -150,16 +150,25 @@ impl Builder {
             }
             return Ok(());
         }
-        let target = match element_type {
-            4 => Target::Volume(ElementKind::Tet4),
-            5 => Target::Volume(ElementKind::Hex8),
-            2 => Target::Facet(FacetKind::Tri3),
-            3 => Target::Facet(FacetKind::Quad4),
-            _ => {
+        let facet = [
+            FacetKind::Tri3,
+            FacetKind::Quad4,
+            FacetKind::Tri6,
+            FacetKind::Quad8,
+        ]
+        .into_iter()
+        .find(|k| i64::from(k.gmsh_type()) == element_type);
+        let target = match (ElementKind::from_gmsh_type(element_type), facet) {
+            (Some(kind), _) => Target::Volume(kind),
+            (None, Some(kind)) => Target::Facet(kind),
+            (None, None) => {
                 let supported = if info.dim == 3 {
-                    "only Tet4 (type 4) and Hex8 (type 5) volume elements are supported now"
+                    "the volume elements supported are Tet4 (type 4), Tet10 (11), Hex8 (5), Hex20 \
+                     (17), Wedge6 (6) and Wedge15 (18); mesh with -order 1 or -order 2, and \
+                     without the complete (Lagrange) variants (Mesh.SecondOrderIncomplete = 1)"
                 } else {
-                    "only Tri3 (type 2) and Quad4 (type 3) elements are supported now in surface groups"
+                    "the surface elements supported in surface groups are Tri3 (type 2), Quad4 \
+                     (3), Tri6 (9) and Quad8 (16)"
                 };
                 return Err(cur.invalid(format!(
                     "{}: element {tag} is a {}-node {} (Gmsh element type {element_type}); {supported}",
@@ -225,7 +234,7 @@ impl Builder {
     pub(super) fn finish(self, cur: &Cursor, surface_only: bool) -> Result<Mesh> {
         if self.elements.is_empty() && !surface_only {
             return Err(cur.invalid(
-                "the file has no Tet4 or Hex8 volume elements; mesh the volume (gmsh -3) and, \
+                "the file has no volume elements (Tet4, Tet10, Hex8, Hex20, Wedge6, Wedge15); mesh the volume (gmsh -3) and, \
                  if the model has physical groups, put the volume in a Physical Volume \
                  (Gmsh then saves only elements of physical groups)"
                     .into(),

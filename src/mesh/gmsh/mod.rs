@@ -22,10 +22,11 @@
 //! - Any other section (`$PartitionedEntities`, `$Periodic`, `$NodeData`,
 //!   `$Comments`, ...) is skipped up to its `$End...` line.
 //!
-//! Volume elements Tet4 (type 4) and Hex8 (type 5) become
+//! Volume elements Tet4 (type 4), Hex8 (5), Wedge6 (6), and the
+//! second-order (`-order 2`) Tet10 (11), Hex20 (17) and Wedge15 (18) become
 //! [`Element`](super::Element)s, grouped into one [`Region`](super::Region)
 //! per 3D physical group (elements in none go to the region `"default"`).
-//! Triangles (2) and quadrangles (3) in a 2D physical group become
+//! Triangles (2, 9) and quadrangles (3, 16) in a 2D physical group become
 //! [`Facet`](super::Facet)s of the [`SurfaceSet`](super::SurfaceSet) of that
 //! group. The nodes of points and lines (any order) in a 0D or 1D physical
 //! group become the [`NodeSet`](super::NodeSet) of that group; points and

@@ -199,6 +199,7 @@ impl Builder {
         }
         let member = match shape {
             Shape::Volume(kind) => {
+                let nodes = super::element_type::from_abaqus_order(kind, nodes);
                 self.elements.push(Element { kind, nodes, id });
                 Member::Volume(self.elements.len() - 1)
             }
@@ -233,11 +234,7 @@ impl Builder {
     pub(super) fn add_face(&mut self, name: &str, element: usize, local: &[usize]) {
         let el = &self.elements[element];
         let facet = Facet {
-            kind: if local.len() == 3 {
-                FacetKind::Tri3
-            } else {
-                FacetKind::Quad4
-            },
+            kind: FacetKind::of_node_count(local.len()).unwrap_or(FacetKind::Quad4),
             nodes: local.iter().map(|&a| el.nodes[a]).collect(),
             id: el.id,
         };
@@ -325,11 +322,8 @@ impl Builder {
             faces.sort_by(|a, b| (a.element, &a.nodes).cmp(&(b.element, &b.nodes)));
             for face in faces {
                 for name in &by_element[&face.element] {
-                    let kind = if face.nodes.len() == 3 {
-                        FacetKind::Tri3
-                    } else {
-                        FacetKind::Quad4
-                    };
+                    let kind =
+                        FacetKind::of_node_count(face.nodes.len()).unwrap_or(FacetKind::Quad4);
                     let id = mesh.elements[face.element].id;
                     self.surfaces.entry(name).push(Facet {
                         kind,
@@ -376,6 +370,11 @@ pub(super) fn kind_name(kind: ElementKind) -> &'static str {
     match kind {
         ElementKind::Tet4 => "C3D4",
         ElementKind::Hex8 => "C3D8",
+        ElementKind::Tet10 => "C3D10",
+        ElementKind::Hex20 => "C3D20",
+        ElementKind::Hex20R => "C3D20R",
+        ElementKind::Wedge6 => "C3D6",
+        ElementKind::Wedge15 => "C3D15",
     }
 }
 

@@ -187,7 +187,7 @@ impl NodalContact {
     ) -> InterfaceTotals {
         let mut sum = InterfaceTotals::default();
         for (k, (r, state)) in reports.iter_mut().zip(states).enumerate() {
-            let (s, area) = (c.nodes[k], c.areas[k]);
+            let (s, area, increment) = (c.nodes[k], c.areas[k], increments[k]);
             let history = &state.friction;
             r.status = history.status;
             r.tangential_traction = history.traction.into();
@@ -202,7 +202,7 @@ impl NodalContact {
                 // a force here, a traction once every pass has added its share
                 self.traction[3 * s + d] += r.force[d] + area * history.traction[d];
                 self.slip[3 * s + d] = history.slip[d];
-                self.slip_increment[3 * s + d] = increments[k][d];
+                self.slip_increment[3 * s + d] = increment[d];
             }
             match history.status {
                 ContactStatus::Open => {}

@@ -70,6 +70,14 @@ pub fn translate_file(path: &Path, mesh_file: &str) -> Result<Translated> {
         .file_stem()
         .map(|s| s.to_string_lossy().into_owned())
         .unwrap_or_else(|| "deck".into());
+    if physics.steps.is_empty() {
+        return Err(crate::Error::Case {
+            path: path.to_path_buf(),
+            message: "the deck has no *STEP, so nothing to run: add a *STEP with *STATIC and the \
+                      loads, or name the deck as the [mesh] of a case file"
+                .into(),
+        });
+    }
     let spec = translate(&physics, &mesh, mesh_file, &stem, &mut notes)?;
     if !physics.without_effect.is_empty() {
         notes.push(format!(
@@ -131,9 +139,9 @@ fn translate(
     stem: &str,
     notes: &mut Vec<String>,
 ) -> Result<CaseFile> {
-    let first = physics.steps.first().ok_or_else(|| crate::Error::Mesh {
+    let first = physics.steps.first().ok_or_else(|| crate::Error::Case {
         path: mesh_file.into(),
-        message: "the deck has no *STEP: add a *STEP with *STATIC and the loads, or use the deck as the mesh of a case file".into(),
+        message: "the deck has no *STEP".into(),
     })?;
     if let Some(s) = physics.steps.iter().find(|s| s.nlgeom != first.nlgeom) {
         return Err(s.at.error(format!(

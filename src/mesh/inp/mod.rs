@@ -119,7 +119,18 @@ pub fn read_inp(path: &Path) -> Result<InpMesh> {
 /// would change the answer and that is not supported is an error naming
 /// it and its line.
 pub fn read_deck(path: &Path) -> Result<InpDeck> {
-    read(path, Mode::Deck)
+    read(path, Mode::Deck).map_err(|e| match e {
+        crate::Error::MeshSyntax {
+            path,
+            line,
+            message,
+        } => crate::Error::Deck {
+            path,
+            line,
+            message,
+        },
+        e => e,
+    })
 }
 
 fn read(path: &Path, mode: Mode) -> Result<InpDeck> {

@@ -18,7 +18,7 @@ pub struct Located {
 impl Located {
     /// An error at this place.
     pub fn error(&self, message: impl Into<String>) -> crate::Error {
-        crate::Error::MeshSyntax {
+        crate::Error::Deck {
             path: self.path.clone(),
             line: self.line,
             message: message.into(),

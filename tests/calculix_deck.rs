@@ -140,8 +140,8 @@ fn linear_deck_agrees_with_calculix() {
     let mut worst = 0.0f64;
     for (id, u) in &reference {
         let n = mesh.node_ids.iter().position(|i| i == id).unwrap();
-        for c in 0..3 {
-            worst = worst.max((ours.displacement[3 * n + c] - u[c]).abs());
+        for (c, reference) in u.iter().enumerate() {
+            worst = worst.max((ours.displacement[3 * n + c] - reference).abs());
         }
     }
     println!("largest |u| {largest:.6e}, largest difference from ccx {worst:.3e}");

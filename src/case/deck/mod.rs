@@ -187,7 +187,7 @@ fn translate(
 
 /// The steps, split at their time points, and each deck step's span in
 /// total time.
-fn steps(physics: &Physics) -> Result<(Vec<StepSpec>, Vec<(f64, f64)>)> {
+fn steps(physics: &Physics) -> Result<(Vec<StepSpec>, Spans)> {
     let mut out = Vec::new();
     let mut spans = Vec::new();
     let mut start = 0.0;
@@ -367,6 +367,13 @@ fn contacts(physics: &Physics, notes: &mut Vec<String>) -> Result<Vec<ContactSpe
     Ok(out)
 }
 
+/// Each deck step's `[start, end]` in total time.
+type Spans = Vec<(f64, f64)>;
+
+/// Points of an amplitude (`None`: the default ramp), and their bits.
+type Points = Option<Vec<(f64, f64)>>;
+type Bits = Vec<[u64; 2]>;
+
 /// The deck's quantities over the steps, keyed by what they act on.
 type Channels<'a, K> = BTreeMap<K, Vec<InStep<'a>>>;
 
@@ -417,7 +424,7 @@ fn boundaries(
             )));
         }
     }
-    let mut grouped: BTreeMap<(String, Vec<[u64; 2]>), [Option<f64>; 3]> = BTreeMap::new();
+    let mut grouped: BTreeMap<(String, Bits), [Option<f64>; 3]> = BTreeMap::new();
     let mut amplitudes = BTreeMap::new();
     for ((set, dof), steps) in &channels {
         let start = initial.get(&(set.clone(), *dof)).copied().unwrap_or(0.0);
@@ -501,8 +508,7 @@ fn loads(
             pressures.values_mut().for_each(remove);
         }
     }
-    let mut grouped: BTreeMap<(String, Vec<[u64; 2]>), ([f64; 3], Option<Vec<(f64, f64)>>)> =
-        BTreeMap::new();
+    let mut grouped: BTreeMap<(String, Bits), ([f64; 3], Points)> = BTreeMap::new();
     for ((set, dof), steps) in &forces {
         let (scale, amplitude) = scaled(
             &timeline(0.0, steps, spans, &physics.amplitudes)?,
@@ -579,8 +585,7 @@ fn outputs(physics: &Physics, mesh: &Mesh, spec: &mut CaseFile, notes: &mut Vec<
     if requested {
         fields.push("node_id");
         let mut chosen: Vec<crate::output::OutputField> = Vec::new();
-        for f in fields {
-            let field = f.parse().expect("the names above are output fields");
+        for field in fields.iter().filter_map(|f| f.parse().ok()) {
             if !chosen.contains(&field) {
                 chosen.push(field);
             }

@@ -21,10 +21,9 @@ fn boundary_type(name: &str) -> Option<(usize, usize)> {
 impl Reader<'_> {
     /// The step being read, or an error for `keyword` outside one.
     fn current_step(&mut self, line: &Line, keyword: &Keyword) -> Result<&mut StepDef> {
-        if self.step.is_none() {
-            return Err(self.err(line, format!("*{} outside a *STEP", keyword.name)));
-        }
-        Ok(self.step.as_mut().expect("checked above"))
+        let message = format!("*{} outside a *STEP", keyword.name);
+        let error = self.err(line, message);
+        self.step.as_mut().ok_or(error)
     }
 
     /// `*STEP[, NAME=…][, NLGEOM[=YES|NO]]`.
@@ -105,15 +104,15 @@ impl Reader<'_> {
     /// `node:<global id>`).
     fn node_target(&mut self, l: &Line, field: &str, what: &str) -> Result<String> {
         let field = unquote(field);
-        let id = match field.rsplit_once('.') {
-            Some((instance, id)) if id.parse::<u64>().is_ok() => {
+        let id = match field.rsplit_once('.').map(|(i, id)| (i, id.parse::<u64>())) {
+            Some((instance, Ok(id))) => {
                 let i = self.instance_named(instance).ok_or_else(|| {
                     self.err(
                         l,
                         format!("{what}: '{field}': {}", self.missing_set(field, "instance")),
                     )
                 })?;
-                Some(i.context.node(id.parse::<u64>().expect("checked")))
+                Some(i.context.node(id))
             }
             _ => field.parse::<u64>().ok().map(|id| self.context.node(id)),
         };

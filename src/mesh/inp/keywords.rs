@@ -456,7 +456,7 @@ impl Reader<'_> {
         let interaction = self.required(line, keyword, "INTERACTION")?.to_string();
         self.refuse(line, keyword, &["TIED", "HCRIT", "EXTENSION ZONE"])?;
         if let Some(adjust) = keyword.param("ADJUST") {
-            if adjust.parse::<f64>().map_or(true, |a| a != 0.0) {
+            if !adjust.parse::<f64>().is_ok_and(|a| a == 0.0) {
                 return Err(self.err(line, format!("*CONTACT PAIR, ADJUST={adjust} is not supported: it moves the secondary nodes onto the primary surface; mesh them there")));
             }
         }

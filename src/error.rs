@@ -25,6 +25,15 @@ pub enum Error {
         message: String,
     },
 
+    /// An Abaqus/CalculiX deck run as it is whose model cannot be read or
+    /// is not supported; `line` is 1-based.
+    #[error("deck '{path}' at line {line}: {message}")]
+    Deck {
+        path: PathBuf,
+        line: usize,
+        message: String,
+    },
+
     /// A mesh that parses but cannot be used (unsupported element, a facet
     /// that is not on the boundary of any volume element, ...).
     #[error("invalid mesh '{path}': {message}")]

@@ -25,7 +25,8 @@ enum Command {
     /// Solve a case: write a VTU per converged increment, a .pvd series,
     /// summary.json and convergence.svg.
     Run {
-        /// The TOML case file.
+        /// The TOML case file, or an Abaqus/CalculiX deck (.inp) run with
+        /// its own physics.
         case: PathBuf,
         /// Output folder (default: the case's [output].folder, else
         /// `results` beside the case file).
@@ -50,8 +51,21 @@ enum Command {
     },
     /// Validate the case and its mesh without solving; print what was read.
     Check {
-        /// The TOML case file.
+        /// The TOML case file, or an Abaqus/CalculiX deck (.inp).
         case: PathBuf,
+    },
+    /// Write the case file (TOML) equivalent to an Abaqus/CalculiX deck,
+    /// with the deck as its mesh: the same answer as running the deck.
+    Convert {
+        /// The deck (.inp).
+        deck: PathBuf,
+        /// The case file to write (default: the deck's name with .toml,
+        /// beside it).
+        #[arg(long)]
+        output: Option<PathBuf>,
+        /// Overwrite the case file if it exists.
+        #[arg(long)]
+        force: bool,
     },
 }
 
@@ -84,6 +98,11 @@ fn main() -> ExitCode {
             run(case, output, threads, quiet, restart)
         }
         Command::Check { case } => check(case),
+        Command::Convert {
+            deck,
+            output,
+            force,
+        } => convert(deck, output, force),
     };
     match result {
         Ok(()) => ExitCode::SUCCESS,
@@ -270,6 +289,37 @@ impl StepObserver for Progress {
             it.time, it.step, self.iteration, it.record.residual
         ));
     }
+}
+
+/// `signorini convert`: the deck's case written as TOML beside it (or at
+/// `output`), its `[mesh] file` the deck relative to the case file.
+fn convert(deck: PathBuf, output: Option<PathBuf>, force: bool) -> signorini::Result<()> {
+    let target = output.unwrap_or_else(|| deck.with_extension("toml"));
+    if target.exists() && !force {
+        return Err(signorini::Error::Case {
+            path: target,
+            message:
+                "exists already: choose another file with --output, or overwrite it with --force"
+                    .into(),
+        });
+    }
+    let mesh_file = signorini::case::deck::mesh_path(&deck, &target);
+    let translated = signorini::case::deck::translate_file(&deck, &mesh_file)?;
+    let mut text = format!(
+        "# The case of {} (signorini convert); running it gives the deck's answer.\n",
+        deck.display()
+    );
+    for note in &translated.notes {
+        text.push_str(&format!("# note: {note}\n"));
+    }
+    text.push('\n');
+    text.push_str(&signorini::case::deck::to_toml(&translated.spec));
+    std::fs::write(&target, &text).map_err(|e| signorini::Error::io("write", &target, e))?;
+    for note in &translated.notes {
+        println!("note: {note}");
+    }
+    println!("wrote {}", target.display());
+    Ok(())
 }
 
 fn check(case: PathBuf) -> signorini::Result<()> {

@@ -325,7 +325,7 @@ fn malformed_decks_give_file_and_line() {
             "*HEADING\nmodel\n*PART, NAME=Part-1\n".into(),
             "part.inp",
             3,
-            "*PART is not supported",
+            "*PART 'Part-1' has no *END PART after it",
         ),
         (
             "twice.inp",

@@ -2,6 +2,7 @@
 //! Every check of the user's input lives here, with the key path in the
 //! message.
 
+pub mod deck;
 pub mod diagnosis;
 pub mod limits;
 mod lines;
@@ -123,8 +124,15 @@ fn deserialize(path: &Path, text: &str) -> Result<CaseFile> {
     })
 }
 
-/// Read the case file and its mesh.
+/// Read the case file and its mesh; an Abaqus/CalculiX deck (`.inp`) is
+/// read with its physics, as the case [`deck::load`] translates it into.
 pub fn load(path: &Path) -> Result<Case> {
+    if path
+        .extension()
+        .is_some_and(|e| e.eq_ignore_ascii_case("inp"))
+    {
+        return deck::load(path);
+    }
     let text = crate::input::read_text(path, "read case file", crate::input::MAX_CASE_FILE)?;
     from_text(path, &text)
 }

@@ -35,6 +35,12 @@ impl<T: Default> Named<T> {
         let i = *self.index.get(&name.to_ascii_uppercase())?;
         Some(&self.items[i].1)
     }
+    /// The spelling of the set called `name` (case ignored) as first
+    /// defined.
+    pub(super) fn canonical(&self, name: &str) -> Option<&str> {
+        let i = *self.index.get(&name.to_ascii_uppercase())?;
+        Some(&self.items[i].0)
+    }
     /// The set called `name`, created empty if new.
     pub(super) fn entry(&mut self, name: &str) -> &mut T {
         let key = name.to_ascii_uppercase();
@@ -214,6 +220,11 @@ impl Builder {
         };
         self.element_index.insert(id, member);
         Ok(member)
+    }
+
+    /// The numbers of nodes and of volume elements read so far.
+    pub(super) fn counts(&self) -> (usize, usize) {
+        (self.nodes.len(), self.elements.len())
     }
 
     /// The nodes of the elements of a set.

@@ -167,6 +167,14 @@ impl Deck {
         }
     }
 
+    /// Where `line` stands: its file and line number.
+    pub(super) fn locate(&self, line: &Line) -> super::physics::Located {
+        super::physics::Located {
+            path: self.files[line.file].clone(),
+            line: line.number,
+        }
+    }
+
     /// Parses the keyword line `line`.
     pub(super) fn keyword(&self, line: &Line) -> Result<Keyword> {
         let mut fields = split_fields(&line.text()[1..]).into_iter();

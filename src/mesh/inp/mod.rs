@@ -1,7 +1,8 @@
 //! Reader for Abaqus input decks (`.inp`), the keyword format that
 //! CalculiX also reads and that Gmsh, meshio, FreeCAD, PrePoMax and Salome
-//! write. Only the mesh is read: the case file stays the one source of
-//! physics.
+//! write. [`read_inp`] reads the mesh of a case file (the case gives the
+//! physics); [`read_deck`] also reads the deck's physics ([`physics`]), to
+//! run the deck as it is (`crate::case::deck` turns it into a case).
 //!
 //! ## What it reads
 //! - `*NODE` (`NSET=` adds the nodes to a node set): `id, x, y, z`.
@@ -25,11 +26,12 @@
 //!   of the elements.
 //! - `*INCLUDE, INPUT=file`, relative to the including file, read where it
 //!   stands.
-//! - `*HEADING` and every other keyword (materials, sections, steps,
-//!   boundary conditions, loads, output requests) are skipped with their
-//!   data lines and listed in one note. `*PART`, `*ASSEMBLY` and
-//!   `*INSTANCE` are refused (their local numbering needs the assembly's
-//!   transformations): write the deck flat.
+//! - `*PART … *END PART`, `*ASSEMBLY`, `*INSTANCE, NAME=…, PART=…` with
+//!   its translation and rotation lines ([`assembly`]): ids local to a part
+//!   mapped to global ones, names qualified by instance (`Part-1-1.TOP`).
+//! - The physics keywords ([`keywords`], [`history`]): for a case file's
+//!   mesh, skipped and listed in one note; for the deck run as it is, read
+//!   or refused by name.
 //!
 //! Element sets with volume elements become regions (volume elements in
 //! none: the region `"default"`), surfaces and element sets of surface
@@ -49,18 +51,28 @@
 //!   parsed, located errors.
 //! - `element_type`: the Abaqus element types and face numbering.
 //! - `builder`: nodes, elements and sets into a [`Mesh`].
+//! - `assembly`: parts, instances and their transforms.
+//! - `physics`: the records of the deck's physics; `keywords` and
+//!   `history` read them.
 //! - here: the keywords and their data lines.
 
+mod assembly;
 mod builder;
 mod deck;
 mod element_type;
+mod history;
+mod keywords;
+pub mod physics;
 
 use super::Mesh;
 use crate::Result;
+use assembly::{Context, Instance, Part, Transform};
 use builder::{kind_name, Builder, Member};
 use deck::{split_fields, unquote, Deck, Keyword, Line};
 use element_type::{element_type, face_count, outward_face, Shape};
+use physics::{Physics, StepDef};
 use rayon::prelude::*;
+use std::ops::Range;
 use std::path::Path;
 
 /// The most ids one `GENERATE` line may list (a guard against a typo
@@ -74,16 +86,56 @@ pub struct InpMesh {
     pub notes: Vec<String>,
 }
 
+/// A whole deck: its mesh, its physics and notes for the user.
+pub struct InpDeck {
+    pub mesh: Mesh,
+    pub physics: Physics,
+    pub notes: Vec<String>,
+}
+
+/// What the deck is read for.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+enum Mode {
+    /// The mesh of a case file: the physics keywords are listed as ignored
+    /// (read all the same, for the implicit sets that a case converted
+    /// from the deck names), their errors dropped.
+    Mesh,
+    /// The deck run as it is: every keyword read, or an error.
+    Deck,
+}
+
 /// Reads an Abaqus/CalculiX deck (and the files it includes) into a
-/// [`Mesh`] with outward-oriented surface sets.
+/// [`Mesh`] with outward-oriented surface sets; the physics keywords are
+/// ignored (the case file gives the physics).
 pub fn read_inp(path: &Path) -> Result<InpMesh> {
+    let deck = read(path, Mode::Mesh)?;
+    Ok(InpMesh {
+        mesh: deck.mesh,
+        notes: deck.notes,
+    })
+}
+
+/// Reads a deck with its physics, to run it as it is: a keyword that
+/// would change the answer and that is not supported is an error naming
+/// it and its line.
+pub fn read_deck(path: &Path) -> Result<InpDeck> {
+    read(path, Mode::Deck).map_err(|e| match e {
+        crate::Error::MeshSyntax {
+            path,
+            line,
+            message,
+        } => crate::Error::Deck {
+            path,
+            line,
+            message,
+        },
+        e => e,
+    })
+}
+
+fn read(path: &Path, mode: Mode) -> Result<InpDeck> {
     let deck = Deck::read(path)?;
-    let mut reader = Reader {
-        deck: &deck,
-        builder: Builder::new(),
-        ignored: Vec::new(),
-        notes: Vec::new(),
-    };
+    let mut blocks = Vec::new();
     let mut i = 0;
     while i < deck.lines.len() {
         let line = &deck.lines[i];
@@ -99,13 +151,40 @@ pub fn read_inp(path: &Path) -> Result<InpMesh> {
                 ),
             ));
         }
-        reader.keyword(line, &deck.lines[i + 1..end])?;
+        blocks.push((i, i + 1..end));
         i = end;
+    }
+    let mut reader = Reader {
+        deck: &deck,
+        blocks,
+        mode,
+        builder: Builder::new(),
+        ignored: Vec::new(),
+        notes: Vec::new(),
+        parts: Vec::new(),
+        instances: Vec::new(),
+        context: Context::default(),
+        max_node: 0,
+        max_element: 0,
+        physics: Physics::default(),
+        step: None,
+        material: None,
+        interaction: None,
+    };
+    let mut b = 0;
+    while b < reader.blocks.len() {
+        b = reader.block(b)?;
+    }
+    if let Some(step) = reader.step.as_ref().filter(|_| mode == Mode::Deck) {
+        return Err(step
+            .at
+            .error(format!("*STEP '{}' has no *END STEP", step.name)));
     }
     let Reader {
         builder,
         ignored,
         mut notes,
+        physics,
         ..
     } = reader;
     let mesh = builder.finish().map_err(|message| crate::Error::Mesh {
@@ -119,48 +198,287 @@ pub fn read_inp(path: &Path) -> Result<InpMesh> {
             ignored.join(", ")
         ));
     }
-    Ok(InpMesh { mesh, notes })
+    Ok(InpDeck {
+        mesh,
+        physics,
+        notes,
+    })
 }
 
 struct Reader<'a> {
     deck: &'a Deck,
+    /// Each keyword line and the range of its data lines.
+    blocks: Vec<(usize, Range<usize>)>,
+    mode: Mode,
     builder: Builder,
     /// Keywords skipped, `*NAME`, each once, in order of appearance.
     ignored: Vec<String>,
     notes: Vec<String>,
+    parts: Vec<Part>,
+    instances: Vec<Instance>,
+    /// How ids and names are read here (global, or inside an instance).
+    context: Context,
+    /// The largest node and element ids read so far.
+    max_node: u64,
+    max_element: u64,
+    physics: Physics,
+    /// The step being read (between `*STEP` and `*END STEP`).
+    step: Option<StepDef>,
+    /// The material and surface interaction the keywords that follow
+    /// `*MATERIAL` and `*SURFACE INTERACTION` describe.
+    material: Option<usize>,
+    interaction: Option<usize>,
 }
 
-impl Reader<'_> {
+impl<'a> Reader<'a> {
     fn err(&self, line: &Line, message: String) -> crate::Error {
         self.deck.error(line, message)
     }
 
-    /// Reads the keyword at `line` and its data lines `data`.
-    fn keyword(&mut self, line: &Line, data: &[Line]) -> Result<()> {
+    /// The keyword line and data lines of block `b`.
+    fn lines(&self, b: usize) -> (&'a Line, &'a [Line]) {
+        let (k, data) = &self.blocks[b];
+        let deck = self.deck;
+        (&deck.lines[*k], &deck.lines[data.clone()])
+    }
+
+    /// Reads block `b` (and, for `*PART` and `*INSTANCE`, the blocks up to
+    /// their end); the index of the next block.
+    fn block(&mut self, b: usize) -> Result<usize> {
+        let (line, data) = self.lines(b);
         let keyword = self.deck.keyword(line)?;
         match keyword.name.as_str() {
-            "NODE" => self.nodes(line, &keyword, data),
-            "ELEMENT" => self.elements(line, &keyword, data),
-            "ELSET" => self.element_set(line, &keyword, data),
-            "NSET" => self.node_set(line, &keyword, data),
-            "SURFACE" => self.surface(line, &keyword, data),
-            "HEADING" => Ok(()),
-            "PART" | "ASSEMBLY" | "INSTANCE" => Err(self.err(
+            "PART" => self.part(b, &keyword),
+            "INSTANCE" => self.instance(b, &keyword),
+            "ASSEMBLY" | "END ASSEMBLY" => Ok(b + 1),
+            "END PART" | "END INSTANCE" => Err(self.err(
                 line,
                 format!(
-                    "*{} is not supported: parts and instances number nodes locally; write the \
-                     deck flat (Abaqus/CAE: Model > Edit Attributes > check 'Do not use parts \
-                     and assemblies in input files')",
-                    keyword.name
+                    "*{} without a *{} before it",
+                    keyword.name,
+                    &keyword.name[4..]
                 ),
             )),
-            name => {
-                let name = format!("*{name}");
-                if !self.ignored.contains(&name) {
-                    self.ignored.push(name);
-                }
-                Ok(())
+            _ => {
+                self.keyword(line, data)?;
+                Ok(b + 1)
             }
+        }
+    }
+
+    /// The first block after `b` whose keyword is `*<end>`.
+    fn find_end(&self, b: usize, end: &str) -> Result<Option<usize>> {
+        for j in b + 1..self.blocks.len() {
+            let (line, _) = self.lines(j);
+            if self.deck.keyword(line)?.name == end {
+                return Ok(Some(j));
+            }
+        }
+        Ok(None)
+    }
+
+    /// `*PART, NAME=…`: its blocks kept until an instance places it.
+    fn part(&mut self, b: usize, keyword: &Keyword) -> Result<usize> {
+        let (line, _) = self.lines(b);
+        let name = self.required(line, keyword, "NAME")?.to_string();
+        let end = self
+            .find_end(b, "END PART")?
+            .ok_or_else(|| self.err(line, format!("*PART '{name}' has no *END PART after it")))?;
+        if self
+            .parts
+            .iter()
+            .any(|p| p.name.eq_ignore_ascii_case(&name))
+        {
+            return Err(self.err(line, format!("*PART '{name}' is defined twice")));
+        }
+        for j in b + 1..end {
+            let (inner, _) = self.lines(j);
+            let k = self.deck.keyword(inner)?;
+            if matches!(k.name.as_str(), "PART" | "INSTANCE" | "ASSEMBLY" | "STEP") {
+                return Err(self.err(
+                    inner,
+                    format!(
+                        "*{} inside *PART '{name}': close the part with *END PART first",
+                        k.name
+                    ),
+                ));
+            }
+        }
+        self.parts.push(Part {
+            name,
+            blocks: b + 1..end,
+        });
+        Ok(end + 1)
+    }
+
+    /// `*INSTANCE, NAME=…, PART=…` with its optional translation and
+    /// rotation lines: the part's keywords read in the instance's context.
+    fn instance(&mut self, b: usize, keyword: &Keyword) -> Result<usize> {
+        let (line, data) = self.lines(b);
+        let name = self.required(line, keyword, "NAME")?.to_string();
+        let part_name = keyword.param("PART").ok_or_else(|| {
+            self.err(
+                line,
+                format!("*INSTANCE '{name}' needs PART=<name>: an instance places a *PART (an instance with its own nodes is not supported)"),
+            )
+        })?;
+        let part = self
+            .parts
+            .iter()
+            .find(|p| p.name.eq_ignore_ascii_case(part_name))
+            .cloned()
+            .ok_or_else(|| {
+                let have: Vec<&str> = self.parts.iter().map(|p| p.name.as_str()).collect();
+                self.err(
+                    line,
+                    format!(
+                        "*INSTANCE '{name}': no *PART named '{part_name}' is defined before it (parts: {})",
+                        if have.is_empty() { "none".into() } else { have.join(", ") }
+                    ),
+                )
+            })?;
+        if self.instance_named(&name).is_some() {
+            return Err(self.err(line, format!("*INSTANCE '{name}' is defined twice")));
+        }
+        let transform = self.transform(data)?;
+        let end = self.find_end(b, "END INSTANCE")?.ok_or_else(|| {
+            self.err(
+                line,
+                format!("*INSTANCE '{name}' has no *END INSTANCE after it"),
+            )
+        })?;
+        if end > b + 1 {
+            let (inner, _) = self.lines(b + 1);
+            return Err(self.err(
+                inner,
+                format!("keywords inside *INSTANCE '{name}' are not supported: define the mesh in its *PART"),
+            ));
+        }
+        let context = Context {
+            instance: Some(name.clone()),
+            node_offset: self.max_node,
+            element_offset: self.max_element,
+            transform: Some(transform),
+        };
+        let (nodes, elements) = self.builder.counts();
+        let outer = std::mem::replace(&mut self.context, context.clone());
+        for j in part.blocks.clone() {
+            let (l, d) = self.lines(j);
+            self.keyword(l, d)?;
+        }
+        self.context = outer;
+        let (nodes_after, elements_after) = self.builder.counts();
+        self.builder
+            .node_sets
+            .entry(&name)
+            .extend(nodes..nodes_after);
+        self.builder
+            .element_sets
+            .entry(&name)
+            .extend((elements..elements_after).map(Member::Volume));
+        self.instances.push(Instance {
+            name,
+            context: Context {
+                transform: None,
+                ..context
+            },
+        });
+        Ok(end + 1)
+    }
+
+    /// The instance called `name` (case ignored).
+    fn instance_named(&self, name: &str) -> Option<&Instance> {
+        self.instances
+            .iter()
+            .find(|i| i.name.eq_ignore_ascii_case(name))
+    }
+
+    /// The transform of an `*INSTANCE`'s data lines: `tx, ty, tz` and
+    /// `ax, ay, az, bx, by, bz, angle`.
+    fn transform(&self, data: &[Line]) -> Result<Transform> {
+        if data.len() > 2 {
+            return Err(self.err(
+                &data[2],
+                "an *INSTANCE has at most two data lines (translation, rotation)".into(),
+            ));
+        }
+        let numbers = |l: &Line, n: usize, what: &str| -> Result<Vec<f64>> {
+            let fields = data_fields(l);
+            if fields.len() != n {
+                return Err(self.err(
+                    l,
+                    format!(
+                        "the {what} line of an *INSTANCE has {n} numbers; found {}",
+                        fields.len()
+                    ),
+                ));
+            }
+            fields.iter().map(|f| self.number(l, f)).collect()
+        };
+        let translation = match data.first() {
+            Some(l) => numbers(l, 3, "translation")?,
+            None => vec![0.0; 3],
+        };
+        let rotation = match data.get(1) {
+            Some(l) => Some(numbers(l, 7, "rotation (a, b, angle)")?),
+            None => None,
+        };
+        Transform::new(
+            [translation[0], translation[1], translation[2]],
+            rotation.map(|r| [r[0], r[1], r[2], r[3], r[4], r[5], r[6]]),
+        )
+        .map_err(|m| self.err(&data[1], format!("*INSTANCE rotation: {m}")))
+    }
+
+    /// Why the set `name` (as the mesh would have it) is not found: a
+    /// qualified name whose instance does not exist says so.
+    fn missing_set(&self, name: &str, kind: &str) -> String {
+        if let Some((instance, _)) = name.split_once('.') {
+            if self.instance_named(instance).is_none() {
+                let have: Vec<&str> = self.instances.iter().map(|i| i.name.as_str()).collect();
+                return format!(
+                    "'{name}' names the instance '{instance}', which no *INSTANCE defines before it (instances: {})",
+                    if have.is_empty() { "none".into() } else { have.join(", ") }
+                );
+            }
+        }
+        format!("no {kind} '{name}' is defined before it")
+    }
+
+    /// Reads the keyword at `line` and its data lines `data`, in the
+    /// context of `INSTANCE=` if it has one.
+    fn keyword(&mut self, line: &Line, data: &[Line]) -> Result<()> {
+        let keyword = self.deck.keyword(line)?;
+        let Some(instance) = keyword.param("INSTANCE") else {
+            return self.dispatch(line, &keyword, data);
+        };
+        let context = self
+            .instance_named(instance)
+            .map(|i| Context {
+                instance: None,
+                ..i.context.clone()
+            })
+            .ok_or_else(|| {
+                self.err(
+                    line,
+                    format!("INSTANCE={instance}: no *INSTANCE of that name is defined before it"),
+                )
+            })?;
+        let outer = std::mem::replace(&mut self.context, context);
+        let result = self.dispatch(line, &keyword, data);
+        self.context = outer;
+        result
+    }
+
+    fn dispatch(&mut self, line: &Line, keyword: &Keyword, data: &[Line]) -> Result<()> {
+        match keyword.name.as_str() {
+            "NODE" => self.nodes(line, keyword, data),
+            "ELEMENT" => self.elements(line, keyword, data),
+            "ELSET" => self.element_set(line, keyword, data),
+            "NSET" => self.node_set(line, keyword, data),
+            "SURFACE" => self.surface(line, keyword, data),
+            "HEADING" => Ok(()),
+            _ => self.physics_keyword(line, keyword, data),
         }
     }
 
@@ -197,7 +515,7 @@ impl Reader<'_> {
                 ));
             }
         }
-        let nset = keyword.param("NSET").map(str::to_string);
+        let nset = keyword.param("NSET").map(|n| self.context.name(n));
         // the lines parsed side by side, then added in order (the first
         // error in the deck's order is the one reported)
         let parsed: Vec<Result<(u64, [f64; 3])>> =
@@ -205,6 +523,12 @@ impl Reader<'_> {
         let mut added = Vec::with_capacity(data.len());
         for (l, p) in data.iter().zip(parsed) {
             let (id, x) = p?;
+            let id = self.context.node(id);
+            let x = match &self.context.transform {
+                Some(t) => t.apply(x),
+                None => x,
+            };
+            self.max_node = self.max_node.max(id);
             added.push(self.builder.add_node(id, x).map_err(|m| self.err(l, m))?);
         }
         if let Some(name) = nset {
@@ -247,7 +571,7 @@ impl Reader<'_> {
                 }
             }
         }
-        let elset = keyword.param("ELSET").map(str::to_string);
+        let elset = keyword.param("ELSET").map(|n| self.context.name(n));
         // an element per line, parsed side by side; a line ending with a
         // comma continues on the next one (then the lines are joined in
         // order first)
@@ -285,6 +609,9 @@ impl Reader<'_> {
         let mut added = Vec::with_capacity(parsed.len());
         for (first, p) in firsts.into_iter().zip(parsed) {
             let (id, nodes) = p?;
+            let id = self.context.element(id);
+            let nodes: Vec<u64> = nodes.iter().map(|&n| self.context.node(n)).collect();
+            self.max_element = self.max_element.max(id);
             let member = self
                 .builder
                 .add_element(id, element.shape, &nodes)
@@ -386,11 +713,16 @@ impl Reader<'_> {
                         )
                     })?),
                     Err(_) => {
-                        let set = unquote(f);
-                        members.extend_from_slice(by_name(set).ok_or_else(|| {
+                        let set = self.context.name(unquote(f));
+                        members.extend_from_slice(by_name(&set).ok_or_else(|| {
+                            let why = if set.contains('.') {
+                                format!(": {}", self.missing_set(&set, &format!("{item} set")))
+                            } else {
+                                String::new()
+                            };
                             self.err(
                                 l,
-                                format!("{what} '{name}' lists '{set}', which is neither a defined {item} id nor the name of an earlier {item} set"),
+                                format!("{what} '{name}' lists '{set}', which is neither a defined {item} id nor the name of an earlier {item} set{why}"),
                             )
                         })?)
                     }
@@ -408,8 +740,9 @@ impl Reader<'_> {
 
     /// `*ELSET, ELSET=name[, GENERATE]`.
     fn element_set(&mut self, line: &Line, keyword: &Keyword, data: &[Line]) -> Result<()> {
-        let name = self.required(line, keyword, "ELSET")?.to_string();
+        let name = self.context.name(self.required(line, keyword, "ELSET")?);
         let b = &self.builder;
+        let c = &self.context;
         let members = self.set_members(
             SetBlock {
                 line,
@@ -419,7 +752,7 @@ impl Reader<'_> {
                 what: "*ELSET",
                 item: "element",
             },
-            |id| b.element(id),
+            |id| b.element(c.element(id)),
             |set| b.element_sets.get(set).map(Vec::as_slice),
         )?;
         self.builder.element_sets.entry(&name).extend(members);
@@ -428,10 +761,12 @@ impl Reader<'_> {
 
     /// `*NSET, NSET=name[, GENERATE]` or `*NSET, NSET=name, ELSET=set`.
     fn node_set(&mut self, line: &Line, keyword: &Keyword, data: &[Line]) -> Result<()> {
-        let name = self.required(line, keyword, "NSET")?.to_string();
+        let name = self.context.name(self.required(line, keyword, "NSET")?);
         let b = &self.builder;
+        let c = &self.context;
         let mut nodes = Vec::new();
         if let Some(elset) = keyword.param("ELSET") {
+            let elset = &c.name(elset);
             let members = b.element_sets.get(elset).ok_or_else(|| {
                 self.err(
                     line,
@@ -449,7 +784,7 @@ impl Reader<'_> {
                 what: "*NSET",
                 item: "node",
             },
-            |id| b.node(id),
+            |id| b.node(c.node(id)),
             |set| b.node_sets.get(set).map(Vec::as_slice),
         )?);
         self.builder.node_sets.entry(&name).extend(nodes);
@@ -458,7 +793,7 @@ impl Reader<'_> {
 
     /// `*SURFACE, NAME=name[, TYPE=ELEMENT]`: `element-or-set[, S<k>]`.
     fn surface(&mut self, line: &Line, keyword: &Keyword, data: &[Line]) -> Result<()> {
-        let name = self.required(line, keyword, "NAME")?.to_string();
+        let name = self.context.name(self.required(line, keyword, "NAME")?);
         if let Some(t) = keyword.param("TYPE") {
             if !t.eq_ignore_ascii_case("ELEMENT") {
                 return Err(self.err(
@@ -485,21 +820,26 @@ impl Reader<'_> {
                 ));
             }
             let members: Vec<Member> = match fields[0].parse::<u64>() {
-                Ok(id) => vec![self.builder.element(id).ok_or_else(|| {
-                    self.err(
-                        l,
-                        format!("*SURFACE '{name}': no element {id} is defined before"),
-                    )
-                })?],
-                Err(_) => {
-                    let set = unquote(fields[0]);
-                    self.builder
-                        .element_sets
-                        .get(set)
+                Ok(id) => {
+                    vec![self
+                        .builder
+                        .element(self.context.element(id))
                         .ok_or_else(|| {
                             self.err(
                                 l,
-                                format!("*SURFACE '{name}': '{set}' is neither an element id nor an element set defined before"),
+                                format!("*SURFACE '{name}': no element {id} is defined before"),
+                            )
+                        })?]
+                }
+                Err(_) => {
+                    let set = self.context.name(unquote(fields[0]));
+                    self.builder
+                        .element_sets
+                        .get(&set)
+                        .ok_or_else(|| {
+                            self.err(
+                                l,
+                                format!("*SURFACE '{name}': '{set}' is neither an element id nor an element set defined before ({})", self.missing_set(&set, "element set")),
                             )
                         })?
                         .clone()
@@ -509,36 +849,50 @@ impl Reader<'_> {
                 None => None,
                 Some(f) => Some(self.face_number(l, f)?),
             };
-            if !members.iter().any(|m| matches!(m, Member::Volume(_))) {
-                return Err(self.err(
-                    l,
-                    format!(
-                        "*SURFACE '{name}': '{}' holds no C3D4 or C3D8 element, so no face to take",
-                        fields[0]
-                    ),
-                ));
-            }
-            for m in members {
-                let Member::Volume(e) = m else {
-                    continue; // surface or line elements have no solid faces
-                };
-                match face {
-                    None => self.builder.add_free_faces(&name, e),
-                    Some(s) => {
-                        let el = self.builder.volume(e);
-                        let local = outward_face(el.kind, s).ok_or_else(|| {
-                            self.err(
-                                l,
-                                format!(
-                                    "*SURFACE '{name}': element {} is a {} with faces S1…S{}, not S{s}",
-                                    el.id,
-                                    kind_name(el.kind),
-                                    face_count(el.kind)
-                                ),
-                            )
-                        })?;
-                        self.builder.add_face(&name, e, local);
-                    }
+            let label = format!("*SURFACE '{name}'");
+            self.add_faces(&name, &label, &members, face, l, fields[0])?;
+        }
+        Ok(())
+    }
+
+    /// Adds face `face` (every free face if `None`) of the volume elements
+    /// among `members` to the surface `name`; `label` names the keyword and
+    /// `what` the members in the messages of line `l`.
+    fn add_faces(
+        &mut self,
+        name: &str,
+        label: &str,
+        members: &[Member],
+        face: Option<usize>,
+        l: &Line,
+        what: &str,
+    ) -> Result<()> {
+        if !members.iter().any(|m| matches!(m, Member::Volume(_))) {
+            return Err(self.err(
+                l,
+                format!("{label}: '{what}' holds no C3D4 or C3D8 element, so no face to take"),
+            ));
+        }
+        for &m in members {
+            let Member::Volume(e) = m else {
+                continue; // surface or line elements have no solid faces
+            };
+            match face {
+                None => self.builder.add_free_faces(name, e),
+                Some(s) => {
+                    let el = self.builder.volume(e);
+                    let local = outward_face(el.kind, s).ok_or_else(|| {
+                        self.err(
+                            l,
+                            format!(
+                                "{label}: element {} is a {} with faces S1…S{}, not S{s}",
+                                el.id,
+                                kind_name(el.kind),
+                                face_count(el.kind)
+                            ),
+                        )
+                    })?;
+                    self.builder.add_face(name, e, local);
                 }
             }
         }

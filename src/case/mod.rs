@@ -179,7 +179,7 @@ fn from_text(path: &Path, text: &str) -> Result<Case> {
         .parent()
         .unwrap_or(Path::new("."))
         .join(&spec.mesh.file);
-    let (mesh, notes) = crate::mesh::read_mesh(&mesh_path)?;
+    let (mesh, notes) = crate::mesh::read_mesh_with(&mesh_path, &spec.mesh.input_limits())?;
     if mesh.elements.is_empty() {
         return Err(Error::Mesh {
             path: mesh_path,
@@ -957,10 +957,17 @@ impl Case {
             // half of every node's tributary area
             let reverse_pass = " (two_pass: the reverse pass)";
             let setup = |e: SetupError| {
-                let (SetupError::NoArea(s) | SetupError::UnknownSurface(s)) = &e;
+                let (SetupError::NoArea(s)
+                | SetupError::UnknownSurface(s)
+                | SetupError::Degenerate { surface: s, .. }) = &e;
                 let pass = if *s == c.surface { "" } else { reverse_pass };
                 self.err(match e {
                     SetupError::NoArea(_) => format!("{key}{pass}: surface '{s}' has no area"),
+                    SetupError::Degenerate { element_size, .. } => format!(
+                        "{key}{pass}: surface '{s}' has the element size {} (the square root of its \
+                         mean area per node), not a positive finite length; check the mesh's coordinates",
+                        crate::input::number(element_size)
+                    ),
                     SetupError::UnknownSurface(_) => {
                         format!("{key}{pass}: the mesh has no surface set '{s}'")
                     }

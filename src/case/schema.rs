@@ -81,6 +81,20 @@ pub struct MeshSpec {
     /// Gmsh `.msh` file (MSH 2.2 or 4.1, ASCII or binary) or, by the
     /// extension `.inp`, an Abaqus/CalculiX deck; relative to the case file.
     pub file: String,
+    /// The most ids the `GENERATE` lines of an `.inp` deck (with its
+    /// includes) may list together; default
+    /// [`crate::input::MAX_GENERATED_IDS`] (10⁸).
+    pub max_generated_ids: Option<u64>,
+}
+
+impl MeshSpec {
+    /// The limits the mesh's files are read within.
+    pub fn input_limits(&self) -> crate::input::Limits {
+        let default = crate::input::Limits::default();
+        crate::input::Limits {
+            generated_ids: self.max_generated_ids.unwrap_or(default.generated_ids),
+        }
+    }
 }
 
 /// `[[material]]`: a region and its constitutive model. The `model` key

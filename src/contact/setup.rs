@@ -111,6 +111,9 @@ pub enum SetupError {
     UnknownSurface(String),
     /// The secondary surface has no nodes or no area.
     NoArea(String),
+    /// The secondary surface's element size `h = √(mean A_s)` is not a
+    /// positive finite length (coordinates so large that areas overflow).
+    Degenerate { surface: String, element_size: f64 },
 }
 
 /// The automatic stiffness of a contact between two deformable sides of
@@ -195,10 +198,18 @@ impl ContactInterface {
         if nodes.is_empty() || !(total > 0.0) {
             return Err(SetupError::NoArea(secondary.to_string()));
         }
+        let element_size = (total / nodes.len() as f64).sqrt();
+        // the automatic parameters E/h need a positive finite h
+        if !(element_size > 0.0 && element_size.is_finite()) {
+            return Err(SetupError::Degenerate {
+                surface: secondary.to_string(),
+                element_size,
+            });
+        }
         let mut c = ContactInterface {
             name: secondary.to_string(),
             surface: secondary.to_string(),
-            element_size: (total / nodes.len() as f64).sqrt(),
+            element_size,
             nodes,
             areas,
             primary,

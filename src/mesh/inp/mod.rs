@@ -63,10 +63,6 @@ use element_type::{element_type, face_count, outward_face, Shape};
 use rayon::prelude::*;
 use std::path::Path;
 
-/// The most ids one `GENERATE` line may list (a guard against a typo
-/// such as `1, 1000000000000`).
-const MAX_GENERATED: u64 = 100_000_000;
-
 /// A mesh read from a deck, and notes for the user (the keywords skipped,
 /// element types read as another).
 pub struct InpMesh {
@@ -77,7 +73,13 @@ pub struct InpMesh {
 /// Reads an Abaqus/CalculiX deck (and the files it includes) into a
 /// [`Mesh`] with outward-oriented surface sets.
 pub fn read_inp(path: &Path) -> Result<InpMesh> {
-    let deck = Deck::read(path)?;
+    read_inp_with(path, &crate::input::Limits::default())
+}
+
+/// [`read_inp`] within `limits` (the ids the deck's `GENERATE` lines list
+/// together).
+pub fn read_inp_with(path: &Path, limits: &crate::input::Limits) -> Result<InpMesh> {
+    let deck = Deck::read(path, limits)?;
     let mut reader = Reader {
         deck: &deck,
         builder: Builder::new(),
@@ -228,8 +230,11 @@ impl Reader<'_> {
         }
         let id = self.id(l, fields[0], "node id")?;
         let mut x = [0.0; 3];
-        for (c, f) in x.iter_mut().zip(&fields[1..]) {
+        for ((c, f), axis) in x.iter_mut().zip(&fields[1..]).zip(["x", "y", "z"]) {
             *c = self.number(l, f)?;
+            if let Some(fault) = crate::input::coordinate_fault(*c) {
+                return Err(self.err(l, format!("the {axis} coordinate of node {id} {fault}")));
+            }
         }
         Ok((id, x))
     }
@@ -373,12 +378,8 @@ impl Reader<'_> {
                         format!("GENERATE from {first} to {last}: the last id must not be smaller than the first"),
                     ));
                 }
-                if (last - first) / step > MAX_GENERATED {
-                    return Err(self.err(
-                        l,
-                        format!("GENERATE from {first} to {last} by {step} lists more than {MAX_GENERATED} ids"),
-                    ));
-                }
+                // counted over the whole deck before any id is listed
+                self.deck.generated(l, (last - first) / step + 1)?;
                 members.extend((first..=last).step_by(step as usize).filter_map(&by_id));
                 continue;
             }

@@ -2,6 +2,7 @@
 //! Every check of the user's input lives here, with the key path in the
 //! message.
 
+pub mod budget;
 pub mod diagnosis;
 pub mod limits;
 mod lines;
@@ -612,6 +613,7 @@ impl Case {
         }
         let mut steps = Vec::new();
         let mut t0 = 0.0;
+        let mut output = budget::Output::new(spec, mesh);
         for (i, s) in spec.step.iter().enumerate() {
             let key = format!("step[{i}]");
             let length = s.end_time - t0;
@@ -646,6 +648,14 @@ impl Case {
                 return Err(self.err(format!(
                     "{key}.min_increment = {min} exceeds initial_increment = {initial}"
                 )));
+            }
+            let limit = s.max_increments.unwrap_or(budget::MAX_INCREMENTS);
+            if let Some(fault) = budget::increments_fault(length, max, limit) {
+                let max = crate::input::number(max);
+                return Err(self.err(format!("{key}.max_increment = {max}: {fault}")));
+            }
+            if let Some(fault) = output.add_step(length, max) {
+                return Err(self.err(format!("{key}: {fault}")));
             }
             steps.push(Step {
                 name: s.name.clone(),

@@ -375,6 +375,9 @@ pub struct StepSpec {
     pub min_increment: Option<f64>,
     /// Largest increment allowed by growth; default: the step's length.
     pub max_increment: Option<f64>,
+    /// The most increments the step may take at least (`⌈length /
+    /// max_increment⌉`); default [`super::budget::MAX_INCREMENTS`] (10⁵).
+    pub max_increments: Option<u64>,
 }
 
 /// `[solver]`
@@ -440,6 +443,9 @@ pub struct OutputSpec {
     /// Write a VTU file every this many converged increments (≥ 1,
     /// default 1), and always at the end of each step.
     pub every: Option<i64>,
+    /// The most bytes of VTU files the run may keep on disk, estimated
+    /// before it starts; default [`super::budget::MAX_OUTPUT_BYTES`] (100 GiB).
+    pub max_bytes: Option<u64>,
     /// zlib compression of the VTU arrays (default true).
     pub compress: Option<bool>,
     /// `[[output.history]]`: a nodal quantity after every increment.

@@ -59,8 +59,9 @@ pub const MAX_GENERATED_IDS: u64 = 100_000_000;
 /// counted over the whole mesh rather than per line.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub struct Limits {
-    /// Ids listed by the `GENERATE` lines of a deck and its includes,
-    /// together (ranges as written: ids no node or element has count too).
+    /// Ids listed by the `GENERATE` lines of a deck and its includes, and
+    /// by the sets named in its sets, together (ranges as written: ids no
+    /// node or element has count too).
     pub generated_ids: u64,
 }
 

@@ -455,7 +455,10 @@ fn lock_output_folder(
     let Some(dir) = options.output.as_deref() else {
         return Ok(None);
     };
-    if distribution.is_some_and(|d| !d.is_lead()) {
+    // a restart from a folder that is not there is refused by the restart,
+    // which says so, rather than resumed from a folder the lock made
+    let missing_restart = options.restart.is_some() && !dir.is_dir();
+    if missing_restart || distribution.is_some_and(|d| !d.is_lead()) {
         return Ok(None);
     }
     let lock = FolderLock::acquire(dir)?;

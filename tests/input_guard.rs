@@ -179,6 +179,38 @@ fn generate_lines_are_counted_over_the_deck_not_per_line() {
     refused(dir.path(), &["b.inp", "line 2", "120000000 ids"]);
 }
 
+/// A set named 1 000 times in a set is copied 1 000 times: such copies
+/// count with the `GENERATE` ranges, or a few lines (`S2` = 1 000 × `S1`
+/// = 10⁶ × `S0`, …) would ask for 1 000ⁿ ids. With the limit set to
+/// 100 000: S0 (64 ids) and S1 (64 000) pass, the second `S1` named in `S2`
+/// crosses it.
+#[test]
+fn sets_named_in_sets_count_with_the_generated_ids() {
+    let names = |set: &str| vec![set; 1000].join(", ");
+    let deck = format!(
+        "{DECK}*NSET, NSET=S0, GENERATE\n1, 64\n*NSET, NSET=S1\n{}\n*NSET, NSET=S2\n{}\n",
+        names("S0"),
+        names("S1")
+    );
+    let dir = folder(&deck, &[]);
+    let case = case_on_deck().replacen(
+        "file = \"cube.inp\"",
+        "file = \"cube.inp\"\nmax_generated_ids = 100000",
+        1,
+    );
+    std::fs::write(dir.path().join("case.toml"), case).unwrap();
+    let at = DECK.lines().count() + 6;
+    refused(
+        dir.path(),
+        &[
+            &format!("line {at}"),
+            "128064 ids with this one's 64000",
+            "100000 allowed",
+            "sets named in other sets",
+        ],
+    );
+}
+
 #[test]
 fn the_generate_limit_is_raised_by_a_case_key() {
     // 2 lines of 10⁸: refused by default, read with the limit raised

@@ -6,8 +6,8 @@
 //! Every file, the deck and each include, goes through the input guard
 //! ([`crate::input::read_text_bytes`]: a regular file, within the mesh
 //! file's size, text); the files of one deck hold at most that size
-//! together, and their `GENERATE` lines list at most
-//! [`Limits::generated_ids`] ids together ([`Deck::generated`]).
+//! together, and their `GENERATE` ranges and the sets named in sets list
+//! at most [`Limits::generated_ids`] ids together ([`Deck::generated`]).
 
 use crate::input::{read_text_bytes, Budget, Limits, MAX_MESH_FILE};
 use crate::{Error, Result};
@@ -93,16 +93,19 @@ impl Deck {
         Ok(deck)
     }
 
-    /// Counts the `count` ids a `GENERATE` line at `line` lists, refused
-    /// when the deck's lines together would list more than the limit.
+    /// Counts the `count` ids a `GENERATE` range, or a set named in a set,
+    /// at `line` lists; refused when the deck's sets together would list
+    /// more than the limit (a set named 1 000 times in a set named 1 000
+    /// times … grows as 1 000ⁿ).
     pub(super) fn generated(&self, line: &Line, count: u64) -> Result<()> {
         self.generated.spend(count).map_err(|(total, limit)| {
             self.error(
                 line,
                 format!(
-                    "the GENERATE lines of this mesh would list {total} ids with this one's {count}, \
-                     more than the {limit} allowed together: check the ranges (a typo such as \
-                     '1, 1000000000000'), or raise the limit with [mesh] max_generated_ids in the case file"
+                    "the sets of this mesh would list {total} ids with this one's {count} (GENERATE \
+                     ranges and the sets named in other sets count together), more than the {limit} \
+                     allowed: check the ranges (a typo such as '1, 1000000000000') and the set names, \
+                     or raise the limit with [mesh] max_generated_ids in the case file"
                 ),
             )
         })

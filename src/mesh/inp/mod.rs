@@ -393,12 +393,15 @@ impl Reader<'_> {
                     })?),
                     Err(_) => {
                         let set = unquote(f);
-                        members.extend_from_slice(by_name(set).ok_or_else(|| {
+                        let named = by_name(set).ok_or_else(|| {
                             self.err(
                                 l,
                                 format!("{what} '{name}' lists '{set}', which is neither a defined {item} id nor the name of an earlier {item} set"),
                             )
-                        })?)
+                        })?;
+                        // a set named n times copies it n times: counted with GENERATE's
+                        self.deck.generated(l, named.len() as u64)?;
+                        members.extend_from_slice(named)
                     }
                 }
             }

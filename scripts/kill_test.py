@@ -131,7 +131,8 @@ def main():
         checked += n
         problems += ["run %d (%s, %s): %s" % (runs, out.name, "completed" if finished else "killed after %.3f s" % delay, p) for p in found]
         if out.exists():
-            files = set(os.listdir(out))
+            # the folder's lock file is the folder's, not a run's (DESIGN.md "Output safety")
+            files = set(os.listdir(out)) - {".signorini.lock"}
             left = {f for f in files if TEMPORARY.match(f)}
             temporaries += len(left)
             if finished:

@@ -37,6 +37,7 @@ use crate::case::{self, output::OutputRequests, Case};
 use crate::output::checkpoint::CaseKey;
 use crate::output::describe::describe_model;
 use crate::output::fields::{CellField, NodalField};
+use crate::output::lock::FolderLock;
 use crate::output::log::LogWriter;
 use crate::output::observer::{Observers, StepObserver};
 use crate::output::pvtu::{PieceWriter, Pieces};
@@ -250,6 +251,9 @@ impl Simulation {
             Some(d) => d.strategy(&self.problem, self.strategy.clone(), &self.case_label)?,
             None => self.strategy.clone(),
         };
+        // the output folder is this run's for its whole life, before its
+        // checkpoint is read or any file removed
+        let _folder = lock_output_folder(options, distribution, &mut self.notes)?;
         let restart = match &options.restart {
             Some(dir) => Some(self.read_restart(dir, options.output.as_deref())?),
             None => None,
@@ -492,6 +496,34 @@ impl Simulation {
         });
         histories.chain(profiles).collect()
     }
+}
+
+/// The lock of the run's output folder ([`FolderLock`]), taken by the
+/// process that writes the folder's files (under mpirun the lead; the
+/// others write their pieces under its lock); a lock taken over from a
+/// killed run is told in `notes`.
+fn lock_output_folder(
+    options: &RunOptions,
+    distribution: Option<&Distribution>,
+    notes: &mut Vec<String>,
+) -> Result<Option<FolderLock>> {
+    let Some(dir) = options.output.as_deref() else {
+        return Ok(None);
+    };
+    // a restart from a folder that is not there is refused by the restart,
+    // which says so, rather than resumed from a folder the lock made
+    let missing_restart = options.restart.is_some() && !dir.is_dir();
+    if missing_restart || distribution.is_some_and(|d| !d.is_lead()) {
+        return Ok(None);
+    }
+    let lock = FolderLock::acquire(dir)?;
+    if let Some(pid) = lock.taken_over() {
+        notes.push(format!(
+            "the output folder was left locked by run {pid}, which ended without finishing \
+             (killed); this run took it over"
+        ));
+    }
+    Ok(Some(lock))
 }
 
 /// The path (monolithic or condensed) and why, in the summary and the

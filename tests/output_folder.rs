@@ -91,8 +91,10 @@ fn a_new_run_removes_the_files_of_the_earlier_run_of_the_same_case() {
         .collect();
     assert_eq!(manifest, expected);
     // nothing stale is left: no old history, no VTU past the sixth, no
-    // temporary file; the user's file stays
+    // temporary file; the user's file stays, and the folder's lock file
+    // (tests/folder_lock.rs)
     expected.insert("notes.txt".into());
+    expected.insert(".signorini.lock".into());
     assert_eq!(listing(out), expected);
     // the .pvd lists exactly the VTU files of summary.json, all there
     let pvd = std::fs::read_to_string(out.join("press-pull.pvd")).unwrap();

@@ -3,6 +3,7 @@
 //! message.
 
 pub mod deck;
+pub mod budget;
 pub mod diagnosis;
 pub mod limits;
 mod lines;
@@ -187,7 +188,7 @@ fn from_text(path: &Path, text: &str) -> Result<Case> {
         .parent()
         .unwrap_or(Path::new("."))
         .join(&spec.mesh.file);
-    let (mesh, notes) = crate::mesh::read_mesh(&mesh_path)?;
+    let (mesh, notes) = crate::mesh::read_mesh_with(&mesh_path, &spec.mesh.input_limits())?;
     if mesh.elements.is_empty() {
         return Err(Error::Mesh {
             path: mesh_path,
@@ -620,6 +621,7 @@ impl Case {
         }
         let mut steps = Vec::new();
         let mut t0 = 0.0;
+        let mut output = budget::Output::new(spec, mesh);
         for (i, s) in spec.step.iter().enumerate() {
             let key = format!("step[{i}]");
             let length = s.end_time - t0;
@@ -654,6 +656,14 @@ impl Case {
                 return Err(self.err(format!(
                     "{key}.min_increment = {min} exceeds initial_increment = {initial}"
                 )));
+            }
+            let limit = s.max_increments.unwrap_or(budget::MAX_INCREMENTS);
+            if let Some(fault) = budget::increments_fault(length, max, limit) {
+                let max = crate::input::number(max);
+                return Err(self.err(format!("{key}.max_increment = {max}: {fault}")));
+            }
+            if let Some(fault) = output.add_step(length, max) {
+                return Err(self.err(format!("{key}: {fault}")));
             }
             steps.push(Step {
                 name: s.name.clone(),
@@ -967,10 +977,16 @@ impl Case {
             let setup = |e: SetupError| {
                 let (SetupError::NoArea(s)
                 | SetupError::UnknownSurface(s)
-                | SetupError::QuadraticSurface(s)) = &e;
+                | SetupError::QuadraticSurface(s)
+                | SetupError::Degenerate { surface: s, .. }) = &e;
                 let pass = if *s == c.surface { "" } else { reverse_pass };
                 self.err(match e {
                     SetupError::NoArea(_) => format!("{key}{pass}: surface '{s}' has no area"),
+                    SetupError::Degenerate { element_size, .. } => format!(
+                        "{key}{pass}: surface '{s}' has the element size {} (the square root of its \
+                         mean area per node), not a positive finite length; check the mesh's coordinates",
+                        crate::input::number(element_size)
+                    ),
                     SetupError::UnknownSurface(_) => {
                         format!("{key}{pass}: the mesh has no surface set '{s}'")
                     }

@@ -81,6 +81,20 @@ pub struct MeshSpec {
     /// Gmsh `.msh` file (MSH 2.2 or 4.1, ASCII or binary) or, by the
     /// extension `.inp`, an Abaqus/CalculiX deck; relative to the case file.
     pub file: String,
+    /// The most ids the `GENERATE` lines of an `.inp` deck (with its
+    /// includes) may list together; default
+    /// [`crate::input::MAX_GENERATED_IDS`] (10⁸).
+    pub max_generated_ids: Option<u64>,
+}
+
+impl MeshSpec {
+    /// The limits the mesh's files are read within.
+    pub fn input_limits(&self) -> crate::input::Limits {
+        let default = crate::input::Limits::default();
+        crate::input::Limits {
+            generated_ids: self.max_generated_ids.unwrap_or(default.generated_ids),
+        }
+    }
 }
 
 /// `[[material]]`: a region and its constitutive model. The `model` key
@@ -361,6 +375,9 @@ pub struct StepSpec {
     pub min_increment: Option<f64>,
     /// Largest increment allowed by growth; default: the step's length.
     pub max_increment: Option<f64>,
+    /// The most increments the step may take at least (`⌈length /
+    /// max_increment⌉`); default [`super::budget::MAX_INCREMENTS`] (10⁵).
+    pub max_increments: Option<u64>,
 }
 
 /// `[solver]`
@@ -426,6 +443,9 @@ pub struct OutputSpec {
     /// Write a VTU file every this many converged increments (≥ 1,
     /// default 1), and always at the end of each step.
     pub every: Option<i64>,
+    /// The most bytes of VTU files the run may keep on disk, estimated
+    /// before it starts; default [`super::budget::MAX_OUTPUT_BYTES`] (100 GiB).
+    pub max_bytes: Option<u64>,
     /// zlib compression of the VTU arrays (default true).
     pub compress: Option<bool>,
     /// `[[output.history]]`: a nodal quantity after every increment.

@@ -116,6 +116,9 @@ pub enum SetupError {
     /// a uniform pressure (`∫ N_corner dA = 0`), and a Quad8's a negative
     /// one; they need the mortar method's segment integration.
     QuadraticSurface(String),
+    /// The secondary surface's element size `h = √(mean A_s)` is not a
+    /// positive finite length (coordinates so large that areas overflow).
+    Degenerate { surface: String, element_size: f64 },
 }
 
 impl SetupError {
@@ -221,10 +224,18 @@ impl ContactInterface {
         if nodes.is_empty() || !(total > 0.0) {
             return Err(SetupError::NoArea(secondary.to_string()));
         }
+        let element_size = (total / nodes.len() as f64).sqrt();
+        // the automatic parameters E/h need a positive finite h
+        if !(element_size > 0.0 && element_size.is_finite()) {
+            return Err(SetupError::Degenerate {
+                surface: secondary.to_string(),
+                element_size,
+            });
+        }
         let mut c = ContactInterface {
             name: secondary.to_string(),
             surface: secondary.to_string(),
-            element_size: (total / nodes.len() as f64).sqrt(),
+            element_size,
             nodes,
             report_areas: areas.clone(),
             areas,

@@ -25,11 +25,17 @@ use std::path::Path;
 /// ([`gmsh::read_msh`]). Returns the mesh and notes for the user (e.g. the
 /// `.inp` keywords that were ignored).
 pub fn read_mesh(path: &Path) -> Result<(Mesh, Vec<String>)> {
+    read_mesh_with(path, &crate::input::Limits::default())
+}
+
+/// [`read_mesh`] within `limits` (what the mesh's files may make the
+/// reader produce).
+pub fn read_mesh_with(path: &Path, limits: &crate::input::Limits) -> Result<(Mesh, Vec<String>)> {
     let is_inp = path
         .extension()
         .is_some_and(|e| e.eq_ignore_ascii_case("inp"));
     if is_inp {
-        let deck = inp::read_inp(path)?;
+        let deck = inp::read_inp_with(path, limits)?;
         Ok((deck.mesh, deck.notes))
     } else {
         Ok((gmsh::read_msh(path)?, Vec::new()))

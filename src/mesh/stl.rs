@@ -32,8 +32,18 @@ pub fn read_stl(path: &Path) -> Result<stl_io::IndexedMesh> {
 /// error messages.
 pub fn parse_stl(data: &[u8], path: &Path) -> Result<stl_io::IndexedMesh> {
     diagnose(data).map_err(|m| invalid(path, m))?;
-    stl_io::read_stl(&mut std::io::Cursor::new(data))
-        .map_err(|e| invalid(path, format!("cannot be read as STL: {e}")))
+    let mesh = stl_io::read_stl(&mut std::io::Cursor::new(data))
+        .map_err(|e| invalid(path, format!("cannot be read as STL: {e}")))?;
+    for (i, v) in mesh.vertices.iter().enumerate() {
+        let fault = (0..3).find_map(|a| crate::input::coordinate_fault(v[a] as f64));
+        if let Some(fault) = fault {
+            return Err(invalid(
+                path,
+                format!("vertex {i} (0-based, after merging) {fault}"),
+            ));
+        }
+    }
+    Ok(mesh)
 }
 
 /// What is wrong with `data` as an STL file that `stl_io` would report

@@ -121,12 +121,12 @@ pub fn read(dir: &Path, name: &str) -> Result<Checkpoint<'static>> {
         }));
     }
     let file = path(dir, name);
-    let bytes = match std::fs::read(&file) {
+    let bytes = match crate::input::read_bounded(&file, "read", crate::input::MAX_CHECKPOINT_FILE) {
         Ok(bytes) => bytes,
-        Err(e) if e.kind() == std::io::ErrorKind::NotFound => {
+        Err(Error::Io { source, .. }) if source.kind() == std::io::ErrorKind::NotFound => {
             return Err(fail(missing_checkpoint(dir, name)))
         }
-        Err(e) => return Err(Error::io("read", &file, e)),
+        Err(e) => return Err(e),
     };
     let fail = |message: String| Error::Restart {
         path: file.clone(),

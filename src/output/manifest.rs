@@ -9,13 +9,18 @@
 //! order that never leaves a listing of a missing file: first
 //! `summary.json` and `NAME.pvd` (which name the VTU files), then the VTU
 //! files, histories, profiles, plots and log, then the leftover temporary
-//! files `.FILE.PID-N.tmp` of [`write_atomically`](super::write_atomically).
+//! files `.FILE.PID-N.tmp` of [`write_atomically`](super::write_atomically)
+//! whose `FILE` is one of the case's. The run holds the folder's lock
+//! ([`super::lock`]) meanwhile, so no other run is writing them.
 
 use std::collections::BTreeSet;
 use std::path::{Path, PathBuf};
 
 use super::write_atomically;
 use crate::{Error, Result};
+
+/// Largest manifest read: 64 MiB (a million file names).
+const MAX_MANIFEST: u64 = 64 << 20;
 
 /// The manifest of the current run.
 pub struct Manifest {
@@ -27,8 +32,8 @@ impl Manifest {
     /// Take over `dir` for the case `name`: remove what an earlier run of
     /// it wrote (its manifest's files, and for folders written before
     /// manifests existed `summary.json`, `NAME.pvd` and `NAME_NNNN.vtu`) and
-    /// every leftover temporary file, then start a new manifest listing
-    /// itself.
+    /// the leftover temporary files of those files (not another case's),
+    /// then start a new manifest listing itself.
     pub fn take_over(dir: &Path, name: &str) -> Result<Self> {
         let path = dir.join(format!("{name}.manifest"));
         let mut old = read_list(&path)?;
@@ -42,15 +47,22 @@ impl Manifest {
         let entries =
             std::fs::read_dir(dir).map_err(|e| Error::io("list output folder", dir, e))?;
         let mut temporaries = Vec::new();
+        let own = |target: &str| old.contains(target) || is_own_file(target, name);
+        let mut series = Vec::new();
         for entry in entries.flatten() {
             let file = entry.file_name().to_string_lossy().into_owned();
             if is_series_file(&file, name) {
-                old.insert(file);
-            } else if is_temporary(&file) {
+                series.push(file);
+            } else if temporary_target(&file).is_some_and(own) {
+                // only the temporaries of this case's files: the folder is
+                // locked (super::lock), so their writer was killed
                 temporaries.push(file);
             }
         }
+        old.extend(series);
         old.remove(&format!("{name}.manifest"));
+        // the lock this run holds is never removed, whatever a manifest says
+        old.remove(super::lock::LOCK_FILE);
         for file in old.iter().chain(&temporaries) {
             remove(&dir.join(file))?;
         }
@@ -75,7 +87,9 @@ impl Manifest {
             std::fs::read_dir(dir).map_err(|e| Error::io("list output folder", dir, e))?;
         for entry in entries.flatten() {
             let file = entry.file_name().to_string_lossy().into_owned();
-            if (is_series_file(&file, name) && !keep.contains(&file)) || is_temporary(&file) {
+            let own_temporary = temporary_target(&file)
+                .is_some_and(|target| files.contains(target) || is_own_file(target, name));
+            if (is_series_file(&file, name) && !keep.contains(&file)) || own_temporary {
                 remove(&dir.join(&file))?;
                 files.remove(&file);
             }
@@ -106,15 +120,17 @@ impl Manifest {
 
 /// The file names a manifest at `path` lists (none when there is none).
 fn read_list(path: &Path) -> Result<BTreeSet<String>> {
-    match std::fs::read_to_string(path) {
+    match crate::input::read_text(path, "read", MAX_MANIFEST) {
         Ok(text) => Ok(text
             .lines()
             .map(str::trim)
             .filter(|l| is_plain_name(l))
             .map(str::to_string)
             .collect()),
-        Err(e) if e.kind() == std::io::ErrorKind::NotFound => Ok(BTreeSet::new()),
-        Err(e) => Err(Error::io("read", path, e)),
+        Err(Error::Io { source, .. }) if source.kind() == std::io::ErrorKind::NotFound => {
+            Ok(BTreeSet::new())
+        }
+        Err(e) => Err(e),
     }
 }
 
@@ -144,20 +160,27 @@ fn is_series_file(file: &str, name: &str) -> bool {
         .is_some_and(|n| !n.is_empty() && n.chars().all(|c| c.is_ascii_digit()))
 }
 
-/// `.FILE.PID-N.tmp`, a temporary file of [`write_atomically`] left by a
-/// run that was killed while writing.
-fn is_temporary(file: &str) -> bool {
-    let Some(rest) = file.strip_prefix('.').and_then(|r| r.strip_suffix(".tmp")) else {
-        return false;
-    };
-    let Some((target, tag)) = rest.rsplit_once('.') else {
-        return false;
-    };
+/// A file of the case `name` whether its manifest lists it or not:
+/// `summary.json`, `NAME.pvd`, `NAME.manifest`, `NAME.checkpoint`,
+/// `NAME.log` and its VTU files.
+fn is_own_file(file: &str, name: &str) -> bool {
+    file == "summary.json"
+        || is_series_file(file, name)
+        || [".pvd", ".manifest", ".checkpoint", ".log"]
+            .iter()
+            .any(|ext| file.strip_prefix(name) == Some(ext))
+}
+
+/// `FILE` of `.FILE.PID-N.tmp`, a temporary file of [`write_atomically`]
+/// left by a run that was killed while writing.
+fn temporary_target(file: &str) -> Option<&str> {
+    let rest = file.strip_prefix('.')?.strip_suffix(".tmp")?;
+    let (target, tag) = rest.rsplit_once('.')?;
     let digits = |s: &str| !s.is_empty() && s.chars().all(|c| c.is_ascii_digit());
-    !target.is_empty()
-        && tag
-            .split_once('-')
-            .is_some_and(|(pid, n)| digits(pid) && digits(n))
+    let tagged = tag
+        .split_once('-')
+        .is_some_and(|(pid, n)| digits(pid) && digits(n));
+    (!target.is_empty() && tagged).then_some(target)
 }
 
 #[cfg(test)]
@@ -166,10 +189,18 @@ mod tests {
 
     #[test]
     fn recognises_temporary_and_series_files() {
-        assert!(is_temporary(".case_0003.vtu.1234-7.tmp"));
-        assert!(is_temporary(".summary.json.1-0.tmp"));
-        assert!(!is_temporary("case.tmp"));
-        assert!(!is_temporary(".case.vtu.12a-7.tmp"));
+        assert_eq!(
+            temporary_target(".case_0003.vtu.1234-7.tmp"),
+            Some("case_0003.vtu")
+        );
+        assert_eq!(
+            temporary_target(".summary.json.1-0.tmp"),
+            Some("summary.json")
+        );
+        assert_eq!(temporary_target("case.tmp"), None);
+        assert_eq!(temporary_target(".case.vtu.12a-7.tmp"), None);
+        assert!(is_own_file("summary.json", "case") && is_own_file("case.checkpoint", "case"));
+        assert!(!is_own_file("other.pvd", "case") && !is_own_file("casex.pvd", "case"));
         assert!(is_series_file("case_0012.vtu", "case"));
         assert!(!is_series_file("case_x.vtu", "case"));
         assert!(!is_series_file("other_0012.vtu", "case"));

@@ -20,6 +20,7 @@
 //!   [`writer`]: the observer that writes all of the above; [`log`]: the
 //!   observer that writes `NAME.log`; [`describe`]: the model in words;
 //!   [`manifest`]: `NAME.manifest`, the files of a run, removed by the next;
+//!   [`lock`]: `.signorini.lock`, the folder's owner for a run's life;
 //!   [`checkpoint`]: `NAME.checkpoint`, the state a restart resumes from.
 //!
 //! Every file is written to a temporary file in the target's folder and then
@@ -33,6 +34,7 @@ pub mod describe;
 pub mod fields;
 pub mod history;
 pub mod line_plot;
+pub mod lock;
 pub mod log;
 pub mod manifest;
 pub mod observer;
@@ -48,6 +50,7 @@ pub mod writer;
 
 pub use contact_fields::ContactFields;
 pub use fields::{CellField, ConvergedIncrement, NodalField, OutputField};
+pub use lock::FolderLock;
 pub use log::LogWriter;
 pub use observer::{Cut, Iteration, Observers, StepObserver};
 pub use plot::{write_convergence_plot, StepResiduals};

@@ -162,6 +162,7 @@ fn translate(
     let mut spec = CaseFile {
         mesh: MeshSpec {
             file: mesh_file.to_string(),
+            max_generated_ids: None,
         },
         material: materials(physics, nlgeom)?,
         displacement: Vec::new(),
@@ -232,6 +233,7 @@ fn steps(physics: &Physics) -> Result<(Vec<StepSpec>, Spans)> {
                 initial_increment: initial.or(fixed).map(|i| i.min(length)),
                 min_increment: fixed.or(min).map(|i| i.min(length)),
                 max_increment: fixed.or(max).map(|i| i.min(length)),
+                max_increments: None,
             });
             from = to;
         }

@@ -4,10 +4,6 @@
 use crate::{Error, Result};
 use std::path::Path;
 
-/// The largest coordinate magnitude read: volumes (length³) and
-/// stiffnesses stay finite below it.
-pub(super) const MAX_COORDINATE: f64 = 1e100;
-
 /// A position in the file. ASCII is read as whitespace-separated tokens and
 /// errors give the 1-based line (computed from the offset only when an error
 /// is reported); binary payloads are read as fixed-size values and errors
@@ -372,21 +368,11 @@ impl<'a> Cursor<'a> {
                 }
             }
         };
-        if !value.is_finite() {
-            Err(self.syntax(
-                at,
-                format!("the {axis} coordinate of node {tag} is {value}"),
-            ))
-        } else if value.abs() > MAX_COORDINATE {
-            Err(self.syntax(
-                at,
-                format!(
-                    "the {axis} coordinate of node {tag} is {value:e}, beyond ±{MAX_COORDINATE:e}: \
-                     areas and volumes would overflow; check the mesh's length unit"
-                ),
-            ))
-        } else {
-            Ok(value)
+        match crate::input::coordinate_fault(value) {
+            Some(fault) => {
+                Err(self.syntax(at, format!("the {axis} coordinate of node {tag} {fault}")))
+            }
+            None => Ok(value),
         }
     }
 

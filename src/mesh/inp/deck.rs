@@ -2,7 +2,14 @@
 //! stands, comments (`**`) and blank lines dropped, a keyword line
 //! continued by a trailing comma joined with its continuation; each line
 //! keeps its file and 1-based line number for the errors.
+//!
+//! Every file, the deck and each include, goes through the input guard
+//! ([`crate::input::read_text_bytes`]: a regular file, within the mesh
+//! file's size, text); the files of one deck hold at most that size
+//! together, and their `GENERATE` ranges and the sets named in sets list
+//! at most [`Limits::generated_ids`] ids together ([`Deck::generated`]).
 
+use crate::input::{read_text_bytes, Budget, Limits, MAX_MESH_FILE};
 use crate::{Error, Result};
 use std::ops::Range;
 use std::path::{Path, PathBuf};
@@ -65,22 +72,56 @@ impl Keyword {
 pub(super) struct Deck {
     files: Vec<PathBuf>,
     pub(super) lines: Vec<Line>,
+    /// Bytes of all the files read, against [`MAX_MESH_FILE`].
+    bytes: Budget,
+    /// Ids listed by `GENERATE` lines so far, against [`Limits::generated_ids`].
+    generated: Budget,
 }
 
 impl Deck {
     /// Reads `path` and, recursively, the files it includes (`*INCLUDE,
     /// INPUT=file`, relative to the including file's folder).
-    pub(super) fn read(path: &Path) -> Result<Deck> {
+    pub(super) fn read(path: &Path, limits: &Limits) -> Result<Deck> {
         let mut deck = Deck {
             files: Vec::new(),
             lines: Vec::new(),
+            bytes: Budget::new(MAX_MESH_FILE),
+            generated: Budget::new(limits.generated_ids),
         };
-        let text = std::fs::read(path).map_err(|e| Error::io("read", path, e))?;
+        let text = read_text_bytes(path, "read", MAX_MESH_FILE)?;
         deck.read_file(path, &text, &mut Vec::new())?;
         Ok(deck)
     }
 
+    /// Counts the `count` ids a `GENERATE` range, or a set named in a set,
+    /// at `line` lists; refused when the deck's sets together would list
+    /// more than the limit (a set named 1 000 times in a set named 1 000
+    /// times … grows as 1 000ⁿ).
+    pub(super) fn generated(&self, line: &Line, count: u64) -> Result<()> {
+        self.generated.spend(count).map_err(|(total, limit)| {
+            self.error(
+                line,
+                format!(
+                    "the sets of this mesh would list {total} ids with this one's {count} (GENERATE \
+                     ranges and the sets named in other sets count together), more than the {limit} \
+                     allowed: check the ranges (a typo such as '1, 1000000000000') and the set names, \
+                     or raise the limit with [mesh] max_generated_ids in the case file"
+                ),
+            )
+        })
+    }
+
     fn read_file(&mut self, path: &Path, bytes: &[u8], stack: &mut Vec<PathBuf>) -> Result<()> {
+        self.bytes.spend(bytes.len() as u64).map_err(|(total, limit)| {
+            Error::io(
+                "read",
+                path,
+                std::io::Error::new(
+                    std::io::ErrorKind::InvalidInput,
+                    format!("the deck and its includes hold {total} bytes together, more than the limit of {limit} bytes of a mesh"),
+                ),
+            )
+        })?;
         let file = self.files.len();
         self.files.push(path.to_path_buf());
         stack.push(path.canonicalize().unwrap_or_else(|_| path.to_path_buf()));
@@ -136,12 +177,6 @@ impl Deck {
             .unwrap_or(Path::new("."))
             .to_path_buf();
         let path = dir.join(input);
-        let bytes = std::fs::read(&path).map_err(|e| {
-            self.error(
-                line,
-                format!("cannot read the included file '{}': {e}", path.display()),
-            )
-        })?;
         let canonical = path.canonicalize().unwrap_or_else(|_| path.clone());
         if stack.contains(&canonical) {
             return Err(self.error(
@@ -155,6 +190,20 @@ impl Deck {
                 format!("*INCLUDE nested more than {MAX_INCLUDE_DEPTH} deep"),
             ));
         }
+        // after the cycle check: a file that includes itself is not read again
+        let bytes = read_text_bytes(&path, "read", MAX_MESH_FILE).map_err(|e| {
+            let cause = match &e {
+                Error::Io { source, .. } => source.to_string(),
+                other => other.to_string(),
+            };
+            self.error(
+                line,
+                format!(
+                    "cannot read the included file '{}': {cause}",
+                    path.display()
+                ),
+            )
+        })?;
         self.read_file(&path, &bytes, stack)
     }
 

@@ -75,10 +75,6 @@ use rayon::prelude::*;
 use std::ops::Range;
 use std::path::Path;
 
-/// The most ids one `GENERATE` line may list (a guard against a typo
-/// such as `1, 1000000000000`).
-const MAX_GENERATED: u64 = 100_000_000;
-
 /// A mesh read from a deck, and notes for the user (the keywords skipped,
 /// element types read as another).
 pub struct InpMesh {
@@ -108,7 +104,13 @@ enum Mode {
 /// [`Mesh`] with outward-oriented surface sets; the physics keywords are
 /// ignored (the case file gives the physics).
 pub fn read_inp(path: &Path) -> Result<InpMesh> {
-    let deck = read(path, Mode::Mesh)?;
+    read_inp_with(path, &crate::input::Limits::default())
+}
+
+/// [`read_inp`] within `limits` (the ids the deck's `GENERATE` lines list
+/// together).
+pub fn read_inp_with(path: &Path, limits: &crate::input::Limits) -> Result<InpMesh> {
+    let deck = read(path, Mode::Mesh, limits)?;
     Ok(InpMesh {
         mesh: deck.mesh,
         notes: deck.notes,
@@ -119,7 +121,7 @@ pub fn read_inp(path: &Path) -> Result<InpMesh> {
 /// would change the answer and that is not supported is an error naming
 /// it and its line.
 pub fn read_deck(path: &Path) -> Result<InpDeck> {
-    read(path, Mode::Deck).map_err(|e| match e {
+    read(path, Mode::Deck, &crate::input::Limits::default()).map_err(|e| match e {
         crate::Error::MeshSyntax {
             path,
             line,
@@ -133,8 +135,8 @@ pub fn read_deck(path: &Path) -> Result<InpDeck> {
     })
 }
 
-fn read(path: &Path, mode: Mode) -> Result<InpDeck> {
-    let deck = Deck::read(path)?;
+fn read(path: &Path, mode: Mode, limits: &crate::input::Limits) -> Result<InpDeck> {
+    let deck = Deck::read(path, limits)?;
     let mut blocks = Vec::new();
     let mut i = 0;
     while i < deck.lines.len() {
@@ -552,8 +554,11 @@ impl<'a> Reader<'a> {
         }
         let id = self.id(l, fields[0], "node id")?;
         let mut x = [0.0; 3];
-        for (c, f) in x.iter_mut().zip(&fields[1..]) {
+        for ((c, f), axis) in x.iter_mut().zip(&fields[1..]).zip(["x", "y", "z"]) {
             *c = self.number(l, f)?;
+            if let Some(fault) = crate::input::coordinate_fault(*c) {
+                return Err(self.err(l, format!("the {axis} coordinate of node {id} {fault}")));
+            }
         }
         Ok((id, x))
     }
@@ -695,12 +700,8 @@ impl<'a> Reader<'a> {
                         format!("GENERATE from {first} to {last}: the last id must not be smaller than the first"),
                     ));
                 }
-                if (last - first) / step > MAX_GENERATED {
-                    return Err(self.err(
-                        l,
-                        format!("GENERATE from {first} to {last} by {step} lists more than {MAX_GENERATED} ids"),
-                    ));
-                }
+                // counted over the whole deck before any id is listed
+                self.deck.generated(l, (last - first) / step + 1)?;
                 members.extend((first..=last).step_by(step as usize).filter_map(&by_id));
                 continue;
             }
@@ -714,7 +715,7 @@ impl<'a> Reader<'a> {
                     })?),
                     Err(_) => {
                         let set = self.context.name(unquote(f));
-                        members.extend_from_slice(by_name(&set).ok_or_else(|| {
+                        let named = by_name(&set).ok_or_else(|| {
                             let why = if set.contains('.') {
                                 format!(": {}", self.missing_set(&set, &format!("{item} set")))
                             } else {
@@ -724,7 +725,10 @@ impl<'a> Reader<'a> {
                                 l,
                                 format!("{what} '{name}' lists '{set}', which is neither a defined {item} id nor the name of an earlier {item} set{why}"),
                             )
-                        })?)
+                        })?;
+                        // a set named n times copies it n times: counted with GENERATE's
+                        self.deck.generated(l, named.len() as u64)?;
+                        members.extend_from_slice(named)
                     }
                 }
             }

@@ -988,11 +988,8 @@ impl IncrementMethod<Problem> for Condensed {
             switched: 0,
             linear: Default::default(),
         };
-        let going_on = on_iteration(&record);
+        // the converged evaluation, as Newton's, is not an iteration told
         history.push(record);
-        if !going_on {
-            return (Err(IncrementFailure::Cancelled), history);
-        }
         if !(relative <= tolerance) {
             let failure = IncrementFailure::CondensedResidual {
                 relative,

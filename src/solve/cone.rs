@@ -300,7 +300,7 @@ pub struct ConeSolution {
     /// at its start, the step `α |δz|∞` relative to the largest `|z|∞`
     /// (at least ε: a solve was taken), `α`, and the nodes whose status
     /// (open, stick, slip) the step changed.
-    pub history: Vec<crate::solve::newton::IterationRecord>,
+    pub history: Vec<crate::solve::record::IterationRecord>,
 }
 
 /// Where component `d` of a node's traction comes from.
@@ -513,7 +513,7 @@ pub fn solve_cone(
             .zip(&next.2)
             .filter(|(a, b)| a.status != b.status)
             .count();
-        history.push(crate::solve::newton::IterationRecord {
+        history.push(crate::solve::record::IterationRecord {
             residual: largest / scale,
             correction: (moved / size).max(f64::EPSILON),
             step_length: length,

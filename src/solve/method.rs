@@ -1,5 +1,5 @@
 //! How one load increment is solved: the one seam between the stepper
-//! ([`super::stepping::resume_steps`], which owns cuts, growth, restart,
+//! (`resume_steps` of `solve/stepping.rs`, which owns cuts, growth, restart,
 //! cancel and the reports) and a solution method. Newton on the whole
 //! system ([`Monolithic`]) is one implementation; the condensed contact
 //! path (`crate::problem::condensed`, frictionless and frictional) is the
@@ -11,8 +11,9 @@
 use super::failure::IncrementFailure;
 use super::josephy::Josephy;
 use super::linear_solver::{LinearSolver, SolverStatistics};
-use super::newton::{IterationRecord, Newton, NewtonOutcome};
+use super::newton::{Newton, NewtonOutcome};
 use super::nonlinear::NonlinearProblem;
+use super::record::IterationRecord;
 use super::settings::{Predictor, Step};
 use crate::Result;
 
@@ -33,7 +34,7 @@ pub struct Increment<'a> {
 /// What a method keeps between increments that changes its answer's
 /// round-off (the condensed path's candidate nodes, in the order they
 /// joined, its last active set and the semismooth Newton start): stored in
-/// the checkpoint with [`super::stepping::Stepping`], so that a restart
+/// the checkpoint with the stepper's `Stepping`, so that a restart
 /// continues bit for bit.
 #[derive(Clone, Debug, Default, PartialEq, serde::Serialize, serde::Deserialize)]
 pub struct WarmStart {
@@ -76,7 +77,7 @@ pub trait IncrementMethod<P: NonlinearProblem> {
     /// Whether the next increment grows after one that converged with
     /// `records` and no cut (`easy`: `[solver] easy_iterations`).
     fn grows(&self, records: &[IterationRecord], easy: usize) -> bool {
-        super::stepping::converged_well(records, easy)
+        super::record::converged_well(records, easy)
     }
 
     /// Counts and times of the method's factorisations and solves so far.

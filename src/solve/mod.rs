@@ -29,6 +29,7 @@ pub mod ordering;
 pub mod partition;
 #[cfg(feature = "petsc")]
 pub mod petsc;
+pub mod record;
 pub mod schur;
 pub mod settings;
 pub mod stepping;

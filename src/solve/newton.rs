@@ -13,23 +13,7 @@ use super::linear_solver::{LinearFigures, LinearSolver, LinearSystem};
 use super::nonlinear::{Evaluation, NonlinearProblem};
 use super::settings::Predictor;
 
-/// One Newton iteration as reported to the user.
-#[derive(Clone, Debug, PartialEq, serde::Serialize)]
-pub struct IterationRecord {
-    /// `‖r_free‖ / max(‖f_ext‖, ‖f_int‖)` at the start of the iteration.
-    pub residual: f64,
-    /// `‖α δu‖ / ‖Δu‖` of the correction taken in this iteration (0 on the
-    /// last, converged, evaluation).
-    pub correction: f64,
-    /// Line-search step length taken.
-    pub step_length: f64,
-    /// Contact nodes whose status (open/stick/slip) changed since the
-    /// previous iteration.
-    pub switched: usize,
-    /// What the linear solver did for the correction (zero on the last,
-    /// converged, evaluation).
-    pub linear: LinearFigures,
-}
+pub use super::record::IterationRecord;
 
 /// How an increment ended: the converged evaluation (its residual's
 /// prescribed entries are the reactions) or why it failed, and the

@@ -1465,7 +1465,7 @@ fn meshes(c: &mut Catalogue) {
             &["cube.msh", "NaN"],
         );
     }
-    c.mesh("mesh of surfaces only", b"$MeshFormat\n2.2 0 8\n$EndMeshFormat\n$Nodes\n3\n1 0 0 0\n2 1 0 0\n3 0 1 0\n$EndNodes\n$Elements\n1\n1 2 2 1 1 1 2 3\n$EndElements\n".to_vec(), &["cube.msh", "no Tet4 or Hex8 volume elements"]);
+    c.mesh("mesh of surfaces only", b"$MeshFormat\n2.2 0 8\n$EndMeshFormat\n$Nodes\n3\n1 0 0 0\n2 1 0 0\n3 0 1 0\n$EndNodes\n$Elements\n1\n1 2 2 1 1 1 2 3\n$EndElements\n".to_vec(), &["cube.msh", "no volume elements (Tet4, Tet10, Hex8"]);
 }
 
 /// A binary STL: 80-byte header, `count` announced, `records` 50-byte

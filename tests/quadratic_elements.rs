@@ -565,7 +565,7 @@ fn c3d10_deck_and_msh_agree_node_for_node() {
 /// "fixed", a tension `σ = 2` (pressure −2) on "loaded", linear elastic
 /// with `ν = 0` (no lateral contraction: the clamp holds nothing back), so
 /// `u_x = σ x / E` exactly; the run writes its VTU with the quadratic
-/// cells (types 24, 26, 25).
+/// cells (types 24, 26, 25). The Tet10 bar also as Gmsh's C3D10 deck.
 #[test]
 fn second_order_bars_run_through_a_case_file() {
     use signorini::run::{RunOptions, Simulation};
@@ -573,6 +573,9 @@ fn second_order_bars_run_through_a_case_file() {
         ("bar_tet10.msh", 24u8),
         ("bar_wedge15.msh", 26),
         ("bar_hex20.msh", 25),
+        // Gmsh's C3D10 deck: its CPS6 element sets "fixed" and "loaded"
+        // are the surface sets
+        ("bar_tet10.inp", 24),
     ] {
         let text = format!(
             r#"
@@ -628,5 +631,79 @@ name = "bar"
             .map(|e| e.path());
         assert!(vtu.is_some(), "{file}: no VTU written");
         assert!(mesh.elements.iter().all(|e| e.kind.vtk_type() == vtk_type));
+    }
+}
+
+/// `*SURFACE, TYPE=ELEMENT` with Abaqus face numbers on C3D10, C3D20 and
+/// C3D15 decks (written with Abaqus's node order): the face `S3` of a
+/// C3D10 (`2-4-3`), `S2` of a C3D20 (`5-8-7-6`) and `S4` of a C3D15
+/// (`2-5-6-3`) become quadratic facets with the corners and the mid-side
+/// nodes of those faces, oriented outward (corners in the order of
+/// `ElementKind::faces`, up to a rotation).
+#[test]
+fn abaqus_surfaces_on_quadratic_elements() {
+    use signorini::mesh::inp::read_inp;
+    use std::fmt::Write;
+    let cases = [
+        (
+            ElementKind::Tet10,
+            "C3D10",
+            3,
+            [1, 2, 3, 5, 8, 9].as_slice(),
+        ),
+        (
+            ElementKind::Hex20,
+            "C3D20",
+            2,
+            &[4, 5, 6, 7, 16, 18, 19, 17],
+        ),
+        (
+            ElementKind::Wedge15,
+            "C3D15",
+            4,
+            &[1, 2, 5, 4, 9, 11, 14, 10],
+        ),
+    ];
+    for (kind, name, face, local) in cases {
+        let mesh = box_mesh(kind, [1, 1, 1], [1.0, 1.0, 1.0]);
+        let mut deck = String::from("*NODE\n");
+        for (a, x) in mesh.nodes.iter().enumerate() {
+            writeln!(deck, "{}, {}, {}, {}", a + 1, x[0], x[1], x[2]).unwrap();
+        }
+        writeln!(deck, "*ELEMENT, TYPE={name}, ELSET=body").unwrap();
+        for (e, el) in mesh.elements.iter().enumerate() {
+            let abaqus: Vec<String> = kind
+                .vtk_order()
+                .iter()
+                .map(|&a| (el.nodes[a] + 1).to_string())
+                .collect();
+            writeln!(deck, "{}, {}", e + 1, abaqus.join(", ")).unwrap();
+        }
+        writeln!(deck, "*SURFACE, NAME=side, TYPE=ELEMENT\n1, S{face}").unwrap();
+        let dir = tempfile::tempdir().unwrap();
+        let path = dir.path().join("deck.inp");
+        std::fs::write(&path, deck).unwrap();
+        let read = read_inp(&path).unwrap().mesh;
+        let el = &read.elements[0];
+        assert_eq!(
+            el.nodes, mesh.elements[0].nodes,
+            "{name}: the element's order"
+        );
+        let facets = &read.surface("side").unwrap().facets;
+        assert_eq!(facets.len(), 1, "{name}");
+        let facet = &facets[0];
+        let expected: Vec<usize> = local.iter().map(|&a| el.nodes[a]).collect();
+        let c = facet.kind.num_corners();
+        assert_eq!(facet.kind.num_nodes(), local.len(), "{name}");
+        // the same cycle of corners and of mid-side nodes, up to a rotation
+        let start = expected[..c]
+            .iter()
+            .position(|&n| n == facet.nodes[0])
+            .unwrap();
+        let rotated: Vec<usize> = (0..c)
+            .map(|i| expected[(start + i) % c])
+            .chain((0..c).map(|i| expected[c + (start + i) % c]))
+            .collect();
+        assert_eq!(facet.nodes, rotated, "{name} S{face}");
     }
 }

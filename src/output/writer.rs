@@ -15,6 +15,7 @@ use super::manifest::Manifest;
 use super::observer::StepObserver;
 use super::profile::{file_part, Profile};
 use super::pvtu::{data_set_file, IncrementArrays, Pieces};
+use super::recovery::PatchRecovery;
 use super::summary::Summary;
 use super::{plot, pvd::PvdCollection, vtu};
 use crate::mesh::Mesh;
@@ -75,6 +76,9 @@ pub struct ResultWriter {
     /// The mesh of the VTU files and its points and cells, encoded once
     /// per series ([`Self::prepare_mesh`], else at the first file).
     mesh_arrays: Option<(Arc<Mesh>, vtu::VtuOptions, SharedMeshArrays)>,
+    /// The patch recovery weights of the VTU files' mesh, made at the
+    /// first file with a recovered field.
+    recovery: Option<(Arc<Mesh>, Arc<PatchRecovery>)>,
 }
 
 /// What a restart restores of the result files: the increments so far
@@ -177,6 +181,7 @@ impl ResultWriter {
             case_key: None,
             pieces: None,
             mesh_arrays: None,
+            recovery: None,
         })
     }
 
@@ -212,6 +217,22 @@ impl ResultWriter {
         }
     }
 
+    /// The patch recovery of `mesh`, made once per mesh; `None` when no
+    /// VTU field is recovered.
+    fn recovery_of(&mut self, mesh: &Arc<Mesh>) -> Option<Arc<PatchRecovery>> {
+        if !self.nodal.iter().any(|f| f.is_recovered()) {
+            return None;
+        }
+        match &self.recovery {
+            Some((m, r)) if Arc::ptr_eq(m, mesh) => Some(Arc::clone(r)),
+            _ => {
+                let r = Arc::new(PatchRecovery::new(mesh));
+                self.recovery = Some((Arc::clone(mesh), Arc::clone(&r)));
+                Some(r)
+            }
+        }
+    }
+
     /// Write `NAME.checkpoint` after every increment, for the case `key`
     /// (a restart resumes from it).
     pub fn checkpoint(mut self, key: CaseKey) -> Self {
@@ -241,7 +262,8 @@ impl ResultWriter {
     /// The VTU file of an increment, with the chosen fields (or, in a
     /// distributed run, the `.pvtu` and this process's piece).
     fn write_vtu(&mut self, increment: &ConvergedIncrement, file: &str) -> Result<()> {
-        let arrays = IncrementArrays::new(increment, &self.nodal, &self.cells);
+        let recovery = self.recovery_of(&increment.problem.model.mesh);
+        let arrays = IncrementArrays::new(increment, &self.nodal, &self.cells, recovery.as_deref());
         let (point_data, cell_data) = (arrays.points(), arrays.cells());
         self.manifest.claim(file)?;
         let mesh = &increment.problem.model.mesh;

@@ -362,15 +362,7 @@ impl ConvergedIncrement<'_> {
         fields
             .par_iter()
             .map(|field| match field {
-                CellField::Region => {
-                    let mut region = vec![0.0; mesh.elements.len()];
-                    for (r, set) in mesh.regions.iter().enumerate() {
-                        for &e in &set.elements {
-                            region[e] = r as f64;
-                        }
-                    }
-                    region
-                }
+                CellField::Region => region_indices(mesh),
                 CellField::CauchyStress => stresses.iter().flat_map(row_major).collect(),
                 CellField::VonMises => stresses.iter().map(crate::material::von_mises).collect(),
                 CellField::PrincipalStress => stresses.iter().flat_map(principal_values).collect(),
@@ -399,6 +391,17 @@ impl ConvergedIncrement<'_> {
     pub fn reaction_forces(&self) -> Vec<(String, [f64; 3])> {
         self.problem.surface_forces(self.residual)
     }
+}
+
+/// The index of each element's region, in the order of `mesh.regions`.
+pub fn region_indices(mesh: &crate::mesh::Mesh) -> Vec<f64> {
+    let mut region = vec![0.0; mesh.elements.len()];
+    for (r, set) in mesh.regions.iter().enumerate() {
+        for &e in &set.elements {
+            region[e] = r as f64;
+        }
+    }
+    region
 }
 
 /// The entries of `m` row by row (the VTU files' order of a tensor).

@@ -246,6 +246,42 @@ impl<'a> IncrementArrays<'a> {
         }
     }
 
+    /// The arrays of the reference state, `u = 0` before any load (the
+    /// t = 0 frame): zero displacements, stresses, strains and contact
+    /// fields, the gap NaN (it is first evaluated at the first increment),
+    /// the node ids and regions of `mesh`.
+    pub fn reference(
+        mesh: &Mesh,
+        has_contact: bool,
+        nodal: &[NodalField],
+        cells: &[CellField],
+    ) -> IncrementArrays<'static> {
+        let n = mesh.num_nodes();
+        let nodal = nodal
+            .iter()
+            .filter(|f| has_contact || !f.needs_contact())
+            .map(|&f| {
+                let values = match f {
+                    NodalField::NodeId => mesh.node_ids.iter().map(|&id| id as f64).collect(),
+                    NodalField::Gap => vec![f64::NAN; n],
+                    _ => vec![0.0; f.components() * n],
+                };
+                (f.name(), f.components(), f.kind(), Cow::Owned(values))
+            })
+            .collect();
+        let cells = cells
+            .iter()
+            .map(|&f| {
+                let values = match f {
+                    CellField::Region => super::fields::region_indices(mesh),
+                    _ => vec![0.0; f.components() * mesh.elements.len()],
+                };
+                (f.name(), f.components(), f.kind(), Cow::Owned(values))
+            })
+            .collect();
+        IncrementArrays { nodal, cells }
+    }
+
     /// The point arrays.
     pub fn points(&self) -> Vec<vtu::Field<'_>> {
         fields(&self.nodal)

@@ -79,6 +79,15 @@ pub struct ResultWriter {
     /// The patch recovery weights of the VTU files' mesh, made at the
     /// first file with a recovered field.
     recovery: Option<(Arc<Mesh>, Arc<PatchRecovery>)>,
+    /// Whether the reference state (`NAME_0000.vtu`, t = 0) is still to be
+    /// written, before the first increment's file.
+    reference_pending: bool,
+}
+
+/// The reference state's VTU file of the series `name`: `NAME_0000.vtu`
+/// (the increments' files count from 1).
+pub fn reference_file(name: &str) -> String {
+    format!("{name}_0000.vtu")
 }
 
 /// What a restart restores of the result files: the increments so far
@@ -111,7 +120,9 @@ impl ResultWriter {
     pub fn new(dir: &Path, name: &str, content: SeriesContent) -> Result<Self> {
         std::fs::create_dir_all(dir).map_err(|e| Error::io("create output folder", dir, e))?;
         let manifest = Manifest::take_over(dir, name)?;
-        Self::open(dir, name, manifest, content, Vec::new())
+        let mut writer = Self::open(dir, name, manifest, content, Vec::new())?;
+        writer.reference_pending = true;
+        Ok(writer)
     }
 
     /// A writer that goes on with the series `name` in `dir` after a
@@ -126,12 +137,21 @@ impl ResultWriter {
         mut content: SeriesContent,
         restored: Restored,
     ) -> Result<Self> {
-        let files: Vec<(f64, String)> = restored
-            .summary
-            .increments
-            .iter()
-            .filter(|i| !i.file.is_empty())
-            .map(|i| (i.time, i.file.clone()))
+        // the reference state's frame, if the first run wrote one, first
+        let reference = reference_file(name);
+        let files: Vec<(f64, String)> = dir
+            .join(&reference)
+            .is_file()
+            .then(|| (0.0, reference))
+            .into_iter()
+            .chain(
+                restored
+                    .summary
+                    .increments
+                    .iter()
+                    .filter(|i| !i.file.is_empty())
+                    .map(|i| (i.time, i.file.clone())),
+            )
             .collect();
         let keep: BTreeSet<String> = files.iter().map(|(_, f)| f.clone()).collect();
         let manifest = Manifest::resume(dir, name, &keep)?;
@@ -182,6 +202,7 @@ impl ResultWriter {
             pieces: None,
             mesh_arrays: None,
             recovery: None,
+            reference_pending: false,
         })
     }
 
@@ -268,22 +289,50 @@ impl ResultWriter {
         self.manifest.claim(file)?;
         let mesh = &increment.problem.model.mesh;
         let Some(pieces) = &self.pieces else {
-            let path = self.dir.join(file);
-            let options = self.vtu;
-            let shared = self.arrays_of(mesh);
-            let arrays = shared
-                .get_or_init(|| vtu::MeshArrays::new(mesh, options))
-                .as_ref()
-                .map_err(|e| {
-                    Error::io("write", &path, std::io::Error::new(e.kind(), e.to_string()))
-                })?;
-            return vtu::write_vtu_on(&path, arrays, &point_data, &cell_data);
+            return self.write_whole(mesh, file, &point_data, &cell_data);
         };
         for rank in 0..pieces.parts {
             self.manifest.claim(&Pieces::piece_file(file, rank))?;
         }
         pieces.write_piece(&self.dir, file, mesh, &point_data, &cell_data, self.vtu)?;
         pieces.write_pvtu(&self.dir, file, &point_data, &cell_data)
+    }
+
+    /// The reference state's VTU file (`NAME_0000.vtu`, t = 0: the mesh
+    /// before any load, [`IncrementArrays::reference`]), listed first in
+    /// the `.pvd`.
+    fn write_reference(&mut self, increment: &ConvergedIncrement) -> Result<()> {
+        let file = reference_file(&self.name);
+        self.manifest.claim(&file)?;
+        let problem = increment.problem;
+        let mesh = &problem.model.mesh;
+        let arrays = IncrementArrays::reference(
+            mesh,
+            !problem.contacts.is_empty(),
+            &self.nodal,
+            &self.cells,
+        );
+        self.write_whole(mesh, &file, &arrays.points(), &arrays.cells())?;
+        self.pvd.add(0.0, &file)
+    }
+
+    /// A whole `.vtu` file of `mesh` (its points and cells encoded once
+    /// per series) with the arrays given.
+    fn write_whole(
+        &mut self,
+        mesh: &Arc<Mesh>,
+        file: &str,
+        point_data: &[vtu::Field],
+        cell_data: &[vtu::Field],
+    ) -> Result<()> {
+        let path = self.dir.join(file);
+        let options = self.vtu;
+        let shared = self.arrays_of(mesh);
+        let arrays = shared
+            .get_or_init(|| vtu::MeshArrays::new(mesh, options))
+            .as_ref()
+            .map_err(|e| Error::io("write", &path, std::io::Error::new(e.kind(), e.to_string())))?;
+        vtu::write_vtu_on(&path, arrays, point_data, cell_data)
     }
 
     /// Histories after every increment; profiles at the end of a step.
@@ -316,6 +365,9 @@ impl StepObserver for ResultWriter {
     }
 
     fn on_increment(&mut self, increment: &ConvergedIncrement, summary: &Summary) -> Result<()> {
+        if std::mem::take(&mut self.reference_pending) && self.pieces.is_none() {
+            self.write_reference(increment)?;
+        }
         let file = data_set_file(summary);
         // `[output] every` leaves some increments without a file
         if !file.is_empty() {

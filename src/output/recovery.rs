@@ -68,8 +68,8 @@ impl PatchRecovery {
             .map(|el| {
                 let mut c = [0.0; 3];
                 for &n in &el.nodes {
-                    for i in 0..3 {
-                        c[i] += mesh.nodes[n][i];
+                    for (ci, xi) in c.iter_mut().zip(mesh.nodes[n]) {
+                        *ci += xi;
                     }
                 }
                 c.map(|x| x / el.nodes.len() as f64)
@@ -313,8 +313,8 @@ mod tests {
                 .map(|el| {
                     let mut c = [0.0; 3];
                     for &n in &el.nodes {
-                        for i in 0..3 {
-                            c[i] += mesh.nodes[n][i] / el.nodes.len() as f64;
+                        for (ci, xi) in c.iter_mut().zip(mesh.nodes[n]) {
+                            *ci += xi / el.nodes.len() as f64;
                         }
                     }
                     linear_field(c)

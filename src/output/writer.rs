@@ -142,7 +142,7 @@ impl ResultWriter {
         let files: Vec<(f64, String)> = dir
             .join(&reference)
             .is_file()
-            .then(|| (0.0, reference))
+            .then_some((0.0, reference))
             .into_iter()
             .chain(
                 restored

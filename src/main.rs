@@ -3,6 +3,7 @@
 
 use clap::{Parser, Subcommand};
 use indicatif::{ProgressBar, ProgressStyle};
+use signorini::output::describe::counted;
 use signorini::output::{ConvergedIncrement, Cut, Iteration, StepObserver, Summary};
 use std::path::PathBuf;
 use std::process::ExitCode;
@@ -185,9 +186,12 @@ fn run(
     if !quiet {
         let s = &outcome.summary;
         println!(
-            "done: {} increments, {} Newton iterations in {:.2} s; results in {}",
-            s.increments.len(),
-            s.increments.iter().map(|i| i.iterations).sum::<usize>(),
+            "done: {}, {} in {:.2} s; results in {}",
+            counted(s.increments.len(), "increment"),
+            counted(
+                s.increments.iter().map(|i| i.iterations).sum::<usize>(),
+                "Newton iteration"
+            ),
             s.wall_time,
             outcome.output_dir.display()
         );

@@ -77,8 +77,17 @@ fn a_cancelled_run_stops_between_newton_iterations_and_keeps_what_converged() {
         .skip(1)
         .map(|s| &s[..s.find('"').unwrap()])
         .collect();
-    assert_eq!(listed, [increments[0]["file"].as_str().unwrap()]);
-    assert!(tmp.path().join(listed[0]).is_file());
+    // the reference state (t = 0), then the converged increment
+    assert_eq!(
+        listed,
+        [
+            "press-pull_0000.vtu",
+            increments[0]["file"].as_str().unwrap()
+        ]
+    );
+    for file in listed {
+        assert!(tmp.path().join(file).is_file());
+    }
 }
 
 /// The command line on SIGINT: exit code 130, `summary.json` says

@@ -47,7 +47,8 @@ fn every_third_increment_and_each_step_end_is_written() {
         tmp.path(),
     );
     let increments = summary["increments"].as_array().unwrap();
-    let mut expected = Vec::new();
+    // the reference state (t = 0) first, then the increments written
+    let mut expected = vec!["rubber_0000.vtu".to_string()];
     for (k, inc) in increments.iter().enumerate() {
         let index = k + 1;
         let last_of_step = increments
@@ -70,6 +71,10 @@ fn every_third_increment_and_each_step_end_is_written() {
         .map(|s| s[..s.find('"').unwrap()].to_string())
         .collect();
     assert_eq!(listed, expected);
+    assert!(pvd.contains(r#"timestep="0.0" group="" part="0" file="rubber_0000.vtu""#));
+    let reference = tmp.path().join("rubber_0000.vtu");
+    let u = signorini::output::vtu::read_point_field(&reference, "displacement").unwrap();
+    assert!(!u.is_empty() && u.iter().all(|&x| x == 0.0));
     let on_disk = std::fs::read_dir(tmp.path())
         .unwrap()
         .filter(|e| {

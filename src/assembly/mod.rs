@@ -573,6 +573,26 @@ impl Model {
             .collect()
     }
 
+    /// The volume average over every element of a tensor function `g` of
+    /// the deformation gradient `F = I + ∂u/∂X` at its quadrature points,
+    /// `Σ_q g(F_q) dV_q / Σ_q dV_q` (for output: strains).
+    pub fn element_averages(&self, u: &[f64], g: impl Fn(&Mat3) -> Mat3 + Sync) -> Vec<Mat3> {
+        (0..self.mesh.elements.len())
+            .into_par_iter()
+            .map(|e| {
+                self.with_element_displacements(e, u, |displacements| {
+                    let (mut sum, mut volume) = (Mat3::zeros(), 0.0);
+                    for p in &self.geometry[e] {
+                        let f = kernel::deformation_gradient(&p.gradients, displacements);
+                        sum += g(&f) * p.dv;
+                        volume += p.dv;
+                    }
+                    sum / volume
+                })
+            })
+            .collect()
+    }
+
     /// Reference volume of every element.
     pub fn element_volumes(&self) -> Vec<f64> {
         self.geometry

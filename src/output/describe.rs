@@ -52,14 +52,31 @@ fn sizes(problem: &Problem) -> Vec<String> {
     .map(|(k, name)| format!("{} {name}", count(k)))
     .collect();
     let prescribed = problem.constrained_dofs().iter().filter(|&&c| c).count();
+    let multipliers = if problem.num_unknowns() > problem.model.num_dofs() {
+        format!(
+            ", {} unknowns with the contact multipliers",
+            problem.num_unknowns()
+        )
+    } else {
+        String::new()
+    };
     vec![format!(
-        "model: {} nodes, {} elements ({}), {} dofs ({prescribed} prescribed), {} unknowns with the contact multipliers",
+        "model: {} nodes, {} elements ({}), {} dofs ({prescribed} prescribed){multipliers}",
         mesh.num_nodes(),
         mesh.elements.len(),
         kinds.join(", "),
         problem.model.num_dofs(),
-        problem.num_unknowns()
     )]
+}
+
+/// `n` and `noun`, the noun in the plural unless `n` is 1: "1 increment",
+/// "3 increments".
+pub fn counted(n: usize, noun: &str) -> String {
+    if n == 1 {
+        format!("1 {noun}")
+    } else {
+        format!("{n} {noun}s")
+    }
 }
 
 /// A material model's name in words.

@@ -9,7 +9,10 @@ use rayon::prelude::*;
 use std::borrow::Cow;
 
 use super::contact_fields::ContactFields;
+use super::recovery::PatchRecovery;
+use super::tensors::{green_lagrange_strain, logarithmic_strain, principal_values};
 use super::vtu::ArrayKind;
+use crate::material::Mat3;
 use crate::problem::{ContactState, Problem};
 use crate::solve::stepping::IncrementRecord;
 
@@ -38,6 +41,15 @@ pub enum NodalField {
     /// The accumulated slip `Σ Δg_T^slip` (3 per node): the same values as
     /// `slip`, under the name that says which of the two it is.
     AccumulatedSlip,
+    /// Cauchy stress at the nodes (9 per node, row-major), recovered from
+    /// the element averages by superconvergent patch recovery
+    /// ([`super::recovery`]).
+    RecoveredCauchyStress,
+    /// The principal values `σ₁ ≥ σ₂ ≥ σ₃` of the recovered nodal Cauchy
+    /// stress (3 per node).
+    RecoveredPrincipalStress,
+    /// Von Mises stress of the recovered nodal Cauchy stress.
+    RecoveredVonMises,
 }
 
 /// A field with values per element (VTU cell data).
@@ -52,12 +64,21 @@ pub enum CellField {
     /// The index of the element's region, in the order `signorini check`
     /// lists the regions (0-based).
     Region,
+    /// The principal values `σ₁ ≥ σ₂ ≥ σ₃` of the element's averaged Cauchy
+    /// stress (3 per element).
+    PrincipalStress,
+    /// Green–Lagrange strain `E = ½(FᵀF − I)`, averaged over the element's
+    /// quadrature points (9 per element, row-major).
+    GreenLagrangeStrain,
+    /// Logarithmic (Hencky) strain `ln V = ½ ln(F Fᵀ)` (spatial), averaged
+    /// over the element's quadrature points (9 per element, row-major).
+    LogarithmicStrain,
 }
 
 impl NodalField {
-    /// Every nodal field, in the order the VTU files list them (new fields
-    /// go at the end, so the files keep their order; the Python relay takes
-    /// them by name).
+    /// Every nodal field read from the state, in the order the VTU files
+    /// list them (new fields go at the end, so the files keep their order;
+    /// the Python relay takes them by name).
     pub const ALL: [NodalField; 9] = [
         NodalField::Displacement,
         NodalField::ContactPressure,
@@ -68,6 +89,14 @@ impl NodalField {
         NodalField::NodeId,
         NodalField::SlipIncrement,
         NodalField::AccumulatedSlip,
+    ];
+
+    /// The nodal fields recovered from the element stresses, after
+    /// [`Self::ALL`] in the VTU files.
+    pub const RECOVERED: [NodalField; 3] = [
+        NodalField::RecoveredCauchyStress,
+        NodalField::RecoveredPrincipalStress,
+        NodalField::RecoveredVonMises,
     ];
 
     /// The array name in the VTU files (a contract with users' scripts).
@@ -82,6 +111,9 @@ impl NodalField {
             NodalField::NodeId => "node_id",
             NodalField::SlipIncrement => "slip_increment",
             NodalField::AccumulatedSlip => "accumulated_slip",
+            NodalField::RecoveredCauchyStress => "recovered_cauchy_stress",
+            NodalField::RecoveredPrincipalStress => "recovered_principal_stress",
+            NodalField::RecoveredVonMises => "recovered_von_mises",
         }
     }
 
@@ -100,26 +132,37 @@ impl NodalField {
             | NodalField::ContactTraction
             | NodalField::Slip
             | NodalField::SlipIncrement
-            | NodalField::AccumulatedSlip => 3,
+            | NodalField::AccumulatedSlip
+            | NodalField::RecoveredPrincipalStress => 3,
+            NodalField::RecoveredCauchyStress => 9,
             NodalField::ContactPressure
             | NodalField::Gap
             | NodalField::ContactStatus
-            | NodalField::NodeId => 1,
+            | NodalField::NodeId
+            | NodalField::RecoveredVonMises => 1,
         }
     }
 
     /// Whether the field exists only in a problem with contact.
     pub fn needs_contact(self) -> bool {
-        !matches!(self, NodalField::Displacement | NodalField::NodeId)
+        !matches!(self, NodalField::Displacement | NodalField::NodeId) && !self.is_recovered()
+    }
+
+    /// Whether the field is recovered from the element stresses.
+    pub fn is_recovered(self) -> bool {
+        NodalField::RECOVERED.contains(&self)
     }
 }
 
 impl CellField {
     /// Every cell field, in the order the VTU files list them.
-    pub const ALL: [CellField; 3] = [
+    pub const ALL: [CellField; 6] = [
         CellField::CauchyStress,
         CellField::VonMises,
         CellField::Region,
+        CellField::PrincipalStress,
+        CellField::GreenLagrangeStrain,
+        CellField::LogarithmicStrain,
     ];
 
     /// The array name in the VTU files.
@@ -128,6 +171,9 @@ impl CellField {
             CellField::CauchyStress => "cauchy_stress",
             CellField::VonMises => "von_mises",
             CellField::Region => "region",
+            CellField::PrincipalStress => "principal_stress",
+            CellField::GreenLagrangeStrain => "green_lagrange_strain",
+            CellField::LogarithmicStrain => "logarithmic_strain",
         }
     }
 
@@ -139,10 +185,21 @@ impl CellField {
         }
     }
 
+    /// Whether the field is computed from the element stresses.
+    pub fn needs_stress(self) -> bool {
+        matches!(
+            self,
+            CellField::CauchyStress | CellField::VonMises | CellField::PrincipalStress
+        )
+    }
+
     /// Numbers per element.
     pub fn components(self) -> usize {
         match self {
-            CellField::CauchyStress => 9,
+            CellField::CauchyStress
+            | CellField::GreenLagrangeStrain
+            | CellField::LogarithmicStrain => 9,
+            CellField::PrincipalStress => 3,
             CellField::VonMises | CellField::Region => 1,
         }
     }
@@ -161,6 +218,7 @@ impl OutputField {
     pub fn all() -> impl Iterator<Item = OutputField> {
         NodalField::ALL
             .into_iter()
+            .chain(NodalField::RECOVERED)
             .map(OutputField::Nodal)
             .chain(CellField::ALL.into_iter().map(OutputField::Cell))
     }
@@ -231,6 +289,11 @@ impl ConvergedIncrement<'_> {
             let ids = &self.problem.model.mesh.node_ids;
             return Cow::Owned(ids.iter().map(|&id| id as f64).collect());
         }
+        if field.is_recovered() {
+            let recovery = PatchRecovery::new(&self.problem.model.mesh);
+            let stresses = self.element_stresses();
+            return Cow::Owned(self.recovered(&[field], &stresses, &recovery).remove(0));
+        }
         Cow::Borrowed(match field {
             NodalField::Displacement => self.displacement(),
             NodalField::ContactPressure => &c.pressure,
@@ -239,44 +302,80 @@ impl ConvergedIncrement<'_> {
             NodalField::ContactTraction => &c.traction,
             NodalField::Slip | NodalField::AccumulatedSlip => &c.slip,
             NodalField::SlipIncrement => &c.slip_increment,
-            NodalField::NodeId => &[],
+            NodalField::NodeId
+            | NodalField::RecoveredCauchyStress
+            | NodalField::RecoveredPrincipalStress
+            | NodalField::RecoveredVonMises => &[],
         })
+    }
+
+    /// The Cauchy stress of every element, averaged over its quadrature
+    /// points.
+    pub fn element_stresses(&self) -> Vec<Mat3> {
+        self.problem.model.cauchy_stresses(self.unknowns)
+    }
+
+    /// The values of each recovered nodal field of `fields` (others give
+    /// an empty list), `components()` per node, from the element stresses
+    /// `stresses` by the mesh's patch recovery `recovery`.
+    pub fn recovered(
+        &self,
+        fields: &[NodalField],
+        stresses: &[Mat3],
+        recovery: &PatchRecovery,
+    ) -> Vec<Vec<f64>> {
+        if !fields.iter().any(|f| f.is_recovered()) {
+            return vec![Vec::new(); fields.len()];
+        }
+        let nodal = recovery.recover(stresses);
+        fields
+            .iter()
+            .map(|field| match field {
+                NodalField::RecoveredCauchyStress => nodal.iter().flat_map(row_major).collect(),
+                NodalField::RecoveredPrincipalStress => {
+                    nodal.iter().flat_map(principal_values).collect()
+                }
+                NodalField::RecoveredVonMises => {
+                    nodal.iter().map(crate::material::von_mises).collect()
+                }
+                _ => Vec::new(),
+            })
+            .collect()
     }
 
     /// The values of each cell field of `fields`, `components()` per
     /// element (the stresses computed once for all of them).
     pub fn cells(&self, fields: &[CellField]) -> Vec<Vec<f64>> {
-        if fields.is_empty() {
-            return Vec::new();
-        }
-        let mesh = &self.problem.model.mesh;
-        let needs_stress = fields.iter().any(|f| f != &CellField::Region);
-        let stresses = if needs_stress {
-            self.problem.model.cauchy_stresses(self.unknowns)
+        let stresses = if fields.iter().any(|f| f.needs_stress()) {
+            self.element_stresses()
         } else {
             Vec::new()
         };
+        self.cells_from(fields, &stresses)
+    }
+
+    /// [`Self::cells`] with the element stresses given (empty if no field
+    /// needs them).
+    pub fn cells_from(&self, fields: &[CellField], stresses: &[Mat3]) -> Vec<Vec<f64>> {
+        let model = &self.problem.model;
+        let mesh = &model.mesh;
         fields
             .par_iter()
             .map(|field| match field {
-                CellField::Region => {
-                    let mut region = vec![0.0; mesh.elements.len()];
-                    for (r, set) in mesh.regions.iter().enumerate() {
-                        for &e in &set.elements {
-                            region[e] = r as f64;
-                        }
-                    }
-                    region
-                }
-                CellField::CauchyStress => stresses
-                    .iter()
-                    .flat_map(|s| {
-                        // row-major: the transpose's columns
-                        let t = s.transpose();
-                        (0..9).map(move |i| t[i])
-                    })
-                    .collect(),
+                CellField::Region => region_indices(mesh),
+                CellField::CauchyStress => stresses.iter().flat_map(row_major).collect(),
                 CellField::VonMises => stresses.iter().map(crate::material::von_mises).collect(),
+                CellField::PrincipalStress => stresses.iter().flat_map(principal_values).collect(),
+                CellField::GreenLagrangeStrain => model
+                    .element_averages(self.displacement(), green_lagrange_strain)
+                    .iter()
+                    .flat_map(row_major)
+                    .collect(),
+                CellField::LogarithmicStrain => model
+                    .element_averages(self.displacement(), logarithmic_strain)
+                    .iter()
+                    .flat_map(row_major)
+                    .collect(),
             })
             .collect()
     }
@@ -292,6 +391,23 @@ impl ConvergedIncrement<'_> {
     pub fn reaction_forces(&self) -> Vec<(String, [f64; 3])> {
         self.problem.surface_forces(self.residual)
     }
+}
+
+/// The index of each element's region, in the order of `mesh.regions`.
+pub fn region_indices(mesh: &crate::mesh::Mesh) -> Vec<f64> {
+    let mut region = vec![0.0; mesh.elements.len()];
+    for (r, set) in mesh.regions.iter().enumerate() {
+        for &e in &set.elements {
+            region[e] = r as f64;
+        }
+    }
+    region
+}
+
+/// The entries of `m` row by row (the VTU files' order of a tensor).
+fn row_major(m: &Mat3) -> [f64; 9] {
+    let t = m.transpose(); // column-major storage of the transpose
+    std::array::from_fn(|i| t[i])
 }
 
 /// Of `lu_solves` solves by the sparse LU, those that were a fallback

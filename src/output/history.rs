@@ -245,7 +245,7 @@ mod tests {
         let dir = tempfile::tempdir().unwrap();
         lift.write(dir.path()).unwrap();
         let csv = std::fs::read_to_string(dir.path().join("lift.csv")).unwrap();
-        assert_eq!(csv, "time,displacement_z\n5e-1,3e-1\n1,3e-1\n");
+        assert_eq!(csv, "time,displacement_z\n0.5,0.3\n1,0.3\n");
         let svg = std::fs::read_to_string(dir.path().join("lift.svg")).unwrap();
         // the origin and the two samples
         assert_eq!(svg.matches("<circle").count(), 3);
@@ -272,10 +272,7 @@ mod tests {
         let dir = tempfile::tempdir().unwrap();
         reaction.write(dir.path()).unwrap();
         let csv = std::fs::read_to_string(dir.path().join("push.csv")).unwrap();
-        assert_eq!(
-            csv,
-            "time,reaction_x,reaction_y,reaction_z\n1,1.5e0,2.25e0,2\n"
-        );
+        assert_eq!(csv, "time,reaction_x,reaction_y,reaction_z\n1,1.5,2.25,2\n");
         let svg = std::fs::read_to_string(dir.path().join("push.svg")).unwrap();
         // three curves from the origin: 2 points each
         assert_eq!(svg.matches("<circle").count(), 6);

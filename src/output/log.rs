@@ -7,6 +7,7 @@ use std::fs::File;
 use std::io::{BufWriter, Write};
 use std::path::{Path, PathBuf};
 
+use super::describe::counted;
 use super::fields::ConvergedIncrement;
 use super::observer::{Cut, Iteration, StepObserver};
 use super::summary::Summary;
@@ -126,9 +127,11 @@ impl StepObserver for LogWriter {
         let iterations: usize = s.increments.iter().map(|i| i.iterations).sum();
         let cuts: usize = s.increments.iter().map(|i| i.cuts).sum();
         self.line(&format!(
-            "{}: {} increments, {iterations} Newton iterations, {cuts} cuts, {:.2} s on {} threads",
+            "{}: {}, {}, {}, {:.2} s on {} threads",
             s.status,
-            s.increments.len(),
+            counted(s.increments.len(), "increment"),
+            counted(iterations, "Newton iteration"),
+            counted(cuts, "cut"),
             s.wall_time,
             s.threads
         ));

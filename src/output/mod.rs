@@ -15,7 +15,9 @@
 //!   [`units`]: the units of their labels (`[units]`).
 //! - [`fields`]: the result fields by name ([`NodalField`], [`CellField`])
 //!   and a converged increment in memory ([`ConvergedIncrement`]);
-//!   [`contact_fields`] builds its contact fields.
+//!   [`contact_fields`] builds its contact fields; [`recovery`] the nodal
+//!   stresses by superconvergent patch recovery; [`tensors`] the principal
+//!   values and the strains.
 //! - [`observer`]: [`StepObserver`], what a run tells as it goes;
 //!   [`writer`]: the observer that writes all of the above; [`log`]: the
 //!   observer that writes `NAME.log`; [`describe`]: the model in words;
@@ -42,8 +44,10 @@ pub mod plot;
 pub mod profile;
 pub mod pvd;
 pub mod pvtu;
+pub mod recovery;
 pub mod summary;
 pub mod table;
+pub mod tensors;
 pub mod units;
 pub mod vtu;
 pub mod writer;

@@ -350,8 +350,8 @@ mod tests {
         assert_eq!(
             csv,
             "abscissa,node,contact_pressure,gap,status,tangential_traction,tangential_traction_norm,slip_bound,minus_slip_bound,slipping\n\
-             0,11,0,5e-1,0,NaN,NaN,NaN,NaN,NaN\n\
-             5e-1,10,2.5e-1,0,1,NaN,NaN,NaN,NaN,NaN\n"
+             0,11,0,0.5,0,NaN,NaN,NaN,NaN,NaN\n\
+             0.5,10,0.25,0,1,NaN,NaN,NaN,NaN,NaN\n"
         );
         assert!(dir.path().join("centre_line_full.csv").exists());
         let svg = std::fs::read_to_string(dir.path().join("centre_line.svg")).unwrap();

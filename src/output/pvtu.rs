@@ -12,6 +12,7 @@ use std::path::{Path, PathBuf};
 
 use super::fields::{CellField, ConvergedIncrement, NodalField};
 use super::observer::StepObserver;
+use super::recovery::PatchRecovery;
 use super::summary::Summary;
 use super::{vtu, write_atomically, xml_escape};
 use crate::mesh::{Element, Mesh};
@@ -189,24 +190,96 @@ pub struct IncrementArrays<'a> {
 type Array<'a> = (&'static str, usize, vtu::ArrayKind, Cow<'a, [f64]>);
 
 impl<'a> IncrementArrays<'a> {
+    /// The arrays of `nodal` and `cells`; the element stresses are
+    /// computed once for all the fields that need them, and the recovered
+    /// nodal fields use `recovery` (the mesh's patch recovery, made here
+    /// if `None`).
     pub fn new(
         increment: &'a ConvergedIncrement,
         nodal: &[NodalField],
         cells: &[CellField],
+        recovery: Option<&PatchRecovery>,
     ) -> Self {
         let has_contact = !increment.problem.contacts.is_empty();
+        let nodal: Vec<NodalField> = nodal
+            .iter()
+            .copied()
+            .filter(|f| has_contact || !f.needs_contact())
+            .collect();
+        let needs_recovery = nodal.iter().any(|f| f.is_recovered());
+        let stresses = if needs_recovery || cells.iter().any(|f| f.needs_stress()) {
+            increment.element_stresses()
+        } else {
+            Vec::new()
+        };
+        let mut recovered = if needs_recovery {
+            let made;
+            let recovery = match recovery {
+                Some(r) => r,
+                None => {
+                    made = PatchRecovery::new(&increment.problem.model.mesh);
+                    &made
+                }
+            };
+            increment.recovered(&nodal, &stresses, recovery)
+        } else {
+            vec![Vec::new(); nodal.len()]
+        };
         IncrementArrays {
             nodal: nodal
                 .iter()
-                .filter(|f| has_contact || !f.needs_contact())
-                .map(|&f| (f.name(), f.components(), f.kind(), increment.nodal(f)))
+                .zip(recovered.iter_mut())
+                .map(|(&f, values)| {
+                    let values = if f.is_recovered() {
+                        Cow::Owned(std::mem::take(values))
+                    } else {
+                        increment.nodal(f)
+                    };
+                    (f.name(), f.components(), f.kind(), values)
+                })
                 .collect(),
             cells: cells
                 .iter()
-                .zip(increment.cells(cells))
+                .zip(increment.cells_from(cells, &stresses))
                 .map(|(f, v)| (f.name(), f.components(), f.kind(), Cow::Owned(v)))
                 .collect(),
         }
+    }
+
+    /// The arrays of the reference state, `u = 0` before any load (the
+    /// t = 0 frame): zero displacements, stresses, strains and contact
+    /// fields, the gap NaN (it is first evaluated at the first increment),
+    /// the node ids and regions of `mesh`.
+    pub fn reference(
+        mesh: &Mesh,
+        has_contact: bool,
+        nodal: &[NodalField],
+        cells: &[CellField],
+    ) -> IncrementArrays<'static> {
+        let n = mesh.num_nodes();
+        let nodal = nodal
+            .iter()
+            .filter(|f| has_contact || !f.needs_contact())
+            .map(|&f| {
+                let values = match f {
+                    NodalField::NodeId => mesh.node_ids.iter().map(|&id| id as f64).collect(),
+                    NodalField::Gap => vec![f64::NAN; n],
+                    _ => vec![0.0; f.components() * n],
+                };
+                (f.name(), f.components(), f.kind(), Cow::Owned(values))
+            })
+            .collect();
+        let cells = cells
+            .iter()
+            .map(|&f| {
+                let values = match f {
+                    CellField::Region => super::fields::region_indices(mesh),
+                    _ => vec![0.0; f.components() * mesh.elements.len()],
+                };
+                (f.name(), f.components(), f.kind(), Cow::Owned(values))
+            })
+            .collect();
+        IncrementArrays { nodal, cells }
     }
 
     /// The point arrays.
@@ -259,7 +332,7 @@ impl StepObserver for PieceWriter {
         if file.is_empty() {
             return Ok(());
         }
-        let arrays = IncrementArrays::new(increment, &self.nodal, &self.cells);
+        let arrays = IncrementArrays::new(increment, &self.nodal, &self.cells, None);
         self.pieces.write_piece(
             &self.dir,
             &file,

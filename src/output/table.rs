@@ -22,11 +22,13 @@ pub fn csv_text(header: &[&str], rows: &[Vec<f64>]) -> String {
     text
 }
 
-/// A number as the shortest text that reads back to the same `f64`:
-/// integers (node ids, statuses) plainly (`12`), anything else in exponent
-/// form (`1e-1`, `-2.5e-9`), non-finite values as `NaN`, `inf`, `-inf`.
+/// A number as the shortest text that reads back to the same `f64`, in
+/// plain decimal notation (`12`, `0.5`, `-0.0025`) for magnitudes from
+/// 1e-5 to 1e15 and zero, in exponent form outside them (`1e-9`,
+/// `2.5e20`, which every CSV reader parses), non-finite values as `NaN`,
+/// `inf`, `-inf`.
 pub fn format_number(v: f64) -> String {
-    if v.fract() == 0.0 && v.abs() < 1e15 {
+    if v == 0.0 || !v.is_finite() || (1e-5..1e15).contains(&v.abs()) {
         format!("{v}")
     } else {
         format!("{v:e}")
@@ -49,16 +51,21 @@ mod tests {
             vec![0.0, 12.0, 0.1],
             vec![1.0, -3.0, 1e-9],
             vec![2.0, 5.0, f64::NAN],
+            vec![0.5, -0.0025, 2.5e20],
         ];
         let text = csv_text(&["time", "node", "value"], &rows);
-        assert_eq!(text, "time,node,value\n0,12,1e-1\n1,-3,1e-9\n2,5,NaN\n");
-        let back: Vec<f64> = text
+        assert_eq!(
+            text,
+            "time,node,value\n0,12,0.1\n1,-3,1e-9\n2,5,NaN\n0.5,-0.0025,2.5e20\n"
+        );
+        for (line, row) in text
             .lines()
-            .nth(2)
-            .unwrap()
-            .split(',')
-            .map(|v| v.parse().unwrap())
-            .collect();
-        assert_eq!(back, rows[1]);
+            .skip(1)
+            .zip(&rows)
+            .filter(|(_, r)| !r[2].is_nan())
+        {
+            let back: Vec<f64> = line.split(',').map(|v| v.parse().unwrap()).collect();
+            assert_eq!(&back, row);
+        }
     }
 }

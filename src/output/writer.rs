@@ -15,6 +15,7 @@ use super::manifest::Manifest;
 use super::observer::StepObserver;
 use super::profile::{file_part, Profile};
 use super::pvtu::{data_set_file, IncrementArrays, Pieces};
+use super::recovery::PatchRecovery;
 use super::summary::Summary;
 use super::{plot, pvd::PvdCollection, vtu};
 use crate::mesh::Mesh;
@@ -75,6 +76,18 @@ pub struct ResultWriter {
     /// The mesh of the VTU files and its points and cells, encoded once
     /// per series ([`Self::prepare_mesh`], else at the first file).
     mesh_arrays: Option<(Arc<Mesh>, vtu::VtuOptions, SharedMeshArrays)>,
+    /// The patch recovery weights of the VTU files' mesh, made at the
+    /// first file with a recovered field.
+    recovery: Option<(Arc<Mesh>, Arc<PatchRecovery>)>,
+    /// Whether the reference state (`NAME_0000.vtu`, t = 0) is still to be
+    /// written, before the first increment's file.
+    reference_pending: bool,
+}
+
+/// The reference state's VTU file of the series `name`: `NAME_0000.vtu`
+/// (the increments' files count from 1).
+pub fn reference_file(name: &str) -> String {
+    format!("{name}_0000.vtu")
 }
 
 /// What a restart restores of the result files: the increments so far
@@ -107,7 +120,9 @@ impl ResultWriter {
     pub fn new(dir: &Path, name: &str, content: SeriesContent) -> Result<Self> {
         std::fs::create_dir_all(dir).map_err(|e| Error::io("create output folder", dir, e))?;
         let manifest = Manifest::take_over(dir, name)?;
-        Self::open(dir, name, manifest, content, Vec::new())
+        let mut writer = Self::open(dir, name, manifest, content, Vec::new())?;
+        writer.reference_pending = true;
+        Ok(writer)
     }
 
     /// A writer that goes on with the series `name` in `dir` after a
@@ -122,12 +137,21 @@ impl ResultWriter {
         mut content: SeriesContent,
         restored: Restored,
     ) -> Result<Self> {
-        let files: Vec<(f64, String)> = restored
-            .summary
-            .increments
-            .iter()
-            .filter(|i| !i.file.is_empty())
-            .map(|i| (i.time, i.file.clone()))
+        // the reference state's frame, if the first run wrote one, first
+        let reference = reference_file(name);
+        let files: Vec<(f64, String)> = dir
+            .join(&reference)
+            .is_file()
+            .then_some((0.0, reference))
+            .into_iter()
+            .chain(
+                restored
+                    .summary
+                    .increments
+                    .iter()
+                    .filter(|i| !i.file.is_empty())
+                    .map(|i| (i.time, i.file.clone())),
+            )
             .collect();
         let keep: BTreeSet<String> = files.iter().map(|(_, f)| f.clone()).collect();
         let manifest = Manifest::resume(dir, name, &keep)?;
@@ -177,6 +201,8 @@ impl ResultWriter {
             case_key: None,
             pieces: None,
             mesh_arrays: None,
+            recovery: None,
+            reference_pending: false,
         })
     }
 
@@ -212,6 +238,22 @@ impl ResultWriter {
         }
     }
 
+    /// The patch recovery of `mesh`, made once per mesh; `None` when no
+    /// VTU field is recovered.
+    fn recovery_of(&mut self, mesh: &Arc<Mesh>) -> Option<Arc<PatchRecovery>> {
+        if !self.nodal.iter().any(|f| f.is_recovered()) {
+            return None;
+        }
+        match &self.recovery {
+            Some((m, r)) if Arc::ptr_eq(m, mesh) => Some(Arc::clone(r)),
+            _ => {
+                let r = Arc::new(PatchRecovery::new(mesh));
+                self.recovery = Some((Arc::clone(mesh), Arc::clone(&r)));
+                Some(r)
+            }
+        }
+    }
+
     /// Write `NAME.checkpoint` after every increment, for the case `key`
     /// (a restart resumes from it).
     pub fn checkpoint(mut self, key: CaseKey) -> Self {
@@ -241,27 +283,56 @@ impl ResultWriter {
     /// The VTU file of an increment, with the chosen fields (or, in a
     /// distributed run, the `.pvtu` and this process's piece).
     fn write_vtu(&mut self, increment: &ConvergedIncrement, file: &str) -> Result<()> {
-        let arrays = IncrementArrays::new(increment, &self.nodal, &self.cells);
+        let recovery = self.recovery_of(&increment.problem.model.mesh);
+        let arrays = IncrementArrays::new(increment, &self.nodal, &self.cells, recovery.as_deref());
         let (point_data, cell_data) = (arrays.points(), arrays.cells());
         self.manifest.claim(file)?;
         let mesh = &increment.problem.model.mesh;
         let Some(pieces) = &self.pieces else {
-            let path = self.dir.join(file);
-            let options = self.vtu;
-            let shared = self.arrays_of(mesh);
-            let arrays = shared
-                .get_or_init(|| vtu::MeshArrays::new(mesh, options))
-                .as_ref()
-                .map_err(|e| {
-                    Error::io("write", &path, std::io::Error::new(e.kind(), e.to_string()))
-                })?;
-            return vtu::write_vtu_on(&path, arrays, &point_data, &cell_data);
+            return self.write_whole(mesh, file, &point_data, &cell_data);
         };
         for rank in 0..pieces.parts {
             self.manifest.claim(&Pieces::piece_file(file, rank))?;
         }
         pieces.write_piece(&self.dir, file, mesh, &point_data, &cell_data, self.vtu)?;
         pieces.write_pvtu(&self.dir, file, &point_data, &cell_data)
+    }
+
+    /// The reference state's VTU file (`NAME_0000.vtu`, t = 0: the mesh
+    /// before any load, [`IncrementArrays::reference`]), listed first in
+    /// the `.pvd`.
+    fn write_reference(&mut self, increment: &ConvergedIncrement) -> Result<()> {
+        let file = reference_file(&self.name);
+        self.manifest.claim(&file)?;
+        let problem = increment.problem;
+        let mesh = &problem.model.mesh;
+        let arrays = IncrementArrays::reference(
+            mesh,
+            !problem.contacts.is_empty(),
+            &self.nodal,
+            &self.cells,
+        );
+        self.write_whole(mesh, &file, &arrays.points(), &arrays.cells())?;
+        self.pvd.add(0.0, &file)
+    }
+
+    /// A whole `.vtu` file of `mesh` (its points and cells encoded once
+    /// per series) with the arrays given.
+    fn write_whole(
+        &mut self,
+        mesh: &Arc<Mesh>,
+        file: &str,
+        point_data: &[vtu::Field],
+        cell_data: &[vtu::Field],
+    ) -> Result<()> {
+        let path = self.dir.join(file);
+        let options = self.vtu;
+        let shared = self.arrays_of(mesh);
+        let arrays = shared
+            .get_or_init(|| vtu::MeshArrays::new(mesh, options))
+            .as_ref()
+            .map_err(|e| Error::io("write", &path, std::io::Error::new(e.kind(), e.to_string())))?;
+        vtu::write_vtu_on(&path, arrays, point_data, cell_data)
     }
 
     /// Histories after every increment; profiles at the end of a step.
@@ -294,6 +365,9 @@ impl StepObserver for ResultWriter {
     }
 
     fn on_increment(&mut self, increment: &ConvergedIncrement, summary: &Summary) -> Result<()> {
+        if std::mem::take(&mut self.reference_pending) && self.pieces.is_none() {
+            self.write_reference(increment)?;
+        }
         let file = data_set_file(summary);
         // `[output] every` leaves some increments without a file
         if !file.is_empty() {

@@ -111,9 +111,9 @@ pub(super) fn from_abaqus_order(kind: ElementKind, deck: Vec<usize>) -> Vec<usiz
 }
 
 /// The note for a deck's element type that is read as a kind that is not
-/// exactly it (`None` where it is): what differs.
-pub(super) fn variant_note(type_name: &str, kind: ElementKind) -> Option<String> {
-    let base = super::builder::kind_name(kind);
+/// exactly it (`None` where it is): what differs. `base` is the kind's
+/// plain Abaqus name.
+pub(super) fn variant_note(type_name: &str, base: &str) -> Option<String> {
     match type_name {
         _ if type_name == base => None,
         "C3D20R" => Some(

@@ -570,7 +570,7 @@ impl<'a> Reader<'a> {
         let type_name = self.required(line, keyword, "TYPE")?.to_ascii_uppercase();
         let element = element_type(&type_name).map_err(|m| self.err(line, m))?;
         if let Shape::Volume(kind) = element.shape {
-            if let Some(note) = element_type::variant_note(&type_name, kind) {
+            if let Some(note) = element_type::variant_note(&type_name, kind_name(kind)) {
                 if !self.notes.contains(&note) {
                     self.notes.push(note);
                 }

@@ -2,8 +2,8 @@
 //! Every check of the user's input lives here, with the key path in the
 //! message.
 
-pub mod deck;
 pub mod budget;
+pub mod deck;
 pub mod diagnosis;
 pub mod limits;
 mod lines;

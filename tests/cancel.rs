@@ -138,9 +138,10 @@ fn sigint_stops_the_command_line_cleanly() {
         .skip(1)
         .map(|s| &s[..s.find('"').unwrap()])
         .collect();
+    // every converged increment, after the reference state (t = 0)
     assert_eq!(
         listed.len(),
-        summary["increments"].as_array().unwrap().len()
+        summary["increments"].as_array().unwrap().len() + 1
     );
     for file in listed {
         assert!(tmp.path().join(file).is_file(), "{file}");

@@ -71,6 +71,8 @@ fn a_new_run_removes_the_files_of_the_earlier_run_of_the_same_case() {
         "press-pull.manifest",
         // the state a restart resumes from (issue 15 item 3)
         "press-pull.checkpoint",
+        // the reference state (t = 0)
+        "press-pull_0000.vtu",
         "summary.json",
         "convergence.svg",
         "contact_line.svg",
@@ -96,13 +98,16 @@ fn a_new_run_removes_the_files_of_the_earlier_run_of_the_same_case() {
     expected.insert("notes.txt".into());
     expected.insert(".signorini.lock".into());
     assert_eq!(listing(out), expected);
-    // the .pvd lists exactly the VTU files of summary.json, all there
+    // the .pvd lists exactly the reference state and the VTU files of
+    // summary.json, all there
     let pvd = std::fs::read_to_string(out.join("press-pull.pvd")).unwrap();
     let listed: BTreeSet<String> = pvd
         .split("file=\"")
         .skip(1)
         .map(|s| s[..s.find('"').unwrap()].to_string())
         .collect();
-    assert_eq!(listed, vtus);
+    let mut series = vtus.clone();
+    series.insert("press-pull_0000.vtu".into());
+    assert_eq!(listed, series);
     assert!(listed.iter().all(|f| out.join(f).is_file()));
 }

@@ -37,13 +37,18 @@ pub fn hexahedron(n: usize) -> (Vec<[f64; 3]>, Vec<f64>) {
 
 /// Tensor-product Gauss rule with `n` points per direction on [−1, 1]².
 pub fn quadrilateral(n: usize) -> (Vec<[f64; 2]>, Vec<f64>) {
-    let (x, w) = gauss_legendre(n);
-    let mut points = Vec::new();
-    let mut weights = Vec::new();
-    for j in 0..n {
-        for i in 0..n {
-            points.push([x[i], x[j]]);
-            weights.push(w[i] * w[j]);
+    square(gauss_legendre(n))
+}
+
+/// The tensor product on [−1, 1]² of a rule `(x, w)` on [−1, 1]: points
+/// `(x_i, x_j)`, `i` fastest, weights `w_i w_j`.
+fn square((x, w): (Vec<f64>, Vec<f64>)) -> (Vec<[f64; 2]>, Vec<f64>) {
+    let mut points = Vec::with_capacity(x.len() * x.len());
+    let mut weights = Vec::with_capacity(x.len() * x.len());
+    for (xj, wj) in x.iter().zip(&w) {
+        for (xi, wi) in x.iter().zip(&w) {
+            points.push([*xi, *xj]);
+            weights.push(wi * wj);
         }
     }
     (points, weights)
@@ -114,30 +119,6 @@ pub fn wedge(triangle_points: usize, line_points: usize) -> (Vec<[f64; 3]>, Vec<
     (points, weights)
 }
 
-#[cfg(test)]
-mod tests {
-    use super::*;
-
-    /// `∫ ξ^i η^j dA = i! j! / (i + j + 2)!` on the unit triangle, for
-    /// every `i + j ≤ 4` by the 6-point rule.
-    #[test]
-    fn six_point_triangle_rule_is_of_degree_four() {
-        let fact = |n: u32| (1..=n).product::<u32>() as f64;
-        let (p, w) = triangle(6);
-        for i in 0..=4u32 {
-            for j in 0..=(4 - i) {
-                let q: f64 = p
-                    .iter()
-                    .zip(&w)
-                    .map(|(x, w)| w * x[0].powi(i as i32) * x[1].powi(j as i32))
-                    .sum();
-                let exact = fact(i) * fact(j) / fact(i + j + 2);
-                assert!((q - exact).abs() < 1e-14, "ξ^{i} η^{j}: {q} vs {exact}");
-            }
-        }
-    }
-}
-
 /// Gauss–Legendre points and weights on [−1, 1] for any `n ≥ 1`, exact for
 /// polynomials of degree `2n − 1`: the roots `x_i` of the Legendre
 /// polynomial `P_n` by Newton's method from `cos(π (i + ¾)/(n + ½))`, and
@@ -201,14 +182,29 @@ pub fn triangle_collapsed(n: usize) -> (Vec<[f64; 2]>, Vec<f64>) {
 /// Tensor-product Gauss–Legendre rule with `n` points per direction on
 /// [−1, 1]² for any `n ≥ 1` (exact to degree `2n − 1` per direction).
 pub fn quadrilateral_any(n: usize) -> (Vec<[f64; 2]>, Vec<f64>) {
-    let (x, w) = gauss_legendre_any(n);
-    let mut points = Vec::with_capacity(x.len() * x.len());
-    let mut weights = Vec::with_capacity(x.len() * x.len());
-    for (xj, wj) in x.iter().zip(&w) {
-        for (xi, wi) in x.iter().zip(&w) {
-            points.push([*xi, *xj]);
-            weights.push(wi * wj);
+    square(gauss_legendre_any(n))
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// `∫ ξ^i η^j dA = i! j! / (i + j + 2)!` on the unit triangle, for
+    /// every `i + j ≤ 4` by the 6-point rule.
+    #[test]
+    fn six_point_triangle_rule_is_of_degree_four() {
+        let fact = |n: u32| (1..=n).product::<u32>() as f64;
+        let (p, w) = triangle(6);
+        for i in 0..=4u32 {
+            for j in 0..=(4 - i) {
+                let q: f64 = p
+                    .iter()
+                    .zip(&w)
+                    .map(|(x, w)| w * x[0].powi(i as i32) * x[1].powi(j as i32))
+                    .sum();
+                let exact = fact(i) * fact(j) / fact(i + j + 2);
+                assert!((q - exact).abs() < 1e-14, "ξ^{i} η^{j}: {q} vs {exact}");
+            }
         }
     }
-    (points, weights)
 }

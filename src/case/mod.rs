@@ -222,7 +222,7 @@ impl Case {
     }
 
     /// The nodal and cell fields the VTU files hold: `[output] fields`, or
-    /// all of them.
+    /// [`OutputField::default_set`](crate::output::OutputField::default_set).
     pub fn output_fields(
         &self,
     ) -> (
@@ -232,7 +232,7 @@ impl Case {
         use crate::output::OutputField;
         let chosen: Vec<OutputField> = match &self.spec.output.fields {
             Some(f) => f.clone(),
-            None => OutputField::all().collect(),
+            None => OutputField::default_set().collect(),
         };
         let nodal = chosen
             .iter()

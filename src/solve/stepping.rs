@@ -478,30 +478,37 @@ mod tests {
         }
     }
 
+    /// The springs `k x + c x³ = t f` (k = 2, c = 5, f = (1, −3, 40)) in
+    /// one step of increments `increment`, solved to a residual of 1e-12.
+    fn springs(increment: f64, predictor: Predictor) -> Springs {
+        let nodes = [0usize];
+        Springs {
+            settings: SolverSettings {
+                residual_tolerance: 1e-12,
+                predictor,
+                ..SolverSettings::default()
+            },
+            steps: vec![Step {
+                name: "load".into(),
+                end_time: 1.0,
+                initial_increment: increment,
+                min_increment: 1e-3,
+                max_increment: increment,
+            }],
+            pattern: SparsityPattern::from_elements(1, std::iter::once(&nodes[..])),
+            k: 2.0,
+            c: 5.0,
+            f: [1.0, -3.0, 40.0],
+        }
+    }
+
     /// Newton and the stepper solve a problem that is not the finite-element
     /// one: each spring ends at the root of `k x + c x³ = f` (found here by
     /// bisection to 1e-14), and the observer receives the converged
     /// evaluation of every increment, whose residual is within tolerance.
     #[test]
     fn the_stepper_solves_any_nonlinear_problem() {
-        let nodes = [0usize];
-        let mut springs = Springs {
-            settings: SolverSettings {
-                residual_tolerance: 1e-12,
-                ..SolverSettings::default()
-            },
-            steps: vec![Step {
-                name: "load".into(),
-                end_time: 1.0,
-                initial_increment: 0.5,
-                min_increment: 1e-3,
-                max_increment: 0.5,
-            }],
-            pattern: SparsityPattern::from_elements(1, std::iter::once(&nodes[..])),
-            k: 2.0,
-            c: 5.0,
-            f: [1.0, -3.0, 40.0],
-        };
+        let mut springs = springs(0.5, SolverSettings::default().predictor);
         let mut solver = linear_solver(&springs.settings, Ordering::Amd, 1);
         let mut residuals = Residuals::default();
         let x = run_steps(&mut springs, &mut *solver, &mut residuals, PathBuf::new()).unwrap();
@@ -591,24 +598,7 @@ mod tests {
     /// each retried increment says so.
     #[test]
     fn the_fallback_solves_what_the_method_fails_without_a_cut() {
-        let nodes = [0usize];
-        let mut springs = Springs {
-            settings: SolverSettings {
-                residual_tolerance: 1e-12,
-                ..SolverSettings::default()
-            },
-            steps: vec![Step {
-                name: "load".into(),
-                end_time: 1.0,
-                initial_increment: 0.25,
-                min_increment: 1e-3,
-                max_increment: 0.25,
-            }],
-            pattern: SparsityPattern::from_elements(1, std::iter::once(&nodes[..])),
-            k: 2.0,
-            c: 5.0,
-            f: [1.0, -3.0, 40.0],
-        };
+        let mut springs = springs(0.25, SolverSettings::default().predictor);
         let mut first = linear_solver(&springs.settings, Ordering::Amd, 1);
         let mut second = linear_solver(&springs.settings, Ordering::Amd, 1);
         let (mut j1, mut j2) = (Josephy::default(), Josephy::default());
@@ -712,26 +702,8 @@ mod tests {
     /// (1e-12) in fewer Newton iterations than from the converged state.
     #[test]
     fn the_secant_predictor_saves_iterations_and_keeps_the_solution() {
-        let nodes = [0usize];
         let solve = |predictor: Predictor| {
-            let mut springs = Springs {
-                settings: SolverSettings {
-                    residual_tolerance: 1e-12,
-                    predictor,
-                    ..SolverSettings::default()
-                },
-                steps: vec![Step {
-                    name: "load".into(),
-                    end_time: 1.0,
-                    initial_increment: 0.1,
-                    min_increment: 1e-3,
-                    max_increment: 0.1,
-                }],
-                pattern: SparsityPattern::from_elements(1, std::iter::once(&nodes[..])),
-                k: 2.0,
-                c: 5.0,
-                f: [1.0, -3.0, 40.0],
-            };
+            let mut springs = springs(0.1, predictor);
             let mut solver = linear_solver(&springs.settings, Ordering::Amd, 1);
             let mut iterations = Iterations::default();
             let x = run_steps(&mut springs, &mut *solver, &mut iterations, PathBuf::new()).unwrap();

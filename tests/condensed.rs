@@ -19,9 +19,9 @@ struct Forces(Vec<Vec<f64>>, Vec<Vec<f64>>, Vec<Vec<f64>>, Vec<Vec<f64>>);
 impl StepObserver for Forces {
     fn on_increment(&mut self, inc: &ConvergedIncrement, _: &Summary) -> signorini::Result<()> {
         self.3.push(inc.displacement().to_vec());
-        self.0.push(inc.contact_fields.nodal_force.clone());
-        self.1.push(inc.contact_fields.traction.clone());
-        self.2.push(inc.contact_fields.status.clone());
+        self.0.push(inc.contact_fields.nodal.nodal_force.clone());
+        self.1.push(inc.contact_fields.nodal.traction.clone());
+        self.2.push(inc.contact_fields.nodal.status.clone());
         Ok(())
     }
 }

@@ -7,37 +7,19 @@
 //! evaluation and the committed states); nothing here measures geometry.
 
 use crate::contact::interface::NodeReport;
-use crate::contact::report::{ContactReport, InterfaceTotals};
+use crate::contact::report::{ContactReport, InterfaceTotals, NodalContact};
 use crate::output::summary::InterfaceSummary;
 use crate::problem::{ContactState, Problem};
 
 /// Nodal contact output of every interface, and its totals.
 pub struct ContactFields {
-    /// Contact pressure: at a node of a contact surface, the normal force
-    /// that every interface puts on it (`A_s t_N` as a secondary node, the
-    /// shares `w_i A_s t_N` as a primary node) over its tributary area;
-    /// `t_N` at the secondary nodes of one pass, the sum of the two passes'
-    /// shares with `two_pass`. 0 elsewhere.
-    pub pressure: Vec<f64>,
-    /// The normal force and tributary area behind `pressure`.
-    pub nodal_force: Vec<f64>,
-    pub nodal_area: Vec<f64>,
-    /// Signed gap at the nodes of contact surfaces, NaN elsewhere.
-    pub gap: Vec<f64>,
-    /// 0 open, 1 stick (closed, without friction), 2 slip (0 away from
-    /// contact surfaces).
-    pub status: Vec<f64>,
-    /// Traction on the body, `t_N n + t_T` (3 per node, 0 elsewhere).
-    pub traction: Vec<f64>,
-    /// Whether the node is a secondary node of some interface (its own
-    /// gap and slip then win over those seen from a primary side).
-    pub secondary: Vec<bool>,
-    /// Accumulated slip vector `Σ Δg_T^slip` over every increment so far
-    /// (3 per node, 0 elsewhere): the `slip` and `accumulated_slip` arrays.
-    pub slip: Vec<f64>,
-    /// This increment's slip `Δg_T^slip = slip_n+1 − slip_n` (3 per node,
-    /// 0 elsewhere; 0 at a node that stuck or stayed open).
-    pub slip_increment: Vec<f64>,
+    /// The nodal values as contact reports them: pressure (at a node of a
+    /// contact surface, the normal force every interface puts on it over
+    /// its tributary area; the sum of the two passes' shares with
+    /// `two_pass`), gap (NaN away from contact surfaces), status, traction,
+    /// accumulated slip and this increment's slip (3 per node for vectors,
+    /// 0 away from contact surfaces).
+    pub nodal: NodalContact,
     pub summaries: std::collections::BTreeMap<String, InterfaceSummary>,
     /// Every secondary node of every interface.
     pub reports: Vec<Vec<NodeReport>>,
@@ -65,15 +47,7 @@ impl ContactFields {
             .contacts
             .report(reference, x, contact, previous, reports);
         ContactFields {
-            pressure: nodal.pressure,
-            nodal_force: nodal.nodal_force,
-            nodal_area: nodal.nodal_area,
-            gap: nodal.gap,
-            status: nodal.status,
-            traction: nodal.traction,
-            secondary: nodal.secondary,
-            slip: nodal.slip,
-            slip_increment: nodal.slip_increment,
+            nodal,
             summaries: totals
                 .into_iter()
                 .map(|(name, t)| (name, summary(&t)))

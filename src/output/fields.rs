@@ -303,7 +303,7 @@ impl ConvergedIncrement<'_> {
 
     /// The values of a nodal field, `field.components()` per node.
     pub fn nodal(&self, field: NodalField) -> Cow<'_, [f64]> {
-        let c = &self.contact_fields;
+        let c = &self.contact_fields.nodal;
         if field == NodalField::NodeId {
             let ids = &self.problem.model.mesh.node_ids;
             return Cow::Owned(ids.iter().map(|&id| id as f64).collect());

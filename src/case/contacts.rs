@@ -1,0 +1,390 @@
+//! The `[[obstacle]]` and `[[contact]]` tables, validated into rigid
+//! obstacles and contact interfaces.
+
+use super::schema::{ContactMethod, FrictionMultiplierSpec, ObstacleShape};
+use super::{not_positive, Case};
+use crate::contact::friction::FrictionMultiplier;
+use crate::contact::interface::ContactInterface;
+use crate::contact::setup::{Enforcement, Method, SetupError};
+use crate::contact::{RigidObstacle, TriangulatedSurface};
+use crate::problem::Problem;
+use crate::{Error, Result};
+use nalgebra::Vector3;
+
+impl Case {
+    /// The `[[obstacle]]` at index `i`, validated.
+    pub(super) fn obstacle(&self, i: usize) -> Result<RigidObstacle> {
+        let o = &self.spec.obstacle[i];
+        let with_key = |e: Error| self.err(format!("obstacle[{i}] ('{}'): {e}", o.name));
+        let v = Vector3::from;
+        Ok(match &o.shape {
+            ObstacleShape::Plane { point, normal } => {
+                RigidObstacle::plane(v(*point), v(*normal)).map_err(with_key)?
+            }
+            ObstacleShape::Sphere { center, radius } => {
+                RigidObstacle::sphere(v(*center), *radius).map_err(with_key)?
+            }
+            ObstacleShape::Cylinder {
+                point,
+                axis,
+                radius,
+            } => RigidObstacle::cylinder(v(*point), v(*axis), *radius).map_err(with_key)?,
+            ObstacleShape::Stl { file } => {
+                RigidObstacle::Triangulated(TriangulatedSurface::from_stl(&self.dir().join(file))?)
+            }
+            ObstacleShape::Gmsh { file, surface } => {
+                let mesh = crate::mesh::gmsh::read_surface_msh(&self.dir().join(file))?;
+                RigidObstacle::Triangulated(TriangulatedSurface::from_surface_facets(
+                    &mesh, surface,
+                )?)
+            }
+        })
+    }
+
+    /// The `[[contact]]` interfaces, validated against the mesh and the
+    /// obstacles, with automatic parameters where none are given.
+    pub(super) fn contacts(&self, problem: &Problem) -> Result<Vec<ContactInterface>> {
+        let spec = &self.spec;
+        let mesh = &self.mesh;
+        // Young's modulus of the body under a surface set: of the stiffest
+        // material among the elements that hold one of its nodes (of the
+        // stiffest material of all without such elements)
+        let youngs_of = |surface: &str| -> f64 {
+            let model = &problem.model;
+            let stiffest = |e: &mut dyn Iterator<Item = usize>| {
+                e.map(|m| model.materials[m].reference_youngs_modulus())
+                    .fold(0.0f64, f64::max)
+            };
+            let on_surface = mesh.surface(surface).map(|set| {
+                let nodes: std::collections::HashSet<usize> = set
+                    .facets
+                    .iter()
+                    .flat_map(|f| f.nodes.iter().copied())
+                    .collect();
+                stiffest(
+                    &mut mesh
+                        .elements
+                        .iter()
+                        .zip(&model.element_material)
+                        .filter(|(e, _)| e.nodes.iter().any(|n| nodes.contains(n)))
+                        .map(|(_, &m)| m),
+                )
+            });
+            match on_surface {
+                Some(e) if e > 0.0 => e,
+                _ => stiffest(&mut (0..model.materials.len())),
+            }
+        };
+        let mut out = Vec::new();
+        for (i, c) in spec.contact.iter().enumerate() {
+            let key = format!("contact[{i}]");
+            self.surface(&format!("{key}.surface"), &c.surface)?;
+            // what the secondary nodes touch
+            enum Target<'a> {
+                Obstacle(usize),
+                Surface(&'a str),
+            }
+            let target = match (&c.obstacle, &c.primary) {
+                (Some(name), None) => {
+                    let index = spec
+                        .obstacle
+                        .iter()
+                        .position(|o| &o.name == name)
+                        .ok_or_else(|| {
+                            let have: Vec<&str> =
+                                spec.obstacle.iter().map(|o| o.name.as_str()).collect();
+                            self.err(format!(
+                                "{key}.obstacle: no [[obstacle]] named '{name}'; there are: {}",
+                                if have.is_empty() {
+                                    "none".to_string()
+                                } else {
+                                    have.join(", ")
+                                }
+                            ))
+                        })?;
+                    Target::Obstacle(index)
+                }
+                (None, Some(name)) => {
+                    self.surface(&format!("{key}.primary"), name)?;
+                    if name == &c.surface {
+                        return Err(self.err(format!(
+                            "{key}.primary = '{name}' is the secondary surface itself; name the surface of the other body"
+                        )));
+                    }
+                    // validated as a primary surface (triangles) here, built by the constructors
+                    self.primary_surface(&format!("{key}.primary"), name)?;
+                    Target::Surface(name)
+                }
+                _ => {
+                    return Err(self.err(format!(
+                        "{key}: give either `obstacle` (a rigid [[obstacle]] name) or `primary` (a surface set of another body), not {}",
+                        if c.obstacle.is_some() { "both" } else { "neither" }
+                    )))
+                }
+            };
+            // the passes: one, or with `two_pass` also the primary surface's
+            // nodes against the secondary surface's triangles, each pass on
+            // half of every node's tributary area
+            if c.two_pass && !matches!(target, Target::Surface(_)) {
+                return Err(self.err(format!(
+                    "{key}.two_pass applies to contact between deformable bodies only (with `primary`); \
+                     remove it, or name the other body's surface with `primary` instead of `obstacle`"
+                )));
+            }
+            // two passes constrain the same motion twice (at least where
+            // nodes coincide: the stacked blocks' 41 constraints have rank
+            // 37), and a multiplier unknown per constraint makes the saddle
+            // system singular (`tests/two_pass.rs`): only the methods
+            // without multiplier unknowns
+            if c.two_pass && matches!(c.method, ContactMethod::Rockafellar | ContactMethod::Slack) {
+                return Err(self.err(format!(
+                    "{key}.two_pass needs method = \"uzawa\" or \"penalty\" (method is \"{}\"): the two passes \
+                     constrain the same motion twice, which makes the multiplier system of rockafellar and slack \
+                     singular; uzawa reaches the same Lagrangian solution without multiplier unknowns",
+                    if matches!(c.method, ContactMethod::Slack) {
+                        "slack"
+                    } else {
+                        "rockafellar"
+                    }
+                )));
+            }
+            let name = c.name.clone().unwrap_or_else(|| c.surface.clone());
+            let reverse = format!("{name}.reverse");
+            if c.two_pass {
+                if let Some(j) = spec
+                    .contact
+                    .iter()
+                    .position(|o| o.name.as_deref().unwrap_or(&o.surface) == reverse)
+                {
+                    return Err(self.err(format!(
+                        "{key}.two_pass names its reverse pass '{reverse}', which is the name of contact[{j}]; rename one of them"
+                    )));
+                }
+            }
+            let positive = |v: Option<f64>, name: &str| -> Result<Option<f64>> {
+                match v {
+                    Some(x) if !(x > 0.0 && x.is_finite()) => {
+                        Err(self.err(not_positive(&format!("{key}.{name}"), x)))
+                    }
+                    v => Ok(v),
+                }
+            };
+            let friction_coefficient = match (c.friction_coefficient, c.tangential_penalty) {
+                (None, Some(_)) => {
+                    return Err(self.err(format!(
+                        "{key}.tangential_penalty is given without {key}.friction_coefficient; \
+                         add the friction coefficient or remove the tangential penalty"
+                    )))
+                }
+                (Some(mu), _) if !(mu >= 0.0 && mu.is_finite()) => {
+                    return Err(self.err(format!(
+                        "{key}.friction_coefficient = {mu} must be zero or positive"
+                    )))
+                }
+                (mu, _) => mu,
+            };
+            let enforcement = Enforcement {
+                method: match c.method {
+                    ContactMethod::Penalty => Method::Penalty,
+                    ContactMethod::Uzawa => Method::Uzawa,
+                    ContactMethod::Rockafellar => Method::Rockafellar,
+                    ContactMethod::Slack => Method::Slack,
+                },
+                penalty: positive(c.penalty, "penalty")?,
+                scaling: positive(c.scaling, "scaling")?,
+                youngs_modulus: youngs_of(&c.surface),
+                primary_youngs_modulus: match &target {
+                    Target::Surface(primary) => Some(youngs_of(primary)),
+                    Target::Obstacle(_) => None,
+                },
+                friction_coefficient,
+                tangential_penalty: positive(c.tangential_penalty, "tangential_penalty")?,
+                exact_stick: c.exact_stick,
+                friction_multiplier: match (c.friction_multiplier, c.method) {
+                    (Some(FrictionMultiplierSpec::Newton), _) => FrictionMultiplier::Newton,
+                    (None, ContactMethod::Rockafellar | ContactMethod::Slack) => {
+                        FrictionMultiplier::Newton
+                    }
+                    _ => FrictionMultiplier::Outer,
+                },
+            };
+            if let Some(spec) = c.friction_multiplier {
+                let why = if !c.exact_stick {
+                    Some("it applies to exact stick only: add exact_stick = true or remove it")
+                } else if spec == FrictionMultiplierSpec::Newton
+                    && !matches!(c.method, ContactMethod::Rockafellar | ContactMethod::Slack)
+                {
+                    Some("the tangential multipliers are unknowns of Newton beside the normal ones, which this method does not have: use friction_multiplier = \"outer\" or method = \"rockafellar\" or \"slack\"")
+                } else {
+                    None
+                };
+                if let Some(why) = why {
+                    return Err(self.err(format!("{key}.friction_multiplier: {why}")));
+                }
+            }
+            if c.exact_stick {
+                let why = if friction_coefficient.is_none() {
+                    Some("it needs friction: give friction_coefficient")
+                } else if matches!(c.method, ContactMethod::Penalty) {
+                    Some("the penalty method keeps the regularised law: use method = \"rockafellar\", \"slack\" or \"uzawa\"")
+                } else {
+                    None
+                };
+                if let Some(why) = why {
+                    return Err(self.err(format!("{key}.exact_stick = true: {why}")));
+                }
+            }
+            // the passes: one, or with `two_pass` also the primary surface's
+            // nodes against the secondary surface's triangles, each pass on
+            // half of every node's tributary area
+            let reverse_pass = " (two_pass: the reverse pass)";
+            let setup = |e: SetupError| {
+                let (SetupError::NoArea(s)
+                | SetupError::UnknownSurface(s)
+                | SetupError::QuadraticSurface(s)
+                | SetupError::Degenerate { surface: s, .. }) = &e;
+                let pass = if *s == c.surface { "" } else { reverse_pass };
+                self.err(match e {
+                    SetupError::NoArea(_) => format!("{key}{pass}: surface '{s}' has no area"),
+                    SetupError::Degenerate { element_size, .. } => format!(
+                        "{key}{pass}: surface '{s}' has the element size {} (the square root of its \
+                         mean area per node), not a positive finite length; check the mesh's coordinates",
+                        crate::input::number(element_size)
+                    ),
+                    SetupError::UnknownSurface(_) => {
+                        format!("{key}{pass}: the mesh has no surface set '{s}'")
+                    }
+                    SetupError::QuadraticSurface(_) => {
+                        format!("{key}: {}", SetupError::quadratic_surface_message(s))
+                    }
+                })
+            };
+            // the same surface under another name (or one holding it); after
+            // the checks of the keys, which name the case file's mistake first
+            if let Target::Surface(name) = &target {
+                let nodes_of = |surface: &str| -> std::collections::HashSet<usize> {
+                    mesh.surface(surface)
+                        .map(|set| {
+                            set.facets
+                                .iter()
+                                .flat_map(|f| f.nodes.iter().copied())
+                                .collect()
+                        })
+                        .unwrap_or_default()
+                };
+                let (secondary, primary) = (nodes_of(&c.surface), nodes_of(name));
+                if !secondary.is_empty() && secondary.is_subset(&primary) {
+                    return Err(self.err(format!(
+                        "{key}: self-paired surface: every node of the secondary surface '{}' is also on the \
+                         primary surface '{name}' (the same surface under another name, or one holding it), \
+                         so each node would contact its own facets; name as primary the surface of the other \
+                         body",
+                        c.surface
+                    )));
+                }
+            }
+            let passes = match target {
+                Target::Obstacle(index) => {
+                    let o = &spec.obstacle[index];
+                    let motion = o.motion.map(Vector3::from).unwrap_or_else(Vector3::zeros);
+                    let amplitude =
+                        self.amplitude(&format!("obstacle[{index}].amplitude"), &o.amplitude)?;
+                    let obstacle = self.obstacle(index)?;
+                    let interface =
+                        ContactInterface::rigid(mesh, &c.surface, obstacle, &enforcement)
+                            .map_err(setup)?;
+                    vec![(
+                        interface.named(&name).moving(motion, amplitude),
+                        "",
+                        format!("obstacle '{}'", o.name),
+                    )]
+                }
+                Target::Surface(primary) if c.two_pass => {
+                    let [forward, back] =
+                        ContactInterface::two_pass(mesh, &c.surface, primary, &enforcement)
+                            .map_err(setup)?;
+                    vec![
+                        (
+                            forward.named(&name),
+                            "",
+                            format!("primary surface '{primary}'"),
+                        ),
+                        (
+                            back.named(&reverse),
+                            reverse_pass,
+                            format!("primary surface '{}'", c.surface),
+                        ),
+                    ]
+                }
+                Target::Surface(primary) => {
+                    let interface =
+                        ContactInterface::between_bodies(mesh, &c.surface, primary, &enforcement)
+                            .map_err(setup)?;
+                    vec![(
+                        interface.named(&name),
+                        "",
+                        format!("primary surface '{primary}'"),
+                    )]
+                }
+            };
+            for (interface, pass, against) in passes {
+                // a surface that starts inside the obstacle is a set-up error
+                let secondary = &interface.surface;
+                let tolerance = c
+                    .initial_penetration_tolerance
+                    .unwrap_or(0.01 * interface.element_size);
+                if !(tolerance >= 0.0 && tolerance.is_finite()) {
+                    return Err(self.err(format!(
+                        "{key}.initial_penetration_tolerance = {tolerance} must be zero or positive \
+                         (the largest initial penetration accepted, a length)"
+                    )));
+                }
+                let zero = vec![0.0; 3 * mesh.num_nodes()];
+                let gaps = interface.gaps(&mesh.nodes, 0.0, &zero, None);
+                // a plane with the whole body behind it (every node of the
+                // mesh, not only the surface's: a plane raised into the body
+                // leaves some in front): its normal points away
+                if let Target::Obstacle(index) = &target {
+                    let o = &spec.obstacle[*index];
+                    if let ObstacleShape::Plane { point, normal } = &o.shape {
+                        let length = Vector3::from(*normal).norm();
+                        let height = |x: &[f64; 3]| {
+                            (Vector3::from(*x) - Vector3::from(*point)).dot(&Vector3::from(*normal))
+                                / length
+                        };
+                        if !gaps.is_empty()
+                            && gaps.iter().all(|&g| g < -tolerance)
+                            && mesh.nodes.iter().all(|x| height(x) < -tolerance)
+                        {
+                            let nearest = mesh
+                                .nodes
+                                .iter()
+                                .map(height)
+                                .fold(f64::NEG_INFINITY, f64::max);
+                            return Err(self.err(format!(
+                                "{key}: obstacle normal pointing away: the whole body is behind plane \
+                                 '{}' (every node, the nearest at {nearest:.3e}), so its normal points away \
+                                 from the body; flip it: normal = [{}, {}, {}]",
+                                o.name,
+                                -normal[0] + 0.0,
+                                -normal[1] + 0.0,
+                                -normal[2] + 0.0
+                            )));
+                        }
+                    }
+                }
+                for (j, &g) in gaps.iter().enumerate() {
+                    if g < -tolerance {
+                        return Err(self.err(format!(
+                            "{key}{pass}: node {} of surface '{secondary}' starts inside {against} (gap {g:.3e}, tolerance {tolerance:.3e}); \
+                             move the bodies apart, or check the normal (an obstacle's must point toward the body)",
+                            mesh.node_ids[interface.nodes[j]]
+                        )));
+                    }
+                }
+                out.push(interface);
+            }
+        }
+        Ok(out)
+    }
+}

@@ -1,0 +1,208 @@
+//! Where the condensed path applies: the path a run takes ([`choose`]) and
+//! why the condensed one does not apply ([`not_applicable`]).
+
+use super::{friction, has_friction, Problem};
+use crate::contact::interface::Primary;
+use crate::contact::laws::NormalLaw;
+use crate::contact::obstacle::RigidObstacle;
+use crate::material::Kinematics;
+use crate::solve::settings::Strategy;
+use nalgebra::{Matrix6, Vector3, Vector6};
+
+/// Which path a run takes.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum Path {
+    Monolithic,
+    Condensed,
+}
+
+impl Path {
+    /// `"monolithic"` or `"condensed"` (summary.json's `strategy`).
+    pub fn name(self) -> &'static str {
+        match self {
+            Path::Monolithic => "monolithic",
+            Path::Condensed => "condensed",
+        }
+    }
+}
+
+/// The path a run takes and why the other one is not taken.
+#[derive(Clone, Debug, PartialEq)]
+pub struct Choice {
+    pub path: Path,
+    pub reason: String,
+}
+
+/// The path `[solver] strategy` asks for on `problem`; an error (the
+/// reason) when `condensed` is asked for where it does not apply.
+pub fn choose(problem: &Problem) -> std::result::Result<Choice, String> {
+    let why_not = not_applicable(problem);
+    let strategy = problem.settings.strategy;
+    let condensed = || Choice {
+        path: Path::Condensed,
+        reason: if has_friction(problem) {
+            "the stiffness is constant and every contact is against a rigid plane with Coulomb \
+             friction: one factorisation per run, the frictional contact problem solved on the \
+             contact nodes by a dense semismooth Newton method (monolithic Newton would \
+             factorise at every iteration)"
+                .into()
+        } else {
+            "the stiffness is constant and every contact is frictionless against a rigid \
+             plane: one factorisation per run, the contact problem solved exactly on the \
+             contact nodes (monolithic Newton would factorise at every iteration)"
+                .into()
+        },
+    };
+    match (strategy, why_not) {
+        (Strategy::Monolithic, _) => Ok(Choice {
+            path: Path::Monolithic,
+            reason: "[solver] strategy = \"monolithic\"".into(),
+        }),
+        (Strategy::Condensed, None) | (Strategy::Auto, None) => Ok(condensed()),
+        (Strategy::Condensed, Some(why)) => Err(format!(
+            "solver.strategy = \"condensed\" does not apply: {why}; use strategy = \"auto\" or \
+             \"monolithic\""
+        )),
+        (Strategy::Auto, Some(why)) => Ok(Choice {
+            path: Path::Monolithic,
+            reason: format!("the condensed path does not apply: {why}"),
+        }),
+    }
+}
+
+/// Why the condensed path does not apply to `problem` (`None`: it does).
+pub fn not_applicable(problem: &Problem) -> Option<String> {
+    if problem.contacts.is_empty() {
+        return Some(
+            "there is no contact (Newton solves a linear problem in one iteration)".into(),
+        );
+    }
+    if let Some(m) = problem
+        .model
+        .materials
+        .iter()
+        .find(|m| m.kinematics() != Kinematics::SmallStrain)
+    {
+        return Some(format!(
+            "material '{}' is finite-strain (its stiffness changes with the displacement)",
+            m.name()
+        ));
+    }
+    if let Some(p) = problem.pressures.iter().find(|p| p.follower) {
+        return Some(format!(
+            "the pressure on '{}' follows the deformed surface (its load stiffness changes)",
+            p.surface
+        ));
+    }
+    for c in &problem.contacts {
+        let why = match (&c.primary, c.law) {
+            (Primary::Surface(_), _) => Some("is between two bodies (not condensed yet)".into()),
+            (Primary::Rigid(RigidObstacle::Plane { .. }), NormalLaw::Uzawa { .. }) => Some(
+                "uses uzawa, which meets the constraint only to its outer loop's tolerance".into(),
+            ),
+            (Primary::Rigid(RigidObstacle::Plane { .. }), _) => None,
+            (Primary::Rigid(o), _) => Some(format!(
+                "is against a {}, whose gap is not linear in the displacement",
+                match o {
+                    RigidObstacle::Sphere { .. } => "sphere",
+                    RigidObstacle::Cylinder { .. } => "cylinder",
+                    _ => "triangulated surface",
+                }
+            )),
+        };
+        if let Some(why) = why {
+            return Some(format!("contact '{}' {why}", c.name));
+        }
+    }
+    let mut held = problem.constrained_dofs();
+    if has_friction(problem) {
+        // the frictional path shifts the dofs of the nodes touching at the
+        // start (`K̂ = K̃ + ρ Σ I₃`), which holds a body that friction holds
+        for d in friction::initially_touching_dofs(problem) {
+            held[d] = true;
+        }
+    }
+    free_rigid_body_mode(problem, &held).map(|why| {
+        if has_friction(problem) {
+            format!("{why}, and the nodes touching the obstacle at the start do not hold it")
+        } else {
+            why
+        }
+    })
+}
+
+/// A body (a connected set of elements) that the `constrained` dofs (its
+/// prescribed displacements, and the shifted contact dofs) do not hold against every rigid-body motion (`K̃` is then singular),
+/// named by one of its nodes; a node in no element that is not fully
+/// prescribed. The six rigid modes of a body about its centroid `c`,
+/// `t_i = e_i` and `r_i = e_i × (X − c)/L`, are held when their Gram
+/// matrix over the prescribed dofs, `G = Σ_d m(d) m(d)ᵀ`, is regular
+/// (smallest eigenvalue above 1e-10 of the largest).
+pub(super) fn free_rigid_body_mode(problem: &Problem, constrained: &[bool]) -> Option<String> {
+    let mesh = &problem.model.mesh;
+    let n = mesh.num_nodes();
+    let mut parent: Vec<usize> = (0..n).collect();
+    fn root(parent: &mut [usize], mut a: usize) -> usize {
+        while parent[a] != a {
+            parent[a] = parent[parent[a]];
+            a = parent[a];
+        }
+        a
+    }
+    let mut in_element = vec![false; n];
+    for e in &mesh.elements {
+        for &a in &e.nodes {
+            in_element[a] = true;
+            let (ra, rb) = (root(&mut parent, a), root(&mut parent, e.nodes[0]));
+            parent[ra] = rb;
+        }
+    }
+    let mut bodies: std::collections::BTreeMap<usize, Vec<usize>> = Default::default();
+    for a in 0..n {
+        if !in_element[a] {
+            if !(0..3).all(|d| constrained[3 * a + d]) {
+                return Some(format!("node {} belongs to no element", mesh.node_ids[a]));
+            }
+            continue;
+        }
+        let r = root(&mut parent, a);
+        bodies.entry(r).or_default().push(a);
+    }
+    for nodes in bodies.values() {
+        let count = nodes.len() as f64;
+        let mut c = Vector3::zeros();
+        for &a in nodes {
+            c += Vector3::from(mesh.nodes[a]) / count;
+        }
+        let size = nodes
+            .iter()
+            .map(|&a| (Vector3::from(mesh.nodes[a]) - c).norm())
+            .fold(0.0f64, f64::max)
+            .max(f64::MIN_POSITIVE);
+        let mut gram = Matrix6::zeros();
+        for &a in nodes {
+            let y = (Vector3::from(mesh.nodes[a]) - c) / size;
+            for d in 0..3 {
+                if !constrained[3 * a + d] {
+                    continue;
+                }
+                let mut m = Vector6::zeros();
+                m[d] = 1.0;
+                for axis in 0..3 {
+                    m[3 + axis] = Vector3::ith(axis, 1.0).cross(&y)[d];
+                }
+                gram += m * m.transpose();
+            }
+        }
+        let eigen = gram.symmetric_eigenvalues();
+        let (lo, hi) = (eigen.min(), eigen.max());
+        if !(lo > 1e-10 * hi) {
+            return Some(format!(
+                "the body of node {} is held only by contact (a rigid-body motion is free of \
+                 prescribed displacements, so its stiffness is singular)",
+                mesh.node_ids[nodes[0]]
+            ));
+        }
+    }
+    None
+}

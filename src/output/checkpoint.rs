@@ -13,9 +13,21 @@
 //! profiles' tables), with what identifies the case ([`CaseKey`]).
 //!
 //! The format: the 8 bytes [`MAGIC`], the format version (`u32`, little
-//! endian), the payload's length (`u64`), the payload, and its FNV-1a hash
-//! (`u64`), so a truncated or corrupted file is told apart from a file of
-//! another version. The payload is the [`Checkpoint`] in
+//! endian), then records, each its payload's length (`u64`), the payload
+//! and its FNV-1a hash (`u64`). The first record is a whole [`Checkpoint`];
+//! each later one an [`Increment`], the state after one more converged
+//! increment with only what it adds to the output (its entry of
+//! `summary.json`, its histories' samples, the profiles' new tables), so
+//! that writing it costs the same at every increment ([`CheckpointFile`]
+//! appends it and syncs it to the disk). A reader takes the longest valid
+//! prefix of records: a record cut short by a `kill -9` (or its hash not
+//! matching) ends the file, and the state is that of the record before.
+//! When the appended records outweigh the whole one, the file is rewritten
+//! whole (atomically, [`write_atomically_synced`]), so it stays within
+//! about twice one whole record and the rewrites cost a bounded amount per
+//! increment; a resumed run rewrites it whole first, dropping a torn
+//! record. A truncated, a corrupted first record and a file of another
+//! version are told apart. The payload is in
 //! [postcard](https://docs.rs/postcard) (serde's compact binary format with
 //! a stable wire format, 1.0; bincode, the other candidate, is
 //! unmaintained): every state struct derives `Serialize`/`Deserialize`, so a
@@ -25,11 +37,14 @@
 //! which a format without field names cannot read back.
 
 use std::borrow::Cow;
+use std::fs::File;
+use std::io::Write as _;
 use std::path::{Path, PathBuf};
 
 use serde::{Deserialize, Serialize};
 
 use super::profile::StepProfile;
+use super::summary::{IncrementSummary, Summary};
 use super::write_atomically_synced;
 use crate::problem::ContactState;
 use crate::solve::stepping::Stepping;
@@ -38,9 +53,9 @@ use crate::{Error, Result};
 /// The first 8 bytes of a checkpoint.
 pub const MAGIC: &[u8; 8] = b"SIGNCKPT";
 /// The version of the format this build writes and reads.
-pub const FORMAT_VERSION: u32 = 2;
-/// Bytes before the payload: magic, version, payload length.
-const HEADER: usize = 8 + 4 + 8;
+pub const FORMAT_VERSION: u32 = 3;
+/// Bytes before the records: magic, version.
+const HEADER: usize = 8 + 4;
 
 /// What ties a checkpoint to its case: the sizes of the model, a hash of
 /// its physics and its steps.
@@ -78,28 +93,145 @@ pub struct Checkpoint<'a> {
     pub profiles: Vec<Cow<'a, [StepProfile]>>,
 }
 
+/// One converged increment after the record before it: the state, and
+/// what it adds to the output files (borrowed when written, owned when
+/// read).
+#[derive(Clone, Debug, Serialize, Deserialize)]
+pub struct Increment<'a> {
+    pub unknowns: Cow<'a, [f64]>,
+    pub contact: Cow<'a, ContactState>,
+    pub stepping: Cow<'a, Stepping>,
+    /// `summary.json` without its increments ([`Summary::head`]), as JSON.
+    pub summary_head: String,
+    /// The entries of `summary.json`'s increments since the record
+    /// before, as JSON.
+    pub increments: Vec<String>,
+    /// Per history, its samples since the record before.
+    pub samples: Vec<Cow<'a, [Sample]>>,
+    /// Per profile, its tables since the record before.
+    pub profiles: Vec<Cow<'a, [StepProfile]>>,
+}
+
+/// The first byte of a record's payload: a whole [`Checkpoint`], or an
+/// [`Increment`] (postcard's variant index of the enum they would make).
+const WHOLE: u8 = 0;
+const INCREMENT: u8 = 1;
+
 /// The checkpoint file of the series `name` in `dir`.
 pub fn path(dir: &Path, name: &str) -> PathBuf {
     dir.join(format!("{name}.checkpoint"))
 }
 
-/// Write `checkpoint` to `path`, atomically and synced to the disk
-/// ([`write_atomically_synced`]).
-pub fn write(path: &Path, checkpoint: &Checkpoint) -> Result<()> {
-    let payload = postcard::to_stdvec(checkpoint).map_err(|e| {
+/// Write `checkpoint` to `path` as a file of one whole record, atomically
+/// and synced to the disk ([`write_atomically_synced`]); its size in
+/// bytes.
+pub fn write(path: &Path, checkpoint: &Checkpoint) -> Result<u64> {
+    let record = record(path, WHOLE, checkpoint)?;
+    write_atomically_synced(path, |w| {
+        w.write_all(MAGIC)?;
+        w.write_all(&FORMAT_VERSION.to_le_bytes())?;
+        w.write_all(&record)
+    })?;
+    Ok((HEADER + record.len()) as u64)
+}
+
+/// One record: the payload's length (`u64`), the payload (`tag`, then
+/// `value` in postcard) and the payload's FNV-1a hash (`u64`).
+fn record<T: Serialize>(path: &Path, tag: u8, value: &T) -> Result<Vec<u8>> {
+    let mut bytes = vec![0; 8];
+    bytes.push(tag);
+    let mut bytes = postcard::to_extend(value, bytes).map_err(|e| {
         Error::io(
             "write",
             path,
             std::io::Error::new(std::io::ErrorKind::InvalidData, e.to_string()),
         )
     })?;
-    write_atomically_synced(path, |w| {
-        w.write_all(MAGIC)?;
-        w.write_all(&FORMAT_VERSION.to_le_bytes())?;
-        w.write_all(&(payload.len() as u64).to_le_bytes())?;
-        w.write_all(&payload)?;
-        w.write_all(&fnv1a(&payload).to_le_bytes())
-    })
+    let length = (bytes.len() - 8) as u64;
+    bytes[..8].copy_from_slice(&length.to_le_bytes());
+    let hash = fnv1a(&bytes[8..]);
+    bytes.extend_from_slice(&hash.to_le_bytes());
+    Ok(bytes)
+}
+
+/// `NAME.checkpoint` as a run writes it: a whole record at the first
+/// increment (and the first after a restart, which drops a torn record),
+/// then one [`Increment`] record appended per increment and synced, and
+/// the file rewritten whole once the appended records outweigh the whole
+/// one. A whole record of `n` increments costs `W = s + n·e` (`s` the
+/// state, `e` an increment's output) and comes after at least `W / (s +
+/// e)` appended ones, so the rewrites add at most `s + e` per increment:
+/// the cost per increment does not grow with the run, and the file stays
+/// under about `2 W`.
+#[derive(Debug)]
+pub struct CheckpointFile {
+    path: PathBuf,
+    /// Open for appending after the last whole record; `None`: the next
+    /// record is whole.
+    file: Option<File>,
+    /// The size of the file after its whole record, and of the records
+    /// appended since.
+    whole: u64,
+    appended: u64,
+}
+
+impl CheckpointFile {
+    /// The checkpoint at `path`, its first record still to write.
+    pub fn new(path: PathBuf) -> Self {
+        CheckpointFile {
+            path,
+            file: None,
+            whole: 0,
+            appended: 0,
+        }
+    }
+
+    /// The file's path.
+    pub fn path(&self) -> &Path {
+        &self.path
+    }
+
+    /// Whether the next record is to be whole: the first, or the appended
+    /// records outweigh the whole one.
+    pub fn wants_whole(&self) -> bool {
+        self.file.is_none() || self.appended > self.whole
+    }
+
+    /// Replace the file by `checkpoint` alone ([`write`]) and go on
+    /// appending to it.
+    pub fn write_whole(&mut self, checkpoint: &Checkpoint) -> Result<()> {
+        self.file = None;
+        self.whole = write(&self.path, checkpoint)?;
+        self.appended = 0;
+        let file = std::fs::OpenOptions::new()
+            .append(true)
+            .open(&self.path)
+            .map_err(|e| Error::io("open", &self.path, e))?;
+        self.file = Some(file);
+        Ok(())
+    }
+
+    /// Append `increment` as one record, synced to the disk (a kill during
+    /// the write leaves a torn last record, which a reader drops).
+    pub fn append(&mut self, increment: &Increment) -> Result<()> {
+        let record = record(&self.path, INCREMENT, increment)?;
+        let path = &self.path;
+        let Some(file) = self.file.as_mut() else {
+            return Err(Error::io(
+                "append to",
+                path,
+                std::io::Error::other("no whole record written before"),
+            ));
+        };
+        let written = file.write_all(&record).and_then(|()| file.sync_data());
+        if let Err(e) = written {
+            // what follows the whole record is unknown: rewrite it next
+            self.file = None;
+            return Err(Error::io("write", path, e));
+        }
+        self.appended += record.len() as u64;
+        Ok(())
+    }
 }
 
 /// Read the checkpoint of the series `name` from the folder `dir`, with an
@@ -159,8 +291,27 @@ fn missing_checkpoint(dir: &Path, name: &str) -> String {
     format!("no {name}.checkpoint in it ({found})")
 }
 
-/// The checkpoint in `bytes`, or why they are not one.
+/// The checkpoint in `bytes` (its whole first record with the increments
+/// of the longest valid prefix of the records after it applied), or why
+/// they are not one.
 fn decode(bytes: &[u8]) -> std::result::Result<Checkpoint<'static>, String> {
+    check_header(bytes)?;
+    let (payload, mut at) = next_record(bytes, HEADER)?;
+    let mut checkpoint: Checkpoint<'static> = parse(payload, WHOLE)?;
+    let mut summary = None;
+    // a record cut short or not matching its hash ends the valid prefix
+    while let Ok((payload, next)) = next_record(bytes, at) {
+        apply(&mut checkpoint, &mut summary, parse(payload, INCREMENT)?)?;
+        at = next;
+    }
+    if let Some(summary) = summary {
+        checkpoint.summary = serde_json::to_string(&summary).map_err(|e| corrupted(&e))?;
+    }
+    Ok(checkpoint)
+}
+
+/// Why `bytes` do not start as a checkpoint of this format version does.
+fn check_header(bytes: &[u8]) -> std::result::Result<(), String> {
     if bytes.len() < 8 || &bytes[..8] != MAGIC {
         return Err(
             "not a signorini checkpoint (it does not start with the checkpoint \
@@ -168,47 +319,107 @@ fn decode(bytes: &[u8]) -> std::result::Result<Checkpoint<'static>, String> {
                 .into(),
         );
     }
-    let truncated = |what: &str| {
-        format!(
-            "truncated ({} bytes, {what}): the file was cut short after signorini wrote it \
-             (an interrupted copy, a full disk); restore it, or run the case from the start",
-            bytes.len()
-        )
+    let Some(version) = bytes.get(8..HEADER) else {
+        return Err(truncated(bytes, "shorter than its header"));
     };
-    if bytes.len() < HEADER {
-        return Err(truncated("shorter than its header"));
-    }
-    let version = u32::from_le_bytes(bytes[8..12].try_into().map_err(|_| truncated("header"))?);
+    let version = u32::from_le_bytes([version[0], version[1], version[2], version[3]]);
     if version != FORMAT_VERSION {
         return Err(format!(
             "format version {version}, but this build reads version {FORMAT_VERSION}: resume \
              with the signorini that wrote it, or run the case from the start"
         ));
     }
-    let length = u64::from_le_bytes(bytes[12..20].try_into().map_err(|_| truncated("header"))?);
-    let expected = (HEADER as u64).saturating_add(length).saturating_add(8);
-    if (bytes.len() as u64) < expected {
-        return Err(truncated(&format!("{expected} expected")));
+    Ok(())
+}
+
+/// The payload of the record at `at` in `bytes` and where the next record
+/// starts, or why it is not whole (cut short, or its hash not matching).
+fn next_record(bytes: &[u8], at: usize) -> std::result::Result<(&[u8], usize), String> {
+    let Some(length) = bytes.get(at..at + 8) else {
+        return Err(truncated(bytes, "shorter than a record's header"));
+    };
+    let mut word = [0; 8];
+    word.copy_from_slice(length);
+    let length = u64::from_le_bytes(word);
+    let end = (at as u64 + 8).saturating_add(length).saturating_add(8);
+    if (bytes.len() as u64) < end {
+        return Err(truncated(bytes, &format!("{end} expected")));
     }
-    if (bytes.len() as u64) > expected {
-        return Err(format!(
-            "corrupted: {} bytes where its header announces {expected}; run the case from the start",
-            bytes.len()
-        ));
-    }
-    let payload = &bytes[HEADER..HEADER + length as usize];
-    let stored = u64::from_le_bytes(
-        bytes[HEADER + length as usize..]
-            .try_into()
-            .map_err(|_| truncated("checksum"))?,
-    );
-    if fnv1a(payload) != stored {
+    let (start, end) = (at + 8, end as usize - 8);
+    word.copy_from_slice(&bytes[end..end + 8]);
+    if fnv1a(&bytes[start..end]) != u64::from_le_bytes(word) {
         return Err("corrupted: its checksum does not match its content; \
                     run the case from the start"
             .into());
     }
-    postcard::from_bytes(payload)
-        .map_err(|e| format!("corrupted ({e}); run the case from the start"))
+    Ok((&bytes[start..end], end + 8))
+}
+
+/// The message of a checkpoint cut short.
+fn truncated(bytes: &[u8], what: &str) -> String {
+    format!(
+        "truncated ({} bytes, {what}): the file was cut short after signorini wrote it \
+         (an interrupted copy, a full disk); restore it, or run the case from the start",
+        bytes.len()
+    )
+}
+
+/// The message of a checkpoint whose content does not read back.
+fn corrupted(e: &dyn std::fmt::Display) -> String {
+    format!("corrupted ({e}); run the case from the start")
+}
+
+/// The record `payload` as a `T`, when its tag is `tag`.
+fn parse<T: serde::de::DeserializeOwned>(
+    payload: &[u8],
+    tag: u8,
+) -> std::result::Result<T, String> {
+    match payload.split_first() {
+        Some((&t, value)) if t == tag => postcard::from_bytes(value).map_err(|e| corrupted(&e)),
+        _ => Err(corrupted(&format!("a record of kind {tag} expected"))),
+    }
+}
+
+/// `checkpoint` after the increment record `increment`: its state, the
+/// summary (`summary`, read from the checkpoint's at the first increment)
+/// with the new entries, the histories' and profiles' new rows.
+fn apply(
+    checkpoint: &mut Checkpoint<'static>,
+    summary: &mut Option<Summary>,
+    increment: Increment<'static>,
+) -> std::result::Result<(), String> {
+    if increment.samples.len() != checkpoint.histories.len()
+        || increment.profiles.len() != checkpoint.profiles.len()
+    {
+        return Err(corrupted(
+            &"an increment's histories or profiles are not the case's",
+        ));
+    }
+    let mut head: Summary =
+        serde_json::from_str(&increment.summary_head).map_err(|e| corrupted(&e))?;
+    head.increments = match summary.take() {
+        Some(earlier) => earlier.increments,
+        None => {
+            let earlier: Summary =
+                serde_json::from_str(&checkpoint.summary).map_err(|e| corrupted(&e))?;
+            earlier.increments
+        }
+    };
+    for entry in &increment.increments {
+        let entry: IncrementSummary = serde_json::from_str(entry).map_err(|e| corrupted(&e))?;
+        head.increments.push(entry);
+    }
+    *summary = Some(head);
+    checkpoint.unknowns = increment.unknowns;
+    checkpoint.contact = increment.contact;
+    checkpoint.stepping = increment.stepping;
+    for (history, new) in checkpoint.histories.iter_mut().zip(increment.samples) {
+        history.to_mut().extend(new.into_owned());
+    }
+    for (profile, new) in checkpoint.profiles.iter_mut().zip(increment.profiles) {
+        profile.to_mut().extend(new.into_owned());
+    }
+    Ok(())
 }
 
 impl Checkpoint<'_> {
@@ -384,7 +595,7 @@ mod tests {
         assert!(message(&bytes[..bytes.len() - 3]).contains("truncated"));
         assert!(message(&bytes[..10]).contains("truncated"));
         let mut flipped = bytes.clone();
-        flipped[HEADER + 5] ^= 0x40;
+        flipped[HEADER + 8 + 5] ^= 0x40;
         assert!(message(&flipped).contains("checksum"));
         assert!(message(b"<?xml version").contains("not a signorini checkpoint"));
         let mut future = bytes.clone();
@@ -400,6 +611,118 @@ mod tests {
             .unwrap()
             .to_string();
         assert!(err.contains("no such folder"), "{err}");
+    }
+
+    /// A summary of `n` increments, its wall time `n`, as JSON (and its
+    /// head), and the increment `n`'s entry.
+    fn summary(n: usize) -> (String, String, String) {
+        let entry = |k: usize| IncrementSummary {
+            step_name: "press".into(),
+            time: k as f64,
+            residuals: vec![1.0, 1e-3 / k as f64],
+            ..Default::default()
+        };
+        let mut s = Summary {
+            wall_time: n as f64,
+            increments: (1..=n).map(entry).collect(),
+            ..Default::default()
+        };
+        s.update_step_totals();
+        (
+            serde_json::to_string(&s).unwrap(),
+            serde_json::to_string(&s.head()).unwrap(),
+            serde_json::to_string(&entry(n)).unwrap(),
+        )
+    }
+
+    /// The increment record `k` after [`sample`]: unknowns all `k`, time
+    /// `k`, one more history sample.
+    fn increment(k: usize) -> Increment<'static> {
+        let (_, head, entry) = summary(k);
+        let mut stepping = sample().stepping.into_owned();
+        stepping.time = k as f64;
+        Increment {
+            unknowns: Cow::Owned(vec![k as f64; 7]),
+            contact: Cow::Owned(ContactState::default()),
+            stepping: Cow::Owned(stepping),
+            summary_head: head,
+            increments: vec![entry],
+            samples: vec![Cow::Owned(vec![(k as f64, vec![k as f64, 0.0])])],
+            profiles: vec![],
+        }
+    }
+
+    /// A whole record then three increments appended: the file cut at any
+    /// byte after the whole record reads back as its longest whole prefix
+    /// (the state, the summary with every increment and its totals, the
+    /// histories' samples of the last whole record); a corrupted last
+    /// record reads as the one before.
+    #[test]
+    fn appended_increments_read_back_to_the_longest_whole_prefix() {
+        let dir = tempfile::tempdir().unwrap();
+        let mut file = CheckpointFile::new(path(dir.path(), "case"));
+        let mut whole = sample();
+        whole.summary = summary(1).0;
+        whole.unknowns = Cow::Owned(vec![1.0; 7]);
+        file.write_whole(&whole).unwrap();
+        let at = file.path().to_path_buf();
+        let size = || std::fs::metadata(&at).unwrap().len() as usize;
+        let mut ends = vec![size()];
+        for k in 2..=4 {
+            file.append(&increment(k)).unwrap();
+            ends.push(size());
+        }
+        let bytes = std::fs::read(file.path()).unwrap();
+        for cut in ends[0]..=bytes.len() {
+            let k = ends.iter().filter(|&&end| end <= cut).count();
+            let c = decode(&bytes[..cut]).unwrap();
+            assert!(c.unknowns.iter().all(|&u| u == k as f64), "cut at {cut}");
+            let s: Summary = serde_json::from_str(&c.summary).unwrap();
+            assert_eq!(s.increments.len(), k);
+            assert_eq!(s.wall_time, k as f64);
+            assert_eq!(s.steps[0].increments, k);
+            assert_eq!(s.increments[k - 1].residuals[1], 1e-3 / k as f64);
+            assert_eq!(c.histories[0].len(), k);
+            if k > 1 {
+                assert_eq!(c.stepping.time, k as f64);
+            }
+        }
+        let mut flipped = bytes.clone();
+        flipped[ends[2] + 12] ^= 0x01;
+        let c = decode(&flipped).unwrap();
+        assert_eq!(c.unknowns[0], 3.0);
+    }
+
+    /// Appended records of about a whole one's size: a whole record is
+    /// wanted again once they outweigh it, so the file stays under twice a
+    /// whole record and one more.
+    #[test]
+    fn rewrites_whole_once_the_appended_records_outweigh_it() {
+        let dir = tempfile::tempdir().unwrap();
+        let mut file = CheckpointFile::new(path(dir.path(), "case"));
+        assert!(file.wants_whole());
+        let mut whole = sample();
+        whole.summary = summary(1).0;
+        file.write_whole(&whole).unwrap();
+        let first = std::fs::metadata(file.path()).unwrap().len();
+        let mut appended = 0;
+        while !file.wants_whole() {
+            file.append(&increment(2 + appended)).unwrap();
+            appended += 1;
+            assert!(appended < 1000);
+        }
+        let last = std::fs::metadata(file.path()).unwrap().len();
+        let record = (last - first) / appended as u64;
+        assert!(
+            last > 2 * first && last <= 2 * first + 2 * record,
+            "{first} {last} {record}"
+        );
+        assert_eq!(
+            decode(&std::fs::read(file.path()).unwrap())
+                .unwrap()
+                .unknowns[0],
+            (1 + appended) as f64
+        );
     }
 
     /// Another model, other physics and another step in progress are

@@ -2,9 +2,13 @@
 //! output folder, one name a line, so that the next run of the same case
 //! can remove them before it writes its own.
 //!
-//! A file is added to the manifest (rewritten atomically) *before* it is
-//! first written, so the manifest on disk always lists at least every file
-//! of the run, whenever the run is killed. At the start of a run
+//! A file is added to the manifest *before* it is first written, so the
+//! manifest on disk always lists at least every file of the run, whenever
+//! the run is killed. A new name is appended as one line (a run of 10⁵
+//! VTU files does not rewrite a list of 10⁵ names each time); the list is
+//! written whole, atomically, once at the start of a run. A line cut short
+//! by a kill names no file of the run (every name ends in its extension),
+//! so it removes nothing. At the start of a run
 //! ([`Manifest::take_over`]) the earlier run's files are removed in an
 //! order that never leaves a listing of a missing file: first
 //! `summary.json` and `NAME.pvd` (which name the VTU files), then the VTU
@@ -66,11 +70,11 @@ impl Manifest {
         for file in old.iter().chain(&temporaries) {
             remove(&dir.join(file))?;
         }
-        let mut manifest = Manifest {
+        let manifest = Manifest {
             path,
-            files: BTreeSet::new(),
+            files: BTreeSet::from([format!("{name}.manifest")]),
         };
-        manifest.claim(&format!("{name}.manifest"))?;
+        manifest.rewrite()?;
         Ok(manifest)
     }
 
@@ -94,27 +98,35 @@ impl Manifest {
                 files.remove(&file);
             }
         }
-        // listing itself last writes the whole list
-        let own = format!("{name}.manifest");
-        files.remove(&own);
-        let mut manifest = Manifest { path, files };
-        manifest.claim(&own)?;
+        files.insert(format!("{name}.manifest"));
+        let manifest = Manifest { path, files };
+        manifest.rewrite()?;
         Ok(manifest)
     }
 
     /// Add `file` (a name in the output folder) to the manifest before it
-    /// is written; the manifest is rewritten only for a new name.
+    /// is written; a new name is appended to the file as one line.
     pub fn claim(&mut self, file: &str) -> Result<()> {
         if self.files.insert(file.to_string()) {
-            let files = &self.files;
-            write_atomically(&self.path, |w| {
-                for f in files {
-                    writeln!(w, "{f}")?;
-                }
-                Ok(())
-            })?;
+            let line = format!("{file}\n");
+            std::fs::OpenOptions::new()
+                .append(true)
+                .create(true)
+                .open(&self.path)
+                .and_then(|mut f| std::io::Write::write_all(&mut f, line.as_bytes()))
+                .map_err(|e| Error::io("write", &self.path, e))?;
         }
         Ok(())
+    }
+
+    /// The whole list, written atomically.
+    fn rewrite(&self) -> Result<()> {
+        write_atomically(&self.path, |w| {
+            for f in &self.files {
+                writeln!(w, "{f}")?;
+            }
+            Ok(())
+        })
     }
 }
 
@@ -237,10 +249,11 @@ mod tests {
             .collect();
         left.sort();
         assert_eq!(left, ["case.manifest", "case_0001.vtu", "tip.csv"]);
+        // the list written whole at the start, then the new name appended
         let text = std::fs::read_to_string(d.join("case.manifest")).unwrap();
         assert_eq!(
             text,
-            "case.checkpoint\ncase.manifest\ncase_0001.vtu\ntip.csv\n"
+            "case.manifest\ncase_0001.vtu\ntip.csv\ncase.checkpoint\n"
         );
     }
 

@@ -23,7 +23,8 @@
 //!   observer that writes `NAME.log`; [`describe`]: the model in words;
 //!   [`manifest`]: `NAME.manifest`, the files of a run, removed by the next;
 //!   [`lock`]: `.signorini.lock`, the folder's owner for a run's life;
-//!   [`checkpoint`]: `NAME.checkpoint`, the state a restart resumes from.
+//!   [`checkpoint`]: `NAME.checkpoint`, the state a restart resumes from;
+//!   [`schedule`]: when the listings of every increment are rewritten.
 //!
 //! Every file is written to a temporary file in the target's folder and then
 //! renamed over the target ([`write_atomically`]), so an interrupted run never
@@ -45,6 +46,7 @@ pub mod profile;
 pub mod pvd;
 pub mod pvtu;
 pub mod recovery;
+pub mod schedule;
 pub mod summary;
 pub mod table;
 pub mod tensors;

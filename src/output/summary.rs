@@ -1,13 +1,15 @@
 //! `summary.json`: the machine-readable record of a run, rewritten
-//! (atomically) after every converged increment so that it is valid
-//! whatever happens later.
+//! (atomically) on a geometric schedule of the converged increments
+//! ([`super::schedule`]) and at the end of the run, so that it is valid
+//! whatever happens later and its cost per increment does not grow with
+//! the run.
 
 use serde::{Deserialize, Serialize};
 use std::collections::BTreeMap;
 use std::path::Path;
 
 /// One converged increment.
-#[derive(Clone, Debug, Serialize, Deserialize)]
+#[derive(Clone, Debug, Default, Serialize, Deserialize)]
 pub struct IncrementSummary {
     /// Step index (0-based) and name.
     pub step: usize,
@@ -102,7 +104,7 @@ pub struct StepSummary {
 }
 
 /// The whole run.
-#[derive(Clone, Debug, Serialize, Deserialize)]
+#[derive(Clone, Debug, Default, Serialize, Deserialize)]
 pub struct Summary {
     /// The case file.
     pub case: String,
@@ -172,27 +174,88 @@ pub struct Summary {
 impl Summary {
     /// Recompute the per-step totals from the increments.
     pub fn update_step_totals(&mut self) {
-        let mut steps: Vec<StepSummary> = Vec::new();
+        let mut steps = Vec::new();
         for inc in &self.increments {
-            if steps.last().is_none_or(|s| s.name != inc.step_name) {
-                steps.push(StepSummary {
-                    name: inc.step_name.clone(),
-                    time: inc.time,
-                    increments: 0,
-                    iterations: 0,
-                    cuts: 0,
-                    wall_time: 0.0,
-                });
-            }
-            #[allow(clippy::expect_used)] // a step is pushed just above when there is none
-            let s = steps.last_mut().expect("pushed above");
-            s.time = inc.time;
-            s.increments += 1;
-            s.iterations += inc.iterations;
-            s.cuts += inc.cuts;
-            s.wall_time += inc.wall_time;
+            add_to_steps(&mut steps, inc);
         }
         self.steps = steps;
+    }
+
+    /// Add the last increment to the per-step totals that
+    /// [`update_step_totals`](Self::update_step_totals) made of the others:
+    /// the same totals, in time independent of the run's length.
+    pub fn add_last_to_step_totals(&mut self) {
+        if let Some(inc) = self.increments.last() {
+            add_to_steps(&mut self.steps, inc);
+        }
+    }
+
+    /// The summary without its increments (every other key as it is):
+    /// what the checkpoint stores after each increment beside the new
+    /// increment alone, in time independent of the run's length. Every
+    /// field is named (no `..`), so a field added to `Summary` must be
+    /// added here.
+    pub fn head(&self) -> Summary {
+        let Summary {
+            case,
+            status,
+            error,
+            nodes,
+            elements,
+            dofs,
+            constrained_dofs,
+            threads,
+            wall_time,
+            symbolic_analyses,
+            matrix_nnz,
+            factor_nnz,
+            phase_times,
+            krylov_solves,
+            krylov_iterations,
+            lu_solves,
+            factorisations,
+            single_factorisations,
+            refinement_steps,
+            mixed_precision_fallbacks,
+            strategy,
+            strategy_reason,
+            predictor,
+            predictor_reason,
+            active_set_iterations,
+            fallback_increments,
+            steps,
+            increments: _,
+        } = self;
+        Summary {
+            case: case.clone(),
+            status: status.clone(),
+            error: error.clone(),
+            nodes: *nodes,
+            elements: *elements,
+            dofs: *dofs,
+            constrained_dofs: *constrained_dofs,
+            threads: *threads,
+            wall_time: *wall_time,
+            symbolic_analyses: *symbolic_analyses,
+            matrix_nnz: *matrix_nnz,
+            factor_nnz: *factor_nnz,
+            phase_times: phase_times.clone(),
+            krylov_solves: *krylov_solves,
+            krylov_iterations: *krylov_iterations,
+            lu_solves: *lu_solves,
+            factorisations: *factorisations,
+            single_factorisations: *single_factorisations,
+            refinement_steps: *refinement_steps,
+            mixed_precision_fallbacks: *mixed_precision_fallbacks,
+            strategy: strategy.clone(),
+            strategy_reason: strategy_reason.clone(),
+            predictor: predictor.clone(),
+            predictor_reason: predictor_reason.clone(),
+            active_set_iterations: *active_set_iterations,
+            fallback_increments: *fallback_increments,
+            steps: steps.clone(),
+            increments: Vec::new(),
+        }
     }
 
     /// A summary of a run that starts: the model's sizes, no increment yet.
@@ -235,5 +298,27 @@ impl Summary {
         let text = serde_json::to_string_pretty(self)
             .map_err(|e| crate::Error::io("write", path, e.into()))?;
         super::write_atomically(path, |w| std::io::Write::write_all(w, text.as_bytes()))
+    }
+}
+
+/// Add `inc` to the totals of its step, the last of `steps` (or a new one
+/// when it starts another step).
+fn add_to_steps(steps: &mut Vec<StepSummary>, inc: &IncrementSummary) {
+    if steps.last().is_none_or(|s| s.name != inc.step_name) {
+        steps.push(StepSummary {
+            name: inc.step_name.clone(),
+            time: inc.time,
+            increments: 0,
+            iterations: 0,
+            cuts: 0,
+            wall_time: 0.0,
+        });
+    }
+    if let Some(s) = steps.last_mut() {
+        s.time = inc.time;
+        s.increments += 1;
+        s.iterations += inc.iterations;
+        s.cuts += inc.cuts;
+        s.wall_time += inc.wall_time;
     }
 }

@@ -1,14 +1,18 @@
 //! The result files of a run, as an observer: one VTU per converged
 //! increment, the PVD collection listing them, the histories and profiles
-//! asked for, `summary.json` (rewritten after every increment) and the
-//! convergence plot at the end.
+//! asked for, `summary.json`, the checkpoint and the convergence plot at
+//! the end. The listings of every increment so far (`summary.json`, the
+//! `.pvd`, the histories) are rewritten on a geometric schedule
+//! ([`super::schedule`]) and at the end, and the checkpoint takes one
+//! appended record per increment ([`CheckpointFile`]), so an increment's
+//! files cost the same at the start of a run and after 10⁵ increments.
 
 use std::borrow::Cow;
 use std::collections::BTreeSet;
 use std::path::{Path, PathBuf};
 use std::sync::{Arc, OnceLock};
 
-use super::checkpoint::{self, CaseKey, Checkpoint};
+use super::checkpoint::{CaseKey, Checkpoint, CheckpointFile, Increment};
 use super::fields::{CellField, ConvergedIncrement, NodalField};
 use super::history::History;
 use super::manifest::Manifest;
@@ -16,6 +20,7 @@ use super::observer::StepObserver;
 use super::profile::{file_part, Profile};
 use super::pvtu::{data_set_file, IncrementArrays, Pieces};
 use super::recovery::PatchRecovery;
+use super::schedule::Rewrite;
 use super::summary::Summary;
 use super::{plot, pvd::PvdCollection, vtu};
 use crate::mesh::Mesh;
@@ -70,6 +75,12 @@ pub struct ResultWriter {
     name: String,
     /// The case the checkpoint is written for; `None`: no checkpoint.
     case_key: Option<CaseKey>,
+    /// The checkpoint file once its first record is due, and how much of
+    /// the output its records hold.
+    checkpoint: Option<CheckpointFile>,
+    recorded: Recorded,
+    /// When `summary.json`, the `.pvd` and the histories are rewritten.
+    listings: Rewrite,
     /// In a distributed run (rank 0): its piece of each `.pvtu`, which it
     /// writes with the `.pvtu`; `None`: whole `.vtu` files.
     pieces: Option<Pieces>,
@@ -199,6 +210,9 @@ impl ResultWriter {
             vtu: vtu::VtuOptions { compress: true },
             name: name.to_string(),
             case_key: None,
+            checkpoint: None,
+            recorded: Recorded::default(),
+            listings: Rewrite::default(),
             pieces: None,
             mesh_arrays: None,
             recovery: None,
@@ -335,15 +349,14 @@ impl ResultWriter {
         vtu::write_vtu_on(&path, arrays, point_data, cell_data)
     }
 
-    /// Histories after every increment; profiles at the end of a step.
+    /// Histories' samples after every increment (their files written with
+    /// the other listings, [`Self::write_listings`]); profiles at the end
+    /// of a step.
     fn write_requests(&mut self, increment: &ConvergedIncrement) -> Result<()> {
         let record = increment.record;
         let reports = &increment.contact_fields.reports;
         for h in &mut self.histories {
-            self.manifest.claim(&format!("{}.csv", h.name))?;
-            self.manifest.claim(&format!("{}.svg", h.name))?;
             h.record(record.time, increment.unknowns, increment.residual, reports);
-            h.write(&self.dir)?;
         }
         if record.time == increment.problem.steps[record.step].end_time {
             for p in &mut self.profiles {
@@ -354,6 +367,21 @@ impl ResultWriter {
                 p.write(&self.dir)?;
             }
         }
+        Ok(())
+    }
+
+    /// The files that list every increment so far: the histories (once
+    /// they have a sample), the `.pvd` and `summary.json` (last: the files
+    /// it names are there).
+    fn write_listings(&mut self, summary: &Summary) -> Result<()> {
+        for h in self.histories.iter().filter(|h| !h.samples.is_empty()) {
+            self.manifest.claim(&format!("{}.csv", h.name))?;
+            self.manifest.claim(&format!("{}.svg", h.name))?;
+            h.write(&self.dir)?;
+        }
+        self.pvd.write()?;
+        summary.write(&self.dir.join("summary.json"))?;
+        self.listings.wrote(summary.increments.len());
         Ok(())
     }
 }
@@ -372,15 +400,17 @@ impl StepObserver for ResultWriter {
         // `[output] every` leaves some increments without a file
         if !file.is_empty() {
             self.write_vtu(increment, &file)?;
-            self.pvd.add(increment.record.time, &file)?;
+            self.pvd.push(increment.record.time, file);
         }
         self.write_requests(increment)?;
-        summary.write(&self.dir.join("summary.json"))?;
+        if self.listings.due(summary.increments.len()) {
+            self.write_listings(summary)?;
+        }
         self.write_checkpoint(increment, summary)
     }
 
     fn on_finish(&mut self, summary: &Summary) -> Result<()> {
-        summary.write(&self.dir.join("summary.json"))?;
+        self.write_listings(summary)?;
         let steps: Vec<plot::StepResiduals> = summary
             .increments
             .iter()
@@ -395,9 +425,19 @@ impl StepObserver for ResultWriter {
     }
 }
 
+/// How much of the output the checkpoint's records hold: the increments
+/// of the summary, the samples of each history, the tables of each profile.
+#[derive(Debug, Default)]
+struct Recorded {
+    increments: usize,
+    samples: Vec<usize>,
+    tables: Vec<usize>,
+}
+
 impl ResultWriter {
     /// `NAME.checkpoint` after the increment's other files: the state to
-    /// resume from ([`checkpoint`]).
+    /// resume from, a whole record when [`CheckpointFile`] wants one, else
+    /// this increment's record appended.
     fn write_checkpoint(
         &mut self,
         increment: &ConvergedIncrement,
@@ -406,28 +446,64 @@ impl ResultWriter {
         let Some(key) = &self.case_key else {
             return Ok(());
         };
-        let file = format!("{}.checkpoint", self.name);
-        self.manifest.claim(&file)?;
-        let path = self.dir.join(file);
-        let summary =
-            serde_json::to_string(summary).map_err(|e| Error::io("write", &path, e.into()))?;
-        let content = Checkpoint {
-            case: Cow::Borrowed(key),
-            unknowns: Cow::Borrowed(increment.unknowns),
-            contact: Cow::Borrowed(increment.contact),
-            stepping: Cow::Borrowed(increment.stepping),
-            summary,
-            histories: self
-                .histories
-                .iter()
-                .map(|h| Cow::Borrowed(&h.samples[..]))
-                .collect(),
-            profiles: self
-                .profiles
-                .iter()
-                .map(|p| Cow::Borrowed(&p.steps[..]))
-                .collect(),
+        if self.checkpoint.is_none() {
+            let file = format!("{}.checkpoint", self.name);
+            self.manifest.claim(&file)?;
+            self.checkpoint = Some(CheckpointFile::new(self.dir.join(file)));
+        }
+        let Some(file) = self.checkpoint.as_mut() else {
+            return Ok(());
         };
-        checkpoint::write(&path, &content)
+        let path = file.path().to_path_buf();
+        if file.wants_whole() {
+            let content = Checkpoint {
+                case: Cow::Borrowed(key),
+                unknowns: Cow::Borrowed(increment.unknowns),
+                contact: Cow::Borrowed(increment.contact),
+                stepping: Cow::Borrowed(increment.stepping),
+                summary: to_json(summary, &path)?,
+                histories: self
+                    .histories
+                    .iter()
+                    .map(|h| Cow::Borrowed(&h.samples[..]))
+                    .collect(),
+                profiles: self
+                    .profiles
+                    .iter()
+                    .map(|p| Cow::Borrowed(&p.steps[..]))
+                    .collect(),
+            };
+            file.write_whole(&content)?;
+        } else {
+            let recorded = &self.recorded;
+            let content = Increment {
+                unknowns: Cow::Borrowed(increment.unknowns),
+                contact: Cow::Borrowed(increment.contact),
+                stepping: Cow::Borrowed(increment.stepping),
+                summary_head: to_json(&summary.head(), &path)?,
+                increments: summary.increments[recorded.increments..]
+                    .iter()
+                    .map(|i| to_json(i, &path))
+                    .collect::<Result<_>>()?,
+                samples: (self.histories.iter().zip(&recorded.samples))
+                    .map(|(h, &n)| Cow::Borrowed(&h.samples[n..]))
+                    .collect(),
+                profiles: (self.profiles.iter().zip(&recorded.tables))
+                    .map(|(p, &n)| Cow::Borrowed(&p.steps[n..]))
+                    .collect(),
+            };
+            file.append(&content)?;
+        }
+        self.recorded = Recorded {
+            increments: summary.increments.len(),
+            samples: self.histories.iter().map(|h| h.samples.len()).collect(),
+            tables: self.profiles.iter().map(|p| p.steps.len()).collect(),
+        };
+        Ok(())
     }
+}
+
+/// `value` as JSON text (an error about writing `path` if it has none).
+fn to_json<T: serde::Serialize>(value: &T, path: &Path) -> Result<String> {
+    serde_json::to_string(value).map_err(|e| Error::io("write", path, e.into()))
 }

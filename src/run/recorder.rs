@@ -257,7 +257,7 @@ impl stepping::StepObserver<Problem> for Recorder<'_> {
         if record.method == crate::problem::condensed::Path::Condensed.name() {
             self.summary.active_set_iterations += record.iterations;
         }
-        self.summary.update_step_totals();
+        self.summary.add_last_to_step_totals();
         self.last = now;
         // the totals so far (fields apart: `increment` borrows `stepping`)
         let earlier = self.earlier.as_ref();

@@ -328,14 +328,16 @@ fn convert(deck: PathBuf, output: Option<PathBuf>, force: bool) -> signorini::Re
 
 fn check(case: PathBuf) -> signorini::Result<()> {
     let loaded = signorini::case::load(&case)?;
-    // as the run will have it (its solution path chosen)
-    let (problem, _) = signorini::run::problem_as_run(&loaded)?;
-    let requests = loaded.output_requests(&problem)?;
+    // as the run will have it (its solution path chosen), with everything
+    // the run validates before it solves, so that check refuses what run
+    // would (tests/bad_inputs.rs)
+    let simulation = signorini::run::Simulation::from_case(&loaded)?;
+    let (problem, requests) = (simulation.problem(), simulation.requests());
     let mesh = &problem.model.mesh;
     for note in &loaded.notes {
         println!("note: {note}");
     }
-    for warning in loaded.diagnose(&problem) {
+    for warning in loaded.diagnose(problem) {
         println!("warning: {warning}");
     }
     println!("case      {}", case.display());
@@ -347,7 +349,7 @@ fn check(case: PathBuf) -> signorini::Result<()> {
         problem.constrained_dofs().iter().filter(|&&c| c).count()
     );
     println!("the model in words:");
-    for line in signorini::output::describe::describe_model(&problem) {
+    for line in signorini::output::describe::describe_model(problem) {
         println!("  {line}");
     }
     for h in &requests.histories {

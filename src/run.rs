@@ -192,6 +192,11 @@ impl Simulation {
         &self.problem
     }
 
+    /// The histories and profiles the run writes, validated.
+    pub fn requests(&self) -> &OutputRequests {
+        &self.requests
+    }
+
     /// The problem, to adjust before [`run`](Self::run) (the strategy
     /// chosen when it was built stays).
     pub fn problem_mut(&mut self) -> &mut Problem {

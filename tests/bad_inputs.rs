@@ -233,6 +233,7 @@ fn catalogue() -> Vec<Entry> {
     materials_and_obstacles(&mut c);
     steps_amplitudes_and_solver(&mut c);
     contacts_and_output(&mut c);
+    refused_by_run_alone(&mut c);
     meshes(&mut c);
     stl_files(&mut c);
     command_line_and_paths(&mut c);
@@ -1069,6 +1070,37 @@ fn steps_amplitudes_and_solver(c: &mut Catalogue) {
     ] {
         c.edit(&format!("solver: {name}"), "max_iterations = 20", to, &[kw]);
     }
+}
+
+/// What `run` refused (or failed on after solving) while `check` said ok
+/// (issue 31 item 4): `check` refuses them now, with `run`'s message
+/// (`run_refuses_what_check_refuses_with_the_same_message`).
+fn refused_by_run_alone(c: &mut Catalogue) {
+    let long = "a".repeat(300);
+    c.edit(
+        "output: every = 0",
+        "name = \"cube\"",
+        "name = \"cube\"\nevery = 0",
+        &["line 46", "output.every = 0", "N ≥ 1"],
+    );
+    c.edit(
+        "output: a field named twice",
+        "name = \"cube\"",
+        "name = \"cube\"\nfields = [\"displacement\", \"von_mises\", \"displacement\"]",
+        &["output.fields names 'displacement' twice", "once"],
+    );
+    c.edit(
+        "output: a name of 300 bytes",
+        "name = \"cube\"",
+        &format!("name = \"{long}\""),
+        &["output.name", "300 bytes", "at most 200"],
+    );
+    c.edit(
+        "output: a history name of 300 bytes",
+        "name = \"tip\"",
+        &format!("name = \"{long}\""),
+        &["output.history 'aaa", "300 bytes", "at most 200"],
+    );
 }
 
 fn contacts_and_output(c: &mut Catalogue) {

@@ -337,6 +337,57 @@ impl Case {
             });
         }
         self.profile_files_collide(problem, &out)?;
+        self.output_files_fit(problem, &out)?;
         Ok(out)
     }
+
+    /// What the run would otherwise find only when it writes (issue 31
+    /// item 4): no field named twice in `[output] fields`, and every file
+    /// name it writes, with its temporary copy, within the 255 bytes a
+    /// file name may have ([`MAX_FILE_STEM`] for the stem).
+    fn output_files_fit(&self, problem: &Problem, out: &OutputRequests) -> Result<()> {
+        if let Some(fields) = &self.spec.output.fields {
+            let names = fields.iter().map(|f| f.name());
+            if let Some((_, _, name)) = super::first_duplicate(names) {
+                return Err(self.err(format!(
+                    "output.fields names '{name}' twice; name each field once"
+                )));
+            }
+        }
+        let steps = problem.steps.iter().map(|s| file_part(&s.name));
+        let profiles = out.profiles.iter().flat_map(|p| {
+            steps.clone().map(move |step| {
+                (
+                    format!("output.profile '{}'", p.name),
+                    format!("{}_{step}", p.name),
+                )
+            })
+        });
+        let stems = std::iter::once(("output.name".to_string(), self.output_name()))
+            .chain(
+                out.histories
+                    .iter()
+                    .map(|h| (format!("output.history '{}'", h.name), h.name.clone())),
+            )
+            .chain(profiles);
+        for (key, stem) in stems {
+            if stem.len() > MAX_FILE_STEM {
+                return Err(self.err(format!(
+                    "{key}: the file name '{}…' is {} bytes long, and the run's files with their \
+                     temporary copies (.NAME_0001.vtu.PID-N.tmp) must fit in the 255 bytes a file \
+                     name may have; use a name of at most {MAX_FILE_STEM} bytes",
+                    stem.chars().take(24).collect::<String>(),
+                    stem.len()
+                )));
+            }
+        }
+        Ok(())
+    }
 }
+
+/// The longest file stem of an output file (`[output] name`, a history's
+/// name, a profile's `NAME_STEP`): a file name has at most 255 bytes, and
+/// the longest one a run writes is the temporary copy of a VTU file,
+/// `.STEM_NNNNNNN.vtu.PID-N.tmp`, 46 bytes more than its stem with a
+/// 10-digit process id and a 20-digit counter.
+pub const MAX_FILE_STEM: usize = 200;

@@ -1,6 +1,7 @@
 //! A mutation fuzzer on stable Rust (issue 14 item 6) over the Gmsh reader,
-//! the STL reader, the case-file parser and `check` (the case validated
-//! against a mesh, as `signorini check` does), in process.
+//! the STL reader, the case-file parser, `check` (the case validated
+//! against a mesh, as `signorini check` does) and `check` of Abaqus decks
+//! with an `*INCLUDE` (issue 31 item 1), in process.
 //!
 //! The corpus is the small meshes and STL files of `tests/data`, the
 //! examples' case files and a case on the cube mesh that uses every table.
@@ -39,14 +40,19 @@ enum Target {
     /// A mutated mesh read and checked with the cube case (contact
     /// parameters, element geometry, groups).
     MeshCheck,
+    /// A mutated Abaqus deck and the file it includes (`*INCLUDE`),
+    /// checked as `signorini check` does: the mesh of the cube case, or a
+    /// deck run as it is ([`split_deck`]).
+    Inp,
 }
 
-const TARGETS: [Target; 5] = [
+const TARGETS: [Target; 6] = [
     Target::Msh,
     Target::Stl,
     Target::CaseParse,
     Target::Check,
     Target::MeshCheck,
+    Target::Inp,
 ];
 
 /// Tokens spliced into inputs: values and keywords that readers must reject
@@ -115,7 +121,51 @@ const DICTIONARY: &[&str] = &[
     "[nan, 0, 0]",
     "name = \"../x\"",
     "primary = \"contact\"",
+    "*INCLUDE, INPUT=",
+    "*INCLUDE, INPUT=nodes.inp",
+    "*INCLUDE, INPUT=main.inp",
+    "*INCLUDE, INPUT=fifo.inp",
+    "*INCLUDE, INPUT=/dev/zero",
+    "*INCLUDE, INPUT=cube.msh",
+    "*NODE",
+    "*NODE, NSET=",
+    "*ELEMENT, TYPE=C3D8, ELSET=",
+    "*ELEMENT, TYPE=C3D10",
+    "*ELEMENT, TYPE=S4",
+    "*ELSET, ELSET=",
+    "*NSET, NSET=",
+    ", GENERATE",
+    "1, 100000000, 1",
+    "*SURFACE, NAME=",
+    ", S7",
+    "*PART, NAME=p",
+    "*END PART",
+    "*INSTANCE, NAME=i, PART=p",
+    "*END INSTANCE",
+    "*STEP",
+    "*END STEP",
+    "*CLOAD",
+    "*BOUNDARY",
+    "-1e200",
+    "1e200",
 ];
+
+/// Between the deck and its included file in a [`Target::Inp`] input:
+/// the text before is `main.inp`, the text after `nodes.inp`.
+const INCLUDED: &str = "\n** ---- nodes.inp ----\n";
+
+/// The first line of a [`Target::Inp`] deck that is the mesh of the cube
+/// case (`inp_case.toml`); any other deck is checked as a deck run as it is.
+const CASE_MESH: &str = "** the mesh of inp_case.toml\n";
+
+/// `main.inp` and `nodes.inp` of a [`Target::Inp`] input.
+fn split_deck(input: &[u8]) -> (&[u8], &[u8]) {
+    let marker = INCLUDED.as_bytes();
+    match input.windows(marker.len()).position(|w| w == marker) {
+        Some(at) => (&input[..at], &input[at + marker.len()..]),
+        None => (input, &[]),
+    }
+}
 
 /// A case on `cube.msh` using every table (the base case of
 /// `tests/bad_inputs.rs`).
@@ -153,6 +203,27 @@ struct Corpus {
     msh: Vec<Vec<u8>>,
     stl: Vec<Vec<u8>>,
     cases: Vec<Vec<u8>>,
+    decks: Vec<Vec<u8>>,
+}
+
+/// The seeds of [`Target::Inp`]: `tests/data/cube_hex.inp` with its
+/// `*NODE` block moved into the included file (the mesh of the cube case),
+/// and `tests/data/inp/block.inp` with its included nodes (a deck with its
+/// physics).
+fn deck_seeds() -> Vec<Vec<u8>> {
+    let data = |n: &str| std::fs::read_to_string(root().join("tests/data").join(n)).unwrap();
+    let cube = data("cube_hex.inp");
+    let nodes_end = cube.find("******* E L E M E N T S").unwrap();
+    let nodes_start = cube.find("*NODE").unwrap();
+    let cube = format!(
+        "{CASE_MESH}{}*INCLUDE, INPUT=nodes.inp\n{}{INCLUDED}{}",
+        &cube[..nodes_start],
+        &cube[nodes_end..],
+        &cube[nodes_start..nodes_end]
+    );
+    let block = data("inp/block.inp").replace("INPUT=block_nodes.inp", "INPUT=nodes.inp");
+    let block = format!("{block}{INCLUDED}{}", data("inp/block_nodes.inp"));
+    vec![cube.into_bytes(), block.into_bytes()]
 }
 
 fn corpus() -> Corpus {
@@ -196,7 +267,12 @@ fn corpus() -> Corpus {
             .join("\n");
         cases.push(text.into_bytes());
     }
-    Corpus { msh, stl, cases }
+    Corpus {
+        msh,
+        stl,
+        cases,
+        decks: deck_seeds(),
+    }
 }
 
 /// One random mutation of `d`.
@@ -272,7 +348,9 @@ fn mutate(d: &mut Vec<u8>, rng: &mut StdRng) {
 }
 
 /// The fixed state `check` runs against: the cube mesh, and a folder with
-/// the files cases may name.
+/// the files cases may name (the cube mesh, the case of the decks' cube
+/// mesh `inp_case.toml`, a FIFO `fifo.inp`), where [`Target::Inp`] writes
+/// its deck.
 struct Fixture {
     mesh: Arc<signorini::mesh::Mesh>,
     case_path: PathBuf,
@@ -283,6 +361,12 @@ fn fixture() -> Fixture {
     let dir = tempfile::tempdir().unwrap();
     let cube = root().join("tests/data/cube_hex_41_ascii.msh");
     std::fs::copy(&cube, dir.path().join("cube.msh")).unwrap();
+    let inp_case = CUBE_CASE.replacen("file = \"cube.msh\"", "file = \"main.inp\"", 1);
+    std::fs::write(dir.path().join("inp_case.toml"), inp_case).unwrap();
+    let fifo = std::process::Command::new("mkfifo")
+        .arg(dir.path().join("fifo.inp"))
+        .status();
+    assert!(fifo.is_ok_and(|s| s.success()), "mkfifo");
     Fixture {
         mesh: Arc::new(signorini::mesh::gmsh::read_msh(&cube).unwrap()),
         case_path: dir.path().join("case.toml"),
@@ -329,7 +413,29 @@ fn execute(target: Target, input: &[u8], f: &Fixture) -> bool {
             let spec = parse(&f.case_path, CUBE_CASE).unwrap();
             check(f, spec, Arc::new(mesh))
         }
+        Target::Inp => {
+            let (main, included) = split_deck(input);
+            let dir = f.case_path.parent().unwrap();
+            std::fs::write(dir.join("main.inp"), main).unwrap();
+            std::fs::write(dir.join("nodes.inp"), included).unwrap();
+            let file = if main.starts_with(CASE_MESH.as_bytes()) {
+                "inp_case.toml"
+            } else {
+                "main.inp"
+            };
+            check_file(&dir.join(file))
+        }
     }
+}
+
+/// `signorini check FILE` in process: the case (or deck) read with its
+/// mesh, the problem built as the run builds it, the output requests.
+fn check_file(path: &Path) -> bool {
+    let Ok(case) = signorini::case::load(path) else {
+        return false;
+    };
+    signorini::run::problem_as_run(&case)
+        .is_ok_and(|(problem, _)| case.output_requests(&problem).is_ok())
 }
 
 /// `check`: the case validated against `mesh`, its output requests too.
@@ -355,9 +461,9 @@ fn check(
 /// Counts of one fuzzing run.
 #[derive(Default)]
 struct Counts {
-    executions: [AtomicU64; 5],
+    executions: [AtomicU64; TARGETS.len()],
     /// Executions whose mutated input was still accepted.
-    accepted: [AtomicU64; 5],
+    accepted: [AtomicU64; TARGETS.len()],
     crashes: AtomicU64,
 }
 
@@ -398,6 +504,7 @@ fn fuzz(
                         Target::CaseParse => &corpus.cases[..],
                         // the cases that pass on the cube mesh
                         Target::Check => &corpus.cases[..2],
+                        Target::Inp => &corpus.decks[..],
                     };
                     let mut input = seeds[rng.gen_range(0..seeds.len())].clone();
                     // 1 mutation half of the time, 2 a quarter, … at most 8:
@@ -469,6 +576,9 @@ fn fuzz_smoke() {
     }
     for m in &c.msh {
         assert!(execute(Target::MeshCheck, m, &f));
+    }
+    for (i, m) in c.decks.iter().enumerate() {
+        assert!(execute(Target::Inp, m, &f), "deck {i}");
     }
     let start = Instant::now();
     let (counts, crashes) = fuzz(1, 1, Duration::from_secs(120), 3000);

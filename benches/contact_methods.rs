@@ -145,7 +145,8 @@ fn main() {
 
 /// Run one case in a child process (this binary with `--child`), killed
 /// after `timeout` seconds; a killed run is reported from the increments it
-/// finished (the run rewrites `summary.json` after each).
+/// finished (as `summary.json` lists them: rewritten on a geometric
+/// schedule, it lags the run by at most a ninth of its increments).
 fn run_child(dir: &Path, size: &str, method: &str, timeout: f64) -> Row {
     let start = Instant::now();
     let mut child = std::process::Command::new(std::env::current_exe().unwrap())

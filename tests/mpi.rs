@@ -630,6 +630,73 @@ name = "block"
         assert!(gamg.log.contains("pc gamg"), "{}", gamg.log);
     }
 
+    /// The largest penetration of interface `base` over the increments
+    /// of a distributed run, and the contact element size `h` its log
+    /// states.
+    fn penetration_and_size(mpi: &Distributed) -> (f64, f64) {
+        let increments = mpi.summary["increments"].as_array().unwrap();
+        let penetration = increments
+            .iter()
+            .map(|i| {
+                i["contact"]["base"]["largest_penetration"]
+                    .as_f64()
+                    .unwrap()
+            })
+            .fold(0.0f64, f64::max);
+        let size = mpi
+            .log
+            .split("contact element size ")
+            .nth(1)
+            .and_then(|rest| rest.split([';', ' ', '\n']).next())
+            .and_then(|h| h.parse().ok())
+            .unwrap_or_else(|| panic!("no contact element size in the log: {}", mpi.log));
+        (penetration, size)
+    }
+
+    /// Exact contact with GAMG (issue 29 item 7): Uzawa's outer loop on
+    /// the penalty path (no multiplier unknowns, so block size 3 and the
+    /// rigid-body near-null space) on 2 processes, each correction by
+    /// GMRES + GAMG, ends with a penetration below 1e-8 of the element
+    /// size `h` and the Lagrangian answer: the serial direct (faer LDLᵀ)
+    /// run of the default Rockafellar method, exact by its multiplier
+    /// unknowns, to 1e-8 h in the displacements (1e-8 h/|u|max of the
+    /// contact forces), without and with Coulomb friction (both laws'
+    /// default `ε_T = E/h_s`).
+    #[test]
+    fn uzawa_with_gamg_on_two_processes_gives_the_lagrangian_answer() {
+        let gamg = [
+            "--",
+            "-ksp_type",
+            "gmres",
+            "-pc_type",
+            "gamg",
+            "-ksp_rtol",
+            "1e-12",
+        ];
+        for friction in [false, true] {
+            let dir = tempfile::tempdir().unwrap();
+            let lagrangian = block_case(dir.path(), friction, "", "");
+            let faer = serial(&lagrangian, &dir.path().join("serial"));
+            let case = block_case(dir.path(), friction, "method = \"uzawa\"", "");
+            let uzawa = run_distributed(&case, &dir.path().join("mpi"), &gamg);
+            let what = if friction {
+                "with friction"
+            } else {
+                "frictionless"
+            };
+            assert!(uzawa.log.contains("pc gamg"), "{}", uzawa.log);
+            assert!(uzawa.log.contains("Uzawa"), "{}", uzawa.log);
+            let (penetration, h) = penetration_and_size(&uzawa);
+            println!("Uzawa + GAMG {what}: largest penetration {penetration:.2e}, h = {h:.3e}");
+            assert!(penetration < 1e-8 * h, "{what}: {penetration} ≥ 1e-8 × {h}");
+            // to 1e-8 h: the outer loop stops at a penetration of 1e-9 h,
+            // and the displacements here are h/40 (penalty is 1e-2 h off)
+            let scale = faer.displacement.iter().fold(0.0f64, |m, v| m.max(v.abs()));
+            let what = format!("Uzawa + GAMG on 2 processes against serial Rockafellar, {what}");
+            assert_same(&faer, &uzawa, 1e-8 * h / scale, false, &what);
+        }
+    }
+
     #[test]
     fn two_processes_give_the_serial_answer_with_friction() {
         let dir = tempfile::tempdir().unwrap();

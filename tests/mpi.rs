@@ -587,6 +587,36 @@ name = "block"
         .unwrap()
     }
 
+    /// The log of a 2-process run on the 64-element block says the
+    /// elements were cut in parallel by PETSc's partitioner (PT-Scotch on
+    /// Debian's PETSc, ParMETIS where built with it), and the partition
+    /// lines own every element once, balanced within 5 % (+1 element) of
+    /// the mean (`partitioning::IMBALANCE`).
+    fn assert_parallel_partition(log: &str) {
+        let method = log
+            .lines()
+            .find_map(|l| l.split("elements partitioned by ").nth(1))
+            .unwrap_or_else(|| panic!("no partition method in the log: {log}"));
+        println!("partitioned by {method}");
+        assert!(
+            method.ends_with("through PETSc's MatPartitioning, in parallel"),
+            "{method}"
+        );
+        let elements: Vec<usize> = log
+            .lines()
+            .filter_map(|l| {
+                let rest = l.split("partition: rank ").nth(1)?;
+                rest.split(": ").nth(1)?.split(' ').next()?.parse().ok()
+            })
+            .collect();
+        assert_eq!(elements.len(), 2, "{log}");
+        assert_eq!(elements.iter().sum::<usize>(), 64, "{elements:?}");
+        assert!(
+            elements.iter().all(|&e| e as f64 <= 1.05 * 32.0 + 1.0),
+            "{elements:?}"
+        );
+    }
+
     #[test]
     fn two_processes_give_the_serial_answer_without_friction() {
         let dir = tempfile::tempdir().unwrap();
@@ -603,6 +633,7 @@ name = "block"
             "frictionless, MUMPS on 2 processes",
         );
         assert!(mumps.log.contains("distributed over 2 processes"));
+        assert_parallel_partition(&mumps.log);
         // GAMG on the penalty method (no multiplier unknowns: block size 3
         // and the rigid-body near-null space), its options on the command line
         let case = block_case(dir.path(), false, "method = \"penalty\"", "");

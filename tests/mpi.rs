@@ -617,6 +617,50 @@ name = "block"
         );
     }
 
+    /// The log's `rows:` lines (issue 29 item 1's measure): per rank, the
+    /// tangent entries and residual values it holds today, and the entries
+    /// and nodes of its own rows and of its ghost rows.
+    fn rows_held(log: &str) -> Vec<[usize; 6]> {
+        log.lines()
+            .filter(|l| l.starts_with("rows: rank "))
+            .map(|l| {
+                let numbers: Vec<usize> = l
+                    .split(|c: char| !c.is_ascii_digit())
+                    .filter_map(|w| w.parse().ok())
+                    .collect();
+                // rank, held entries, residual values, own entries, own
+                // nodes, ghost entries, ghost nodes
+                assert_eq!(numbers.len(), 7, "{l}");
+                std::array::from_fn(|k| numbers[k + 1])
+            })
+            .collect()
+    }
+
+    /// Each process of a 2-process run on the 8 × 4 × 2 block (135 nodes,
+    /// penalty contact: no multipliers) holds the whole pattern and every
+    /// dof today; its own rows and ghost layer would be less, the own rows
+    /// of both making the whole pattern once (a count that fails if a row
+    /// is lost or counted twice).
+    fn assert_rows_measured(log: &str) {
+        let rows = rows_held(log);
+        assert_eq!(rows.len(), 2, "{log}");
+        let whole = rows[0][0];
+        for (rank, r) in rows.iter().enumerate() {
+            let [held, dofs, own, own_nodes, ghost, ghost_nodes] = *r;
+            println!(
+                "rank {rank}: holds {held} entries and {dofs} residual values; own rows \
+                 {own} entries ({own_nodes} nodes), ghost rows {ghost} ({ghost_nodes} nodes)"
+            );
+            assert_eq!((held, dofs), (whole, 3 * 135));
+            assert!(own + ghost < held, "{r:?}");
+        }
+        // the nodes the partition cuts through are one side's ghosts
+        assert!(rows[0][5] + rows[1][5] > 0, "{rows:?}");
+        assert_eq!(rows[0][2] + rows[1][2], whole);
+        assert_eq!(rows[0][3] + rows[1][3], 135);
+        assert!(log.contains(&format!("{whole} matrix entries")), "{log}");
+    }
+
     #[test]
     fn two_processes_give_the_serial_answer_without_friction() {
         let dir = tempfile::tempdir().unwrap();
@@ -659,6 +703,7 @@ name = "block"
             "frictionless penalty, GAMG on 2 processes",
         );
         assert!(gamg.log.contains("pc gamg"), "{}", gamg.log);
+        assert_rows_measured(&gamg.log);
     }
 
     /// The largest penetration of interface `base` over the increments

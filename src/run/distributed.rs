@@ -297,7 +297,32 @@ impl Distribution {
                 elements[p], nodes[p], contact[p]
             ));
         }
+        lines.extend(self.rows_held(problem));
         lines
+    }
+}
+
+impl Distribution {
+    /// What each process holds of the tangent and the residual today (the
+    /// whole pattern's entries and every dof, on every process), beside
+    /// what it would hold with only its rows and a ghost layer
+    /// ([`MeshPartition::local_sizes`], issue 29 item 1), for the log.
+    fn rows_held(&self, problem: &Problem) -> Vec<String> {
+        let mesh = &problem.model.mesh;
+        let (entries, dofs) = (
+            problem.model.pattern.nnz(),
+            problem.model.pattern.dimension(),
+        );
+        (0..self.partition.parts)
+            .map(|p| {
+                let s = self.partition.local_sizes(mesh, p);
+                format!(
+                    "rows: rank {p}: holds {entries} tangent entries and {dofs} residual values; \
+                     its own rows {} entries ({} nodes), ghost rows {} entries ({} nodes)",
+                    s.own_entries, s.own_nodes, s.ghost_entries, s.ghost_nodes
+                )
+            })
+            .collect()
     }
 }
 

@@ -172,6 +172,38 @@ impl MeshPartition {
         Ok(())
     }
 
+    /// What process `part` would hold of the tangent if it kept only its
+    /// rows (issue 29 item 1; displacement rows, 3 per node, multipliers
+    /// left out): its own nodes, the ghost layer (the other nodes of its
+    /// elements), the entries of its own rows (complete: every element at
+    /// an own node, `9 × Σ_own |neighbours|`) and those of the ghost rows
+    /// its own elements touch. Summed over the parts, the own rows'
+    /// entries are the whole pattern's.
+    pub fn local_sizes(&self, mesh: &Mesh, part: usize) -> LocalSizes {
+        let own = |n: usize| self.node_part[n] == part;
+        // columns (nodes) of each local row, by node
+        let mut rows: std::collections::BTreeMap<usize, Vec<usize>> = Default::default();
+        for (el, &p) in mesh.elements.iter().zip(&self.element_part) {
+            for &a in el.nodes.iter().filter(|&&a| p == part || own(a)) {
+                rows.entry(a).or_default().extend(&el.nodes);
+            }
+        }
+        let mut sizes = LocalSizes::default();
+        for (a, columns) in rows.iter_mut() {
+            columns.sort_unstable();
+            columns.dedup();
+            let entries = 9 * columns.len();
+            if own(*a) {
+                sizes.own_nodes += 1;
+                sizes.own_entries += entries;
+            } else {
+                sizes.ghost_nodes += 1;
+                sizes.ghost_entries += entries;
+            }
+        }
+        sizes
+    }
+
     /// The elements of `part`, as a mask over every element.
     pub fn owned_elements(&self, part: usize) -> Vec<bool> {
         self.element_part.iter().map(|&p| p == part).collect()
@@ -186,6 +218,19 @@ impl MeshPartition {
     pub fn node_counts(&self) -> Vec<usize> {
         counts(&self.node_part, self.parts)
     }
+}
+
+/// One process's rows of the tangent ([`MeshPartition::local_sizes`]).
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+pub struct LocalSizes {
+    /// Nodes it owns (their rows are its rows of PETSc's matrix).
+    pub own_nodes: usize,
+    /// Nodes of its elements owned by another process: the ghost layer.
+    pub ghost_nodes: usize,
+    /// Entries of its own rows.
+    pub own_entries: usize,
+    /// Entries of the ghost rows its elements touch.
+    pub ghost_entries: usize,
 }
 
 fn counts(owner: &[usize], parts: usize) -> Vec<usize> {
@@ -332,6 +377,42 @@ mod tests {
         // a block of rows gives the same rows
         let (o, n) = dual_graph(&mesh, 2..4, 4);
         assert_eq!(&n[o[0]..o[2]], &neighbours[offsets[2]..offsets[4]]);
+    }
+
+    /// Four Hex8 in a row, two per part: part 0 owns the 12 nodes at
+    /// x = 0, 1, 2 (the shared ones go with the first element), part 1 the
+    /// 8 at x = 3, 4 and has those at x = 2 as ghosts. A node's row has 8
+    /// neighbours at an end plane, 12 inside, times 9 entries.
+    #[test]
+    fn local_sizes_count_own_rows_and_the_ghost_layer() {
+        let mesh = box_mesh(ElementKind::Hex8, [4, 1, 1], [4.0, 1.0, 1.0]);
+        let p = MeshPartition::from_element_parts(&mesh, 2, vec![0, 0, 1, 1], "test".into());
+        let zero = p.local_sizes(&mesh, 0);
+        let one = p.local_sizes(&mesh, 1);
+        let row = |neighbours: usize| 4 * 9 * neighbours;
+        assert_eq!(
+            zero,
+            LocalSizes {
+                own_nodes: 12,
+                ghost_nodes: 0,
+                own_entries: row(8) + row(12) + row(12),
+                ghost_entries: 0,
+            }
+        );
+        assert_eq!(
+            one,
+            LocalSizes {
+                own_nodes: 8,
+                ghost_nodes: 4,
+                own_entries: row(12) + row(8),
+                ghost_entries: row(8),
+            }
+        );
+        // the own rows make the whole pattern once
+        assert_eq!(
+            zero.own_entries + one.own_entries,
+            row(8 + 12 + 12 + 12 + 8)
+        );
     }
 
     #[test]

@@ -587,6 +587,80 @@ name = "block"
         .unwrap()
     }
 
+    /// The log of a 2-process run on the 64-element block says the
+    /// elements were cut in parallel by PETSc's partitioner (PT-Scotch on
+    /// Debian's PETSc, ParMETIS where built with it), and the partition
+    /// lines own every element once, balanced within 5 % (+1 element) of
+    /// the mean (`partitioning::IMBALANCE`).
+    fn assert_parallel_partition(log: &str) {
+        let method = log
+            .lines()
+            .find_map(|l| l.split("elements partitioned by ").nth(1))
+            .unwrap_or_else(|| panic!("no partition method in the log: {log}"));
+        println!("partitioned by {method}");
+        assert!(
+            method.ends_with("through PETSc's MatPartitioning, in parallel"),
+            "{method}"
+        );
+        let elements: Vec<usize> = log
+            .lines()
+            .filter_map(|l| {
+                let rest = l.split("partition: rank ").nth(1)?;
+                rest.split(": ").nth(1)?.split(' ').next()?.parse().ok()
+            })
+            .collect();
+        assert_eq!(elements.len(), 2, "{log}");
+        assert_eq!(elements.iter().sum::<usize>(), 64, "{elements:?}");
+        assert!(
+            elements.iter().all(|&e| e as f64 <= 1.05 * 32.0 + 1.0),
+            "{elements:?}"
+        );
+    }
+
+    /// The log's `rows:` lines (issue 29 item 1's measure): per rank, the
+    /// tangent entries and residual values it holds today, and the entries
+    /// and nodes of its own rows and of its ghost rows.
+    fn rows_held(log: &str) -> Vec<[usize; 6]> {
+        log.lines()
+            .filter(|l| l.starts_with("rows: rank "))
+            .map(|l| {
+                let numbers: Vec<usize> = l
+                    .split(|c: char| !c.is_ascii_digit())
+                    .filter_map(|w| w.parse().ok())
+                    .collect();
+                // rank, held entries, residual values, own entries, own
+                // nodes, ghost entries, ghost nodes
+                assert_eq!(numbers.len(), 7, "{l}");
+                std::array::from_fn(|k| numbers[k + 1])
+            })
+            .collect()
+    }
+
+    /// Each process of a 2-process run on the 8 × 4 × 2 block (135 nodes,
+    /// penalty contact: no multipliers) holds the whole pattern and every
+    /// dof today; its own rows and ghost layer would be less, the own rows
+    /// of both making the whole pattern once (a count that fails if a row
+    /// is lost or counted twice).
+    fn assert_rows_measured(log: &str) {
+        let rows = rows_held(log);
+        assert_eq!(rows.len(), 2, "{log}");
+        let whole = rows[0][0];
+        for (rank, r) in rows.iter().enumerate() {
+            let [held, dofs, own, own_nodes, ghost, ghost_nodes] = *r;
+            println!(
+                "rank {rank}: holds {held} entries and {dofs} residual values; own rows \
+                 {own} entries ({own_nodes} nodes), ghost rows {ghost} ({ghost_nodes} nodes)"
+            );
+            assert_eq!((held, dofs), (whole, 3 * 135));
+            assert!(own + ghost < held, "{r:?}");
+        }
+        // the nodes the partition cuts through are one side's ghosts
+        assert!(rows[0][5] + rows[1][5] > 0, "{rows:?}");
+        assert_eq!(rows[0][2] + rows[1][2], whole);
+        assert_eq!(rows[0][3] + rows[1][3], 135);
+        assert!(log.contains(&format!("{whole} matrix entries")), "{log}");
+    }
+
     #[test]
     fn two_processes_give_the_serial_answer_without_friction() {
         let dir = tempfile::tempdir().unwrap();
@@ -603,6 +677,7 @@ name = "block"
             "frictionless, MUMPS on 2 processes",
         );
         assert!(mumps.log.contains("distributed over 2 processes"));
+        assert_parallel_partition(&mumps.log);
         // GAMG on the penalty method (no multiplier unknowns: block size 3
         // and the rigid-body near-null space), its options on the command line
         let case = block_case(dir.path(), false, "method = \"penalty\"", "");
@@ -628,6 +703,74 @@ name = "block"
             "frictionless penalty, GAMG on 2 processes",
         );
         assert!(gamg.log.contains("pc gamg"), "{}", gamg.log);
+        assert_rows_measured(&gamg.log);
+    }
+
+    /// The largest penetration of interface `base` over the increments
+    /// of a distributed run, and the contact element size `h` its log
+    /// states.
+    fn penetration_and_size(mpi: &Distributed) -> (f64, f64) {
+        let increments = mpi.summary["increments"].as_array().unwrap();
+        let penetration = increments
+            .iter()
+            .map(|i| {
+                i["contact"]["base"]["largest_penetration"]
+                    .as_f64()
+                    .unwrap()
+            })
+            .fold(0.0f64, f64::max);
+        let size = mpi
+            .log
+            .split("contact element size ")
+            .nth(1)
+            .and_then(|rest| rest.split([';', ' ', '\n']).next())
+            .and_then(|h| h.parse().ok())
+            .unwrap_or_else(|| panic!("no contact element size in the log: {}", mpi.log));
+        (penetration, size)
+    }
+
+    /// Exact contact with GAMG (issue 29 item 7): Uzawa's outer loop on
+    /// the penalty path (no multiplier unknowns, so block size 3 and the
+    /// rigid-body near-null space) on 2 processes, each correction by
+    /// GMRES + GAMG, ends with a penetration below 1e-8 of the element
+    /// size `h` and the Lagrangian answer: the serial direct (faer LDLᵀ)
+    /// run of the default Rockafellar method, exact by its multiplier
+    /// unknowns, to 1e-8 h in the displacements (1e-8 h/|u|max of the
+    /// contact forces), without and with Coulomb friction (both laws'
+    /// default `ε_T = E/h_s`).
+    #[test]
+    fn uzawa_with_gamg_on_two_processes_gives_the_lagrangian_answer() {
+        let gamg = [
+            "--",
+            "-ksp_type",
+            "gmres",
+            "-pc_type",
+            "gamg",
+            "-ksp_rtol",
+            "1e-12",
+        ];
+        for friction in [false, true] {
+            let dir = tempfile::tempdir().unwrap();
+            let lagrangian = block_case(dir.path(), friction, "", "");
+            let faer = serial(&lagrangian, &dir.path().join("serial"));
+            let case = block_case(dir.path(), friction, "method = \"uzawa\"", "");
+            let uzawa = run_distributed(&case, &dir.path().join("mpi"), &gamg);
+            let what = if friction {
+                "with friction"
+            } else {
+                "frictionless"
+            };
+            assert!(uzawa.log.contains("pc gamg"), "{}", uzawa.log);
+            assert!(uzawa.log.contains("Uzawa"), "{}", uzawa.log);
+            let (penetration, h) = penetration_and_size(&uzawa);
+            println!("Uzawa + GAMG {what}: largest penetration {penetration:.2e}, h = {h:.3e}");
+            assert!(penetration < 1e-8 * h, "{what}: {penetration} ≥ 1e-8 × {h}");
+            // to 1e-8 h: the outer loop stops at a penetration of 1e-9 h,
+            // and the displacements here are h/40 (penalty is 1e-2 h off)
+            let scale = faer.displacement.iter().fold(0.0f64, |m, v| m.max(v.abs()));
+            let what = format!("Uzawa + GAMG on 2 processes against serial Rockafellar, {what}");
+            assert_same(&faer, &uzawa, 1e-8 * h / scale, false, &what);
+        }
     }
 
     #[test]

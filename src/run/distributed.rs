@@ -3,7 +3,9 @@
 //! feature `petsc`).
 //!
 //! A distributed run reads the case and mesh on every process and cuts
-//! the elements into N parts with METIS ([`MeshPartition`]); each process
+//! the elements into N parts in parallel by PETSc's partitioner, or
+//! serial METIS where it has none ([`MeshPartition`],
+//! `crate::solve::petsc::partitioning`); each process
 //! assembles its own elements ([`Share`]), the internal force is summed
 //! over the processes, and the contact surfaces, contact states, Newton
 //! and the stepping are replicated: every process computes them alike
@@ -187,10 +189,14 @@ impl Distribution {
         use crate::solve::petsc::distributed::MpiWorld;
         let world = std::sync::Arc::new(MpiWorld::new()?);
         let (rank, size) = (world.rank(), world.size());
-        let partition = MeshPartition::new(&problem.model.mesh, size).map_err(|e| Error::Case {
-            path: case_label.into(),
-            message: e.to_string(),
-        })?;
+        let mesh = &problem.model.mesh;
+        let partition =
+            crate::solve::petsc::partitioning::partition(mesh, rank, size).map_err(|e| {
+                Error::Case {
+                    path: case_label.into(),
+                    message: e.to_string(),
+                }
+            })?;
         problem.model.set_share(Share {
             owned: partition.owned_elements(rank),
             communicator: world.clone(),
@@ -282,8 +288,8 @@ impl Distribution {
             }
         }
         let mut lines = vec![format!(
-            "distributed: {} processes, elements partitioned by METIS (PartMeshDual)",
-            self.partition.parts
+            "distributed: {} processes, elements partitioned by {}",
+            self.partition.parts, self.partition.method
         )];
         for p in 0..self.partition.parts {
             lines.push(format!(
@@ -291,7 +297,32 @@ impl Distribution {
                 elements[p], nodes[p], contact[p]
             ));
         }
+        lines.extend(self.rows_held(problem));
         lines
+    }
+}
+
+impl Distribution {
+    /// What each process holds of the tangent and the residual today (the
+    /// whole pattern's entries and every dof, on every process), beside
+    /// what it would hold with only its rows and a ghost layer
+    /// ([`MeshPartition::local_sizes`], issue 29 item 1), for the log.
+    fn rows_held(&self, problem: &Problem) -> Vec<String> {
+        let mesh = &problem.model.mesh;
+        let (entries, dofs) = (
+            problem.model.pattern.nnz(),
+            problem.model.pattern.dimension(),
+        );
+        (0..self.partition.parts)
+            .map(|p| {
+                let s = self.partition.local_sizes(mesh, p);
+                format!(
+                    "rows: rank {p}: holds {entries} tangent entries and {dofs} residual values; \
+                     its own rows {} entries ({} nodes), ghost rows {} entries ({} nodes)",
+                    s.own_entries, s.own_nodes, s.ghost_entries, s.ghost_nodes
+                )
+            })
+            .collect()
     }
 }
 

@@ -475,6 +475,7 @@ mod tests {
         use faer::sparse::{SparseColMat, Triplet};
         let partition = MeshPartition {
             parts: 2,
+            method: "test".into(),
             element_part: vec![0, 1],
             node_part: vec![0, 0, 1, 1],
         };
@@ -505,6 +506,7 @@ mod tests {
     fn the_numbering_gives_each_part_a_block_and_multipliers_go_last() {
         let partition = MeshPartition {
             parts: 2,
+            method: "test".into(),
             element_part: vec![0, 1],
             node_part: vec![1, 0, 1, 0],
         };

@@ -87,6 +87,7 @@ static PETSC: Mutex<()> = Mutex::new(());
 
 pub mod distributed;
 pub mod fault;
+pub mod partitioning;
 
 const MESSAGE: usize = 1024;
 

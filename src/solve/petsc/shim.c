@@ -423,6 +423,84 @@ int sg_petsc_mpi_solve(void *handle, const DistributedSystem *system,
   return 0;
 }
 
+/* ---- the parallel partition: src/solve/petsc/partitioning.rs ---- */
+
+/* The partitioner PETSc was built with, ParMETIS first, then PT-Scotch;
+ * NULL when it has neither. */
+static MatPartitioningType parallel_partitioner(void) {
+#if defined(PETSC_HAVE_PARMETIS)
+  return MATPARTITIONINGPARMETIS;
+#elif defined(PETSC_HAVE_PTSCOTCH)
+  return MATPARTITIONINGPTSCOTCH;
+#else
+  return NULL;
+#endif
+}
+
+/* The name of PETSc's parallel partitioner into `name` (empty when it
+ * has none). */
+void sg_petsc_partitioner(char *name, size_t name_len) {
+  MatPartitioningType type = parallel_partitioner();
+  snprintf(name, name_len, "%s", type ? type : "");
+}
+
+/* Cut a graph distributed by rows into `parts` parts with PETSc's
+ * MatPartitioning (ParMETIS or PT-Scotch, `sg_petsc_partitioner`): this
+ * process gives the rows [first, first + local) of `global` (`offsets`,
+ * local + 1 of them, and the sorted `neighbours` of each row, global, no
+ * diagonal); `part` (global entries) receives every row's part, gathered
+ * on every process. */
+int sg_petsc_mpi_partition(int local, int global, const int *offsets,
+                           const int *neighbours, int parts, int *part,
+                           char *err, size_t err_len) {
+  MatPartitioningType type = parallel_partitioner();
+  if (!type) {
+    snprintf(err, err_len, "PETSc was built without ParMETIS and PT-Scotch");
+    return 1;
+  }
+  PetscInt *ia, *ja;
+  CHECK(PetscMalloc1(local + 1, &ia));
+  CHECK(PetscMalloc1(offsets[local] > 0 ? offsets[local] : 1, &ja));
+  for (int r = 0; r <= local; r++) ia[r] = offsets[r];
+  for (int k = 0; k < offsets[local]; k++) ja[k] = neighbours[k];
+  Mat adjacency;
+  /* PETSc owns ia and ja from here (freed with the matrix) */
+  CHECK(MatCreateMPIAdj(PETSC_COMM_WORLD, local, global, ia, ja, NULL, &adjacency));
+  MatPartitioning partitioning;
+  CHECK(MatPartitioningCreate(PETSC_COMM_WORLD, &partitioning));
+  CHECK(MatPartitioningSetAdjacency(partitioning, adjacency));
+  CHECK(MatPartitioningSetNParts(partitioning, parts));
+  CHECK(MatPartitioningSetType(partitioning, type));
+  IS is;
+  CHECK(MatPartitioningApply(partitioning, &is));
+  const PetscInt *mine;
+  CHECK(ISGetIndices(is, &mine));
+  int size;
+  CHECK(MPI_Comm_size(PETSC_COMM_WORLD, &size));
+  int *counts = malloc(sizeof(int) * (size_t)size * 2);
+  int *own = malloc(sizeof(int) * (size_t)(local > 0 ? local : 1));
+  if (!counts || !own) {
+    free(counts);
+    free(own);
+    snprintf(err, err_len, "out of memory for the partition");
+    return 1;
+  }
+  for (int r = 0; r < local; r++) own[r] = (int)mine[r];
+  CHECK(ISRestoreIndices(is, &mine));
+  int *displacements = counts + size;
+  CHECK(MPI_Allgather(&local, 1, MPI_INT, counts, 1, MPI_INT, PETSC_COMM_WORLD));
+  displacements[0] = 0;
+  for (int p = 1; p < size; p++) displacements[p] = displacements[p - 1] + counts[p - 1];
+  CHECK(MPI_Allgatherv(own, local, MPI_INT, part, counts, displacements, MPI_INT,
+                       PETSC_COMM_WORLD));
+  free(counts);
+  free(own);
+  CHECK(ISDestroy(&is));
+  CHECK(MatPartitioningDestroy(&partitioning));
+  CHECK(MatDestroy(&adjacency));
+  return 0;
+}
+
 /* ---- faults of a distributed run: src/solve/petsc/distributed.rs ---- */
 
 /* A communicator of its own for the agreement on outcomes, so that a

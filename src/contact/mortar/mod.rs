@@ -20,13 +20,16 @@
 //! primary body). See DESIGN.md, "Mortar contact".
 
 pub mod auxiliary_plane;
+pub mod clip_derivatives;
 pub mod clipping;
 pub mod dual_basis;
 pub mod face;
 pub mod normals;
+pub mod pair_linearisation;
 pub mod projection;
 pub mod quadratic;
 pub mod segment;
+pub mod segment_derivatives;
 pub mod weighted_gap;
 
 pub use dual_basis::DualBasis;

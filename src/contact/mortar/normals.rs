@@ -72,7 +72,7 @@ fn unit_normal_derivative(
 }
 
 /// `δ(v/|v|) = (I − u uᵀ) δv / |v|` with `u = v/|v|`.
-fn unit_derivative(v: &Vector3<f64>, dv: &Vector3<f64>) -> Vector3<f64> {
+pub(super) fn unit_derivative(v: &Vector3<f64>, dv: &Vector3<f64>) -> Vector3<f64> {
     let u = v / v.norm();
     (dv - u * u.dot(dv)) / v.norm()
 }

@@ -28,13 +28,15 @@ pub mod normals;
 pub mod pair_linearisation;
 pub mod projection;
 pub mod quadratic;
+pub mod rows;
 pub mod segment;
 pub mod segment_derivatives;
 pub mod weighted_gap;
 
 pub use dual_basis::DualBasis;
 pub use face::{FaceShape, MortarFace, SurfaceFace};
-pub use normals::{nodal_normal_derivatives, nodal_normals};
+pub use normals::{nodal_normal_derivatives, nodal_normal_gradient, nodal_normals};
+pub use rows::{mortar_rows, MortarRow};
 pub use segment::{integrate_pair, overlap, Overlap, SegmentIntegrals};
 pub use weighted_gap::{all_pairs, mortar_coupling, MortarCoupling};
 
@@ -49,6 +51,8 @@ pub enum MortarError {
         "degenerate contact face: {what}; check that its nodes are distinct and not collinear"
     )]
     DegenerateFace { what: String },
+    #[error("secondary node {node} is on none of the contact faces given for it")]
+    NotOnFaces { node: usize },
     #[error("projection onto a contact face failed: {what}; check the face for distortion")]
     Projection { what: String },
 }

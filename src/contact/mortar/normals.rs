@@ -12,7 +12,7 @@
 
 use std::collections::BTreeMap;
 
-use nalgebra::Vector3;
+use nalgebra::{DMatrix, Vector3};
 
 use super::face::{MortarFace, SurfaceFace};
 use super::MortarError;
@@ -75,4 +75,48 @@ fn unit_normal_derivative(
 pub(super) fn unit_derivative(v: &Vector3<f64>, dv: &Vector3<f64>) -> Vector3<f64> {
     let u = v / v.norm();
     (dv - u * u.dot(dv)) / v.norm()
+}
+
+/// The averaged nodal normal `n_j` of one node and its gradient
+/// `∂n_j/∂x` (3 × 3k, node-major over `nodes`, the sorted nodes of the
+/// faces that hold it): [`nodal_normal_derivatives`] along each unit
+/// increment of those nodes. `faces` are the surface's faces that hold
+/// `node`.
+pub fn nodal_normal_gradient(
+    faces: &[&SurfaceFace],
+    coordinates: &[Vector3<f64>],
+    node: usize,
+) -> Result<(Vector3<f64>, Vec<usize>, DMatrix<f64>), MortarError> {
+    let mut nodes: Vec<usize> = faces.iter().flat_map(|f| f.nodes.iter().copied()).collect();
+    nodes.sort_unstable();
+    nodes.dedup();
+    let local = |n: usize| nodes.binary_search(&n).expect("a node of the faces");
+    let local_faces: Vec<SurfaceFace> = faces
+        .iter()
+        .map(|f| SurfaceFace {
+            shape: f.shape,
+            nodes: f.nodes.iter().map(|&n| local(n)).collect(),
+        })
+        .collect();
+    let local_coordinates = nodes
+        .iter()
+        .map(|&n| {
+            coordinates.get(n).copied().ok_or(MortarError::NodeIndex {
+                node: n,
+                count: coordinates.len(),
+            })
+        })
+        .collect::<Result<Vec<_>, _>>()?;
+    let j = nodes
+        .binary_search(&node)
+        .map_err(|_| MortarError::NotOnFaces { node })?;
+    let normal = nodal_normals(&local_faces, &local_coordinates)?[&j];
+    let mut gradient = DMatrix::zeros(3, 3 * nodes.len());
+    for column in 0..3 * nodes.len() {
+        let mut dx = vec![Vector3::zeros(); nodes.len()];
+        dx[column / 3][column % 3] = 1.0;
+        let dn = nodal_normal_derivatives(&local_faces, &local_coordinates, &dx)?[&j];
+        gradient.set_column(column, &dn);
+    }
+    Ok((normal, nodes, gradient))
 }

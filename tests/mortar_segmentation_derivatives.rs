@@ -45,18 +45,26 @@ fn primary_face(shape: FaceShape) -> MortarFace {
     MortarFace::new(shape, xs).unwrap()
 }
 
-/// Every pair with its node increments (secondary, primary).
-fn pairs() -> Vec<(MortarFace, MortarFace, Vec<Vector3<f64>>, Vec<Vector3<f64>>)> {
+/// A secondary and a primary face with their nodes' increments.
+struct Pair {
+    s: MortarFace,
+    p: MortarFace,
+    dxs: Vec<Vector3<f64>>,
+    dxm: Vec<Vector3<f64>>,
+}
+
+/// Every shape pairing.
+fn pairs() -> Vec<Pair> {
     let mut out = Vec::new();
     for (i, s) in SHAPES.iter().enumerate() {
         for (k, p) in SHAPES.iter().enumerate() {
             let seed = 10.0 * i as f64 + k as f64;
-            out.push((
-                curved_face(*s),
-                primary_face(*p),
-                increments(s.node_count(), seed),
-                increments(p.node_count(), seed + 0.5),
-            ));
+            out.push(Pair {
+                s: curved_face(*s),
+                p: primary_face(*p),
+                dxs: increments(s.node_count(), seed),
+                dxm: increments(p.node_count(), seed + 0.5),
+            });
         }
     }
     out
@@ -139,7 +147,7 @@ fn auxiliary_plane_derivative_matches_central_differences() {
 
 #[test]
 fn clip_polygon_derivative_matches_central_differences() {
-    for (s, p, dxs, dxm) in pairs() {
+    for Pair { s, p, dxs, dxm } in pairs() {
         let o = overlap(&s, &p);
         let what = format!("{:?}–{:?}", s.shape, p.shape);
         let intersections = o
@@ -179,7 +187,7 @@ fn clip_polygon_derivative_matches_central_differences() {
 
 #[test]
 fn gauss_point_derivatives_match_central_differences() {
-    for (s, p, dxs, dxm) in pairs() {
+    for Pair { s, p, dxs, dxm } in pairs() {
         let what = format!("{:?}–{:?}", s.shape, p.shape);
         let o = overlap(&s, &p);
         let points = cell_points(&o, &s, &p).unwrap();
@@ -232,7 +240,7 @@ fn gauss_point_derivatives_match_central_differences() {
 
 #[test]
 fn mortar_integral_derivatives_match_central_differences() {
-    for (s, p, dxs, dxm) in pairs() {
+    for Pair { s, p, dxs, dxm } in pairs() {
         let what = format!("{:?}–{:?}", s.shape, p.shape);
         let dual = DualBasis::of_face(&s).unwrap();
         let o = overlap(&s, &p);

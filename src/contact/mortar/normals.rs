@@ -77,20 +77,27 @@ pub(super) fn unit_derivative(v: &Vector3<f64>, dv: &Vector3<f64>) -> Vector3<f6
     (dv - u * u.dot(dv)) / v.norm()
 }
 
-/// The averaged nodal normal `n_j` of one node and its gradient
-/// `∂n_j/∂x` (3 × 3k, node-major over `nodes`, the sorted nodes of the
-/// faces that hold it): [`nodal_normal_derivatives`] along each unit
-/// increment of those nodes. `faces` are the surface's faces that hold
+/// A node's averaged normal `n_j` and its gradient `∂n_j/∂x` (3 × 3k,
+/// node-major over `nodes`, the sorted nodes of the faces that hold it).
+#[derive(Clone, Debug, PartialEq)]
+pub struct NodalNormalGradient {
+    pub normal: Vector3<f64>,
+    pub nodes: Vec<usize>,
+    pub gradient: DMatrix<f64>,
+}
+
+/// `n_j` and `∂n_j/∂x` of one node: [`nodal_normal_derivatives`] along each
+/// unit increment of the nodes of `faces`, the surface's faces that hold
 /// `node`.
 pub fn nodal_normal_gradient(
     faces: &[&SurfaceFace],
     coordinates: &[Vector3<f64>],
     node: usize,
-) -> Result<(Vector3<f64>, Vec<usize>, DMatrix<f64>), MortarError> {
+) -> Result<NodalNormalGradient, MortarError> {
     let mut nodes: Vec<usize> = faces.iter().flat_map(|f| f.nodes.iter().copied()).collect();
     nodes.sort_unstable();
     nodes.dedup();
-    let local = |n: usize| nodes.binary_search(&n).expect("a node of the faces");
+    let local = |n: usize| nodes.partition_point(|&m| m < n);
     let local_faces: Vec<SurfaceFace> = faces
         .iter()
         .map(|f| SurfaceFace {
@@ -118,5 +125,9 @@ pub fn nodal_normal_gradient(
         let dn = nodal_normal_derivatives(&local_faces, &local_coordinates, &dx)?[&j];
         gradient.set_column(column, &dn);
     }
-    Ok((normal, nodes, gradient))
+    Ok(NodalNormalGradient {
+        normal,
+        nodes,
+        gradient,
+    })
 }

@@ -24,7 +24,7 @@ use nalgebra::{DMatrix, DVector, Vector3};
 
 use super::dual_basis::DualBasis;
 use super::face::SurfaceFace;
-use super::normals::nodal_normal_gradient;
+use super::normals::{nodal_normal_gradient, NodalNormalGradient};
 use super::pair_linearisation::linearise_pair;
 use super::quadratic;
 use super::MortarError;
@@ -84,13 +84,7 @@ pub fn mortar_rows(
         .into_iter()
         .map(|(node, acc)| {
             let faces = &holding[&node];
-            let (normal, normal_nodes, normal_gradient) =
-                nodal_normal_gradient(faces, coordinates, node)?;
-            let normal = NormalRow {
-                value: normal,
-                nodes: normal_nodes,
-                gradient: normal_gradient,
-            };
+            let normal = nodal_normal_gradient(faces, coordinates, node)?;
             Ok(assemble_row(
                 node,
                 acc,
@@ -183,13 +177,6 @@ fn transformation(face: &SurfaceFace, node: usize) -> Vec<(usize, f64)> {
         .collect()
 }
 
-/// `n_j` with its gradient over its own nodes.
-struct NormalRow {
-    value: Vector3<f64>,
-    nodes: Vec<usize>,
-    gradient: DMatrix<f64>,
-}
-
 /// A sparse gradient as a dense vector over `nodes` (positions `index`).
 fn dense(sparse: &Sparse, index: &BTreeMap<usize, usize>) -> DVector<f64> {
     let mut out = DVector::zeros(3 * index.len());
@@ -203,7 +190,7 @@ fn dense(sparse: &Sparse, index: &BTreeMap<usize, usize>) -> DVector<f64> {
 fn assemble_row(
     node: usize,
     acc: Accumulated,
-    normal: NormalRow,
+    normal: NodalNormalGradient,
     r: Vec<(usize, f64)>,
     coordinates: &[Vector3<f64>],
 ) -> MortarRow {
@@ -221,7 +208,7 @@ fn assemble_row(
             .fixed_columns_mut::<3>(3 * index[n])
             .copy_from(&normal.gradient.fixed_columns::<3>(3 * a));
     }
-    let n = normal.value;
+    let n = normal.normal;
     let x_tilde: Vector3<f64> = r.iter().map(|(k, rk)| coordinates[*k] * *rk).sum();
     let d_gradient = dense(&acc.d, &index);
     let m: Vec<(usize, f64)> = acc.m.iter().map(|(l, s)| (*l, s.value)).collect();

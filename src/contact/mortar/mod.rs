@@ -1,5 +1,5 @@
 //! Dual mortar contact kernels (issue 28): pure functions of the faces'
-//! current coordinates, not yet wired into Newton.
+//! current coordinates and their derivatives, not yet wired into Newton.
 //!
 //! - [`face`]: a contact face (Tri3, Quad4, Tri6, Quad8) and its map
 //!   `x(ξ)`, tangents and normal.
@@ -14,6 +14,11 @@
 //! - [`segment`]: one pair's contributions to `D` and `M`.
 //! - [`weighted_gap`]: the assembled `D`, `M`, averaged nodal normals,
 //!   weighted gaps `g̃_j` and the contact forces of the multipliers.
+//! - [`clip_derivatives`], [`segment_derivatives`], [`pair_linearisation`]:
+//!   the directional derivatives of the segmentation and of a pair's `D`
+//!   and `M` (Popp, Gitterle, Gee & Wall 2010, §5), and a pair's gradients.
+//! - [`rows`]: per secondary node, `g̃_j`, `D_j`, `M_jl`, `n_j` and the
+//!   lever `b_j` with their gradients, as Newton needs them.
 //!
 //! Conventions as in `formulation.md`: `g̃_j ≥ 0` open, `λ_j ≥ 0`
 //! compressive; the secondary surface's normals point outward (toward the

@@ -12,7 +12,10 @@
 
 mod mortar_common;
 
-use mortar_common::{grid, hash_unit, increments, linspace, nodal_integrals, shifted, v};
+use mortar_common::{
+    graded_secondary, grid, in_plane_moves, increments, linspace, nodal_integrals, shifted, v,
+    SHAPES,
+};
 use nalgebra::{DVector, Vector3};
 use signorini::contact::mortar::quadratic::{mid_side_edges, mortar_values};
 use signorini::contact::mortar::{
@@ -20,13 +23,6 @@ use signorini::contact::mortar::{
 };
 
 const H: f64 = 1e-6;
-
-const SHAPES: [FaceShape; 4] = [
-    FaceShape::Tri3,
-    FaceShape::Quad4,
-    FaceShape::Tri6,
-    FaceShape::Quad8,
-];
 
 /// Two surfaces: a secondary one on `[0, 1] × [0, 0.8]` (normal +z) on a
 /// graded grid, and a finer primary one 0.05 above (normal −z) that
@@ -40,24 +36,7 @@ struct Surfaces {
 
 fn surfaces(secondary: FaceShape, primary: FaceShape, curved: bool) -> Surfaces {
     let mut coords = Vec::new();
-    let perturb = |x: f64, y: f64| [0.04 * hash_unit(x + 7.0 * y), 0.04 * hash_unit(5.0 * x - y)];
-    let none = |_: f64, _: f64| [0.0, 0.0];
-    let moved = |shape: FaceShape| -> &dyn Fn(f64, f64) -> [f64; 2] {
-        if shape.is_triangle() {
-            &perturb
-        } else {
-            &none
-        }
-    };
-    let s = grid(
-        &[0.0, 0.3, 0.55, 1.0],
-        &[0.0, 0.45, 0.8],
-        0.0,
-        secondary,
-        false,
-        moved(secondary),
-        &mut coords,
-    );
+    let s = graded_secondary(secondary, &mut coords);
     let first_primary = coords.len();
     let p = grid(
         &linspace(-0.1, 1.12, 5),
@@ -65,7 +44,7 @@ fn surfaces(secondary: FaceShape, primary: FaceShape, curved: bool) -> Surfaces 
         0.05,
         primary,
         true,
-        moved(primary),
+        &in_plane_moves(primary),
         &mut coords,
     );
     if curved {

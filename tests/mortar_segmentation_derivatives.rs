@@ -9,7 +9,7 @@
 
 mod mortar_common;
 
-use mortar_common::{curved_face, increments, shifted, v};
+use mortar_common::{curved_face, increments, shifted, v, SHAPES};
 use nalgebra::{Rotation3, Vector3};
 use signorini::contact::mortar::auxiliary_plane::AuxiliaryPlane;
 use signorini::contact::mortar::clipping::VertexOrigin;
@@ -22,13 +22,6 @@ use signorini::contact::mortar::{integrate_pair, overlap, DualBasis, FaceShape, 
 
 const H: f64 = 1e-6;
 const TOLERANCE: f64 = 1e-6;
-
-const SHAPES: [FaceShape; 4] = [
-    FaceShape::Tri3,
-    FaceShape::Quad4,
-    FaceShape::Tri6,
-    FaceShape::Quad8,
-];
 
 /// A primary face of `shape` that partly overlaps the secondary
 /// [`curved_face`]: the curved face mirrored (so its normal faces the

@@ -152,3 +152,42 @@ pub fn curved_face(shape: FaceShape) -> MortarFace {
     }
     MortarFace::new(shape, xs).unwrap()
 }
+
+/// The in-plane moves of interior corners: pseudo-random, up to 0.04, on
+/// triangle meshes; none on quadrilateral ones.
+pub fn in_plane_moves(shape: FaceShape) -> fn(f64, f64) -> [f64; 2] {
+    fn perturb(x: f64, y: f64) -> [f64; 2] {
+        [0.04 * hash_unit(x + 7.0 * y), 0.04 * hash_unit(5.0 * x - y)]
+    }
+    fn none(_: f64, _: f64) -> [f64; 2] {
+        [0.0, 0.0]
+    }
+    if shape.is_triangle() {
+        perturb
+    } else {
+        none
+    }
+}
+
+/// The secondary surface of the stacked tests: `[0, 1] × [0, 0.8]` at
+/// `z = 0` (normal +z) on the coarse graded grid `{0, 0.3, 0.55, 1} ×
+/// {0, 0.45, 0.8}`, with [`in_plane_moves`].
+pub fn graded_secondary(shape: FaceShape, coords: &mut Vec<Vector3<f64>>) -> Vec<SurfaceFace> {
+    grid(
+        &[0.0, 0.3, 0.55, 1.0],
+        &[0.0, 0.45, 0.8],
+        0.0,
+        shape,
+        false,
+        &in_plane_moves(shape),
+        coords,
+    )
+}
+
+/// The four face shapes.
+pub const SHAPES: [FaceShape; 4] = [
+    FaceShape::Tri3,
+    FaceShape::Quad4,
+    FaceShape::Tri6,
+    FaceShape::Quad8,
+];

@@ -259,16 +259,23 @@ impl SurfaceFace {
         &self,
         coordinates: &[Vector3<f64>],
     ) -> Result<MortarFace, MortarError> {
-        let xs = self
-            .nodes
-            .iter()
-            .map(|&n| {
-                coordinates.get(n).copied().ok_or(MortarError::NodeIndex {
-                    node: n,
-                    count: coordinates.len(),
-                })
-            })
-            .collect::<Result<Vec<_>, _>>()?;
-        MortarFace::new(self.shape, xs)
+        MortarFace::new(self.shape, gather(&self.nodes, coordinates)?)
     }
+}
+
+/// The coordinates of `nodes`, in order; a node beyond `coordinates` is an
+/// error.
+pub fn gather(
+    nodes: &[usize],
+    coordinates: &[Vector3<f64>],
+) -> Result<Vec<Vector3<f64>>, MortarError> {
+    nodes
+        .iter()
+        .map(|&n| {
+            coordinates.get(n).copied().ok_or(MortarError::NodeIndex {
+                node: n,
+                count: coordinates.len(),
+            })
+        })
+        .collect()
 }

@@ -14,7 +14,7 @@ use std::collections::BTreeMap;
 
 use nalgebra::{DMatrix, Vector3};
 
-use super::face::{MortarFace, SurfaceFace};
+use super::face::{gather, MortarFace, SurfaceFace};
 use super::MortarError;
 
 /// The averaged outward nodal normals `n_j` of a surface: the unit face
@@ -105,15 +105,7 @@ pub fn nodal_normal_gradient(
             nodes: f.nodes.iter().map(|&n| local(n)).collect(),
         })
         .collect();
-    let local_coordinates = nodes
-        .iter()
-        .map(|&n| {
-            coordinates.get(n).copied().ok_or(MortarError::NodeIndex {
-                node: n,
-                count: coordinates.len(),
-            })
-        })
-        .collect::<Result<Vec<_>, _>>()?;
+    let local_coordinates = gather(&nodes, coordinates)?;
     let j = nodes
         .binary_search(&node)
         .map_err(|_| MortarError::NotOnFaces { node })?;

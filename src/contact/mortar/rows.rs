@@ -22,7 +22,7 @@ use std::collections::BTreeMap;
 
 use nalgebra::{DMatrix, DVector, Vector3};
 
-use super::dual_basis::DualBasis;
+use super::dual_basis::faces_and_duals;
 use super::face::SurfaceFace;
 use super::normals::{nodal_normal_gradient, NodalNormalGradient};
 use super::pair_linearisation::linearise_pair;
@@ -103,14 +103,7 @@ fn accumulate_pairs(
     pairs: &[(usize, usize)],
     coordinates: &[Vector3<f64>],
 ) -> Result<BTreeMap<usize, Accumulated>, MortarError> {
-    let faces = secondary
-        .iter()
-        .map(|f| f.with_coordinates(coordinates))
-        .collect::<Result<Vec<_>, _>>()?;
-    let duals = faces
-        .iter()
-        .map(DualBasis::of_face)
-        .collect::<Result<Vec<_>, _>>()?;
+    let (faces, duals) = faces_and_duals(secondary, coordinates)?;
     let mut out: BTreeMap<usize, Accumulated> = BTreeMap::new();
     for &(s, p) in pairs {
         let primary_face = primary[p].with_coordinates(coordinates)?;

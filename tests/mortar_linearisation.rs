@@ -7,54 +7,14 @@
 
 mod mortar_common;
 
-use mortar_common::{grid, hash_unit, linspace};
-use nalgebra::{DMatrix, Vector3};
+use mortar_common::{curved_face, grid, increments, linspace, shifted, v};
+use nalgebra::DMatrix;
 use signorini::contact::mortar::projection::{project_along, projection_derivative};
 use signorini::contact::mortar::{
     nodal_normal_derivatives, nodal_normals, DualBasis, FaceShape, MortarFace,
 };
 
 const H: f64 = 1e-6;
-
-fn v(x: f64, y: f64, z: f64) -> Vector3<f64> {
-    Vector3::new(x, y, z)
-}
-
-/// A pseudo-random increment per node.
-fn increments(n: usize, seed: f64) -> Vec<Vector3<f64>> {
-    (0..n)
-        .map(|i| {
-            let s = seed + 3.1 * i as f64;
-            v(hash_unit(s), hash_unit(s + 1.0), hash_unit(s + 2.0))
-        })
-        .collect()
-}
-
-fn shifted(xs: &[Vector3<f64>], dx: &[Vector3<f64>], h: f64) -> Vec<Vector3<f64>> {
-    xs.iter().zip(dx).map(|(x, d)| x + d * h).collect()
-}
-
-/// A warped or curved face of each shape (corners out of plane, mid-side
-/// nodes off their edges).
-fn curved_face(shape: FaceShape) -> MortarFace {
-    let mut xs = match shape.corner_count() {
-        3 => vec![v(0.0, 0.0, 0.0), v(1.5, 0.2, 0.1), v(0.3, 1.2, -0.1)],
-        _ => vec![
-            v(0.0, 0.0, 0.0),
-            v(1.6, 0.1, 0.15),
-            v(1.8, 1.4, -0.1),
-            v(-0.1, 1.2, 0.05),
-        ],
-    };
-    let corners = xs.clone();
-    for (m, [a, b]) in signorini::contact::mortar::quadratic::mid_side_edges(shape)
-        .iter()
-        .enumerate()
-    {
-        xs.push((corners[*a] + corners[*b]) * 0.5 + v(0.03 * m as f64, -0.04, 0.08));
-    }
-    MortarFace::new(shape, xs).unwrap()
-}
 
 #[test]
 fn dual_basis_derivative_matches_central_differences() {

@@ -15,7 +15,9 @@ mod mortar_common;
 
 use std::collections::BTreeMap;
 
-use mortar_common::{consistent_integrals, grid, hash_unit, linspace, nodal_integrals};
+use mortar_common::{
+    consistent_integrals, graded_secondary, grid, in_plane_moves, linspace, nodal_integrals,
+};
 use nalgebra::{Rotation3, Vector3};
 use signorini::contact::mortar::quadratic::mortar_values;
 use signorini::contact::mortar::{all_pairs, mortar_coupling, FaceShape, SurfaceFace};
@@ -32,31 +34,14 @@ fn stacked(
     primary: FaceShape,
 ) -> (Vec<SurfaceFace>, Vec<SurfaceFace>, Vec<Vector3<f64>>) {
     let mut coords = Vec::new();
-    let perturb = |x: f64, y: f64| [0.04 * hash_unit(x + 7.0 * y), 0.04 * hash_unit(5.0 * x - y)];
-    let none = |_: f64, _: f64| [0.0, 0.0];
-    let moved = |shape: FaceShape| -> &dyn Fn(f64, f64) -> [f64; 2] {
-        if shape.is_triangle() {
-            &perturb
-        } else {
-            &none
-        }
-    };
-    let s = grid(
-        &[0.0, 0.3, 0.55, 1.0],
-        &[0.0, 0.45, 0.8],
-        0.0,
-        secondary,
-        false,
-        moved(secondary),
-        &mut coords,
-    );
+    let s = graded_secondary(secondary, &mut coords);
     let p = grid(
         &linspace(0.0, 1.0, 5),
         &linspace(0.0, 0.8, 4),
         GAP,
         primary,
         true,
-        moved(primary),
+        &in_plane_moves(primary),
         &mut coords,
     );
     (s, p, coords)

@@ -110,3 +110,84 @@ pub fn hash_unit(seed: f64) -> f64 {
     let s = (seed * 12.9898 + 78.233).sin() * 43758.5453;
     2.0 * (s - s.floor()) - 1.0
 }
+
+/// `(x, y, z)`.
+pub fn v(x: f64, y: f64, z: f64) -> Vector3<f64> {
+    Vector3::new(x, y, z)
+}
+
+/// A pseudo-random increment per node.
+pub fn increments(n: usize, seed: f64) -> Vec<Vector3<f64>> {
+    (0..n)
+        .map(|i| {
+            let s = seed + 3.1 * i as f64;
+            v(hash_unit(s), hash_unit(s + 1.0), hash_unit(s + 2.0))
+        })
+        .collect()
+}
+
+/// `x + h δx` node by node.
+pub fn shifted(xs: &[Vector3<f64>], dx: &[Vector3<f64>], h: f64) -> Vec<Vector3<f64>> {
+    xs.iter().zip(dx).map(|(x, d)| x + d * h).collect()
+}
+
+/// A warped or curved face of each shape (corners out of plane, mid-side
+/// nodes off their edges).
+pub fn curved_face(shape: FaceShape) -> MortarFace {
+    let mut xs = match shape.corner_count() {
+        3 => vec![v(0.0, 0.0, 0.0), v(1.5, 0.2, 0.1), v(0.3, 1.2, -0.1)],
+        _ => vec![
+            v(0.0, 0.0, 0.0),
+            v(1.6, 0.1, 0.15),
+            v(1.8, 1.4, -0.1),
+            v(-0.1, 1.2, 0.05),
+        ],
+    };
+    let corners = xs.clone();
+    for (m, [a, b]) in signorini::contact::mortar::quadratic::mid_side_edges(shape)
+        .iter()
+        .enumerate()
+    {
+        xs.push((corners[*a] + corners[*b]) * 0.5 + v(0.03 * m as f64, -0.04, 0.08));
+    }
+    MortarFace::new(shape, xs).unwrap()
+}
+
+/// The in-plane moves of interior corners: pseudo-random, up to 0.04, on
+/// triangle meshes; none on quadrilateral ones.
+pub fn in_plane_moves(shape: FaceShape) -> fn(f64, f64) -> [f64; 2] {
+    fn perturb(x: f64, y: f64) -> [f64; 2] {
+        [0.04 * hash_unit(x + 7.0 * y), 0.04 * hash_unit(5.0 * x - y)]
+    }
+    fn none(_: f64, _: f64) -> [f64; 2] {
+        [0.0, 0.0]
+    }
+    if shape.is_triangle() {
+        perturb
+    } else {
+        none
+    }
+}
+
+/// The secondary surface of the stacked tests: `[0, 1] × [0, 0.8]` at
+/// `z = 0` (normal +z) on the coarse graded grid `{0, 0.3, 0.55, 1} ×
+/// {0, 0.45, 0.8}`, with [`in_plane_moves`].
+pub fn graded_secondary(shape: FaceShape, coords: &mut Vec<Vector3<f64>>) -> Vec<SurfaceFace> {
+    grid(
+        &[0.0, 0.3, 0.55, 1.0],
+        &[0.0, 0.45, 0.8],
+        0.0,
+        shape,
+        false,
+        &in_plane_moves(shape),
+        coords,
+    )
+}
+
+/// The four face shapes.
+pub const SHAPES: [FaceShape; 4] = [
+    FaceShape::Tri3,
+    FaceShape::Quad4,
+    FaceShape::Tri6,
+    FaceShape::Quad8,
+];

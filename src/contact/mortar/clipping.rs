@@ -10,7 +10,7 @@ pub type Polygon = Vec<[f64; 2]>;
 pub type Triangle = [[f64; 2]; 3];
 
 /// `(b − a) × (c − a)`, twice the signed area of the triangle `(a, b, c)`.
-fn cross(a: [f64; 2], b: [f64; 2], c: [f64; 2]) -> f64 {
+pub fn cross(a: [f64; 2], b: [f64; 2], c: [f64; 2]) -> f64 {
     (b[0] - a[0]) * (c[1] - a[1]) - (b[1] - a[1]) * (c[0] - a[0])
 }
 
@@ -27,18 +27,64 @@ pub fn signed_area(polygon: &[[f64; 2]]) -> f64 {
 }
 
 /// The polygon with its vertices counter-clockwise.
-pub fn counter_clockwise(mut polygon: Polygon) -> Polygon {
-    if signed_area(&polygon) < 0.0 {
-        polygon.reverse();
-    }
-    polygon
+pub fn counter_clockwise(polygon: Polygon) -> Polygon {
+    counter_clockwise_order(&polygon)
+        .into_iter()
+        .map(|i| polygon[i])
+        .collect()
 }
 
-/// The intersection of the segment `(s, e)` with the line through `(a, b)`.
-fn intersection(s: [f64; 2], e: [f64; 2], a: [f64; 2], b: [f64; 2]) -> [f64; 2] {
+/// The vertex order `0, 1, …` or its reverse that makes the polygon
+/// counter-clockwise.
+pub fn counter_clockwise_order(polygon: &[[f64; 2]]) -> Vec<usize> {
+    let mut order: Vec<usize> = (0..polygon.len()).collect();
+    if signed_area(polygon) < 0.0 {
+        order.reverse();
+    }
+    order
+}
+
+/// The intersection of the segment `(s, e)` with the line through `(a, b)`:
+/// `p = s + t (e − s)`, `t = d_s / (d_s − d_e)`, `d = (b − a) × (· − a)`.
+pub fn intersection(s: [f64; 2], e: [f64; 2], a: [f64; 2], b: [f64; 2]) -> [f64; 2] {
     let (ds, de) = (cross(a, b, s), cross(a, b, e));
     let t = ds / (ds - de);
     [s[0] + t * (e[0] - s[0]), s[1] + t * (e[1] - s[1])]
+}
+
+/// Where a vertex of the clipping's trace comes from.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub enum VertexOrigin {
+    /// The subject polygon's vertex `i`.
+    Subject(usize),
+    /// The intersection of the segment between the trace's vertices `s`
+    /// and `e` with the line through the clip polygon's vertices `edge`
+    /// and `edge + 1`.
+    Intersection { s: usize, e: usize, edge: usize },
+}
+
+/// A Sutherland–Hodgman clipping with every vertex it made: `origins[v]`
+/// and `points[v]` for each vertex `v` (earlier vertices first), and the
+/// clip polygon as vertex indices. Differentiating along the trace gives
+/// the clip polygon's derivative ([`super::clip_derivatives`]).
+#[derive(Clone, Debug, PartialEq, Default)]
+pub struct ClipTrace {
+    pub origins: Vec<VertexOrigin>,
+    pub points: Vec<[f64; 2]>,
+    pub polygon: Vec<usize>,
+}
+
+impl ClipTrace {
+    /// The clip polygon's points.
+    pub fn polygon_points(&self) -> Polygon {
+        self.polygon.iter().map(|&v| self.points[v]).collect()
+    }
+
+    fn push(&mut self, origin: VertexOrigin, point: [f64; 2]) -> usize {
+        self.origins.push(origin);
+        self.points.push(point);
+        self.points.len() - 1
+    }
 }
 
 /// Sutherland–Hodgman: the part of `subject` inside the convex `clip`, both
@@ -46,42 +92,55 @@ fn intersection(s: [f64; 2], e: [f64; 2], a: [f64; 2], b: [f64; 2]) -> [f64; 2] 
 /// vertices closer than `1e-12` of the clip's size are merged; an overlap
 /// of fewer than three vertices is empty.
 pub fn clip_convex(subject: &[[f64; 2]], clip: &[[f64; 2]]) -> Polygon {
+    clip_convex_traced(subject, clip).polygon_points()
+}
+
+/// [`clip_convex`] with the origin of every vertex.
+pub fn clip_convex_traced(subject: &[[f64; 2]], clip: &[[f64; 2]]) -> ClipTrace {
     let size = clip
         .iter()
         .flat_map(|p| p.iter())
         .fold(0.0f64, |m, c| m.max(c.abs()))
         .max(f64::MIN_POSITIVE);
     let tol = 1e-12 * size;
-    let mut output: Polygon = subject.to_vec();
-    for i in 0..clip.len() {
-        let (a, b) = (clip[i], clip[(i + 1) % clip.len()]);
-        let edge = ((b[0] - a[0]).powi(2) + (b[1] - a[1]).powi(2)).sqrt();
-        let inside = |p: [f64; 2]| cross(a, b, p) >= -tol * edge;
+    let mut trace = ClipTrace::default();
+    let mut output: Vec<usize> = subject
+        .iter()
+        .enumerate()
+        .map(|(i, p)| trace.push(VertexOrigin::Subject(i), *p))
+        .collect();
+    for edge in 0..clip.len() {
+        let (a, b) = (clip[edge], clip[(edge + 1) % clip.len()]);
+        let length = ((b[0] - a[0]).powi(2) + (b[1] - a[1]).powi(2)).sqrt();
         let input = std::mem::take(&mut output);
+        let inside = |v: usize, t: &ClipTrace| cross(a, b, t.points[v]) >= -tol * length;
         for k in 0..input.len() {
             let (s, e) = (input[(k + input.len() - 1) % input.len()], input[k]);
-            match (inside(s), inside(e)) {
-                (true, true) => output.push(e),
-                (true, false) => output.push(intersection(s, e, a, b)),
-                (false, true) => {
-                    output.push(intersection(s, e, a, b));
-                    output.push(e);
-                }
-                (false, false) => {}
+            let (s_in, e_in) = (inside(s, &trace), inside(e, &trace));
+            if s_in != e_in {
+                let p = intersection(trace.points[s], trace.points[e], a, b);
+                output.push(trace.push(VertexOrigin::Intersection { s, e, edge }, p));
+            }
+            if e_in {
+                output.push(e);
             }
         }
         if output.is_empty() {
-            return output;
+            return trace;
         }
     }
-    merge_close(output, tol)
+    trace.polygon = merge_close(output, &trace.points, tol);
+    trace
 }
 
 /// Drops vertices within `tol` of their predecessor (and the last if it
 /// repeats the first); fewer than three left is empty.
-fn merge_close(polygon: Polygon, tol: f64) -> Polygon {
-    let close = |p: [f64; 2], q: [f64; 2]| (p[0] - q[0]).abs() <= tol && (p[1] - q[1]).abs() <= tol;
-    let mut out: Polygon = Vec::with_capacity(polygon.len());
+fn merge_close(polygon: Vec<usize>, points: &[[f64; 2]], tol: f64) -> Vec<usize> {
+    let close = |p: usize, q: usize| {
+        let (p, q) = (points[p], points[q]);
+        (p[0] - q[0]).abs() <= tol && (p[1] - q[1]).abs() <= tol
+    };
+    let mut out: Vec<usize> = Vec::with_capacity(polygon.len());
     for p in polygon {
         if out.last().is_none_or(|q| !close(p, *q)) {
             out.push(p);

@@ -14,7 +14,7 @@
 
 use nalgebra::{DMatrix, DVector, Vector3};
 
-use super::face::{FaceShape, MortarFace};
+use super::face::{FaceShape, MortarFace, SurfaceFace};
 use super::quadratic;
 use super::MortarError;
 
@@ -113,4 +113,20 @@ fn face_matrices(
         }
     }
     (mass, integrals)
+}
+
+/// The faces of a surface with their coordinates, and their dual bases.
+pub fn faces_and_duals(
+    faces: &[SurfaceFace],
+    coordinates: &[Vector3<f64>],
+) -> Result<(Vec<MortarFace>, Vec<DualBasis>), MortarError> {
+    let faces = faces
+        .iter()
+        .map(|f| f.with_coordinates(coordinates))
+        .collect::<Result<Vec<_>, _>>()?;
+    let duals = faces
+        .iter()
+        .map(DualBasis::of_face)
+        .collect::<Result<Vec<_>, _>>()?;
+    Ok((faces, duals))
 }

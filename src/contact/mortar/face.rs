@@ -180,13 +180,49 @@ impl MortarFace {
     /// `δx_a`: `δa = δx_,ξ × x_,η + x_,ξ × δx_,η`, `δx_,ξ = Σ_a N_a,ξ δx_a`.
     pub fn area_normal_derivative(&self, xi: [f64; 2], dx: &[Vector3<f64>]) -> Vector3<f64> {
         let [t1, t2] = self.tangents(xi);
+        let dt = self.tangents_derivative(xi, dx);
+        dt[0].cross(&t2) + t1.cross(&dt[1])
+    }
+
+    /// The directional derivative of the tangents at a fixed `ξ` for node
+    /// increments `δx_a`: `δx_,ξ = Σ_a N_a,ξ δx_a`, `δx_,η = Σ_a N_a,η δx_a`.
+    pub fn tangents_derivative(&self, xi: [f64; 2], dx: &[Vector3<f64>]) -> [Vector3<f64>; 2] {
         let g = self.shape.gradients(xi);
         let mut dt = [Vector3::zeros(); 2];
         for (d, g) in dx.iter().zip(&g) {
             dt[0] += d * g[0];
             dt[1] += d * g[1];
         }
-        dt[0].cross(&t2) + t1.cross(&dt[1])
+        dt
+    }
+
+    /// The directional derivative of `x(ξ)` at a fixed `ξ`: `Σ_a N_a(ξ) δx_a`.
+    pub fn point_derivative(&self, xi: [f64; 2], dx: &[Vector3<f64>]) -> Vector3<f64> {
+        let n = self.shape.values(xi);
+        dx.iter().zip(&n).map(|(d, n)| d * *n).sum()
+    }
+
+    /// The derivative of the area normal along the reference coordinates,
+    /// `∂a/∂ξ_k = x_,ξk × x_,η + x_,ξ × x_,ηk` (Popp et al. 2010, §5.3: the
+    /// area element at a moving Gauss point), with the second derivatives
+    /// `x_,ξk = Σ_a ∂²N_a/∂ξ∂ξ_k x_a` by central differences of the
+    /// gradients. Those are exact up to round-off: the gradients of the four
+    /// shapes are at most quadratic in each reference coordinate, for which
+    /// the central difference is exact.
+    pub fn area_normal_gradient(&self, xi: [f64; 2]) -> [Vector3<f64>; 2] {
+        const STEP: f64 = 1e-3;
+        [0, 1].map(|k| {
+            let shift = |s: f64| {
+                let mut p = xi;
+                p[k] += s;
+                self.tangents(p)
+            };
+            let (plus, minus) = (shift(STEP), shift(-STEP));
+            let [t1, t2] = self.tangents(xi);
+            let dt1 = (plus[0] - minus[0]) / (2.0 * STEP);
+            let dt2 = (plus[1] - minus[1]) / (2.0 * STEP);
+            dt1.cross(&t2) + t1.cross(&dt2)
+        })
     }
 
     /// The unit normal `n = a / |a|`.
@@ -223,16 +259,23 @@ impl SurfaceFace {
         &self,
         coordinates: &[Vector3<f64>],
     ) -> Result<MortarFace, MortarError> {
-        let xs = self
-            .nodes
-            .iter()
-            .map(|&n| {
-                coordinates.get(n).copied().ok_or(MortarError::NodeIndex {
-                    node: n,
-                    count: coordinates.len(),
-                })
-            })
-            .collect::<Result<Vec<_>, _>>()?;
-        MortarFace::new(self.shape, xs)
+        MortarFace::new(self.shape, gather(&self.nodes, coordinates)?)
     }
+}
+
+/// The coordinates of `nodes`, in order; a node beyond `coordinates` is an
+/// error.
+pub fn gather(
+    nodes: &[usize],
+    coordinates: &[Vector3<f64>],
+) -> Result<Vec<Vector3<f64>>, MortarError> {
+    nodes
+        .iter()
+        .map(|&n| {
+            coordinates.get(n).copied().ok_or(MortarError::NodeIndex {
+                node: n,
+                count: coordinates.len(),
+            })
+        })
+        .collect()
 }

@@ -1,5 +1,5 @@
 //! Dual mortar contact kernels (issue 28): pure functions of the faces'
-//! current coordinates, not yet wired into Newton.
+//! current coordinates and their derivatives, not yet wired into Newton.
 //!
 //! - [`face`]: a contact face (Tri3, Quad4, Tri6, Quad8) and its map
 //!   `x(ξ)`, tangents and normal.
@@ -14,24 +14,34 @@
 //! - [`segment`]: one pair's contributions to `D` and `M`.
 //! - [`weighted_gap`]: the assembled `D`, `M`, averaged nodal normals,
 //!   weighted gaps `g̃_j` and the contact forces of the multipliers.
+//! - [`clip_derivatives`], [`segment_derivatives`], [`pair_linearisation`]:
+//!   the directional derivatives of the segmentation and of a pair's `D`
+//!   and `M` (Popp, Gitterle, Gee & Wall 2010, §5), and a pair's gradients.
+//! - [`rows`]: per secondary node, `g̃_j`, `D_j`, `M_jl`, `n_j` and the
+//!   lever `b_j` with their gradients, as Newton needs them.
 //!
 //! Conventions as in `formulation.md`: `g̃_j ≥ 0` open, `λ_j ≥ 0`
 //! compressive; the secondary surface's normals point outward (toward the
 //! primary body). See DESIGN.md, "Mortar contact".
 
 pub mod auxiliary_plane;
+pub mod clip_derivatives;
 pub mod clipping;
 pub mod dual_basis;
 pub mod face;
 pub mod normals;
+pub mod pair_linearisation;
 pub mod projection;
 pub mod quadratic;
+pub mod rows;
 pub mod segment;
+pub mod segment_derivatives;
 pub mod weighted_gap;
 
 pub use dual_basis::DualBasis;
 pub use face::{FaceShape, MortarFace, SurfaceFace};
-pub use normals::{nodal_normal_derivatives, nodal_normals};
+pub use normals::{nodal_normal_derivatives, nodal_normal_gradient, nodal_normals};
+pub use rows::{mortar_rows, MortarRow};
 pub use segment::{integrate_pair, overlap, Overlap, SegmentIntegrals};
 pub use weighted_gap::{all_pairs, mortar_coupling, MortarCoupling};
 
@@ -46,6 +56,8 @@ pub enum MortarError {
         "degenerate contact face: {what}; check that its nodes are distinct and not collinear"
     )]
     DegenerateFace { what: String },
+    #[error("secondary node {node} is on none of the contact faces given for it")]
+    NotOnFaces { node: usize },
     #[error("projection onto a contact face failed: {what}; check the face for distortion")]
     Projection { what: String },
 }

@@ -12,9 +12,9 @@
 
 use std::collections::BTreeMap;
 
-use nalgebra::Vector3;
+use nalgebra::{DMatrix, Vector3};
 
-use super::face::{MortarFace, SurfaceFace};
+use super::face::{gather, MortarFace, SurfaceFace};
 use super::MortarError;
 
 /// The averaged outward nodal normals `n_j` of a surface: the unit face
@@ -72,7 +72,54 @@ fn unit_normal_derivative(
 }
 
 /// `δ(v/|v|) = (I − u uᵀ) δv / |v|` with `u = v/|v|`.
-fn unit_derivative(v: &Vector3<f64>, dv: &Vector3<f64>) -> Vector3<f64> {
+pub(super) fn unit_derivative(v: &Vector3<f64>, dv: &Vector3<f64>) -> Vector3<f64> {
     let u = v / v.norm();
     (dv - u * u.dot(dv)) / v.norm()
+}
+
+/// A node's averaged normal `n_j` and its gradient `∂n_j/∂x` (3 × 3k,
+/// node-major over `nodes`, the sorted nodes of the faces that hold it).
+#[derive(Clone, Debug, PartialEq)]
+pub struct NodalNormalGradient {
+    pub normal: Vector3<f64>,
+    pub nodes: Vec<usize>,
+    pub gradient: DMatrix<f64>,
+}
+
+/// `n_j` and `∂n_j/∂x` of one node: [`nodal_normal_derivatives`] along each
+/// unit increment of the nodes of `faces`, the surface's faces that hold
+/// `node`.
+pub fn nodal_normal_gradient(
+    faces: &[&SurfaceFace],
+    coordinates: &[Vector3<f64>],
+    node: usize,
+) -> Result<NodalNormalGradient, MortarError> {
+    let mut nodes: Vec<usize> = faces.iter().flat_map(|f| f.nodes.iter().copied()).collect();
+    nodes.sort_unstable();
+    nodes.dedup();
+    let local = |n: usize| nodes.partition_point(|&m| m < n);
+    let local_faces: Vec<SurfaceFace> = faces
+        .iter()
+        .map(|f| SurfaceFace {
+            shape: f.shape,
+            nodes: f.nodes.iter().map(|&n| local(n)).collect(),
+        })
+        .collect();
+    let local_coordinates = gather(&nodes, coordinates)?;
+    let j = nodes
+        .binary_search(&node)
+        .map_err(|_| MortarError::NotOnFaces { node })?;
+    let normal = nodal_normals(&local_faces, &local_coordinates)?[&j];
+    let mut gradient = DMatrix::zeros(3, 3 * nodes.len());
+    for column in 0..3 * nodes.len() {
+        let mut dx = vec![Vector3::zeros(); nodes.len()];
+        dx[column / 3][column % 3] = 1.0;
+        let dn = nodal_normal_derivatives(&local_faces, &local_coordinates, &dx)?[&j];
+        gradient.set_column(column, &dn);
+    }
+    Ok(NodalNormalGradient {
+        normal,
+        nodes,
+        gradient,
+    })
 }

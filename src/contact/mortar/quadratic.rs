@@ -43,6 +43,14 @@ pub fn mortar_values(shape: FaceShape, xi: [f64; 2]) -> Vec<f64> {
     transformed(shape, &shape.values(xi))
 }
 
+/// The reference gradients `∂Ñ/∂ξ = T ∂N/∂ξ` of the mortar shape functions.
+pub fn mortar_gradients(shape: FaceShape, xi: [f64; 2]) -> Vec<[f64; 2]> {
+    let g = shape.gradients(xi);
+    let column = |d: usize| transformed(shape, &g.iter().map(|g| g[d]).collect::<Vec<_>>());
+    let (gx, gy) = (column(0), column(1));
+    gx.into_iter().zip(gy).map(|(a, b)| [a, b]).collect()
+}
+
 /// `Ñ = T N` from the Lagrange values `N`.
 pub fn transformed(shape: FaceShape, n: &[f64]) -> Vec<f64> {
     let mut t = n.to_vec();

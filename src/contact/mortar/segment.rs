@@ -28,10 +28,10 @@
 use nalgebra::DMatrix;
 
 use super::auxiliary_plane::AuxiliaryPlane;
-use super::clipping::{self, Polygon};
+use super::clipping::{self, ClipTrace, Polygon};
 use super::dual_basis::DualBasis;
 use super::face::MortarFace;
-use super::projection::project_along;
+use super::projection::{project_along, FacePoint};
 use super::MortarError;
 use crate::fem::quadrature;
 
@@ -46,6 +46,15 @@ pub struct Overlap {
     pub plane: AuxiliaryPlane,
     /// The clip polygon (counter-clockwise about `n₀`); empty if none.
     pub polygon: Polygon,
+    /// The projected secondary corners, counter-clockwise (the clip polygon
+    /// of the clipping), and the corner index of each.
+    pub secondary_polygon: Polygon,
+    pub secondary_corners: Vec<usize>,
+    /// The corner index of each projected primary corner, in the
+    /// counter-clockwise order the clipping took them (its subject).
+    pub primary_corners: Vec<usize>,
+    /// The clipping with the origin of every vertex.
+    pub trace: ClipTrace,
 }
 
 impl Overlap {
@@ -55,20 +64,33 @@ impl Overlap {
     }
 }
 
+/// A face's corners projected onto the plane, counter-clockwise, with the
+/// corner index of each.
+fn projected_corners(plane: &AuxiliaryPlane, face: &MortarFace) -> (Polygon, Vec<usize>) {
+    let points: Polygon = face
+        .corners()
+        .iter()
+        .map(|x| plane.local_point(x))
+        .collect();
+    let order = clipping::counter_clockwise_order(&points);
+    (order.iter().map(|&i| points[i]).collect(), order)
+}
+
 /// Projects both faces' corners onto the secondary face's auxiliary plane
 /// and clips the primary polygon by the secondary one.
 pub fn overlap(secondary: &MortarFace, primary: &MortarFace) -> Overlap {
     let plane = AuxiliaryPlane::of_face(secondary);
-    let project = |face: &MortarFace| -> Polygon {
-        clipping::counter_clockwise(
-            face.corners()
-                .iter()
-                .map(|x| plane.local_point(x))
-                .collect(),
-        )
-    };
-    let polygon = clipping::clip_convex(&project(primary), &project(secondary));
-    Overlap { plane, polygon }
+    let (secondary_polygon, secondary_corners) = projected_corners(&plane, secondary);
+    let (primary_polygon, primary_corners) = projected_corners(&plane, primary);
+    let trace = clipping::clip_convex_traced(&primary_polygon, &secondary_polygon);
+    Overlap {
+        plane,
+        polygon: trace.polygon_points(),
+        secondary_polygon,
+        secondary_corners,
+        primary_corners,
+        trace,
+    }
 }
 
 /// The contributions of one face pair: `d[j] = D_j`, `m[(j, l)] = M_jl`
@@ -79,6 +101,56 @@ pub struct SegmentIntegrals {
     pub d: Vec<f64>,
     pub m: DMatrix<f64>,
     pub area: f64,
+}
+
+/// An integration point of a pair's cells: cell `cell` (the triangle
+/// `(c, p_cell, p_cell+1)`), its rule point `eta` and weight `w_q`, its
+/// plane coordinates, its projections onto both faces along `n₀`, the
+/// cell's `2 A_cell` and `J_q` (see the module doc).
+#[derive(Clone, Debug, PartialEq)]
+pub struct CellPoint {
+    pub cell: usize,
+    pub eta: [f64; 2],
+    pub weight: f64,
+    pub plane_point: [f64; 2],
+    pub secondary: FacePoint,
+    pub primary: FacePoint,
+    pub cell_jacobian: f64,
+    pub jacobian: f64,
+}
+
+/// The integration points of an overlap's cells, projected onto both faces.
+pub fn cell_points(
+    overlap: &Overlap,
+    secondary: &MortarFace,
+    primary: &MortarFace,
+) -> Result<Vec<CellPoint>, MortarError> {
+    let (points, weights) = quadrature::triangle_collapsed(CELL_RULE_POINTS);
+    let n0 = overlap.plane.normal;
+    let mut out = Vec::new();
+    for (cell, triangle) in clipping::centroid_triangles(&overlap.polygon)
+        .iter()
+        .enumerate()
+    {
+        let cell_jacobian = 2.0 * clipping::signed_area(triangle);
+        for (eta, w) in points.iter().zip(&weights) {
+            let p = cell_point(triangle, *eta);
+            let x = overlap.plane.spatial_point(p);
+            let hit_s = project_along(secondary, &x, &n0)?;
+            let a_s = secondary.area_normal(hit_s.xi);
+            out.push(CellPoint {
+                cell,
+                eta: *eta,
+                weight: *w,
+                plane_point: p,
+                secondary: hit_s,
+                primary: project_along(primary, &x, &n0)?,
+                cell_jacobian,
+                jacobian: cell_jacobian * a_s.norm() / n0.dot(&a_s).abs(),
+            });
+        }
+    }
+    Ok(out)
 }
 
 /// Segments and integrates a pair (see the module doc); `None` when the
@@ -92,36 +164,37 @@ pub fn integrate_pair(
     if overlap.polygon.is_empty() {
         return Ok(None);
     }
+    let points = cell_points(&overlap, secondary, primary)?;
+    Ok(Some(integrate_points(&points, secondary, dual, primary)))
+}
+
+/// `D_j` and `M_jl` summed over a pair's integration points.
+pub fn integrate_points(
+    points: &[CellPoint],
+    secondary: &MortarFace,
+    dual: &DualBasis,
+    primary: &MortarFace,
+) -> SegmentIntegrals {
     let (ns, nm) = (secondary.shape.node_count(), primary.shape.node_count());
     let mut out = SegmentIntegrals {
         d: vec![0.0; ns],
         m: DMatrix::zeros(ns, nm),
         area: 0.0,
     };
-    let (points, weights) = quadrature::triangle_collapsed(CELL_RULE_POINTS);
-    let n0 = overlap.plane.normal;
-    for cell in clipping::centroid_triangles(&overlap.polygon) {
-        let cell_jacobian = 2.0 * clipping::signed_area(&cell);
-        for (eta, w) in points.iter().zip(&weights) {
-            let p = cell_point(&cell, *eta);
-            let x = overlap.plane.spatial_point(p);
-            let xi_s = project_along(secondary, &x, &n0)?.xi;
-            let xi_m = project_along(primary, &x, &n0)?.xi;
-            let a_s = secondary.area_normal(xi_s);
-            let jacobian = cell_jacobian * a_s.norm() / n0.dot(&a_s).abs();
-            add_point(
-                &mut out,
-                dual.values(xi_s),
-                primary.shape.values(xi_m),
-                w * jacobian,
-            );
-        }
+    for q in points {
+        add_point(
+            &mut out,
+            dual.values(q.secondary.xi),
+            primary.shape.values(q.primary.xi),
+            q.weight * q.jacobian,
+        );
     }
-    Ok(Some(out))
+    out
 }
 
-/// The point `c₀ + η₁ (c₁ − c₀) + η₂ (c₂ − c₀)` of a cell.
-fn cell_point(cell: &clipping::Triangle, eta: [f64; 2]) -> [f64; 2] {
+/// The point `c₀ + η₁ (c₁ − c₀) + η₂ (c₂ − c₀)` of a cell (linear in the
+/// corners, so it maps the corners' derivatives to the point's).
+pub fn cell_point(cell: &clipping::Triangle, eta: [f64; 2]) -> [f64; 2] {
     let [c0, c1, c2] = *cell;
     [0, 1].map(|d| c0[d] + eta[0] * (c1[d] - c0[d]) + eta[1] * (c2[d] - c0[d]))
 }

@@ -24,7 +24,7 @@ use std::collections::BTreeMap;
 
 use nalgebra::Vector3;
 
-use super::dual_basis::DualBasis;
+use super::dual_basis::faces_and_duals;
 use super::face::SurfaceFace;
 use super::normals::nodal_normals;
 use super::quadratic;
@@ -64,14 +64,7 @@ pub fn mortar_coupling(
         normals: nodal_normals(secondary, coordinates)?,
         ..MortarCoupling::default()
     };
-    let faces = secondary
-        .iter()
-        .map(|f| f.with_coordinates(coordinates))
-        .collect::<Result<Vec<_>, _>>()?;
-    let duals = faces
-        .iter()
-        .map(DualBasis::of_face)
-        .collect::<Result<Vec<_>, _>>()?;
+    let (faces, duals) = faces_and_duals(secondary, coordinates)?;
     for &(s, p) in pairs {
         let primary_face = primary[p].with_coordinates(coordinates)?;
         let Some(seg) = integrate_pair(&faces[s], &duals[s], &primary_face)? else {

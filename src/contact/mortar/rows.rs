@@ -1,0 +1,267 @@
+//! The assembled mortar rows that Newton needs, per secondary node `j`,
+//! with their gradients with respect to every coupled node's coordinates
+//! (Popp, Gee & Wall, IJNME 79, 2009, §4; Popp, Gitterle, Gee & Wall,
+//! IJNME 83, 2010, §5):
+//!
+//! ```text
+//! g̃_j = n_jᵀ v_j,   v_j = Σ_l M_jl x_l − D_j x̃_j,   x̃_j = Σ_k R_jk x_k,
+//! b_j = (D_j n_j R_jk on secondary nodes k;  −M_jl n_j on primary nodes l),
+//! ∇g̃_j = (∂n_j/∂x)ᵀ v_j + Σ_l (n_j·x_l) ∇M_jl − (n_j·x̃_j) ∇D_j − b_j,
+//! ∂b_j/∂x = R_jk (n_j ⊗ ∇D_j + D_j ∂n_j/∂x)  on k,
+//!          −(n_j ⊗ ∇M_jl + M_jl ∂n_j/∂x)     on l.
+//! ```
+//!
+//! `b_j = −∂g̃_j/∂x` at fixed `D`, `M`, `n`: the multiplier `λ_j ≥ 0` adds
+//! `λ_j b_j` to the residual (internal minus external forces; the contact
+//! forces of [`super::MortarCoupling::contact_forces`] are `−λ_j b_j`), and
+//! `λ_j ∂b_j/∂x` to the tangent. `Σ_nodes b_j = (D_j Σ_k R_jk − Σ_l M_jl)
+//! n_j = 0`. Gradients are node-major over [`MortarRow::nodes`]: entry
+//! `3a + i` is coordinate `i` of `nodes[a]`.
+
+use std::collections::BTreeMap;
+
+use nalgebra::{DMatrix, DVector, Vector3};
+
+use super::dual_basis::faces_and_duals;
+use super::face::SurfaceFace;
+use super::normals::{nodal_normal_gradient, NodalNormalGradient};
+use super::pair_linearisation::linearise_pair;
+use super::quadratic;
+use super::MortarError;
+
+/// One secondary node's mortar row (see the module doc).
+#[derive(Clone, Debug, PartialEq)]
+pub struct MortarRow {
+    pub node: usize,
+    /// The coupled mesh nodes, sorted.
+    pub nodes: Vec<usize>,
+    pub weighted_gap: f64,
+    pub weighted_gap_gradient: DVector<f64>,
+    /// `D_j` and `∇D_j`.
+    pub d: f64,
+    pub d_gradient: DVector<f64>,
+    /// `(l, M_jl)` sorted by the primary node `l`, and each `∇M_jl`.
+    pub m: Vec<(usize, f64)>,
+    pub m_gradients: Vec<DVector<f64>>,
+    /// `n_j` and `∂n_j/∂x` (3 × 3·nodes).
+    pub normal: Vector3<f64>,
+    pub normal_gradient: DMatrix<f64>,
+    /// `b_j` (3·nodes) and `∂b_j/∂x` (3·nodes × 3·nodes).
+    pub lever: DVector<f64>,
+    pub lever_gradient: DMatrix<f64>,
+}
+
+/// A value with a sparse gradient: per node, `∂/∂x_node`.
+#[derive(Clone, Debug, Default)]
+struct Sparse {
+    value: f64,
+    gradient: BTreeMap<usize, Vector3<f64>>,
+}
+
+/// `D_j` and `M_jl` of one secondary node, summed over its pairs.
+#[derive(Clone, Debug, Default)]
+struct Accumulated {
+    d: Sparse,
+    m: BTreeMap<usize, Sparse>,
+}
+
+/// The mortar rows of every secondary node that a segment touches, from
+/// the candidate face `pairs` (secondary index, primary index).
+pub fn mortar_rows(
+    secondary: &[SurfaceFace],
+    primary: &[SurfaceFace],
+    pairs: &[(usize, usize)],
+    coordinates: &[Vector3<f64>],
+) -> Result<Vec<MortarRow>, MortarError> {
+    let accumulated = accumulate_pairs(secondary, primary, pairs, coordinates)?;
+    let mut holding: BTreeMap<usize, Vec<&SurfaceFace>> = BTreeMap::new();
+    for face in secondary {
+        for &n in &face.nodes {
+            holding.entry(n).or_default().push(face);
+        }
+    }
+    accumulated
+        .into_iter()
+        .map(|(node, acc)| {
+            let faces = &holding[&node];
+            let normal = nodal_normal_gradient(faces, coordinates, node)?;
+            Ok(assemble_row(
+                node,
+                acc,
+                normal,
+                transformation(faces[0], node),
+                coordinates,
+            ))
+        })
+        .collect()
+}
+
+/// `D_j`, `M_jl` and their sparse gradients over all pairs.
+fn accumulate_pairs(
+    secondary: &[SurfaceFace],
+    primary: &[SurfaceFace],
+    pairs: &[(usize, usize)],
+    coordinates: &[Vector3<f64>],
+) -> Result<BTreeMap<usize, Accumulated>, MortarError> {
+    let (faces, duals) = faces_and_duals(secondary, coordinates)?;
+    let mut out: BTreeMap<usize, Accumulated> = BTreeMap::new();
+    for &(s, p) in pairs {
+        let primary_face = primary[p].with_coordinates(coordinates)?;
+        let Some(lin) = linearise_pair(&faces[s], &duals[s], &primary_face)? else {
+            continue;
+        };
+        let pair_nodes: Vec<usize> = secondary[s]
+            .nodes
+            .iter()
+            .chain(&primary[p].nodes)
+            .copied()
+            .collect();
+        for (j, &node_j) in secondary[s].nodes.iter().enumerate() {
+            let acc = out.entry(node_j).or_default();
+            add_sparse(
+                &mut acc.d,
+                lin.integrals.d[j],
+                &lin.d_gradient,
+                j,
+                &pair_nodes,
+            );
+            for (l, &node_l) in primary[p].nodes.iter().enumerate() {
+                let row = j * primary[p].nodes.len() + l;
+                let m = acc.m.entry(node_l).or_default();
+                add_sparse(
+                    m,
+                    lin.integrals.m[(j, l)],
+                    &lin.m_gradient,
+                    row,
+                    &pair_nodes,
+                );
+            }
+        }
+    }
+    Ok(out)
+}
+
+/// Adds `value` and the gradient row `row` of a pair (columns over
+/// `pair_nodes`, see [`super::pair_linearisation::PairLinearisation`]) to `target`.
+fn add_sparse(
+    target: &mut Sparse,
+    value: f64,
+    gradient: &DMatrix<f64>,
+    row: usize,
+    pair_nodes: &[usize],
+) {
+    target.value += value;
+    for (a, &node) in pair_nodes.iter().enumerate() {
+        let g = Vector3::new(
+            gradient[(row, 3 * a)],
+            gradient[(row, 3 * a + 1)],
+            gradient[(row, 3 * a + 2)],
+        );
+        *target.gradient.entry(node).or_insert_with(Vector3::zeros) += g;
+    }
+}
+
+/// `x̃_j = Σ_k R_jk x_k` as global `(k, R_jk)`, from a face holding `node`.
+fn transformation(face: &SurfaceFace, node: usize) -> Vec<(usize, f64)> {
+    let j = face.nodes.iter().position(|&n| n == node).unwrap_or(0);
+    quadratic::nodal_transformation(face.shape)[j]
+        .iter()
+        .map(|&(k, r)| (face.nodes[k], r))
+        .collect()
+}
+
+/// A sparse gradient as a dense vector over `nodes` (positions `index`).
+fn dense(sparse: &Sparse, index: &BTreeMap<usize, usize>) -> DVector<f64> {
+    let mut out = DVector::zeros(3 * index.len());
+    for (node, g) in &sparse.gradient {
+        out.fixed_rows_mut::<3>(3 * index[node]).copy_from(g);
+    }
+    out
+}
+
+/// One row from its accumulated `D`, `M`, its normal and `R_jk`.
+fn assemble_row(
+    node: usize,
+    acc: Accumulated,
+    normal: NodalNormalGradient,
+    r: Vec<(usize, f64)>,
+    coordinates: &[Vector3<f64>],
+) -> MortarRow {
+    let mut nodes: Vec<usize> = acc.d.gradient.keys().copied().collect();
+    nodes.extend(acc.m.keys());
+    nodes.extend(acc.m.values().flat_map(|m| m.gradient.keys()));
+    nodes.extend(&normal.nodes);
+    nodes.extend(r.iter().map(|(k, _)| k));
+    nodes.sort_unstable();
+    nodes.dedup();
+    let index: BTreeMap<usize, usize> = nodes.iter().enumerate().map(|(a, &n)| (n, a)).collect();
+    let mut normal_gradient = DMatrix::zeros(3, 3 * nodes.len());
+    for (a, n) in normal.nodes.iter().enumerate() {
+        normal_gradient
+            .fixed_columns_mut::<3>(3 * index[n])
+            .copy_from(&normal.gradient.fixed_columns::<3>(3 * a));
+    }
+    let n = normal.normal;
+    let x_tilde: Vector3<f64> = r.iter().map(|(k, rk)| coordinates[*k] * *rk).sum();
+    let d_gradient = dense(&acc.d, &index);
+    let m: Vec<(usize, f64)> = acc.m.iter().map(|(l, s)| (*l, s.value)).collect();
+    let m_gradients: Vec<DVector<f64>> = acc.m.values().map(|s| dense(s, &index)).collect();
+    let v = m
+        .iter()
+        .map(|(l, ml)| coordinates[*l] * *ml)
+        .sum::<Vector3<f64>>()
+        - x_tilde * acc.d.value;
+    let (lever, lever_gradient) = lever(
+        &index,
+        (acc.d.value, &d_gradient),
+        (&m, &m_gradients),
+        (&n, &normal_gradient),
+        &r,
+    );
+    let mut weighted_gap_gradient =
+        normal_gradient.transpose() * v - &d_gradient * n.dot(&x_tilde) - &lever;
+    for ((l, _), g) in m.iter().zip(&m_gradients) {
+        weighted_gap_gradient += g * n.dot(&coordinates[*l]);
+    }
+    MortarRow {
+        node,
+        nodes,
+        weighted_gap: n.dot(&v),
+        weighted_gap_gradient,
+        d: acc.d.value,
+        d_gradient,
+        m,
+        m_gradients,
+        normal: n,
+        normal_gradient,
+        lever,
+        lever_gradient,
+    }
+}
+
+/// `b_j` and `∂b_j/∂x` (see the module doc).
+fn lever(
+    index: &BTreeMap<usize, usize>,
+    (d, d_gradient): (f64, &DVector<f64>),
+    (m, m_gradients): (&[(usize, f64)], &[DVector<f64>]),
+    (n, n_gradient): (&Vector3<f64>, &DMatrix<f64>),
+    r: &[(usize, f64)],
+) -> (DVector<f64>, DMatrix<f64>) {
+    let size = 3 * index.len();
+    let (mut b, mut db) = (DVector::zeros(size), DMatrix::zeros(size, size));
+    let mut add = |node: usize, scale: f64, value: f64, gradient: &DVector<f64>| {
+        let at = 3 * index[&node];
+        let mut rows = b.fixed_rows_mut::<3>(at);
+        rows += n * (scale * value);
+        let block = (n * gradient.transpose() + n_gradient * value) * scale;
+        let mut rows = db.rows_mut(at, 3);
+        rows += block;
+    };
+    for &(k, rk) in r {
+        add(k, rk, d, d_gradient);
+    }
+    for ((l, ml), g) in m.iter().zip(m_gradients) {
+        add(*l, -1.0, *ml, g);
+    }
+    (b, db)
+}

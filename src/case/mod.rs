@@ -145,14 +145,28 @@ impl Case {
 
     /// An error in the case file, with the line of the key path the
     /// message starts with (`contact[0].obstacle: …` → `line 31:
-    /// contact[0].obstacle: …`) when the text has it.
+    /// contact[0].obstacle: …`) when the text has it. For a case read
+    /// from an Abaqus/CalculiX deck the text is the case the deck converts
+    /// to, not the deck, so the line is named as that case's, after the
+    /// message.
     fn err(&self, message: impl Into<String>) -> Error {
         let message = message.into();
+        let from_deck = self
+            .path
+            .extension()
+            .is_some_and(|e| e.eq_ignore_ascii_case("inp"));
         match lines::offset_of_path(&self.text, lines::leading_path(&message)) {
-            Some(offset) if !message.starts_with("line ") => case_error(
-                &self.path,
-                format!("line {}: {message}", line_of(&self.text, offset)),
-            ),
+            Some(offset) if !message.starts_with("line ") => {
+                let line = line_of(&self.text, offset);
+                case_error(
+                    &self.path,
+                    if from_deck {
+                        format!("{message} (line {line} of the case that `signorini convert` writes from this deck)")
+                    } else {
+                        format!("line {line}: {message}")
+                    },
+                )
+            }
             _ => case_error(&self.path, message),
         }
     }

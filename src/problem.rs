@@ -14,7 +14,9 @@ use crate::mesh::Facet;
 use crate::solve::ordering::{EarlyDissection, AMD_DOFS};
 use crate::solve::settings::Strategy;
 pub use crate::solve::settings::{LinearMethod, NonsymmetricSolver, SolverSettings, Step};
+pub use builder::ProblemBuilder;
 
+mod builder;
 pub mod condensed;
 mod constraints;
 mod nonlinear;

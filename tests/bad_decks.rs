@@ -191,3 +191,32 @@ fn bad_decks_are_refused_by_name_and_line() {
         "{err}"
     );
 }
+
+/// A C3D10 body's face in a `*CONTACT PAIR` (`tests/data/deck/tet_on_block.inp`:
+/// a quadratic tetrahedron's S1 on a C3D8 block's top): node-to-surface
+/// contact gives a Tri6's corners no share of a uniform pressure, so the
+/// deck is refused at the pair's line, naming the surface and the way out
+/// (mortar, or linear elements meanwhile). With the quadratic surface the
+/// primary one, the same.
+#[test]
+fn quadratic_contact_surface_is_refused_at_the_pair() {
+    let dir = tempfile::tempdir().unwrap();
+    let text = std::fs::read_to_string(root().join("tests/data/deck/tet_on_block.inp")).unwrap();
+    let line = line_of(&text, "TetBottom, BlockTop");
+    for message in [
+        "*CONTACT PAIR: surface 'TetBottom' has quadratic faces",
+        "mortar",
+        "linear elements",
+    ] {
+        refused(dir.path(), "tet_on_block.inp", &text, line, message);
+    }
+    let swapped = text.replace("TetBottom, BlockTop", "BlockTop, TetBottom");
+    let line = line_of(&swapped, "BlockTop, TetBottom");
+    refused(
+        dir.path(),
+        "block_on_tet.inp",
+        &swapped,
+        line,
+        "*CONTACT PAIR: surface 'TetBottom' has quadratic faces",
+    );
+}

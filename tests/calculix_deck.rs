@@ -7,6 +7,8 @@
 //!   (skipped, with a message, when `ccx` is not installed): the nodal
 //!   displacements agree to 1e-6 of the largest.
 
+mod ccx;
+
 use signorini::run::{run, RunOptions, RunOutcome};
 use std::path::{Path, PathBuf};
 use std::process::Command;
@@ -86,28 +88,11 @@ fn example_deck_runs_as_deck_and_as_converted_case() {
     assert!(String::from_utf8_lossy(&again.stderr).contains("--force"));
 }
 
-/// `U` of `*NODE PRINT` in ccx's `.dat`: node id → displacement.
-fn ccx_displacements(dat: &Path) -> Vec<(u64, [f64; 3])> {
-    let text = std::fs::read_to_string(dat).unwrap();
-    text.lines()
-        .filter_map(|l| {
-            let f: Vec<&str> = l.split_whitespace().collect();
-            if f.len() != 4 {
-                return None;
-            }
-            let id = f[0].parse().ok()?;
-            let u = [f[1].parse().ok()?, f[2].parse().ok()?, f[3].parse().ok()?];
-            Some((id, u))
-        })
-        .collect()
-}
-
 /// Runs `deck_text` (beside the cantilever's mesh) with ccx and with
 /// signorini; the largest difference of a nodal displacement and the
 /// largest displacement. `None` (and a message) without ccx.
 fn against_ccx(deck_text: &str) -> Option<(f64, f64)> {
-    if Command::new("ccx").arg("-v").output().is_err() {
-        eprintln!("skipped: ccx (CalculiX) is not installed; apt-get install calculix-ccx");
+    if !ccx::installed() {
         return None;
     }
     let dir = tempfile::tempdir().unwrap();
@@ -118,17 +103,7 @@ fn against_ccx(deck_text: &str) -> Option<(f64, f64)> {
     )
     .unwrap();
     std::fs::write(dir.path().join("cantilever.inp"), deck_text).unwrap();
-    let ccx = Command::new("ccx")
-        .args(["-i", "cantilever"])
-        .current_dir(dir.path())
-        .output()
-        .unwrap();
-    assert!(
-        ccx.status.success(),
-        "{}",
-        String::from_utf8_lossy(&ccx.stdout)
-    );
-    let reference = ccx_displacements(&dir.path().join("cantilever.dat"));
+    let reference = ccx::run(dir.path(), "cantilever");
     assert_eq!(reference.len(), 9 * 3 * 3);
     let deck = dir.path().join("cantilever.inp");
     let ours = run_into(&deck, &dir.path().join("ours"));

@@ -239,10 +239,7 @@ impl Case {
             // half of every node's tributary area
             let reverse_pass = " (two_pass: the reverse pass)";
             let setup = |e: SetupError| {
-                let (SetupError::NoArea(s)
-                | SetupError::UnknownSurface(s)
-                | SetupError::QuadraticSurface(s)
-                | SetupError::Degenerate { surface: s, .. }) = &e;
+                let s = e.surface();
                 let pass = if *s == c.surface { "" } else { reverse_pass };
                 self.err(match e {
                     SetupError::NoArea(_) => format!("{key}{pass}: surface '{s}' has no area"),
@@ -257,6 +254,8 @@ impl Case {
                     SetupError::QuadraticSurface(_) => {
                         format!("{key}: {}", SetupError::quadratic_surface_message(s))
                     }
+                    // the reference gaps are checked per pass, below
+                    _ => format!("{key}{pass}: {e}"),
                 })
             };
             // the same surface under another name (or one holding it); after
@@ -329,62 +328,64 @@ impl Case {
             };
             for (interface, pass, against) in passes {
                 // a surface that starts inside the obstacle is a set-up error
-                let secondary = &interface.surface;
                 let tolerance = c
                     .initial_penetration_tolerance
-                    .unwrap_or(0.01 * interface.element_size);
+                    .unwrap_or_else(|| interface.default_penetration_tolerance());
                 if !(tolerance >= 0.0 && tolerance.is_finite()) {
                     return Err(self.err(format!(
                         "{key}.initial_penetration_tolerance = {tolerance} must be zero or positive \
                          (the largest initial penetration accepted, a length)"
                     )));
                 }
-                let zero = vec![0.0; 3 * mesh.num_nodes()];
-                let gaps = interface.gaps(&mesh.nodes, 0.0, &zero, None);
-                // a plane with the whole body behind it (every node of the
-                // mesh, not only the surface's: a plane raised into the body
-                // leaves some in front): its normal points away
-                if let Target::Obstacle(index) = &target {
-                    let o = &spec.obstacle[*index];
-                    if let ObstacleShape::Plane { point, normal } = &o.shape {
-                        let length = Vector3::from(*normal).norm();
-                        let height = |x: &[f64; 3]| {
-                            (Vector3::from(*x) - Vector3::from(*point)).dot(&Vector3::from(*normal))
-                                / length
-                        };
-                        if !gaps.is_empty()
-                            && gaps.iter().all(|&g| g < -tolerance)
-                            && mesh.nodes.iter().all(|x| height(x) < -tolerance)
-                        {
-                            let nearest = mesh
-                                .nodes
-                                .iter()
-                                .map(height)
-                                .fold(f64::NEG_INFINITY, f64::max);
-                            return Err(self.err(format!(
-                                "{key}: obstacle normal pointing away: the whole body is behind plane \
-                                 '{}' (every node, the nearest at {nearest:.3e}), so its normal points away \
-                                 from the body; flip it: normal = [{}, {}, {}]",
-                                o.name,
-                                -normal[0] + 0.0,
-                                -normal[1] + 0.0,
-                                -normal[2] + 0.0
-                            )));
-                        }
-                    }
-                }
-                for (j, &g) in gaps.iter().enumerate() {
-                    if g < -tolerance {
-                        return Err(self.err(format!(
-                            "{key}{pass}: node {} of surface '{secondary}' starts inside {against} (gap {g:.3e}, tolerance {tolerance:.3e}); \
-                             move the bodies apart, or check the normal (an obstacle's must point toward the body)",
-                            mesh.node_ids[interface.nodes[j]]
-                        )));
-                    }
-                }
+                let plane = match &target {
+                    Target::Obstacle(index) => Some(&spec.obstacle[*index]),
+                    Target::Surface(_) => None,
+                };
+                interface
+                    .check_reference_gaps(mesh, tolerance)
+                    .map_err(|e| self.reference_gap_error(e, &key, pass, &against, plane))?;
                 out.push(interface);
             }
         }
         Ok(out)
+    }
+
+    /// The message of a failed [`check_reference_gaps`](ContactInterface::check_reference_gaps)
+    /// of `[[contact]]` `key` (its pass `pass`, against `against`; the
+    /// `[[obstacle]]` it names, whose normal a flipped plane gives).
+    fn reference_gap_error(
+        &self,
+        e: SetupError,
+        key: &str,
+        pass: &str,
+        against: &str,
+        obstacle: Option<&super::schema::ObstacleSpec>,
+    ) -> Error {
+        match (e, obstacle.map(|o| (&o.name, &o.shape))) {
+            (
+                SetupError::PlaneNormalAway { nearest, .. },
+                Some((name, ObstacleShape::Plane { normal, .. })),
+            ) => self.err(format!(
+                "{key}: obstacle normal pointing away: the whole body is behind plane \
+                 '{name}' (every node, the nearest at {nearest:.3e}), so its normal points away \
+                 from the body; flip it: normal = [{}, {}, {}]",
+                -normal[0] + 0.0,
+                -normal[1] + 0.0,
+                -normal[2] + 0.0
+            )),
+            (
+                SetupError::InitialPenetration {
+                    surface,
+                    node,
+                    gap,
+                    tolerance,
+                },
+                _,
+            ) => self.err(format!(
+                "{key}{pass}: node {node} of surface '{surface}' starts inside {against} (gap {gap:.3e}, tolerance {tolerance:.3e}); \
+                 move the bodies apart, or check the normal (an obstacle's must point toward the body)"
+            )),
+            (e, _) => self.err(format!("{key}{pass}: {e}")),
+        }
     }
 }

@@ -119,9 +119,69 @@ pub enum SetupError {
     /// The secondary surface's element size `h = √(mean A_s)` is not a
     /// positive finite length (coordinates so large that areas overflow).
     Degenerate { surface: String, element_size: f64 },
+    /// A secondary node starts inside the primary side: its reference gap
+    /// `g < −tolerance` ([`ContactInterface::check_reference_gaps`]).
+    InitialPenetration {
+        surface: String,
+        /// The node's id in the mesh file.
+        node: u64,
+        gap: f64,
+        tolerance: f64,
+    },
+    /// A rigid plane with every node of the mesh behind it (height
+    /// `(x − p)·n < −tolerance`), and so every secondary gap negative: its
+    /// normal points away from the body. `nearest` is the largest height.
+    PlaneNormalAway { surface: String, nearest: f64 },
 }
 
+impl std::fmt::Display for SetupError {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        match self {
+            SetupError::UnknownSurface(s) => write!(f, "the mesh has no surface set '{s}'"),
+            SetupError::NoArea(s) => write!(f, "surface '{s}' has no area"),
+            SetupError::QuadraticSurface(s) => f.write_str(&Self::quadratic_surface_message(s)),
+            SetupError::Degenerate {
+                surface,
+                element_size,
+            } => write!(
+                f,
+                "surface '{surface}' has the element size {element_size} (the square root of its \
+                 mean area per node), not a positive finite length"
+            ),
+            SetupError::InitialPenetration {
+                surface,
+                node,
+                gap,
+                tolerance,
+            } => write!(
+                f,
+                "node {node} of surface '{surface}' starts inside the primary side (gap {gap:.3e}, \
+                 tolerance {tolerance:.3e}); move the bodies apart, or check the normal"
+            ),
+            SetupError::PlaneNormalAway { surface, nearest } => write!(
+                f,
+                "the whole body of surface '{surface}' is behind the plane (every node, the nearest \
+                 at {nearest:.3e}), so its normal points away from the body; flip it"
+            ),
+        }
+    }
+}
+
+impl std::error::Error for SetupError {}
+
 impl SetupError {
+    /// The surface the error is about.
+    pub fn surface(&self) -> &str {
+        match self {
+            SetupError::UnknownSurface(s)
+            | SetupError::NoArea(s)
+            | SetupError::QuadraticSurface(s) => s,
+            SetupError::Degenerate { surface, .. }
+            | SetupError::InitialPenetration { surface, .. }
+            | SetupError::PlaneNormalAway { surface, .. } => surface,
+        }
+    }
+
     /// The message of [`SetupError::QuadraticSurface`] for surface `s`.
     pub fn quadratic_surface_message(s: &str) -> String {
         format!(
@@ -316,6 +376,49 @@ impl ContactInterface {
             c.areas.iter_mut().for_each(|a| *a *= 0.5);
             c
         }))
+    }
+
+    /// The initial penetration accepted by default: `0.01 h`, a hundredth
+    /// of the secondary surface's element size.
+    pub fn default_penetration_tolerance(&self) -> f64 {
+        0.01 * self.element_size
+    }
+
+    /// The physics of the reference configuration (`u = 0`, `t = 0`):
+    /// [`SetupError::PlaneNormalAway`] for a rigid plane with every node of
+    /// the mesh more than `tolerance` behind it (a plane raised into the
+    /// body leaves some in front, and is an initial penetration instead),
+    /// then [`SetupError::InitialPenetration`] for the first secondary node
+    /// with a gap `g < −tolerance`.
+    pub fn check_reference_gaps(&self, mesh: &Mesh, tolerance: f64) -> Result<(), SetupError> {
+        let zero = vec![0.0; 3 * mesh.num_nodes()];
+        let gaps = self.gaps(&mesh.nodes, 0.0, &zero, None);
+        if let Primary::Rigid(RigidObstacle::Plane { point, normal }) = &self.primary {
+            let height = |x: &[f64; 3]| (Vector3::from(*x) - point).dot(normal);
+            if !gaps.is_empty()
+                && gaps.iter().all(|&g| g < -tolerance)
+                && mesh.nodes.iter().all(|x| height(x) < -tolerance)
+            {
+                let nearest = mesh
+                    .nodes
+                    .iter()
+                    .map(height)
+                    .fold(f64::NEG_INFINITY, f64::max);
+                return Err(SetupError::PlaneNormalAway {
+                    surface: self.surface.clone(),
+                    nearest,
+                });
+            }
+        }
+        match gaps.iter().position(|&g| g < -tolerance) {
+            Some(j) => Err(SetupError::InitialPenetration {
+                surface: self.surface.clone(),
+                node: mesh.node_ids[self.nodes[j]],
+                gap: gaps[j],
+                tolerance,
+            }),
+            None => Ok(()),
+        }
     }
 
     /// The interface renamed (reports, output).

@@ -28,27 +28,20 @@ use std::sync::Arc;
 pub fn problem(mesh: Mesh, material: Arc<dyn Material>) -> Problem {
     let n = mesh.elements.len();
     let model = Model::new(Arc::new(mesh), vec![material], vec![0; n]).expect("valid mesh");
-    Problem {
-        model,
-        prescribed: Vec::new(),
-        pressures: Vec::new(),
-        body_forces: Vec::new(),
-        nodal_forces: Vec::new(),
-        contacts: Default::default(),
-        timings: Default::default(),
-        dissection: None,
-        steps: vec![Step {
+    Problem::builder(model)
+        .steps([Step {
             name: "load".into(),
             end_time: 1.0,
             initial_increment: 1.0,
             min_increment: 1e-4,
             max_increment: 1.0,
-        }],
-        settings: SolverSettings {
+        }])
+        .settings(SolverSettings {
             residual_tolerance: 1e-10,
             ..SolverSettings::default()
-        },
-    }
+        })
+        .build()
+        .expect("no contact to check")
 }
 
 /// Prescribe components `(component, value)` on every node of a surface.

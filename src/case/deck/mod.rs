@@ -18,7 +18,11 @@
 //!   or without `NLGEOM` (CalculiX switches it on for them).
 //! - Steps: `*STATIC` `initial, period, min, max` → `[[step]]` with
 //!   `end_time` the total time, the increments as given (`DIRECT`: fixed);
-//!   `TIME POINTS=` splits the step at the points inside it.
+//!   `TIME POINTS=` splits the step at the points inside it, and when
+//!   every step has them the VTU files are written at those times only.
+//! - `*DLOAD` `elset, GRAV, g, n` → `[[body_force]]` `ρ g n/‖n‖` on each
+//!   section's region under the set, `ρ` its material's `*DENSITY`
+//!   ([`gravity`]).
 //! - `*BOUNDARY`, `*CLOAD` (per node: the case's total `value` is the
 //!   node count times it), `*DLOAD` `P<k>` and `*DSLOAD` `P` (follower
 //!   with `NLGEOM`, dead without) → `[[displacement]]`, `[[nodal_force]]`,
@@ -36,6 +40,7 @@
 //!   `contact_status`; `*NODE PRINT, NSET=s` `U` → histories of the
 //!   displacement of the set's first node, `RF` → the set's reaction force.
 
+mod gravity;
 mod timeline;
 mod write;
 
@@ -170,7 +175,7 @@ fn translate(
         body_force: Vec::new(),
         nodal_force: Vec::new(),
         obstacle: Vec::new(),
-        contact: contacts(physics, notes)?,
+        contact: contacts(physics, mesh, notes)?,
         amplitudes: BTreeMap::new(),
         step: steps,
         solver: SolverSpec::default(),
@@ -182,7 +187,9 @@ fn translate(
     };
     boundaries(physics, &spans, first_end, &mut spec)?;
     loads(physics, mesh, &spans, first_end, nlgeom, &mut spec)?;
+    gravity::gravities(physics, mesh, &spans, first_end, &mut spec)?;
     outputs(physics, mesh, &mut spec, notes);
+    at_time_points(physics, &mut spec, notes);
     Ok(spec)
 }
 
@@ -313,9 +320,10 @@ fn materials(physics: &Physics, nlgeom: bool) -> Result<Vec<MaterialSpec>> {
 }
 
 /// `[[contact]]` of the contact pairs.
-fn contacts(physics: &Physics, notes: &mut Vec<String>) -> Result<Vec<ContactSpec>> {
+fn contacts(physics: &Physics, mesh: &Mesh, notes: &mut Vec<String>) -> Result<Vec<ContactSpec>> {
     let mut out = Vec::new();
     for pair in &physics.contact_pairs {
+        quadratic_faces(pair, mesh)?;
         let i = physics
             .interactions
             .iter()
@@ -367,6 +375,24 @@ fn contacts(physics: &Physics, notes: &mut Vec<String>) -> Result<Vec<ContactSpe
         );
     }
     Ok(out)
+}
+
+/// [`SetupError::QuadraticSurface`](crate::contact::setup::SetupError)
+/// at the `*CONTACT PAIR`'s line (the case's check would name a line of
+/// the converted case instead of the deck's).
+fn quadratic_faces(pair: &crate::mesh::inp::physics::ContactPairDef, mesh: &Mesh) -> Result<()> {
+    for name in [&pair.secondary, &pair.primary] {
+        let quadratic = mesh
+            .surface(name)
+            .is_some_and(|s| s.facets.iter().any(|f| f.kind.is_quadratic()));
+        if quadratic {
+            return Err(pair.at.error(format!(
+                "*CONTACT PAIR: {}",
+                crate::contact::setup::SetupError::quadratic_surface_message(name)
+            )));
+        }
+    }
+    Ok(())
 }
 
 /// Each deck step's `[start, end]` in total time.
@@ -542,6 +568,30 @@ fn loads(
         });
     }
     Ok(())
+}
+
+/// `*TIME POINTS` as CalculiX writes them: the field output at the time
+/// points only. The steps end at the points ([`steps`]) and a step's last
+/// increment is always written, so `[output] every` of the most
+/// increments a step may take writes those alone, when every step has
+/// time points (`every` is one for the whole run); the histories keep
+/// every increment.
+fn at_time_points(physics: &Physics, spec: &mut CaseFile, notes: &mut Vec<String>) {
+    let with = physics.steps.iter().filter(|s| s.time_points.is_some());
+    match with.count() {
+        0 => {}
+        n if n == physics.steps.len() => {
+            spec.output.every = Some(super::budget::MAX_INCREMENTS as i64);
+            notes.push(
+                "*TIME POINTS: the steps end at the time points, and the VTU files are written there only ([output] every)"
+                    .into(),
+            );
+        }
+        _ => notes.push(
+            "*TIME POINTS: the steps end at the time points, and the VTU files are written at every increment (some steps have no time points)"
+                .into(),
+        ),
+    }
 }
 
 /// `[output] fields` and `[[output.history]]` of the output requests.

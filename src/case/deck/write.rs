@@ -1,6 +1,7 @@
 //! A [`CaseFile`] written as case-file TOML: the keys a deck's
 //! translation sets (mesh, materials, displacements, pressures, nodal
-//! forces, contacts, steps, output name, fields and histories), numbers
+//! forces, body forces, contacts, steps, output name, every, fields and
+//! histories), numbers
 //! in Rust's shortest round-trip form, so the text parses back to the same
 //! values bit for bit.
 
@@ -125,6 +126,9 @@ fn output(out: &mut String, o: &OutputSpec) {
             let _ = writeln!(out, "{key} = {}", text(v));
         }
     }
+    if let Some(every) = o.every {
+        let _ = writeln!(out, "every = {every}");
+    }
     if let Some(fields) = &o.fields {
         let names: Vec<String> = fields.iter().map(|f| text(f.name())).collect();
         let _ = writeln!(out, "fields = [{}]", names.join(", "));
@@ -180,6 +184,14 @@ pub fn to_toml(spec: &CaseFile) -> String {
             let _ = writeln!(out, "follower = true");
         }
         amplitude(&mut out, &p.amplitude);
+    }
+    for b in &spec.body_force {
+        let _ = writeln!(out, "\n[[body_force]]");
+        if let Some(r) = &b.region {
+            let _ = writeln!(out, "region = {}", text(r));
+        }
+        let _ = writeln!(out, "value = {}", triple(b.value));
+        amplitude(&mut out, &b.amplitude);
     }
     for f in &spec.nodal_force {
         let _ = writeln!(

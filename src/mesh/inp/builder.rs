@@ -269,6 +269,51 @@ impl Builder {
         if self.elements.is_empty() {
             return Err("the deck has no C3D4 or C3D8 volume elements".into());
         }
+        let regions = self.regions_and_set_members();
+        let mut mesh = Mesh {
+            nodes: self.nodes,
+            node_ids: self.node_ids,
+            elements: self.elements,
+            regions,
+            surfaces: Vec::new(),
+            node_sets: Vec::new(),
+        };
+        free_face_surfaces(&self.free_faces, &mut self.surfaces, &mesh);
+        mesh.surfaces = self
+            .surfaces
+            .items
+            .into_iter()
+            .map(|(name, facets)| SurfaceSet { name, facets })
+            .collect();
+        mesh.node_sets = self
+            .node_sets
+            .items
+            .into_iter()
+            .map(|(name, mut nodes)| {
+                nodes.sort_unstable();
+                nodes.dedup();
+                NodeSet { name, nodes }
+            })
+            .collect();
+        let orphans = mesh.orient_surfaces();
+        if let Some(first) = orphans.first() {
+            return Err(format!(
+                "surface element {} of element set '{}' is not a face of any volume element{}",
+                first.facet_id,
+                first.surface,
+                match orphans.len() - 1 {
+                    0 => String::new(),
+                    n => format!(" ({n} more such elements)"),
+                }
+            ));
+        }
+        Ok(mesh)
+    }
+
+    /// The regions (the element sets with volume elements, and `default`
+    /// for the elements in none), and the element sets' surface facets and
+    /// line elements added to the surfaces and node sets of their names.
+    fn regions_and_set_members(&mut self) -> Vec<Region> {
         let mut in_region = vec![false; self.elements.len()];
         let mut regions = Vec::new();
         let mut element_set_facets = Vec::new();
@@ -313,66 +358,40 @@ impl Builder {
         for (name, nodes) in element_set_nodes {
             self.node_sets.entry(&name).extend(nodes);
         }
-        let mut mesh = Mesh {
-            nodes: self.nodes,
-            node_ids: self.node_ids,
-            elements: self.elements,
-            regions,
-            surfaces: Vec::new(),
-            node_sets: Vec::new(),
-        };
-        if !self.free_faces.is_empty() {
-            let mut by_element: HashMap<usize, Vec<&str>> = HashMap::new();
-            for (name, e) in &self.free_faces {
-                by_element.entry(*e).or_default().push(name);
-            }
-            let mut faces: Vec<_> = boundary_faces(&mesh)
-                .into_values()
-                .filter(|f| by_element.contains_key(&f.element))
-                .collect();
-            faces.sort_by(|a, b| (a.element, &a.nodes).cmp(&(b.element, &b.nodes)));
-            for face in faces {
-                for name in &by_element[&face.element] {
-                    let kind =
-                        FacetKind::of_node_count(face.nodes.len()).unwrap_or(FacetKind::Quad4);
-                    let id = mesh.elements[face.element].id;
-                    self.surfaces.entry(name).push(Facet {
-                        kind,
-                        nodes: face.nodes.clone(),
-                        id,
-                    });
-                }
-            }
+        regions
+    }
+}
+
+/// The faces of `*SURFACE, TYPE=ELEMENT` lines without a face label
+/// (`free_faces`, name and element): every boundary face of those
+/// elements, in `surfaces`.
+fn free_face_surfaces(
+    free_faces: &[(String, usize)],
+    surfaces: &mut Named<Vec<Facet>>,
+    mesh: &Mesh,
+) {
+    if free_faces.is_empty() {
+        return;
+    }
+    let mut by_element: HashMap<usize, Vec<&str>> = HashMap::new();
+    for (name, e) in free_faces {
+        by_element.entry(*e).or_default().push(name);
+    }
+    let mut faces: Vec<_> = boundary_faces(mesh)
+        .into_values()
+        .filter(|f| by_element.contains_key(&f.element))
+        .collect();
+    faces.sort_by(|a, b| (a.element, &a.nodes).cmp(&(b.element, &b.nodes)));
+    for face in faces {
+        for name in &by_element[&face.element] {
+            let kind = FacetKind::of_node_count(face.nodes.len()).unwrap_or(FacetKind::Quad4);
+            let id = mesh.elements[face.element].id;
+            surfaces.entry(name).push(Facet {
+                kind,
+                nodes: face.nodes.clone(),
+                id,
+            });
         }
-        mesh.surfaces = self
-            .surfaces
-            .items
-            .into_iter()
-            .map(|(name, facets)| SurfaceSet { name, facets })
-            .collect();
-        mesh.node_sets = self
-            .node_sets
-            .items
-            .into_iter()
-            .map(|(name, mut nodes)| {
-                nodes.sort_unstable();
-                nodes.dedup();
-                NodeSet { name, nodes }
-            })
-            .collect();
-        let orphans = mesh.orient_surfaces();
-        if let Some(first) = orphans.first() {
-            return Err(format!(
-                "surface element {} of element set '{}' is not a face of any volume element{}",
-                first.facet_id,
-                first.surface,
-                match orphans.len() - 1 {
-                    0 => String::new(),
-                    n => format!(" ({n} more such elements)"),
-                }
-            ));
-        }
-        Ok(mesh)
     }
 }
 

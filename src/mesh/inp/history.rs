@@ -62,6 +62,7 @@ impl Reader<'_> {
             boundaries: Vec::new(),
             cloads: Vec::new(),
             pressures: Vec::new(),
+            gravities: Vec::new(),
             outputs: Vec::new(),
             at: self.deck.locate(line),
         });
@@ -274,8 +275,13 @@ impl Reader<'_> {
         let amplitude = keyword.param("AMPLITUDE").map(str::to_string);
         let dsload = keyword.name == "DSLOAD";
         let mut records = Vec::new();
+        let mut gravities = Vec::new();
         for l in data {
             let f = data_fields(l);
+            if !dsload && f.get(1).is_some_and(|t| t.eq_ignore_ascii_case("GRAV")) {
+                gravities.push(self.gravity(l, &f, amplitude.clone())?);
+                continue;
+            }
             if f.len() != 3 {
                 return Err(self.err(
                     l,
@@ -305,7 +311,7 @@ impl Reader<'_> {
                     .strip_prefix('P')
                     .and_then(|k| k.parse::<usize>().ok())
                     .filter(|&k| k >= 1)
-                    .ok_or_else(|| self.err(l, format!("*DLOAD load type {} is not supported: P1…P6 (pressure on face S1…S6) are", f[1])))?;
+                    .ok_or_else(|| self.err(l, format!("*DLOAD load type {} is not supported: P1…P6 (pressure on face S1…S6) and GRAV (gravity) are", f[1])))?;
                 self.face_surface(l, f[0], face)?
             };
             records.push(PressureDef {
@@ -318,7 +324,60 @@ impl Reader<'_> {
         let step = self.current_step(line, keyword)?;
         step.new_pressures |= new;
         step.pressures.extend(records);
+        step.gravities.extend(gravities);
         Ok(())
+    }
+
+    /// A `*DLOAD` gravity line `elset, GRAV, g, n₁, n₂, n₃`.
+    fn gravity(&self, l: &Line, f: &[&str], amplitude: Option<String>) -> Result<GravityDef> {
+        if f.len() != 6 {
+            return Err(self.err(
+                l,
+                format!(
+                    "a *DLOAD gravity line is 'element set, GRAV, magnitude, n1, n2, n3'; found '{}'",
+                    l.text()
+                ),
+            ));
+        }
+        let field = unquote(f[0]);
+        if field.parse::<u64>().is_ok() {
+            return Err(self.err(
+                l,
+                format!("*DLOAD, GRAV on element {field}: give an element set (*ELSET) instead of an element number"),
+            ));
+        }
+        let set = self.context.name(field);
+        if self.builder.element_sets.get(&set).is_none() {
+            return Err(self.err(
+                l,
+                format!("*DLOAD: {}", self.missing_set(&set, "element set (*ELSET)")),
+            ));
+        }
+        let elements = self
+            .builder
+            .element_sets
+            .canonical(&set)
+            .unwrap_or(&set)
+            .to_string();
+        let g = self.number(l, f[2])?;
+        let n = [
+            self.number(l, f[3])?,
+            self.number(l, f[4])?,
+            self.number(l, f[5])?,
+        ];
+        let length = n.iter().map(|x| x * x).sum::<f64>().sqrt();
+        if !(length > 0.0 && length.is_finite()) {
+            return Err(self.err(
+                l,
+                "*DLOAD, GRAV: the direction (n1, n2, n3) has zero length; give the direction of gravity, e.g. 0, 0, -1".into(),
+            ));
+        }
+        Ok(GravityDef {
+            elements,
+            acceleration: n.map(|x| g * x / length),
+            amplitude,
+            at: self.deck.locate(l),
+        })
     }
 
     /// The implicit surface `<elset>:S<k>` (or `element:<id>:S<k>`) of a

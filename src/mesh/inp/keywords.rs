@@ -14,8 +14,7 @@ use super::{data_fields, Member, Mode, Reader};
 use crate::Result;
 
 /// Keywords that do not change the answer of a static run with isotropic
-/// materials: printed and restart output, solver controls, density (no
-/// gravity or dynamics is read), thermal constants (no temperature is
+/// materials: printed and restart output, solver controls, thermal constants (no temperature is
 /// read), orientations (the materials are isotropic).
 const WITHOUT_EFFECT: &[&str] = &[
     "PREPRINT",
@@ -30,7 +29,6 @@ const WITHOUT_EFFECT: &[&str] = &[
     "DIAGNOSTICS",
     "MONITOR",
     "FILE FORMAT",
-    "DENSITY",
     "EXPANSION",
     "CONDUCTIVITY",
     "SPECIFIC HEAT",
@@ -68,6 +66,7 @@ impl Reader<'_> {
             "MATERIAL" => self.material(line, keyword),
             "ELASTIC" => self.elastic(line, keyword, data),
             "HYPERELASTIC" => self.hyperelastic(line, keyword, data),
+            "DENSITY" => self.density(line, keyword, data),
             "SOLID SECTION" => self.solid_section(line, keyword),
             "AMPLITUDE" => self.amplitude(line, keyword, data),
             "TIME POINTS" => self.time_points(line, keyword, data),
@@ -177,6 +176,7 @@ impl Reader<'_> {
             name,
             elastic: None,
             hyperelastic: None,
+            density: None,
             at: self.deck.locate(line),
         });
         self.material = Some(self.physics.materials.len() - 1);
@@ -204,6 +204,15 @@ impl Reader<'_> {
         }
         let v = self.one_line(line, keyword, data, 2)?;
         self.physics.materials[m].elastic = Some((v[0], v[1]));
+        Ok(())
+    }
+
+    /// `*DENSITY`: `ρ` (mass per unit volume; a temperature after it is
+    /// not read).
+    fn density(&mut self, line: &Line, keyword: &Keyword, data: &[Line]) -> Result<()> {
+        let m = self.current_material(line, keyword)?;
+        let v = self.one_line(line, keyword, data, 2)?;
+        self.physics.materials[m].density = Some(v[0]);
         Ok(())
     }
 

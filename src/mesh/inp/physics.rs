@@ -47,6 +47,8 @@ pub struct MaterialDef {
     /// `*ELASTIC` (isotropic): `E, ν`.
     pub elastic: Option<(f64, f64)>,
     pub hyperelastic: Option<Hyperelastic>,
+    /// `*DENSITY`: mass per unit reference volume `ρ` (read for `GRAV`).
+    pub density: Option<f64>,
     pub at: Located,
 }
 
@@ -137,6 +139,19 @@ pub struct PressureDef {
     pub at: Located,
 }
 
+/// A `*DLOAD` gravity line `elset, GRAV, g, n₁, n₂, n₃`: the body force
+/// per unit reference volume `ρ g n` on the element set (`n` the unit
+/// direction, normalised from the deck's; `ρ` each element's `*DENSITY`).
+#[derive(Clone, Debug)]
+pub struct GravityDef {
+    /// The element set (its canonical name).
+    pub elements: String,
+    /// The acceleration `g n`.
+    pub acceleration: [f64; 3],
+    pub amplitude: Option<String>,
+    pub at: Located,
+}
+
 /// Which output request.
 #[derive(Clone, Debug, PartialEq, Eq)]
 pub enum OutputKind {
@@ -178,6 +193,8 @@ pub struct StepDef {
     pub boundaries: Vec<BoundaryDef>,
     pub cloads: Vec<CloadDef>,
     pub pressures: Vec<PressureDef>,
+    /// `*DLOAD` `GRAV` lines (`OP=NEW` removes them with the pressures).
+    pub gravities: Vec<GravityDef>,
     pub outputs: Vec<OutputDef>,
     pub at: Located,
 }

@@ -1,0 +1,140 @@
+//! The `[[material]]` tables: one material model per element, and the
+//! [`Model`] they make with the mesh.
+
+use super::schema::MaterialModel;
+use super::Case;
+use crate::assembly::kernel::KernelFailure;
+use crate::assembly::pattern::NodeGraph;
+use crate::assembly::Model;
+use crate::material::{self, Material};
+use crate::problem::SolverSettings;
+use crate::solve::ordering::EarlyDissection;
+use crate::{Error, Result};
+use std::sync::Arc;
+
+/// The materials, and the index into them of each element's.
+type ElementMaterials = (Vec<Arc<dyn Material>>, Vec<usize>);
+
+impl Case {
+    /// The material model of `[[material]]` `i`, validated.
+    fn material(&self, i: usize) -> Result<Arc<dyn Material>> {
+        let key = format!("material[{i}]");
+        Ok(match &self.spec.material[i].model {
+            MaterialModel::Ogden(c) => Arc::new(material::Ogden::new(
+                c.mu.clone(),
+                c.alpha.clone(),
+                c.bulk_modulus,
+                &key,
+            )?),
+            MaterialModel::LinearElastic(c) => Arc::new(material::LinearElastic::new(
+                c.youngs_modulus,
+                c.poisson_ratio,
+                &key,
+            )?),
+            MaterialModel::SaintVenantKirchhoff(c) => Arc::new(
+                material::SaintVenantKirchhoff::new(c.youngs_modulus, c.poisson_ratio, &key)?,
+            ),
+            MaterialModel::NeoHookean(c) => Arc::new(material::NeoHookean::new(
+                c.youngs_modulus,
+                c.poisson_ratio,
+                &key,
+            )?),
+        })
+    }
+
+    /// The materials and the index of each element's: exactly one per
+    /// element.
+    pub(super) fn element_materials(&self) -> Result<ElementMaterials> {
+        let spec = &self.spec;
+        let mesh = &self.mesh;
+        let mut materials: Vec<Arc<dyn Material>> = Vec::new();
+        let mut element_material: Vec<Option<usize>> = vec![None; mesh.elements.len()];
+        for (i, m) in spec.material.iter().enumerate() {
+            let key = format!("material[{i}].region");
+            let region = self.region(&key, &m.region)?;
+            materials.push(self.material(i)?);
+            for &e in &region.elements {
+                if let Some(j) = element_material[e] {
+                    return Err(self.err(format!(
+                        "{key}: element {} of region '{}' already has the material of material[{j}] (region '{}'); give each element one material",
+                        mesh.elements[e].id, m.region, spec.material[j].region
+                    )));
+                }
+                element_material[e] = Some(i);
+            }
+        }
+        let element_material = element_material
+            .iter()
+            .enumerate()
+            .map(|(e, m)| m.ok_or_else(|| self.without_material(e)))
+            .collect::<Result<Vec<_>>>()?;
+        Ok((materials, element_material))
+    }
+
+    /// Element `e` has no material: the regions that hold it, and the fix.
+    fn without_material(&self, e: usize) -> Error {
+        let mesh = &self.mesh;
+        let regions: Vec<&str> = mesh
+            .regions
+            .iter()
+            .filter(|r| r.elements.contains(&e))
+            .map(|r| r.name.as_str())
+            .collect();
+        self.err(format!(
+            "element {} (region {}) has no material: add a [[material]] with region = \"{}\"",
+            mesh.elements[e].id,
+            regions.join(", "),
+            regions.first().copied().unwrap_or("default")
+        ))
+    }
+
+    /// The model of the mesh and its materials, and the nested dissection
+    /// of the elements' graph, started on the idle core as soon as that
+    /// graph exists if the run will order it so.
+    pub(super) fn model(
+        &self,
+        materials: Vec<Arc<dyn Material>>,
+        element_material: Vec<usize>,
+    ) -> Result<(Model, Option<EarlyDissection>)> {
+        let spec = &self.spec;
+        let mesh = &self.mesh;
+        let defaults = SolverSettings::default();
+        let dissect = crate::problem::dissects_element_graph(
+            spec.solver.linear.unwrap_or(defaults.linear),
+            spec.solver.strategy.unwrap_or(defaults.strategy),
+            3 * mesh.num_nodes(),
+            spec.contact.iter().map(|c| c.obstacle.is_some()),
+        );
+        let mut dissection = None;
+        let on_graph = |graph: &NodeGraph| {
+            if dissect {
+                dissection = Some(EarlyDissection::start(graph));
+            }
+        };
+        let model = Model::with_graph(mesh.clone(), materials, element_material, on_graph);
+        let model = model.map_err(|f| {
+            let (quadrature_point, det_j) = match f.failure {
+                KernelFailure::ReferenceInverted {
+                    quadrature_point,
+                    det_j,
+                } => (quadrature_point, det_j),
+                KernelFailure::Inverted {
+                    quadrature_point,
+                    det_f,
+                } => (quadrature_point, det_f),
+            };
+            Error::InvertedElement {
+                element: mesh.elements[f.element].id,
+                quadrature_point,
+                det_j,
+                in_reference: true,
+                what: if det_j == 0.0 {
+                    "degenerate"
+                } else {
+                    "inverted"
+                },
+            }
+        })?;
+        Ok((model, dissection))
+    }
+}

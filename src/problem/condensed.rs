@@ -61,7 +61,7 @@
 //! `summary.json` say why.
 
 use super::{ContactState, Problem};
-use crate::contact::laws::{NormalLaw, SlackState};
+use crate::contact::interface::ConstraintRow;
 
 mod applicability;
 mod condensation;
@@ -108,15 +108,22 @@ fn set_multipliers(
         let gaps = interface.gaps(reference, t, u, None);
         for (i, &pressure) in pressures[ci].iter().enumerate() {
             let node = &mut state.interfaces[ci][i];
-            match interface.law_at(i) {
-                NormalLaw::Rockafellar { k, .. } => node.lambda = pressure / k,
-                NormalLaw::Slack { p, k } => {
-                    node.lambda = pressure / k;
-                    node.slack = SlackState::consistent(gaps[i], node.lambda, p, k);
-                }
-                _ => continue,
+            let law = interface.law_at(i);
+            if let Some(lambda) = law.set_converged_pressure(pressure, gaps[i], node) {
+                x[dofs + interface.multiplier_offset + i] = lambda;
             }
-            x[dofs + interface.multiplier_offset + i] = node.lambda;
         }
     }
+}
+
+/// The node driver's [`ConstraintRow`] of every secondary node of every
+/// interface at time `t` and unknowns `x` (the contact's linearisation, the
+/// one thing the condensed path reads of the obstacles).
+fn constraint_rows(problem: &Problem, t: f64, x: &[f64]) -> Vec<Vec<Option<ConstraintRow>>> {
+    let reference = &problem.model.mesh.nodes;
+    problem
+        .contacts
+        .iter()
+        .map(|c| c.constraint_rows(reference, t, x, None))
+        .collect()
 }

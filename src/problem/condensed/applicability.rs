@@ -2,9 +2,6 @@
 //! why the condensed one does not apply ([`not_applicable`]).
 
 use super::{friction, has_friction, Problem};
-use crate::contact::interface::Primary;
-use crate::contact::laws::NormalLaw;
-use crate::contact::obstacle::RigidObstacle;
 use crate::material::Kinematics;
 use crate::solve::settings::Strategy;
 use nalgebra::{Matrix6, Vector3, Vector6};
@@ -95,21 +92,13 @@ pub fn not_applicable(problem: &Problem) -> Option<String> {
         ));
     }
     for c in &problem.contacts {
-        let why = match (&c.primary, c.law) {
-            (Primary::Surface(_), _) => Some("is between two bodies (not condensed yet)".into()),
-            (Primary::Rigid(RigidObstacle::Plane { .. }), NormalLaw::Uzawa { .. }) => Some(
-                "uses uzawa, which meets the constraint only to its outer loop's tolerance".into(),
-            ),
-            (Primary::Rigid(RigidObstacle::Plane { .. }), _) => None,
-            (Primary::Rigid(o), _) => Some(format!(
-                "is against a {}, whose gap is not linear in the displacement",
-                match o {
-                    RigidObstacle::Sphere { .. } => "sphere",
-                    RigidObstacle::Cylinder { .. } => "cylinder",
-                    _ => "triangulated surface",
-                }
-            )),
-        };
+        // the gap from the node driver, affine in `u`; a law whose
+        // converged state is exact or a penalty (not an outer loop's)
+        let why = c.affine_gap().err().or_else(|| {
+            c.law.has_outer_loop().then(|| {
+                "uses uzawa, which meets the constraint only to its outer loop's tolerance".into()
+            })
+        });
         if let Some(why) = why {
             return Some(format!("contact '{}' {why}", c.name));
         }

@@ -2,11 +2,9 @@
 //! contact dofs ordered last, the flexibility `W` over the candidate nodes
 //! and the exact complementarity solve of an increment.
 
-use super::Problem;
+use super::{constraint_rows, Problem};
 use crate::assembly::triangle::{self, LowerTriangle};
-use crate::contact::interface::Primary;
-use crate::contact::laws::NormalLaw;
-use crate::contact::obstacle::RigidObstacle;
+use crate::contact::laws::NormalEnforcement;
 use crate::solve::complementarity::solve_lcp;
 use crate::solve::decoupled::{decoupled_first, Decoupled};
 use crate::solve::linear::{scaled_identity_rows, Precision, SparseLdlt};
@@ -14,16 +12,18 @@ use crate::solve::newton::IterationRecord;
 use crate::solve::schur::{grow_flexibility, trailing_ordering, Direction, TrailingInverse};
 use crate::solve::settings::LinearMethod;
 use crate::{Error, Result};
-use nalgebra::{DMatrix, Vector3};
+use nalgebra::DMatrix;
 use std::sync::Arc;
 
-/// One secondary node of a rigid-plane interface.
+/// One column of `E`: a row of a secondary node's linearised constraint
+/// ([`crate::contact::interface::ConstraintRow`]).
 pub(super) struct ContactNode {
     pub(super) interface: usize,
-    /// Index among the interface's nodes, and the mesh node.
+    /// Index among the interface's nodes.
     pub(super) index: usize,
-    pub(super) node: usize,
-    pub(super) normal: Vector3<f64>,
+    /// The column on every unknown, `(dof, value)`: `∇g = Bᵀn` (the
+    /// frictionless path), or a row of the lever `B` (the frictional one).
+    pub(super) column: Vec<(usize, f64)>,
     /// `1/(A ε)` of a penalty law (0 for the exact laws): the diagonal
     /// added to `W`.
     pub(super) compliance: f64,
@@ -114,23 +114,24 @@ const MIXED_REFINEMENTS: usize = 10;
 
 impl Condensation {
     /// The frictionless condensation: one column per secondary node of
-    /// every rigid-plane interface, its normal; `K̃` unshifted.
+    /// every interface, its gap gradient `∇g` from the node driver (at
+    /// `u = 0`: the gaps are affine, [`super::not_applicable`]) and, for a
+    /// penalty law, the compliance `1/(A ε)`; `K̃` unshifted.
     pub(super) fn new(problem: &Problem) -> Result<Self> {
         let mut nodes = Vec::new();
-        for (ci, c) in problem.contacts.iter().enumerate() {
-            let Primary::Rigid(RigidObstacle::Plane { normal, .. }) = &c.primary else {
-                continue;
-            };
-            for (i, &node) in c.nodes.iter().enumerate() {
-                let compliance = match c.law_at(i) {
-                    NormalLaw::Penalty { epsilon } => 1.0 / (c.areas[i] * epsilon),
-                    _ => 0.0,
+        let zero = vec![0.0; problem.num_unknowns()];
+        for (ci, rows) in constraint_rows(problem, 0.0, &zero).iter().enumerate() {
+            let c = problem.contacts.interface(ci);
+            for (i, row) in rows.iter().enumerate() {
+                let Some(row) = row else { continue };
+                let compliance = match c.law_at(i).converged() {
+                    NormalEnforcement::Penalty { epsilon } => 1.0 / (row.area * epsilon),
+                    NormalEnforcement::Exact { .. } => 0.0,
                 };
                 nodes.push(ContactNode {
                     interface: ci,
                     index: i,
-                    node,
-                    normal: *normal,
+                    column: row.gradient(),
                     compliance,
                 });
             }
@@ -269,9 +270,8 @@ impl Condensation {
         Ok((trailing, decoupled, ldlt))
     }
 
-    /// The free dofs on which the normals of the contact nodes nearest to
-    /// their planes (gap at `u = 0`, the smallest over the steps' ends)
-    /// have a component, of the nearest `fraction` of the nodes, at most
+    /// The free dofs of the columns of the contact nodes nearest to their
+    /// obstacles (gap at `u = 0`, the smallest over the steps' ends), of the nearest `fraction` of the nodes, at most
     /// [`MAX_TRAILING`].
     pub(super) fn nearest_normal_dofs(
         problem: &Problem,
@@ -289,12 +289,7 @@ impl Condensation {
             let per_interface: Vec<Vec<f64>> = problem
                 .contacts
                 .iter()
-                .map(|c| match c.primary {
-                    Primary::Rigid(RigidObstacle::Plane { .. }) => {
-                        c.gaps(reference, t, &zero, None)
-                    }
-                    _ => Vec::new(),
-                })
+                .map(|c| c.gaps(reference, t, &zero, None))
                 .collect();
             for (g, c) in gap.iter_mut().zip(nodes) {
                 *g = g.min(per_interface[c.interface][c.index]);
@@ -306,9 +301,9 @@ impl Condensation {
         let mut taken = vec![false; dimension];
         for a in order {
             let c = &nodes[a];
-            let free: Vec<usize> = (0..3)
-                .map(|d| 3 * c.node + d)
-                .filter(|&i| !constrained[i] && c.normal[i % 3] != 0.0 && !taken[i])
+            let free: Vec<usize> = (c.column.iter())
+                .filter(|&&(i, n)| !constrained[i] && n != 0.0 && !taken[i])
+                .map(|&(i, _)| i)
                 .collect();
             if dofs.len() + free.len() > limit {
                 break;
@@ -319,23 +314,29 @@ impl Condensation {
         dofs
     }
 
-    /// `E e_a`: the normal of node `a` on its free dofs, as a direction.
+    /// `E e_a`: column `a` on the free dofs, as a direction.
     pub(super) fn direction(&self, a: usize) -> Direction {
-        let c = &self.nodes[a];
-        (0..3)
-            .map(|d| (3 * c.node + d, c.normal[d]))
-            .filter(|&(i, n)| !self.constrained[i] && n != 0.0)
+        (self.nodes[a].column.iter())
+            .filter(|&&(i, n)| !self.constrained[i] && n != 0.0)
+            .copied()
             .collect()
     }
 
-    /// `E e_a`: the normal of node `a` on its free dofs.
+    /// `v += factor E e_a`.
     pub(super) fn add_column(&self, a: usize, factor: f64, v: &mut [f64]) {
-        let c = &self.nodes[a];
-        for d in 0..3 {
-            if !self.constrained[3 * c.node + d] {
-                v[3 * c.node + d] += factor * c.normal[d];
+        for &(i, n) in &self.nodes[a].column {
+            if !self.constrained[i] {
+                v[i] += factor * n;
             }
         }
+    }
+
+    /// `(E e_a)ᵀ v`.
+    pub(super) fn column_dot(&self, a: usize, v: &[f64]) -> f64 {
+        (self.nodes[a].column.iter())
+            .filter(|&&(i, _)| !self.constrained[i])
+            .map(|&(i, n)| n * v[i])
+            .sum()
     }
 
     /// Add the nodes `new` to the candidates: their columns of `W` from
@@ -454,10 +455,7 @@ impl Condensation {
         let per_interface: Vec<Vec<f64>> = problem
             .contacts
             .iter()
-            .map(|c| match c.primary {
-                Primary::Rigid(RigidObstacle::Plane { .. }) => c.gaps(reference, t, x, None),
-                _ => Vec::new(),
-            })
+            .map(|c| c.gaps(reference, t, x, None))
             .collect();
         self.nodes
             .iter()

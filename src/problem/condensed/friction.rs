@@ -23,23 +23,23 @@
 //! columns are solves with the same factor, not shifted). One
 //! factorisation per run.
 
-use super::{Condensation, ContactNode, ContactState, IncrementSolver, Problem};
+use super::{constraint_rows, Condensation, ContactNode, ContactState, IncrementSolver, Problem};
 use crate::contact::friction::{ContactStatus, Coulomb};
-use crate::contact::interface::Primary;
-use crate::contact::laws::NormalLaw;
-use crate::contact::obstacle::RigidObstacle;
-use crate::solve::cone::{solve_cone, ConeNode, ConeProblem, NormalEnforcement, TangentialLaw};
+use crate::contact::interface::ConstraintRow;
+use crate::solve::cone::{solve_cone, ConeNode, ConeProblem, TangentialLaw};
 use crate::solve::linear_solver::SolverStatistics;
 use crate::solve::method::WarmStart;
 use crate::solve::newton::IterationRecord;
 use crate::{Error, Result};
 use nalgebra::Vector3;
 
-/// A secondary node of a rigid-plane interface.
+/// A secondary node of an interface.
 struct FrictionNode {
     interface: usize,
     index: usize,
     node: usize,
+    /// Its unit normal (constant: the gaps are affine).
+    normal: Vector3<f64>,
     /// Its free components `d` with their columns in [`Condensation::nodes`].
     columns: Vec<(usize, usize)>,
 }
@@ -86,16 +86,13 @@ fn touching(problem: &Problem) -> f64 {
     1e-12 * problem.model.size()
 }
 
-/// The free dofs of the rigid-plane nodes that touch or penetrate at the
+/// The free dofs of the secondary nodes that touch or penetrate at the
 /// start: the ones the frictional path shifts.
 pub(super) fn initially_touching_dofs(problem: &Problem) -> Vec<usize> {
     let constrained = problem.constrained_dofs();
     let tolerance = touching(problem);
     let mut dofs = Vec::new();
     for (ci, c) in problem.contacts.iter().enumerate() {
-        if !matches!(c.primary, Primary::Rigid(RigidObstacle::Plane { .. })) {
-            continue;
-        }
         for (i, g) in initial_gaps(problem, ci).iter().enumerate() {
             if *g <= tolerance {
                 let node = c.nodes[i];
@@ -117,12 +114,12 @@ impl FrictionalCondensation {
         let mut contact = Vec::new();
         let mut initial = Vec::new();
         let tolerance = touching(problem);
-        for (ci, c) in problem.contacts.iter().enumerate() {
-            if !matches!(c.primary, Primary::Rigid(RigidObstacle::Plane { .. })) {
-                continue;
-            }
+        let zero = vec![0.0; problem.num_unknowns()];
+        for (ci, rows) in constraint_rows(problem, 0.0, &zero).iter().enumerate() {
             let gaps = initial_gaps(problem, ci);
-            for (i, &node) in c.nodes.iter().enumerate() {
+            for (i, row) in rows.iter().enumerate() {
+                let Some(row) = row else { continue };
+                let node = row.node;
                 let mut own = Vec::new();
                 for d in (0..3).filter(|&d| !constrained[3 * node + d]) {
                     own.push((d, columns.len()));
@@ -130,8 +127,7 @@ impl FrictionalCondensation {
                     columns.push(ContactNode {
                         interface: ci,
                         index: i,
-                        node,
-                        normal: Vector3::ith(d, 1.0),
+                        column: row.lever_row(d),
                         compliance: 0.0,
                     });
                 }
@@ -142,6 +138,7 @@ impl FrictionalCondensation {
                     interface: ci,
                     index: i,
                     node,
+                    normal: row.normal,
                     columns: own,
                 });
             }
@@ -151,8 +148,10 @@ impl FrictionalCondensation {
         let shifted_dofs: Vec<usize> = if floating {
             initial
                 .iter()
-                .flat_map(|&a| contact[a].columns.iter().map(|&(_, col)| col))
-                .map(|col| 3 * columns[col].node + columns[col].normal.iamax())
+                .flat_map(|&a| {
+                    let node = contact[a].node;
+                    contact[a].columns.iter().map(move |&(d, _)| 3 * node + d)
+                })
                 .collect()
         } else {
             Vec::new()
@@ -195,32 +194,26 @@ impl FrictionalCondensation {
         Ok(())
     }
 
-    /// The condensed node of contact node `a` at time `t` from its
-    /// committed state.
-    fn cone_node(&self, problem: &Problem, t: f64, state: &ContactState, a: usize) -> ConeNode {
+    /// The condensed node of contact node `a` from its committed state and
+    /// its constraint row `rest` at `u = 0` (at the increment's time).
+    fn cone_node(
+        &self,
+        problem: &Problem,
+        rest: &ConstraintRow,
+        state: &ContactState,
+        a: usize,
+    ) -> ConeNode {
         let c = &self.contact[a];
         let interface = problem.contacts.interface(c.interface);
-        let Primary::Rigid(RigidObstacle::Plane { point, normal }) = &interface.primary else {
-            unreachable!("the frictional condensation holds rigid-plane nodes only")
-        };
         let committed = &state.interfaces[c.interface][c.index];
-        let translation = interface.translation_at(t);
-        let position = Vector3::from(problem.model.mesh.nodes[c.node]) - translation;
         let coulomb = interface.friction_at(c.index).unwrap_or(Coulomb {
             coefficient: 0.0,
             tangential_penalty: 1.0,
         });
-        let normal_law = match interface.law_at(c.index) {
-            NormalLaw::Penalty { epsilon } => NormalEnforcement::Penalty { epsilon },
-            NormalLaw::Rockafellar { p, .. } | NormalLaw::Slack { p, .. } => {
-                NormalEnforcement::Exact { r: p }
-            }
-            NormalLaw::Uzawa { epsilon, .. } => NormalEnforcement::Exact { r: epsilon },
-        };
         ConeNode {
-            normal: *normal,
-            area: interface.areas[c.index],
-            normal_law,
+            normal: rest.normal,
+            area: rest.area,
+            normal_law: interface.law_at(c.index).converged(),
             tangential_law: if interface.exact_stick() {
                 TangentialLaw::ExactStick
             } else {
@@ -228,8 +221,8 @@ impl FrictionalCondensation {
             },
             coulomb,
             committed_traction: committed.friction.traction,
-            gap_at_rest: (position - point).dot(normal),
-            offset_at_rest: position - committed.friction.anchor,
+            gap_at_rest: rest.gap,
+            offset_at_rest: rest.relative_position - committed.friction.anchor,
             committed_gap: committed.gap,
             was_open: committed.friction.status == ContactStatus::Open,
             prescribed: [0, 1, 2].map(|d| self.base.constrained[3 * c.node + d]),
@@ -251,6 +244,8 @@ impl FrictionalCondensation {
         let mut prescribed_all = vec![0.0; b.len()];
         problem.apply_prescribed(t, &mut prescribed_all);
         let tolerance = touching(problem);
+        let zero = vec![0.0; b.len()];
+        let rest = constraint_rows(problem, t, &zero);
         loop {
             let slot: std::collections::HashMap<usize, usize> = self
                 .candidates
@@ -261,7 +256,12 @@ impl FrictionalCondensation {
             let nodes: Vec<ConeNode> = self
                 .candidates
                 .iter()
-                .map(|&a| self.cone_node(problem, t, state, a))
+                .map(|&a| {
+                    let c = &self.contact[a];
+                    let row = rest[c.interface][c.index].as_ref();
+                    let row = row.expect("a contact node's row at rest exists at every time");
+                    self.cone_node(problem, row, state, a)
+                })
                 .collect();
             let prescribed: Vec<Vector3<f64>> = self
                 .candidates
@@ -284,13 +284,11 @@ impl FrictionalCondensation {
                     (slot[&a], d)
                 })
                 .collect();
-            let dof = |col: usize| 3 * self.base.nodes[col].node + self.column_owner[col].1;
-            let free: Vec<f64> = self.base.candidates.iter().map(|&c| u0[dof(c)]).collect();
-            let guess_u: Vec<f64> = self
-                .base
-                .candidates
-                .iter()
-                .map(|&c| self.displacement[c].unwrap_or(u0[dof(c)]))
+            let free: Vec<f64> = (self.base.candidates.iter())
+                .map(|&c| self.base.column_dot(c, &u0))
+                .collect();
+            let guess_u: Vec<f64> = (self.base.candidates.iter().zip(&free))
+                .map(|(&c, &f)| self.displacement[c].unwrap_or(f))
                 .collect();
             let guess_t: Vec<Vector3<f64>> =
                 self.candidates.iter().map(|&a| self.traction[a]).collect();
@@ -331,7 +329,8 @@ impl FrictionalCondensation {
                 } else {
                     0.0
                 };
-                u[dof(col)] += nodes[s].area * solution.traction[s][d] + shift;
+                let force = nodes[s].area * solution.traction[s][d] + shift;
+                self.base.add_column(col, force, &mut u);
                 self.displacement[col] = Some(solution.displacement[k]);
             }
             for (s, &a) in self.candidates.iter().enumerate() {
@@ -382,9 +381,7 @@ impl IncrementSolver for FrictionalCondensation {
         let mut pressures = super::zero_per_node(problem);
         for (a, c) in self.contact.iter().enumerate() {
             let interface = problem.contacts.interface(c.interface);
-            let Primary::Rigid(RigidObstacle::Plane { normal, .. }) = &interface.primary else {
-                continue;
-            };
+            let normal = &c.normal;
             let tn = normal.dot(&traction[a]);
             pressures[c.interface][c.index] = tn;
             if interface.exact_stick() {

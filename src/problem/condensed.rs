@@ -26,7 +26,7 @@
 //! ```
 //!
 //! a linear complementarity problem solved exactly
-//! ([`crate::solve::complementarity`]); `u = K̃⁻¹ (b + E λ)` follows from one
+//! ([`crate::solve::condensed::complementarity`]); `u = K̃⁻¹ (b + E λ)` follows from one
 //! more solve. The exact laws (Rockafellar, slack) converge to this very
 //! solution (their `p`, `k` only condition Newton); penalty's
 //! `t_N = ε⟨−g⟩` is the same problem with `W + diag(1/(A_a ε_a))`. Uzawa
@@ -46,7 +46,7 @@
 //! ## Coulomb friction
 //! With friction on some interface the run takes [`friction`]: three
 //! unknowns per contact node, a dense semismooth Newton solve per
-//! increment ([`crate::solve::cone`]), and a shifted `K̂` where only the
+//! increment ([`crate::solve::condensed::cone`]), and a shifted `K̂` where only the
 //! contact holds a body.
 //!
 //! ## Where it applies ([`not_applicable`])

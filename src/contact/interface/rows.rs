@@ -105,16 +105,17 @@ impl ContactInterface {
     pub fn affine_gap(&self) -> Result<(), String> {
         let curved = match &self.primary {
             Primary::Rigid(RigidObstacle::Plane { .. }) => return Ok(()),
-            Primary::Surface(_) => {
+            Primary::Rigid(RigidObstacle::Sphere { .. }) => "sphere",
+            Primary::Rigid(RigidObstacle::Cylinder { .. }) => "cylinder",
+            Primary::Rigid(_) => "triangulated surface",
+            // a primary surface (and any primary kind added later)
+            _ => {
                 return Err(
                     "is between two bodies (its gap follows the projection on the \
                             primary surface)"
                         .into(),
                 )
             }
-            Primary::Rigid(RigidObstacle::Sphere { .. }) => "sphere",
-            Primary::Rigid(RigidObstacle::Cylinder { .. }) => "cylinder",
-            Primary::Rigid(_) => "triangulated surface",
         };
         Err(format!(
             "is against a {curved}, whose gap is not linear in the displacement"

@@ -1,7 +1,7 @@
 //! The frictional condensed path: Coulomb friction against rigid planes on
 //! a body of constant stiffness, three unknowns per contact node, solved
 //! per increment by the dense semismooth Newton method of
-//! [`crate::solve::cone`], with the friction history committed per
+//! [`crate::solve::condensed::cone`], with the friction history committed per
 //! increment by the problem itself (as the monolithic path does).
 //!
 //! ## A body that only contact holds
@@ -26,7 +26,10 @@
 use super::{constraint_rows, Condensation, ContactNode, ContactState, IncrementSolver, Problem};
 use crate::contact::friction::{ContactStatus, Coulomb};
 use crate::contact::interface::ConstraintRow;
-use crate::solve::cone::{solve_cone, ConeNode, ConeProblem, TangentialLaw};
+use crate::solve::condensed::cone::{
+    solve_cone, ConeNode, ConeProblem, ConeSolution, TangentialLaw,
+};
+use crate::solve::condensed::flexibility::Column;
 use crate::solve::linear_solver::SolverStatistics;
 use crate::solve::method::WarmStart;
 use crate::solve::newton::IterationRecord;
@@ -109,7 +112,7 @@ impl FrictionalCondensation {
     /// made candidates.
     pub(super) fn new(problem: &Problem) -> Result<Self> {
         let constrained = problem.constrained_dofs();
-        let mut columns = Vec::new();
+        let (mut owners, mut columns) = (Vec::new(), Vec::new());
         let mut column_owner = Vec::new();
         let mut contact = Vec::new();
         let mut initial = Vec::new();
@@ -124,10 +127,12 @@ impl FrictionalCondensation {
                 for d in (0..3).filter(|&d| !constrained[3 * node + d]) {
                     own.push((d, columns.len()));
                     column_owner.push((contact.len(), d));
-                    columns.push(ContactNode {
+                    owners.push(ContactNode {
                         interface: ci,
                         index: i,
-                        column: row.lever_row(d),
+                    });
+                    columns.push(Column {
+                        entries: row.lever_row(d),
                         compliance: 0.0,
                     });
                 }
@@ -156,10 +161,14 @@ impl FrictionalCondensation {
         } else {
             Vec::new()
         };
-        let base = Condensation::factorise(problem, columns, &shifted_dofs, 1.0, false)?;
-        let shift = if floating { base.scale } else { 0.0 };
+        let base = Condensation::factorise(problem, owners, columns, &shifted_dofs, 1.0, false)?;
+        let shift = if floating {
+            base.flexibility.scale
+        } else {
+            0.0
+        };
         let count = contact.len();
-        let columns_count = base.nodes.len();
+        let columns_count = base.flexibility.columns.len();
         let mut condensation = FrictionalCondensation {
             base,
             contact,
@@ -184,7 +193,7 @@ impl FrictionalCondensation {
             .iter()
             .flat_map(|&a| self.contact[a].columns.iter().map(|&(_, col)| col))
             .collect();
-        self.base.grow(&columns)?;
+        self.base.flexibility.grow(&columns)?;
         self.inverse = None;
         self.shifted.extend(columns.iter().map(|_| shifted));
         for &a in new {
@@ -225,12 +234,14 @@ impl FrictionalCondensation {
             offset_at_rest: rest.relative_position - committed.friction.anchor,
             committed_gap: committed.gap,
             was_open: committed.friction.status == ContactStatus::Open,
-            prescribed: [0, 1, 2].map(|d| self.base.constrained[3 * c.node + d]),
+            prescribed: [0, 1, 2].map(|d| self.base.flexibility.constrained[3 * c.node + d]),
         }
     }
 
     /// The displacements (all unknowns, multipliers zero) and the traction
-    /// of every contact node at time `t`.
+    /// of every contact node at time `t`: the condensed problem over the
+    /// candidates solved, then solved again with the nodes that penetrate
+    /// at its answer, until none does.
     fn solve_increment(
         &mut self,
         problem: &Problem,
@@ -240,68 +251,30 @@ impl FrictionalCondensation {
     ) -> Result<(Vec<f64>, Vec<Vector3<f64>>)> {
         let b = self.base.load(problem, t);
         let mut u0 = b.clone();
-        self.base.solve(&mut u0)?;
-        let mut prescribed_all = vec![0.0; b.len()];
-        problem.apply_prescribed(t, &mut prescribed_all);
-        let tolerance = touching(problem);
-        let zero = vec![0.0; b.len()];
-        let rest = constraint_rows(problem, t, &zero);
+        self.base.flexibility.solve(&mut u0)?;
+        let mut prescribed = vec![0.0; b.len()];
+        problem.apply_prescribed(t, &mut prescribed);
+        let rest = constraint_rows(problem, t, &vec![0.0; b.len()]);
         loop {
-            let slot: std::collections::HashMap<usize, usize> = self
-                .candidates
-                .iter()
-                .enumerate()
-                .map(|(s, &a)| (a, s))
+            let nodes = self.cone_nodes(problem, &rest, state)?;
+            let columns = self.cone_columns();
+            let flexibility = &self.base.flexibility;
+            let free: Vec<f64> = (flexibility.candidates.iter())
+                .map(|&c| flexibility.column_dot(c, &u0))
                 .collect();
-            let nodes: Vec<ConeNode> = self
-                .candidates
-                .iter()
-                .map(|&a| {
-                    let c = &self.contact[a];
-                    let row = rest[c.interface][c.index].as_ref();
-                    let row = row.expect("a contact node's row at rest exists at every time");
-                    self.cone_node(problem, row, state, a)
-                })
-                .collect();
-            let prescribed: Vec<Vector3<f64>> = self
-                .candidates
-                .iter()
-                .map(|&a| {
-                    let n = self.contact[a].node;
-                    Vector3::new(
-                        prescribed_all[3 * n],
-                        prescribed_all[3 * n + 1],
-                        prescribed_all[3 * n + 2],
-                    )
-                })
-                .collect();
-            let columns: Vec<(usize, usize)> = self
-                .base
-                .candidates
-                .iter()
-                .map(|&col| {
-                    let (a, d) = self.column_owner[col];
-                    (slot[&a], d)
-                })
-                .collect();
-            let free: Vec<f64> = (self.base.candidates.iter())
-                .map(|&c| self.base.column_dot(c, &u0))
-                .collect();
-            let guess_u: Vec<f64> = (self.base.candidates.iter().zip(&free))
+            let guess_u: Vec<f64> = (flexibility.candidates.iter().zip(&free))
                 .map(|(&c, &f)| self.displacement[c].unwrap_or(f))
                 .collect();
             let guess_t: Vec<Vector3<f64>> =
                 self.candidates.iter().map(|&a| self.traction[a]).collect();
-            let inverse = match self.inverse.take() {
-                Some(inverse) => inverse,
-                None => {
-                    let cholesky = self.base.w.clone().cholesky().ok_or_else(|| {
-                        Error::LinearSolver(
-                            "the condensed contact flexibility is not positive definite".into(),
-                        )
-                    })?;
-                    cholesky.inverse()
-                }
+            let inverse = self.inverse_flexibility()?;
+            let at_nodes = |a: &usize| {
+                let n = self.contact[*a].node;
+                Vector3::new(
+                    prescribed[3 * n],
+                    prescribed[3 * n + 1],
+                    prescribed[3 * n + 2],
+                )
             };
             let cone = ConeProblem {
                 inverse_flexibility: &inverse,
@@ -309,47 +282,19 @@ impl FrictionalCondensation {
                 shifted: &self.shifted,
                 shift: self.shift,
                 free_displacement: &free,
-                prescribed: &prescribed,
+                prescribed: &self.candidates.iter().map(at_nodes).collect::<Vec<_>>(),
                 nodes: &nodes,
             };
-            let solution = solve_cone(&cone, guess_u, guess_t).map_err(|e| {
+            let mut solution = solve_cone(&cone, guess_u, guess_t).map_err(|e| {
                 Error::LinearSolver(format!(
                     "{e} at time {t}; run with [solver] strategy = \"monolithic\""
                 ))
             })?;
             self.iterations += solution.iterations;
-            history.extend(solution.history);
+            history.append(&mut solution.history);
             self.inverse = Some(inverse);
-            // u = K̂⁻¹ (b + E (A t + ρ P_S u_F))
-            let mut u = b.clone();
-            for (k, &col) in self.base.candidates.iter().enumerate() {
-                let (s, d) = columns[k];
-                let shift = if self.shifted[k] {
-                    self.shift * solution.displacement[k]
-                } else {
-                    0.0
-                };
-                let force = nodes[s].area * solution.traction[s][d] + shift;
-                self.base.add_column(col, force, &mut u);
-                self.displacement[col] = Some(solution.displacement[k]);
-            }
-            for (s, &a) in self.candidates.iter().enumerate() {
-                self.traction[a] = solution.traction[s];
-            }
-            self.base.solve(&mut u)?;
-            // nodes outside the candidates that penetrate join them
-            let reference = &problem.model.mesh.nodes;
-            let gaps: Vec<Vec<f64>> = problem
-                .contacts
-                .iter()
-                .map(|c| c.gaps(reference, t, &u, None))
-                .collect();
-            let entering: Vec<usize> = (0..self.contact.len())
-                .filter(|&a| {
-                    let c = &self.contact[a];
-                    !self.is_candidate[a] && gaps[c.interface][c.index] < -tolerance
-                })
-                .collect();
+            let u = self.displacements(&b, &columns, &nodes, &solution)?;
+            let entering = self.entering(problem, t, &u);
             if entering.is_empty() {
                 let mut traction = vec![Vector3::zeros(); self.contact.len()];
                 for &a in &self.candidates {
@@ -360,6 +305,98 @@ impl FrictionalCondensation {
             self.batches.push(entering.clone());
             self.grow(&entering, false)?;
         }
+    }
+
+    /// The condensed node of every candidate from its constraint row at
+    /// rest (`rest`, per interface) and its committed state.
+    fn cone_nodes(
+        &self,
+        problem: &Problem,
+        rest: &[Vec<Option<ConstraintRow>>],
+        state: &ContactState,
+    ) -> Result<Vec<ConeNode>> {
+        (self.candidates.iter())
+            .map(|&a| {
+                let c = &self.contact[a];
+                let row = rest[c.interface][c.index].as_ref().ok_or_else(|| {
+                    Error::LinearSolver(format!(
+                        "contact node {} of '{}' has no obstacle within reach",
+                        problem.model.mesh.node_ids[c.node],
+                        problem.contacts.interface(c.interface).name
+                    ))
+                })?;
+                Ok(self.cone_node(problem, row, state, a))
+            })
+            .collect()
+    }
+
+    /// Per column of `Ŵ`: its candidate's slot and the component.
+    fn cone_columns(&self) -> Vec<(usize, usize)> {
+        let slot: std::collections::HashMap<usize, usize> = (self.candidates.iter().enumerate())
+            .map(|(s, &a)| (a, s))
+            .collect();
+        (self.base.flexibility.candidates.iter())
+            .map(|&col| {
+                let (a, d) = self.column_owner[col];
+                (slot[&a], d)
+            })
+            .collect()
+    }
+
+    /// `Ŵ⁻¹`: the one kept since `Ŵ` last changed, else its Cholesky
+    /// inverse.
+    fn inverse_flexibility(&mut self) -> Result<nalgebra::DMatrix<f64>> {
+        if let Some(inverse) = self.inverse.take() {
+            return Ok(inverse);
+        }
+        let cholesky = self.base.flexibility.w.clone().cholesky().ok_or_else(|| {
+            Error::LinearSolver("the condensed contact flexibility is not positive definite".into())
+        })?;
+        Ok(cholesky.inverse())
+    }
+
+    /// `u = K̂⁻¹ (b + E (A t + ρ P_S u_F))` from the condensed `solution`,
+    /// which becomes the next start.
+    fn displacements(
+        &mut self,
+        b: &[f64],
+        columns: &[(usize, usize)],
+        nodes: &[ConeNode],
+        solution: &ConeSolution,
+    ) -> Result<Vec<f64>> {
+        let mut u = b.to_vec();
+        let flexibility = &self.base.flexibility;
+        for (k, &col) in flexibility.candidates.iter().enumerate() {
+            let (s, d) = columns[k];
+            let shift = if self.shifted[k] {
+                self.shift * solution.displacement[k]
+            } else {
+                0.0
+            };
+            let force = nodes[s].area * solution.traction[s][d] + shift;
+            flexibility.add_column(col, force, &mut u);
+            self.displacement[col] = Some(solution.displacement[k]);
+        }
+        for (s, &a) in self.candidates.iter().enumerate() {
+            self.traction[a] = solution.traction[s];
+        }
+        self.base.flexibility.solve(&mut u)?;
+        Ok(u)
+    }
+
+    /// The contact nodes outside the candidates that penetrate at `u`.
+    fn entering(&self, problem: &Problem, t: f64, u: &[f64]) -> Vec<usize> {
+        let reference = &problem.model.mesh.nodes;
+        let gaps: Vec<Vec<f64>> = (problem.contacts.iter())
+            .map(|c| c.gaps(reference, t, u, None))
+            .collect();
+        let tolerance = touching(problem);
+        (0..self.contact.len())
+            .filter(|&a| {
+                let c = &self.contact[a];
+                !self.is_candidate[a] && gaps[c.interface][c.index] < -tolerance
+            })
+            .collect()
     }
 }
 
@@ -394,7 +431,10 @@ impl IncrementSolver for FrictionalCondensation {
     }
 
     fn statistics(&self) -> (SolverStatistics, usize) {
-        (SolverStatistics::of_ldlt(&self.base.ldlt), self.iterations)
+        (
+            SolverStatistics::of_ldlt(&self.base.flexibility.ldlt),
+            self.iterations,
+        )
     }
 
     /// The batches after the first candidates, and per contact node its

@@ -68,25 +68,25 @@ impl IncrementSolver for Condensation {
 
     fn statistics(&self) -> (SolverStatistics, usize) {
         let statistics = SolverStatistics {
-            mixed_precision_fallbacks: self.fallbacks,
-            ..SolverStatistics::of_ldlt(&self.ldlt)
+            mixed_precision_fallbacks: self.flexibility.fallbacks,
+            ..SolverStatistics::of_ldlt(&self.flexibility.ldlt)
         };
-        (statistics, self.active_set_iterations)
+        (statistics, self.flexibility.active_set_iterations)
     }
 
     fn warm_start(&self) -> WarmStart {
         WarmStart {
-            batches: self.batches.clone(),
-            active: self.active.clone(),
+            batches: self.flexibility.batches.clone(),
+            active: self.flexibility.active.clone(),
             ..WarmStart::default()
         }
     }
 
     fn resume(&mut self, warm: &WarmStart) -> Result<()> {
         for batch in &warm.batches {
-            self.grow(batch)?;
+            self.flexibility.grow(batch)?;
         }
-        self.active.clone_from(&warm.active);
+        self.flexibility.active.clone_from(&warm.active);
         Ok(())
     }
 }

@@ -58,7 +58,9 @@
 //! a body held only by contact has a rigid-body mode) or, with friction,
 //! by those and the nodes touching the plane at the start. `auto` takes it
 //! exactly then; otherwise the run is monolithic and the log and
-//! `summary.json` say why.
+//! `summary.json` say why. Frictionless contact between bodies
+//! (node-to-surface) is condensed when asked for by name
+//! (`strategy = "condensed"`): [`pairs`].
 
 use super::{ContactState, Problem};
 use crate::contact::interface::ConstraintRow;
@@ -67,6 +69,7 @@ mod applicability;
 mod condensation;
 mod friction;
 mod method;
+mod pairs;
 
 use applicability::free_rigid_body_mode;
 pub use applicability::{choose, not_applicable, Choice, Path};
@@ -77,6 +80,12 @@ use method::IncrementSolver;
 /// Whether any interface has Coulomb friction (`μ > 0`).
 fn has_friction(problem: &Problem) -> bool {
     problem.contacts.iter().any(|c| c.has_friction())
+}
+
+/// Whether some interface is between bodies (its rows follow projections:
+/// [`pairs`]).
+fn has_pairs(problem: &Problem) -> bool {
+    problem.contacts.iter().any(|c| c.projected_gap())
 }
 
 /// A zero per secondary node of every interface.

@@ -35,6 +35,9 @@ pub struct ConstraintRow {
     /// The node's position in the frame its friction anchor is kept in
     /// ([`GapProducer::relative_position`]).
     pub relative_position: Vector3<f64>,
+    /// The primary triangle the node projects on, to be kept in its state
+    /// (node-to-surface only: [`GapKinematics::facet`](crate::contact::kinematics::GapKinematics)).
+    pub facet: Option<usize>,
 }
 
 impl ConstraintRow {
@@ -93,10 +96,18 @@ impl ContactInterface {
                     node: node.mesh_node,
                     primary: k.primary.clone(),
                     relative_position: p.relative_position(node),
+                    facet: k.facet,
                 }));
             });
         });
         rows
+    }
+
+    /// Whether the rows follow projections on a primary surface of
+    /// another body (node-to-surface between bodies: each row exact at
+    /// fixed projection, [`ConstraintRow`]).
+    pub fn projected_gap(&self) -> bool {
+        matches!(self.primary, Primary::Surface(_))
     }
 
     /// `Ok` where every node's gap is affine in the unknowns everywhere

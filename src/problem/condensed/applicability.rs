@@ -43,6 +43,12 @@ pub fn choose(problem: &Problem) -> std::result::Result<Choice, String> {
              contact nodes by a dense semismooth Newton method (monolithic Newton would \
              factorise at every iteration)"
                 .into()
+        } else if super::has_pairs(problem) {
+            "the stiffness is constant and every contact is frictionless, some between two \
+             bodies: one factorisation per run with both contact surfaces ordered last, the \
+             contact problem solved on the contact nodes at the current projections until \
+             they settle (monolithic Newton would factorise at every iteration)"
+                .into()
         } else {
             "the stiffness is constant and every contact is frictionless against a rigid \
              plane: one factorisation per run, the contact problem solved exactly on the \
@@ -91,10 +97,20 @@ pub fn not_applicable(problem: &Problem) -> Option<String> {
             p.surface
         ));
     }
+    let strategy = problem.settings.strategy;
     for c in &problem.contacts {
         // the gap from the node driver, affine in `u`; a law whose
         // converged state is exact or a penalty (not an outer loop's)
-        let why = c.affine_gap().err().or_else(|| {
+        let why = match c.affine_gap() {
+            Ok(()) => None,
+            // between bodies: frictionless, asked for by name (`auto`
+            // keeps Newton's path there until it is measured)
+            Err(_) if c.projected_gap() && strategy == Strategy::Condensed => c
+                .has_friction()
+                .then(|| "is between two bodies with friction (not condensed yet)".into()),
+            Err(why) => Some(why),
+        };
+        let why = why.or_else(|| {
             c.law.has_outer_loop().then(|| {
                 "uses uzawa, which meets the constraint only to its outer loop's tolerance".into()
             })
@@ -102,6 +118,9 @@ pub fn not_applicable(problem: &Problem) -> Option<String> {
         if let Some(why) = why {
             return Some(format!("contact '{}' {why}", c.name));
         }
+    }
+    if super::has_pairs(problem) && has_friction(problem) {
+        return Some("friction beside contact between two bodies is not condensed yet".into());
     }
     let mut held = problem.constrained_dofs();
     if has_friction(problem) {

@@ -3,7 +3,8 @@
 //! penalty law's compliance), its constant stiffness and load, and its
 //! gaps, handed to the algebra of [`Flexibility`].
 
-use super::{constraint_rows, Problem};
+use super::{constraint_rows, ContactState, Problem};
+use crate::contact::interface::ConstraintRow;
 use crate::contact::laws::NormalEnforcement;
 use crate::solve::condensed::flexibility::{Column, Flexibility, Stiffness};
 use crate::solve::linear::Precision;
@@ -43,6 +44,20 @@ const TRAILING_FRACTION: f64 = 0.5;
 /// factorisation is most of the run there.
 const MIXED_PRECISION_UNKNOWNS: usize = 10_000;
 
+/// The column of `E` of a node with constraint row `row` whose law's
+/// converged state is `law`: `∇g = Bᵀn`, with the compliance `1/(A ε)` of
+/// a penalty (0 for an exact law).
+pub(super) fn normal_column(law: NormalEnforcement, row: &ConstraintRow) -> Column {
+    let compliance = match law {
+        NormalEnforcement::Penalty { epsilon } => 1.0 / (row.area * epsilon),
+        NormalEnforcement::Exact { .. } => 0.0,
+    };
+    Column {
+        entries: row.gradient(),
+        compliance,
+    }
+}
+
 impl Condensation {
     /// The frictionless condensation: one column per secondary node of
     /// every interface, its gap gradient `∇g` from the node driver (at
@@ -55,18 +70,11 @@ impl Condensation {
             let c = problem.contacts.interface(ci);
             for (i, row) in rows.iter().enumerate() {
                 let Some(row) = row else { continue };
-                let compliance = match c.law_at(i).converged() {
-                    NormalEnforcement::Penalty { epsilon } => 1.0 / (row.area * epsilon),
-                    NormalEnforcement::Exact { .. } => 0.0,
-                };
                 nodes.push(ContactNode {
                     interface: ci,
                     index: i,
                 });
-                columns.push(Column {
-                    entries: row.gradient(),
-                    compliance,
-                });
+                columns.push(normal_column(c.law_at(i).converged(), row));
             }
         }
         Self::factorise(problem, nodes, columns, &[], TRAILING_FRACTION, true)
@@ -98,8 +106,23 @@ impl Condensation {
         constrained[dofs..].iter_mut().for_each(|c| *c = true);
         let order = Self::nearest_first(problem, &nodes);
         let trailing = Flexibility::trailing_dofs(&columns, &order, &constrained, fraction);
+        Self::factorise_on(problem, nodes, columns, shifted, trailing, single_allowed)
+    }
+
+    /// [`Self::factorise`] with the `trailing` unknowns given.
+    pub(super) fn factorise_on(
+        problem: &Problem,
+        nodes: Vec<ContactNode>,
+        columns: Vec<Column>,
+        shifted: &[usize],
+        trailing: Vec<usize>,
+        single_allowed: bool,
+    ) -> Result<Self> {
         let pattern = &problem.model.pattern;
         let dimension = pattern.dimension();
+        let mut constrained = problem.constrained_dofs();
+        let dofs = problem.model.num_dofs();
+        constrained[dofs..].iter_mut().for_each(|c| *c = true);
         let lower = problem.model.lower_triangle();
         let dissection = problem.dissection.as_ref();
         let (k, analysis) = rayon::join(
@@ -171,13 +194,18 @@ impl Condensation {
         self.flexibility.load(&prescribed, &f)
     }
 
-    /// The gap of every column's node at unknowns `x`, time `t`.
-    fn gaps(nodes: &[ContactNode], problem: &Problem, t: f64, x: &[f64]) -> Vec<f64> {
+    /// The gap of every column's node at unknowns `x`, time `t` (on the
+    /// primary triangles kept in `states`, where given).
+    fn gaps(
+        nodes: &[ContactNode],
+        problem: &Problem,
+        t: f64,
+        x: &[f64],
+        states: Option<&ContactState>,
+    ) -> Vec<f64> {
         let reference = &problem.model.mesh.nodes;
-        let per_interface: Vec<Vec<f64>> = problem
-            .contacts
-            .iter()
-            .map(|c| c.gaps(reference, t, x, None))
+        let per_interface: Vec<Vec<f64>> = (problem.contacts.iter().enumerate())
+            .map(|(ci, c)| c.gaps(reference, t, x, states.map(|s| &s.interfaces[ci][..])))
             .collect();
         nodes
             .iter()
@@ -186,16 +214,18 @@ impl Condensation {
     }
 
     /// The displacements and contact forces (per node, `λ_a = A_a t_N`) at
-    /// time `t` ([`Flexibility::solve_increment`]).
+    /// time `t` ([`Flexibility::solve_increment`]), the gaps on the primary
+    /// triangles kept in `states` where given.
     pub(super) fn solve_increment(
         &mut self,
         problem: &Problem,
         t: f64,
+        states: Option<&ContactState>,
         history: &mut Vec<IterationRecord>,
     ) -> Result<(Vec<f64>, Vec<f64>)> {
         let b = self.load(problem, t);
         let nodes = &self.nodes;
-        let gaps = |u: &[f64]| Self::gaps(nodes, problem, t, u);
+        let gaps = |u: &[f64]| Self::gaps(nodes, problem, t, u, states);
         let tolerance = 1e-12 * problem.model.size();
         self.flexibility
             .solve_increment(&b, &gaps, tolerance, history)

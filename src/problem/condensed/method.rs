@@ -2,7 +2,7 @@
 //! an increment (frictionless or frictional), the check of its answer by
 //! the problem's residual, and its warm state for a restart.
 
-use super::{friction, has_friction, set_multipliers, zero_per_node};
+use super::{friction, has_friction, has_pairs, pairs, set_multipliers, zero_per_node};
 use super::{Condensation, ContactState, Path, Problem};
 use crate::contact::interface::NodeReport;
 use crate::solve::failure::IncrementFailure;
@@ -56,7 +56,7 @@ impl IncrementSolver for Condensation {
         trial: &mut ContactState,
         history: &mut Vec<IterationRecord>,
     ) -> Result<()> {
-        let (u, forces) = self.solve_increment(problem, t, history)?;
+        let (u, forces) = self.solve_increment(problem, t, None, history)?;
         let mut pressures = zero_per_node(problem);
         for (a, c) in self.nodes.iter().enumerate() {
             pressures[c.interface][c.index] =
@@ -114,6 +114,8 @@ impl Condensed {
         let path_dependent = has_friction(problem);
         let solver: Box<dyn IncrementSolver> = if path_dependent {
             Box::new(friction::FrictionalCondensation::new(problem)?)
+        } else if has_pairs(problem) {
+            Box::new(pairs::PairCondensation::new(problem)?)
         } else {
             Box::new(Condensation::new(problem)?)
         };

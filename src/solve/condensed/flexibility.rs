@@ -288,6 +288,26 @@ impl Flexibility {
         Ok(())
     }
 
+    /// Make `columns` the columns of `E` (as many as before: the same
+    /// contact nodes, at new projections) and form `W` anew over the
+    /// candidates (from `(K̃⁻¹)_TT` where they lie on the trailing block).
+    pub fn replace_columns(&mut self, columns: Vec<Column>) -> Result<()> {
+        if columns.len() != self.columns.len() {
+            return Err(Error::LinearSolver(format!(
+                "{} condensed contact columns replaced by {}",
+                self.columns.len(),
+                columns.len()
+            )));
+        }
+        self.columns = columns;
+        let directions: Vec<Direction> =
+            self.candidates.iter().map(|&a| self.direction(a)).collect();
+        let n = self.constrained.len();
+        let none = DMatrix::zeros(0, 0);
+        self.w = grow_flexibility(&mut self.ldlt, &self.trailing, &none, &directions, n)?;
+        Ok(())
+    }
+
     /// The columns that join the candidates at gaps `g`: those outside them
     /// that penetrate by more than `tolerance` and by at least
     /// [`ENTERING_FRACTION`] of the deepest such penetration (the deepest

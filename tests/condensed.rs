@@ -600,3 +600,114 @@ fn frictional_condensed_press_is_independent_of_the_increments() {
         }
     }
 }
+
+/// Per converged increment: every contact node's gap and pressure, the
+/// displacements and the nodal contact forces.
+#[derive(Default)]
+struct PairState {
+    gaps: Vec<Vec<f64>>,
+    pressures: Vec<Vec<f64>>,
+    displacements: Vec<Vec<f64>>,
+    forces: Vec<Vec<f64>>,
+}
+
+impl StepObserver for PairState {
+    fn on_increment(&mut self, inc: &ConvergedIncrement, _: &Summary) -> signorini::Result<()> {
+        let nodal = &inc.contact_fields.nodal;
+        self.gaps.push(nodal.gap.clone());
+        self.pressures.push(nodal.pressure.clone());
+        self.displacements.push(inc.displacement().to_vec());
+        self.forces.push(nodal.nodal_force.clone());
+        Ok(())
+    }
+}
+
+/// The stacked blocks of tests/common (lower 4 × 4 × 2, upper 3 × 3 × 2
+/// Hex8, non-matching at z = 0.5, both linear elastic), the upper top
+/// pushed down by 0.01 in three increments instead of pressed (so that
+/// each body is held by its prescribed displacements), frictionless
+/// node-to-surface with `contact`, on `solver`.
+fn pushed_blocks(contact: &str, solver: &str) -> (RunOutcome, PairState) {
+    let dir = tempfile::tempdir().unwrap();
+    std::fs::write(
+        dir.path().join("blocks.msh"),
+        common::msh22(&common::stacked_blocks_mesh()),
+    )
+    .unwrap();
+    let elastic = "model = \"linear_elastic\"\nyoungs_modulus = 100.0\npoisson_ratio = 0.3";
+    let tables = common::stacked_blocks_tables(elastic, elastic, 2.0, contact);
+    let pressure = "[[pressure]]\nsurface = \"upper.zmax\"\nvalue = 2.0";
+    assert!(tables.contains(pressure));
+    let pushed = "[[displacement]]\nsurface = \"upper.zmax\"\nz = -0.01";
+    let tables = tables.replace(pressure, pushed).replace(
+        "end_time = 1.0",
+        "end_time = 1.0\ninitial_increment = 0.34\nmax_increment = 0.34",
+    );
+    let text = format!("[mesh]\nfile = \"blocks.msh\"\n{tables}\n[solver]\n{solver}\n");
+    let mut simulation = Simulation::from_toml(&text, dir.path()).unwrap();
+    let mut state = PairState::default();
+    let options = RunOptions {
+        threads: Some(2),
+        output: None,
+        cancel: None,
+        restart: None,
+    };
+    let outcome = simulation
+        .run(&options, &mut state)
+        .unwrap_or_else(|e| panic!("{solver}: {e}"));
+    (outcome, state)
+}
+
+/// Two bodies in contact on the condensed path (`strategy =
+/// "condensed"`, frictionless, Rockafellar and penalty): one
+/// factorisation, and at every increment the displacements, nodal contact
+/// forces, pressures and gaps of monolithic Newton (residual tolerance
+/// 1e-11) to 1e-8 relative (the gaps against the largest displacement);
+/// `auto` keeps such a case on Newton's path.
+#[test]
+fn bodies_in_contact_condensed_equal_monolithic() {
+    for contact in [
+        "method = \"rockafellar\"\npenalty = 100.0",
+        "method = \"penalty\"\npenalty = 1000.0",
+    ] {
+        let (cond, c) = pushed_blocks(contact, "strategy = \"condensed\"");
+        let (mono, m) = pushed_blocks(
+            contact,
+            "strategy = \"monolithic\"\nresidual_tolerance = 1e-11",
+        );
+        assert_eq!(cond.summary.strategy, "condensed");
+        assert_eq!(mono.summary.strategy, "monolithic");
+        assert_eq!(cond.summary.factorisations, 1);
+        assert_eq!(c.forces.len(), m.forces.len());
+        let scale = m
+            .displacements
+            .last()
+            .unwrap()
+            .iter()
+            .fold(0.0f64, |a, v| a.max(v.abs()));
+        for i in 0..m.forces.len() {
+            let du = relative_difference(&c.displacements[i], &m.displacements[i]);
+            let df = relative_difference(&c.forces[i], &m.forces[i]);
+            let dp = relative_difference(&c.pressures[i], &m.pressures[i]);
+            let dg = (c.gaps[i].iter().zip(&m.gaps[i]))
+                .filter(|(a, b)| a.is_finite() && b.is_finite())
+                .fold(0.0f64, |d, (a, b)| d.max((a - b).abs()))
+                / scale;
+            eprintln!("{contact}: increment {i}: u {du:.1e}, forces {df:.1e}, pressures {dp:.1e}, gaps {dg:.1e}");
+            assert!(
+                du < 1e-8 && df < 1e-8 && dp < 1e-8 && dg < 1e-8,
+                "increment {i}"
+            );
+        }
+        let closed = m
+            .pressures
+            .last()
+            .unwrap()
+            .iter()
+            .filter(|&&p| p > 0.0)
+            .count();
+        assert!(closed > 4, "the blocks touch over several nodes: {closed}");
+        let (auto, _) = pushed_blocks(contact, "strategy = \"auto\"");
+        assert_eq!(auto.summary.strategy, "monolithic");
+    }
+}

@@ -147,6 +147,9 @@ macro_rules! with_producer {
     };
 }
 
+mod rows;
+pub use rows::ConstraintRow;
+
 impl ContactInterface {
     /// The law of secondary node `i` (the interface's law with the node's
     /// parameter factor).

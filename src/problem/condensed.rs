@@ -26,7 +26,7 @@
 //! ```
 //!
 //! a linear complementarity problem solved exactly
-//! ([`crate::solve::complementarity`]); `u = K̃⁻¹ (b + E λ)` follows from one
+//! ([`crate::solve::condensed::complementarity`]); `u = K̃⁻¹ (b + E λ)` follows from one
 //! more solve. The exact laws (Rockafellar, slack) converge to this very
 //! solution (their `p`, `k` only condition Newton); penalty's
 //! `t_N = ε⟨−g⟩` is the same problem with `W + diag(1/(A_a ε_a))`. Uzawa
@@ -46,7 +46,7 @@
 //! ## Coulomb friction
 //! With friction on some interface the run takes [`friction`]: three
 //! unknowns per contact node, a dense semismooth Newton solve per
-//! increment ([`crate::solve::cone`]), and a shifted `K̂` where only the
+//! increment ([`crate::solve::condensed::cone`]), and a shifted `K̂` where only the
 //! contact holds a body.
 //!
 //! ## Where it applies ([`not_applicable`])
@@ -58,15 +58,18 @@
 //! a body held only by contact has a rigid-body mode) or, with friction,
 //! by those and the nodes touching the plane at the start. `auto` takes it
 //! exactly then; otherwise the run is monolithic and the log and
-//! `summary.json` say why.
+//! `summary.json` say why. Frictionless contact between bodies
+//! (node-to-surface) is condensed when asked for by name
+//! (`strategy = "condensed"`): [`pairs`].
 
 use super::{ContactState, Problem};
-use crate::contact::laws::{NormalLaw, SlackState};
+use crate::contact::interface::ConstraintRow;
 
 mod applicability;
 mod condensation;
 mod friction;
 mod method;
+mod pairs;
 
 use applicability::free_rigid_body_mode;
 pub use applicability::{choose, not_applicable, Choice, Path};
@@ -77,6 +80,12 @@ use method::IncrementSolver;
 /// Whether any interface has Coulomb friction (`μ > 0`).
 fn has_friction(problem: &Problem) -> bool {
     problem.contacts.iter().any(|c| c.has_friction())
+}
+
+/// Whether some interface is between bodies (its rows follow projections:
+/// [`pairs`]).
+fn has_pairs(problem: &Problem) -> bool {
+    problem.contacts.iter().any(|c| c.projected_gap())
 }
 
 /// A zero per secondary node of every interface.
@@ -108,15 +117,22 @@ fn set_multipliers(
         let gaps = interface.gaps(reference, t, u, None);
         for (i, &pressure) in pressures[ci].iter().enumerate() {
             let node = &mut state.interfaces[ci][i];
-            match interface.law_at(i) {
-                NormalLaw::Rockafellar { k, .. } => node.lambda = pressure / k,
-                NormalLaw::Slack { p, k } => {
-                    node.lambda = pressure / k;
-                    node.slack = SlackState::consistent(gaps[i], node.lambda, p, k);
-                }
-                _ => continue,
+            let law = interface.law_at(i);
+            if let Some(lambda) = law.set_converged_pressure(pressure, gaps[i], node) {
+                x[dofs + interface.multiplier_offset + i] = lambda;
             }
-            x[dofs + interface.multiplier_offset + i] = node.lambda;
         }
     }
+}
+
+/// The node driver's [`ConstraintRow`] of every secondary node of every
+/// interface at time `t` and unknowns `x` (the contact's linearisation, the
+/// one thing the condensed path reads of the obstacles).
+fn constraint_rows(problem: &Problem, t: f64, x: &[f64]) -> Vec<Vec<Option<ConstraintRow>>> {
+    let reference = &problem.model.mesh.nodes;
+    problem
+        .contacts
+        .iter()
+        .map(|c| c.constraint_rows(reference, t, x, None))
+        .collect()
 }

@@ -1,22 +1,49 @@
 //! The contact of a [`Problem`] as linearised unilateral constraints
 //! ([`Linearisation`]), for the Josephy–Newton step of
-//! [`crate::solve::josephy`]: the frictionless Rockafellar law against
-//! rigid planes whose normal is a coordinate axis, where the gap of node
-//! `a` is linear in its displacement, `g_a = n·(X_a + u_a − c(t))`, and
-//! its force `f_a = A_a k λ_a` (at a closed node, `t̂ = kλ`).
+//! [`crate::solve::josephy`], read from the node driver's
+//! [`ConstraintRow`]s: a frictionless Rockafellar law on interfaces whose
+//! gap is affine in the displacement with a gradient along one unknown,
+//! `g_a = g_a(x) + sign · δ[dof]` (a rigid plane whose normal is a
+//! coordinate axis), and its force `f_a = A_a k λ_a` (at a closed node,
+//! `t̂ = kλ`).
 
 use super::{ContactState, Problem};
-use crate::contact::interface::Primary;
-use crate::contact::laws::NormalLaw;
-use crate::contact::obstacle::RigidObstacle;
+use crate::contact::interface::{ConstraintRow, ContactInterface};
 use crate::solve::nonlinear::{Linearisation, NormalConstraint};
+
+/// `(dof, sign)` of a row whose gradient is `sign · e_dof` with
+/// `|sign| = 1`, if it is one.
+fn single_unknown(row: &ConstraintRow) -> Option<(usize, f64)> {
+    match row.gradient().as_slice() {
+        &[(dof, sign)] if sign.abs() == 1.0 => Some((dof, sign)),
+        _ => None,
+    }
+}
+
+/// Whether `c`'s constraints are linearised for the Josephy step, or why
+/// not (after `contact '{name}'`).
+fn linearises(c: &ContactInterface, reference: &[[f64; 3]], zero: &[f64]) -> Result<(), String> {
+    c.affine_gap()?;
+    let rows = c.constraint_rows(reference, 0.0, zero, None);
+    if !rows.iter().flatten().all(|r| single_unknown(r).is_some()) {
+        return Err("has a gap gradient that is not a coordinate axis".into());
+    }
+    if c.has_friction() {
+        return Err("has friction".into());
+    }
+    // a multiplier `λ` with `t_N = kλ` and no local unknowns: Rockafellar's
+    if c.law.pressure_per_multiplier().is_none() || c.law.has_local_unknowns() {
+        return Err("is not a monolithic Rockafellar one".into());
+    }
+    Ok(())
+}
 
 impl Problem {
     /// Whether [`Problem::linearised_contact`] writes the contact as
     /// linearised constraints (`Ok`), or why not: no contact, a
     /// distributed run (whose tangent is shared among processes), or an
-    /// interface that is not a frictionless Rockafellar one against a
-    /// rigid plane with a coordinate-axis normal (named in the reason).
+    /// interface that is not a frictionless Rockafellar one with an
+    /// affine gap along one unknown (named in the reason).
     pub fn contact_linearisation(&self) -> Result<(), String> {
         if self.contacts.is_empty() {
             return Err("no contact interface".into());
@@ -24,24 +51,10 @@ impl Problem {
         if self.model.is_shared() {
             return Err("a distributed run".into());
         }
+        let zero = vec![0.0; self.num_unknowns()];
         for c in &self.contacts {
-            let name = &c.name;
-            let Primary::Rigid(RigidObstacle::Plane { normal, .. }) = &c.primary else {
-                return Err(format!("contact '{name}' is not against a rigid plane"));
-            };
-            if plane_axis(normal).is_none() {
-                return Err(format!(
-                    "contact '{name}': the plane's normal is not a coordinate axis"
-                ));
-            }
-            if c.has_friction() {
-                return Err(format!("contact '{name}' has friction"));
-            }
-            if !matches!(c.law, NormalLaw::Rockafellar { .. }) {
-                return Err(format!(
-                    "contact '{name}' is not a monolithic Rockafellar one"
-                ));
-            }
+            linearises(c, &self.model.mesh.nodes, &zero)
+                .map_err(|why| format!("contact '{}' {why}", c.name))?;
         }
         Ok(())
     }
@@ -63,23 +76,20 @@ impl Problem {
         let first_multiplier = self.model.num_dofs();
         let mut constraints = Vec::new();
         for (c, states) in self.contacts.iter().zip(&contact.interfaces) {
-            let Primary::Rigid(RigidObstacle::Plane { normal, .. }) = &c.primary else {
-                return Ok(None);
-            };
-            let Some(axis) = plane_axis(normal) else {
-                return Ok(None);
-            };
-            let gaps = c.gaps(&self.model.mesh.nodes, t, x, Some(states));
-            for (i, (&node, gap)) in c.nodes.iter().zip(gaps).enumerate() {
-                let NormalLaw::Rockafellar { k, .. } = c.law_at(i) else {
+            let rows = c.constraint_rows(&self.model.mesh.nodes, t, x, Some(states));
+            for (i, row) in rows.iter().enumerate() {
+                let (Some(row), Some(k)) = (row, c.law_at(i).pressure_per_multiplier()) else {
+                    return Ok(None);
+                };
+                let Some((dof, sign)) = single_unknown(row) else {
                     return Ok(None);
                 };
                 constraints.push(NormalConstraint {
-                    dof: 3 * node + axis,
-                    sign: normal[axis],
-                    gap,
+                    dof,
+                    sign,
+                    gap: row.gap,
                     multiplier: first_multiplier + c.multiplier_offset + i,
-                    force_per_multiplier: c.areas[i] * k,
+                    force_per_multiplier: row.area * k,
                 });
             }
         }
@@ -96,10 +106,4 @@ impl Problem {
             constraints,
         }))
     }
-}
-
-/// The coordinate axis `d` of a plane's unit normal (`n = ±e_d`), if it
-/// is one.
-fn plane_axis(normal: &nalgebra::Vector3<f64>) -> Option<usize> {
-    (0..3).find(|&d| normal[d].abs() == 1.0)
 }

@@ -25,7 +25,7 @@
 //! moved to the right: `K̂ δ = b − ρ E g⁰ + E (f + ρ g)`. With
 //! `δ⁰ = K̂⁻¹ (b − ρ E g⁰)`, `q = g⁰ + Eᵀ δ⁰` and `Ŝ = (Eᵀ K̂⁻¹ E)⁻¹`, the
 //! Schur complement of `K̂` on `T = {dof_a}` up to the signs (read off the
-//! factor whose ordering puts `T` last, [`super::schur::trailing_schur`]),
+//! factor whose ordering puts `T` last, [`super::condensed::schur::trailing_schur`]),
 //!
 //! ```text
 //! f = M g + c ≥ 0,   g ≥ 0,   f_a g_a = 0,   M = Ŝ − ρ I,   c = −Ŝ q,
@@ -34,17 +34,17 @@
 //! an LCP in the gaps with `M` the stiffness of `K` condensed onto `T`
 //! (positive semidefinite; singular along a floating body's rigid mode,
 //! which no proper subset of open nodes contains), solved by block
-//! principal pivoting ([`super::complementarity::solve_lcp`], with the
+//! principal pivoting ([`super::condensed::complementarity::solve_lcp`], with the
 //! roles of its `λ` and `g` swapped). Then `δ = δ⁰ + K̂⁻¹ E (f + ρ g)` and
 //! each multiplier takes the node's force, `λ_a = f_a / (A_a k)`. One
 //! factorisation of `K̂` and two solves, as much as a plain step, plus the
 //! dense `c³/3` of `Ŝ`.
 
-use super::complementarity::solve_lcp;
+use super::condensed::complementarity::solve_lcp;
+use super::condensed::schur::{trailing_ordering, trailing_schur};
 use super::linear::SparseLdlt;
 use super::linear_solver::{LinearFigures, SolverStatistics};
 use super::nonlinear::NormalConstraint;
-use super::schur::{trailing_ordering, trailing_schur};
 use crate::assembly::pattern::SparsityPattern;
 use nalgebra::DMatrix;
 

@@ -3,17 +3,15 @@
 //! [`nonlinear::NonlinearProblem`]; the sparse linear solvers behind
 //! [`linear_solver::LinearSolver`] (direct LDLᵀ, GMRES preconditioned by
 //! an LDLᵀ, sparse LU, PETSc with the `petsc` feature) with their
-//! orderings and the partition of distributed runs; and the algebra of
-//! the condensed contact path (`K⁻¹` on the contact dofs read off the
-//! factor, the frictionless complementarity problem, the condensed
-//! Coulomb problem in `cone`, the Josephy–Newton step, the factor without
-//! the couplings of decoupled unknowns).
+//! orderings and the partition of distributed runs; the algebra of the
+//! condensed contact path in [`condensed`] (one factorisation, `K⁻¹` on
+//! the contact dofs read off it, the frictionless complementarity problem,
+//! the condensed Coulomb problem, the factor without the couplings of
+//! decoupled unknowns); and the Josephy–Newton step in [`josephy`].
 
 pub mod backend;
 pub mod chattering;
-pub mod complementarity;
-pub mod cone;
-pub mod decoupled;
+pub mod condensed;
 pub mod direct;
 pub mod failure;
 pub mod gmres;
@@ -30,6 +28,5 @@ pub mod partition;
 #[cfg(feature = "petsc")]
 pub mod petsc;
 pub mod record;
-pub mod schur;
 pub mod settings;
 pub mod stepping;

@@ -33,12 +33,14 @@
 
 use nalgebra::{Matrix3, Vector3};
 
+mod converged;
 pub mod penalty;
 pub mod rockafellar;
 pub mod slack;
 pub mod uzawa;
 
 pub use crate::contact::gap::GapGeometry;
+pub use converged::NormalEnforcement;
 pub use slack::SlackState;
 
 /// What one secondary node adds to the residual and tangent of the global

@@ -2,9 +2,6 @@
 //! why the condensed one does not apply ([`not_applicable`]).
 
 use super::{friction, has_friction, Problem};
-use crate::contact::interface::Primary;
-use crate::contact::laws::NormalLaw;
-use crate::contact::obstacle::RigidObstacle;
 use crate::material::Kinematics;
 use crate::solve::settings::Strategy;
 use nalgebra::{Matrix6, Vector3, Vector6};
@@ -45,6 +42,12 @@ pub fn choose(problem: &Problem) -> std::result::Result<Choice, String> {
              friction: one factorisation per run, the frictional contact problem solved on the \
              contact nodes by a dense semismooth Newton method (monolithic Newton would \
              factorise at every iteration)"
+                .into()
+        } else if super::has_pairs(problem) {
+            "the stiffness is constant and every contact is frictionless, some between two \
+             bodies: one factorisation per run with both contact surfaces ordered last, the \
+             contact problem solved on the contact nodes at the current projections until \
+             they settle (monolithic Newton would factorise at every iteration)"
                 .into()
         } else {
             "the stiffness is constant and every contact is frictionless against a rigid \
@@ -94,25 +97,30 @@ pub fn not_applicable(problem: &Problem) -> Option<String> {
             p.surface
         ));
     }
+    let strategy = problem.settings.strategy;
     for c in &problem.contacts {
-        let why = match (&c.primary, c.law) {
-            (Primary::Surface(_), _) => Some("is between two bodies (not condensed yet)".into()),
-            (Primary::Rigid(RigidObstacle::Plane { .. }), NormalLaw::Uzawa { .. }) => Some(
-                "uses uzawa, which meets the constraint only to its outer loop's tolerance".into(),
-            ),
-            (Primary::Rigid(RigidObstacle::Plane { .. }), _) => None,
-            (Primary::Rigid(o), _) => Some(format!(
-                "is against a {}, whose gap is not linear in the displacement",
-                match o {
-                    RigidObstacle::Sphere { .. } => "sphere",
-                    RigidObstacle::Cylinder { .. } => "cylinder",
-                    _ => "triangulated surface",
-                }
-            )),
+        // the gap from the node driver, affine in `u`; a law whose
+        // converged state is exact or a penalty (not an outer loop's)
+        let why = match c.affine_gap() {
+            Ok(()) => None,
+            // between bodies: frictionless, asked for by name (`auto`
+            // keeps Newton's path there until it is measured)
+            Err(_) if c.projected_gap() && strategy == Strategy::Condensed => c
+                .has_friction()
+                .then(|| "is between two bodies with friction (not condensed yet)".into()),
+            Err(why) => Some(why),
         };
+        let why = why.or_else(|| {
+            c.law.has_outer_loop().then(|| {
+                "uses uzawa, which meets the constraint only to its outer loop's tolerance".into()
+            })
+        });
         if let Some(why) = why {
             return Some(format!("contact '{}' {why}", c.name));
         }
+    }
+    if super::has_pairs(problem) && has_friction(problem) {
+        return Some("friction beside contact between two bodies is not condensed yet".into());
     }
     let mut held = problem.constrained_dofs();
     if has_friction(problem) {

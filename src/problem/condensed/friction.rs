@@ -1,7 +1,7 @@
 //! The frictional condensed path: Coulomb friction against rigid planes on
 //! a body of constant stiffness, three unknowns per contact node, solved
 //! per increment by the dense semismooth Newton method of
-//! [`crate::solve::cone`], with the friction history committed per
+//! [`crate::solve::condensed::cone`], with the friction history committed per
 //! increment by the problem itself (as the monolithic path does).
 //!
 //! ## A body that only contact holds
@@ -23,23 +23,26 @@
 //! columns are solves with the same factor, not shifted). One
 //! factorisation per run.
 
-use super::{Condensation, ContactNode, ContactState, IncrementSolver, Problem};
+use super::{constraint_rows, Condensation, ContactNode, ContactState, IncrementSolver, Problem};
 use crate::contact::friction::{ContactStatus, Coulomb};
-use crate::contact::interface::Primary;
-use crate::contact::laws::NormalLaw;
-use crate::contact::obstacle::RigidObstacle;
-use crate::solve::cone::{solve_cone, ConeNode, ConeProblem, NormalEnforcement, TangentialLaw};
+use crate::contact::interface::ConstraintRow;
+use crate::solve::condensed::cone::{
+    solve_cone, ConeNode, ConeProblem, ConeSolution, TangentialLaw,
+};
+use crate::solve::condensed::flexibility::Column;
 use crate::solve::linear_solver::SolverStatistics;
 use crate::solve::method::WarmStart;
 use crate::solve::newton::IterationRecord;
 use crate::{Error, Result};
 use nalgebra::Vector3;
 
-/// A secondary node of a rigid-plane interface.
+/// A secondary node of an interface.
 struct FrictionNode {
     interface: usize,
     index: usize,
     node: usize,
+    /// Its unit normal (constant: the gaps are affine).
+    normal: Vector3<f64>,
     /// Its free components `d` with their columns in [`Condensation::nodes`].
     columns: Vec<(usize, usize)>,
 }
@@ -86,16 +89,13 @@ fn touching(problem: &Problem) -> f64 {
     1e-12 * problem.model.size()
 }
 
-/// The free dofs of the rigid-plane nodes that touch or penetrate at the
+/// The free dofs of the secondary nodes that touch or penetrate at the
 /// start: the ones the frictional path shifts.
 pub(super) fn initially_touching_dofs(problem: &Problem) -> Vec<usize> {
     let constrained = problem.constrained_dofs();
     let tolerance = touching(problem);
     let mut dofs = Vec::new();
     for (ci, c) in problem.contacts.iter().enumerate() {
-        if !matches!(c.primary, Primary::Rigid(RigidObstacle::Plane { .. })) {
-            continue;
-        }
         for (i, g) in initial_gaps(problem, ci).iter().enumerate() {
             if *g <= tolerance {
                 let node = c.nodes[i];
@@ -112,26 +112,27 @@ impl FrictionalCondensation {
     /// made candidates.
     pub(super) fn new(problem: &Problem) -> Result<Self> {
         let constrained = problem.constrained_dofs();
-        let mut columns = Vec::new();
+        let (mut owners, mut columns) = (Vec::new(), Vec::new());
         let mut column_owner = Vec::new();
         let mut contact = Vec::new();
         let mut initial = Vec::new();
         let tolerance = touching(problem);
-        for (ci, c) in problem.contacts.iter().enumerate() {
-            if !matches!(c.primary, Primary::Rigid(RigidObstacle::Plane { .. })) {
-                continue;
-            }
+        let zero = vec![0.0; problem.num_unknowns()];
+        for (ci, rows) in constraint_rows(problem, 0.0, &zero).iter().enumerate() {
             let gaps = initial_gaps(problem, ci);
-            for (i, &node) in c.nodes.iter().enumerate() {
+            for (i, row) in rows.iter().enumerate() {
+                let Some(row) = row else { continue };
+                let node = row.node;
                 let mut own = Vec::new();
                 for d in (0..3).filter(|&d| !constrained[3 * node + d]) {
                     own.push((d, columns.len()));
                     column_owner.push((contact.len(), d));
-                    columns.push(ContactNode {
+                    owners.push(ContactNode {
                         interface: ci,
                         index: i,
-                        node,
-                        normal: Vector3::ith(d, 1.0),
+                    });
+                    columns.push(Column {
+                        entries: row.lever_row(d),
                         compliance: 0.0,
                     });
                 }
@@ -142,6 +143,7 @@ impl FrictionalCondensation {
                     interface: ci,
                     index: i,
                     node,
+                    normal: row.normal,
                     columns: own,
                 });
             }
@@ -151,16 +153,22 @@ impl FrictionalCondensation {
         let shifted_dofs: Vec<usize> = if floating {
             initial
                 .iter()
-                .flat_map(|&a| contact[a].columns.iter().map(|&(_, col)| col))
-                .map(|col| 3 * columns[col].node + columns[col].normal.iamax())
+                .flat_map(|&a| {
+                    let node = contact[a].node;
+                    contact[a].columns.iter().map(move |&(d, _)| 3 * node + d)
+                })
                 .collect()
         } else {
             Vec::new()
         };
-        let base = Condensation::factorise(problem, columns, &shifted_dofs, 1.0, false)?;
-        let shift = if floating { base.scale } else { 0.0 };
+        let base = Condensation::factorise(problem, owners, columns, &shifted_dofs, 1.0, false)?;
+        let shift = if floating {
+            base.flexibility.scale
+        } else {
+            0.0
+        };
         let count = contact.len();
-        let columns_count = base.nodes.len();
+        let columns_count = base.flexibility.columns.len();
         let mut condensation = FrictionalCondensation {
             base,
             contact,
@@ -185,7 +193,7 @@ impl FrictionalCondensation {
             .iter()
             .flat_map(|&a| self.contact[a].columns.iter().map(|&(_, col)| col))
             .collect();
-        self.base.grow(&columns)?;
+        self.base.flexibility.grow(&columns)?;
         self.inverse = None;
         self.shifted.extend(columns.iter().map(|_| shifted));
         for &a in new {
@@ -195,32 +203,26 @@ impl FrictionalCondensation {
         Ok(())
     }
 
-    /// The condensed node of contact node `a` at time `t` from its
-    /// committed state.
-    fn cone_node(&self, problem: &Problem, t: f64, state: &ContactState, a: usize) -> ConeNode {
+    /// The condensed node of contact node `a` from its committed state and
+    /// its constraint row `rest` at `u = 0` (at the increment's time).
+    fn cone_node(
+        &self,
+        problem: &Problem,
+        rest: &ConstraintRow,
+        state: &ContactState,
+        a: usize,
+    ) -> ConeNode {
         let c = &self.contact[a];
         let interface = problem.contacts.interface(c.interface);
-        let Primary::Rigid(RigidObstacle::Plane { point, normal }) = &interface.primary else {
-            unreachable!("the frictional condensation holds rigid-plane nodes only")
-        };
         let committed = &state.interfaces[c.interface][c.index];
-        let translation = interface.translation_at(t);
-        let position = Vector3::from(problem.model.mesh.nodes[c.node]) - translation;
         let coulomb = interface.friction_at(c.index).unwrap_or(Coulomb {
             coefficient: 0.0,
             tangential_penalty: 1.0,
         });
-        let normal_law = match interface.law_at(c.index) {
-            NormalLaw::Penalty { epsilon } => NormalEnforcement::Penalty { epsilon },
-            NormalLaw::Rockafellar { p, .. } | NormalLaw::Slack { p, .. } => {
-                NormalEnforcement::Exact { r: p }
-            }
-            NormalLaw::Uzawa { epsilon, .. } => NormalEnforcement::Exact { r: epsilon },
-        };
         ConeNode {
-            normal: *normal,
-            area: interface.areas[c.index],
-            normal_law,
+            normal: rest.normal,
+            area: rest.area,
+            normal_law: interface.law_at(c.index).converged(),
             tangential_law: if interface.exact_stick() {
                 TangentialLaw::ExactStick
             } else {
@@ -228,16 +230,18 @@ impl FrictionalCondensation {
             },
             coulomb,
             committed_traction: committed.friction.traction,
-            gap_at_rest: (position - point).dot(normal),
-            offset_at_rest: position - committed.friction.anchor,
+            gap_at_rest: rest.gap,
+            offset_at_rest: rest.relative_position - committed.friction.anchor,
             committed_gap: committed.gap,
             was_open: committed.friction.status == ContactStatus::Open,
-            prescribed: [0, 1, 2].map(|d| self.base.constrained[3 * c.node + d]),
+            prescribed: [0, 1, 2].map(|d| self.base.flexibility.constrained[3 * c.node + d]),
         }
     }
 
     /// The displacements (all unknowns, multipliers zero) and the traction
-    /// of every contact node at time `t`.
+    /// of every contact node at time `t`: the condensed problem over the
+    /// candidates solved, then solved again with the nodes that penetrate
+    /// at its answer, until none does.
     fn solve_increment(
         &mut self,
         problem: &Problem,
@@ -247,63 +251,30 @@ impl FrictionalCondensation {
     ) -> Result<(Vec<f64>, Vec<Vector3<f64>>)> {
         let b = self.base.load(problem, t);
         let mut u0 = b.clone();
-        self.base.solve(&mut u0)?;
-        let mut prescribed_all = vec![0.0; b.len()];
-        problem.apply_prescribed(t, &mut prescribed_all);
-        let tolerance = touching(problem);
+        self.base.flexibility.solve(&mut u0)?;
+        let mut prescribed = vec![0.0; b.len()];
+        problem.apply_prescribed(t, &mut prescribed);
+        let rest = constraint_rows(problem, t, &vec![0.0; b.len()]);
         loop {
-            let slot: std::collections::HashMap<usize, usize> = self
-                .candidates
-                .iter()
-                .enumerate()
-                .map(|(s, &a)| (a, s))
+            let nodes = self.cone_nodes(problem, &rest, state)?;
+            let columns = self.cone_columns();
+            let flexibility = &self.base.flexibility;
+            let free: Vec<f64> = (flexibility.candidates.iter())
+                .map(|&c| flexibility.column_dot(c, &u0))
                 .collect();
-            let nodes: Vec<ConeNode> = self
-                .candidates
-                .iter()
-                .map(|&a| self.cone_node(problem, t, state, a))
-                .collect();
-            let prescribed: Vec<Vector3<f64>> = self
-                .candidates
-                .iter()
-                .map(|&a| {
-                    let n = self.contact[a].node;
-                    Vector3::new(
-                        prescribed_all[3 * n],
-                        prescribed_all[3 * n + 1],
-                        prescribed_all[3 * n + 2],
-                    )
-                })
-                .collect();
-            let columns: Vec<(usize, usize)> = self
-                .base
-                .candidates
-                .iter()
-                .map(|&col| {
-                    let (a, d) = self.column_owner[col];
-                    (slot[&a], d)
-                })
-                .collect();
-            let dof = |col: usize| 3 * self.base.nodes[col].node + self.column_owner[col].1;
-            let free: Vec<f64> = self.base.candidates.iter().map(|&c| u0[dof(c)]).collect();
-            let guess_u: Vec<f64> = self
-                .base
-                .candidates
-                .iter()
-                .map(|&c| self.displacement[c].unwrap_or(u0[dof(c)]))
+            let guess_u: Vec<f64> = (flexibility.candidates.iter().zip(&free))
+                .map(|(&c, &f)| self.displacement[c].unwrap_or(f))
                 .collect();
             let guess_t: Vec<Vector3<f64>> =
                 self.candidates.iter().map(|&a| self.traction[a]).collect();
-            let inverse = match self.inverse.take() {
-                Some(inverse) => inverse,
-                None => {
-                    let cholesky = self.base.w.clone().cholesky().ok_or_else(|| {
-                        Error::LinearSolver(
-                            "the condensed contact flexibility is not positive definite".into(),
-                        )
-                    })?;
-                    cholesky.inverse()
-                }
+            let inverse = self.inverse_flexibility()?;
+            let at_nodes = |a: &usize| {
+                let n = self.contact[*a].node;
+                Vector3::new(
+                    prescribed[3 * n],
+                    prescribed[3 * n + 1],
+                    prescribed[3 * n + 2],
+                )
             };
             let cone = ConeProblem {
                 inverse_flexibility: &inverse,
@@ -311,46 +282,19 @@ impl FrictionalCondensation {
                 shifted: &self.shifted,
                 shift: self.shift,
                 free_displacement: &free,
-                prescribed: &prescribed,
+                prescribed: &self.candidates.iter().map(at_nodes).collect::<Vec<_>>(),
                 nodes: &nodes,
             };
-            let solution = solve_cone(&cone, guess_u, guess_t).map_err(|e| {
+            let mut solution = solve_cone(&cone, guess_u, guess_t).map_err(|e| {
                 Error::LinearSolver(format!(
                     "{e} at time {t}; run with [solver] strategy = \"monolithic\""
                 ))
             })?;
             self.iterations += solution.iterations;
-            history.extend(solution.history);
+            history.append(&mut solution.history);
             self.inverse = Some(inverse);
-            // u = K̂⁻¹ (b + E (A t + ρ P_S u_F))
-            let mut u = b.clone();
-            for (k, &col) in self.base.candidates.iter().enumerate() {
-                let (s, d) = columns[k];
-                let shift = if self.shifted[k] {
-                    self.shift * solution.displacement[k]
-                } else {
-                    0.0
-                };
-                u[dof(col)] += nodes[s].area * solution.traction[s][d] + shift;
-                self.displacement[col] = Some(solution.displacement[k]);
-            }
-            for (s, &a) in self.candidates.iter().enumerate() {
-                self.traction[a] = solution.traction[s];
-            }
-            self.base.solve(&mut u)?;
-            // nodes outside the candidates that penetrate join them
-            let reference = &problem.model.mesh.nodes;
-            let gaps: Vec<Vec<f64>> = problem
-                .contacts
-                .iter()
-                .map(|c| c.gaps(reference, t, &u, None))
-                .collect();
-            let entering: Vec<usize> = (0..self.contact.len())
-                .filter(|&a| {
-                    let c = &self.contact[a];
-                    !self.is_candidate[a] && gaps[c.interface][c.index] < -tolerance
-                })
-                .collect();
+            let u = self.displacements(&b, &columns, &nodes, &solution)?;
+            let entering = self.entering(problem, t, &u);
             if entering.is_empty() {
                 let mut traction = vec![Vector3::zeros(); self.contact.len()];
                 for &a in &self.candidates {
@@ -361,6 +305,98 @@ impl FrictionalCondensation {
             self.batches.push(entering.clone());
             self.grow(&entering, false)?;
         }
+    }
+
+    /// The condensed node of every candidate from its constraint row at
+    /// rest (`rest`, per interface) and its committed state.
+    fn cone_nodes(
+        &self,
+        problem: &Problem,
+        rest: &[Vec<Option<ConstraintRow>>],
+        state: &ContactState,
+    ) -> Result<Vec<ConeNode>> {
+        (self.candidates.iter())
+            .map(|&a| {
+                let c = &self.contact[a];
+                let row = rest[c.interface][c.index].as_ref().ok_or_else(|| {
+                    Error::LinearSolver(format!(
+                        "contact node {} of '{}' has no obstacle within reach",
+                        problem.model.mesh.node_ids[c.node],
+                        problem.contacts.interface(c.interface).name
+                    ))
+                })?;
+                Ok(self.cone_node(problem, row, state, a))
+            })
+            .collect()
+    }
+
+    /// Per column of `Ŵ`: its candidate's slot and the component.
+    fn cone_columns(&self) -> Vec<(usize, usize)> {
+        let slot: std::collections::HashMap<usize, usize> = (self.candidates.iter().enumerate())
+            .map(|(s, &a)| (a, s))
+            .collect();
+        (self.base.flexibility.candidates.iter())
+            .map(|&col| {
+                let (a, d) = self.column_owner[col];
+                (slot[&a], d)
+            })
+            .collect()
+    }
+
+    /// `Ŵ⁻¹`: the one kept since `Ŵ` last changed, else its Cholesky
+    /// inverse.
+    fn inverse_flexibility(&mut self) -> Result<nalgebra::DMatrix<f64>> {
+        if let Some(inverse) = self.inverse.take() {
+            return Ok(inverse);
+        }
+        let cholesky = self.base.flexibility.w.clone().cholesky().ok_or_else(|| {
+            Error::LinearSolver("the condensed contact flexibility is not positive definite".into())
+        })?;
+        Ok(cholesky.inverse())
+    }
+
+    /// `u = K̂⁻¹ (b + E (A t + ρ P_S u_F))` from the condensed `solution`,
+    /// which becomes the next start.
+    fn displacements(
+        &mut self,
+        b: &[f64],
+        columns: &[(usize, usize)],
+        nodes: &[ConeNode],
+        solution: &ConeSolution,
+    ) -> Result<Vec<f64>> {
+        let mut u = b.to_vec();
+        let flexibility = &self.base.flexibility;
+        for (k, &col) in flexibility.candidates.iter().enumerate() {
+            let (s, d) = columns[k];
+            let shift = if self.shifted[k] {
+                self.shift * solution.displacement[k]
+            } else {
+                0.0
+            };
+            let force = nodes[s].area * solution.traction[s][d] + shift;
+            flexibility.add_column(col, force, &mut u);
+            self.displacement[col] = Some(solution.displacement[k]);
+        }
+        for (s, &a) in self.candidates.iter().enumerate() {
+            self.traction[a] = solution.traction[s];
+        }
+        self.base.flexibility.solve(&mut u)?;
+        Ok(u)
+    }
+
+    /// The contact nodes outside the candidates that penetrate at `u`.
+    fn entering(&self, problem: &Problem, t: f64, u: &[f64]) -> Vec<usize> {
+        let reference = &problem.model.mesh.nodes;
+        let gaps: Vec<Vec<f64>> = (problem.contacts.iter())
+            .map(|c| c.gaps(reference, t, u, None))
+            .collect();
+        let tolerance = touching(problem);
+        (0..self.contact.len())
+            .filter(|&a| {
+                let c = &self.contact[a];
+                !self.is_candidate[a] && gaps[c.interface][c.index] < -tolerance
+            })
+            .collect()
     }
 }
 
@@ -382,9 +418,7 @@ impl IncrementSolver for FrictionalCondensation {
         let mut pressures = super::zero_per_node(problem);
         for (a, c) in self.contact.iter().enumerate() {
             let interface = problem.contacts.interface(c.interface);
-            let Primary::Rigid(RigidObstacle::Plane { normal, .. }) = &interface.primary else {
-                continue;
-            };
+            let normal = &c.normal;
             let tn = normal.dot(&traction[a]);
             pressures[c.interface][c.index] = tn;
             if interface.exact_stick() {
@@ -397,7 +431,10 @@ impl IncrementSolver for FrictionalCondensation {
     }
 
     fn statistics(&self) -> (SolverStatistics, usize) {
-        (SolverStatistics::of_ldlt(&self.base.ldlt), self.iterations)
+        (
+            SolverStatistics::of_ldlt(&self.base.flexibility.ldlt),
+            self.iterations,
+        )
     }
 
     /// The batches after the first candidates, and per contact node its

@@ -2,7 +2,7 @@
 //! an increment (frictionless or frictional), the check of its answer by
 //! the problem's residual, and its warm state for a restart.
 
-use super::{friction, has_friction, set_multipliers, zero_per_node};
+use super::{friction, has_friction, has_pairs, pairs, set_multipliers, zero_per_node};
 use super::{Condensation, ContactState, Path, Problem};
 use crate::contact::interface::NodeReport;
 use crate::solve::failure::IncrementFailure;
@@ -56,7 +56,7 @@ impl IncrementSolver for Condensation {
         trial: &mut ContactState,
         history: &mut Vec<IterationRecord>,
     ) -> Result<()> {
-        let (u, forces) = self.solve_increment(problem, t, history)?;
+        let (u, forces) = self.solve_increment(problem, t, None, history)?;
         let mut pressures = zero_per_node(problem);
         for (a, c) in self.nodes.iter().enumerate() {
             pressures[c.interface][c.index] =
@@ -68,25 +68,25 @@ impl IncrementSolver for Condensation {
 
     fn statistics(&self) -> (SolverStatistics, usize) {
         let statistics = SolverStatistics {
-            mixed_precision_fallbacks: self.fallbacks,
-            ..SolverStatistics::of_ldlt(&self.ldlt)
+            mixed_precision_fallbacks: self.flexibility.fallbacks,
+            ..SolverStatistics::of_ldlt(&self.flexibility.ldlt)
         };
-        (statistics, self.active_set_iterations)
+        (statistics, self.flexibility.active_set_iterations)
     }
 
     fn warm_start(&self) -> WarmStart {
         WarmStart {
-            batches: self.batches.clone(),
-            active: self.active.clone(),
+            batches: self.flexibility.batches.clone(),
+            active: self.flexibility.active.clone(),
             ..WarmStart::default()
         }
     }
 
     fn resume(&mut self, warm: &WarmStart) -> Result<()> {
         for batch in &warm.batches {
-            self.grow(batch)?;
+            self.flexibility.grow(batch)?;
         }
-        self.active.clone_from(&warm.active);
+        self.flexibility.active.clone_from(&warm.active);
         Ok(())
     }
 }
@@ -114,6 +114,8 @@ impl Condensed {
         let path_dependent = has_friction(problem);
         let solver: Box<dyn IncrementSolver> = if path_dependent {
             Box::new(friction::FrictionalCondensation::new(problem)?)
+        } else if has_pairs(problem) {
+            Box::new(pairs::PairCondensation::new(problem)?)
         } else {
             Box::new(Condensation::new(problem)?)
         };

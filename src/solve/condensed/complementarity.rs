@@ -16,7 +16,7 @@
 //! changes (Murty's rule, finite for a positive definite `W`). The answer
 //! is exact up to round-off: `g_A = 0`, `λ_I = 0`.
 
-use super::record::IterationRecord;
+use crate::solve::record::IterationRecord;
 use nalgebra::DMatrix;
 
 /// Steps without a smaller number of violations before the single-index

@@ -31,9 +31,9 @@
 //! that leaves `T` gets its column by a block solve with the factor, as
 //! before.
 
-use super::linear::{Ordering, SparseLdlt};
-use super::ordering::{node_dissection, EarlyDissection};
 use crate::assembly::pattern::SparsityPattern;
+use crate::solve::linear::{Ordering, SparseLdlt};
+use crate::solve::ordering::{node_dissection, EarlyDissection};
 use crate::{Error, Result};
 use faer::linalg::matmul::triangular::BlockStructure;
 use faer::sparse::linalg::cholesky::SymbolicCholeskyRaw;

@@ -63,6 +63,7 @@
 //! round-off.
 
 use crate::contact::friction::{self, ContactStatus, Coulomb, NormalPressure, SlipKinematics};
+pub use crate::contact::laws::NormalEnforcement;
 use faer::linalg::solvers::Solve;
 use nalgebra::{DMatrix, DVector, Matrix3, Vector3};
 
@@ -78,16 +79,6 @@ const AXIS_IN_PLANE: f64 = 1e-12;
 /// Converged when the scaled residual is below this fraction of the
 /// traction scale.
 const TOLERANCE: f64 = 1e-13;
-
-/// How the normal constraint of a node is enforced.
-#[derive(Clone, Copy, Debug, PartialEq)]
-pub enum NormalEnforcement {
-    /// `g ≥ 0 ⊥ t_N ≥ 0` exactly, written with the parameter `r > 0`
-    /// (traction per length; it only conditions Newton).
-    Exact { r: f64 },
-    /// `t_N = ε⟨−g⟩`.
-    Penalty { epsilon: f64 },
-}
 
 /// The tangential law of a node.
 #[derive(Clone, Copy, Debug, PartialEq)]

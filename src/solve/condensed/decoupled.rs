@@ -19,7 +19,7 @@
 //! unknowns, 1 379 prescribed, 737 multipliers) the factor shrinks from
 //! 11.4 M to 8.6 M entries.
 
-use super::linear::Ordering;
+use crate::solve::linear::Ordering;
 use faer::sparse::SymbolicSparseColMat;
 
 /// `ordering` with the `decoupled` unknowns moved to the front (in their

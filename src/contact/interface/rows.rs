@@ -1,0 +1,189 @@
+//! The node driver's linearisation as constraint rows: per secondary node
+//! its gap at the unknowns, the unit normal `n`, its tributary area `A_s`
+//! and the lever `B = ∂(x_s − x̄)/∂u` at fixed projection (`+I` on the
+//! secondary node, `−w_i I` on the primary nodes of its reaction, none
+//! against a rigid obstacle), so that
+//!
+//! ```text
+//! g(u + δ) ≈ g(u) + nᵀ B δ,   ∇g = Bᵀ n,
+//! ```
+//!
+//! and a nodal traction `t` acts on the unknowns as `A_s Bᵀ t`. What a
+//! solve that meets the contact conditions directly reads (the condensed
+//! path, the Josephy–Newton step), whatever the primary kind: the rows come
+//! from the same [`GapProducer`] as the assembly.
+
+use super::{ContactContext, ContactInterface, Primary, RigidGap, SurfaceGap};
+use crate::contact::kinematics::{GapProducer, PrimaryWeights};
+use crate::contact::laws::NodeContactState;
+use crate::contact::obstacle::RigidObstacle;
+use nalgebra::Vector3;
+
+/// One secondary node's gap linearised at the unknowns (module docs).
+#[derive(Clone, Debug, PartialEq)]
+pub struct ConstraintRow {
+    /// Signed gap `g` (`g ≥ 0` open).
+    pub gap: f64,
+    /// Unit normal `n` toward the secondary body.
+    pub normal: Vector3<f64>,
+    /// Tributary reference area `A_s`.
+    pub area: f64,
+    /// The secondary mesh node `s`.
+    pub node: usize,
+    /// The primary nodes of the reaction and their weights `w_i`.
+    pub primary: PrimaryWeights,
+    /// The node's position in the frame its friction anchor is kept in
+    /// ([`GapProducer::relative_position`]).
+    pub relative_position: Vector3<f64>,
+    /// The primary triangle the node projects on, to be kept in its state
+    /// (node-to-surface only: [`GapKinematics::facet`](crate::contact::kinematics::GapKinematics)).
+    pub facet: Option<usize>,
+}
+
+impl ConstraintRow {
+    /// Row `d` of the lever `B` as `(dof, value)`: `+1` on `3s + d`, `−w_i`
+    /// on `3p_i + d`.
+    pub fn lever_row(&self, d: usize) -> Vec<(usize, f64)> {
+        std::iter::once((3 * self.node + d, 1.0))
+            .chain(self.primary.iter().map(|&(p, w)| (3 * p + d, -w)))
+            .collect()
+    }
+
+    /// `∇g = Bᵀ n` as `(dof, value)`, components with `n_d = 0` left out:
+    /// the secondary node's three first (`d = 0, 1, 2`), then each primary
+    /// node's.
+    pub fn gradient(&self) -> Vec<(usize, f64)> {
+        let nodes =
+            std::iter::once((self.node, 1.0)).chain(self.primary.iter().map(|&(p, w)| (p, -w)));
+        nodes
+            .flat_map(|(a, w)| {
+                (0..3)
+                    .filter(|&d| self.normal[d] != 0.0)
+                    .map(move |d| (3 * a + d, w * self.normal[d]))
+            })
+            .collect()
+    }
+}
+
+impl ContactInterface {
+    /// Every secondary node's [`ConstraintRow`] at time `t` and unknowns
+    /// `x` (`None` for a node with no primary within the search margin),
+    /// with the nodes' states where given (a deformable interface then uses
+    /// each node's kept triangle, as the assembly does).
+    pub fn constraint_rows(
+        &self,
+        reference: &[[f64; 3]],
+        t: f64,
+        x: &[f64],
+        states: Option<&[NodeContactState]>,
+    ) -> Vec<Option<ConstraintRow>> {
+        let ctx = ContactContext {
+            reference,
+            t,
+            x,
+            first_multiplier: 0,
+        };
+        let mut rows = Vec::with_capacity(self.nodes.len());
+        with_producer!(self, t, p => {
+            let state_of = |i| {
+                states.map_or_else(|| NodeContactState::initial(&self.law_at(i), p.open_gap()), |s| s[i])
+            };
+            self.for_each_node(p, &ctx, state_of, |node, _, k| {
+                rows.push(k.map(|k| ConstraintRow {
+                    gap: k.gap,
+                    normal: k.normal,
+                    area: self.areas[node.index],
+                    node: node.mesh_node,
+                    primary: k.primary.clone(),
+                    relative_position: p.relative_position(node),
+                    facet: k.facet,
+                }));
+            });
+        });
+        rows
+    }
+
+    /// Whether the rows follow projections on a primary surface of
+    /// another body (node-to-surface between bodies: each row exact at
+    /// fixed projection, [`ConstraintRow`]).
+    pub fn projected_gap(&self) -> bool {
+        matches!(self.primary, Primary::Surface(_))
+    }
+
+    /// `Ok` where every node's gap is affine in the unknowns everywhere
+    /// (`g = g(0) + ∇g · u` with one `∇g`: a rigid plane), else what the
+    /// primary is, in words ("is against a sphere, …").
+    pub fn affine_gap(&self) -> Result<(), String> {
+        let curved = match &self.primary {
+            Primary::Rigid(RigidObstacle::Plane { .. }) => return Ok(()),
+            Primary::Rigid(RigidObstacle::Sphere { .. }) => "sphere",
+            Primary::Rigid(RigidObstacle::Cylinder { .. }) => "cylinder",
+            Primary::Rigid(_) => "triangulated surface",
+            // a primary surface (and any primary kind added later)
+            _ => {
+                return Err(
+                    "is between two bodies (its gap follows the projection on the \
+                            primary surface)"
+                        .into(),
+                )
+            }
+        };
+        Err(format!(
+            "is against a {curved}, whose gap is not linear in the displacement"
+        ))
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::contact::laws::NormalLaw;
+    use crate::contact::setup::Enforcement;
+    use crate::mesh::structured::box_mesh;
+    use crate::mesh::ElementKind;
+
+    /// The row's `∇g = Bᵀn` is the driver's gap derivative: a central
+    /// difference (`h = 1e-6`) of [`ContactInterface::gaps`] along each of
+    /// the node's unknowns equals it to 1e-8, on an oblique rigid plane
+    /// (affine) and on a sphere (curved), at a displaced state; the row's
+    /// gap is the driver's.
+    #[test]
+    fn row_gradient_is_the_gap_derivative() {
+        let mesh = box_mesh(ElementKind::Hex8, [2, 2, 1], [1.0, 1.0, 0.5]);
+        let enforcement = Enforcement::from(NormalLaw::Penalty { epsilon: 1.0 });
+        let normal = Vector3::new(0.3, -0.2, 1.0).normalize();
+        let obstacles = [
+            RigidObstacle::plane(Vector3::new(0.0, 0.0, -0.1), normal).unwrap(),
+            RigidObstacle::sphere(Vector3::new(0.5, 0.5, -2.0), 1.9).unwrap(),
+        ];
+        let n = 3 * mesh.num_nodes();
+        let x: Vec<f64> = (0..n).map(|i| 0.01 * ((7 * i % 5) as f64 - 2.0)).collect();
+        for (o, obstacle) in obstacles.into_iter().enumerate() {
+            let c = ContactInterface::rigid(&mesh, "zmin", obstacle, &enforcement).unwrap();
+            assert_eq!(c.affine_gap().is_ok(), o == 0);
+            let rows = c.constraint_rows(&mesh.nodes, 0.0, &x, None);
+            let gaps = c.gaps(&mesh.nodes, 0.0, &x, None);
+            for (i, row) in rows.iter().enumerate() {
+                let row = row.as_ref().expect("a rigid obstacle always projects");
+                assert_eq!(row.gap, gaps[i]);
+                assert_eq!(row.area, c.areas[i]);
+                let gradient = row.gradient();
+                for d in 0..3 {
+                    let dof = 3 * row.node + d;
+                    let h = 1e-6;
+                    let (mut plus, mut minus) = (x.clone(), x.clone());
+                    plus[dof] += h;
+                    minus[dof] -= h;
+                    let g = |x: &[f64]| c.gaps(&mesh.nodes, 0.0, x, None)[i];
+                    let fd = (g(&plus) - g(&minus)) / (2.0 * h);
+                    let exact = gradient.iter().find(|e| e.0 == dof).map_or(0.0, |e| e.1);
+                    assert!(
+                        (fd - exact).abs() < 1e-8,
+                        "node {i} dof {d}: {fd} vs {exact}"
+                    );
+                }
+                assert_eq!(row.lever_row(1), vec![(3 * row.node + 1, 1.0)]);
+            }
+        }
+    }
+}

@@ -1,0 +1,219 @@
+//! Bodies in contact with each other on the condensed path, frictionless
+//! (issue 32 item 3): with every body of constant stiffness, `K̃` is
+//! factorised once with the dofs of every contact surface (secondary and
+//! primary) ordered last, so that `(K̃⁻¹)_SS` is read off its trailing
+//! block, and each increment is solved on the node driver's constraint
+//! rows at the current projections:
+//!
+//! ```text
+//! K̃ u = b + E(u) λ,   g(u) ≥ 0,   λ ≥ 0,   λ_a g_a(u) = 0,
+//! ```
+//!
+//! column `a` of `E(u)` the gap gradient `∇g_a = Bᵀn` of secondary node `a`
+//! (its own dofs and those of the primary triangle it projects on, with
+//! the weights `−N_i`). A fixed point on the projections: `E` from the rows
+//! at the last answer, `W = Eᵀ K̃⁻¹ E` formed anew from `(K̃⁻¹)_SS` (no
+//! solves while every column lies on the trailing block), the
+//! complementarity problem solved with the exact gaps taking up the
+//! defect of the linearisation ([`Flexibility::solve_increment`]), the rows
+//! read again at the answer, until the columns of the nodes that carry a
+//! force change by less than [`COLUMN_TOLERANCE`]. At the fixed point `K̃u = b + E(u)λ` and
+//! `g(u) ⊥ λ`: the equations of the monolithic node-to-surface problem
+//! (whose `∇g` at fixed projection is `Bᵀn`), whose residual the problem's
+//! evaluation then checks.
+
+use super::condensation::normal_column;
+use super::{set_multipliers, zero_per_node};
+use super::{Condensation, ContactNode, ContactState, IncrementSolver, Problem};
+use crate::solve::condensed::flexibility::{Column, Flexibility};
+use crate::solve::linear_solver::SolverStatistics;
+use crate::solve::method::WarmStart;
+use crate::solve::newton::IterationRecord;
+use crate::{Error, Result};
+
+/// Rounds of the fixed point on the projections at most.
+const MAX_ROUNDS: usize = 30;
+
+/// The projections are taken as settled when no entry of a column (a
+/// normal component times a weight, at most 1) changes by more than this.
+const COLUMN_TOLERANCE: f64 = 1e-12;
+
+/// The frictionless condensation of bodies in contact with each other.
+pub(super) struct PairCondensation {
+    base: Condensation,
+    /// Rounds of the fixed point, over the run.
+    rounds: usize,
+}
+
+/// Per secondary node of every interface its owner and its column of `E`
+/// at unknowns `u`, time `t`: `∇g = Bᵀn` and a penalty law's compliance
+/// `1/(A ε)` (an empty column where the node has no primary in reach:
+/// it is open at the search margin); the primary triangle of each node
+/// kept in `kept` (as Newton keeps it: a node over the kink between two
+/// triangles does not flip from one round to the next).
+fn columns_at(
+    problem: &Problem,
+    t: f64,
+    u: &[f64],
+    kept: &mut ContactState,
+) -> (Vec<ContactNode>, Vec<Column>) {
+    let (mut nodes, mut columns) = (Vec::new(), Vec::new());
+    let reference = &problem.model.mesh.nodes;
+    for (ci, c) in problem.contacts.iter().enumerate() {
+        let states = &mut kept.interfaces[ci];
+        let rows = c.constraint_rows(reference, t, u, Some(states));
+        for (i, row) in rows.iter().enumerate() {
+            nodes.push(ContactNode {
+                interface: ci,
+                index: i,
+            });
+            let Some(row) = row else {
+                columns.push(Column {
+                    entries: Vec::new(),
+                    compliance: 0.0,
+                });
+                continue;
+            };
+            states[i].facet = row.facet;
+            columns.push(normal_column(c.law_at(i).converged(), row));
+        }
+    }
+    (nodes, columns)
+}
+
+/// The largest change of an entry between two sets of columns of the
+/// nodes that carry a force (an open node's column acts on nothing, and
+/// its gap is the driver's exact one), each taken as a sparse vector on
+/// the unknowns (so that a node over a shared edge, whose weight on the
+/// off-edge vertex is zero, has the same column on either triangle).
+fn column_change(old: &[Column], new: &[Column], forces: &[f64]) -> f64 {
+    use std::collections::BTreeMap;
+    let sparse = |c: &Column| {
+        let mut v: BTreeMap<usize, f64> = BTreeMap::new();
+        for &(i, x) in &c.entries {
+            *v.entry(i).or_default() += x;
+        }
+        v
+    };
+    (old.iter().zip(new).zip(forces))
+        .filter(|(_, &force)| force != 0.0)
+        .map(|((a, b), _)| {
+            let (a_sparse, mut b_sparse) = (sparse(a), sparse(b));
+            let mut change = (a.compliance - b.compliance).abs();
+            for (i, x) in a_sparse {
+                change = change.max((x - b_sparse.remove(&i).unwrap_or(0.0)).abs());
+            }
+            b_sparse.values().fold(change, |m, x| m.max(x.abs()))
+        })
+        .fold(0.0, f64::max)
+}
+
+impl PairCondensation {
+    /// The columns at `u = 0`, and `K̃` factorised once in f64 with every
+    /// free dof of the contact surfaces' nodes ordered last.
+    pub(super) fn new(problem: &Problem) -> Result<Self> {
+        let zero = vec![0.0; problem.num_unknowns()];
+        let mut initial = problem
+            .contacts
+            .initial_state(&problem.model.mesh.nodes, &zero);
+        let (nodes, columns) = columns_at(problem, 0.0, &zero, &mut initial);
+        let mut surface: Vec<usize> = problem.contacts.deformable_nodes();
+        surface.extend(
+            problem
+                .contacts
+                .iter()
+                .flat_map(|c| c.nodes.iter().copied()),
+        );
+        surface.sort_unstable();
+        surface.dedup();
+        // every dof of a surface node as one trailing "column" each node
+        let all: Vec<Column> = (surface.iter())
+            .map(|&n| Column {
+                entries: (0..3).map(|d| (3 * n + d, 1.0)).collect(),
+                compliance: 0.0,
+            })
+            .collect();
+        let order: Vec<usize> = (0..all.len()).collect();
+        let mut constrained = problem.constrained_dofs();
+        let dofs = problem.model.num_dofs();
+        constrained[dofs..].iter_mut().for_each(|c| *c = true);
+        let trailing = Flexibility::trailing_dofs(&all, &order, &constrained, 1.0);
+        let base = Condensation::factorise_on(problem, nodes, columns, &[], trailing, false)?;
+        Ok(PairCondensation { base, rounds: 0 })
+    }
+
+    /// The displacements and the contact force of every node at time `t`
+    /// from the unknowns `start` (the last answer): the fixed point on the
+    /// projections (module docs), the primary triangles kept in `kept`.
+    fn solve_increment(
+        &mut self,
+        problem: &Problem,
+        t: f64,
+        start: &[f64],
+        kept: &mut ContactState,
+        history: &mut Vec<IterationRecord>,
+    ) -> Result<(Vec<f64>, Vec<f64>)> {
+        let (_, mut columns) = columns_at(problem, t, start, kept);
+        for _ in 0..MAX_ROUNDS {
+            self.rounds += 1;
+            self.base.flexibility.replace_columns(columns)?;
+            let (u, forces) = self.base.solve_increment(problem, t, Some(kept), history)?;
+            let (_, next) = columns_at(problem, t, &u, kept);
+            let change = column_change(&self.base.flexibility.columns, &next, &forces);
+            if change <= COLUMN_TOLERANCE {
+                return Ok((u, forces));
+            }
+            columns = next;
+        }
+        Err(Error::LinearSolver(format!(
+            "the projections between the bodies did not settle in {MAX_ROUNDS} condensed \
+             solves at time {t}; run with [solver] strategy = \"monolithic\""
+        )))
+    }
+}
+
+impl IncrementSolver for PairCondensation {
+    fn increment(
+        &mut self,
+        problem: &Problem,
+        t: f64,
+        _: &ContactState,
+        x: &mut [f64],
+        trial: &mut ContactState,
+        history: &mut Vec<IterationRecord>,
+    ) -> Result<()> {
+        let start = x.to_vec();
+        let (u, forces) = self.solve_increment(problem, t, &start, trial, history)?;
+        let mut pressures = zero_per_node(problem);
+        let reference = &problem.model.mesh.nodes;
+        let rows: Vec<_> = (problem.contacts.iter().enumerate())
+            .map(|(ci, c)| c.constraint_rows(reference, t, &u, Some(&trial.interfaces[ci])))
+            .collect();
+        for (a, c) in self.base.nodes.iter().enumerate() {
+            if let Some(row) = &rows[c.interface][c.index] {
+                pressures[c.interface][c.index] = forces[a] / row.area;
+            }
+        }
+        set_multipliers(problem, &pressures, &u, t, x, trial);
+        Ok(())
+    }
+
+    fn statistics(&self) -> (SolverStatistics, usize) {
+        let (statistics, iterations) = self.base.statistics();
+        (statistics, iterations + self.rounds)
+    }
+
+    fn warm_start(&self) -> WarmStart {
+        self.base.warm_start()
+    }
+
+    /// Not bitwise: the candidates' columns are those of the checkpoint's
+    /// projections only after the first increment; refused.
+    fn resume(&mut self, _: &WarmStart) -> Result<()> {
+        Err(Error::LinearSolver(
+            "a restart of the condensed path between bodies is not supported; run with \
+             [solver] strategy = \"monolithic\""
+                .into(),
+        ))
+    }
+}

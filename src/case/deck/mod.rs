@@ -359,6 +359,7 @@ fn contacts(physics: &Physics, notes: &mut Vec<String>) -> Result<Vec<ContactSpe
             friction_multiplier: None,
             initial_penetration_tolerance: None,
             two_pass: false,
+            discretisation: Default::default(),
         });
     }
     if !out.is_empty() {

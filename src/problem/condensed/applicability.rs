@@ -97,6 +97,9 @@ pub fn not_applicable(problem: &Problem) -> Option<String> {
     for c in &problem.contacts {
         let why = match (&c.primary, c.law) {
             (Primary::Surface(_), _) => Some("is between two bodies (not condensed yet)".into()),
+            (Primary::Mortar(_), _) => {
+                Some("uses discretisation = \"mortar\" (not condensed yet)".into())
+            }
             (Primary::Rigid(RigidObstacle::Plane { .. }), NormalLaw::Uzawa { .. }) => Some(
                 "uses uzawa, which meets the constraint only to its outer loop's tolerance".into(),
             ),

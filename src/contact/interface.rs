@@ -37,7 +37,7 @@ use super::surface_contact::SurfaceGap;
 use crate::assembly::amplitude::Amplitude;
 use crate::assembly::pattern::SparsityPattern;
 use crate::assembly::scatter::{add_block, add_multiplier_block, add_nodal};
-use nalgebra::{DefaultAllocator, Dim, OMatrix, Vector3, U3};
+use nalgebra::{DefaultAllocator, Dim, OMatrix, OVector, Vector3, U3};
 
 /// What the secondary nodes of an interface touch.
 #[derive(Clone, Debug)]
@@ -616,15 +616,12 @@ impl ContactInterface {
                     return;
                 };
                 let area = e.kinematics.area.unwrap_or(self.areas[node.index]);
-                let lever_t = frame.lever.transpose();
                 let stick = p.stick_stiffness(&e.kinematics, &frame, &t, &coulomb, area);
-                let shift = stick + area * &lever_t * &t.traction_gradient;
-                let shift = 0.5 * (&shift + shift.transpose());
+                let (shift, half) = stick_shift(stick, &frame.lever, &t, area);
                 let nodes = e.kinematics.nodes();
                 add_block(pattern, values, nodes, |r, s| shift[(r, s)], keep);
                 if let Some(m) = self.multiplier(ctx, node.index) {
                     // sym added ½(−A_s Bᵀ ∂t_T/∂λ) to both entries: remove it
-                    let half = -0.5 * area * &lever_t * t.traction_multiplier_derivative;
                     let m = m - ctx.first_multiplier;
                     add_multiplier_block(pattern, values, m, nodes, |a| -half[a], |a| -half[a], keep);
                 }
@@ -739,6 +736,29 @@ fn first_contact_pending(state: &NodeContactState) -> bool {
     state.friction.status == ContactStatus::Open && state.gap > 0.0
 }
 
+/// The preconditioner's shift of one closed node with friction (see
+/// [`ContactInterface::shift_to_stick_preconditioner`]): the symmetric
+/// `sym(K_stick + A_s Bᵀ ∂t_T/∂q)` with the lever `B`, and the half
+/// `−½ A_s Bᵀ ∂t_T/∂λ` that `sym` put in both multiplier entries.
+fn stick_shift<Q: Dim>(
+    stick: OMatrix<f64, Q, Q>,
+    lever: &OMatrix<f64, U3, Q>,
+    t: &TangentialResponse<Q>,
+    area: f64,
+) -> (OMatrix<f64, Q, Q>, OVector<f64, Q>)
+where
+    DefaultAllocator: QAllocator<Q>,
+{
+    let lever_t = lever.transpose();
+    let shift = stick + area * &lever_t * &t.traction_gradient;
+    let shift = 0.5 * (&shift + shift.transpose());
+    let half = -0.5 * area * &lever_t * t.traction_multiplier_derivative;
+    (shift, half)
+}
+
+/// A node's mesh nodes with its friction lever `B`.
+type NodesAndLever<'a, Q> = (&'a [usize], &'a OMatrix<f64, U3, Q>);
+
 /// Scatter a node's tangential multiplier equations `rows` (global
 /// indices `m`, `m + 1`; its normal multiplier `normal`): their residual,
 /// the rows `∂r_ℓ/∂q` and the columns `∂r_q/∂ℓ = −A_s Bᵀ ∂t_T/∂ℓ` over the
@@ -748,7 +768,7 @@ fn scatter_tangential<Q: Dim>(
     ctx: &ContactContext,
     rows: &friction::MultiplierRows<Q>,
     (m, normal): (usize, Option<usize>),
-    lever: Option<(&[usize], &OMatrix<f64, U3, Q>)>,
+    lever: Option<NodesAndLever<Q>>,
     residual: &mut [f64],
     tangent: Option<(&SparsityPattern, &mut [f64])>,
 ) where

@@ -1,7 +1,9 @@
 //! The `[[obstacle]]` and `[[contact]]` tables, validated into rigid
 //! obstacles and contact interfaces.
 
-use super::schema::{ContactMethod, FrictionMultiplierSpec, ObstacleShape};
+use super::schema::{
+    ContactMethod, ContactSpec, DiscretisationSpec, FrictionMultiplierSpec, ObstacleShape,
+};
 use super::{not_positive, Case};
 use crate::contact::friction::FrictionMultiplier;
 use crate::contact::interface::ContactInterface;
@@ -183,6 +185,10 @@ impl Case {
                 }
                 (mu, _) => mu,
             };
+            let mortar = c.discretisation == DiscretisationSpec::Mortar;
+            if mortar {
+                self.mortar_supported(&key, c, matches!(target, Target::Obstacle(_)))?;
+            }
             let enforcement = Enforcement {
                 method: match c.method {
                     ContactMethod::Penalty => Method::Penalty,
@@ -316,9 +322,12 @@ impl Case {
                     ]
                 }
                 Target::Surface(primary) => {
-                    let interface =
+                    let interface = if mortar {
+                        ContactInterface::mortar(mesh, &c.surface, primary, &enforcement)
+                    } else {
                         ContactInterface::between_bodies(mesh, &c.surface, primary, &enforcement)
-                            .map_err(setup)?;
+                    };
+                    let interface = interface.map_err(setup)?;
                     vec![(
                         interface.named(&name),
                         "",
@@ -386,6 +395,35 @@ impl Case {
                  move the bodies apart, or check the normal (an obstacle's must point toward the body)"
             )),
             (e, _) => self.err(format!("{key}{pass}: {e}")),
+        }
+    }
+
+    /// `Ok` where `[[contact]]` `key` (`c`, against an obstacle when
+    /// `obstacle`) may take `discretisation = "mortar"`: between two bodies,
+    /// frictionless, one pass (this session's mortar), else the error
+    /// naming the key.
+    fn mortar_supported(&self, key: &str, c: &ContactSpec, obstacle: bool) -> Result<()> {
+        let why = if obstacle {
+            Some(
+                "`obstacle`: mortar against a rigid obstacle is not supported yet; \
+                 use discretisation = \"node_to_surface\" (the default) with an obstacle",
+            )
+        } else if c.friction_coefficient.is_some_and(|mu| mu > 0.0) {
+            Some(
+                "`friction_coefficient`: mortar contact is frictionless for now; remove the \
+                 friction coefficient or use discretisation = \"node_to_surface\"",
+            )
+        } else if c.two_pass {
+            Some(
+                "`two_pass`: mortar contact has one pass (its forces balance on both surfaces); \
+                 remove two_pass",
+            )
+        } else {
+            None
+        };
+        match why {
+            Some(why) => Err(self.err(format!("{key}.discretisation = \"mortar\" with {why}"))),
+            None => Ok(()),
         }
     }
 }

@@ -307,6 +307,18 @@ pub enum FrictionMultiplierSpec {
     Outer,
 }
 
+/// `[[contact]] discretisation`.
+#[derive(Clone, Copy, Debug, Default, Deserialize, PartialEq, Eq)]
+#[serde(rename_all = "snake_case")]
+pub enum DiscretisationSpec {
+    /// Each secondary node against the primary triangle it projects on.
+    #[default]
+    NodeToSurface,
+    /// Dual mortar (segment-to-segment): weighted gaps and one multiplier
+    /// per secondary node (between two bodies, frictionless, one pass).
+    Mortar,
+}
+
 /// `[[contact]]`: frictionless node-to-surface contact of a surface set
 /// of the body (its nodes are the secondary nodes) with an obstacle.
 #[derive(Debug, Deserialize)]
@@ -360,6 +372,11 @@ pub struct ContactSpec {
     /// half of each node's tributary area (default false: one pass).
     #[serde(default)]
     pub two_pass: bool,
+    /// `"node_to_surface"` (default) or `"mortar"`: dual mortar between two
+    /// bodies (with `primary`), frictionless, one pass; linear and
+    /// quadratic faces.
+    #[serde(default)]
+    pub discretisation: DiscretisationSpec,
 }
 
 /// `[[step]]`

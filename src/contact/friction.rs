@@ -117,8 +117,12 @@
 //! committed once the increment has converged ([`commit`]). Updating it per
 //! iteration (as the paper says) breaks path independence.
 
+use super::dimension::{natural_dim, QAllocator};
 use super::gap::GapGeometry;
-use nalgebra::{Matrix2, Matrix3, SMatrix, SVector, Vector2, Vector3};
+use nalgebra::{
+    DefaultAllocator, Dim, Matrix2, Matrix3, OMatrix, OVector, SMatrix, Vector2, Vector3, U1, U2,
+    U3,
+};
 
 /// Coulomb's law with its regularising tangential penalty.
 #[derive(Clone, Copy, Debug, PartialEq)]
@@ -208,49 +212,58 @@ impl FrictionHistory {
 /// (from the normal law's [`NodeContribution`](super::laws::NodeContribution))
 /// with respect to the `K` unknowns of the node's kinematics (`x_s` alone
 /// against a rigid obstacle, `K = 3`).
-#[derive(Clone, Copy, Debug, PartialEq)]
-pub struct NormalPressure<const K: usize = 3> {
+#[derive(Clone, Debug, PartialEq)]
+pub struct NormalPressure<K: Dim = U3>
+where
+    DefaultAllocator: QAllocator<K>,
+{
     /// `t_N > 0`.
     pub value: f64,
     /// `∂t_N/∂q`.
-    pub gradient: SVector<f64, K>,
+    pub gradient: OVector<f64, K>,
     /// `∂t_N/∂λ` (zero without a multiplier dof).
     pub multiplier_derivative: f64,
 }
 
 /// Where a node is relative to the point it slips from, and the tangent
 /// plane, with their derivatives with respect to `K` unknowns `q`.
-#[derive(Clone, Copy, Debug, PartialEq)]
-pub struct SlipKinematics<const K: usize> {
+#[derive(Clone, Debug, PartialEq)]
+pub struct SlipKinematics<K: Dim>
+where
+    DefaultAllocator: QAllocator<K>,
+{
     /// The committed traction `t_T,n` as it is now: a fixed vector against
     /// a rigid obstacle; between bodies carried by the primary surface
     /// (`τ^α a_α`, its components on the anchor triangle's edges).
     pub traction: Vector3<f64>,
     /// `∂t_T,n/∂q` (zero against a rigid obstacle).
-    pub traction_gradient: SMatrix<f64, 3, K>,
+    pub traction_gradient: OMatrix<f64, U3, K>,
     /// `d`: the node's position relative to its anchor (against a rigid
     /// obstacle `(x_s − c(t)) − (x_s − c)ₙ`; between bodies `x_s − x̄ₙ`, the
     /// current position of the primary material point `x̄ₙ` the node was
     /// over at the last converged increment).
     pub offset: Vector3<f64>,
     /// `∂d/∂q`.
-    pub offset_gradient: SMatrix<f64, 3, K>,
+    pub offset_gradient: OMatrix<f64, U3, K>,
     /// Unit normal `n` of the tangent plane.
     pub normal: Vector3<f64>,
     /// `∂n/∂q` (the gap Hessian `H` against a rigid obstacle).
-    pub normal_gradient: SMatrix<f64, 3, K>,
+    pub normal_gradient: OMatrix<f64, U3, K>,
 }
 
 /// The tangential response of one closed node, with derivatives with
 /// respect to the `K` unknowns of its kinematics.
-#[derive(Clone, Copy, Debug, PartialEq)]
-pub struct TangentialResponse<const K: usize = 3> {
+#[derive(Clone, Debug, PartialEq)]
+pub struct TangentialResponse<K: Dim = U3>
+where
+    DefaultAllocator: QAllocator<K>,
+{
     /// `t_T`.
     pub traction: Vector3<f64>,
     /// [`ContactStatus::Stick`] or [`ContactStatus::Slip`].
     pub status: ContactStatus,
     /// `∂t_T/∂q` (not symmetric in slip or on a curved obstacle).
-    pub traction_gradient: SMatrix<f64, 3, K>,
+    pub traction_gradient: OMatrix<f64, U3, K>,
     /// `∂t_T/∂λ`.
     pub traction_multiplier_derivative: Vector3<f64>,
     /// `∂t_T/∂t_T,n`, the derivative with respect to the committed traction
@@ -259,7 +272,7 @@ pub struct TangentialResponse<const K: usize = 3> {
     pub multiplier_gradient: Matrix3<f64>,
     /// `J* = ∂t_T*/∂q`, the trial (stick) derivative, whatever the
     /// status: the tangential stiffness a preconditioner may use in slip.
-    pub trial_gradient: SMatrix<f64, 3, K>,
+    pub trial_gradient: OMatrix<f64, U3, K>,
     /// `β = |t_T|/|t_T*| = μ t_N/|t_T*|` in slip, 1 in stick: the slip
     /// tangent is `β (I − m mᵀ) J*` plus the normal coupling, so `β J*` is
     /// the stiffness the preconditioner gives a slipping node (exact across
@@ -274,17 +287,20 @@ pub struct TangentialResponse<const K: usize = 3> {
     pub slip_increment: Vector3<f64>,
 }
 
-impl<const K: usize> TangentialResponse<K> {
+impl<K: Dim> TangentialResponse<K>
+where
+    DefaultAllocator: QAllocator<K>,
+{
     /// No tangential traction and no stiffness (an open node, status
     /// [`ContactStatus::Open`]).
     pub fn none() -> Self {
         Self {
             traction: Vector3::zeros(),
             status: ContactStatus::Open,
-            traction_gradient: SMatrix::zeros(),
+            traction_gradient: OMatrix::zeros_generic(U3, natural_dim()),
             traction_multiplier_derivative: Vector3::zeros(),
             multiplier_gradient: Matrix3::zeros(),
-            trial_gradient: SMatrix::zeros(),
+            trial_gradient: OMatrix::zeros_generic(U3, natural_dim()),
             stick_scale: 1.0,
             multiplier_residual: Vector3::zeros(),
             slip_increment: Vector3::zeros(),
@@ -295,10 +311,13 @@ impl<const K: usize> TangentialResponse<K> {
 /// Derivative of the projection `T v = v − n (n·v)` of a fixed vector `v`:
 /// `−(n·v) ∂n/∂q − n (vᵀ ∂n/∂q)` (with `∂n/∂x_s = H` symmetric against a
 /// rigid obstacle: `−(n·v) H − n (H v)ᵀ`).
-fn projection_derivative<const K: usize>(
+fn projection_derivative<K: Dim>(
     kinematics: &SlipKinematics<K>,
     v: &Vector3<f64>,
-) -> SMatrix<f64, 3, K> {
+) -> OMatrix<f64, U3, K>
+where
+    DefaultAllocator: QAllocator<K>,
+{
     let n_prime = &kinematics.normal_gradient;
     -kinematics.normal.dot(v) * n_prime - kinematics.normal * (v.transpose() * n_prime)
 }
@@ -318,7 +337,7 @@ pub fn return_map(
     return_map_on(law, &kinematics, pressure)
 }
 
-impl SlipKinematics<3> {
+impl SlipKinematics<U3> {
     /// Against a rigid obstacle, `q = x_s`: the committed traction fixed,
     /// `d = (x_s − c(t)) − (x_s − c)ₙ` from the node's `relative_position`
     /// and the `history`'s anchor, `∂d/∂x_s = I`, `∂n/∂x_s = H`.
@@ -361,11 +380,14 @@ pub const ON_THE_CONE: f64 = 1e-9;
 /// The return mapping (see the module docs) of one closed node with the
 /// committed traction and slip of `kinematics` and normal `pressure`,
 /// differentiated with respect to the `K` unknowns they depend on.
-pub fn return_map_on<const K: usize>(
+pub fn return_map_on<K: Dim>(
     law: &Coulomb,
     kinematics: &SlipKinematics<K>,
     pressure: &NormalPressure<K>,
-) -> TangentialResponse<K> {
+) -> TangentialResponse<K>
+where
+    DefaultAllocator: QAllocator<K>,
+{
     let n = kinematics.normal;
     let projector = Matrix3::identity() - n * n.transpose();
     let eps = law.tangential_penalty;
@@ -375,15 +397,15 @@ pub fn return_map_on<const K: usize>(
     let slip = projector * d;
     let trial = old - eps * slip;
     let trial_gradient = projection_derivative(kinematics, old_traction)
-        + projector * kinematics.traction_gradient
-        - eps * (projector * kinematics.offset_gradient + projection_derivative(kinematics, &d));
+        + projector * &kinematics.traction_gradient
+        - eps * (projector * &kinematics.offset_gradient + projection_derivative(kinematics, &d));
     let bound = law.coefficient * pressure.value;
     let size = trial.norm();
     if size == 0.0 || size < (1.0 - ON_THE_CONE) * bound {
         return TangentialResponse {
             traction: trial,
             status: ContactStatus::Stick,
-            traction_gradient: trial_gradient,
+            traction_gradient: trial_gradient.clone(),
             traction_multiplier_derivative: Vector3::zeros(),
             multiplier_gradient: projector,
             trial_gradient,
@@ -400,7 +422,7 @@ pub fn return_map_on<const K: usize>(
         status: ContactStatus::Slip,
         traction_gradient: (bound / size)
             * (Matrix3::identity() - m * m.transpose())
-            * trial_gradient
+            * &trial_gradient
             + mu * m * pressure.gradient.transpose(),
         traction_multiplier_derivative: mu * pressure.multiplier_derivative * m,
         multiplier_gradient: (bound / size) * (Matrix3::identity() - m * m.transpose()) * projector,
@@ -425,12 +447,14 @@ pub fn return_map_on<const K: usize>(
 /// carries no tangential traction and no slip from its approach; with a
 /// penalty it slips only along the part of its path beyond the surface.
 /// A node that touched at the last commit (`g_n ≤ 0`) keeps `d`.
-pub fn first_contact<const K: usize>(
+pub fn first_contact<K: Dim>(
     kinematics: &mut SlipKinematics<K>,
     committed_gap: f64,
     gap: f64,
-    gap_gradient: &SVector<f64, K>,
-) {
+    gap_gradient: &OVector<f64, K>,
+) where
+    DefaultAllocator: QAllocator<K>,
+{
     if !(committed_gap > 0.0) {
         return;
     }
@@ -442,21 +466,27 @@ pub fn first_contact<const K: usize>(
             (committed_gap / (denominator * denominator)) * gap_gradient,
         )
     } else {
-        (1.0, SVector::zeros())
+        (
+            1.0,
+            OVector::zeros_generic(gap_gradient.shape_generic().0, U1),
+        )
     };
     kinematics.offset = (1.0 - alpha) * d;
     kinematics.offset_gradient =
-        (1.0 - alpha) * kinematics.offset_gradient - d * alpha_gradient.transpose();
+        (1.0 - alpha) * &kinematics.offset_gradient - d * alpha_gradient.transpose();
 }
 
 /// The history with its tangential multiplier augmented (Simo–Laursen's
 /// update `λ_T ← t_T`, see the module docs) to the traction of `response`
 /// (`None`: the node is open, `λ_T ← 0`); anchor, slip and status stay
 /// those of the last commit.
-pub fn augment<const K: usize>(
+pub fn augment<K: Dim>(
     history: &FrictionHistory,
     response: Option<&TangentialResponse<K>>,
-) -> FrictionHistory {
+) -> FrictionHistory
+where
+    DefaultAllocator: QAllocator<K>,
+{
     FrictionHistory {
         traction: response.map_or_else(Vector3::zeros, |r| r.traction),
         ..*history
@@ -518,12 +548,15 @@ impl TangentialMultiplier {
 
 /// The equations of a tangential multiplier ([`multiplier_rows`]) and
 /// their derivatives.
-#[derive(Clone, Copy, Debug, PartialEq)]
-pub struct MultiplierRows<const K: usize> {
+#[derive(Clone, Debug, PartialEq)]
+pub struct MultiplierRows<K: Dim>
+where
+    DefaultAllocator: QAllocator<K>,
+{
     /// `r_ℓ = A_s Eᵀ (t_T − T λ_T)`.
     pub residual: Vector2<f64>,
     /// `∂r_ℓ/∂q`.
-    pub gradient: SMatrix<f64, 2, K>,
+    pub gradient: OMatrix<f64, U2, K>,
     /// `∂r_ℓ/∂ℓ` (with the shift [`STICK_SHIFT`] where closed).
     pub multiplier: Matrix2<f64>,
     /// `∂r_ℓ/∂λ` (the normal multiplier; nonzero in slip).
@@ -555,18 +588,21 @@ pub struct MultiplierRows<const K: usize> {
 ///                                              (β − 1) A_s ε_T across it in slip)
 /// ∂r_ℓ/∂λ = A_s Eᵀ ∂t_T/∂λ
 /// ```
-pub fn multiplier_rows<const K: usize>(
+pub fn multiplier_rows<K: Dim>(
     multiplier: &TangentialMultiplier,
     closed: Option<(&SlipKinematics<K>, &TangentialResponse<K>)>,
     area: f64,
-) -> MultiplierRows<K> {
+) -> MultiplierRows<K>
+where
+    DefaultAllocator: QAllocator<K>,
+{
     let e = multiplier.gradient() / multiplier.scale;
     let dlambda = multiplier.gradient();
     let Some((kinematics, r)) = closed else {
         let block = -area * multiplier.scale * e.transpose() * e;
         return MultiplierRows {
             residual: block * Vector2::from(multiplier.values),
-            gradient: SMatrix::zeros(),
+            gradient: OMatrix::zeros_generic(U2, natural_dim()),
             multiplier: block,
             normal_multiplier: Vector2::zeros(),
             force_gradient: SMatrix::zeros(),
@@ -576,12 +612,12 @@ pub fn multiplier_rows<const K: usize>(
     let n = kinematics.normal;
     let projector = Matrix3::identity() - n * n.transpose();
     let projected_gradient =
-        projection_derivative(kinematics, &lambda) + projector * kinematics.traction_gradient;
+        projection_derivative(kinematics, &lambda) + projector * &kinematics.traction_gradient;
     let block = area * e.transpose() * (r.multiplier_gradient - projector) * dlambda
         - STICK_SHIFT * area * multiplier.scale * Matrix2::identity();
     MultiplierRows {
         residual: area * e.transpose() * (r.traction - projector * lambda),
-        gradient: area * e.transpose() * (r.traction_gradient - projected_gradient),
+        gradient: area * e.transpose() * (&r.traction_gradient - projected_gradient),
         multiplier: block,
         normal_multiplier: area * e.transpose() * r.traction_multiplier_derivative,
         force_gradient: area * r.multiplier_gradient * dlambda,
@@ -591,12 +627,15 @@ pub fn multiplier_rows<const K: usize>(
 /// The history after an increment converged with the node in `response`
 /// (`None`: the node is open) at `relative_position` (the caller of a
 /// deformable interface then records the node's new material point).
-pub fn commit<const K: usize>(
+pub fn commit<K: Dim>(
     history: &FrictionHistory,
     response: Option<&TangentialResponse<K>>,
     relative_position: Vector3<f64>,
-) -> FrictionHistory {
-    let r = response.copied().unwrap_or_else(TangentialResponse::none);
+) -> FrictionHistory
+where
+    DefaultAllocator: QAllocator<K>,
+{
+    let r = response.cloned().unwrap_or_else(TangentialResponse::none);
     FrictionHistory {
         traction: r.traction,
         anchor: relative_position,
@@ -804,7 +843,7 @@ mod tests {
     ) -> (
         Vector2<f64>,
         Vector3<f64>,
-        MultiplierRows<3>,
+        MultiplierRows<U3>,
         TangentialResponse,
     ) {
         let area = 0.7;
@@ -987,7 +1026,7 @@ mod tests {
             status: ContactStatus::Slip,
             material_point: None,
         };
-        let c = commit::<3>(&h, None, Vector3::new(1.0, 1.0, 1.0));
+        let c = commit::<U3>(&h, None, Vector3::new(1.0, 1.0, 1.0));
         assert_eq!(c.traction, Vector3::zeros());
         assert_eq!(c.slip, h.slip);
         assert_eq!(c.status, ContactStatus::Open);

@@ -26,9 +26,10 @@ use super::friction::{
 };
 use super::gap::GapGeometry;
 use super::kinematics::{
-    GapKinematics, GapProducer, NodeEvaluation, PrimaryWeights, SecondaryNode,
+    GapKinematics, GapProducer, NodeEvaluation, PrimaryWeights, QAllocator, SecondaryNode,
 };
 use super::laws::{uzawa, NodeContactState, NormalLaw};
+use super::mortar_contact::{MortarGap, MortarSurfaces};
 use super::obstacle::RigidObstacle;
 use super::primary::PrimarySurface;
 use super::rigid::RigidGap;
@@ -36,7 +37,7 @@ use super::surface_contact::SurfaceGap;
 use crate::assembly::amplitude::Amplitude;
 use crate::assembly::pattern::SparsityPattern;
 use crate::assembly::scatter::{add_block, add_multiplier_block, add_nodal};
-use nalgebra::Vector3;
+use nalgebra::{DefaultAllocator, Dim, OMatrix, OVector, Vector3, U3};
 
 /// What the secondary nodes of an interface touch.
 #[derive(Clone, Debug)]
@@ -45,6 +46,9 @@ pub enum Primary {
     Rigid(RigidObstacle),
     /// A surface of another (deformable) body of the mesh.
     Surface(PrimarySurface),
+    /// A surface of another body through dual mortar
+    /// ([`mortar_contact`](super::mortar_contact)).
+    Mortar(MortarSurfaces),
 }
 
 /// One secondary surface against a rigid obstacle or a primary surface.
@@ -127,20 +131,24 @@ pub struct ContactContext<'a> {
     pub first_multiplier: usize,
 }
 
-/// Run `$body` with `$p` bound to the gap producer of `$iface` at time
-/// `$t` (the one dispatch on the primary kind).
+/// Run `$body` with `$p` bound to the gap producer of `$iface` at the
+/// context `$ctx` (the one dispatch on the primary kind).
 macro_rules! with_producer {
-    ($iface:expr, $t:expr, $p:ident => $body:expr) => {
+    ($iface:expr, $ctx:expr, $p:ident => $body:expr) => {
         match &$iface.primary {
             Primary::Rigid(obstacle) => {
                 let $p = &RigidGap {
                     obstacle,
-                    translation: $iface.translation_at($t),
+                    translation: $iface.translation_at($ctx.t),
                 };
                 $body
             }
             Primary::Surface(primary) => {
                 let $p = &SurfaceGap { primary };
+                $body
+            }
+            Primary::Mortar(surfaces) => {
+                let $p = &MortarGap::at(surfaces, $ctx.reference, $ctx.x);
                 $body
             }
         }
@@ -219,8 +227,10 @@ impl ContactInterface {
     /// sparsity pattern.
     pub fn coupled_nodes(&self, i: usize) -> Vec<usize> {
         let mut nodes = vec![self.nodes[i]];
-        if let Primary::Surface(p) = &self.primary {
-            nodes.extend(p.candidate_nodes(i));
+        match &self.primary {
+            Primary::Surface(p) => nodes.extend(p.candidate_nodes(i)),
+            Primary::Mortar(m) => return m.coupled_nodes(i, self.nodes[i]),
+            Primary::Rigid(_) => {}
         }
         nodes
     }
@@ -320,32 +330,39 @@ impl ContactInterface {
     /// The node loop: for every secondary node `i`, its state
     /// `state_of(i)` and its gap kinematics (`None`: no primary within the
     /// search margin) against `producer` at `ctx`, handed to `visit`.
-    fn for_each_node<const Q: usize, G: GapProducer<Q>>(
+    fn for_each_node<Q: Dim, G: GapProducer<Q>>(
         &self,
         producer: &G,
         ctx: &ContactContext,
         state_of: impl Fn(usize) -> NodeContactState,
         mut visit: impl FnMut(&SecondaryNode, NodeContactState, Option<GapKinematics<Q, G::Point>>),
-    ) {
+    ) where
+        DefaultAllocator: QAllocator<Q>,
+    {
         for i in 0..self.nodes.len() {
             let node = self.secondary_node(ctx.reference, ctx.x, i);
             let state = state_of(i);
             let kinematics = producer.kinematics(&node, &state);
-            debug_assert!(kinematics.as_ref().is_none_or(|k| 3 * k.nodes.len() <= Q));
+            debug_assert!(kinematics
+                .as_ref()
+                .is_none_or(|k| 3 * k.nodes.len() <= k.gradient.len()));
             visit(&node, state, kinematics);
         }
     }
 
     /// Node `i`'s kinematics through its normal law and, closed, its
     /// friction law (the chain rule of [`kinematics`](super::kinematics)).
-    fn evaluate<const Q: usize, G: GapProducer<Q>>(
+    fn evaluate<Q: Dim, G: GapProducer<Q>>(
         &self,
         producer: &G,
         node: &SecondaryNode,
         mut kinematics: GapKinematics<Q, G::Point>,
         state: &NodeContactState,
-    ) -> NodeEvaluation<Q, G::Point> {
-        let area = self.areas[node.index];
+    ) -> NodeEvaluation<Q, G::Point>
+    where
+        DefaultAllocator: QAllocator<Q>,
+    {
+        let area = kinematics.area.unwrap_or(self.areas[node.index]);
         let mut response = kinematics.normal_response(&self.law_at(node.index), area, state);
         // a closed node at zero pressure sticks at its anchor (the return
         // mapping with a zero bound): its tangential stiffness holds a body
@@ -364,7 +381,7 @@ impl ContactInterface {
                 if self.tangential_multipliers() {
                     // the multiplier λ_T, an unknown (not carried by the surface)
                     frame.kinematics.traction = state.friction.traction;
-                    frame.kinematics.traction_gradient = nalgebra::SMatrix::zeros();
+                    frame.kinematics.traction_gradient.fill(0.0);
                 }
                 if first_contact_pending(state) {
                     let (g, grad) = (kinematics.gap, &kinematics.gradient);
@@ -372,12 +389,12 @@ impl ContactInterface {
                 }
                 let t = friction::return_map_on(&coulomb, &frame.kinematics, &response.pressure);
                 let lever_t = frame.lever.transpose();
-                response.residual -= area * lever_t * t.traction;
-                response.stiffness -= area * lever_t * t.traction_gradient;
+                response.residual -= area * &lever_t * t.traction;
+                response.stiffness -= area * &lever_t * &t.traction_gradient;
                 if let Some(k) = producer.lever_stiffness(&kinematics, &(area * t.traction)) {
                     response.stiffness += k;
                 }
-                response.multiplier_column -= area * lever_t * t.traction_multiplier_derivative;
+                response.multiplier_column -= area * &lever_t * t.traction_multiplier_derivative;
                 (Some(t), Some(frame))
             }
         };
@@ -407,7 +424,7 @@ impl ContactInterface {
             first_multiplier: 0,
         };
         let mut gaps = Vec::with_capacity(self.nodes.len());
-        with_producer!(self, t, p => {
+        with_producer!(self, &ctx, p => {
             let state_of = |i| {
                 states.map_or_else(|| NodeContactState::initial(&self.law_at(i), p.open_gap()), |s| s[i])
             };
@@ -431,7 +448,7 @@ impl ContactInterface {
             first_multiplier: 0,
         };
         let mut states = Vec::with_capacity(self.nodes.len());
-        with_producer!(self, 0.0, p => {
+        with_producer!(self, &ctx, p => {
             let blank = |i| NodeContactState::initial(&self.law_at(i), p.open_gap());
             self.for_each_node(p, &ctx, blank, |node, _, k| {
                 let g = k.as_ref().map_or(p.open_gap(), |k| k.gap);
@@ -458,7 +475,7 @@ impl ContactInterface {
     ) -> Vec<NodeReport> {
         let mut reports = Vec::with_capacity(self.nodes.len());
         let all = |_| true;
-        with_producer!(self, ctx.t, p => {
+        with_producer!(self, ctx, p => {
             let state_of = |i| self.node_state(ctx, states, i);
             self.for_each_node(p, ctx, state_of, |node, state, k| {
                 let i = node.index;
@@ -479,7 +496,7 @@ impl ContactInterface {
                         }
                     }
                     if let Some((m, t)) = self.tangential_multiplier(ctx, &state, i) {
-                        let rows = friction::multiplier_rows::<3>(&t, None, self.areas[i]);
+                        let rows = friction::multiplier_rows::<U3>(&t, None, self.areas[i]);
                         let tangent = tangent.as_mut().map(|(p, v)| (*p, &mut **v));
                         scatter_tangential(ctx, &rows, (m, multiplier), None, residual, tangent);
                     }
@@ -516,7 +533,8 @@ impl ContactInterface {
                     let tangent = tangent.as_mut().map(|(p, v)| (*p, &mut **v));
                     scatter_tangential(ctx, &rows, (m, multiplier), lever, residual, tangent);
                 }
-                let force = e.kinematics.normal * (self.areas[i] * c.pressure.value);
+                let area = e.kinematics.area.unwrap_or(self.areas[i]);
+                let force = e.kinematics.normal * (area * c.pressure.value);
                 let t = e.tangential.unwrap_or_else(TangentialResponse::none);
                 reports.push(NodeReport {
                     gap: e.kinematics.gap,
@@ -540,7 +558,7 @@ impl ContactInterface {
     /// Frictionless nodes record their status only.
     pub fn commit_history(&self, ctx: &ContactContext, states: &mut [NodeContactState]) {
         let mut committed = Vec::with_capacity(self.nodes.len());
-        with_producer!(self, ctx.t, p => {
+        with_producer!(self, ctx, p => {
             let state_of = |i| self.node_state(ctx, states, i);
             self.for_each_node(p, ctx, state_of, |node, state, k| {
                 let facet = k.as_ref().and_then(|k| k.facet);
@@ -590,7 +608,7 @@ impl ContactInterface {
             return;
         }
         let keep = |dof: usize| !constrained[dof];
-        with_producer!(self, ctx.t, p => {
+        with_producer!(self, ctx, p => {
             let state_of = |i| self.node_state(ctx, states, i);
             self.for_each_node(p, ctx, state_of, |node, state, k| {
                 let Some(k) = k else { return };
@@ -600,16 +618,13 @@ impl ContactInterface {
                 else {
                     return;
                 };
-                let area = self.areas[node.index];
-                let lever_t = frame.lever.transpose();
+                let area = e.kinematics.area.unwrap_or(self.areas[node.index]);
                 let stick = p.stick_stiffness(&e.kinematics, &frame, &t, &coulomb, area);
-                let shift = stick + area * lever_t * t.traction_gradient;
-                let shift = 0.5 * (shift + shift.transpose());
+                let (shift, half) = stick_shift(stick, &frame.lever, &t, area);
                 let nodes = e.kinematics.nodes();
                 add_block(pattern, values, nodes, |r, s| shift[(r, s)], keep);
                 if let Some(m) = self.multiplier(ctx, node.index) {
                     // sym added ½(−A_s Bᵀ ∂t_T/∂λ) to both entries: remove it
-                    let half = -0.5 * area * lever_t * t.traction_multiplier_derivative;
                     let m = m - ctx.first_multiplier;
                     add_multiplier_block(pattern, values, m, nodes, |a| -half[a], |a| -half[a], keep);
                 }
@@ -628,7 +643,7 @@ impl ContactInterface {
         states: &mut [NodeContactState],
     ) {
         let mut advanced = Vec::with_capacity(self.nodes.len());
-        with_producer!(self, ctx.t, p => {
+        with_producer!(self, ctx, p => {
             let state_of = |i| self.node_state(ctx, states, i);
             self.for_each_node(p, ctx, state_of, |node, mut state, k| {
                 let i = node.index;
@@ -639,10 +654,11 @@ impl ContactInterface {
                     return;
                 }
                 state.facet = facet;
+                let area = k.as_ref().and_then(|k| k.area).unwrap_or(self.areas[i]);
                 let (g, dg) = k.map_or((p.open_gap(), 0.0), |k| (k.gap, k.gap_increment(dx)));
                 let dlambda = self.multiplier(ctx, i).map_or(0.0, |m| dx[m]);
                 let du = Vector3::new(dg, 0.0, 0.0);
-                law.apply_increment(self.areas[i], &GapGeometry::scalar(g), &mut state, &du, dlambda);
+                law.apply_increment(area, &GapGeometry::scalar(g), &mut state, &du, dlambda);
                 advanced.push((facet, Some(state)));
             });
         });
@@ -674,7 +690,7 @@ impl ContactInterface {
         }
         let mut worst = 0.0_f64;
         let mut augmented = Vec::with_capacity(self.nodes.len());
-        with_producer!(self, ctx.t, p => {
+        with_producer!(self, ctx, p => {
             let state_of = |i| self.node_state(ctx, states, i);
             self.for_each_node(p, ctx, state_of, |node, state, k| {
                 let e = k.map(|k| self.evaluate(p, node, k, &state));
@@ -723,19 +739,44 @@ fn first_contact_pending(state: &NodeContactState) -> bool {
     state.friction.status == ContactStatus::Open && state.gap > 0.0
 }
 
+/// The preconditioner's shift of one closed node with friction (see
+/// [`ContactInterface::shift_to_stick_preconditioner`]): the symmetric
+/// `sym(K_stick + A_s Bᵀ ∂t_T/∂q)` with the lever `B`, and the half
+/// `−½ A_s Bᵀ ∂t_T/∂λ` that `sym` put in both multiplier entries.
+fn stick_shift<Q: Dim>(
+    stick: OMatrix<f64, Q, Q>,
+    lever: &OMatrix<f64, U3, Q>,
+    t: &TangentialResponse<Q>,
+    area: f64,
+) -> (OMatrix<f64, Q, Q>, OVector<f64, Q>)
+where
+    DefaultAllocator: QAllocator<Q>,
+{
+    let lever_t = lever.transpose();
+    let shift = stick + area * &lever_t * &t.traction_gradient;
+    let shift = 0.5 * (&shift + shift.transpose());
+    let half = -0.5 * area * &lever_t * t.traction_multiplier_derivative;
+    (shift, half)
+}
+
+/// A node's mesh nodes with its friction lever `B`.
+type NodesAndLever<'a, Q> = (&'a [usize], &'a OMatrix<f64, U3, Q>);
+
 /// Scatter a node's tangential multiplier equations `rows` (global
 /// indices `m`, `m + 1`; its normal multiplier `normal`): their residual,
 /// the rows `∂r_ℓ/∂q` and the columns `∂r_q/∂ℓ = −A_s Bᵀ ∂t_T/∂ℓ` over the
 /// node's mesh `nodes` with its lever `B` (`lever`, `None` when the node
 /// is open), and the block among the node's multipliers.
-fn scatter_tangential<const Q: usize>(
+fn scatter_tangential<Q: Dim>(
     ctx: &ContactContext,
     rows: &friction::MultiplierRows<Q>,
     (m, normal): (usize, Option<usize>),
-    lever: Option<(&[usize], &nalgebra::SMatrix<f64, 3, Q>)>,
+    lever: Option<NodesAndLever<Q>>,
     residual: &mut [f64],
     tangent: Option<(&SparsityPattern, &mut [f64])>,
-) {
+) where
+    DefaultAllocator: QAllocator<Q>,
+{
     residual[m] += rows.residual[0];
     residual[m + 1] += rows.residual[1];
     let Some((pattern, values)) = tangent else {

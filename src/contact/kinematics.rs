@@ -4,7 +4,8 @@
 //! ([`GapKinematics::normal_response`]), and what a primary kind supplies
 //! ([`GapProducer`]: a rigid obstacle, `Q = 3`, in [`rigid`](super::rigid);
 //! a deformable primary surface, `Q = 21`, in
-//! [`surface_contact`](super::surface_contact)).
+//! [`surface_contact`](super::surface_contact); a primary surface through
+//! dual mortar, `Q` at run time, in [`mortar_contact`](super::mortar_contact)).
 //!
 //! ## One law, any geometry
 //! Every normal law is a function of the scalar gap (and of the node's
@@ -12,16 +13,25 @@
 //! ([`GapGeometry::scalar`]: `n = e₁`, `H = 0`) it returns the force
 //! conjugate to the gap, `f = ∂(A_s Φ)/∂g` (its `r_u[0]`), with `∂f/∂g`
 //! (`K_uu[0,0]`), `∂f/∂λ` (`K_uλ[0]`), `r_λ` and `K_λλ`. The chain rule then
-//! gives the node's contribution on `(q, λ)`:
+//! gives the node's contribution on `(q, λ)`, the force acting through a
+//! lever `b` ([`GapKinematics::lever`]):
 //! ```text
-//! r_q  = f ∇g                     K_qq = (∂f/∂g) ∇g ∇gᵀ + f ∇²g
-//! K_qλ = (∂f/∂λ) ∇g               K_λq = (∂r_λ/∂g) ∇gᵀ = (∂f/∂λ) ∇gᵀ
+//! r_q  = f b                      K_qq = (∂f/∂g) b ∇gᵀ + f ∂b/∂q
+//! K_qλ = (∂f/∂λ) b                K_λq = (∂r_λ/∂g) ∇gᵀ = (∂f/∂λ) ∇gᵀ
 //! ∂t_N/∂q = (∂t_N/∂g) ∇g
 //! ```
-//! Against a rigid obstacle `q = x_s`, `∇g = n`, `∇²g = H`; against a
-//! primary triangle `q = (x_s, x1, x2, x3, …)` and `∇²g` holds the change of
-//! the projection point and of the normal, so Newton keeps its quadratic
-//! rate.
+//! Node-to-surface and rigid obstacles take `b = ∇g` (the force is the
+//! gradient of the law's potential, `∂b/∂q = ∇²g`, symmetric): against a
+//! rigid obstacle `q = x_s`, `∇g = n`, `∇²g = H`; against a primary
+//! triangle `q = (x_s, x1, x2, x3, …)` and `∇²g` holds the change of the
+//! projection point and of the normal, so Newton keeps its quadratic rate.
+//! Dual mortar ([`mortar_contact`](super::mortar_contact)) takes Popp, Gee
+//! & Wall's (2009) form: the force `Σ_j λ_j b_j` with `b` the gap's
+//! gradient at fixed `D`, `M` (the constraint row keeps the whole `∇g`).
+//!
+//! The size `Q` of `q` is a nalgebra dimension: `Const<N>` for the
+//! producers of a fixed size (stack-allocated), `Dyn` where the coupling is
+//! known at run time only ([`QAllocator`]).
 //!
 //! ## Friction on the same unknowns
 //! A closed node's tangential traction `t_T` (the return mapping of
@@ -29,13 +39,14 @@
 //! projection: `r_q −= A_s Bᵀ t_T`, `K_qq −= A_s Bᵀ ∂t_T/∂q` plus the
 //! lever's own change ([`GapProducer::lever_stiffness`]), `K_qλ −= A_s Bᵀ ∂t_T/∂λ`.
 
+pub use super::dimension::{natural_dim, QAllocator};
 use super::friction::{
     self, Coulomb, FrictionHistory, MaterialPoint, NormalPressure, SlipKinematics,
     TangentialResponse,
 };
 use super::gap::GapGeometry;
 use super::laws::{NodeContactState, NormalLaw};
-use nalgebra::{SMatrix, SVector, Vector3};
+use nalgebra::{DefaultAllocator, Dim, OMatrix, OVector, Vector3, U3};
 use smallvec::SmallVec;
 
 /// The mesh nodes of one secondary node's contribution, in the order of
@@ -81,22 +92,32 @@ pub fn current_position(reference: &[[f64; 3]], x: &[f64], n: usize) -> Vector3<
 
 /// The gap of one secondary node as a function of the unknowns `q` (three
 /// coordinates of each of its mesh nodes, node-major), held in vectors and
-/// matrices of the producer's fixed size `Q ≥ 3 × nodes.len()` (entries
-/// beyond the nodes zero).
+/// matrices of the producer's size `Q ≥ 3 × nodes.len()` (fixed or run
+/// time; entries beyond the nodes zero).
 #[derive(Clone, Debug)]
-pub struct GapKinematics<const Q: usize, P = ()> {
+pub struct GapKinematics<Q: Dim, P = ()>
+where
+    DefaultAllocator: QAllocator<Q>,
+{
     /// Mesh nodes of `q`, any number with `3 nodes.len() ≤ Q`.
     pub nodes: CoupledNodes,
     /// Signed gap `g`.
     pub gap: f64,
     /// `∇g = ∂g/∂q`.
-    pub gradient: SVector<f64, Q>,
-    /// `∇²g` (symmetric).
-    pub hessian: SMatrix<f64, Q, Q>,
+    pub gradient: OVector<f64, Q>,
+    /// The lever `b` the normal force acts through, `r_q = f b`, where it
+    /// differs from `∇g` (dual mortar: `∂g/∂q` at fixed `D`, `M`; see the
+    /// module docs); `None`: `b = ∇g`.
+    pub lever: Option<OVector<f64, Q>>,
+    /// `∂b/∂q`: `∇²g` (symmetric) where `b = ∇g`.
+    pub hessian: OMatrix<f64, Q, Q>,
+    /// The node's area `A_s` where the producer integrates it (dual mortar:
+    /// `D_j`); `None`: the interface's tributary area.
+    pub area: Option<f64>,
     /// Unit normal `n` of the tangent plane.
     pub normal: Vector3<f64>,
     /// `∂n/∂q`.
-    pub normal_gradient: SMatrix<f64, 3, Q>,
+    pub normal_gradient: OMatrix<f64, U3, Q>,
     /// The primary segment the node is projected on and keeps while it
     /// stays over it (node-to-surface only, recorded in
     /// [`NodeContactState::facet`]).
@@ -107,7 +128,10 @@ pub struct GapKinematics<const Q: usize, P = ()> {
     pub point: P,
 }
 
-impl<const Q: usize, P> GapKinematics<Q, P> {
+impl<Q: Dim, P> GapKinematics<Q, P>
+where
+    DefaultAllocator: QAllocator<Q>,
+{
     /// The mesh nodes of `q`.
     pub fn nodes(&self) -> &[usize] {
         &self.nodes
@@ -137,10 +161,11 @@ impl<const Q: usize, P> GapKinematics<Q, P> {
         let c = law.contribution(area, &GapGeometry::scalar(self.gap), state);
         let (f, df_dg, df_dlambda) = (c.r_u[0], c.k_uu[(0, 0)], c.k_ulambda[0]);
         let grad = &self.gradient;
+        let lever = self.lever.as_ref().unwrap_or(grad);
         NormalResponse {
-            residual: f * grad,
-            stiffness: df_dg * grad * grad.transpose() + f * self.hessian,
-            multiplier_column: df_dlambda * grad,
+            residual: f * lever,
+            stiffness: df_dg * lever * grad.transpose() + f * &self.hessian,
+            multiplier_column: df_dlambda * lever,
             multiplier_row: df_dlambda * grad,
             r_lambda: c.r_lambda,
             k_lambdalambda: c.k_lambdalambda,
@@ -156,16 +181,19 @@ impl<const Q: usize, P> GapKinematics<Q, P> {
 
 /// What one secondary node adds to the residual and tangent over its
 /// unknowns `(q, λ)`.
-#[derive(Clone, Copy, Debug)]
-pub struct NormalResponse<const Q: usize> {
+#[derive(Clone, Debug)]
+pub struct NormalResponse<Q: Dim>
+where
+    DefaultAllocator: QAllocator<Q>,
+{
     /// `r_q`.
-    pub residual: SVector<f64, Q>,
+    pub residual: OVector<f64, Q>,
     /// `∂r_q/∂q` (nonsymmetric with friction).
-    pub stiffness: SMatrix<f64, Q, Q>,
+    pub stiffness: OMatrix<f64, Q, Q>,
     /// `∂r_q/∂λ`.
-    pub multiplier_column: SVector<f64, Q>,
+    pub multiplier_column: OVector<f64, Q>,
     /// `∂r_λ/∂q`.
-    pub multiplier_row: SVector<f64, Q>,
+    pub multiplier_row: OVector<f64, Q>,
     /// `r_λ` (0 without a multiplier dof).
     pub r_lambda: f64,
     /// `∂r_λ/∂λ`.
@@ -179,13 +207,19 @@ pub struct NormalResponse<const Q: usize> {
 /// A closed node's slip frame from its committed history: the kinematics
 /// of [`friction::return_map_on`] and the lever `B = ∂(x_s − x̄)/∂q` that
 /// carries the traction to the nodes.
-pub struct SlipFrame<const Q: usize> {
+pub struct SlipFrame<Q: Dim>
+where
+    DefaultAllocator: QAllocator<Q>,
+{
     pub kinematics: SlipKinematics<Q>,
-    pub lever: SMatrix<f64, 3, Q>,
+    pub lever: OMatrix<f64, U3, Q>,
 }
 
 /// What a primary kind supplies to the node driver.
-pub trait GapProducer<const Q: usize> {
+pub trait GapProducer<Q: Dim>
+where
+    DefaultAllocator: QAllocator<Q>,
+{
     /// What the producer keeps of a projection beyond [`GapKinematics`].
     type Point;
 
@@ -220,7 +254,7 @@ pub trait GapProducer<const Q: usize> {
         &self,
         kinematics: &GapKinematics<Q, Self::Point>,
         traction: &Vector3<f64>,
-    ) -> Option<SMatrix<f64, Q, Q>> {
+    ) -> Option<OMatrix<f64, Q, Q>> {
         let _ = (kinematics, traction);
         None
     }
@@ -235,7 +269,7 @@ pub trait GapProducer<const Q: usize> {
         response: &TangentialResponse<Q>,
         law: &Coulomb,
         area: f64,
-    ) -> SMatrix<f64, Q, Q>;
+    ) -> OMatrix<f64, Q, Q>;
 
     /// The history with its tangential multiplier augmented to the
     /// traction `t_T` of the node's `response` at the current unit normal
@@ -269,7 +303,10 @@ pub trait GapProducer<const Q: usize> {
 
 /// One secondary node evaluated: its kinematics, the normal law and the
 /// friction law on its unknowns, and the totals.
-pub struct NodeEvaluation<const Q: usize, P> {
+pub struct NodeEvaluation<Q: Dim, P>
+where
+    DefaultAllocator: QAllocator<Q>,
+{
     pub kinematics: GapKinematics<Q, P>,
     /// Normal law plus friction on `(q, λ)` (the row `∂r_λ/∂q` is the
     /// normal law's alone).

@@ -20,6 +20,8 @@
 //! - [`primary`]: a primary surface of a deformable body as triangles, and
 //!   the per-increment search (an R*-tree of boxes) pairing secondary nodes
 //!   with them.
+//! - [`dimension`]: the size of a node's unknowns, fixed (`Const<N>`) or
+//!   at run time (`Dyn`), and the allocator bound that goes with it.
 //! - [`friction`]: Coulomb friction by return mapping, its consistent
 //!   (nonsymmetric) linearisation and the history committed per increment.
 //! - [`laws`]: per-node enforcement of the normal constraint (penalty, Uzawa
@@ -29,7 +31,9 @@
 //!   unknowns of its contribution, its coupled nodes and primary weights,
 //!   the laws' chain rule, and what a primary kind supplies
 //!   ([`kinematics::GapProducer`]); its producers [`rigid`] (a rigid
-//!   obstacle) and [`surface_contact`] (a moving primary triangle).
+//!   obstacle), [`surface_contact`] (a moving primary triangle) and
+//!   [`mortar_contact`] (dual mortar between two bodies, on the kernels of
+//!   [`mortar`]).
 //! - [`interface`]: one secondary surface against its primary, and the
 //!   node driver's loop; [`set`]: the interfaces of a problem and their
 //!   life cycle; [`setup`]: building interfaces from a mesh; [`report`]:
@@ -44,6 +48,7 @@
 //! - In two-body contact the surfaces are *primary* (projected onto) and
 //!   *secondary* (whose nodes are projected).
 
+pub mod dimension;
 pub mod friction;
 pub mod gap;
 pub mod hertz;
@@ -51,6 +56,7 @@ pub mod interface;
 pub mod kinematics;
 pub mod laws;
 pub mod mortar;
+pub mod mortar_contact;
 pub mod obstacle;
 pub mod primary;
 pub mod projection;

@@ -11,7 +11,7 @@ use super::friction::{Coulomb, FrictionHistory, SlipKinematics, TangentialRespon
 use super::kinematics::{GapKinematics, GapProducer, PrimaryWeights, SecondaryNode, SlipFrame};
 use super::laws::NodeContactState;
 use super::obstacle::RigidObstacle;
-use nalgebra::{Matrix3, Vector3};
+use nalgebra::{Matrix3, Vector3, U3};
 
 /// A rigid obstacle at translation `c(t)`.
 pub struct RigidGap<'a> {
@@ -19,20 +19,22 @@ pub struct RigidGap<'a> {
     pub translation: Vector3<f64>,
 }
 
-impl GapProducer<3> for RigidGap<'_> {
+impl GapProducer<U3> for RigidGap<'_> {
     type Point = ();
 
     fn kinematics(
         &self,
         node: &SecondaryNode,
         _state: &NodeContactState,
-    ) -> Option<GapKinematics<3>> {
+    ) -> Option<GapKinematics<U3>> {
         let p = self.obstacle.project(&self.relative_position(node));
         Some(GapKinematics {
             nodes: smallvec::smallvec![node.mesh_node],
             gap: p.gap,
             gradient: p.normal,
+            lever: None,
             hessian: p.curvature,
+            area: None,
             normal: p.normal,
             normal_gradient: p.curvature,
             facet: None,
@@ -52,9 +54,9 @@ impl GapProducer<3> for RigidGap<'_> {
     fn slip(
         &self,
         node: &SecondaryNode,
-        kinematics: &mut GapKinematics<3>,
+        kinematics: &mut GapKinematics<U3>,
         history: &FrictionHistory,
-    ) -> SlipFrame<3> {
+    ) -> SlipFrame<U3> {
         SlipFrame {
             kinematics: SlipKinematics::rigid(
                 history,
@@ -70,9 +72,9 @@ impl GapProducer<3> for RigidGap<'_> {
     /// (`A_s β ε_T T` on a plane).
     fn stick_stiffness(
         &self,
-        _: &GapKinematics<3>,
-        _: &SlipFrame<3>,
-        response: &TangentialResponse<3>,
+        _: &GapKinematics<U3>,
+        _: &SlipFrame<U3>,
+        response: &TangentialResponse<U3>,
         _: &Coulomb,
         area: f64,
     ) -> Matrix3<f64> {

@@ -140,7 +140,7 @@ impl ContactSet {
                     out.multiplier_groups[first + k] = own.iter().map(|l| first + l).collect();
                 }
             }
-            if matches!(c.primary, Primary::Surface(_)) {
+            if matches!(c.primary, Primary::Surface(_) | Primary::Mortar(_)) {
                 out.groups.extend(groups);
             }
         }
@@ -154,8 +154,10 @@ impl ContactSet {
     pub fn refresh_pairs(&mut self, reference: &[[f64; 3]], x: &[f64], motion: f64) -> bool {
         let mut changed = false;
         for c in &mut self.interfaces {
-            if let Primary::Surface(p) = &mut c.primary {
-                changed |= p.refresh(reference, x, &c.nodes, motion);
+            match &mut c.primary {
+                Primary::Surface(p) => changed |= p.refresh(reference, x, &c.nodes, motion),
+                Primary::Mortar(m) => changed |= m.refresh(reference, x, motion),
+                Primary::Rigid(_) => {}
             }
         }
         changed
@@ -167,6 +169,7 @@ impl ContactSet {
             .iter()
             .filter_map(|c| match &c.primary {
                 Primary::Surface(p) => Some(c.nodes.iter().chain(&p.nodes).copied()),
+                Primary::Mortar(m) => Some(c.nodes.iter().chain(&m.primary_nodes).copied()),
                 Primary::Rigid(_) => None,
             })
             .flatten()

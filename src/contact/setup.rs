@@ -38,6 +38,7 @@
 use super::friction::{self, Coulomb, FrictionMultiplier};
 use super::interface::{ContactInterface, Primary};
 use super::laws::{automatic_parameters, uzawa, NormalLaw};
+use super::mortar_contact::MortarSurfaces;
 use super::obstacle::RigidObstacle;
 use super::primary::PrimarySurface;
 use super::tributary::tributary_areas;
@@ -187,10 +188,16 @@ impl SetupError {
         format!(
             "surface '{s}' has quadratic faces (Tri6/Quad8, of Tet10, Hex20 or Wedge15 \
              elements): node-to-surface contact gives their corner nodes no share of a uniform \
-             pressure, so contact on quadratic faces needs the mortar method, which is coming; \
-             meanwhile mesh the contact bodies with linear elements (Gmsh -order 1; C3D4, C3D8)"
+             pressure: between two bodies give the contact discretisation = \"mortar\", or \
+             mesh the contact bodies with linear elements (Gmsh -order 1; C3D4, C3D8)"
         )
     }
+}
+
+/// Surface set `name` of `mesh`, or [`SetupError::UnknownSurface`].
+fn surface_set<'m>(mesh: &'m Mesh, name: &str) -> Result<&'m crate::mesh::SurfaceSet, SetupError> {
+    mesh.surface(name)
+        .ok_or_else(|| SetupError::UnknownSurface(name.to_string()))
 }
 
 /// [`SetupError::QuadraticSurface`] if a facet of `set` is quadratic.
@@ -216,15 +223,20 @@ impl Enforcement {
         let h = c.element_size;
         let (secondary, _) = automatic_parameters(self.youngs_modulus, h);
         // between bodies, both sides' stiffness (the primary's per node of its surface)
-        let base = match (&c.primary, self.primary_youngs_modulus) {
-            (Primary::Surface(p), Some(e_p)) if !p.nodes.is_empty() => {
+        let h_p = match &c.primary {
+            Primary::Surface(p) if !p.nodes.is_empty() => {
                 let area = p.element_size.powi(2) * p.triangles.len() as f64;
-                let h_p = (area / p.nodes.len() as f64).sqrt();
-                if h_p > 0.0 && h_p.is_finite() {
-                    pair_stiffness(secondary, automatic_parameters(e_p, h_p).0)
-                } else {
-                    secondary
-                }
+                Some((area / p.nodes.len() as f64).sqrt())
+            }
+            Primary::Mortar(m) if !m.primary_nodes.is_empty() => {
+                let area = m.element_size.powi(2) * m.primary_faces.len() as f64;
+                Some((area / m.primary_nodes.len() as f64).sqrt())
+            }
+            _ => None,
+        };
+        let base = match (h_p, self.primary_youngs_modulus) {
+            (Some(h_p), Some(e_p)) if h_p > 0.0 && h_p.is_finite() => {
+                pair_stiffness(secondary, automatic_parameters(e_p, h_p).0)
             }
             _ => secondary,
         };
@@ -275,11 +287,20 @@ impl ContactInterface {
         primary: Primary,
         enforcement: &Enforcement,
     ) -> Result<Self, SetupError> {
-        let set = mesh
-            .surface(secondary)
-            .ok_or_else(|| SetupError::UnknownSurface(secondary.to_string()))?;
-        linear_faces(set)?;
-        let (nodes, areas) = tributary_areas(mesh, set);
+        let set = surface_set(mesh, secondary)?;
+        let (nodes, mut areas) = tributary_areas(mesh, set);
+        match &primary {
+            // the mortar nodes' areas are D_j (where a segment reaches them)
+            Primary::Mortar(m) => {
+                let d = m.reference_areas(mesh, &nodes).unwrap_or_default();
+                for (a, d) in areas.iter_mut().zip(d) {
+                    if d > 0.0 {
+                        *a = d;
+                    }
+                }
+            }
+            _ => linear_faces(set)?,
+        }
         let total: f64 = areas.iter().sum();
         if nodes.is_empty() || !(total > 0.0) {
             return Err(SetupError::NoArea(secondary.to_string()));
@@ -301,7 +322,7 @@ impl ContactInterface {
             areas,
             secondary_surface: match primary {
                 Primary::Surface(_) => PrimarySurface::from_mesh(mesh, secondary),
-                Primary::Rigid(_) => None,
+                Primary::Rigid(_) | Primary::Mortar(_) => None,
             },
             primary,
             motion: Vector3::zeros(),
@@ -320,6 +341,22 @@ impl ContactInterface {
             p.refresh(&mesh.nodes, &zero, &c.nodes, 0.0);
         }
         Ok(c)
+    }
+
+    /// Surface `secondary` against surface `primary` of another body
+    /// through dual mortar ([`mortar_contact`](super::mortar_contact)):
+    /// linear and quadratic faces, each secondary node on its area `D_j`.
+    pub fn mortar(
+        mesh: &Mesh,
+        secondary: &str,
+        primary: &str,
+        enforcement: &Enforcement,
+    ) -> Result<Self, SetupError> {
+        let set = surface_set(mesh, secondary)?;
+        let nodes = mesh.surface_nodes(set);
+        let surfaces = MortarSurfaces::from_mesh(mesh, secondary, primary, &nodes)
+            .ok_or_else(|| SetupError::UnknownSurface(primary.to_string()))?;
+        Self::new(mesh, secondary, Primary::Mortar(surfaces), enforcement)
     }
 
     /// Surface `secondary` against a rigid obstacle (fixed: see
@@ -341,9 +378,7 @@ impl ContactInterface {
         primary: &str,
         enforcement: &Enforcement,
     ) -> Result<Self, SetupError> {
-        let set = mesh
-            .surface(primary)
-            .ok_or_else(|| SetupError::UnknownSurface(primary.to_string()))?;
+        let set = surface_set(mesh, primary)?;
         linear_faces(set)?;
         let surface = PrimarySurface::from_mesh(mesh, primary)
             .ok_or_else(|| SetupError::UnknownSurface(primary.to_string()))?;

@@ -59,7 +59,7 @@ use super::kinematics::{current_position, GapKinematics, GapProducer, SecondaryN
 use super::laws::NodeContactState;
 use super::primary::PrimarySurface;
 use super::triangle_gap::TriangleGap;
-use nalgebra::{Matrix3, SMatrix, Vector3};
+use nalgebra::{Const, Matrix3, SMatrix, Vector3};
 
 /// Unknowns of one node's contribution: `q = (x_s, x1, x2, x3, y1, y2, y3)`,
 /// the secondary node, its triangle and its friction anchor's triangle.
@@ -84,7 +84,7 @@ impl SurfaceGap<'_> {
     }
 }
 
-impl GapProducer<Q> for SurfaceGap<'_> {
+impl GapProducer<Const<Q>> for SurfaceGap<'_> {
     type Point = TriangleGap;
 
     /// Against the triangle the node was on (`state.facet`) while it stays
@@ -94,14 +94,16 @@ impl GapProducer<Q> for SurfaceGap<'_> {
         &self,
         node: &SecondaryNode,
         state: &NodeContactState,
-    ) -> Option<GapKinematics<Q, TriangleGap>> {
+    ) -> Option<GapKinematics<Const<Q>, TriangleGap>> {
         let (t, gap) = self.primary.projection(node, state.facet)?;
         let [a, b, c] = self.primary.triangles[t];
         Some(GapKinematics {
             nodes: smallvec::smallvec![node.mesh_node, a, b, c],
             gap: gap.gap,
             gradient: padded(&gap.gradient),
+            lever: None,
             hessian: padded(&gap.hessian),
+            area: None,
             normal: gap.normal,
             normal_gradient: padded(&gap.normal_gradient),
             facet: Some(t),
@@ -125,9 +127,9 @@ impl GapProducer<Q> for SurfaceGap<'_> {
     fn slip(
         &self,
         node: &SecondaryNode,
-        kinematics: &mut GapKinematics<Q, TriangleGap>,
+        kinematics: &mut GapKinematics<Const<Q>, TriangleGap>,
         history: &FrictionHistory,
-    ) -> SlipFrame<Q> {
+    ) -> SlipFrame<Const<Q>> {
         let position = |n| current_position(node.reference, node.x, n);
         let point = self.material_point(node.index, history);
         let current = [1, 2, 3].map(|a| kinematics.nodes[a]);
@@ -180,7 +182,7 @@ impl GapProducer<Q> for SurfaceGap<'_> {
     /// nodes move with `ξ`: rows `x_i` get `t ⊗ ∂N_i/∂q`.
     fn lever_stiffness(
         &self,
-        kinematics: &GapKinematics<Q, TriangleGap>,
+        kinematics: &GapKinematics<Const<Q>, TriangleGap>,
         traction: &Vector3<f64>,
     ) -> Option<SMatrix<f64, Q, Q>> {
         let xi = &kinematics.point.xi_gradient;
@@ -202,9 +204,9 @@ impl GapProducer<Q> for SurfaceGap<'_> {
     /// derivative `J*` is not when the anchor lies on another triangle).
     fn stick_stiffness(
         &self,
-        kinematics: &GapKinematics<Q, TriangleGap>,
-        frame: &SlipFrame<Q>,
-        response: &TangentialResponse<Q>,
+        kinematics: &GapKinematics<Const<Q>, TriangleGap>,
+        frame: &SlipFrame<Const<Q>>,
+        response: &TangentialResponse<Const<Q>>,
         law: &Coulomb,
         area: f64,
     ) -> SMatrix<f64, Q, Q> {
@@ -227,7 +229,7 @@ impl GapProducer<Q> for SurfaceGap<'_> {
         &self,
         node: &SecondaryNode,
         history: &FrictionHistory,
-        response: Option<(&TangentialResponse<Q>, &Vector3<f64>)>,
+        response: Option<(&TangentialResponse<Const<Q>>, &Vector3<f64>)>,
     ) -> FrictionHistory {
         let traction = response.map_or_else(Vector3::zeros, |(r, _)| r.traction);
         let material_point = match self.material_point(node.index, history) {
@@ -257,7 +259,7 @@ impl GapProducer<Q> for SurfaceGap<'_> {
     fn anchor(
         &self,
         node: &SecondaryNode,
-        kinematics: Option<&GapKinematics<Q, TriangleGap>>,
+        kinematics: Option<&GapKinematics<Const<Q>, TriangleGap>>,
         traction: &Vector3<f64>,
     ) -> Option<MaterialPoint> {
         let point = match kinematics {

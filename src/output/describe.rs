@@ -212,6 +212,10 @@ fn contact(c: &ContactInterface) -> String {
             )
         }
         Primary::Surface(p) => format!("the primary surface '{}' (deformable)", p.surface),
+        Primary::Mortar(m) => format!(
+            "the primary surface '{}' (deformable, dual mortar)",
+            m.primary_surface
+        ),
     };
     let scaled = if c.node_scale.is_empty() {
         ""

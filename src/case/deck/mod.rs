@@ -367,6 +367,7 @@ fn contacts(physics: &Physics, mesh: &Mesh, notes: &mut Vec<String>) -> Result<V
             friction_multiplier: None,
             initial_penetration_tolerance: None,
             two_pass: false,
+            discretisation: Default::default(),
         });
     }
     if !out.is_empty() {

@@ -13,7 +13,7 @@
 //! path, the Josephy–Newton step), whatever the primary kind: the rows come
 //! from the same [`GapProducer`] as the assembly.
 
-use super::{ContactContext, ContactInterface, Primary, RigidGap, SurfaceGap};
+use super::{ContactContext, ContactInterface, MortarGap, Primary, RigidGap, SurfaceGap};
 use crate::contact::kinematics::{GapProducer, PrimaryWeights};
 use crate::contact::laws::NodeContactState;
 use crate::contact::obstacle::RigidObstacle;
@@ -84,7 +84,7 @@ impl ContactInterface {
             first_multiplier: 0,
         };
         let mut rows = Vec::with_capacity(self.nodes.len());
-        with_producer!(self, t, p => {
+        with_producer!(self, &ctx, p => {
             let state_of = |i| {
                 states.map_or_else(|| NodeContactState::initial(&self.law_at(i), p.open_gap()), |s| s[i])
             };
@@ -119,6 +119,9 @@ impl ContactInterface {
             Primary::Rigid(RigidObstacle::Sphere { .. }) => "sphere",
             Primary::Rigid(RigidObstacle::Cylinder { .. }) => "cylinder",
             Primary::Rigid(_) => "triangulated surface",
+            Primary::Mortar(_) => {
+                return Err("uses discretisation = \"mortar\" (not condensed yet)".into())
+            }
             // a primary surface (and any primary kind added later)
             _ => {
                 return Err(

@@ -148,7 +148,7 @@ pub struct StepProfile {
 /// A profile along a line of one contact interface.
 #[derive(Clone, Debug, PartialEq)]
 pub struct Profile {
-    /// File stem and plot title.
+    /// File stem.
     pub name: String,
     /// Index of the interface among the problem's contacts, and its name.
     pub interface: usize,
@@ -266,7 +266,15 @@ impl Profile {
         let [pressure, tangential] = panels;
         let units = &self.units;
         let plot = LinePlot {
-            title: format!("{}: interface '{}'", self.name, self.interface_name),
+            title: format!(
+                "{} along a line of interface '{}'",
+                if tangential.is_empty() {
+                    "Contact pressure"
+                } else {
+                    "Contact pressure and tangential traction"
+                },
+                self.interface_name
+            ),
             x_label: units.label(
                 "abscissa along the line, reference configuration",
                 Dimension::Length,

@@ -82,6 +82,8 @@ pub struct ResultWriter {
     /// Whether the reference state (`NAME_0000.vtu`, t = 0) is still to be
     /// written, before the first increment's file.
     reference_pending: bool,
+    /// Newton's relative residual tolerance, drawn in the convergence plot.
+    residual_tolerance: Option<f64>,
 }
 
 /// The reference state's VTU file of the series `name`: `NAME_0000.vtu`
@@ -203,6 +205,7 @@ impl ResultWriter {
             mesh_arrays: None,
             recovery: None,
             reference_pending: false,
+            residual_tolerance: None,
         })
     }
 
@@ -266,6 +269,13 @@ impl ResultWriter {
     /// summary names `.pvtu` files then).
     pub fn pieces(mut self, pieces: Pieces) -> Self {
         self.pieces = Some(pieces);
+        self
+    }
+
+    /// Draw Newton's relative residual `tolerance` (`[solver]
+    /// residual_tolerance`) in the convergence plot.
+    pub fn residual_tolerance(mut self, tolerance: f64) -> Self {
+        self.residual_tolerance = Some(tolerance);
         self
     }
 
@@ -391,7 +401,11 @@ impl StepObserver for ResultWriter {
             })
             .collect();
         self.manifest.claim("convergence.svg")?;
-        plot::write_convergence_plot(&self.dir.join("convergence.svg"), &steps)
+        plot::write_convergence_plot_with_tolerance(
+            &self.dir.join("convergence.svg"),
+            &steps,
+            self.residual_tolerance,
+        )
     }
 }
 

@@ -659,5 +659,6 @@ fn push_history(
         interface: None,
         surface: None,
         nodes: nodes.map(str::to_string),
+        x: None,
     });
 }

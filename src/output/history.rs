@@ -7,6 +7,7 @@
 
 use std::path::Path;
 
+use super::describe::counted;
 use super::line_plot::{write_line_plot, Curve, LinePlot};
 use super::table::write_csv;
 use super::units::{Dimension, Units};
@@ -165,8 +166,18 @@ impl History {
     }
 
     /// Where the history reads, for the logs: `at node <id> (x, y, z)` or
-    /// `on surface '<name>' (<n> nodes)`.
+    /// `on surface '<name>' (<n> nodes)`, and `, against '<x>'` with an x
+    /// axis.
     pub fn location(&self, nodes: &[[f64; 3]]) -> String {
+        let place = self.reading(nodes);
+        match &self.x {
+            Some(x) => format!("{place}, against '{}'", x.name),
+            None => place,
+        }
+    }
+
+    /// Where the quantity is read, for [`Self::location`].
+    fn reading(&self, nodes: &[[f64; 3]]) -> String {
         match &self.quantity {
             HistoryQuantity::ReactionForce { surface, nodes } => {
                 format!("on surface '{surface}' ({} nodes)", nodes.len())
@@ -216,6 +227,24 @@ impl History {
         let x = self.x.iter().flat_map(|x| x.value(u, residual, contact));
         let value = x.chain(self.value(u, residual, contact)).collect();
         self.samples.push((time, value));
+    }
+
+    /// Whether `samples` (a checkpoint's) have this history's columns: an
+    /// error in words if not (an `x` added or removed since).
+    pub fn check_restored(&self, samples: &[(f64, Vec<f64>)]) -> Result<(), String> {
+        let columns = self.columns();
+        match samples.iter().find(|(_, v)| v.len() != columns.len()) {
+            None => Ok(()),
+            Some((_, v)) => Err(format!(
+                "the checkpoint's history '{}' has {} after time, the case's {} ({}); \
+                 a restart needs the same [[output.history]] tables (with the same `x`): \
+                 run the case from the start",
+                self.name,
+                counted(v.len(), "column"),
+                columns.len(),
+                columns.join(", ")
+            )),
+        }
     }
 
     /// Write `<name>.csv` and `<name>.svg` into `dir`, atomically.
@@ -432,6 +461,13 @@ mod tests {
         force.record(0.5, &[0.0, 0.0, 0.0, 0.0, 0.0, -0.01], &residual, &[]);
         force.record(1.0, &[0.0, 0.0, 0.0, 0.0, 0.0, -0.02], &residual, &[]);
         assert_eq!(force.samples[1], (1.0, vec![-0.02, 1.75]));
+        // a checkpoint's samples of the history without its x do not fit
+        assert!(force.check_restored(&force.samples).is_ok());
+        let message = force.check_restored(&[(0.5, vec![1.75])]).unwrap_err();
+        assert!(
+            message.contains("has 1 column after time, the case's 2 (depth, reaction_force_z)"),
+            "{message}"
+        );
         let plot = force.plot();
         assert_eq!(
             plot.curves[0].points,
@@ -442,6 +478,10 @@ mod tests {
         assert_eq!(
             plot.title,
             "Reaction force F_z on set 'bottom' against displacement u_z at node 7"
+        );
+        assert_eq!(
+            force.location(&[[0.0; 3]; 2]),
+            "on set 'bottom' (2 nodes), against 'depth'"
         );
         let dir = tempfile::tempdir().unwrap();
         force.write(dir.path()).unwrap();

@@ -155,6 +155,14 @@ impl ResultWriter {
                     .map(|i| (i.time, i.file.clone())),
             )
             .collect();
+        // before any file is touched: the samples fit the histories
+        for (h, samples) in content.histories.iter().zip(&restored.histories) {
+            h.check_restored(samples)
+                .map_err(|message| Error::Restart {
+                    path: checkpoint::path(dir, name),
+                    message,
+                })?;
+        }
         let keep: BTreeSet<String> = files.iter().map(|(_, f)| f.clone()).collect();
         let manifest = Manifest::resume(dir, name, &keep)?;
         for (h, samples) in content.histories.iter_mut().zip(restored.histories) {

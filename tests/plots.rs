@@ -6,6 +6,9 @@
 //! Layout (legends beside the data, the colour bar of the convergence
 //! plot, where the tolerance line is) is tested in `src/output`.
 
+mod common;
+
+use common::{cube_case, cube_folder};
 use signorini::run::{run, RunOptions};
 use std::path::Path;
 
@@ -23,21 +26,13 @@ fn plots(extra: &str) -> (String, String) {
 /// The cube case of [`plots`] run in a fresh folder: the folder (removed
 /// when dropped) and the output folder in it.
 fn run_cube(extra: &str) -> (tempfile::TempDir, std::path::PathBuf) {
-    let dir = tempfile::tempdir().unwrap();
-    let data = Path::new(env!("CARGO_MANIFEST_DIR")).join("tests/data");
-    std::fs::copy(
-        data.join("cube_hex_41_ascii.msh"),
-        dir.path().join("cube.msh"),
-    )
-    .unwrap();
-    let base = std::fs::read_to_string(data.join("cube_case.toml")).unwrap();
+    let base = cube_case();
     let case = base.replace(
         "obstacle = \"wall\"\n",
         "obstacle = \"wall\"\nfriction_coefficient = 0.3\n",
     );
     assert_ne!(case, base);
-    let path = dir.path().join("case.toml");
-    std::fs::write(&path, format!("{case}\n{extra}\n")).unwrap();
+    let (dir, path) = cube_folder(&format!("{case}\n{extra}\n"));
     let out = dir.path().join("results");
     let options = RunOptions {
         output: Some(out.clone()),
@@ -53,6 +48,9 @@ fn run_cube(extra: &str) -> (tempfile::TempDir, std::path::PathBuf) {
 fn units_label_the_axes() {
     let (history, profile) = plots("[units]\nlength = \"mm\"\nforce = \"N\"");
     assert!(history.contains("displacement u_z (mm)"), "history labels");
+    // the two slip bounds named once (one step)
+    assert_eq!(profile.matches("±μ t_N").count(), 1);
+    assert!(!profile.contains("−μ t_N"));
     for label in [
         "abscissa along the line, reference configuration (mm)",
         "contact pressure t_N (N/mm²)",
@@ -144,20 +142,11 @@ fn a_history_x_axis_is_validated() {
         ),
         ("push", "is this history itself"),
     ] {
-        let dir = tempfile::tempdir().unwrap();
-        let data = Path::new(env!("CARGO_MANIFEST_DIR")).join("tests/data");
-        std::fs::copy(
-            data.join("cube_hex_41_ascii.msh"),
-            dir.path().join("cube.msh"),
-        )
-        .unwrap();
-        let case = std::fs::read_to_string(data.join("cube_case.toml")).unwrap()
-            + &format!(
-                "\n[[output.history]]\nname = \"push\"\nquantity = \"reaction_force_z\"\n\
-                 surface = \"bottom\"\nx = \"{x}\"\n"
-            );
-        let path = dir.path().join("case.toml");
-        std::fs::write(&path, case).unwrap();
+        let (_dir, path) = cube_folder(&format!(
+            "{}\n[[output.history]]\nname = \"push\"\nquantity = \"reaction_force_z\"\n\
+             surface = \"bottom\"\nx = \"{x}\"\n",
+            cube_case()
+        ));
         let message = match signorini::run::Simulation::from_file(&path) {
             Ok(_) => panic!("x = {x:?} was accepted"),
             Err(e) => e.to_string(),

@@ -2,8 +2,9 @@
 //! commit, features, date, command line, cores and the case file's
 //! SHA-256; `signorini --version` names the version, commit and features.
 
+mod common;
+
 use sha2::{Digest, Sha256};
-use std::path::Path;
 use std::process::Command;
 
 /// The commit `build.rs` finds: git's 12-digit `HEAD` of this checkout,
@@ -53,15 +54,7 @@ fn version_names_the_version_commit_and_features() {
 /// command line, the thread count and the build.
 #[test]
 fn the_log_header_identifies_the_run() {
-    let dir = tempfile::tempdir().unwrap();
-    let data = Path::new(env!("CARGO_MANIFEST_DIR")).join("tests/data");
-    std::fs::copy(
-        data.join("cube_hex_41_ascii.msh"),
-        dir.path().join("cube.msh"),
-    )
-    .unwrap();
-    let case = dir.path().join("case.toml");
-    std::fs::copy(data.join("cube_case.toml"), &case).unwrap();
+    let (dir, case) = common::cube_folder(&common::cube_case());
     let out = dir.path().join("results");
     let status = Command::new(env!("CARGO_BIN_EXE_signorini"))
         .args(["run", "--quiet", "--threads", "1", "--output"])

@@ -441,19 +441,7 @@ mod tests {
         assert!(!svg.contains("step 7<"));
         assert!(svg.contains("100 increments") && svg.contains("pseudo-time t"));
         // the bar's ends: the first and the last time
-        let texts: Vec<&str> = svg
-            .split("<text")
-            .skip(1)
-            .map(|t| {
-                t.split('>')
-                    .nth(1)
-                    .unwrap_or("")
-                    .split('<')
-                    .next()
-                    .unwrap()
-                    .trim()
-            })
-            .collect();
+        let texts: Vec<&str> = text_elements(&svg).into_iter().map(|t| t.1).collect();
         assert!(
             texts.contains(&"0.0000") && texts.contains(&"1.0000"),
             "{texts:?}"
@@ -525,21 +513,22 @@ mod tests {
             .collect()
     }
 
+    /// Every `<text>` element: its attributes and its content.
+    fn text_elements(svg: &str) -> Vec<(&str, &str)> {
+        svg.split("<text")
+            .skip(1)
+            .map(|t| {
+                let (attributes, rest) = t.split_once('>').unwrap_or((t, ""));
+                (attributes, rest.split('<').next().unwrap().trim())
+            })
+            .collect()
+    }
+
     /// The `y` attribute of the `<text>` whose content is `content`.
     fn text_y(svg: &str, content: &str) -> f64 {
-        let element = svg
-            .split("<text")
-            .skip(1)
-            .find(|t| {
-                t.split('>')
-                    .nth(1)
-                    .unwrap_or("")
-                    .split('<')
-                    .next()
-                    .unwrap()
-                    .trim()
-                    == content
-            })
+        let (element, _) = text_elements(svg)
+            .into_iter()
+            .find(|t| t.1 == content)
             .unwrap_or_else(|| panic!("no text {content}"));
         let start = element.find(" y=\"").unwrap() + 4;
         element[start..start + element[start..].find('"').unwrap()]

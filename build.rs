@@ -1,12 +1,74 @@
-//! Build script: only with the `petsc` feature, compile the C layer over
-//! PETSc (`src/solve/petsc/shim.c`) against the installed PETSc and MPI,
-//! found by `pkg-config` (`petsc`, `ompi-c` or `mpich`) or by `PETSC_DIR`
-//! (and `PETSC_ARCH`). Without the feature it does nothing.
+//! Build script: the build's provenance for `signorini --version` and
+//! `NAME.log` ([`provenance`]); and, only with the `petsc` feature, the C
+//! layer over PETSc (`src/solve/petsc/shim.c`) compiled against the
+//! installed PETSc and MPI, found by `pkg-config` (`petsc`, `ompi-c` or
+//! `mpich`) or by `PETSC_DIR` (and `PETSC_ARCH`).
 
 fn main() {
     println!("cargo:rerun-if-changed=build.rs");
+    provenance::emit();
     #[cfg(feature = "petsc")]
     petsc::build();
+}
+
+/// Sets `SIGNORINI_COMMIT` (git's 12-digit hash of `HEAD`, `unknown`
+/// outside a git checkout of this crate: a crate unpacked from a registry,
+/// a source archive, no `git`) and `SIGNORINI_FEATURES` (the enabled cargo
+/// features, comma-separated, `none`) for `src/output/provenance.rs`.
+mod provenance {
+    use std::path::Path;
+    use std::process::Command;
+
+    /// The trimmed output of `git ARGS`, if it ran and succeeded.
+    fn git(args: &[&str]) -> Option<String> {
+        let out = Command::new("git").args(args).output().ok()?;
+        let text = String::from_utf8(out.stdout).ok()?.trim().to_string();
+        (out.status.success() && !text.is_empty()).then_some(text)
+    }
+
+    /// Whether `a` and `b` are the same folder.
+    fn same(a: &Path, b: &Path) -> bool {
+        matches!((a.canonicalize(), b.canonicalize()), (Ok(a), Ok(b)) if a == b)
+    }
+
+    pub fn emit() {
+        let manifest = std::env::var("CARGO_MANIFEST_DIR").unwrap_or_default();
+        // the commit of this crate's own checkout, not of a repository
+        // around it (a home folder kept in git, with the crate in ~/.cargo)
+        let own = git(&["rev-parse", "--show-toplevel"])
+            .is_some_and(|top| same(Path::new(&top), Path::new(&manifest)));
+        let commit = own
+            .then(|| git(&["rev-parse", "--short=12", "HEAD"]))
+            .flatten();
+        println!(
+            "cargo:rustc-env=SIGNORINI_COMMIT={}",
+            commit.as_deref().unwrap_or("unknown")
+        );
+        if own {
+            // a new commit (HEAD, the branch it names, packed refs) rebuilds
+            let branch = git(&["symbolic-ref", "-q", "HEAD"]);
+            let refs = ["HEAD", "packed-refs"].into_iter().chain(branch.as_deref());
+            for r in refs {
+                if let Some(path) = git(&["rev-parse", "--git-path", r]) {
+                    if Path::new(&path).exists() {
+                        println!("cargo:rerun-if-changed={path}");
+                    }
+                }
+            }
+        }
+        let mut features: Vec<String> = std::env::vars()
+            .filter_map(|(k, _)| k.strip_prefix("CARGO_FEATURE_").map(str::to_string))
+            .filter(|f| f != "DEFAULT")
+            .map(|f| f.to_lowercase().replace('_', "-"))
+            .collect();
+        features.sort();
+        let features = if features.is_empty() {
+            "none".to_string()
+        } else {
+            features.join(", ")
+        };
+        println!("cargo:rustc-env=SIGNORINI_FEATURES={features}");
+    }
 }
 
 #[cfg(feature = "petsc")]

@@ -13,7 +13,8 @@ use std::sync::Arc;
 #[derive(Parser)]
 #[command(
     name = "signorini",
-    version,
+    // `signorini 0.1.0 (commit 0123456789ab, features: none)`
+    version = signorini::output::provenance::VERSION_LINE,
     about = "Nonlinear 3D contact mechanics by finite elements"
 )]
 struct Cli {

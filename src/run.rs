@@ -40,6 +40,7 @@ use crate::output::fields::{CellField, NodalField};
 use crate::output::lock::FolderLock;
 use crate::output::log::LogWriter;
 use crate::output::observer::{Observers, StepObserver};
+use crate::output::provenance::RunHeader;
 use crate::output::pvtu::{PieceWriter, Pieces};
 use crate::output::summary::Summary;
 use crate::output::vtu::VtuOptions;
@@ -126,6 +127,8 @@ pub struct Simulation {
     warnings: Vec<String>,
     /// What ties a checkpoint to this case.
     case_key: CaseKey,
+    /// The case file's SHA-256, for the log's header.
+    case_sha256: String,
     /// The VTU points and cells of the mesh, encoding since the case was
     /// read ([`run_observed`]); `None`: the writer starts it.
     mesh_encoding: Option<MeshEncoding>,
@@ -159,6 +162,7 @@ impl Simulation {
         let every = case.output_every()?;
         let case_key = restart::case_key(case, &problem);
         Ok(Simulation {
+            case_sha256: case.source_sha256(),
             case_label: case.path.display().to_string(),
             name: case.output_name(),
             default_output: case.output_dir(None),
@@ -436,7 +440,12 @@ impl Simulation {
             histories: self.requests.histories.clone(),
             profiles: self.requests.profiles.clone(),
         };
-        let (writer, log) = match restart {
+        let header = RunHeader::now(
+            Path::new(&self.case_label),
+            self.case_sha256.clone(),
+            rayon::current_num_threads(),
+        );
+        let (writer, mut log) = match restart {
             None => (
                 ResultWriter::new(dir, &self.name, content)?,
                 LogWriter::new(dir, &self.name)?,
@@ -453,9 +462,11 @@ impl Simulation {
                 )
             }
         };
+        log.header(&header);
         let mut writer = writer
             .compress(self.compress)
-            .checkpoint(self.case_key.clone());
+            .checkpoint(self.case_key.clone())
+            .residual_tolerance(self.problem.settings.residual_tolerance);
         writer = match pieces {
             Some(pieces) => writer.pieces(pieces),
             // the mesh's points and cells encoded beside the set-up (or

@@ -6,6 +6,7 @@ use super::schema::HistoryQuantitySpec;
 use super::Case;
 use crate::output::history::{History, HistoryQuantity};
 use crate::output::profile::{file_part, nodes_in_band, Profile, ProfileNode};
+use crate::output::provenance::sha256_hex;
 use crate::output::units::Units;
 use crate::problem::Problem;
 use crate::Result;
@@ -106,6 +107,56 @@ impl Case {
             }
         }
         Ok(())
+    }
+
+    /// Each history's `x`: another history of one column, which it is
+    /// plotted against ([`History::against`]); `histories` in the case's
+    /// order.
+    fn history_axes(&self, histories: &mut [History]) -> Result<()> {
+        for (i, h) in self.spec.output.history.iter().enumerate() {
+            let Some(x) = &h.x else { continue };
+            let key = format!("output.history[{i}].x");
+            let j = match histories.iter().position(|g| &g.name == x) {
+                Some(j) if j == i => {
+                    return Err(self.err(format!(
+                        "{key} = '{x}' is this history itself; name another [[output.history]] (e.g. a displacement) as its x axis"
+                    )))
+                }
+                Some(j) => j,
+                None => {
+                    let names: Vec<&str> = histories.iter().map(|g| g.name.as_str()).collect();
+                    return Err(self.err(format!(
+                        "{key} = '{}': no [[output.history]] has that name; the histories are: {}",
+                        crate::input::shorten(x),
+                        names.join(", ")
+                    )));
+                }
+            };
+            if matches!(histories[j].quantity, HistoryQuantity::ReactionForce { .. }) {
+                return Err(self.err(format!(
+                    "{key} = '{x}' records reaction_force, three components; an x axis is one column: \
+                     record reaction_force_x, _y or _z in '{x}'"
+                )));
+            }
+            let axis = histories[j].clone();
+            histories[i] = histories[i].clone().against(&axis);
+        }
+        Ok(())
+    }
+
+    /// The SHA-256 of the case file's bytes ([`sha256_hex`]): those of the
+    /// deck for an Abaqus/CalculiX deck (`.inp`, read again), of the text
+    /// read otherwise (for a case given as text, that text).
+    pub fn source_sha256(&self) -> String {
+        let deck = self
+            .path
+            .extension()
+            .is_some_and(|e| e.eq_ignore_ascii_case("inp"));
+        match deck.then(|| std::fs::read(&self.path)) {
+            Some(Ok(bytes)) => sha256_hex(&bytes),
+            Some(Err(e)) => format!("unknown (cannot read the deck again: {e})"),
+            None => sha256_hex(self.text.as_bytes()),
+        }
     }
 
     /// `[units]`, each name non-empty and on one line.
@@ -284,6 +335,7 @@ impl Case {
                 .with_units(units.clone()),
             );
         }
+        self.history_axes(&mut out.histories)?;
         for (i, p) in self.spec.output.profile.iter().enumerate() {
             let key = format!("output.profile[{i}]");
             self.output_file_stem(&key, &p.name, &mut taken)?;

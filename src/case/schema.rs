@@ -536,6 +536,12 @@ pub struct HistorySpec {
     /// A node set, instead of `surface`, for `reaction_force` and its
     /// components.
     pub nodes: Option<String>,
+    /// The `name` of another `[[output.history]]` of one column (not
+    /// `reaction_force`, whose three components are three) whose value is
+    /// the plot's x axis instead of the pseudo-time, and the CSV's column
+    /// after `time`: e.g. a reaction force against a displacement, a
+    /// force–displacement curve.
+    pub x: Option<String>,
 }
 
 /// `[[output.profile]]`: the secondary nodes of `interface` within `width`

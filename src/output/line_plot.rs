@@ -16,7 +16,7 @@ use super::write_atomically;
 /// One curve: points joined in the order given, each marked by a dot.
 #[derive(Clone, Debug, Default, PartialEq)]
 pub struct Curve {
-    /// Legend entry.
+    /// Legend entry (empty: none, e.g. the second of a pair of bounds).
     pub label: String,
     /// `(x, y)`; points with a non-finite coordinate are left out.
     pub points: Vec<(f64, f64)>,
@@ -182,7 +182,9 @@ fn render_line_plot(plot: &LinePlot) -> Result<String, String> {
             for (curve, points) in curves {
                 let colour = step_colour(curve.colour, colours);
                 let style = colour.stroke_width(2);
-                legend.push((curve.label.as_str(), colour, curve.style));
+                if !curve.label.is_empty() {
+                    legend.push((curve.label.as_str(), colour, curve.style));
+                }
                 match curve.style {
                     CurveStyle::Markers => {
                         chart
@@ -367,6 +369,38 @@ mod tests {
                 "legend '{label}' at x = {x}, data up to {rightmost}"
             );
         }
+    }
+
+    /// A curve without a label is drawn (its dots) but has no legend
+    /// entry: ±μ t_N named once for its two dashed bounds.
+    #[test]
+    fn an_unlabelled_curve_has_no_legend_entry() {
+        let bound = |label: &str, sign: f64| Curve {
+            label: label.into(),
+            points: vec![(0.0, sign), (1.0, sign)],
+            colour: 0,
+            style: CurveStyle::Dashed,
+        };
+        let svg = |second: &str| {
+            render_line_plot(&LinePlot {
+                curves: vec![bound("±μ t_N", 1.0), bound(second, -1.0)],
+                ..Default::default()
+            })
+            .unwrap()
+        };
+        let (unlabelled, labelled) = (svg(""), svg("−μ t_N"));
+        assert_eq!(unlabelled.matches("<circle").count(), 4);
+        assert_eq!(unlabelled.matches("±μ t_N").count(), 1);
+        // the labelled second curve adds its legend sample (two dashes)
+        // and its name, nothing else
+        assert_eq!(
+            labelled.matches("<polyline").count(),
+            unlabelled.matches("<polyline").count() + 2
+        );
+        assert_eq!(
+            labelled.matches("<text").count(),
+            unlabelled.matches("<text").count() + 1
+        );
     }
 
     #[test]

@@ -1,4 +1,6 @@
-//! `NAME.log`: a run's log in the output folder — the model in words, one
+//! `NAME.log`: a run's log in the output folder — a header that says what
+//! the run came from ([`RunHeader`]: version, commit, features, date,
+//! command line, cores, the case file's SHA-256), the model in words, one
 //! line per Newton iteration, every increment and every cut with its
 //! reason, and the final summary. Appended and flushed line by line, so a
 //! run that dies leaves its log up to that moment.
@@ -10,6 +12,7 @@ use std::path::{Path, PathBuf};
 use super::describe::counted;
 use super::fields::ConvergedIncrement;
 use super::observer::{Cut, Iteration, StepObserver};
+use super::provenance::RunHeader;
 use super::summary::Summary;
 use crate::solve::linear_solver::LinearFigures;
 use crate::{Error, Result};
@@ -62,6 +65,14 @@ impl LogWriter {
             file: BufWriter::new(file),
             failed: None,
         })
+    }
+
+    /// Write `header`'s lines (at the start of a run, or of a restart's
+    /// part of the log).
+    pub fn header(&mut self, header: &RunHeader) {
+        for line in header.lines() {
+            self.line(&line);
+        }
     }
 
     fn line(&mut self, text: &str) {

@@ -22,6 +22,8 @@
 //!   [`writer`]: the observer that writes all of the above; [`log`]: the
 //!   observer that writes `NAME.log`; [`describe`]: the model in words;
 //!   [`manifest`]: `NAME.manifest`, the files of a run, removed by the next;
+//!   [`provenance`]: the build and the case a run came from, the log's
+//!   header and `--version`;
 //!   [`lock`]: `.signorini.lock`, the folder's owner for a run's life;
 //!   [`checkpoint`]: `NAME.checkpoint`, the state a restart resumes from;
 //!   [`schedule`]: when the listings of every increment are rewritten.
@@ -43,6 +45,7 @@ pub mod manifest;
 pub mod observer;
 pub mod plot;
 pub mod profile;
+pub mod provenance;
 pub mod pvd;
 pub mod pvtu;
 pub mod recovery;

@@ -1,5 +1,6 @@
 //! The Newton convergence plot (`convergence.svg`): relative residual per
-//! iteration of every converged step, on a log scale.
+//! iteration of every converged step, on a log scale, with the residual
+//! tolerance that ends Newton's iterations as a dashed line.
 //!
 //! Drawn with plotters' SVG backend without any font feature: the backend
 //! writes text as SVG `<text>` elements (font family `sans-serif`) that the
@@ -48,7 +49,19 @@ const MAX_DECADES: i32 = 30;
 /// plot, but keeps its colour.
 /// An empty `steps` gives an empty, labelled plot.
 pub fn write_convergence_plot(path: &Path, steps: &[StepResiduals]) -> crate::Result<()> {
-    let svg = render_convergence_plot(steps)
+    write_convergence_plot_with_tolerance(path, steps, None)
+}
+
+/// [`write_convergence_plot`] with the relative residual `tolerance`
+/// (`[solver] residual_tolerance`: Newton converges once the relative
+/// residual is below it) drawn as a dashed horizontal line, named beside
+/// the chart; the y axis reaches down to it.
+pub fn write_convergence_plot_with_tolerance(
+    path: &Path,
+    steps: &[StepResiduals],
+    tolerance: Option<f64>,
+) -> crate::Result<()> {
+    let svg = render_convergence_plot(steps, tolerance)
         .map_err(|message| crate::Error::io("draw", path, std::io::Error::other(message)))?;
     write_atomically(path, |w| w.write_all(svg.as_bytes()))
 }
@@ -168,12 +181,25 @@ fn time_range(steps: &[StepResiduals]) -> (f64, f64) {
         })
 }
 
+/// The colour of the tolerance line.
+const TOLERANCE_COLOUR: RGBColor = RGBColor(90, 90, 90);
+
 /// The SVG text of the plot: the chart on the left; on its right, the
 /// legend (few steps) or a colour bar of the pseudo-time (many steps),
-/// beside the data and never over it.
-fn render_convergence_plot(steps: &[StepResiduals]) -> Result<String, String> {
+/// beside the data and never over it, and under it the tolerance line's
+/// name.
+fn render_convergence_plot(
+    steps: &[StepResiduals],
+    tolerance: Option<f64>,
+) -> Result<String, String> {
     let err = |e: plotters::drawing::DrawingAreaErrorKind<std::io::Error>| e.to_string();
-    let decades = y_decades(steps.iter().flat_map(|s| s.residuals.iter()));
+    let tolerance = tolerance.filter(|t| t.is_finite() && *t > 0.0);
+    let decades = y_decades(
+        steps
+            .iter()
+            .flat_map(|s| s.residuals.iter())
+            .chain(tolerance.iter()),
+    );
     let drawn: Vec<(usize, Vec<(i32, f64)>)> = steps
         .iter()
         .enumerate()
@@ -245,6 +271,18 @@ fn render_convergence_plot(steps: &[StepResiduals]) -> Result<String, String> {
             .draw()
             .map_err(err)?;
 
+        if let Some(t) = tolerance.filter(|t| (y_lo..=y_hi).contains(t)) {
+            chart
+                .draw_series(DashedLineSeries::new(
+                    [(0, t), (x_hi, t)],
+                    10,
+                    6,
+                    TOLERANCE_COLOUR.stroke_width(2),
+                ))
+                .map_err(err)?;
+            let y = side.dim_in_pixel().1 as i32 - 40;
+            draw_tolerance_key(&side, y, t).map_err(err)?;
+        }
         for (index, points) in &drawn {
             let c = colour[*index];
             chart
@@ -276,6 +314,22 @@ fn render_convergence_plot(steps: &[StepResiduals]) -> Result<String, String> {
         root.present().map_err(err)?;
     }
     Ok(svg)
+}
+
+/// The tolerance line's key at height `y` of the column beside the chart:
+/// dashes and `Newton tolerance 1e-8`.
+fn draw_tolerance_key<DB: DrawingBackend>(
+    area: &DrawingArea<DB, plotters::coord::Shift>,
+    y: i32,
+    tolerance: f64,
+) -> Result<(), plotters::drawing::DrawingAreaErrorKind<DB::ErrorType>> {
+    let stroke = TOLERANCE_COLOUR.stroke_width(2);
+    area.draw(&PathElement::new(vec![(5, y), (14, y)], stroke))?;
+    area.draw(&PathElement::new(vec![(20, y), (29, y)], stroke))?;
+    let text = ("sans-serif", 15)
+        .into_text_style(area)
+        .pos(Pos::new(HPos::Left, VPos::Center));
+    area.draw_text(&format!("Newton tolerance {tolerance:e}"), &text, (37, y))
 }
 
 /// The width of the column beside the chart (legend or colour bar).
@@ -383,23 +437,11 @@ mod tests {
                 residuals: vec![1.0, 10f64.powi(-2 - i % 5), 1e-9],
             })
             .collect();
-        let svg = render_convergence_plot(&steps).unwrap();
+        let svg = render_convergence_plot(&steps, None).unwrap();
         assert!(!svg.contains("step 7<"));
         assert!(svg.contains("100 increments") && svg.contains("pseudo-time t"));
         // the bar's ends: the first and the last time
-        let texts: Vec<&str> = svg
-            .split("<text")
-            .skip(1)
-            .map(|t| {
-                t.split('>')
-                    .nth(1)
-                    .unwrap_or("")
-                    .split('<')
-                    .next()
-                    .unwrap()
-                    .trim()
-            })
-            .collect();
+        let texts: Vec<&str> = text_elements(&svg).into_iter().map(|t| t.1).collect();
         assert!(
             texts.contains(&"0.0000") && texts.contains(&"1.0000"),
             "{texts:?}"
@@ -440,12 +482,89 @@ mod tests {
         assert!(!svg.contains("NaN") && !svg.contains("inf"));
 
         // Residuals far below the largest are not drawn.
-        let svg = render_convergence_plot(&[step("deep", &[1.0, 1e-5, 1e-40])]).unwrap();
+        let svg = render_convergence_plot(&[step("deep", &[1.0, 1e-5, 1e-40])], None).unwrap();
         assert_eq!(svg.matches("<circle").count(), 2);
 
         write_convergence_plot(&path, &[step("all zero", &[0.0])]).unwrap();
         // Extreme but finite residuals keep the axis finite.
         write_convergence_plot(&path, &[step("huge", &[1e308, 1e-300])]).unwrap();
+    }
+
+    /// The `(x, y)` points of every `<polyline>` drawn in `colour`.
+    fn polylines_in(svg: &str, colour: RGBColor) -> Vec<Vec<(f64, f64)>> {
+        let stroke = format!(
+            "stroke=\"#{:02X}{:02X}{:02X}\"",
+            colour.0, colour.1, colour.2
+        );
+        svg.split("<polyline")
+            .skip(1)
+            .map(|p| &p[..p.find("/>").unwrap()])
+            .filter(|p| p.contains(&stroke))
+            .map(|p| {
+                let start = p.find("points=\"").unwrap() + 8;
+                p[start..start + p[start..].find('"').unwrap()]
+                    .split_whitespace()
+                    .map(|xy| {
+                        let (x, y) = xy.split_once(',').unwrap();
+                        (x.parse().unwrap(), y.parse().unwrap())
+                    })
+                    .collect()
+            })
+            .collect()
+    }
+
+    /// Every `<text>` element: its attributes and its content.
+    fn text_elements(svg: &str) -> Vec<(&str, &str)> {
+        svg.split("<text")
+            .skip(1)
+            .map(|t| {
+                let (attributes, rest) = t.split_once('>').unwrap_or((t, ""));
+                (attributes, rest.split('<').next().unwrap().trim())
+            })
+            .collect()
+    }
+
+    /// The `y` attribute of the `<text>` whose content is `content`.
+    fn text_y(svg: &str, content: &str) -> f64 {
+        let (element, _) = text_elements(svg)
+            .into_iter()
+            .find(|t| t.1 == content)
+            .unwrap_or_else(|| panic!("no text {content}"));
+        let start = element.find(" y=\"").unwrap() + 4;
+        element[start..start + element[start..].find('"').unwrap()]
+            .parse()
+            .unwrap()
+    }
+
+    /// The tolerance 1e-8 is a dashed line across the chart at the height
+    /// of the axis's `1e-8` tick (to the pixel), and is named; the axis
+    /// reaches down to it though every residual is above it.
+    #[test]
+    fn the_tolerance_line_is_at_the_tolerance() {
+        let steps = [step("step 1", &[1.0, 1e-3, 1e-6])];
+        let svg = render_convergence_plot(&steps, Some(1e-8)).unwrap();
+        assert!(svg.contains("Newton tolerance 1e-8"));
+        let chart_right = f64::from(1100 - SIDE_WIDTH);
+        let dashes: Vec<Vec<(f64, f64)>> = polylines_in(&svg, TOLERANCE_COLOUR)
+            .into_iter()
+            .filter(|d| d.iter().all(|p| p.0 < chart_right))
+            .collect();
+        assert!(dashes.len() > 10, "{} dashes", dashes.len());
+        let tick = text_y(&svg, "1e-8");
+        for (x, y) in dashes.iter().flatten() {
+            assert!(
+                (y - tick).abs() <= 1.0,
+                "dash at ({x}, {y}), tick 1e-8 at {tick}"
+            );
+        }
+        // from the first iteration to the last
+        let xs = dashes.iter().flatten().map(|p| p.0);
+        let span = xs.clone().fold(f64::NEG_INFINITY, f64::max) - xs.fold(f64::INFINITY, f64::min);
+        assert!(span > 0.9 * (chart_right - 100.0 - 15.0), "span {span}");
+        // without a tolerance, no line and no key
+        let svg = render_convergence_plot(&steps, None).unwrap();
+        assert!(polylines_in(&svg, TOLERANCE_COLOUR).is_empty());
+        assert!(!svg.contains("tolerance"));
     }
 
     #[test]

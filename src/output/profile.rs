@@ -115,13 +115,14 @@ pub const COLUMNS: &[Column] = &[
 ];
 
 /// The columns drawn in the profile plot, against the abscissa: the
-/// header, the legend's name, the style and the panel (0: the contact
+/// header, the legend's name (empty: no legend entry, the two slip bounds
+/// named once as `±μ t_N`), the style and the panel (0: the contact
 /// pressure; 1, below it: the tangential traction and its bounds).
 pub const PLOTTED: &[(&str, &str, CurveStyle, usize)] = &[
     ("contact_pressure", "t_N", CurveStyle::Solid, 0),
     ("tangential_traction", "t_T", CurveStyle::Solid, 1),
-    ("slip_bound", "μ t_N", CurveStyle::Dashed, 1),
-    ("minus_slip_bound", "−μ t_N", CurveStyle::Dashed, 1),
+    ("slip_bound", "±μ t_N", CurveStyle::Dashed, 1),
+    ("minus_slip_bound", "", CurveStyle::Dashed, 1),
     ("slipping", "slipping nodes", CurveStyle::Markers, 1),
 ];
 
@@ -148,7 +149,7 @@ pub struct StepProfile {
 /// A profile along a line of one contact interface.
 #[derive(Clone, Debug, PartialEq)]
 pub struct Profile {
-    /// File stem and plot title.
+    /// File stem.
     pub name: String,
     /// Index of the interface among the problem's contacts, and its name.
     pub interface: usize,
@@ -256,7 +257,11 @@ impl Profile {
                     continue;
                 }
                 panels[panel].push(Curve {
-                    label: format!("{legend}, {} (t = {:.3})", step.step_name, step.time),
+                    label: if legend.is_empty() {
+                        String::new()
+                    } else {
+                        format!("{legend}, {} (t = {:.3})", step.step_name, step.time)
+                    },
                     points,
                     colour: k,
                     style,
@@ -266,7 +271,15 @@ impl Profile {
         let [pressure, tangential] = panels;
         let units = &self.units;
         let plot = LinePlot {
-            title: format!("{}: interface '{}'", self.name, self.interface_name),
+            title: format!(
+                "{} along a line of interface '{}'",
+                if tangential.is_empty() {
+                    "Contact pressure"
+                } else {
+                    "Contact pressure and tangential traction"
+                },
+                self.interface_name
+            ),
             x_label: units.label(
                 "abscissa along the line, reference configuration",
                 Dimension::Length,

@@ -1,7 +1,9 @@
 //! The units of the plots' axis labels (`[units] length = "mm", force =
 //! "N"`): labels only, nothing is converted (the case file's numbers are in
-//! the user's consistent units). Without a unit the label names the
-//! dimension instead, e.g. `contact pressure (force/length²)`.
+//! the user's consistent units). A label names its unit only when the case
+//! declares the units it is made of: `contact pressure (N/mm²)` with both,
+//! `contact pressure` with either missing (never an empty `()` or a
+//! dimension's name in place of a unit).
 
 /// The physical dimension of a plotted quantity.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
@@ -22,21 +24,25 @@ pub struct Units {
 }
 
 impl Units {
-    /// The unit of `dimension`: `mm`, `N`, `N/mm²`; without a declared unit
-    /// the dimension's name (`length`, `force`, `force/length²`).
-    pub fn of(&self, dimension: Dimension) -> String {
-        let length = self.length.as_deref().unwrap_or("length");
-        let force = self.force.as_deref().unwrap_or("force");
+    /// The unit of `dimension`: `mm`, `N`, `N/mm²`; `None` when a unit it
+    /// is made of is not declared.
+    pub fn of(&self, dimension: Dimension) -> Option<String> {
+        let length = self.length.as_deref();
+        let force = self.force.as_deref();
         match dimension {
-            Dimension::Length => length.to_string(),
-            Dimension::Force => force.to_string(),
-            Dimension::Stress => format!("{force}/{length}²"),
+            Dimension::Length => length.map(str::to_string),
+            Dimension::Force => force.map(str::to_string),
+            Dimension::Stress => Some(format!("{}/{}²", force?, length?)),
         }
     }
 
-    /// An axis label: `name (unit)`, e.g. `contact pressure (N/mm²)`.
+    /// An axis label: `name (unit)`, e.g. `contact pressure (N/mm²)`, or
+    /// `name` alone without the unit.
     pub fn label(&self, name: &str, dimension: Dimension) -> String {
-        format!("{name} ({})", self.of(dimension))
+        match self.of(dimension) {
+            Some(unit) => format!("{name} ({unit})"),
+            None => name.to_string(),
+        }
     }
 }
 
@@ -55,17 +61,19 @@ mod tests {
             "contact pressure (N/mm²)"
         );
         assert_eq!(declared.label("gap", Dimension::Length), "gap (mm)");
-        assert_eq!(declared.of(Dimension::Force), "N");
+        assert_eq!(declared.of(Dimension::Force).as_deref(), Some("N"));
         let none = Units::default();
         assert_eq!(
             none.label("contact pressure", Dimension::Stress),
-            "contact pressure (force/length²)"
+            "contact pressure"
         );
-        assert_eq!(none.label("reaction", Dimension::Force), "reaction (force)");
+        assert_eq!(none.label("reaction", Dimension::Force), "reaction");
         let length_only = Units {
             length: Some("m".into()),
             force: None,
         };
-        assert_eq!(length_only.of(Dimension::Stress), "force/m²");
+        assert_eq!(length_only.of(Dimension::Stress), None);
+        assert_eq!(length_only.label("gap", Dimension::Length), "gap (m)");
+        assert_eq!(length_only.label("pressure", Dimension::Stress), "pressure");
     }
 }

@@ -93,6 +93,8 @@ pub struct ResultWriter {
     /// Whether the reference state (`NAME_0000.vtu`, t = 0) is still to be
     /// written, before the first increment's file.
     reference_pending: bool,
+    /// Newton's relative residual tolerance, drawn in the convergence plot.
+    residual_tolerance: Option<f64>,
 }
 
 /// The reference state's VTU file of the series `name`: `NAME_0000.vtu`
@@ -164,6 +166,14 @@ impl ResultWriter {
                     .map(|i| (i.time, i.file.clone())),
             )
             .collect();
+        // before any file is touched: the samples fit the histories
+        for (h, samples) in content.histories.iter().zip(&restored.histories) {
+            h.check_restored(samples)
+                .map_err(|message| Error::Restart {
+                    path: checkpoint::path(dir, name),
+                    message,
+                })?;
+        }
         let keep: BTreeSet<String> = files.iter().map(|(_, f)| f.clone()).collect();
         let manifest = Manifest::resume(dir, name, &keep)?;
         for (h, samples) in content.histories.iter_mut().zip(restored.histories) {
@@ -217,6 +227,7 @@ impl ResultWriter {
             mesh_arrays: None,
             recovery: None,
             reference_pending: false,
+            residual_tolerance: None,
         })
     }
 
@@ -280,6 +291,13 @@ impl ResultWriter {
     /// summary names `.pvtu` files then).
     pub fn pieces(mut self, pieces: Pieces) -> Self {
         self.pieces = Some(pieces);
+        self
+    }
+
+    /// Draw Newton's relative residual `tolerance` (`[solver]
+    /// residual_tolerance`) in the convergence plot.
+    pub fn residual_tolerance(mut self, tolerance: f64) -> Self {
+        self.residual_tolerance = Some(tolerance);
         self
     }
 
@@ -421,7 +439,11 @@ impl StepObserver for ResultWriter {
             })
             .collect();
         self.manifest.claim("convergence.svg")?;
-        plot::write_convergence_plot(&self.dir.join("convergence.svg"), &steps)
+        plot::write_convergence_plot_with_tolerance(
+            &self.dir.join("convergence.svg"),
+            &steps,
+            self.residual_tolerance,
+        )
     }
 }
 

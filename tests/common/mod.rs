@@ -772,3 +772,26 @@ pub fn relative_difference(a: &[f64], b: &[f64]) -> f64 {
         .fold(0.0f64, |m, (x, y)| m.max((x - y).abs()))
         / scale
 }
+
+/// A fresh folder holding the tests' cube mesh (`cube.msh`, from
+/// `tests/data/cube_hex_41_ascii.msh`) and `case.toml` with `case`: the
+/// folder (removed when dropped) and the case file's path.
+pub fn cube_folder(case: &str) -> (tempfile::TempDir, std::path::PathBuf) {
+    let dir = tempfile::tempdir().unwrap();
+    let data = Path::new(env!("CARGO_MANIFEST_DIR")).join("tests/data");
+    std::fs::copy(
+        data.join("cube_hex_41_ascii.msh"),
+        dir.path().join("cube.msh"),
+    )
+    .unwrap();
+    let path = dir.path().join("case.toml");
+    std::fs::write(&path, case).unwrap();
+    (dir, path)
+}
+
+/// The tests' cube case (`tests/data/cube_case.toml`: a history, a
+/// profile, a wall), its text.
+pub fn cube_case() -> String {
+    let data = Path::new(env!("CARGO_MANIFEST_DIR")).join("tests/data");
+    std::fs::read_to_string(data.join("cube_case.toml")).unwrap()
+}

@@ -710,5 +710,6 @@ fn push_history(
         interface: None,
         surface: None,
         nodes: nodes.map(str::to_string),
+        x: None,
     });
 }

@@ -156,7 +156,10 @@ impl MaterialModel {
 
 /// An amplitude: the name of one in `[amplitudes]`, or inline points.
 #[derive(Debug, Deserialize, Clone)]
-#[serde(untagged)]
+#[serde(
+    untagged,
+    expecting = "expected the name of an amplitude of [amplitudes] or its points [[t0, v0], [t1, v1], …]"
+)]
 pub enum AmplitudeRef {
     Named(String),
     /// `[[t0, v0], [t1, v1], …]` (each point two numbers, checked at

@@ -11,6 +11,7 @@ pub mod limits;
 mod lines;
 pub mod output;
 mod read;
+pub mod reference;
 pub mod schema;
 mod tagged;
 

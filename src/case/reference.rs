@@ -32,8 +32,8 @@ pub fn json_schema() -> Value {
 
 /// The defaults of optional keys that the code applies (`None` → a value),
 /// read from the code's own defaults where it has them as values
-/// ([`SolverSettings::default`], the budgets' limits), so that the schema
-/// states what a run does.
+/// ([`crate::solve::settings::SolverSettings::default`], the budgets'
+/// limits), so that the schema states what a run does.
 fn code_defaults() -> Vec<(&'static str, Value)> {
     let solver = crate::solve::settings::SolverSettings::default();
     // the enums' names as the case file writes them (`rename_all = "lowercase"`)

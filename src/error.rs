@@ -3,12 +3,16 @@
 
 use std::path::PathBuf;
 
+pub mod suggest;
+pub mod words;
+
 /// The crate's error type: everything that can go wrong with user input or a
 /// solve. The library never panics on user input; it returns one of these.
 #[derive(Debug, thiserror::Error)]
 pub enum Error {
-    /// A file could not be opened, read or written.
-    #[error("cannot {action} '{path}': {source}")]
+    /// A file could not be opened, read or written; the message names the
+    /// path resolved ([`resolved`]: absolute, from the working folder).
+    #[error("cannot {action} '{}': {source}", resolved(path).display())]
     Io {
         action: &'static str,
         path: PathBuf,
@@ -40,7 +44,7 @@ pub enum Error {
     Mesh { path: PathBuf, message: String },
 
     /// The case file refers to a physical group that the mesh does not have.
-    #[error("{key}: the mesh has no {kind} named '{name}'; it has: {}", available.join(", "))]
+    #[error("{key}: the mesh has no {kind} named '{name}'; it has: {}{}", available.join(", "), suggest::hint(name, available))]
     UnknownGroup {
         key: String,
         kind: &'static str,
@@ -104,13 +108,20 @@ pub enum Error {
     /// A restart (`--restart DIR`, [`crate::run::RunOptions::restart`])
     /// cannot resume: the folder or its checkpoint is missing, unreadable,
     /// of another format version, or of another case.
-    #[error("cannot restart from '{path}': {message}")]
+    #[error("cannot restart from '{}': {message}", resolved(path).display())]
     Restart { path: PathBuf, message: String },
 
     /// Another process of a distributed run (`mpirun -np N`) failed: its
     /// rank and message.
     #[error("the distributed run failed on {0}")]
     Distributed(String),
+}
+
+/// `path` made absolute against the working folder (without following
+/// links or touching the file system), as messages name a file: the user
+/// sees which file was looked for, whatever folder the run started in.
+pub fn resolved(path: &std::path::Path) -> PathBuf {
+    std::path::absolute(path).unwrap_or_else(|_| path.to_path_buf())
 }
 
 /// Result with the crate's [`Error`].

@@ -208,6 +208,13 @@ fn run(entry: &Entry) -> Result<(), String> {
             stderr.chars().take(600).collect::<String>()
         ));
     }
+    let rust = rust_words(&stderr);
+    if !rust.is_empty() {
+        return Err(format!(
+            "{}: the message names Rust types {rust:?}:\n{stderr}",
+            entry.name
+        ));
+    }
     if stderr.len() > 2000 {
         return Err(format!(
             "{}: a message of {} bytes",
@@ -216,6 +223,49 @@ fn run(entry: &Entry) -> Result<(), String> {
         ));
     }
     Ok(())
+}
+
+/// Rust's primitive and standard type names, which a user's message must
+/// not show (a string for a number says "expected a number", not
+/// "expected f64").
+const RUST_TYPES: [&str; 16] = [
+    "f64", "f32", "usize", "isize", "u64", "i64", "u32", "i32", "u8", "Option", "Vec", "String",
+    "Some", "HashMap", "BTreeMap", "PathBuf",
+];
+
+/// Words in CamelCase that are not Rust types: proper names and the value
+/// a case file writes `nan` (Gmsh's `$MeshFormat` sections start with `$`
+/// and are not words here).
+const CAMEL_NAMES: [&str; 4] = ["ParaView", "CalculiX", "McCalla", "NaN"];
+
+/// The words of `message` that are Rust type names: one of [`RUST_TYPES`],
+/// or CamelCase (`LinearElastic`, `MeshSpec`: an upper-case letter after a
+/// lower-case one) other than [`CAMEL_NAMES`]; a word after `$` is Gmsh's.
+fn rust_words(message: &str) -> Vec<String> {
+    message
+        .split(|c: char| !c.is_ascii_alphanumeric() && c != '$')
+        .filter(|w| {
+            let camel = w.starts_with(|c: char| c.is_ascii_uppercase())
+                && w.as_bytes()
+                    .windows(2)
+                    .any(|p| p[0].is_ascii_lowercase() && p[1].is_ascii_uppercase());
+            RUST_TYPES.contains(w) || (camel && !CAMEL_NAMES.contains(w))
+        })
+        .map(str::to_string)
+        .collect()
+}
+
+#[test]
+fn rust_words_are_found() {
+    assert_eq!(
+        rust_words("expected f64, found `Vec<u8>`"),
+        ["f64", "Vec", "u8"]
+    );
+    assert_eq!(
+        rust_words("does not apply to model LinearElastic"),
+        ["LinearElastic"]
+    );
+    assert!(rust_words("open it in ParaView; expected $EndMeshFormat, got NaN").is_empty());
 }
 
 #[test]
@@ -629,25 +679,25 @@ fn materials_and_obstacles(c: &mut Catalogue) {
         "ogden with youngs_modulus",
         m,
         &format!("{ogden}\nyoungs_modulus = 1.0"),
-        &["material[0].youngs_modulus does not apply to model Ogden"],
+        &["material[0].youngs_modulus does not apply to model 'ogden'"],
     );
     c.edit(
         "ogden with poisson_ratio",
         m,
         &format!("{ogden}\npoisson_ratio = 0.3"),
-        &["material[0].poisson_ratio does not apply to model Ogden"],
+        &["material[0].poisson_ratio does not apply to model 'ogden'"],
     );
     c.edit(
         "ogden without alpha",
         m,
         "model = \"ogden\"\nmu = [1.0]\nbulk_modulus = 50.0",
-        &["material[0].alpha is required for model Ogden"],
+        &["material[0].alpha is required for model 'ogden'"],
     );
     c.edit(
         "ogden without bulk_modulus",
         m,
         "model = \"ogden\"\nmu = [1.0]\nalpha = [2.0]",
-        &["material[0].bulk_modulus is required for model Ogden"],
+        &["material[0].bulk_modulus is required for model 'ogden'"],
     );
     c.edit(
         "ogden with mismatched lengths",
@@ -683,7 +733,7 @@ fn materials_and_obstacles(c: &mut Catalogue) {
         "neo_hookean without poisson_ratio",
         m,
         "model = \"neo_hookean\"\nyoungs_modulus = 100.0",
-        &["material[0].poisson_ratio is required for model NeoHookean"],
+        &["material[0].poisson_ratio is required for model 'neo_hookean'"],
     );
     c.edit(
         "no model",
@@ -770,22 +820,22 @@ fn materials_and_obstacles(c: &mut Catalogue) {
     c.case("no material", BASE.replacen("[[material]]\nregion = \"body\"\nmodel = \"neo_hookean\"\nyoungs_modulus = 100.0\npoisson_ratio = 0.3\n", "", 1), &["has no material", "[[material]]"]);
     // obstacles: keys of another shape, missing keys, bad geometry
     for (name, shape, kw) in [
-        ("plane with radius", format!("{WALL}\nradius = 1.0"), "obstacle[0].radius does not apply to shape plane"),
-        ("plane with axis", format!("{WALL}\naxis = [0.0, 0.0, 1.0]"), "obstacle[0].axis does not apply to shape plane"),
-        ("plane with center", format!("{WALL}\ncenter = [0.0, 0.0, 1.0]"), "obstacle[0].center does not apply to shape plane"),
-        ("plane with file", format!("{WALL}\nfile = \"a.stl\""), "obstacle[0].file does not apply to shape plane"),
-        ("sphere with normal", "shape = \"sphere\"\ncenter = [-2.0, 0.5, 0.5]\nradius = 1.0\nnormal = [1.0, 0.0, 0.0]".into(), "obstacle[0].normal does not apply to shape sphere"),
-        ("sphere with point", "shape = \"sphere\"\ncenter = [-2.0, 0.5, 0.5]\nradius = 1.0\npoint = [1.0, 0.0, 0.0]".into(), "obstacle[0].point does not apply to shape sphere"),
-        ("cylinder with center", "shape = \"cylinder\"\npoint = [-2.0, 0.5, 0.5]\naxis = [0.0, 0.0, 1.0]\nradius = 1.0\ncenter = [0.0, 0.0, 0.0]".into(), "obstacle[0].center does not apply to shape cylinder"),
-        ("stl with radius", "shape = \"stl\"\nfile = \"p.stl\"\nradius = 1.0".into(), "obstacle[0].radius does not apply to shape stl"),
-        ("gmsh with normal", "shape = \"gmsh\"\nfile = \"p.msh\"\nsurface = \"s\"\nnormal = [1.0, 0.0, 0.0]".into(), "obstacle[0].normal does not apply to shape gmsh"),
-        ("stl with surface", "shape = \"stl\"\nfile = \"p.stl\"\nsurface = \"s\"".into(), "obstacle[0].surface does not apply to shape stl"),
-        ("sphere without radius", "shape = \"sphere\"\ncenter = [-2.0, 0.5, 0.5]".into(), "obstacle[0].radius is required for shape sphere"),
-        ("sphere without center", "shape = \"sphere\"\nradius = 1.0".into(), "obstacle[0].center is required for shape sphere"),
-        ("plane without normal", "shape = \"plane\"\npoint = [-0.01, 0.0, 0.0]".into(), "obstacle[0].normal is required for shape plane"),
-        ("cylinder without axis", "shape = \"cylinder\"\npoint = [-2.0, 0.5, 0.5]\nradius = 1.0".into(), "obstacle[0].axis is required for shape cylinder"),
-        ("stl without file", "shape = \"stl\"".into(), "obstacle[0].file is required for shape stl"),
-        ("gmsh without surface", "shape = \"gmsh\"\nfile = \"p.msh\"".into(), "obstacle[0].surface is required for shape gmsh"),
+        ("plane with radius", format!("{WALL}\nradius = 1.0"), "obstacle[0].radius does not apply to shape 'plane'"),
+        ("plane with axis", format!("{WALL}\naxis = [0.0, 0.0, 1.0]"), "obstacle[0].axis does not apply to shape 'plane'"),
+        ("plane with center", format!("{WALL}\ncenter = [0.0, 0.0, 1.0]"), "obstacle[0].center does not apply to shape 'plane'"),
+        ("plane with file", format!("{WALL}\nfile = \"a.stl\""), "obstacle[0].file does not apply to shape 'plane'"),
+        ("sphere with normal", "shape = \"sphere\"\ncenter = [-2.0, 0.5, 0.5]\nradius = 1.0\nnormal = [1.0, 0.0, 0.0]".into(), "obstacle[0].normal does not apply to shape 'sphere'"),
+        ("sphere with point", "shape = \"sphere\"\ncenter = [-2.0, 0.5, 0.5]\nradius = 1.0\npoint = [1.0, 0.0, 0.0]".into(), "obstacle[0].point does not apply to shape 'sphere'"),
+        ("cylinder with center", "shape = \"cylinder\"\npoint = [-2.0, 0.5, 0.5]\naxis = [0.0, 0.0, 1.0]\nradius = 1.0\ncenter = [0.0, 0.0, 0.0]".into(), "obstacle[0].center does not apply to shape 'cylinder'"),
+        ("stl with radius", "shape = \"stl\"\nfile = \"p.stl\"\nradius = 1.0".into(), "obstacle[0].radius does not apply to shape 'stl'"),
+        ("gmsh with normal", "shape = \"gmsh\"\nfile = \"p.msh\"\nsurface = \"s\"\nnormal = [1.0, 0.0, 0.0]".into(), "obstacle[0].normal does not apply to shape 'gmsh'"),
+        ("stl with surface", "shape = \"stl\"\nfile = \"p.stl\"\nsurface = \"s\"".into(), "obstacle[0].surface does not apply to shape 'stl'"),
+        ("sphere without radius", "shape = \"sphere\"\ncenter = [-2.0, 0.5, 0.5]".into(), "obstacle[0].radius is required for shape 'sphere'"),
+        ("sphere without center", "shape = \"sphere\"\nradius = 1.0".into(), "obstacle[0].center is required for shape 'sphere'"),
+        ("plane without normal", "shape = \"plane\"\npoint = [-0.01, 0.0, 0.0]".into(), "obstacle[0].normal is required for shape 'plane'"),
+        ("cylinder without axis", "shape = \"cylinder\"\npoint = [-2.0, 0.5, 0.5]\nradius = 1.0".into(), "obstacle[0].axis is required for shape 'cylinder'"),
+        ("stl without file", "shape = \"stl\"".into(), "obstacle[0].file is required for shape 'stl'"),
+        ("gmsh without surface", "shape = \"gmsh\"\nfile = \"p.msh\"".into(), "obstacle[0].surface is required for shape 'gmsh'"),
         ("no shape", "point = [-0.01, 0.0, 0.0]\nnormal = [1.0, 0.0, 0.0]".into(), "obstacle[0].shape is required"),
         ("unknown shape", "shape = \"cone\"".into(), "unknown variant `cone`"),
         ("zero normal", "shape = \"plane\"\npoint = [-0.01, 0.0, 0.0]\nnormal = [0.0, 0.0, 0.0]".into(), "normal"),
@@ -1918,7 +1968,7 @@ fn restarts(c: &mut Catalogue) {
         "restart: no checkpoint",
         base(),
         None,
-        &["'old'", "no cube.checkpoint", "no checkpoint in it"],
+        &["/old'", "no cube.checkpoint", "no checkpoint in it"],
     );
     restart_entry(
         c,

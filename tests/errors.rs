@@ -297,7 +297,7 @@ fn other_case_errors_name_their_key() {
     );
     expect_failure(
         &CASE.replace("model = \"neo_hookean\"", "model = \"ogden\""),
-        &["material[0].youngs_modulus does not apply to model Ogden"],
+        &["material[0].youngs_modulus does not apply to model 'ogden'"],
     );
     expect_failure(
         &CASE.replace("end_time = 1.0", "end_time = -1.0"),
@@ -518,14 +518,14 @@ fn keys_of_another_shape_or_model_are_errors() {
         &case,
         &[
             &format!("line {line}:"),
-            "obstacle[0].radius does not apply to shape plane",
+            "obstacle[0].radius does not apply to shape 'plane'",
             "remove it",
         ],
     );
     // a sphere without its radius
     expect_failure(
         &contact_case("shape = \"sphere\"\ncenter = [0.5, 0.5, -2.0]", "zmin"),
-        &["obstacle[0].radius is required for shape sphere"],
+        &["obstacle[0].radius is required for shape 'sphere'"],
     );
     // a neo-Hookean material with an Ogden exponent
     let case = CASE.replace("poisson_ratio = 0.3", "poisson_ratio = 0.3\nalpha = [2.0]");
@@ -534,7 +534,7 @@ fn keys_of_another_shape_or_model_are_errors() {
         &case,
         &[
             &format!("line {line}:"),
-            "material[0].alpha does not apply to model NeoHookean",
+            "material[0].alpha does not apply to model 'neo_hookean'",
         ],
     );
     // a wrong type inside a tagged table still names its key and line
@@ -545,7 +545,7 @@ fn keys_of_another_shape_or_model_are_errors() {
         &[
             &format!("line {line}:"),
             "material[0].poisson_ratio",
-            "expected f64",
+            "expected a number",
         ],
     );
     // an unknown model names the model key

@@ -31,11 +31,13 @@ impl Case {
                 axis,
                 radius,
             } => RigidObstacle::cylinder(v(*point), v(*axis), *radius).map_err(with_key)?,
-            ObstacleShape::Stl { file } => {
-                RigidObstacle::Triangulated(TriangulatedSurface::from_stl(&self.dir().join(file))?)
-            }
+            ObstacleShape::Stl { file } => RigidObstacle::Triangulated(
+                TriangulatedSurface::from_stl(&self.dir().join(file))
+                    .map_err(|e| self.file_error(&format!("obstacle[{i}].file"), e))?,
+            ),
             ObstacleShape::Gmsh { file, surface } => {
-                let mesh = crate::mesh::gmsh::read_surface_msh(&self.dir().join(file))?;
+                let mesh = crate::mesh::gmsh::read_surface_msh(&self.dir().join(file))
+                    .map_err(|e| self.file_error(&format!("obstacle[{i}].file"), e))?;
                 RigidObstacle::Triangulated(TriangulatedSurface::from_surface_facets(
                     &mesh, surface,
                 )?)
@@ -96,12 +98,8 @@ impl Case {
                             let have: Vec<&str> =
                                 spec.obstacle.iter().map(|o| o.name.as_str()).collect();
                             self.err(format!(
-                                "{key}.obstacle: no [[obstacle]] named '{name}'; there are: {}",
-                                if have.is_empty() {
-                                    "none".to_string()
-                                } else {
-                                    have.join(", ")
-                                }
+                                "{key}.obstacle: no [[obstacle]] named '{name}'; {}",
+                                crate::error::suggest::listing(name, &have, "none")
                             ))
                         })?;
                     Target::Obstacle(index)

@@ -21,12 +21,8 @@ impl Case {
             Some(AmplitudeRef::Named(name)) => self.spec.amplitudes.get(name).ok_or_else(|| {
                 let have: Vec<&str> = self.spec.amplitudes.keys().map(|s| s.as_str()).collect();
                 self.err(format!(
-                    "{key}: no amplitude named '{name}' in [amplitudes]; it has: {}",
-                    if have.is_empty() {
-                        "none".to_string()
-                    } else {
-                        have.join(", ")
-                    }
+                    "{key}: no amplitude named '{name}' in [amplitudes]; {}",
+                    crate::error::suggest::listing(name, &have, "none")
                 ))
             })?,
             Some(AmplitudeRef::Points(p)) => p,

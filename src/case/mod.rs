@@ -5,6 +5,7 @@
 pub mod budget;
 mod contacts;
 pub mod deck;
+mod deck_names;
 pub mod diagnosis;
 pub mod limits;
 mod lines;
@@ -12,6 +13,7 @@ mod loads;
 mod materials;
 pub mod output;
 mod read;
+pub mod reference;
 pub mod schema;
 mod solver;
 mod steps;

@@ -44,12 +44,8 @@ impl Case {
             .ok_or_else(|| {
                 let have: Vec<&str> = problem.contacts.names().collect();
                 self.err(format!(
-                    "{key}: no contact interface named '{name}'; there are: {}",
-                    if have.is_empty() {
-                        "none (add a [[contact]])".to_string()
-                    } else {
-                        have.join(", ")
-                    }
+                    "{key}: no contact interface named '{name}'; {}",
+                    crate::error::suggest::listing(name, &have, "none (add a [[contact]])")
                 ))
             })
     }

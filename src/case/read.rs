@@ -2,7 +2,8 @@
 //! names loaded, with errors that name the line and the key path.
 
 use super::schema::CaseFile;
-use super::{deck, limits, tagged, Case};
+use super::{deck, limits, lines, tagged, Case};
+use crate::error::{suggest, words};
 use crate::mesh::Mesh;
 use crate::{Error, Result};
 use std::path::Path;
@@ -41,6 +42,7 @@ fn deserialize(path: &Path, text: &str) -> Result<CaseFile> {
         let msg = inner.message().to_string();
         let line = |offset: usize| line_of(text, offset);
         if let Some((offset, message)) = tagged::refine(text, &key, &msg) {
+            let message = words::plain(&message);
             return case_error(path, format!("line {}: {message}", line(offset)));
         }
         let location = inner
@@ -52,8 +54,30 @@ fn deserialize(path: &Path, text: &str) -> Result<CaseFile> {
         } else {
             format!("at key '{key}': ")
         };
-        case_error(path, format!("{location}{key}{msg}"))
+        let hint = suggest::serde_hint(&msg);
+        case_error(path, format!("{location}{key}{}{hint}", words::plain(&msg)))
     })
+}
+
+/// A file error ([`Error::Io`]: missing, unreadable, too large) of the
+/// file that the key `key` of the case file names, as an error of the case
+/// file at that key's line: the key, then the path resolved. Other errors
+/// (of the file's contents) name the file already and pass unchanged.
+pub(super) fn file_error(path: &Path, text: &str, key: &str, e: Error) -> Error {
+    if !matches!(e, Error::Io { .. }) {
+        return e;
+    }
+    let line = lines::offset_of_path(text, key)
+        .map(|o| format!("line {}: ", line_of(text, o)))
+        .unwrap_or_default();
+    case_error(path, format!("{line}{key}: {e}"))
+}
+
+impl Case {
+    /// [`file_error`] of this case file.
+    pub(super) fn file_error(&self, key: &str, e: Error) -> Error {
+        file_error(&self.path, &self.text, key, e)
+    }
 }
 
 /// Read the case file and its mesh; an Abaqus/CalculiX deck (`.inp`) is
@@ -108,7 +132,7 @@ pub fn from_mesh(text: &str, base_dir: &Path, mesh: Mesh) -> Result<Case> {
 /// A case from the text of the case file at `path` (which names it in
 /// messages; its folder resolves the mesh path).
 fn from_text(path: &Path, text: &str) -> Result<Case> {
-    let spec = parse(path, text)?;
+    let mut spec = parse(path, text)?;
     if spec.mesh.file.trim().is_empty() {
         return Err(case_error(
             path,
@@ -119,7 +143,14 @@ fn from_text(path: &Path, text: &str) -> Result<Case> {
         .parent()
         .unwrap_or(Path::new("."))
         .join(&spec.mesh.file);
-    let (mesh, notes) = crate::mesh::read_mesh_with(&mesh_path, &spec.mesh.input_limits())?;
+    let (mesh, notes) = crate::mesh::read_mesh_with(&mesh_path, &spec.mesh.input_limits())
+        .map_err(|e| file_error(path, text, "mesh.file", e))?;
+    if mesh_path
+        .extension()
+        .is_some_and(|e| e.eq_ignore_ascii_case("inp"))
+    {
+        super::deck_names::match_deck_case(&mut spec, &mesh);
+    }
     if mesh.elements.is_empty() {
         return Err(Error::Mesh {
             path: mesh_path,

@@ -2,6 +2,7 @@
 //! misspelled key is an error that names its path. Units are the user's,
 //! consistent throughout (e.g. mm, N, MPa).
 
+use schemars::JsonSchema;
 use serde::de::Error as _;
 use serde::{Deserialize, Deserializer};
 
@@ -19,7 +20,7 @@ fn option_three<'de, D: Deserializer<'de>>(d: D) -> Result<Option<[f64; 3]>, D::
 }
 
 /// A whole case file.
-#[derive(Debug, Deserialize)]
+#[derive(Debug, Deserialize, JsonSchema)]
 #[serde(deny_unknown_fields)]
 pub struct CaseFile {
     /// `[mesh]`: the mesh to read.
@@ -67,7 +68,7 @@ pub struct CaseFile {
 /// `[units]`: `length = "mm"`, `force = "N"` (each optional). Labels only:
 /// the numbers of the case are the user's consistent units and nothing is
 /// converted; a plot of a pressure reads `N/mm²`.
-#[derive(Debug, Default, Deserialize)]
+#[derive(Debug, Default, Deserialize, JsonSchema)]
 #[serde(deny_unknown_fields)]
 pub struct UnitsSpec {
     pub length: Option<String>,
@@ -75,7 +76,7 @@ pub struct UnitsSpec {
 }
 
 /// `[mesh]`
-#[derive(Debug, Deserialize)]
+#[derive(Debug, Deserialize, JsonSchema)]
 #[serde(deny_unknown_fields)]
 pub struct MeshSpec {
     /// Gmsh `.msh` file (MSH 2.2 or 4.1, ASCII or binary) or, by the
@@ -100,7 +101,7 @@ impl MeshSpec {
 /// `[[material]]`: a region and its constitutive model. The `model` key
 /// chooses the variant, and each variant rejects the keys of the others
 /// (an Ogden material with `youngs_modulus` is an error naming the key).
-#[derive(Debug, Deserialize)]
+#[derive(Debug, Deserialize, JsonSchema)]
 pub struct MaterialSpec {
     /// Volume region (3D physical group) name.
     pub region: String,
@@ -111,7 +112,7 @@ pub struct MaterialSpec {
 }
 
 /// Constitutive models, tagged by the case file's `model` key.
-#[derive(Clone, Debug, Deserialize, PartialEq)]
+#[derive(Clone, Debug, Deserialize, PartialEq, JsonSchema)]
 #[serde(tag = "model", rename_all = "snake_case")]
 pub enum MaterialModel {
     LinearElastic(ElasticConstants),
@@ -121,7 +122,7 @@ pub enum MaterialModel {
 }
 
 /// Constants of the models given by Young's modulus and Poisson's ratio.
-#[derive(Clone, Copy, Debug, Deserialize, PartialEq)]
+#[derive(Clone, Copy, Debug, Deserialize, PartialEq, JsonSchema)]
 #[serde(deny_unknown_fields)]
 pub struct ElasticConstants {
     /// Young's modulus `E > 0`.
@@ -131,7 +132,7 @@ pub struct ElasticConstants {
 }
 
 /// Constants of the Ogden model.
-#[derive(Clone, Debug, Deserialize, PartialEq)]
+#[derive(Clone, Debug, Deserialize, PartialEq, JsonSchema)]
 #[serde(deny_unknown_fields)]
 pub struct OgdenConstants {
     /// Shear moduli `μ_p` (initial shear modulus `Σ μ_p`).
@@ -143,20 +144,24 @@ pub struct OgdenConstants {
 }
 
 impl MaterialModel {
-    /// The model's name as messages print it (`NeoHookean`, `Ogden`, …).
+    /// The model's name as the case file writes it (`neo_hookean`,
+    /// `ogden`, …), as messages print it.
     pub fn name(&self) -> &'static str {
         match self {
-            Self::LinearElastic(_) => "LinearElastic",
-            Self::SaintVenantKirchhoff(_) => "SaintVenantKirchhoff",
-            Self::NeoHookean(_) => "NeoHookean",
-            Self::Ogden(_) => "Ogden",
+            Self::LinearElastic(_) => "linear_elastic",
+            Self::SaintVenantKirchhoff(_) => "saint_venant_kirchhoff",
+            Self::NeoHookean(_) => "neo_hookean",
+            Self::Ogden(_) => "ogden",
         }
     }
 }
 
 /// An amplitude: the name of one in `[amplitudes]`, or inline points.
-#[derive(Debug, Deserialize, Clone)]
-#[serde(untagged)]
+#[derive(Debug, Deserialize, Clone, JsonSchema)]
+#[serde(
+    untagged,
+    expecting = "expected the name of an amplitude of [amplitudes] or its points [[t0, v0], [t1, v1], …]"
+)]
 pub enum AmplitudeRef {
     Named(String),
     /// `[[t0, v0], [t1, v1], …]` (each point two numbers, checked at
@@ -166,7 +171,7 @@ pub enum AmplitudeRef {
 
 /// `[[displacement]]`: any of `x`, `y`, `z` given are prescribed, the others
 /// are free, on the nodes of `surface` or of `nodes` (one of the two).
-#[derive(Debug, Deserialize)]
+#[derive(Debug, Deserialize, JsonSchema)]
 #[serde(deny_unknown_fields)]
 pub struct DisplacementSpec {
     /// Surface set (2D physical group, `.inp` surface) name.
@@ -181,7 +186,7 @@ pub struct DisplacementSpec {
 }
 
 /// `[[pressure]]`
-#[derive(Debug, Deserialize)]
+#[derive(Debug, Deserialize, JsonSchema)]
 #[serde(deny_unknown_fields)]
 pub struct PressureSpec {
     /// Surface set name.
@@ -196,7 +201,7 @@ pub struct PressureSpec {
 }
 
 /// `[[body_force]]`
-#[derive(Debug, Deserialize)]
+#[derive(Debug, Deserialize, JsonSchema)]
 #[serde(deny_unknown_fields)]
 pub struct BodyForceSpec {
     /// Volume region; all elements if omitted.
@@ -209,7 +214,7 @@ pub struct BodyForceSpec {
 
 /// `[[nodal_force]]`: the total force `value` split equally over the nodes
 /// of a node set (`value / n` on each of its `n` nodes).
-#[derive(Debug, Deserialize)]
+#[derive(Debug, Deserialize, JsonSchema)]
 #[serde(deny_unknown_fields)]
 pub struct NodalForceSpec {
     /// Node set (0D/1D physical group, `.inp` `*NSET`) name.
@@ -223,7 +228,7 @@ pub struct NodalForceSpec {
 /// body (for an STL surface: the triangles' right-hand normals). The
 /// `shape` key chooses the geometry, and each shape rejects the keys of the
 /// others (a plane with a `radius` is an error naming the key).
-#[derive(Debug, Deserialize)]
+#[derive(Debug, Deserialize, JsonSchema)]
 pub struct ObstacleSpec {
     /// Name that `[[contact]]` refers to.
     pub name: String,
@@ -238,7 +243,7 @@ pub struct ObstacleSpec {
 }
 
 /// Obstacle shapes, tagged by the case file's `shape` key.
-#[derive(Clone, Debug, Deserialize, PartialEq)]
+#[derive(Clone, Debug, Deserialize, PartialEq, JsonSchema)]
 #[serde(tag = "shape", rename_all = "snake_case", deny_unknown_fields)]
 pub enum ObstacleShape {
     Plane {
@@ -287,7 +292,7 @@ impl ObstacleShape {
 }
 
 /// Enforcement methods of the normal contact constraint.
-#[derive(Clone, Copy, Debug, Deserialize, PartialEq, Eq, Default)]
+#[derive(Clone, Copy, Debug, Deserialize, PartialEq, Eq, Default, JsonSchema)]
 #[serde(rename_all = "snake_case")]
 pub enum ContactMethod {
     Penalty,
@@ -300,7 +305,7 @@ pub enum ContactMethod {
 }
 
 /// `[[contact]] friction_multiplier`.
-#[derive(Clone, Copy, Debug, Deserialize, PartialEq, Eq)]
+#[derive(Clone, Copy, Debug, Deserialize, PartialEq, Eq, JsonSchema)]
 #[serde(rename_all = "snake_case")]
 pub enum FrictionMultiplierSpec {
     Newton,
@@ -308,7 +313,7 @@ pub enum FrictionMultiplierSpec {
 }
 
 /// `[[contact]] discretisation`.
-#[derive(Clone, Copy, Debug, Default, Deserialize, PartialEq, Eq)]
+#[derive(Clone, Copy, Debug, Default, Deserialize, PartialEq, Eq, JsonSchema)]
 #[serde(rename_all = "snake_case")]
 pub enum DiscretisationSpec {
     /// Each secondary node against the primary triangle it projects on.
@@ -321,7 +326,7 @@ pub enum DiscretisationSpec {
 
 /// `[[contact]]`: frictionless node-to-surface contact of a surface set
 /// of the body (its nodes are the secondary nodes) with an obstacle.
-#[derive(Debug, Deserialize)]
+#[derive(Debug, Deserialize, JsonSchema)]
 #[serde(deny_unknown_fields)]
 pub struct ContactSpec {
     /// Name in reports; default: the surface's name.
@@ -380,7 +385,7 @@ pub struct ContactSpec {
 }
 
 /// `[[step]]`
-#[derive(Debug, Deserialize)]
+#[derive(Debug, Deserialize, JsonSchema)]
 #[serde(deny_unknown_fields)]
 pub struct StepSpec {
     pub name: String,
@@ -398,7 +403,7 @@ pub struct StepSpec {
 }
 
 /// `[solver]`
-#[derive(Debug, Deserialize, Default)]
+#[derive(Debug, Deserialize, Default, JsonSchema)]
 #[serde(deny_unknown_fields)]
 pub struct SolverSpec {
     /// Newton iterations before the increment is cut (default 20).
@@ -437,7 +442,7 @@ pub struct SolverSpec {
 }
 
 /// `[solver.petsc]`
-#[derive(Debug, Deserialize, Default)]
+#[derive(Debug, Deserialize, Default, JsonSchema)]
 #[serde(deny_unknown_fields)]
 pub struct PetscSpec {
     /// A PETSc options string, e.g. `"-ksp_type cg -pc_type gamg"`, read
@@ -447,7 +452,7 @@ pub struct PetscSpec {
 }
 
 /// `[output]`
-#[derive(Debug, Deserialize, Default)]
+#[derive(Debug, Deserialize, Default, JsonSchema)]
 #[serde(deny_unknown_fields)]
 pub struct OutputSpec {
     /// Output folder relative to the case file (default `results`); the
@@ -456,6 +461,8 @@ pub struct OutputSpec {
     /// File-name stem of the VTU series (default: the case file's stem).
     pub name: Option<String>,
     /// The fields of the VTU files, by name (default: all of them).
+    #[serde(default)]
+    #[schemars(schema_with = "output_fields")]
     pub fields: Option<Vec<crate::output::OutputField>>,
     /// Write a VTU file every this many converged increments (≥ 1,
     /// default 1), and always at the end of each step.
@@ -474,8 +481,20 @@ pub struct OutputSpec {
     pub profile: Vec<ProfileSpec>,
 }
 
+/// The JSON Schema of `[output] fields` (which the VTU field names
+/// deserialize by hand): an array of those names.
+fn output_fields(_: &mut schemars::SchemaGenerator) -> schemars::Schema {
+    let names: Vec<&str> = crate::output::OutputField::all()
+        .map(crate::output::OutputField::name)
+        .collect();
+    schemars::json_schema!({
+        "type": "array",
+        "items": { "type": "string", "enum": names },
+    })
+}
+
 /// Quantities a history can record.
-#[derive(Clone, Copy, Debug, Deserialize, PartialEq, Eq)]
+#[derive(Clone, Copy, Debug, Deserialize, PartialEq, Eq, JsonSchema)]
 #[serde(rename_all = "snake_case")]
 pub enum HistoryQuantitySpec {
     DisplacementX,
@@ -516,7 +535,7 @@ impl HistoryQuantitySpec {
 /// `interface`; for `reaction_force`: `Σ (f_int − f_ext)` over the nodes of
 /// `surface`), written as `<name>.csv` and `<name>.svg` after every
 /// converged increment.
-#[derive(Debug, Deserialize)]
+#[derive(Debug, Deserialize, JsonSchema)]
 #[serde(deny_unknown_fields)]
 pub struct HistorySpec {
     /// File stem: letters, digits, `-`, `_`, `.`.
@@ -548,7 +567,7 @@ pub struct HistorySpec {
 /// of the reference segment `from → to`, ordered along it; written at the
 /// end of every load step as `<name>_<step>.csv` and plotted in
 /// `<name>.svg`.
-#[derive(Debug, Deserialize)]
+#[derive(Debug, Deserialize, JsonSchema)]
 #[serde(deny_unknown_fields)]
 pub struct ProfileSpec {
     /// File stem: letters, digits, `-`, `_`, `.`.

@@ -5,12 +5,14 @@
 //! neither the key it is about nor its line: only `material[0]`. This module
 //! finds the key again in the text and rewrites the message:
 //! - an unknown key is one that does not apply to the chosen model or shape
-//!   (`material[0].alpha does not apply to model NeoHookean`);
+//!   (`material[0].alpha does not apply to model 'neo_hookean'`), with the
+//!   nearest key of that model if one is near ("did you mean");
 //! - a missing key is required by it;
 //! - any other error (a string for a number) is the one a single key gives
 //!   alone with the tag, found by deserializing each key so.
 
 use super::schema::{MaterialModel, ObstacleShape};
+use crate::error::suggest;
 use serde::de::DeserializeOwned;
 use std::ops::Range;
 use toml_edit::{ImDocument, Item};
@@ -60,19 +62,6 @@ fn table_keys<'a>(
     Some((table.span(), keys))
 }
 
-/// `snake_case` → `CamelCase`, as the material messages name a model.
-fn camel(snake: &str) -> String {
-    snake
-        .split('_')
-        .map(|w| {
-            let mut c = w.chars();
-            c.next()
-                .map(|f| f.to_ascii_uppercase().to_string() + c.as_str())
-                .unwrap_or_default()
-        })
-        .collect()
-}
-
 /// The error message of `snippet` deserialized as `T`, if any.
 fn message_of<T: DeserializeOwned>(snippet: &str) -> Option<String> {
     toml::from_str::<T>(snippet)
@@ -92,13 +81,8 @@ pub(super) fn refine(text: &str, path: &str, message: &str) -> Option<(usize, St
         .iter()
         .find(|k| k.name == tag)
         .map(|k| k.value.trim_matches(|c| c == '"' || c == '\''));
-    let chosen = |v: &str| {
-        if array == "material" {
-            camel(v)
-        } else {
-            v.to_string()
-        }
-    };
+    // the model or shape as the case file writes it
+    let chosen = |v: &str| format!("'{v}'");
     let quoted = |m: &str, prefix: &str| {
         m.strip_prefix(prefix)
             .and_then(|r| r.split('`').next())
@@ -106,15 +90,16 @@ pub(super) fn refine(text: &str, path: &str, message: &str) -> Option<(usize, St
     };
     if let Some(key) = quoted(message, "unknown field `") {
         let at = keys.iter().find(|k| k.name == key).map(|k| k.key.start);
+        let chosen = chosen(tag_value.unwrap_or("?"));
         let takes = message
             .split_once("expected ")
-            .map(|(_, e)| format!(" ({what} {} takes {e})", tag_value.unwrap_or("?")))
+            .map(|(_, e)| format!(" ({what} {chosen} takes {e})"))
             .unwrap_or_default();
         return Some((
             at.unwrap_or(header),
             format!(
-                "{path}.{key} does not apply to {what} {}; remove it, or check its spelling{takes}",
-                chosen(tag_value.unwrap_or("?"))
+                "{path}.{key} does not apply to {what} {chosen}; remove it, or check its spelling{}{takes}",
+                suggest::hint(&key, &suggest::expected_words(message)),
             ),
         ));
     }
@@ -145,7 +130,10 @@ pub(super) fn refine(text: &str, path: &str, message: &str) -> Option<(usize, St
     if variant_error("").as_deref() == Some(message) {
         return Some((
             tag_line.key.start,
-            format!("at key '{path}.{tag}': {message}"),
+            format!(
+                "at key '{path}.{tag}': {message}{}",
+                suggest::serde_hint(message)
+            ),
         ));
     }
     keys.iter()

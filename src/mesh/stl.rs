@@ -32,8 +32,15 @@ pub fn read_stl(path: &Path) -> Result<stl_io::IndexedMesh> {
 /// error messages.
 pub fn parse_stl(data: &[u8], path: &Path) -> Result<stl_io::IndexedMesh> {
     diagnose(data).map_err(|m| invalid(path, m))?;
-    let mesh = stl_io::read_stl(&mut std::io::Cursor::new(data))
-        .map_err(|e| invalid(path, format!("cannot be read as STL: {e}")))?;
+    let mesh = stl_io::read_stl(&mut std::io::Cursor::new(data)).map_err(|e| {
+        invalid(
+            path,
+            format!(
+                "cannot be read as STL: {}",
+                crate::error::words::plain(&e.to_string())
+            ),
+        )
+    })?;
     for (i, v) in mesh.vertices.iter().enumerate() {
         let fault = (0..3).find_map(|a| crate::input::coordinate_fault(v[a] as f64));
         if let Some(fault) = fault {

@@ -260,9 +260,10 @@ impl std::str::FromStr for OutputField {
             .ok_or_else(|| {
                 let names: Vec<&str> = OutputField::all().map(OutputField::name).collect();
                 format!(
-                    "unknown output field '{}'; the fields are: {}",
+                    "unknown output field '{}'; the fields are: {}{}",
                     name.chars().take(60).collect::<String>(),
-                    names.join(", ")
+                    names.join(", "),
+                    crate::error::suggest::hint(name, &names)
                 )
             })
     }

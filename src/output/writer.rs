@@ -12,7 +12,7 @@ use std::collections::BTreeSet;
 use std::path::{Path, PathBuf};
 use std::sync::{Arc, OnceLock};
 
-use super::checkpoint::{CaseKey, Checkpoint, CheckpointFile, Increment};
+use super::checkpoint::{self, CaseKey, Checkpoint, CheckpointFile, Increment};
 use super::fields::{CellField, ConvergedIncrement, NodalField};
 use super::history::History;
 use super::manifest::Manifest;

@@ -45,7 +45,7 @@ pub struct SolverSettings {
 }
 
 /// How a run is solved (`[solver] strategy`).
-#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, serde::Deserialize)]
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, serde::Deserialize, schemars::JsonSchema)]
 #[serde(rename_all = "lowercase")]
 pub enum Strategy {
     /// The condensed path where it applies (it reproduces the monolithic
@@ -62,7 +62,7 @@ pub enum Strategy {
 }
 
 /// Where Newton starts an increment (`[solver] predictor`).
-#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, serde::Deserialize)]
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, serde::Deserialize, schemars::JsonSchema)]
 #[serde(rename_all = "lowercase")]
 pub enum Predictor {
     /// [`Predictor::Contact`] where the problem linearises its contact
@@ -139,7 +139,7 @@ impl Predictor {
 }
 
 /// How a nonsymmetric tangent is solved.
-#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, serde::Deserialize)]
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, serde::Deserialize, schemars::JsonSchema)]
 #[serde(rename_all = "lowercase")]
 pub enum NonsymmetricSolver {
     /// GMRES preconditioned by the LDLᵀ of a symmetric neighbour of the
@@ -152,7 +152,7 @@ pub enum NonsymmetricSolver {
 }
 
 /// The linear solver of every Newton correction (`[solver] linear`).
-#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, serde::Deserialize)]
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, serde::Deserialize, schemars::JsonSchema)]
 #[serde(rename_all = "lowercase")]
 pub enum LinearMethod {
     /// A symmetric tangent by the direct LDLᵀ (in mixed precision from

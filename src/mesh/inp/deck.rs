@@ -200,7 +200,7 @@ impl Deck {
                 line,
                 format!(
                     "cannot read the included file '{}': {cause}",
-                    path.display()
+                    crate::error::resolved(&path).display()
                 ),
             )
         })?;

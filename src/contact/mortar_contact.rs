@@ -12,27 +12,22 @@
 //! is evaluated per node on the area `A_j = D_j` and the normalised gap
 //! `g_j = g̃_j / D_j`, so its automatic parameters `E/h` and the reported
 //! `contact_pressure = λ_j` keep their node-to-surface meaning. The force
-//! is Popp's `Σ_j λ_j D_j b_j`, acting through the lever
+//! on the nodes is Popp's `−λ_j b_j`, with `b_j = −∂g̃_j/∂x` at fixed `D`,
+//! `M`, `n` (`D_j R_jk n_j` on secondary node `k`, `−M_jl n_j` on primary
+//! node `l`: [`MortarCoupling::contact_forces`](super::mortar::MortarCoupling::contact_forces)).
+//! The driver's lever is `−b_j / D_j`, so that its force `A_j t_N lever`
+//! is that force; the constraint row is the normalised gap's complete
+//! linearisation, and the lever's derivative the one at constant area:
 //! ```text
-//! b_j = ∂g_j/∂q at fixed D, M, n:  −R_jk n_j on secondary node k,  (M_jl/D_j) n_j on primary node l,
+//! ∇g_j = (∇g̃_j − g_j ∇D_j) / D_j,      ∂lever/∂q = −(∂b_j/∂x) / D_j,
 //! ```
-//! (the discrete mortar forces of [`MortarCoupling::contact_forces`]), and
-//! the constraint row is the gap's linearisation
-//! ```text
-//! ∇g_j = b_j + (1/D_j) (∂n_j/∂q)ᵀ (Σ_l M_jl x_l − D_j x̃_j),
-//! ∂b_j/∂q = (1/D_j) (−D_j R_jk ∂n_j/∂q on rows k,  M_jl ∂n_j/∂q on rows l).
-//! ```
-//!
-//! ## What the linearisation holds today
-//! Positions and the nodal normals' derivatives
-//! ([`nodal_normal_derivatives`]) at FIXED `D`, `M` (a fixed segmentation).
-//! The derivatives of `D_j`, `M_jl` and of the segmentation are not in yet:
-//! [`node_row`](MortarGap::node_row) is the one place that gathers a node's
-//! row, where they will drop in. Dropping `g_j ∂D_j` from
-//! `∂g_j = (∂g̃_j − g_j ∂D_j)/D_j` costs nothing at a converged active
-//! state (`g_j = 0` there); `∂M` does: Newton's rate is linear where the
-//! primary side moves relative to the secondary one.
-//!
+//! with `∇g̃_j`, `∇D_j`, `∂b_j/∂x` from [`mortar_rows`] (every derivative of
+//! `D`, `M`, `n` and the segmentation: Popp, Gitterle, Gee & Wall 2010).
+//! The area's own change drops out of the residual's derivative exactly:
+//! `∂(A t_N lever) = A (∂t_N/∂g) lever ∇gᵀ − t_N ∂b_j/∂x`, since
+//! `A lever = −b_j`. Newton's tangent is complete, up to the multiplier
+//! row's `∂r_λ/∂A ∇D_j`, which vanishes with `r_λ` at a converged state.
+
 //! ## Search
 //! Candidate face pairs from a bounding-box search (an R*-tree, the `rstar`
 //! crate): each primary face's box grown by `2 h_f + 2 d` (`h_f` its size,
@@ -43,7 +38,13 @@
 //!
 //! A secondary node with `D_j ≤ 0` (no segment yet: beyond the primary
 //! surface, or only partly over it with a negative dual integral) is open
-//! at the search margin.
+//! at the search margin, and so is a node whose faces are less than half
+//! covered, `D_j < ½ ∫ Ñ_j dA`: the dual basis is signed, so on a partly
+//! covered support `M_jl / D_j` are not a partition's weights and
+//! `g̃_j / D_j` extrapolates far beyond the node (an edge node of a
+//! contact cap read −1e-2 for a true gap of +1e-3). The threshold is our
+//! choice, not Popp et al.'s; a consistent dual basis on the covered part
+//! (Cichosz & Bischoff 2011) is the published remedy, not done yet.
 
 use super::friction::{Coulomb, FrictionHistory, SlipKinematics, TangentialResponse};
 use super::kinematics::{
@@ -51,13 +52,13 @@ use super::kinematics::{
     SlipFrame,
 };
 use super::laws::NodeContactState;
-use super::mortar::{
-    mortar_coupling, nodal_normal_derivatives, FaceShape, MortarCoupling, SurfaceFace,
-};
+use super::mortar::quadratic::mortar_values;
+use super::mortar::{mortar_coupling, mortar_rows, FaceShape, MortarRow, SurfaceFace};
 use crate::mesh::{FacetKind, Mesh};
-use nalgebra::{DMatrix, DVector, Dyn, Matrix3, OMatrix, Vector3, U3};
+use nalgebra::{DMatrix, Dyn, OMatrix, Vector3, U3};
 use rstar::primitives::{GeomWithData, Rectangle};
 use rstar::{RTree, AABB};
+use std::collections::BTreeMap;
 
 /// The two surfaces of a mortar interface and their candidate face pairs.
 #[derive(Clone, Debug)]
@@ -229,6 +230,27 @@ impl MortarSurfaces {
     }
 }
 
+/// `∫ Ñ_j dA` over all secondary faces of every node `j` (a fully covered
+/// node's `D_j`), with each face's rule at the current `coordinates`; a
+/// face that cannot be formed adds nothing.
+fn full_integrals(faces: &[SurfaceFace], coordinates: &[Vector3<f64>]) -> BTreeMap<usize, f64> {
+    let mut out = BTreeMap::new();
+    for face in faces {
+        let Ok(geometry) = face.with_coordinates(coordinates) else {
+            continue;
+        };
+        let (points, weights) = face.shape.quadrature();
+        for (xi, w) in points.iter().zip(&weights) {
+            let da = w * geometry.area_normal(*xi).norm();
+            let values = mortar_values(face.shape, *xi);
+            for (&n, v) in face.nodes.iter().zip(values) {
+                *out.entry(n).or_insert(0.0) += v * da;
+            }
+        }
+    }
+    out
+}
+
 /// Current positions `X + u` of every mesh node.
 fn coordinates(reference: &[[f64; 3]], x: &[f64]) -> Vec<Vector3<f64>> {
     (0..reference.len())
@@ -258,28 +280,13 @@ fn face_box(face: &SurfaceFace, xs: &[Vector3<f64>], margin: f64) -> ([f64; 3], 
     ([lo.x, lo.y, lo.z], [hi.x, hi.y, hi.z])
 }
 
-/// One secondary node's row of the mortar coupling: what its weighted gap
-/// is made of, at fixed `D`, `M`.
-#[derive(Clone, Debug)]
-pub struct NodeRow {
-    /// `D_j`.
-    pub d: f64,
-    /// `(l, M_jl)` over the primary nodes.
-    pub m: Vec<(usize, f64)>,
-    /// `(k, R_jk)`: `x̃_j = Σ_k R_jk x_k`.
-    pub transformation: Vec<(usize, f64)>,
-    /// `n_j`.
-    pub normal: Vector3<f64>,
-    /// `(k, ∂n_j/∂x_k)` over the nodes of the node's faces.
-    pub normal_derivatives: Vec<(usize, Matrix3<f64>)>,
-}
-
-/// The mortar gap producer in one configuration: the coupling `D`, `M`,
-/// `n` integrated there, and the nodes' current positions.
+/// The mortar gap producer in one configuration: every secondary node's
+/// row of the coupling ([`mortar_rows`]: `g̃_j`, `D_j`, `M_jl`, `n_j`, the
+/// lever and their complete first derivatives) integrated there, and the
+/// nodes' current positions.
 pub struct MortarGap<'a> {
     pub surfaces: &'a MortarSurfaces,
-    pub coupling: MortarCoupling,
-    pub coordinates: Vec<Vector3<f64>>,
+    pub rows: BTreeMap<usize, MortarRow>,
 }
 
 impl<'a> MortarGap<'a> {
@@ -289,124 +296,54 @@ impl<'a> MortarGap<'a> {
     /// element.
     pub fn at(surfaces: &'a MortarSurfaces, reference: &[[f64; 3]], x: &[f64]) -> Self {
         let coordinates = coordinates(reference, x);
-        let coupling = mortar_coupling(
+        let rows = mortar_rows(
             &surfaces.secondary_faces,
             &surfaces.primary_faces,
             &surfaces.pairs(),
             &coordinates,
         )
         .unwrap_or_default();
+        let full = full_integrals(&surfaces.secondary_faces, &coordinates);
+        // a node takes part where its faces are covered: D_j ≥ ½ ∫ Ñ_j dA
+        let covered = |r: &MortarRow| r.d >= 0.5 * full.get(&r.node).copied().unwrap_or(0.0);
         Self {
             surfaces,
-            coupling,
-            coordinates,
+            rows: rows
+                .into_iter()
+                .filter(covered)
+                .map(|r| (r.node, r))
+                .collect(),
         }
     }
 
-    /// Secondary node `i` (mesh node `j`)'s row at fixed `D`, `M`: the one
-    /// place that gathers it (the derivatives of `D`, `M` and of the
-    /// segmentation will join here); `None` where `D_j ≤ 0`.
-    pub fn node_row(&self, i: usize, j: usize) -> Option<NodeRow> {
-        let d = *self.coupling.d.get(&j)?;
-        if !(d > 0.0) {
-            return None;
-        }
-        let m = self
-            .coupling
-            .m
-            .range((j, 0)..=(j, usize::MAX))
-            .filter(|entry| *entry.1 != 0.0)
-            .map(|(&(_, l), &m)| (l, m))
-            .collect();
-        Some(NodeRow {
-            d,
-            m,
-            transformation: self.coupling.transformation.get(&j)?.clone(),
-            normal: *self.coupling.normals.get(&j)?,
-            normal_derivatives: self.normal_derivatives(i, j)?,
-        })
-    }
-
-    /// `∂n_j/∂x_k` for every node `k` of node `i`'s faces, column `d` the
-    /// directional derivative ([`nodal_normal_derivatives`]) along `x_k`'s
-    /// axis `d`, on the node's faces alone (renumbered locally).
-    fn normal_derivatives(&self, i: usize, j: usize) -> Option<Vec<(usize, Matrix3<f64>)>> {
-        let faces = &self.surfaces.node_faces[i];
-        let mut nodes: Vec<usize> = faces
-            .iter()
-            .flat_map(|&e| self.surfaces.secondary_faces[e].nodes.iter().copied())
-            .collect();
-        nodes.sort_unstable();
-        nodes.dedup();
-        let local = |n: &usize| nodes.binary_search(n).ok();
-        let local_faces: Vec<SurfaceFace> = faces
-            .iter()
-            .map(|&e| {
-                let face = &self.surfaces.secondary_faces[e];
-                let nodes = face.nodes.iter().filter_map(local).collect();
-                SurfaceFace {
-                    shape: face.shape,
-                    nodes,
-                }
-            })
-            .collect();
-        let xs: Vec<Vector3<f64>> = nodes.iter().map(|&n| self.coordinates[n]).collect();
-        let me = local(&j)?;
-        let mut out = Vec::with_capacity(nodes.len());
-        for (a, &k) in nodes.iter().enumerate() {
-            let mut block = Matrix3::zeros();
-            for axis in 0..3 {
-                let mut dx = vec![Vector3::zeros(); nodes.len()];
-                dx[a][axis] = 1.0;
-                let dn = nodal_normal_derivatives(&local_faces, &xs, &dx).ok()?;
-                block.set_column(axis, dn.get(&me)?);
-            }
-            out.push((k, block));
-        }
-        Some(out)
+    /// Mesh node `j`'s row: the one place that gathers it; `None` where
+    /// `D_j ≤ 0` or where less than half of `∫ Ñ_j dA` over its faces is
+    /// covered by the primary surface (see the module docs, "Search").
+    pub fn node_row(&self, j: usize) -> Option<&MortarRow> {
+        self.rows.get(&j).filter(|row| row.d > 0.0)
     }
 
     /// The node's kinematics from its `row` (see the module docs): `q`
-    /// over the node, its faces' nodes and its primary nodes.
-    pub fn row_kinematics(&self, j: usize, row: &NodeRow) -> GapKinematics<Dyn> {
-        let mut nodes: CoupledNodes = smallvec::smallvec![j];
-        let all = row.transformation.iter().map(|(k, _)| *k);
-        let all = all.chain(row.normal_derivatives.iter().map(|(k, _)| *k));
-        for n in all.chain(row.m.iter().map(|(l, _)| *l)) {
-            if !nodes.contains(&n) {
-                nodes.push(n);
-            }
-        }
-        let at = |n: usize| 3 * nodes.iter().position(|&m| m == n).unwrap_or(0);
-        let q = Dyn(3 * nodes.len());
-        let (n, d) = (row.normal, row.d);
-        // v = Σ_l M_jl x_l − D_j x̃_j, g̃ = n·v
-        let mut v: Vector3<f64> = row.m.iter().map(|(l, m)| self.coordinates[*l] * *m).sum();
-        for (k, r) in &row.transformation {
-            v -= self.coordinates[*k] * (d * r);
-        }
-        let mut lever = DVector::zeros(3 * nodes.len());
-        for (k, r) in &row.transformation {
-            lever.fixed_rows_mut::<3>(at(*k)).axpy(-d * r, &n, 1.0);
-        }
-        for (l, m) in &row.m {
-            lever.fixed_rows_mut::<3>(at(*l)).axpy(*m, &n, 1.0);
-        }
-        let mut normal_gradient = OMatrix::<f64, U3, Dyn>::zeros_generic(U3, q);
-        for (k, dn) in &row.normal_derivatives {
-            normal_gradient.fixed_columns_mut::<3>(at(*k)).copy_from(dn);
-        }
-        let gradient = &lever + normal_gradient.transpose() * v;
-        // ∂b̃/∂q: rows k get −D R_jk ∂n/∂q, rows l get M_jl ∂n/∂q
-        let mut hessian = DMatrix::zeros(3 * nodes.len(), 3 * nodes.len());
-        let weights = row.transformation.iter().map(|(k, r)| (*k, -d * r));
-        for (node, w) in weights.chain(row.m.iter().copied()) {
-            let mut rows = hessian.fixed_rows_mut::<3>(at(node));
-            rows += w * &normal_gradient;
-        }
-        // the driver's normal points from the primary toward the secondary
-        // body (`∂g/∂x_j = −R_jj n_j`): the force on the secondary node is
-        // along `−n_j`
+    /// over the node first, then the other coupled nodes in `row`'s order.
+    pub fn row_kinematics(&self, j: usize, row: &MortarRow) -> GapKinematics<Dyn> {
+        let me = row.nodes.iter().position(|&n| n == j).unwrap_or(0);
+        // q's order: j first, then row.nodes without j
+        let order: Vec<usize> = std::iter::once(me)
+            .chain((0..row.nodes.len()).filter(|&a| a != me))
+            .collect();
+        let dofs: Vec<usize> = order
+            .iter()
+            .flat_map(|&a| (0..3).map(move |c| 3 * a + c))
+            .collect();
+        let nodes: CoupledNodes = order.iter().map(|&a| row.nodes[a]).collect();
+        let d = row.d;
+        let gap = row.weighted_gap / d;
+        // ∇g = (∇g̃ − g ∇D)/D, lever −b/D, ∂lever at constant area −∂b/D
+        let full = (&row.weighted_gap_gradient - gap * &row.d_gradient) / d;
+        let gradient = full.select_rows(&dofs);
+        let lever = -row.lever.select_rows(&dofs) / d;
+        let hessian = -row.lever_gradient.select_rows(&dofs).select_columns(&dofs) / d;
+        let normal_gradient = -row.normal_gradient.select_columns(&dofs);
         GapKinematics {
             primary: row
                 .m
@@ -414,13 +351,17 @@ impl<'a> MortarGap<'a> {
                 .map(|(l, m)| (*l, m / d))
                 .collect::<PrimaryWeights>(),
             nodes,
-            gap: n.dot(&v) / d,
-            gradient: gradient / d,
-            lever: Some(lever / d),
-            hessian: hessian / d,
+            gap,
+            gradient,
+            lever: Some(lever),
+            hessian,
             area: Some(d),
-            normal: -n,
-            normal_gradient: -normal_gradient,
+            normal: -row.normal,
+            normal_gradient: OMatrix::<f64, U3, Dyn>::from_iterator_generic(
+                U3,
+                Dyn(dofs.len()),
+                normal_gradient.iter().copied(),
+            ),
             facet: None,
             point: (),
         }
@@ -437,8 +378,8 @@ impl GapProducer<Dyn> for MortarGap<'_> {
         node: &SecondaryNode,
         _state: &NodeContactState,
     ) -> Option<GapKinematics<Dyn>> {
-        let row = self.node_row(node.index, node.mesh_node)?;
-        Some(self.row_kinematics(node.mesh_node, &row))
+        let row = self.node_row(node.mesh_node)?;
+        Some(self.row_kinematics(node.mesh_node, row))
     }
 
     fn open_gap(&self) -> f64 {
@@ -536,43 +477,30 @@ mod tests {
         x
     }
 
-    /// The producer at `x` with the coupling's `D`, `M` frozen at `fixed`
-    /// (its normals those of `x`): the fixed segmentation the driver's
-    /// terms are differentiated at.
-    fn frozen<'a>(
-        s: &'a MortarSurfaces,
-        mesh: &Mesh,
-        fixed: &MortarCoupling,
-        x: &[f64],
-    ) -> MortarGap<'a> {
-        let mut p = MortarGap::at(s, &mesh.nodes, x);
-        p.coupling = MortarCoupling {
-            normals: p.coupling.normals.clone(),
-            ..fixed.clone()
-        };
-        p
-    }
-
-    /// The driver's terms of a mortar node at fixed `D`, `M` against
-    /// central differences (step 1e-6): `∇g` of the normalised gap,
-    /// `∂b/∂q` of the lever, `∂n/∂q`, and the normal law's `r_q = f b`
-    /// with its `K_qq = (∂f/∂g) b ∇gᵀ + f ∂b/∂q`, to 1e-7 of their size;
-    /// on linear and quadratic faces.
+    /// The driver's terms of a mortar node against central differences
+    /// (step 1e-6) of the producer itself, whose `D`, `M`, `n` and
+    /// segmentation follow the nodes: `∇g` of the normalised gap,
+    /// `∂(A b)/∂q = A ∂b/∂q` of the lever at the area `A = D_j`, `∂n/∂q`,
+    /// and the normal law's `r_q = f b` with its
+    /// `K_qq = (∂f/∂g) b ∇gᵀ + f ∂b/∂q`, to 1e-6 of their size; on
+    /// linear and quadratic faces. The differences' error is `O(h²)` with a
+    /// large constant where the clip polygon has slivers (the blocks'
+    /// outer edges nearly coincide): about 1e-7 at `h = 1e-6`, falling 100×
+    /// per 10× smaller step; a missing term would be off by its own size.
     #[test]
-    fn driver_terms_match_finite_differences_at_fixed_segmentation() {
+    fn driver_terms_match_finite_differences() {
         for kind in [ElementKind::Hex8, ElementKind::Hex20] {
             let (mesh, surfaces, nodes) = pair(kind);
             let x = state(&mesh, &nodes);
-            let fixed = MortarGap::at(&surfaces, &mesh.nodes, &x).coupling;
             let law = NormalLaw::Penalty { epsilon: 300.0 };
             let st = NodeContactState::initial(&law, -1.0);
             let mut checked = 0;
-            for (i, &j) in nodes.iter().enumerate().take(nodes.len() / 2 + 3) {
-                let p0 = frozen(&surfaces, &mesh, &fixed, &x);
-                let Some(row) = p0.node_row(i, j) else {
+            for &j in nodes.iter().skip(nodes.len() / 2).take(3) {
+                let p0 = MortarGap::at(&surfaces, &mesh.nodes, &x);
+                let Some(row) = p0.node_row(j) else {
                     continue;
                 };
-                let k0 = p0.row_kinematics(j, &row);
+                let k0 = p0.row_kinematics(j, row);
                 let r0 = k0.normal_response(&law, k0.area.unwrap(), &st);
                 assert!(r0.active, "{kind:?} node {j} closed");
                 let lever = k0.lever.clone().unwrap();
@@ -582,8 +510,8 @@ mod tests {
                         let at = |s: f64| {
                             let mut y = x.clone();
                             y[3 * node + d] += s * h;
-                            let p = frozen(&surfaces, &mesh, &fixed, &y);
-                            let k = p.row_kinematics(j, &p.node_row(i, j).unwrap());
+                            let p = MortarGap::at(&surfaces, &mesh.nodes, &y);
+                            let k = p.row_kinematics(j, p.node_row(j).unwrap());
                             assert_eq!(k.nodes, k0.nodes);
                             let r = k.normal_response(&law, k.area.unwrap(), &st);
                             (k, r)
@@ -592,17 +520,19 @@ mod tests {
                         let c = 3 * a + d;
                         let close = |fd: f64, exact: f64, scale: f64, what: &str| {
                             assert!(
-                                (fd - exact).abs() <= 1e-7 * scale,
+                                (fd - exact).abs() <= 1e-6 * scale,
                                 "{kind:?} node {j}, q{c} {what}: fd {fd:e} exact {exact:e}"
                             );
                         };
                         let scale = k0.gradient.amax().max(1.0);
                         close((kp.gap - km.gap) / (2.0 * h), k0.gradient[c], scale, "∇g");
                         for r in 0..k0.gradient.len() {
-                            let fd = (kp.lever.as_ref().unwrap()[r]
-                                - km.lever.as_ref().unwrap()[r])
-                                / (2.0 * h);
-                            close(fd, k0.hessian[(r, c)], lever.amax().max(1.0), "∂b/∂q");
+                            let area_lever = |k: &GapKinematics<Dyn>| {
+                                k.area.unwrap() * k.lever.as_ref().unwrap()[r]
+                            };
+                            let fd = (area_lever(&kp) - area_lever(&km)) / (2.0 * h);
+                            let (a0, scale) = (k0.area.unwrap(), lever.amax().max(1.0));
+                            close(fd / a0, k0.hessian[(r, c)], scale, "∂b/∂q");
                             let fd = (rp.residual[r] - rm.residual[r]) / (2.0 * h);
                             close(fd, r0.stiffness[(r, c)], r0.stiffness.amax(), "K_qq");
                         }
@@ -614,7 +544,7 @@ mod tests {
                 }
                 checked += 1;
             }
-            assert!(checked >= 4, "{kind:?}: {checked} nodes checked");
+            assert!(checked >= 2, "{kind:?}: {checked} nodes checked");
         }
     }
 }

@@ -185,7 +185,7 @@ impl Case {
             };
             let mortar = c.discretisation == DiscretisationSpec::Mortar;
             if mortar {
-                self.mortar_supported(&key, c, matches!(target, Target::Obstacle(_)))?;
+                self.mortar_supported(&key, c)?;
             }
             let enforcement = Enforcement {
                 method: match c.method {
@@ -293,9 +293,12 @@ impl Case {
                     let amplitude =
                         self.amplitude(&format!("obstacle[{index}].amplitude"), &o.amplitude)?;
                     let obstacle = self.obstacle(index)?;
-                    let interface =
+                    let interface = if mortar {
+                        ContactInterface::mortar_rigid(mesh, &c.surface, obstacle, &enforcement)
+                    } else {
                         ContactInterface::rigid(mesh, &c.surface, obstacle, &enforcement)
-                            .map_err(setup)?;
+                    };
+                    let interface = interface.map_err(setup)?;
                     vec![(
                         interface.named(&name).moving(motion, amplitude),
                         "",
@@ -396,17 +399,12 @@ impl Case {
         }
     }
 
-    /// `Ok` where `[[contact]]` `key` (`c`, against an obstacle when
-    /// `obstacle`) may take `discretisation = "mortar"`: between two bodies,
+    /// `Ok` where `[[contact]]` `key` (`c`) may take `discretisation =
+    /// "mortar"`: between two bodies or against any rigid obstacle,
     /// frictionless, one pass (this session's mortar), else the error
     /// naming the key.
-    fn mortar_supported(&self, key: &str, c: &ContactSpec, obstacle: bool) -> Result<()> {
-        let why = if obstacle {
-            Some(
-                "`obstacle`: mortar against a rigid obstacle is not supported yet; \
-                 use discretisation = \"node_to_surface\" (the default) with an obstacle",
-            )
-        } else if c.friction_coefficient.is_some_and(|mu| mu > 0.0) {
+    fn mortar_supported(&self, key: &str, c: &ContactSpec) -> Result<()> {
+        let why = if c.friction_coefficient.is_some_and(|mu| mu > 0.0) {
             Some(
                 "`friction_coefficient`: mortar contact is frictionless for now; remove the \
                  friction coefficient or use discretisation = \"node_to_surface\"",

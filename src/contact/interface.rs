@@ -30,6 +30,7 @@ use super::kinematics::{
 };
 use super::laws::{uzawa, NodeContactState, NormalLaw};
 use super::mortar_contact::{MortarGap, MortarSurfaces};
+use super::mortar_rigid::MortarObstacle;
 use super::obstacle::RigidObstacle;
 use super::primary::PrimarySurface;
 use super::rigid::RigidGap;
@@ -49,6 +50,9 @@ pub enum Primary {
     /// A surface of another body through dual mortar
     /// ([`mortar_contact`](super::mortar_contact)).
     Mortar(MortarSurfaces),
+    /// A rigid obstacle through dual mortar over the secondary surface
+    /// ([`mortar_rigid`](super::mortar_rigid)), translated as [`Primary::Rigid`].
+    MortarRigid(MortarObstacle),
 }
 
 /// One secondary surface against a rigid obstacle or a primary surface.
@@ -151,6 +155,11 @@ macro_rules! with_producer {
                 let $p = &MortarGap::at(surfaces, $ctx.reference, $ctx.x);
                 $body
             }
+            Primary::MortarRigid(obstacle) => {
+                let translation = $iface.translation_at($ctx.t);
+                let $p = &obstacle.producer(&translation, $ctx.reference, $ctx.x);
+                $body
+            }
         }
     };
 }
@@ -230,6 +239,7 @@ impl ContactInterface {
         match &self.primary {
             Primary::Surface(p) => nodes.extend(p.candidate_nodes(i)),
             Primary::Mortar(m) => return m.coupled_nodes(i, self.nodes[i]),
+            Primary::MortarRigid(m) => return m.coupled_nodes(i),
             Primary::Rigid(_) => {}
         }
         nodes

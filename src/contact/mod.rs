@@ -33,7 +33,8 @@
 //!   ([`kinematics::GapProducer`]); its producers [`rigid`] (a rigid
 //!   obstacle), [`surface_contact`] (a moving primary triangle) and
 //!   [`mortar_contact`] (dual mortar between two bodies, on the kernels of
-//!   [`mortar`]).
+//!   [`mortar`]); [`mortar_rigid`] (dual mortar against a rigid obstacle,
+//!   read through [`mortar_contact`]'s producer).
 //! - [`interface`]: one secondary surface against its primary, and the
 //!   node driver's loop; [`set`]: the interfaces of a problem and their
 //!   life cycle; [`setup`]: building interfaces from a mesh; [`report`]:
@@ -57,6 +58,7 @@ pub mod kinematics;
 pub mod laws;
 pub mod mortar;
 pub mod mortar_contact;
+pub mod mortar_rigid;
 pub mod obstacle;
 pub mod primary;
 pub mod projection;

@@ -86,7 +86,7 @@ pub struct MortarSurfaces {
 }
 
 /// The face shape of a mesh facet (same node order).
-fn face_shape(kind: FacetKind) -> FaceShape {
+pub(crate) fn face_shape(kind: FacetKind) -> FaceShape {
     match kind {
         FacetKind::Tri3 => FaceShape::Tri3,
         FacetKind::Quad4 => FaceShape::Quad4,
@@ -233,7 +233,10 @@ impl MortarSurfaces {
 /// `∫ Ñ_j dA` over all secondary faces of every node `j` (a fully covered
 /// node's `D_j`), with each face's rule at the current `coordinates`; a
 /// face that cannot be formed adds nothing.
-fn full_integrals(faces: &[SurfaceFace], coordinates: &[Vector3<f64>]) -> BTreeMap<usize, f64> {
+pub(crate) fn full_integrals(
+    faces: &[SurfaceFace],
+    coordinates: &[Vector3<f64>],
+) -> BTreeMap<usize, f64> {
     let mut out = BTreeMap::new();
     for face in faces {
         let Ok(geometry) = face.with_coordinates(coordinates) else {
@@ -252,7 +255,7 @@ fn full_integrals(faces: &[SurfaceFace], coordinates: &[Vector3<f64>]) -> BTreeM
 }
 
 /// Current positions `X + u` of every mesh node.
-fn coordinates(reference: &[[f64; 3]], x: &[f64]) -> Vec<Vector3<f64>> {
+pub(crate) fn coordinates(reference: &[[f64; 3]], x: &[f64]) -> Vec<Vector3<f64>> {
     (0..reference.len())
         .map(|n| current_position(reference, x, n))
         .collect()
@@ -260,7 +263,7 @@ fn coordinates(reference: &[[f64; 3]], x: &[f64]) -> Vec<Vector3<f64>> {
 
 /// A face's size: the square root of its corners' polygon area (the
 /// diagonals' cross product).
-fn face_size(face: &SurfaceFace, xs: &[Vector3<f64>]) -> f64 {
+pub(crate) fn face_size(face: &SurfaceFace, xs: &[Vector3<f64>]) -> f64 {
     let c = |k: usize| xs[face.nodes[k]];
     let area = if face.shape.is_triangle() {
         0.5 * (c(1) - c(0)).cross(&(c(2) - c(0))).norm()

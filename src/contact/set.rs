@@ -140,7 +140,11 @@ impl ContactSet {
                     out.multiplier_groups[first + k] = own.iter().map(|l| first + l).collect();
                 }
             }
-            if matches!(c.primary, Primary::Surface(_) | Primary::Mortar(_)) {
+            // a mortar node couples the nodes of all its faces
+            if matches!(
+                c.primary,
+                Primary::Surface(_) | Primary::Mortar(_) | Primary::MortarRigid(_)
+            ) {
                 out.groups.extend(groups);
             }
         }
@@ -157,7 +161,7 @@ impl ContactSet {
             match &mut c.primary {
                 Primary::Surface(p) => changed |= p.refresh(reference, x, &c.nodes, motion),
                 Primary::Mortar(m) => changed |= m.refresh(reference, x, motion),
-                Primary::Rigid(_) => {}
+                Primary::Rigid(_) | Primary::MortarRigid(_) => {}
             }
         }
         changed
@@ -170,7 +174,7 @@ impl ContactSet {
             .filter_map(|c| match &c.primary {
                 Primary::Surface(p) => Some(c.nodes.iter().chain(&p.nodes).copied()),
                 Primary::Mortar(m) => Some(c.nodes.iter().chain(&m.primary_nodes).copied()),
-                Primary::Rigid(_) => None,
+                Primary::Rigid(_) | Primary::MortarRigid(_) => None,
             })
             .flatten()
             .collect();

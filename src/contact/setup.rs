@@ -39,6 +39,7 @@ use super::friction::{self, Coulomb, FrictionMultiplier};
 use super::interface::{ContactInterface, Primary};
 use super::laws::{automatic_parameters, uzawa, NormalLaw};
 use super::mortar_contact::MortarSurfaces;
+use super::mortar_rigid::MortarObstacle;
 use super::obstacle::RigidObstacle;
 use super::primary::PrimarySurface;
 use super::tributary::tributary_areas;
@@ -299,6 +300,14 @@ impl ContactInterface {
                     }
                 }
             }
+            // D_j = ∫ Ñ_j dA: every face of the node is integrated
+            Primary::MortarRigid(m) => {
+                for (a, d) in areas.iter_mut().zip(m.reference_areas(mesh)) {
+                    if d > 0.0 {
+                        *a = d;
+                    }
+                }
+            }
             _ => linear_faces(set)?,
         }
         let total: f64 = areas.iter().sum();
@@ -322,7 +331,7 @@ impl ContactInterface {
             areas,
             secondary_surface: match primary {
                 Primary::Surface(_) => PrimarySurface::from_mesh(mesh, secondary),
-                Primary::Rigid(_) | Primary::Mortar(_) => None,
+                Primary::Rigid(_) | Primary::Mortar(_) | Primary::MortarRigid(_) => None,
             },
             primary,
             motion: Vector3::zeros(),
@@ -357,6 +366,23 @@ impl ContactInterface {
         let surfaces = MortarSurfaces::from_mesh(mesh, secondary, primary, &nodes)
             .ok_or_else(|| SetupError::UnknownSurface(primary.to_string()))?;
         Self::new(mesh, secondary, Primary::Mortar(surfaces), enforcement)
+    }
+
+    /// Surface `secondary` against a rigid obstacle through dual mortar
+    /// over the secondary surface ([`mortar_rigid`](super::mortar_rigid)):
+    /// linear and quadratic faces, each node on its area `D_j = ∫ Ñ_j dA`
+    /// (fixed: see [`moving`](Self::moving)).
+    pub fn mortar_rigid(
+        mesh: &Mesh,
+        secondary: &str,
+        obstacle: RigidObstacle,
+        enforcement: &Enforcement,
+    ) -> Result<Self, SetupError> {
+        let set = surface_set(mesh, secondary)?;
+        let nodes = mesh.surface_nodes(set);
+        let surface = MortarObstacle::from_mesh(mesh, secondary, &nodes, obstacle)
+            .ok_or_else(|| SetupError::UnknownSurface(secondary.to_string()))?;
+        Self::new(mesh, secondary, Primary::MortarRigid(surface), enforcement)
     }
 
     /// Surface `secondary` against a rigid obstacle (fixed: see
@@ -428,7 +454,12 @@ impl ContactInterface {
     pub fn check_reference_gaps(&self, mesh: &Mesh, tolerance: f64) -> Result<(), SetupError> {
         let zero = vec![0.0; 3 * mesh.num_nodes()];
         let gaps = self.gaps(&mesh.nodes, 0.0, &zero, None);
-        if let Primary::Rigid(RigidObstacle::Plane { point, normal }) = &self.primary {
+        let plane = match &self.primary {
+            Primary::Rigid(o) => Some(o),
+            Primary::MortarRigid(m) => Some(&m.obstacle),
+            _ => None,
+        };
+        if let Some(RigidObstacle::Plane { point, normal }) = plane {
             let height = |x: &[f64; 3]| (Vector3::from(*x) - point).dot(normal);
             if !gaps.is_empty()
                 && gaps.iter().all(|&g| g < -tolerance)

@@ -196,22 +196,30 @@ fn law_in_words(law: &NormalLaw) -> String {
     }
 }
 
-fn contact(c: &ContactInterface) -> String {
-    let primary = match &c.primary {
-        Primary::Rigid(RigidObstacle::Plane { .. }) => "a rigid plane".to_string(),
-        Primary::Rigid(RigidObstacle::Sphere { radius, .. }) => {
+/// A rigid obstacle in words ("a rigid sphere of radius 2").
+fn obstacle(o: &RigidObstacle) -> String {
+    match o {
+        RigidObstacle::Plane { .. } => "a rigid plane".to_string(),
+        RigidObstacle::Sphere { radius, .. } => {
             format!("a rigid sphere of radius {radius}")
         }
-        Primary::Rigid(RigidObstacle::Cylinder { radius, .. }) => {
+        RigidObstacle::Cylinder { radius, .. } => {
             format!("a rigid cylinder of radius {radius}")
         }
-        Primary::Rigid(RigidObstacle::Triangulated(t)) => {
+        RigidObstacle::Triangulated(t) => {
             format!(
                 "a rigid triangulated surface of {} triangles",
                 t.triangles().len()
             )
         }
+    }
+}
+
+fn contact(c: &ContactInterface) -> String {
+    let primary = match &c.primary {
+        Primary::Rigid(o) => obstacle(o),
         Primary::Surface(p) => format!("the primary surface '{}' (deformable)", p.surface),
+        Primary::MortarRigid(m) => format!("{} (dual mortar)", obstacle(&m.obstacle)),
         Primary::Mortar(m) => format!(
             "the primary surface '{}' (deformable, dual mortar)",
             m.primary_surface

@@ -119,7 +119,7 @@ impl ContactInterface {
             Primary::Rigid(RigidObstacle::Sphere { .. }) => "sphere",
             Primary::Rigid(RigidObstacle::Cylinder { .. }) => "cylinder",
             Primary::Rigid(_) => "triangulated surface",
-            Primary::Mortar(_) => {
+            Primary::Mortar(_) | Primary::MortarRigid(_) => {
                 return Err("uses discretisation = \"mortar\" (not condensed yet)".into())
             }
             // a primary surface (and any primary kind added later)

@@ -17,6 +17,8 @@
 //! - [`clip_derivatives`], [`segment_derivatives`], [`pair_linearisation`]:
 //!   the directional derivatives of the segmentation and of a pair's `D`
 //!   and `M` (Popp, Gitterle, Gee & Wall 2010, §5), and a pair's gradients.
+//! - [`obstacle_rows`]: the rows of a secondary surface against a rigid
+//!   obstacle, integrated over the secondary faces alone.
 //! - [`rows`]: per secondary node, `g̃_j`, `D_j`, `M_jl`, `n_j` and the
 //!   lever `b_j` with their gradients, as Newton needs them.
 //!
@@ -30,6 +32,7 @@ pub mod clipping;
 pub mod dual_basis;
 pub mod face;
 pub mod normals;
+pub mod obstacle_rows;
 pub mod pair_linearisation;
 pub mod projection;
 pub mod quadratic;

@@ -1,0 +1,304 @@
+//! Dual mortar rows of a secondary surface against a rigid obstacle (issue
+//! 28 item 3). With a rigid primary the mortar integral lives on the
+//! secondary side alone (Popp, Gee & Wall, IJNME 79, 2009, §3, with the
+//! primary's `M` replaced by the obstacle's gap function): no segmentation,
+//! each secondary face integrated by its own rule. Per secondary node `j`,
+//! with the dual basis `Φ_j` of [`super::dual_basis`] on the mortar shape
+//! functions `Ñ` of [`super::quadratic`], the obstacle's signed gap `g(x)`,
+//! its normal `n = ∂g/∂x` and curvature `H = ∂²g/∂x²` at the current point
+//! `x(ξ) = Σ_k N_k x_k` of the face:
+//!
+//! ```text
+//! D_j  = Σ_e ∫_e Φ_j dA = Σ_e ∫_e Ñ_j dA          (biorthogonality, Σ_k Ñ_k = 1)
+//! g̃_j = Σ_e ∫_e Φ_j g(x) dA                       (weighted gap, > 0 open)
+//! L_jk = Σ_e ∫_e Φ_j N_k n(x) dA                  (∂g̃_j/∂x_k at fixed Φ_j dA)
+//! ∂g̃_j/∂x_k = L_jk + Σ_e ∫_e g ∂(Φ_j dA)/∂x_k
+//! ∂L_jk/∂x_m = Σ_e ∫_e Φ_j N_k N_m H dA + Σ_e ∫_e N_k n ⊗ ∂(Φ_j dA)/∂x_m
+//! ∂D_j/∂x_m  = Σ_e ∫_e Ñ_j ∂(dA)/∂x_m
+//! ```
+//!
+//! with `∂(Φ_j dA) = (∂A_e Ñ) dA + Φ_j ∂|a|` (the dual coefficients `A_e`
+//! and the area element `|a|` follow the face's current geometry:
+//! [`DualBasis::derivative`], [`MortarFace::area_normal_derivative`]).
+//! The force of a multiplier `λ_j ≥ 0` is Popp's at fixed `D`: `λ_j L_jk`
+//! on node `k` (the body pushed along `n`). On a flat obstacle
+//! `∫Φ_j N_k dA = D_j R_jk` (`R` the nodal transformation, `x̃ = R x`), so
+//! `L_jk = D_j R_jk n` and `g̃_j = D_j g(x̃_j)`: a uniform `λ` gives the
+//! consistent loads `λ ∫ N_k n dA`, and the plane's integral is exact.
+//!
+//! The rows are returned as [`MortarRow`]s with no primary nodes (`M`
+//! empty), in their conventions: the lever `b_j = −L_j` (`−∂g̃_j/∂x` at
+//! fixed `D`), the normal `n_j = −n̄_j` on the secondary side, where
+//! `n̄_j = w_j/|w_j|`, `w_j = Σ_k L_jk = ∫ Φ_j n dA` is the obstacle's
+//! weighted normal at the node (`n̄_j = n` on a plane).
+
+use std::collections::BTreeMap;
+
+use nalgebra::{DMatrix, DVector, Vector3};
+
+use super::dual_basis::DualBasis;
+use super::face::{MortarFace, SurfaceFace};
+use super::normals::unit_derivative;
+use super::quadratic::mortar_values;
+use super::rows::MortarRow;
+use super::MortarError;
+use crate::contact::projection::Projection;
+
+/// One secondary face's contributions (local node order, gradients over
+/// the face's `3n` coordinates, node-major): see the module doc.
+#[derive(Clone, Debug, PartialEq)]
+pub struct FaceObstacleIntegrals {
+    /// `∫_e Ñ_j dA` and its gradient (`n × 3n`).
+    pub d: Vec<f64>,
+    pub d_gradient: DMatrix<f64>,
+    /// `∫_e Φ_j g dA` and its complete gradient (`n × 3n`).
+    pub weighted_gap: Vec<f64>,
+    pub weighted_gap_gradient: DMatrix<f64>,
+    /// `L_j`, row `j`: the blocks `∫_e Φ_j N_k n dA` over `k` (`n × 3n`).
+    pub lever: DMatrix<f64>,
+    /// `∂L_j/∂x` per `j` (`3n × 3n`).
+    pub lever_gradient: Vec<DMatrix<f64>>,
+}
+
+/// The face's integrals against the obstacle `obstacle` (the projection of
+/// a spatial point: `g`, `n`, `H`), on the face rule
+/// ([`FaceShape::quadrature`](super::FaceShape::quadrature)).
+pub fn face_obstacle_integrals(
+    face: &MortarFace,
+    obstacle: &impl Fn(&Vector3<f64>) -> Projection,
+) -> Result<FaceObstacleIntegrals, MortarError> {
+    let n = face.shape.node_count();
+    let size = 3 * n;
+    let dual = DualBasis::of_face(face)?;
+    // ∂A_e along each unit increment c = 3m + d
+    let coefficient_derivatives = (0..size)
+        .map(|c| {
+            let mut dx = vec![Vector3::zeros(); n];
+            dx[c / 3][c % 3] = 1.0;
+            dual.derivative(face, &dx)
+        })
+        .collect::<Result<Vec<_>, _>>()?;
+    let mut out = FaceObstacleIntegrals {
+        d: vec![0.0; n],
+        d_gradient: DMatrix::zeros(n, size),
+        weighted_gap: vec![0.0; n],
+        weighted_gap_gradient: DMatrix::zeros(n, size),
+        lever: DMatrix::zeros(n, size),
+        lever_gradient: vec![DMatrix::zeros(size, size); n],
+    };
+    let (points, weights) = face.shape.quadrature();
+    for (xi, w) in points.iter().zip(&weights) {
+        let point = FacePoint::at(face, *xi, &dual, obstacle);
+        let dj = point.area_element_gradient(face);
+        for j in 0..n {
+            // δ(Φ_j |a|) along each c
+            let d_phi_da: Vec<f64> = (0..size)
+                .map(|c| {
+                    let d_phi: f64 = (0..n)
+                        .map(|i| coefficient_derivatives[c][(j, i)] * point.mortar[i])
+                        .sum();
+                    d_phi * point.da + point.phi[j] * dj[c]
+                })
+                .collect();
+            point.add_to(&mut out, j, *w, &dj, &d_phi_da);
+        }
+    }
+    Ok(out)
+}
+
+/// What the rule needs at one point `ξ` of a face.
+struct FacePoint {
+    /// The Lagrange values `N_k`, the mortar values `Ñ_i`, the dual `Φ_j`.
+    lagrange: Vec<f64>,
+    gradients: Vec<[f64; 2]>,
+    mortar: Vec<f64>,
+    phi: Vec<f64>,
+    /// The area element `|a|`, the unit normal `a/|a|`, the tangents.
+    da: f64,
+    unit: Vector3<f64>,
+    tangents: [Vector3<f64>; 2],
+    /// The obstacle at `x(ξ)`.
+    obstacle: Projection,
+}
+
+impl FacePoint {
+    fn at(
+        face: &MortarFace,
+        xi: [f64; 2],
+        dual: &DualBasis,
+        obstacle: &impl Fn(&Vector3<f64>) -> Projection,
+    ) -> Self {
+        let a = face.area_normal(xi);
+        let mortar = mortar_values(face.shape, xi);
+        FacePoint {
+            lagrange: face.shape.values(xi),
+            gradients: face.shape.gradients(xi),
+            phi: dual.values_from(&mortar),
+            mortar,
+            da: a.norm(),
+            unit: a / a.norm(),
+            tangents: face.tangents(xi),
+            obstacle: obstacle(&face.point(xi)),
+        }
+    }
+
+    /// `∂|a|/∂x_c = (a/|a|)·(N_m,ξ e_d × x_,η + x_,ξ × N_m,η e_d)`,
+    /// `c = 3m + d`.
+    fn area_element_gradient(&self, face: &MortarFace) -> Vec<f64> {
+        let [t1, t2] = self.tangents;
+        (0..3 * face.shape.node_count())
+            .map(|c| {
+                let mut e = Vector3::zeros();
+                e[c % 3] = 1.0;
+                let g = self.gradients[c / 3];
+                self.unit
+                    .dot(&((e * g[0]).cross(&t2) + t1.cross(&(e * g[1]))))
+            })
+            .collect()
+    }
+
+    /// Node `j`'s terms at this point, weight `w`, with `∂|a|` (`dj`) and
+    /// `∂(Φ_j |a|)` (`d_phi_da`) along every coordinate.
+    fn add_to(
+        &self,
+        out: &mut FaceObstacleIntegrals,
+        j: usize,
+        w: f64,
+        dj: &[f64],
+        d_phi_da: &[f64],
+    ) {
+        let (g, n, h) = (
+            self.obstacle.gap,
+            self.obstacle.normal,
+            self.obstacle.curvature,
+        );
+        let (phi, da) = (self.phi[j], self.da);
+        out.d[j] += w * self.mortar[j] * da;
+        out.weighted_gap[j] += w * phi * g * da;
+        let size = dj.len();
+        for c in 0..size {
+            let (m, d) = (c / 3, c % 3);
+            out.d_gradient[(j, c)] += w * self.mortar[j] * dj[c];
+            out.weighted_gap_gradient[(j, c)] +=
+                w * (phi * self.lagrange[m] * n[d] * da + g * d_phi_da[c]);
+        }
+        let lever_gradient = &mut out.lever_gradient[j];
+        for (k, nk) in self.lagrange.iter().enumerate() {
+            for r in 0..3 {
+                out.lever[(j, 3 * k + r)] += w * phi * nk * n[r] * da;
+                for c in 0..size {
+                    let (m, d) = (c / 3, c % 3);
+                    lever_gradient[(3 * k + r, c)] += w
+                        * (phi * nk * self.lagrange[m] * h[(r, d)] * da + nk * n[r] * d_phi_da[c]);
+                }
+            }
+        }
+    }
+}
+
+/// The mortar row of every node of the faces `selected` (indices into
+/// `faces`) against `obstacle`, at the nodes' current `coordinates`: each
+/// node's sums over the selected faces that hold it (complete where all
+/// its faces are selected), as [`MortarRow`]s with no primary nodes (see
+/// the module doc), keyed by mesh node.
+pub fn obstacle_rows(
+    faces: &[SurfaceFace],
+    selected: &[usize],
+    coordinates: &[Vector3<f64>],
+    obstacle: &impl Fn(&Vector3<f64>) -> Projection,
+) -> Result<BTreeMap<usize, MortarRow>, MortarError> {
+    // each node's coupled nodes: those of its selected faces, sorted
+    let mut coupled: BTreeMap<usize, Vec<usize>> = BTreeMap::new();
+    for &e in selected {
+        for &j in &faces[e].nodes {
+            coupled.entry(j).or_default().extend(&faces[e].nodes);
+        }
+    }
+    let mut rows: BTreeMap<usize, MortarRow> = coupled
+        .into_iter()
+        .map(|(j, mut nodes)| {
+            nodes.sort_unstable();
+            nodes.dedup();
+            (j, empty_row(j, nodes))
+        })
+        .collect();
+    for &e in selected {
+        let face = &faces[e];
+        let integrals = face_obstacle_integrals(&face.with_coordinates(coordinates)?, obstacle)?;
+        for (j, &node) in face.nodes.iter().enumerate() {
+            if let Some(row) = rows.get_mut(&node) {
+                scatter(row, &face.nodes, &integrals, j);
+            }
+        }
+    }
+    for row in rows.values_mut() {
+        finish_normal(row);
+    }
+    Ok(rows)
+}
+
+/// A row of `node` over `nodes` with every sum zero.
+fn empty_row(node: usize, nodes: Vec<usize>) -> MortarRow {
+    let size = 3 * nodes.len();
+    MortarRow {
+        node,
+        nodes,
+        weighted_gap: 0.0,
+        weighted_gap_gradient: DVector::zeros(size),
+        d: 0.0,
+        d_gradient: DVector::zeros(size),
+        m: Vec::new(),
+        m_gradients: Vec::new(),
+        normal: Vector3::zeros(),
+        normal_gradient: DMatrix::zeros(3, size),
+        lever: DVector::zeros(size),
+        lever_gradient: DMatrix::zeros(size, size),
+    }
+}
+
+/// Adds face node `j`'s integrals to its row (`b = −L`, `∂b = −∂L`).
+fn scatter(row: &mut MortarRow, face_nodes: &[usize], f: &FaceObstacleIntegrals, j: usize) {
+    let at: Vec<usize> = face_nodes
+        .iter()
+        .map(|n| 3 * row.nodes.partition_point(|m| m < n))
+        .collect();
+    row.d += f.d[j];
+    row.weighted_gap += f.weighted_gap[j];
+    for (a, &ra) in at.iter().enumerate() {
+        for r in 0..3 {
+            let fa = 3 * a + r;
+            row.d_gradient[ra + r] += f.d_gradient[(j, fa)];
+            row.weighted_gap_gradient[ra + r] += f.weighted_gap_gradient[(j, fa)];
+            row.lever[ra + r] -= f.lever[(j, fa)];
+            for (b, &rb) in at.iter().enumerate() {
+                for s in 0..3 {
+                    row.lever_gradient[(ra + r, rb + s)] -= f.lever_gradient[j][(fa, 3 * b + s)];
+                }
+            }
+        }
+    }
+}
+
+/// `n_j = −w_j/|w_j|` from the summed lever (`w_j = Σ_k L_jk = −Σ_k b_jk`)
+/// and `∂n_j = −(I − n̄ n̄ᵀ) ∂w_j / |w_j|`.
+fn finish_normal(row: &mut MortarRow) {
+    let size = row.lever.len();
+    let mut w = Vector3::zeros();
+    let mut dw = DMatrix::zeros(3, size);
+    for a in 0..size / 3 {
+        for r in 0..3 {
+            w[r] -= row.lever[3 * a + r];
+            for c in 0..size {
+                dw[(r, c)] -= row.lever_gradient[(3 * a + r, c)];
+            }
+        }
+    }
+    if w.norm() == 0.0 {
+        return;
+    }
+    row.normal = -w.normalize();
+    for c in 0..size {
+        let dn = unit_derivative(&w, &Vector3::new(dw[(0, c)], dw[(1, c)], dw[(2, c)]));
+        row.normal_gradient.set_column(c, &(-dn));
+    }
+}

@@ -1,0 +1,165 @@
+//! Frictionless dual mortar contact of a body's surface against a rigid
+//! obstacle (issue 28 item 3): plane, sphere, cylinder or triangulated
+//! surface, translated by the interface's `c(t)`; linear and quadratic
+//! faces (Tri3, Quad4, Tri6, Quad8).
+//!
+//! With a rigid primary the mortar integrals need only the secondary
+//! surface: each secondary face is integrated by its own rule against the
+//! obstacle's gap function ([`obstacle_rows`]: `D_j`, the weighted gap
+//! `g̃_j = ∫ Φ_j g(x) dA`, the lever `L_jk = ∫ Φ_j N_k n dA` and their
+//! complete derivatives). The rows have the form of the deformable mortar
+//! rows with no primary nodes, so the gap producer is a
+//! [`MortarGap`] holding them: the driver's node kinematics, Popp's form
+//! (the law on `A_j = D_j` and `g_j = g̃_j/D_j`, the force `λ_j L_jk`),
+//! the output (`contact_pressure = λ_j`) and the frictionless slip frame
+//! are those of [`mortar_contact`](super::mortar_contact).
+//!
+//! ## Which nodes are integrated
+//! A node whose own point is farther from the obstacle than twice the
+//! largest of its faces (in the reference configuration) is open at that
+//! margin, as node-to-surface's search margin, and its faces are
+//! integrated only for the nodes that are near: a node's row is complete
+//! because every face that holds a near node is integrated.
+
+use super::mortar::obstacle_rows::obstacle_rows;
+use super::mortar::{MortarRow, SurfaceFace};
+use super::mortar_contact::{coordinates, face_shape, face_size, full_integrals};
+use super::mortar_contact::{MortarGap, MortarSurfaces};
+use super::obstacle::RigidObstacle;
+use crate::mesh::Mesh;
+use nalgebra::Vector3;
+use std::collections::BTreeMap;
+
+/// A secondary surface against a rigid obstacle through dual mortar.
+#[derive(Clone, Debug)]
+pub struct MortarObstacle {
+    /// The obstacle in its initial position.
+    pub obstacle: RigidObstacle,
+    /// The secondary surface as mortar surfaces without a primary side
+    /// (its faces, the faces of each node; `margin` the smallest of
+    /// `node_margins`).
+    pub surfaces: MortarSurfaces,
+    /// The secondary nodes (sorted mesh nodes, the interface's order).
+    pub nodes: Vec<usize>,
+    /// Per node, the gap beyond which it is open: twice the largest size
+    /// of its faces in the reference configuration.
+    pub node_margins: Vec<f64>,
+}
+
+impl MortarObstacle {
+    /// Surface set `secondary` of `mesh` (its nodes `nodes`, sorted)
+    /// against `obstacle`; `None` if the mesh has no such set.
+    pub fn from_mesh(
+        mesh: &Mesh,
+        secondary: &str,
+        nodes: &[usize],
+        obstacle: RigidObstacle,
+    ) -> Option<Self> {
+        let faces: Vec<SurfaceFace> = mesh
+            .surface(secondary)?
+            .facets
+            .iter()
+            .map(|f| SurfaceFace {
+                shape: face_shape(f.kind),
+                nodes: f.nodes.clone(),
+            })
+            .collect();
+        let mut node_faces = vec![Vec::new(); nodes.len()];
+        for (e, face) in faces.iter().enumerate() {
+            for n in &face.nodes {
+                if let Ok(i) = nodes.binary_search(n) {
+                    node_faces[i].push(e);
+                }
+            }
+        }
+        let reference = coordinates(&mesh.nodes, &vec![0.0; 3 * mesh.num_nodes()]);
+        let sizes: Vec<f64> = faces.iter().map(|f| face_size(f, &reference)).collect();
+        let node_margins: Vec<f64> = node_faces
+            .iter()
+            .map(|fs| 2.0 * fs.iter().map(|&e| sizes[e]).fold(0.0, f64::max))
+            .collect();
+        let mean = (sizes.iter().map(|s| s * s).sum::<f64>() / sizes.len().max(1) as f64).sqrt();
+        let margin = node_margins
+            .iter()
+            .copied()
+            .filter(|m| *m > 0.0)
+            .fold(f64::INFINITY, f64::min);
+        let surfaces = MortarSurfaces {
+            primary_surface: String::new(),
+            candidates: vec![Vec::new(); faces.len()],
+            secondary_faces: faces,
+            primary_faces: Vec::new(),
+            primary_nodes: Vec::new(),
+            node_faces,
+            element_size: mean,
+            margin: if margin.is_finite() { margin } else { mean },
+        };
+        Some(Self {
+            obstacle,
+            surfaces,
+            nodes: nodes.to_vec(),
+            node_margins,
+        })
+    }
+
+    /// `D_j = ∫ Ñ_j dA` of every secondary node in the reference
+    /// configuration of `mesh` (the nodes' areas `A_j`).
+    pub fn reference_areas(&self, mesh: &Mesh) -> Vec<f64> {
+        let xs = coordinates(&mesh.nodes, &vec![0.0; 3 * mesh.num_nodes()]);
+        let d = full_integrals(&self.surfaces.secondary_faces, &xs);
+        self.nodes
+            .iter()
+            .map(|n| d.get(n).copied().unwrap_or(0.0))
+            .collect()
+    }
+
+    /// The mesh nodes secondary node `i`'s row couples: itself first, then
+    /// the nodes of its faces.
+    pub fn coupled_nodes(&self, i: usize) -> Vec<usize> {
+        self.surfaces.coupled_nodes(i, self.nodes[i])
+    }
+
+    /// The rows of the near nodes (module docs) at unknowns `x` with the
+    /// obstacle translated by `translation`: every node's `D_j`, `g̃_j`,
+    /// lever and normal with their derivatives, keyed by mesh node. A face
+    /// the kernels cannot integrate (degenerate) leaves every node open in
+    /// this evaluation; the element assembly reports such a face's element.
+    pub fn rows(
+        &self,
+        translation: &Vector3<f64>,
+        reference: &[[f64; 3]],
+        x: &[f64],
+    ) -> BTreeMap<usize, MortarRow> {
+        let xs = coordinates(reference, x);
+        let project = |p: &Vector3<f64>| self.obstacle.project(&(p - translation));
+        let near: Vec<usize> = (0..self.nodes.len())
+            .filter(|&i| project(&xs[self.nodes[i]]).gap < self.node_margins[i])
+            .collect();
+        let mut selected: Vec<usize> = near
+            .iter()
+            .flat_map(|&i| self.surfaces.node_faces[i].iter().copied())
+            .collect();
+        selected.sort_unstable();
+        selected.dedup();
+        let mut rows = obstacle_rows(&self.surfaces.secondary_faces, &selected, &xs, &project)
+            .unwrap_or_default();
+        let near_nodes: std::collections::BTreeSet<usize> =
+            near.iter().map(|&i| self.nodes[i]).collect();
+        rows.retain(|n, _| near_nodes.contains(n));
+        rows
+    }
+
+    /// The gap producer at unknowns `x`, the obstacle translated by
+    /// `translation`: a [`MortarGap`] over [`rows`](Self::rows).
+    pub fn producer(
+        &self,
+        translation: &Vector3<f64>,
+        reference: &[[f64; 3]],
+        x: &[f64],
+    ) -> MortarGap<'_> {
+        MortarGap {
+            surfaces: &self.surfaces,
+            rows: self.rows(translation, reference, x),
+        }
+    }
+}

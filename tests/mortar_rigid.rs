@@ -165,7 +165,12 @@ fn plane_integrals_are_closed_forms() {
 /// A block of `kind` (`cells` × `cells` × 2 cells, 1 × 1 × 0.5) on the
 /// plane z = 0, symmetry planes x = 0 and y = 0, the dead pressure P on
 /// its top, its bottom in mortar contact with the plane under `law`.
-fn block_on_plane(kind: ElementKind, cells: usize, law: NormalLaw) -> Problem {
+fn block_on_plane(
+    kind: ElementKind,
+    cells: usize,
+    law: NormalLaw,
+    plane: RigidObstacle,
+) -> Problem {
     let mesh = box_mesh(kind, [cells, cells, 2], [1.0, 1.0, 0.5]);
     let mut pr = problem(mesh, Arc::new(LinearElastic::new(E, NU, "m").unwrap()));
     fix(&mut pr, "xmin", &[(0, 0.0)]);
@@ -178,19 +183,45 @@ fn block_on_plane(kind: ElementKind, cells: usize, law: NormalLaw) -> Problem {
         follower: false,
         amplitude: Amplitude::ramp(),
     });
-    let plane = RigidObstacle::plane(Vector3::zeros(), Vector3::z()).unwrap();
     let c = ContactInterface::mortar_rigid(&pr.model.mesh, "zmin", plane, &law.into()).unwrap();
     pr.set_contacts(vec![c]);
     pr.settings.residual_tolerance = 1e-13;
     pr
 }
 
+/// The plane z = 0, analytic.
+fn floor() -> RigidObstacle {
+    RigidObstacle::plane(Vector3::zeros(), Vector3::z()).unwrap()
+}
+
+/// The plane z = 0 as a triangulated square `[−1, 2]²` (four triangles
+/// about its centre, normals `+z`).
+fn triangulated_floor() -> RigidObstacle {
+    use signorini::contact::triangulated::TriangulatedSurface;
+    let v = [
+        [-1.0, -1.0],
+        [2.0, -1.0],
+        [2.0, 2.0],
+        [-1.0, 2.0],
+        [0.5, 0.5],
+    ]
+    .map(|[x, y]| Vector3::new(x, y, 0.0))
+    .to_vec();
+    let t = vec![[0, 1, 4], [1, 2, 4], [2, 3, 4], [3, 0, 4]];
+    RigidObstacle::Triangulated(TriangulatedSurface::new(v, t).unwrap())
+}
+
 /// The patch test of the block on the plane: every `λ_j` against
 /// `P/(1 + νP/E)²` and every element's Cauchy stress against
 /// `−P e_z ⊗ e_z`, the largest errors relative to P, and Newton's
 /// iterations.
-fn patch_test(kind: ElementKind, cells: usize, law: NormalLaw) -> (f64, f64, usize) {
-    let mut pr = block_on_plane(kind, cells, law);
+fn patch_test(
+    kind: ElementKind,
+    cells: usize,
+    law: NormalLaw,
+    plane: RigidObstacle,
+) -> (f64, f64, usize) {
+    let mut pr = block_on_plane(kind, cells, law, plane);
     let last = run(&mut pr);
     let dofs = pr.model.num_dofs();
     let x = &last.x;
@@ -224,8 +255,9 @@ fn patch_test(kind: ElementKind, cells: usize, law: NormalLaw) -> (f64, f64, usi
 /// The contact patch test on a rigid plane, Tet4, Hex8, Tet10 and Hex20
 /// (Tri3, Quad4, Tri6, Quad8 faces): every multiplier is the pressure on the
 /// current area and the stress is `−P` in z everywhere, to 1e-10 of P;
-/// every law on Hex20 (parameter 4E). Node-to-surface refuses the
-/// quadratic faces (their corners would carry no load).
+/// every law on Hex20 (parameter 4E); Tet10 on the plane as a
+/// triangulated surface. Node-to-surface refuses the quadratic faces
+/// (their corners would carry no load).
 #[test]
 fn patch_test_on_a_rigid_plane_is_exact() {
     let rockafellar = NormalLaw::Rockafellar {
@@ -238,20 +270,22 @@ fn patch_test_on_a_rigid_plane_is_exact() {
         (ElementKind::Tet10, 3),
         (ElementKind::Hex20, 3),
     ] {
-        let (p, s, n) = patch_test(kind, cells, rockafellar.clone());
+        let (p, s, n) = patch_test(kind, cells, rockafellar.clone(), floor());
         println!("{kind:?}: pressure {p:.1e} stress {s:.1e} iterations {n}");
         assert!(p <= 1e-10, "{kind:?}: pressure error {p:e}");
         assert!(s <= 1e-10, "{kind:?}: stress error {s:e}");
     }
     for (name, law) in common::every_method(4.0 * E) {
-        let (p, s, n) = patch_test(ElementKind::Hex20, 2, law);
+        let (p, s, n) = patch_test(ElementKind::Hex20, 2, law, floor());
         println!("Hex20 {name}: pressure {p:.1e} stress {s:.1e} iterations {n}");
         assert!(p <= 1e-10 && s <= 1e-10, "{name}: {p:e} {s:e}");
     }
+    let (p, s, _) = patch_test(ElementKind::Tet10, 3, rockafellar, triangulated_floor());
+    println!("Tet10 on the triangulated plane: pressure {p:.1e} stress {s:.1e}");
+    assert!(p <= 1e-10 && s <= 1e-10, "triangulated: {p:e} {s:e}");
     let mesh = box_mesh(ElementKind::Tet10, [2, 2, 1], [1.0, 1.0, 0.5]);
-    let plane = RigidObstacle::plane(Vector3::zeros(), Vector3::z()).unwrap();
     let law = NormalLaw::Penalty { epsilon: E };
-    let refused = ContactInterface::rigid(&mesh, "zmin", plane, &law.into());
+    let refused = ContactInterface::rigid(&mesh, "zmin", floor(), &law.into());
     assert!(refused.is_err(), "node-to-surface takes Tri6 faces");
 }
 
@@ -259,6 +293,12 @@ fn patch_test_on_a_rigid_plane_is_exact() {
 /// rigid sphere of radius 2 that touches its corner at the origin, its top
 /// pushed down by 0.03 in two increments, symmetry planes x = 0, y = 0.
 fn block_on_sphere(kind: ElementKind) -> Problem {
+    let sphere = RigidObstacle::sphere(Vector3::new(0.0, 0.0, -2.0), 2.0).unwrap();
+    block_on(kind, sphere)
+}
+
+/// [`block_on_sphere`] on `obstacle`.
+fn block_on(kind: ElementKind, obstacle: RigidObstacle) -> Problem {
     let mesh: Mesh = box_mesh(kind, [3, 3, 2], [1.0, 1.0, 0.5]);
     let mut pr = problem(mesh, Arc::new(LinearElastic::new(E, NU, "m").unwrap()));
     fix(&mut pr, "xmin", &[(0, 0.0)]);
@@ -266,26 +306,32 @@ fn block_on_sphere(kind: ElementKind) -> Problem {
     fix(&mut pr, "zmax", &[(2, -0.03)]);
     pr.steps[0].initial_increment = 0.5;
     pr.steps[0].max_increment = 0.5;
-    let sphere = RigidObstacle::sphere(Vector3::new(0.0, 0.0, -2.0), 2.0).unwrap();
     let law = NormalLaw::Rockafellar {
         p: 10.0 * E,
         k: 10.0 * E,
     };
-    let c = ContactInterface::mortar_rigid(&pr.model.mesh, "zmin", sphere, &law.into()).unwrap();
+    let c = ContactInterface::mortar_rigid(&pr.model.mesh, "zmin", obstacle, &law.into()).unwrap();
     pr.set_contacts(vec![c]);
     pr.settings.residual_tolerance = 1e-12;
     pr
 }
 
-/// The driver's terms of mortar nodes on a sphere (Hex8, Tet10, Hex20
-/// faces) against central differences (h = 1e-6) of the producer itself,
+/// The driver's terms of mortar nodes on a sphere (Hex8, Tet10 faces) and
+/// a cylinder (Hex20 faces) against central differences (h = 1e-6) of the producer itself,
 /// whose dual basis, area elements and obstacle normals follow the nodes:
 /// `∇g` of the normalised gap, `∂(A b)/∂q = A ∂b/∂q` of the lever at the
 /// area `A = D_j`, and the normal law's `K_qq`, to 1e-6 of their size.
 #[test]
 fn driver_terms_match_finite_differences() {
-    for kind in [ElementKind::Hex8, ElementKind::Tet10, ElementKind::Hex20] {
-        let pr = block_on_sphere(kind);
+    let cylinder =
+        RigidObstacle::cylinder(Vector3::new(0.0, 0.0, -2.0), Vector3::y(), 2.0).unwrap();
+    let sphere = RigidObstacle::sphere(Vector3::new(0.0, 0.0, -2.0), 2.0).unwrap();
+    for (kind, obstacle) in [
+        (ElementKind::Hex8, sphere.clone()),
+        (ElementKind::Tet10, sphere),
+        (ElementKind::Hex20, cylinder),
+    ] {
+        let pr = block_on(kind, obstacle);
         let c = pr.contacts.interface(0);
         let signorini::contact::interface::Primary::MortarRigid(m) = &c.primary else {
             panic!("a mortar interface");

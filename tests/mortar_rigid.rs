@@ -146,13 +146,13 @@ fn plane_integrals_are_closed_forms() {
         let f = face_obstacle_integrals(&face, &project).unwrap();
         let area = face.area();
         let r = nodal_transformation(shape);
-        for j in 0..shape.node_count() {
-            let x_tilde: Vector3<f64> = r[j].iter().map(|&(k, rk)| face.coordinates[k] * rk).sum();
+        for (j, rj) in r.iter().enumerate() {
+            let x_tilde: Vector3<f64> = rj.iter().map(|&(k, rk)| face.coordinates[k] * rk).sum();
             let g = plane.project(&x_tilde).gap;
             let e = (f.weighted_gap[j] - f.d[j] * g).abs() / area;
             assert!(e < 1e-13, "{shape:?} g̃_{j}: {e:e}");
             for k in 0..shape.node_count() {
-                let rjk: f64 = r[j].iter().filter(|p| p.0 == k).map(|p| p.1).sum();
+                let rjk: f64 = rj.iter().filter(|p| p.0 == k).map(|p| p.1).sum();
                 for d in 0..3 {
                     let e = (f.lever[(j, 3 * k + d)] - f.d[j] * rjk * m[d]).abs() / area;
                     assert!(e < 1e-13, "{shape:?} L_{j}{k}: {e:e}");
@@ -270,7 +270,7 @@ fn patch_test_on_a_rigid_plane_is_exact() {
         (ElementKind::Tet10, 3),
         (ElementKind::Hex20, 3),
     ] {
-        let (p, s, n) = patch_test(kind, cells, rockafellar.clone(), floor());
+        let (p, s, n) = patch_test(kind, cells, rockafellar, floor());
         println!("{kind:?}: pressure {p:.1e} stress {s:.1e} iterations {n}");
         assert!(p <= 1e-10, "{kind:?}: pressure error {p:e}");
         assert!(s <= 1e-10, "{kind:?}: stress error {s:e}");

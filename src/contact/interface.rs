@@ -52,7 +52,7 @@ pub enum Primary {
     Mortar(MortarSurfaces),
     /// A rigid obstacle through dual mortar over the secondary surface
     /// ([`mortar_rigid`](super::mortar_rigid)), translated as [`Primary::Rigid`].
-    MortarRigid(MortarObstacle),
+    MortarRigid(Box<MortarObstacle>),
 }
 
 /// One secondary surface against a rigid obstacle or a primary surface.

@@ -382,7 +382,12 @@ impl ContactInterface {
         let nodes = mesh.surface_nodes(set);
         let surface = MortarObstacle::from_mesh(mesh, secondary, &nodes, obstacle)
             .ok_or_else(|| SetupError::UnknownSurface(secondary.to_string()))?;
-        Self::new(mesh, secondary, Primary::MortarRigid(surface), enforcement)
+        Self::new(
+            mesh,
+            secondary,
+            Primary::MortarRigid(Box::new(surface)),
+            enforcement,
+        )
     }
 
     /// Surface `secondary` against a rigid obstacle (fixed: see

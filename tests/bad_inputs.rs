@@ -1177,7 +1177,9 @@ fn contacts_and_output(c: &mut Catalogue) {
         ("infinite penetration tolerance", "surface = \"contact\"\nobstacle = \"wall\"\ninitial_penetration_tolerance = inf", "initial_penetration_tolerance = inf"),
         ("exact stick without friction", "surface = \"contact\"\nobstacle = \"wall\"\nexact_stick = true", "exact_stick = true: it needs friction"),
         ("exact stick with penalty", "surface = \"contact\"\nobstacle = \"wall\"\nfriction_coefficient = 0.2\nmethod = \"penalty\"\nexact_stick = true", "penalty method keeps the regularised law"),
-        ("friction multiplier without exact stick", "surface = \"contact\"\nobstacle = \"wall\"\nfriction_coefficient = 0.2\nfriction_multiplier = \"outer\"", "friction_multiplier: it applies to exact stick only"),
+        ("friction multiplier with the regularised law", "surface = \"contact\"\nobstacle = \"wall\"\nfriction_coefficient = 0.2\nexact_stick = false\nfriction_multiplier = \"outer\"", "friction_multiplier: it applies to exact stick only: remove exact_stick = false"),
+        ("friction multiplier without friction", "surface = \"contact\"\nobstacle = \"wall\"\nfriction_multiplier = \"outer\"", "friction_multiplier: it applies to exact stick only, which needs friction"),
+        ("friction multiplier with penalty", "surface = \"contact\"\nobstacle = \"wall\"\nmethod = \"penalty\"\nfriction_coefficient = 0.2\nfriction_multiplier = \"outer\"", "friction_multiplier: it applies to exact stick only, which needs friction and method rockafellar"),
         ("newton friction multiplier with uzawa", "surface = \"contact\"\nobstacle = \"wall\"\nfriction_coefficient = 0.2\nmethod = \"uzawa\"\nexact_stick = true\nfriction_multiplier = \"newton\"", "friction_multiplier = \"outer\" or method = \"rockafellar\""),
     ] {
         c.edit(&format!("contact: {name}"), contact, to, &[kw]);

@@ -98,8 +98,8 @@ pub enum Error {
     NoConvergence {
         step: String,
         time: f64,
-        cuts: usize,
-        step_cuts: usize,
+        cuts: u32,
+        step_cuts: u32,
         at_smallest: bool,
         increment: f64,
         reason: String,

@@ -167,8 +167,8 @@ impl Recorder<'_> {
             });
         }
         if let Some(s) = steps.last_mut() {
-            s.cuts += *cuts;
-            *step_cuts = s.cuts;
+            s.cuts += *cuts as usize;
+            *step_cuts = s.cuts as u32;
         }
     }
 }

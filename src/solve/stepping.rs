@@ -188,7 +188,7 @@ pub fn resume_steps<P: NonlinearProblem>(
         };
         let mut cuts = 0;
         // every cut of the step (summary.json's steps[].cuts)
-        let mut step_cuts = 0;
+        let mut step_cuts = 0u32;
         while t < step.end_time - 1e-12 * step.end_time.abs().max(1.0) {
             let t_new;
             (dt, t_new) = next_increment(step, t, dt);
@@ -306,7 +306,7 @@ pub fn resume_steps<P: NonlinearProblem>(
                         return Err(Error::NoConvergence {
                             step: step.name.clone(),
                             time: t_new,
-                            cuts,
+                            cuts: cuts as u32,
                             step_cuts,
                             at_smallest,
                             increment: dt,

@@ -81,16 +81,26 @@ pub enum Error {
     #[error("linear solve failed: {0}")]
     LinearSolver(String),
 
-    /// Newton did not converge even after the allowed number of step cuts.
-    /// Every step converged before this one is on disk.
-    #[error("step '{step}' did not converge at time {time:.6} after {cuts} cuts of the increment (smallest increment {increment:.3e}): {reason}. {}", match last_converged_time {
+    /// Newton did not converge even after the allowed number of step cuts
+    /// (`cuts` in a row, `max_cuts`) or at the smallest increment
+    /// (`at_smallest`, `min_increment`); `step_cuts` counts every cut of
+    /// the step, this increment's included, as `summary.json`'s
+    /// `steps[].cuts` does after the failure. Every step converged before
+    /// this one is on disk.
+    #[error("step '{step}' did not converge at time {time:.6} {}; {step_cuts} cuts in the step in all: {reason}. {}", if *at_smallest {
+        format!("with the smallest increment allowed (min_increment), {increment:.3e}, after {cuts} cuts in a row")
+    } else {
+        format!("after {cuts} cuts of the increment in a row, the most allowed (max_cuts), down to {increment:.3e}")
+    }, match last_converged_time {
         Some(t) => format!("The increments converged up to time {t:.6} are written in '{}'", output.display()),
         None => "No increment had converged, so no result was written; try a smaller initial_increment".to_string(),
     })]
     NoConvergence {
         step: String,
         time: f64,
-        cuts: usize,
+        cuts: u32,
+        step_cuts: u32,
+        at_smallest: bool,
         increment: f64,
         reason: String,
         /// `None` if no increment converged at all.

@@ -1151,6 +1151,48 @@ fn refused_by_run_alone(c: &mut Catalogue) {
         &format!("name = \"{long}\""),
         &["output.history 'aaa", "300 bytes", "at most 200"],
     );
+    // issue 31: the VTU files had no arrays at all
+    let without_contact = BASE.split("[[obstacle]]").next().unwrap().to_string()
+        + &BASE[BASE.find("[amplitudes]").unwrap()..BASE.find("[[output.profile]]").unwrap()];
+    c.case(
+        "output: contact fields without contact",
+        replaced(
+            &without_contact,
+            "name = \"cube\"",
+            "name = \"cube\"\nfields = [\"contact_pressure\", \"gap\"]",
+        ),
+        &[
+            "output.fields names 'contact_pressure', a contact field",
+            "no [[contact]]",
+        ],
+    );
+    // issue 31: accepted, it constrained nothing
+    let mut deck = read_data("cube_hex.inp");
+    deck.extend_from_slice(b"*NSET, NSET=empty\n");
+    c.push(
+        "displacement: an empty node set",
+        vec![
+            (
+                "case.toml",
+                File::Bytes(
+                    replaced(
+                        &replaced(BASE, "file = \"cube.msh\"", "file = \"cube.inp\""),
+                        "[[pressure]]",
+                        "[[displacement]]\nnodes = \"empty\"\nx = 0.0\n\n[[pressure]]",
+                    )
+                    .into_bytes(),
+                ),
+            ),
+            ("cube.inp", File::Bytes(deck)),
+        ],
+        &["check", "case.toml"],
+        1,
+        &[
+            "displacement[1].nodes = 'empty'",
+            "has no nodes",
+            "act on nothing",
+        ],
+    );
 }
 
 fn contacts_and_output(c: &mut Catalogue) {
@@ -1177,7 +1219,9 @@ fn contacts_and_output(c: &mut Catalogue) {
         ("infinite penetration tolerance", "surface = \"contact\"\nobstacle = \"wall\"\ninitial_penetration_tolerance = inf", "initial_penetration_tolerance = inf"),
         ("exact stick without friction", "surface = \"contact\"\nobstacle = \"wall\"\nexact_stick = true", "exact_stick = true: it needs friction"),
         ("exact stick with penalty", "surface = \"contact\"\nobstacle = \"wall\"\nfriction_coefficient = 0.2\nmethod = \"penalty\"\nexact_stick = true", "penalty method keeps the regularised law"),
-        ("friction multiplier without exact stick", "surface = \"contact\"\nobstacle = \"wall\"\nfriction_coefficient = 0.2\nfriction_multiplier = \"outer\"", "friction_multiplier: it applies to exact stick only"),
+        ("friction multiplier with the regularised law", "surface = \"contact\"\nobstacle = \"wall\"\nfriction_coefficient = 0.2\nexact_stick = false\nfriction_multiplier = \"outer\"", "friction_multiplier: it applies to exact stick only: remove exact_stick = false"),
+        ("friction multiplier without friction", "surface = \"contact\"\nobstacle = \"wall\"\nfriction_multiplier = \"outer\"", "friction_multiplier: it applies to exact stick only, which needs friction"),
+        ("friction multiplier with penalty", "surface = \"contact\"\nobstacle = \"wall\"\nmethod = \"penalty\"\nfriction_coefficient = 0.2\nfriction_multiplier = \"outer\"", "friction_multiplier: it applies to exact stick only, which needs friction and method rockafellar"),
         ("newton friction multiplier with uzawa", "surface = \"contact\"\nobstacle = \"wall\"\nfriction_coefficient = 0.2\nmethod = \"uzawa\"\nexact_stick = true\nfriction_multiplier = \"newton\"", "friction_multiplier = \"outer\" or method = \"rockafellar\""),
     ] {
         c.edit(&format!("contact: {name}"), contact, to, &[kw]);
@@ -1925,6 +1969,22 @@ fn base_checkpoint() -> Vec<u8> {
     std::fs::read(outcome.output_dir.join("cube.checkpoint")).unwrap()
 }
 
+/// The checkpoint `good` read back, changed by `forge` and written again
+/// by the checkpoint writer (so its checksum is right).
+fn forged(
+    good: &[u8],
+    forge: impl FnOnce(&mut signorini::output::checkpoint::Checkpoint<'static>),
+) -> Vec<u8> {
+    use signorini::output::checkpoint;
+    let dir = tempfile::tempdir().unwrap();
+    std::fs::write(checkpoint::path(dir.path(), "cube"), good).unwrap();
+    let mut c = checkpoint::read(dir.path(), "cube").unwrap();
+    forge(&mut c);
+    let path = checkpoint::path(dir.path(), "cube");
+    checkpoint::write(&path, &c).unwrap();
+    std::fs::read(path).unwrap()
+}
+
 /// `run --restart old` on the base case (or `case`), the folder `old`
 /// holding `cube.checkpoint` = `checkpoint` (no file: `None`).
 fn restart_entry(
@@ -2021,6 +2081,32 @@ fn restarts(c: &mut Catalogue) {
         &[
             "step 1 is 'load' ending at t = 2",
             "t = 1 in the checkpoint",
+        ],
+    );
+    // issue 31: a checkpoint whose state is NaN, its checksum right (the
+    // file written by the checkpoint writer itself)
+    restart_entry(
+        c,
+        "restart: a forged checkpoint with NaN state",
+        base(),
+        Some(forged(&good, |c| c.unknowns.to_mut()[0] = f64::NAN)),
+        &[
+            "cube.checkpoint",
+            "state (the unknowns) is not finite",
+            "from the start",
+        ],
+    );
+    // issue 31: the .pvd listed files that were gone (the checkpoint's
+    // folder `old` holds no VTU file)
+    restart_entry(
+        c,
+        "restart: its VTU files deleted",
+        base(),
+        Some(good.clone()),
+        &[
+            "VTU files it wrote are gone",
+            "cube_0001.vtu",
+            "put them back",
         ],
     );
     let mut files = vec![

@@ -203,7 +203,7 @@ impl Case {
                 },
                 friction_coefficient,
                 tangential_penalty: positive(c.tangential_penalty, "tangential_penalty")?,
-                exact_stick: c.exact_stick,
+                exact_stick: exact_stick(c),
                 friction_multiplier: match (c.friction_multiplier, c.method) {
                     (Some(FrictionMultiplierSpec::Newton), _) => FrictionMultiplier::Newton,
                     (None, ContactMethod::Rockafellar | ContactMethod::Slack) => {
@@ -213,8 +213,12 @@ impl Case {
                 },
             };
             if let Some(spec) = c.friction_multiplier {
-                let why = if !c.exact_stick {
-                    Some("it applies to exact stick only: add exact_stick = true or remove it")
+                let why = if !exact_stick(c) {
+                    Some(if c.exact_stick == Some(false) {
+                        "it applies to exact stick only: remove exact_stick = false or this key"
+                    } else {
+                        "it applies to exact stick only, which needs friction and method rockafellar, slack or uzawa: give friction_coefficient, or remove this key"
+                    })
                 } else if spec == FrictionMultiplierSpec::Newton
                     && !matches!(c.method, ContactMethod::Rockafellar | ContactMethod::Slack)
                 {
@@ -226,7 +230,7 @@ impl Case {
                     return Err(self.err(format!("{key}.friction_multiplier: {why}")));
                 }
             }
-            if c.exact_stick {
+            if c.exact_stick == Some(true) {
                 let why = if friction_coefficient.is_none() {
                     Some("it needs friction: give friction_coefficient")
                 } else if matches!(c.method, ContactMethod::Penalty) {
@@ -422,4 +426,15 @@ impl Case {
             None => Ok(()),
         }
     }
+}
+
+/// Whether `[[contact]]` `c` sticks exactly: as its `exact_stick` says,
+/// by default where the method has multipliers to augment and there is
+/// friction (`μ > 0` with rockafellar, slack or uzawa; the regularised
+/// law with penalty or `μ = 0`, where exact stick has nothing to act on).
+pub(crate) fn exact_stick(c: &ContactSpec) -> bool {
+    c.exact_stick.unwrap_or_else(|| {
+        c.friction_coefficient.is_some_and(|mu| mu > 0.0)
+            && !matches!(c.method, ContactMethod::Penalty)
+    })
 }

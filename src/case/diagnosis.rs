@@ -224,25 +224,11 @@ impl Case {
 /// The error of a failed run with the warnings of the model named as its
 /// likely cause (the error unchanged without warnings, or for any error
 /// but a failed convergence).
-pub fn explain_failure(error: crate::Error, warnings: &[String]) -> crate::Error {
-    match error {
-        crate::Error::NoConvergence {
-            step,
-            time,
-            cuts,
-            increment,
-            reason,
-            last_converged_time,
-            output,
-        } if !warnings.is_empty() => crate::Error::NoConvergence {
-            step,
-            time,
-            cuts,
-            increment,
-            reason: format!("{reason}; likely cause: {}", warnings.join("; ")),
-            last_converged_time,
-            output,
-        },
-        e => e,
+pub fn explain_failure(mut error: crate::Error, warnings: &[String]) -> crate::Error {
+    if let crate::Error::NoConvergence { reason, .. } = &mut error {
+        if !warnings.is_empty() {
+            *reason = format!("{reason}; likely cause: {}", warnings.join("; "));
+        }
     }
+    error
 }

@@ -195,13 +195,28 @@ impl Case {
         })
     }
 
+    /// The node set `name` of the mesh, which must hold a node: an empty
+    /// one (an `*NSET` with no lines) would constrain, load or report
+    /// nothing without a word.
     fn node_set(&self, key: &str, name: &str) -> Result<&crate::mesh::NodeSet> {
-        self.mesh.node_set(name).ok_or_else(|| Error::UnknownGroup {
-            key: key.to_string(),
-            kind: "node set (0D/1D physical group, .inp *NSET)",
-            name: name.to_string(),
-            available: self.mesh.node_set_names(),
-        })
+        let set = self
+            .mesh
+            .node_set(name)
+            .ok_or_else(|| Error::UnknownGroup {
+                key: key.to_string(),
+                kind: "node set (0D/1D physical group, .inp *NSET)",
+                name: name.to_string(),
+                available: self.mesh.node_set_names(),
+            })?;
+        if set.nodes.is_empty() {
+            return Err(self.err(format!(
+                "{key} = '{}': the node set has no nodes (an *NSET without node lines, or a \
+                 physical group without entities), so it would act on nothing; give the set its \
+                 nodes in the mesh, or name another set",
+                crate::input::shorten(name)
+            )));
+        }
+        Ok(set)
     }
 
     fn region(&self, key: &str, name: &str) -> Result<&crate::mesh::Region> {

@@ -390,7 +390,8 @@ impl Case {
     }
 
     /// What the run would otherwise find only when it writes (issue 31
-    /// item 4): no field named twice in `[output] fields`, and every file
+    /// item 4): no field named twice in `[output] fields`, no contact field
+    /// named without a `[[contact]]` (the files would lack it), and every file
     /// name it writes, with its temporary copy, within the 255 bytes a
     /// file name may have ([`MAX_FILE_STEM`] for the stem).
     fn output_files_fit(&self, problem: &Problem, out: &OutputRequests) -> Result<()> {
@@ -399,6 +400,17 @@ impl Case {
             if let Some((_, _, name)) = super::first_duplicate(names) {
                 return Err(self.err(format!(
                     "output.fields names '{name}' twice; name each field once"
+                )));
+            }
+            let contact_only = fields
+                .iter()
+                .find(|f| matches!(f, crate::output::OutputField::Nodal(n) if n.needs_contact()));
+            if let (Some(field), true) = (contact_only, problem.contacts.is_empty()) {
+                return Err(self.err(format!(
+                    "output.fields names '{}', a contact field, and the case has no [[contact]], \
+                     so the VTU files would not hold it; remove it from output.fields, or add the \
+                     [[contact]] it should report",
+                    field.name()
                 )));
             }
         }

@@ -356,18 +356,21 @@ pub struct ContactSpec {
     /// Tangential penalty `ε_T` of the friction law (traction per unit
     /// elastic slip); default: the normal penalty (`E/h_s` per node).
     pub tangential_penalty: Option<f64>,
-    /// Exact stick (default false: the regularised Coulomb law): the
-    /// tangential augmented Lagrangian of Simo and Laursen, so that sticking
-    /// nodes do not move at convergence and the answer does not depend on
-    /// `tangential_penalty`; with method rockafellar, slack or uzawa, against
-    /// an obstacle or a primary surface.
-    #[serde(default)]
-    pub exact_stick: bool,
+    /// Exact stick: the tangential augmented Lagrangian of Simo and
+    /// Laursen, so that sticking nodes do not move at convergence and the
+    /// answer does not depend on `tangential_penalty`; with method
+    /// rockafellar, slack or uzawa, against an obstacle or a primary
+    /// surface. Default: true with friction and one of those methods
+    /// (rockafellar and slack solve for the tangential multipliers in
+    /// Newton, uzawa in its outer loop), false with penalty or without
+    /// friction; `false`: the regularised Coulomb law (elastic slip
+    /// `t_T/ε_T` while sticking).
+    pub exact_stick: Option<bool>,
     /// How exact stick finds its tangential multiplier: `"newton"` (the
     /// default with rockafellar and slack: two unknowns of Newton per node,
     /// Alart–Curnier's form, one Newton solve per increment) or `"outer"`
     /// (Simo–Laursen's loop of Newton solves, the tangential multiplier
-    /// updated after each; uzawa's only one). Only with `exact_stick = true`.
+    /// updated after each; uzawa's only one). Only with exact stick.
     pub friction_multiplier: Option<FrictionMultiplierSpec>,
     /// Largest initial penetration accepted; default 1 % of the contact
     /// element size.

@@ -97,7 +97,8 @@ pub struct StepSummary {
     pub increments: usize,
     /// Newton iterations of the step's converged increments.
     pub iterations: usize,
-    /// Cuts of the increment within the step.
+    /// Cuts of the increment within the step (after a failed increment,
+    /// its cuts too: the count of the run's error message).
     pub cuts: usize,
     /// Wall time of the step's converged increments, seconds.
     pub wall_time: f64,

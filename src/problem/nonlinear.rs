@@ -43,6 +43,9 @@ impl NonlinearProblem for Problem {
     fn has_contact(&self) -> bool {
         !self.contacts.is_empty()
     }
+    fn has_friction(&self) -> bool {
+        self.contacts.has_friction()
+    }
     fn has_nonsymmetric_tangent(&self) -> bool {
         Problem::has_nonsymmetric_tangent(self)
     }

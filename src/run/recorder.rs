@@ -9,7 +9,7 @@ use crate::contact::interface::NodeReport;
 use crate::output::contact_fields::ContactFields;
 use crate::output::fields::ConvergedIncrement;
 use crate::output::observer::{Cut, Iteration, Observers, StepObserver as _};
-use crate::output::summary::{IncrementSummary, PhaseTimes, Summary};
+use crate::output::summary::{IncrementSummary, PhaseTimes, StepSummary, Summary};
 use crate::problem::{ContactState, Problem};
 use crate::solve::failure::IncrementFailure;
 use crate::solve::linear_solver::SolverStatistics;
@@ -121,7 +121,8 @@ impl<'a> Recorder<'a> {
                     contact: self.contact,
                 })
             }
-            Err(e) => {
+            Err(mut e) => {
+                self.count_failed_cuts(&mut e);
                 self.summary.status = match e {
                     Error::Interrupted { .. } => "interrupted",
                     _ => "failed",
@@ -133,6 +134,41 @@ impl<'a> Recorder<'a> {
                 let _ = self.observers.on_finish(&self.summary);
                 Err(e)
             }
+        }
+    }
+}
+
+impl Recorder<'_> {
+    /// A failed increment's cuts added to its step's in the summary
+    /// (`steps[].cuts`, a new entry if no increment of the step
+    /// converged), and the error's count of the step's cuts set to that
+    /// total, so that the message and `summary.json` agree (after a
+    /// restart, the earlier run's cuts included).
+    fn count_failed_cuts(&mut self, e: &mut Error) {
+        let Error::NoConvergence {
+            step,
+            cuts,
+            step_cuts,
+            ..
+        } = e
+        else {
+            return;
+        };
+        let reached = self.summary.increments.last().map_or(0.0, |i| i.time);
+        let steps = &mut self.summary.steps;
+        if steps.last().is_none_or(|s| s.name != *step) {
+            steps.push(StepSummary {
+                name: step.clone(),
+                time: reached,
+                increments: 0,
+                iterations: 0,
+                cuts: 0,
+                wall_time: 0.0,
+            });
+        }
+        if let Some(s) = steps.last_mut() {
+            s.cuts += *cuts as usize;
+            *step_cuts = s.cuts as u32;
         }
     }
 }

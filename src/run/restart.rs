@@ -59,6 +59,28 @@ impl Simulation {
         }
         let summary: Summary = serde_json::from_str(&c.summary)
             .map_err(|e| fail(format!("corrupted: its summary does not read back ({e})")))?;
+        if let Some(what) = not_finite(&c.unknowns, &c.contact, &c.stepping) {
+            return Err(fail(format!(
+                "its {what} is not finite (NaN or infinite), which no converged increment \
+                 leaves: the file was edited or forged; run the case from the start (without \
+                 --restart)"
+            )));
+        }
+        let missing: Vec<&str> = summary
+            .increments
+            .iter()
+            .map(|i| i.file.as_str())
+            .filter(|f| !f.is_empty() && !dir.join(f).is_file())
+            .collect();
+        if let Some(first) = missing.first() {
+            return Err(fail(format!(
+                "{} of the VTU files it wrote are gone from '{}' (the first: {first}); a restart \
+                 keeps the earlier files and lists them again in the .pvd, so put them back, or \
+                 run the case from the start (without --restart)",
+                missing.len(),
+                dir.display()
+            )));
+        }
         Ok(Restart {
             increments: summary.increments.len(),
             summary,
@@ -71,6 +93,32 @@ impl Simulation {
             },
             dir: dir.to_path_buf(),
         })
+    }
+}
+
+/// Which part of a checkpoint's state is not finite, if any: the unknowns,
+/// the contact history or the stepping (a converged increment leaves
+/// every value finite). The contact history and the stepping are nested
+/// structures of many numbers; their debug forms name a NaN `NaN` and an
+/// infinity `inf`, which no other word of them is.
+fn not_finite(
+    unknowns: &[f64],
+    contact: &ContactState,
+    stepping: &crate::solve::stepping::Stepping,
+) -> Option<&'static str> {
+    let names_non_finite = |debug: String| {
+        debug
+            .split(|c: char| !c.is_ascii_alphanumeric())
+            .any(|w| w == "NaN" || w == "inf")
+    };
+    if !unknowns.iter().all(|x| x.is_finite()) {
+        Some("state (the unknowns)")
+    } else if names_non_finite(format!("{contact:?}")) {
+        Some("contact history")
+    } else if names_non_finite(format!("{stepping:?}")) {
+        Some("stepping state (time, increment)")
+    } else {
+        None
     }
 }
 

@@ -24,6 +24,36 @@ pub struct Chatter {
     pub flipping: usize,
     /// How many times an earlier status came back.
     pub revisits: usize,
+    /// What the nodes of the last iteration flipped between.
+    pub flips: Flips,
+}
+
+/// The flips of one iteration by kind: between stick and slip (friction at
+/// the Coulomb limit), between open and closed (the edge of the contact
+/// zone), between primary triangles (a node over a facet edge).
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+pub struct Flips {
+    pub stick_slip: usize,
+    pub open_closed: usize,
+    pub facet: usize,
+}
+
+impl Flips {
+    /// The flips from `before` to `after` (statuses as
+    /// [`ChatterDetector::observe`] takes them).
+    pub fn between(before: &[u64], after: &[u64]) -> Flips {
+        let mut flips = Flips::default();
+        for (a, b) in before.iter().zip(after).filter(|(a, b)| a != b) {
+            if a % 4 == 0 || b % 4 == 0 {
+                flips.open_closed += 1;
+            } else if a / 4 != b / 4 {
+                flips.facet += 1;
+            } else {
+                flips.stick_slip += 1;
+            }
+        }
+        flips
+    }
 }
 
 impl std::fmt::Display for Chatter {
@@ -33,7 +63,34 @@ impl std::fmt::Display for Chatter {
             "contact status chattering: an earlier set of open/stick/slip nodes came back {} times \
              (cycle of {} iterations, {} nodes flipping)",
             self.revisits, self.period, self.flipping
-        )
+        )?;
+        let Flips {
+            stick_slip,
+            open_closed,
+            facet,
+        } = self.flips;
+        if stick_slip >= open_closed.max(facet) && stick_slip > 0 {
+            write!(
+                f,
+                "; they flip between stick and slip: at the Coulomb limit Newton cannot settle \
+                 which side, and smaller increments rarely cure it; try method = \"penalty\", \
+                 whose elastic stick (t_T/ε_T) and penalty gap smooth the transition"
+            )
+        } else if facet >= open_closed && facet > 0 {
+            write!(
+                f,
+                "; they flip between primary triangles (a node over a facet edge): make the finer \
+                 surface the secondary, or refine the primary surface"
+            )
+        } else if open_closed > 0 {
+            write!(
+                f,
+                "; they flip between open and closed (the edge of the contact zone): take smaller \
+                 increments, or try method = \"penalty\", whose gap law is smooth"
+            )
+        } else {
+            Ok(())
+        }
     }
 }
 
@@ -51,13 +108,10 @@ impl ChatterDetector {
     /// the previous iteration, and the cycle once it has come back
     /// [`REVISITS`] times.
     pub fn observe(&mut self, statuses: Vec<u64>) -> (usize, Option<Chatter>) {
-        let switched = self.seen.last().map_or(0, |previous| {
-            previous
-                .iter()
-                .zip(&statuses)
-                .filter(|(a, b)| a != b)
-                .count()
+        let flips = self.seen.last().map_or_else(Flips::default, |previous| {
+            Flips::between(previous, &statuses)
         });
+        let switched = flips.stick_slip + flips.open_closed + flips.facet;
         let mut chatter = None;
         if switched > 0 {
             let earlier = self.seen.len().saturating_sub(1);
@@ -68,6 +122,7 @@ impl ChatterDetector {
                         period: self.seen.len() - j,
                         flipping: switched,
                         revisits: self.revisits,
+                        flips,
                     });
                 }
             }
@@ -96,9 +151,36 @@ mod tests {
             Some(Chatter {
                 period: 2,
                 flipping: 2,
-                revisits: 3
+                revisits: 3,
+                flips: Flips {
+                    stick_slip: 1,
+                    open_closed: 1,
+                    facet: 0
+                }
             })
         );
+    }
+
+    /// The message names what the nodes flip between, and what to change.
+    #[test]
+    fn the_message_names_the_kind_of_flip() {
+        let message = |before: &[u64], after: &[u64]| {
+            Chatter {
+                period: 2,
+                flipping: 1,
+                revisits: 3,
+                flips: Flips::between(before, after),
+            }
+            .to_string()
+        };
+        let friction = message(&[1, 2, 9], &[2, 2, 9]);
+        assert!(friction.contains("between stick and slip"), "{friction}");
+        assert!(friction.contains("method = \"penalty\""), "{friction}");
+        // 4 × (1 + triangle) + status: triangle 1 then 2, both closed
+        let facet = message(&[9, 0], &[13, 0]);
+        assert!(facet.contains("between primary triangles"), "{facet}");
+        let edge = message(&[0, 1], &[1, 1]);
+        assert!(edge.contains("between open and closed"), "{edge}");
     }
 
     #[test]

@@ -7,6 +7,23 @@
 use super::chattering::Chatter;
 use crate::assembly::kernel::KernelFailure;
 
+/// What the closed contact nodes measured when a rigid-body mode went
+/// through them (see [`IncrementFailure::RigidBodyMode`]).
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Default)]
+pub enum ClosedContact {
+    /// No contact, or no closed node.
+    #[default]
+    None,
+    /// Frictionless: the closed nodes hold no load along the contact
+    /// surface, so a tangential direction is unsupported.
+    Frictionless,
+    /// With friction, every closed node slips at the Coulomb limit
+    /// `|t_T| = μ t_N`: the tangential load exceeds the capacity `μN`.
+    AllSlip,
+    /// With friction, some closed nodes stick.
+    SomeStick,
+}
+
 /// A failed increment, by cause.
 #[derive(Clone, Debug, PartialEq)]
 pub enum IncrementFailure {
@@ -28,15 +45,19 @@ pub enum IncrementFailure {
     /// prescribed motion; else with `contact`, a rigid-body mode that the
     /// saddle system's regularisation let through — with every contact
     /// node `open`, the body lost contact (or never reached it) and nothing
-    /// else holds it; without contact, the tangent is near singular (an
-    /// element near inversion, a load beyond the material's range, a
-    /// missing support).
+    /// else holds it; with closed nodes, [`RigidBodyMode::closed`] says
+    /// why they do not hold it; without contact, the tangent is near
+    /// singular (an element near inversion, a load beyond the material's
+    /// range, a missing support). `direction` is the unit correction of
+    /// the node that moves most (the direction of the motion).
     RigidBodyMode {
         largest: f64,
         size: f64,
         contact: bool,
         prescribed: bool,
         open: bool,
+        direction: [f64; 3],
+        closed: ClosedContact,
     },
     /// The linear solve failed (a singular tangent); the solver's message.
     LinearSolve(String),
@@ -115,14 +136,10 @@ impl std::fmt::Display for IncrementFailure {
                 largest,
                 size,
                 contact: true,
+                direction,
+                closed,
                 ..
-            } => write!(
-                f,
-                "a correction of {largest:.3e} against a body of size {size:.3e}: a rigid-body mode \
-                 although some contact nodes are closed (every contact node slips so that friction \
-                 cannot hold a load beyond its capacity, or a support is missing); add a support or \
-                 reduce the tangential load"
-            ),
+            } => closed_rigid_body_mode(f, *largest, *size, direction, *closed),
             IncrementFailure::RigidBodyMode {
                 largest,
                 size,
@@ -167,25 +184,103 @@ impl std::fmt::Display for IncrementFailure {
     }
 }
 
+/// What the closed contact nodes say of a rigid-body mode, from the
+/// statuses of an evaluation (`status % 4`: 0 open, 1 stick or closed
+/// frictionless, 2 slip; [`super::nonlinear::Evaluation::statuses`]).
+pub(crate) fn closed_contact(statuses: &[u64], friction: bool) -> ClosedContact {
+    let closed = || statuses.iter().map(|s| s % 4).filter(|&s| s != 0);
+    match (closed().next(), friction) {
+        (None, _) => ClosedContact::None,
+        (Some(_), false) => ClosedContact::Frictionless,
+        (Some(_), true) if closed().all(|s| s == 2) => ClosedContact::AllSlip,
+        (Some(_), true) => ClosedContact::SomeStick,
+    }
+}
+
+/// The unit direction of the largest nodal correction in `du` (three
+/// components per node); zero when `du` is.
+pub(crate) fn largest_motion(du: &[f64]) -> [f64; 3] {
+    let norm = |c: &[f64]| c.iter().map(|x| x * x).sum::<f64>().sqrt();
+    let node = du
+        .chunks_exact(3)
+        .max_by(|a, b| norm(a).total_cmp(&norm(b)));
+    match node {
+        Some(c) if norm(c) > 0.0 => {
+            let n = norm(c);
+            [c[0] / n, c[1] / n, c[2] / n]
+        }
+        _ => [0.0; 3],
+    }
+}
+
+/// The message of a rigid-body mode through closed contact nodes, by
+/// what they measured ([`ClosedContact`]): an unsupported direction
+/// (frictionless), a tangential load beyond the friction capacity `μN`
+/// (every closed node slipping), or a missing support.
+fn closed_rigid_body_mode(
+    f: &mut std::fmt::Formatter<'_>,
+    largest: f64,
+    size: f64,
+    d: &[f64; 3],
+    closed: ClosedContact,
+) -> std::fmt::Result {
+    // no "-0.00"
+    let c = |x: f64| if x.abs() < 5e-3 { 0.0 } else { x };
+    let motion = format!(
+        "the body moves as a whole along ({:.2}, {:.2}, {:.2}) (a correction of {largest:.3e} \
+         against a body of size {size:.3e})",
+        c(d[0]),
+        c(d[1]),
+        c(d[2])
+    );
+    match closed {
+        ClosedContact::Frictionless => write!(
+            f,
+            "an unsupported direction: {motion}; the closed contact nodes are frictionless, so \
+             they hold no load along the contact surface, and no [[displacement]] holds that \
+             direction; hold it with a [[displacement]] (a symmetry plane or a support), or give \
+             the contact a friction_coefficient"
+        ),
+        ClosedContact::AllSlip => write!(
+            f,
+            "the tangential load exceeds the friction capacity μN: every closed contact node \
+             slips at the Coulomb limit |t_T| = μ t_N and {motion}; reduce the load along that \
+             direction below μ times the normal force, raise friction_coefficient, or hold the \
+             body with a [[displacement]]"
+        ),
+        ClosedContact::SomeStick | ClosedContact::None => write!(
+            f,
+            "a rigid-body mode although some contact nodes are closed and sticking: {motion}; \
+             a support is missing in that direction (add a [[displacement]] holding it)"
+        ),
+    }
+}
+
 #[cfg(test)]
 mod tests {
-    use super::IncrementFailure;
+    use super::{ClosedContact, IncrementFailure};
 
     /// A correction far beyond the body names the cause the problem can
-    /// have: a prescribed jump, a lost contact, or (without contact) a
+    /// have: a prescribed jump, a lost contact, through closed nodes an
+    /// unsupported direction (frictionless), a load beyond μN (every node
+    /// slipping) or a missing support, or (without contact) a
     /// near-singular body.
     #[test]
     fn rigid_body_mode_message_follows_the_cause() {
-        let message = |contact, prescribed, open| {
+        let with = |contact, prescribed, open, closed| {
             IncrementFailure::RigidBodyMode {
                 largest: 50.0,
                 size: 1.0,
                 contact,
                 prescribed,
                 open,
+                direction: [1.0, 0.0, 0.0],
+                closed,
             }
             .to_string()
         };
+        let message =
+            |contact, prescribed, open| with(contact, prescribed, open, ClosedContact::None);
         let free = message(false, false, false);
         assert!(free.contains("far larger than the body"), "{free}");
         assert!(free.contains("element near inversion"), "{free}");
@@ -193,9 +288,25 @@ mod tests {
         let lost = message(true, false, true);
         assert!(lost.contains("loss of contact"), "{lost}");
         assert!(lost.contains("every contact node is open"), "{lost}");
-        let held = message(true, false, false);
+        let held = with(true, false, false, ClosedContact::SomeStick);
         assert!(held.contains("some contact nodes are closed"), "{held}");
+        assert!(held.contains("along (1.00, 0.00, 0.00)"), "{held}");
         assert!(!held.contains("loss of contact"), "{held}");
+        let frictionless = with(true, false, false, ClosedContact::Frictionless);
+        assert!(
+            frictionless.contains("an unsupported direction"),
+            "{frictionless}"
+        );
+        assert!(!frictionless.contains("tangential load"), "{frictionless}");
+        let beyond = with(true, false, false, ClosedContact::AllSlip);
+        assert!(
+            beyond.contains("exceeds the friction capacity μN"),
+            "{beyond}"
+        );
+        assert!(
+            beyond.contains("every closed contact node slips"),
+            "{beyond}"
+        );
         for contact in [false, true] {
             let jump = message(contact, true, contact);
             assert!(

@@ -6,7 +6,7 @@
 //! pattern (and its symbolic factorisation) never changes.
 
 use super::backend::mixed_precision;
-use super::failure::IncrementFailure;
+use super::failure::{closed_contact, largest_motion, IncrementFailure};
 use super::gmres::{dot, norm};
 use super::josephy::{HeldTangent, Josephy, JosephyStep};
 use super::linear_solver::{LinearFigures, LinearSolver, LinearSystem};
@@ -122,6 +122,7 @@ impl<P: NonlinearProblem> Newton<'_, P> {
             // every contact node open (status 0 mod 4): nothing but supports holds the body
             let all_open =
                 !evaluation.statuses.is_empty() && evaluation.statuses.iter().all(|s| s % 4 == 0);
+            let closed = closed_contact(&evaluation.statuses, problem.has_friction());
             let (switched, chattering) = chatter.observe(evaluation.statuses.clone());
             let mut r = evaluation.residual.clone();
             zero_constrained(&mut r, constrained);
@@ -274,6 +275,8 @@ impl<P: NonlinearProblem> Newton<'_, P> {
                         contact: problem.has_contact(),
                         prescribed,
                         open: all_open,
+                        direction: largest_motion(&du[..problem.num_dofs()]),
+                        closed,
                     }),
                     records,
                 );

@@ -84,6 +84,12 @@ pub trait NonlinearProblem {
     fn has_contact(&self) -> bool {
         true
     }
+    /// Whether any contact has friction (a rigid-body mode through closed
+    /// contact nodes is then read against the friction capacity, else as
+    /// an unsupported tangential direction).
+    fn has_friction(&self) -> bool {
+        false
+    }
     /// Whether the tangent is nonsymmetric (a symmetric neighbour is then
     /// built for the preconditioner).
     fn has_nonsymmetric_tangent(&self) -> bool;

@@ -187,6 +187,8 @@ pub fn resume_steps<P: NonlinearProblem>(
             step.initial_increment.min(step.end_time - t)
         };
         let mut cuts = 0;
+        // every cut of the step (summary.json's steps[].cuts)
+        let mut step_cuts = 0u32;
         while t < step.end_time - 1e-12 * step.end_time.abs().max(1.0) {
             let t_new;
             (dt, t_new) = next_increment(step, t, dt);
@@ -299,19 +301,23 @@ pub fn resume_steps<P: NonlinearProblem>(
                 }
                 Err(IncrementFailure::Cancelled) => return Err(cancelled(t)),
                 Err(failure) => {
-                    observer.on_cut(&step.name, t_new, dt, &failure);
-                    cuts += 1;
-                    if cuts > problem.settings().max_cuts || 0.5 * dt < step.min_increment {
+                    let at_smallest = 0.5 * dt < step.min_increment;
+                    if cuts >= problem.settings().max_cuts || at_smallest {
                         return Err(Error::NoConvergence {
                             step: step.name.clone(),
                             time: t_new,
-                            cuts: cuts - 1,
+                            cuts: cuts as u32,
+                            step_cuts,
+                            at_smallest,
                             increment: dt,
                             reason: failure.to_string(),
                             last_converged_time: any_converged.then_some(t),
                             output,
                         });
                     }
+                    observer.on_cut(&step.name, t_new, dt, &failure);
+                    cuts += 1;
+                    step_cuts += 1;
                     dt *= 0.5;
                 }
             }

@@ -363,7 +363,7 @@ fn contacts(physics: &Physics, mesh: &Mesh, notes: &mut Vec<String>) -> Result<V
             scaling: None,
             friction_coefficient: friction.map(|f| f.mu),
             tangential_penalty: friction.and_then(|f| f.stick_slope),
-            exact_stick: friction.is_some_and(|f| f.exact),
+            exact_stick: friction.map(|f| f.exact),
             friction_multiplier: None,
             initial_penetration_tolerance: None,
             two_pass: false,

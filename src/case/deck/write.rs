@@ -104,8 +104,8 @@ fn contact(out: &mut String, c: &ContactSpec) {
         "initial_penetration_tolerance",
         c.initial_penetration_tolerance,
     );
-    if c.exact_stick {
-        let _ = writeln!(out, "exact_stick = true");
+    if let Some(exact) = c.exact_stick {
+        let _ = writeln!(out, "exact_stick = {exact}");
     }
     if let Some(m) = c.friction_multiplier {
         let m = match m {

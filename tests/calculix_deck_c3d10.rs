@@ -164,3 +164,46 @@ fn c3d10_deck_press_then_pull_with_friction() {
     assert!((rf[1].abs() - coulomb).abs() < 1e-6 * coulomb, "{rf:?}");
     assert!(rf[2].abs() < 1e-6 * coulomb, "{rf:?}");
 }
+
+/// CalculiX's `TYPE=` on the C3D8 example's pair (linear faces, without
+/// its `*FRICTION`): `MORTAR` and its variants become mortar (the
+/// variants with a note that they are read as `MORTAR`), `NODE TO
+/// SURFACE`, `SURFACE TO SURFACE` and no `TYPE=` node-to-surface; the
+/// converted case says `discretisation = "mortar"` exactly for the first.
+#[test]
+fn calculix_pair_types_map_to_the_discretisation() {
+    use signorini::case::schema::DiscretisationSpec::{Mortar, NodeToSurface};
+    let deck = PathBuf::from(env!("CARGO_MANIFEST_DIR")).join("examples/calculix-deck/deck.inp");
+    let text = std::fs::read_to_string(deck)
+        .unwrap()
+        .replace("*Friction\n 0.3, 1e7\n", "");
+    let dir = tempfile::tempdir().unwrap();
+    for (given, expected, variant) in [
+        (", type=MORTAR", Mortar, false),
+        (", type=pglinmortar", Mortar, true),
+        (", type=LinMortar", Mortar, true),
+        (", type=PGMORTAR", Mortar, true),
+        (", type=NODE TO SURFACE", NodeToSurface, false),
+        (", type=node  to surface", NodeToSurface, false),
+        (", type=SURFACE TO SURFACE", NodeToSurface, false),
+        ("", NodeToSurface, false),
+    ] {
+        let path = dir.path().join("pair.inp");
+        std::fs::write(&path, text.replace(", type=SURFACE TO SURFACE", given)).unwrap();
+        let translated = signorini::case::deck::translate_file(&path, "pair.inp").unwrap();
+        assert_eq!(
+            translated.spec.contact[0].discretisation, expected,
+            "{given}"
+        );
+        let toml = signorini::case::deck::to_toml(&translated.spec);
+        assert_eq!(
+            toml.contains("discretisation = \"mortar\""),
+            expected == Mortar
+        );
+        let note = translated
+            .notes
+            .iter()
+            .any(|n| n.contains("read as MORTAR"));
+        assert_eq!(note, variant, "{given}: {:?}", translated.notes);
+    }
+}

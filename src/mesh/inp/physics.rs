@@ -262,3 +262,27 @@ impl Physics {
             .find(|m| m.name.eq_ignore_ascii_case(&section.material))
     }
 }
+
+#[cfg(test)]
+mod tests {
+    use super::PairType;
+
+    /// `TYPE=` in any case and spacing; an unknown one names the known.
+    #[test]
+    fn pair_types_parse_as_calculix_writes_them() {
+        assert_eq!(
+            PairType::parse("node  To surface"),
+            Ok(PairType::NodeToSurface)
+        );
+        assert_eq!(
+            PairType::parse("SURFACE TO SURFACE"),
+            Ok(PairType::SurfaceToSurface)
+        );
+        assert_eq!(
+            PairType::parse("PgLinMortar"),
+            Ok(PairType::Mortar("PGLINMORTAR".into()))
+        );
+        let e = PairType::parse("SEGMENT").unwrap_err();
+        assert!(e.contains("TYPE=SEGMENT") && e.contains("MORTAR"), "{e}");
+    }
+}

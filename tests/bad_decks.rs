@@ -193,19 +193,23 @@ fn bad_decks_are_refused_by_name_and_line() {
 }
 
 /// A C3D10 body's face in a `*CONTACT PAIR` (`tests/data/deck/tet_on_block.inp`:
-/// a quadratic tetrahedron's S1 on a C3D8 block's top): node-to-surface
-/// contact gives a Tri6's corners no share of a uniform pressure, so the
-/// deck is refused at the pair's line, naming the surface and the way out
-/// (mortar, or linear elements meanwhile). With the quadratic surface the
-/// primary one, the same.
+/// a quadratic tetrahedron's S1 on a C3D8 block's top). Asked for
+/// `TYPE=NODE TO SURFACE`, it is refused at the pair's line, naming the
+/// surface and the way out (node-to-surface gives a Tri6's corners no
+/// share of a uniform pressure), with the quadratic surface either the
+/// secondary or the primary one. Without `TYPE=` the pair takes dual
+/// mortar contact (`check` passes, the note says so); with `*FRICTION` it
+/// is refused at the pair's line, since mortar contact is frictionless on
+/// this branch (until mortar friction lands), as is the example
+/// `deck_c3d10.inp` with its `*FRICTION`.
 #[test]
-fn quadratic_contact_surface_is_refused_at_the_pair() {
+fn quadratic_contact_surface_takes_mortar_or_is_refused_at_the_pair() {
     let dir = tempfile::tempdir().unwrap();
     let text = std::fs::read_to_string(root().join("tests/data/deck/tet_on_block.inp")).unwrap();
     let line = line_of(&text, "TetBottom, BlockTop");
     for message in [
-        "*CONTACT PAIR: surface 'TetBottom' has quadratic faces",
-        "mortar",
+        "*CONTACT PAIR, TYPE=NODE TO SURFACE: surface 'TetBottom' has quadratic faces",
+        "TYPE=MORTAR",
         "linear elements",
     ] {
         refused(dir.path(), "tet_on_block.inp", &text, line, message);
@@ -217,6 +221,62 @@ fn quadratic_contact_surface_is_refused_at_the_pair() {
         "block_on_tet.inp",
         &swapped,
         line,
-        "*CONTACT PAIR: surface 'TetBottom' has quadratic faces",
+        "*CONTACT PAIR, TYPE=NODE TO SURFACE: surface 'TetBottom' has quadratic faces",
+    );
+    // without TYPE=: mortar
+    let mortar = text.replace(", TYPE=NODE TO SURFACE", "");
+    let path = dir.path().join("tet_mortar.inp");
+    std::fs::write(&path, &mortar).unwrap();
+    let out = Command::new(env!("CARGO_BIN_EXE_signorini"))
+        .args(["check", path.to_str().unwrap()])
+        .output()
+        .unwrap();
+    let all = format!(
+        "{}{}",
+        String::from_utf8_lossy(&out.stdout),
+        String::from_utf8_lossy(&out.stderr)
+    );
+    assert_eq!(out.status.code(), Some(0), "{all}");
+    assert!(all.contains("dual mortar contact"), "{all}");
+    // with friction: refused at the pair
+    let rough = mortar.replace(
+        "*SURFACE BEHAVIOR, PRESSURE-OVERCLOSURE=HARD\n",
+        "*SURFACE BEHAVIOR, PRESSURE-OVERCLOSURE=HARD\n*FRICTION\n0.2\n",
+    );
+    assert!(rough.contains("*FRICTION"));
+    let line = line_of(&rough, "TetBottom, BlockTop");
+    for message in [
+        "this pair takes mortar contact (its surfaces have quadratic faces)",
+        "*FRICTION with μ = 0.2",
+        "remove the *FRICTION",
+    ] {
+        refused(dir.path(), "tet_rough.inp", &rough, line, message);
+    }
+    let example =
+        std::fs::read_to_string(root().join("examples/calculix-deck/deck_c3d10.inp")).unwrap();
+    let line = line_of(&example, "Pad-1.Bottom, Base-1.Top");
+    refused(
+        dir.path(),
+        "deck_c3d10.inp",
+        &example,
+        line,
+        "*FRICTION with μ = 0.3",
+    );
+    // TYPE=MORTAR on linear faces with friction: the way out is node-to-surface
+    let t = edited("type=SURFACE TO SURFACE", "type=MORTAR");
+    refused(
+        dir.path(),
+        "mortar_rough.inp",
+        &t,
+        line_of(&t, "Pad-1.Bottom, Base-1.Top"),
+        "takes mortar contact (TYPE=MORTAR)",
+    );
+    let t = edited("type=SURFACE TO SURFACE", "type=SEGMENT");
+    refused(
+        dir.path(),
+        "segment.inp",
+        &t,
+        line_of(&t, "*Contact Pair"),
+        "*CONTACT PAIR, TYPE=SEGMENT is not known",
     );
 }

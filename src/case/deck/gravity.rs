@@ -8,22 +8,17 @@
 //! pressures.
 
 use super::super::schema::{BodyForceSpec, CaseFile};
-use super::timeline::{scaled, timeline, InStep};
-use super::{bits, give, points_ref, Bits, Channels, Points};
+use super::timeline::InStep;
+use super::{bits, give, points_ref, remove_held, Bits, Channels, Points, StepTimes};
 use crate::mesh::inp::physics::{Located, Physics};
 use crate::mesh::Mesh;
 use crate::Result;
 use std::collections::{BTreeMap, HashSet};
 
 /// `[[body_force]]` of the deck's gravity loads.
-pub(super) fn gravities(
-    physics: &Physics,
-    mesh: &Mesh,
-    spans: &[(f64, f64)],
-    first_end: f64,
-    spec: &mut CaseFile,
-) -> Result<()> {
-    let n = physics.steps.len();
+pub(super) fn gravities(times: &StepTimes, mesh: &Mesh, spec: &mut CaseFile) -> Result<()> {
+    let physics = times.physics;
+    let n = times.count();
     let mut channels: Channels<(String, usize)> = BTreeMap::new();
     let mut first: BTreeMap<String, &Located> = BTreeMap::new();
     for (k, s) in physics.steps.iter().enumerate() {
@@ -35,19 +30,12 @@ pub(super) fn gravities(
             first.entry(g.elements.clone()).or_insert(&g.at);
         }
         if s.new_pressures {
-            for steps in channels.values_mut() {
-                if matches!(steps[k], InStep::Held) {
-                    steps[k] = InStep::Removed;
-                }
-            }
+            remove_held(&mut channels, k);
         }
     }
     let mut grouped: BTreeMap<(String, Bits), ([f64; 3], Points)> = BTreeMap::new();
     for ((set, c), steps) in &channels {
-        let (scale, amplitude) = scaled(
-            &timeline(0.0, steps, spans, &physics.amplitudes)?,
-            first_end,
-        );
+        let (scale, amplitude) = times.scaled(0.0, steps)?;
         if scale == 0.0 {
             continue;
         }
@@ -99,11 +87,7 @@ fn densities(
             .filter(|e| elements.contains(e))
             .count();
         // a section without its material is refused where materials are read
-        let material = physics
-            .materials
-            .iter()
-            .find(|m| m.name.eq_ignore_ascii_case(&section.material));
-        let Some(m) = material.filter(|_| inside > 0) else {
+        let Some(m) = physics.material_of(section).filter(|_| inside > 0) else {
             continue;
         };
         let density = m

@@ -28,25 +28,23 @@
 //!   with `NLGEOM`, dead without) → `[[displacement]]`, `[[nodal_force]]`,
 //!   `[[pressure]]`, each with the amplitude of its [`timeline`].
 //! - `*CONTACT PAIR` `secondary, primary` → `[[contact]]` `surface`,
-//!   `primary` (node-to-surface, whatever `TYPE=`); `HARD` → the exact
-//!   Lagrangian (`rockafellar`); `LINEAR` slope `K` → `penalty` with
-//!   `penalty = K`; `*FRICTION` `μ, λ` → `friction_coefficient = μ`,
-//!   `tangential_penalty = λ` (CalculiX's stick slope, traction per
-//!   elastic slip); `LAGRANGE`/`EXACT` → `exact_stick`; `SLIP TOLERANCE`
-//!   → the default tangential penalty `E/h`.
+//!   `primary`, node-to-surface, or dual mortar for quadratic faces and
+//!   `TYPE=MORTAR`; `HARD`, `LINEAR`, `*FRICTION` → the law and friction
+//!   ([`contact`]).
 //! - Output: `*NODE FILE` `U` → `displacement`; `*EL FILE` `S` →
 //!   `cauchy_stress`, `von_mises`; `*CONTACT FILE` `CDIS` → `gap`, `slip`,
 //!   `CSTR` → `contact_pressure`, `contact_traction`, `PCON` →
 //!   `contact_status`; `*NODE PRINT, NSET=s` `U` → histories of the
 //!   displacement of the set's first node, `RF` → the set's reaction force.
 
+mod contact;
 mod gravity;
 mod timeline;
 mod write;
 
 use super::schema::*;
 use super::Case;
-use crate::mesh::inp::physics::{Hyperelastic, OutputKind, Overclosure, Physics};
+use crate::mesh::inp::physics::{Hyperelastic, OutputKind, Physics};
 use crate::mesh::inp::{read_deck, InpDeck};
 use crate::mesh::Mesh;
 use crate::Result;
@@ -175,7 +173,7 @@ fn translate(
         body_force: Vec::new(),
         nodal_force: Vec::new(),
         obstacle: Vec::new(),
-        contact: contacts(physics, mesh, notes)?,
+        contact: contact::contacts(physics, mesh, notes)?,
         amplitudes: BTreeMap::new(),
         step: steps,
         solver: SolverSpec::default(),
@@ -185,9 +183,14 @@ fn translate(
         },
         units: UnitsSpec::default(),
     };
-    boundaries(physics, &spans, first_end, &mut spec)?;
-    loads(physics, mesh, &spans, first_end, nlgeom, &mut spec)?;
-    gravity::gravities(physics, mesh, &spans, first_end, &mut spec)?;
+    let times = StepTimes {
+        physics,
+        spans,
+        first_end,
+    };
+    boundaries(&times, &mut spec)?;
+    loads(&times, mesh, nlgeom, &mut spec)?;
+    gravity::gravities(&times, mesh, &mut spec)?;
     outputs(physics, mesh, &mut spec, notes);
     at_time_points(physics, &mut spec, notes);
     Ok(spec)
@@ -254,16 +257,12 @@ fn steps(physics: &Physics) -> Result<(Vec<StepSpec>, Spans)> {
 fn materials(physics: &Physics, nlgeom: bool) -> Result<Vec<MaterialSpec>> {
     let mut out = Vec::new();
     for section in &physics.sections {
-        let m = physics
-            .materials
-            .iter()
-            .find(|m| m.name.eq_ignore_ascii_case(&section.material))
-            .ok_or_else(|| {
-                section.at.error(format!(
-                    "*SOLID SECTION: no *MATERIAL named '{}'",
-                    section.material
-                ))
-            })?;
+        let m = physics.material_of(section).ok_or_else(|| {
+            section.at.error(format!(
+                "*SOLID SECTION: no *MATERIAL named '{}'",
+                section.material
+            ))
+        })?;
         let bulk = |d: f64, what: &str| -> Result<f64> {
             if d > 0.0 {
                 Ok(2.0 / d)
@@ -319,83 +318,6 @@ fn materials(physics: &Physics, nlgeom: bool) -> Result<Vec<MaterialSpec>> {
     Ok(out)
 }
 
-/// `[[contact]]` of the contact pairs.
-fn contacts(physics: &Physics, mesh: &Mesh, notes: &mut Vec<String>) -> Result<Vec<ContactSpec>> {
-    let mut out = Vec::new();
-    for pair in &physics.contact_pairs {
-        quadratic_faces(pair, mesh)?;
-        let i = physics
-            .interactions
-            .iter()
-            .find(|i| i.name.eq_ignore_ascii_case(&pair.interaction))
-            .ok_or_else(|| {
-                pair.at.error(format!(
-                    "*CONTACT PAIR: no *SURFACE INTERACTION named '{}'",
-                    pair.interaction
-                ))
-            })?;
-        let (method, penalty) = match i.overclosure {
-            Overclosure::Hard => (ContactMethod::Rockafellar, None),
-            Overclosure::Linear { slope } => (ContactMethod::Penalty, Some(slope)),
-        };
-        let friction = i.friction.filter(|f| f.mu != 0.0);
-        if let Some(f) = friction {
-            if f.exact && method == ContactMethod::Penalty {
-                return Err(i.at.error(format!(
-                    "*SURFACE INTERACTION '{}': exact stick (*FRICTION, LAGRANGE) needs HARD contact, not LINEAR",
-                    i.name
-                )));
-            }
-            if f.slip_tolerance.is_some() && f.stick_slope.is_none() {
-                notes.push(format!(
-                    "*FRICTION of '{}': SLIP TOLERANCE is read as the default tangential penalty E/h",
-                    i.name
-                ));
-            }
-        }
-        out.push(ContactSpec {
-            name: None,
-            surface: pair.secondary.clone(),
-            obstacle: None,
-            primary: Some(pair.primary.clone()),
-            method,
-            penalty,
-            scaling: None,
-            friction_coefficient: friction.map(|f| f.mu),
-            tangential_penalty: friction.and_then(|f| f.stick_slope),
-            exact_stick: friction.map(|f| f.exact),
-            friction_multiplier: None,
-            initial_penetration_tolerance: None,
-            two_pass: false,
-            discretisation: Default::default(),
-        });
-    }
-    if !out.is_empty() {
-        notes.push(
-            "*CONTACT PAIR: node-to-surface contact of the secondary (first) surface's nodes on the primary (second) surface; HARD is the exact Lagrangian, LINEAR a penalty with the deck's slope, the *FRICTION stick slope the tangential penalty".into(),
-        );
-    }
-    Ok(out)
-}
-
-/// [`SetupError::QuadraticSurface`](crate::contact::setup::SetupError)
-/// at the `*CONTACT PAIR`'s line (the case's check would name a line of
-/// the converted case instead of the deck's).
-fn quadratic_faces(pair: &crate::mesh::inp::physics::ContactPairDef, mesh: &Mesh) -> Result<()> {
-    for name in [&pair.secondary, &pair.primary] {
-        let quadratic = mesh
-            .surface(name)
-            .is_some_and(|s| s.facets.iter().any(|f| f.kind.is_quadratic()));
-        if quadratic {
-            return Err(pair.at.error(format!(
-                "*CONTACT PAIR: {}",
-                crate::contact::setup::SetupError::quadratic_surface_message(name)
-            )));
-        }
-    }
-    Ok(())
-}
-
 /// Each deck step's `[start, end]` in total time.
 type Spans = Vec<(f64, f64)>;
 
@@ -411,15 +333,46 @@ fn give<'a, K: Ord>(channels: &mut Channels<'a, K>, key: K, k: usize, n: usize, 
     channels.entry(key).or_insert_with(|| vec![InStep::Held; n])[k] = given;
 }
 
+/// `OP=NEW` in step `k`: every quantity of `channels` not given again
+/// there is removed (ramps down to zero over the step).
+fn remove_held<K>(channels: &mut Channels<'_, K>, k: usize) {
+    for steps in channels.values_mut() {
+        if matches!(steps[k], InStep::Held) {
+            steps[k] = InStep::Removed;
+        }
+    }
+}
+
+/// The deck's steps in total time: what turns a quantity's values over
+/// the steps into a case's value and amplitude.
+struct StepTimes<'a> {
+    physics: &'a Physics,
+    /// Each deck step's `[start, end]` in total time.
+    spans: Spans,
+    /// The end of the first step, where a case's amplitude is 1.
+    first_end: f64,
+}
+
+impl StepTimes<'_> {
+    /// The number of deck steps.
+    fn count(&self) -> usize {
+        self.physics.steps.len()
+    }
+
+    /// `(value, amplitude)` of a quantity that is `start` at time 0 and
+    /// does `steps[k]` in step `k`: its [`timeline`] `f(t)` as
+    /// `value × a(t)`, `value = f(first_end)` ([`scaled`]).
+    fn scaled(&self, start: f64, steps: &[InStep]) -> Result<(f64, Points)> {
+        let points = timeline(start, steps, &self.spans, &self.physics.amplitudes)?;
+        Ok(scaled(&points, self.first_end))
+    }
+}
+
 /// `[[displacement]]` of the `*BOUNDARY`s: per node set, the dofs with the
 /// same amplitude together.
-fn boundaries(
-    physics: &Physics,
-    spans: &[(f64, f64)],
-    first_end: f64,
-    spec: &mut CaseFile,
-) -> Result<()> {
-    let n = physics.steps.len();
+fn boundaries(times: &StepTimes, spec: &mut CaseFile) -> Result<()> {
+    let physics = times.physics;
+    let n = times.count();
     let mut channels: Channels<(String, usize)> = BTreeMap::new();
     let mut initial: BTreeMap<(String, usize), f64> = BTreeMap::new();
     for b in &physics.initial_boundaries {
@@ -457,8 +410,7 @@ fn boundaries(
     let mut amplitudes = BTreeMap::new();
     for ((set, dof), steps) in &channels {
         let start = initial.get(&(set.clone(), *dof)).copied().unwrap_or(0.0);
-        let points = timeline(start, steps, spans, &physics.amplitudes)?;
-        let (scale, amplitude) = scaled(&points, first_end);
+        let (scale, amplitude) = times.scaled(start, steps)?;
         let key = bits(&amplitude);
         amplitudes.insert(key.clone(), amplitude);
         grouped.entry((set.clone(), key)).or_default()[*dof] = Some(scale);
@@ -493,15 +445,9 @@ fn points_ref(amplitude: &Option<Vec<(f64, f64)>>) -> Option<AmplitudeRef> {
 
 /// `[[nodal_force]]` of the `*CLOAD`s and `[[pressure]]` of the
 /// `*DLOAD`/`*DSLOAD`s.
-fn loads(
-    physics: &Physics,
-    mesh: &Mesh,
-    spans: &[(f64, f64)],
-    first_end: f64,
-    nlgeom: bool,
-    spec: &mut CaseFile,
-) -> Result<()> {
-    let n = physics.steps.len();
+fn loads(times: &StepTimes, mesh: &Mesh, nlgeom: bool, spec: &mut CaseFile) -> Result<()> {
+    let physics = times.physics;
+    let n = times.count();
     let mut forces: Channels<(String, usize)> = BTreeMap::new();
     let mut pressures: Channels<String> = BTreeMap::new();
     for (k, s) in physics.steps.iter().enumerate() {
@@ -525,24 +471,16 @@ fn loads(
         }
     }
     for (k, s) in physics.steps.iter().enumerate() {
-        let remove = |steps: &mut Vec<InStep>| {
-            if matches!(steps[k], InStep::Held) {
-                steps[k] = InStep::Removed;
-            }
-        };
         if s.new_cloads {
-            forces.values_mut().for_each(remove);
+            remove_held(&mut forces, k);
         }
         if s.new_pressures {
-            pressures.values_mut().for_each(remove);
+            remove_held(&mut pressures, k);
         }
     }
     let mut grouped: BTreeMap<(String, Bits), ([f64; 3], Points)> = BTreeMap::new();
     for ((set, dof), steps) in &forces {
-        let (scale, amplitude) = scaled(
-            &timeline(0.0, steps, spans, &physics.amplitudes)?,
-            first_end,
-        );
+        let (scale, amplitude) = times.scaled(0.0, steps)?;
         let count = mesh.node_set(set).map_or(1, |s| s.nodes.len()) as f64;
         let entry = grouped
             .entry((set.clone(), bits(&amplitude)))
@@ -557,10 +495,7 @@ fn loads(
         });
     }
     for (surface, steps) in &pressures {
-        let (scale, amplitude) = scaled(
-            &timeline(0.0, steps, spans, &physics.amplitudes)?,
-            first_end,
-        );
+        let (scale, amplitude) = times.scaled(0.0, steps)?;
         spec.pressure.push(PressureSpec {
             surface: surface.clone(),
             value: scale,

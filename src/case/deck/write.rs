@@ -1,7 +1,7 @@
 //! A [`CaseFile`] written as case-file TOML: the keys a deck's
 //! translation sets (mesh, materials, displacements, pressures, nodal
-//! forces, body forces, contacts, steps, output name, every, fields and
-//! histories), numbers
+//! forces, body forces, contacts with their discretisation, steps, output
+//! name, every, fields and histories), numbers
 //! in Rust's shortest round-trip form, so the text parses back to the same
 //! values bit for bit.
 
@@ -95,6 +95,9 @@ fn contact(out: &mut String, c: &ContactSpec) {
         ContactMethod::Slack => "slack",
     };
     let _ = writeln!(out, "method = \"{method}\"");
+    if c.discretisation == DiscretisationSpec::Mortar {
+        let _ = writeln!(out, "discretisation = \"mortar\"");
+    }
     opt(out, "penalty", c.penalty);
     opt(out, "scaling", c.scaling);
     opt(out, "friction_coefficient", c.friction_coefficient);

@@ -460,9 +460,13 @@ impl Reader<'_> {
             })
     }
 
-    /// `*CONTACT PAIR, INTERACTION=…`: lines `secondary, primary`.
+    /// `*CONTACT PAIR, INTERACTION=…[, TYPE=…]`: lines `secondary, primary`.
     fn contact_pair(&mut self, line: &Line, keyword: &Keyword, data: &[Line]) -> Result<()> {
         let interaction = self.required(line, keyword, "INTERACTION")?.to_string();
+        let pair_type = match keyword.param("TYPE") {
+            None => PairType::Unspecified,
+            Some(t) => PairType::parse(t).map_err(|m| self.err(line, m))?,
+        };
         self.refuse(line, keyword, &["TIED", "HCRIT", "EXTENSION ZONE"])?;
         if let Some(adjust) = keyword.param("ADJUST") {
             if !adjust.parse::<f64>().is_ok_and(|a| a == 0.0) {
@@ -490,6 +494,7 @@ impl Reader<'_> {
             let primary = self.surface_name(l, f[1], "*CONTACT PAIR primary surface")?;
             self.physics.contact_pairs.push(ContactPairDef {
                 interaction: interaction.clone(),
+                pair_type: pair_type.clone(),
                 secondary,
                 primary,
                 at: self.deck.locate(l),

@@ -98,10 +98,48 @@ pub struct InteractionDef {
     pub at: Located,
 }
 
-/// `*CONTACT PAIR, INTERACTION=…`: `secondary, primary` surfaces.
+/// `*CONTACT PAIR, TYPE=…`: the discretisation the deck asks for
+/// (CalculiX's keyword; Abaqus writes `TYPE=SURFACE TO SURFACE` too).
+#[derive(Clone, Debug, PartialEq, Eq)]
+pub enum PairType {
+    /// No `TYPE=` (CalculiX's default is `NODE TO SURFACE`).
+    Unspecified,
+    /// `TYPE=NODE TO SURFACE`.
+    NodeToSurface,
+    /// `TYPE=SURFACE TO SURFACE` (CalculiX's face-to-face penalty contact).
+    SurfaceToSurface,
+    /// `TYPE=MORTAR`, `LINMORTAR`, `PGMORTAR` or `PGLINMORTAR` (the name,
+    /// upper case): CalculiX's mortar variants.
+    Mortar(String),
+}
+
+impl PairType {
+    /// The type of `TYPE=value` (any case, any spacing), or the message
+    /// naming the types there are.
+    pub fn parse(value: &str) -> Result<Self, String> {
+        let words: Vec<String> = value
+            .split_whitespace()
+            .map(str::to_ascii_uppercase)
+            .collect();
+        match words.join(" ").as_str() {
+            "NODE TO SURFACE" => Ok(Self::NodeToSurface),
+            "SURFACE TO SURFACE" => Ok(Self::SurfaceToSurface),
+            m @ ("MORTAR" | "LINMORTAR" | "PGMORTAR" | "PGLINMORTAR") => {
+                Ok(Self::Mortar(m.to_string()))
+            }
+            _ => Err(format!(
+                "*CONTACT PAIR, TYPE={value} is not known: give NODE TO SURFACE, SURFACE TO \
+                 SURFACE, MORTAR, LINMORTAR, PGMORTAR or PGLINMORTAR"
+            )),
+        }
+    }
+}
+
+/// `*CONTACT PAIR, INTERACTION=…[, TYPE=…]`: `secondary, primary` surfaces.
 #[derive(Clone, Debug)]
 pub struct ContactPairDef {
     pub interaction: String,
+    pub pair_type: PairType,
     pub secondary: String,
     pub primary: String,
     pub at: Located,
@@ -214,4 +252,37 @@ pub struct Physics {
     pub steps: Vec<StepDef>,
     /// Keywords read that do not change the answer, `*NAME`, each once.
     pub without_effect: Vec<String>,
+}
+
+impl Physics {
+    /// The `*MATERIAL` that `section` names (names compare without case).
+    pub fn material_of(&self, section: &SectionDef) -> Option<&MaterialDef> {
+        self.materials
+            .iter()
+            .find(|m| m.name.eq_ignore_ascii_case(&section.material))
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::PairType;
+
+    /// `TYPE=` in any case and spacing; an unknown one names the known.
+    #[test]
+    fn pair_types_parse_as_calculix_writes_them() {
+        assert_eq!(
+            PairType::parse("node  To surface"),
+            Ok(PairType::NodeToSurface)
+        );
+        assert_eq!(
+            PairType::parse("SURFACE TO SURFACE"),
+            Ok(PairType::SurfaceToSurface)
+        );
+        assert_eq!(
+            PairType::parse("PgLinMortar"),
+            Ok(PairType::Mortar("PGLINMORTAR".into()))
+        );
+        let e = PairType::parse("SEGMENT").unwrap_err();
+        assert!(e.contains("TYPE=SEGMENT") && e.contains("MORTAR"), "{e}");
+    }
 }

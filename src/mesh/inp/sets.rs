@@ -37,9 +37,9 @@ impl Reader<'_> {
             keyword,
             data,
             name,
-            what,
-            item,
+            kind,
         } = set;
+        let (what, item) = kind.words();
         let generate = keyword.has("GENERATE");
         let mut members = Vec::new();
         for l in data {
@@ -119,14 +119,7 @@ impl Reader<'_> {
         let b = &self.builder;
         let c = &self.context;
         let members = self.set_members(
-            SetBlock {
-                line,
-                keyword,
-                data,
-                name: &name,
-                what: "*ELSET",
-                item: "element",
-            },
+            SetBlock::new(SetKind::Element, line, keyword, data, &name),
             |id| b.element(c.element(id)),
             |set| b.element_sets.get(set).map(Vec::as_slice),
         )?;
@@ -151,14 +144,7 @@ impl Reader<'_> {
             nodes = b.member_nodes(members);
         }
         nodes.extend(self.set_members(
-            SetBlock {
-                line,
-                keyword,
-                data,
-                name: &name,
-                what: "*NSET",
-                item: "node",
-            },
+            SetBlock::new(SetKind::Node, line, keyword, data, &name),
             |id| b.node(c.node(id)),
             |set| b.node_sets.get(set).map(Vec::as_slice),
         )?);
@@ -176,7 +162,40 @@ struct SetBlock<'a> {
     data: &'a [Line],
     /// The set's name.
     name: &'a str,
-    /// The keyword and the kind of item, e.g. `"*NSET"` and `"node"`.
-    what: &'a str,
-    item: &'a str,
+    kind: SetKind,
+}
+
+impl<'a> SetBlock<'a> {
+    fn new(
+        kind: SetKind,
+        line: &'a Line,
+        keyword: &'a Keyword,
+        data: &'a [Line],
+        name: &'a str,
+    ) -> Self {
+        Self {
+            line,
+            keyword,
+            data,
+            name,
+            kind,
+        }
+    }
+}
+
+/// The kind of set a block defines.
+#[derive(Clone, Copy)]
+enum SetKind {
+    Node,
+    Element,
+}
+
+impl SetKind {
+    /// The keyword and the kind of item: `("*NSET", "node")`.
+    fn words(self) -> (&'static str, &'static str) {
+        match self {
+            SetKind::Node => ("*NSET", "node"),
+            SetKind::Element => ("*ELSET", "element"),
+        }
+    }
 }

@@ -45,6 +45,11 @@
 //! contact cap read −1e-2 for a true gap of +1e-3). The threshold is our
 //! choice, not Popp et al.'s; a consistent dual basis on the covered part
 //! (Cichosz & Bischoff 2011) is the published remedy, not done yet.
+//!
+//! After Newton converged, [`MortarSurfaces::pairs_hold`] searches again
+//! at the converged state: where the pairs it adds change a node's gap
+//! (bodies that started apart and closed within the increment), the
+//! stepper cuts the increment and the next search grows with the motion.
 
 use super::friction::{Coulomb, FrictionHistory, SlipKinematics, TangentialResponse};
 use super::kinematics::{
@@ -236,35 +241,7 @@ impl MortarSurfaces {
     /// primary face's box grown by `2 h_f + 2 motion` against the
     /// secondary faces' boxes. Returns whether a pair changed.
     pub fn refresh(&mut self, reference: &[[f64; 3]], x: &[f64], motion: f64) -> bool {
-        let xs = coordinates(reference, x);
-        let mut smallest = f64::INFINITY;
-        let tree = RTree::bulk_load(
-            self.primary_faces
-                .iter()
-                .enumerate()
-                .map(|(p, face)| {
-                    let margin = 2.0 * face_size(face, &xs) + 2.0 * motion;
-                    if margin > 0.0 {
-                        smallest = smallest.min(margin);
-                    }
-                    let (lo, hi) = face_box(face, &xs, margin);
-                    GeomWithData::new(Rectangle::from_corners(lo, hi), p)
-                })
-                .collect(),
-        );
-        let candidates: Vec<Vec<usize>> = self
-            .secondary_faces
-            .iter()
-            .map(|face| {
-                let (lo, hi) = face_box(face, &xs, 0.0);
-                let mut found: Vec<usize> = tree
-                    .locate_in_envelope_intersecting(AABB::from_corners(lo, hi))
-                    .map(|p| p.data)
-                    .collect();
-                found.sort_unstable();
-                found
-            })
-            .collect();
+        let (candidates, smallest) = self.search(&coordinates(reference, x), motion);
         let changed = candidates != self.candidates;
         if changed {
             self.cache.clear();
@@ -274,6 +251,96 @@ impl MortarSurfaces {
             self.margin = smallest.max(1e-3 * self.element_size);
         }
         changed
+    }
+
+    /// Per secondary face, the primary faces whose box grown by
+    /// `2 h_f + 2 motion` meets its box at coordinates `xs`; and the
+    /// smallest positive growth.
+    fn search(&self, xs: &[Vector3<f64>], motion: f64) -> (Vec<Vec<usize>>, f64) {
+        let mut smallest = f64::INFINITY;
+        let tree = RTree::bulk_load(
+            self.primary_faces
+                .iter()
+                .enumerate()
+                .map(|(p, face)| {
+                    let margin = 2.0 * face_size(face, xs) + 2.0 * motion;
+                    if margin > 0.0 {
+                        smallest = smallest.min(margin);
+                    }
+                    let (lo, hi) = face_box(face, xs, margin);
+                    GeomWithData::new(Rectangle::from_corners(lo, hi), p)
+                })
+                .collect(),
+        );
+        let candidates = self
+            .secondary_faces
+            .iter()
+            .map(|face| {
+                let (lo, hi) = face_box(face, xs, 0.0);
+                let mut found: Vec<usize> = tree
+                    .locate_in_envelope_intersecting(AABB::from_corners(lo, hi))
+                    .map(|p| p.data)
+                    .collect();
+                found.sort_unstable();
+                found
+            })
+            .collect();
+        (candidates, smallest)
+    }
+
+    /// Whether the candidate pairs of the increment's start still give
+    /// every secondary node the gap a fresh search at unknowns `x` would
+    /// (the same normalised gap `g̃_j/D_j` to 1e-9 of the element size, or
+    /// open either way), as [`PrimarySurface`](super::primary)'s pairs
+    /// must hold: otherwise the stepper cuts the increment, and the next
+    /// search grows with the motion. The gaps are the rows' values
+    /// ([`mortar_row_values`]) with the pairs used and with those and the
+    /// fresh ones.
+    pub fn pairs_hold(&self, reference: &[[f64; 3]], x: &[f64]) -> bool {
+        let xs = coordinates(reference, x);
+        let (fresh, _) = self.search(&xs, 0.0);
+        let used = self.pairs();
+        let mut all = used.clone();
+        for (s, (now, before)) in fresh.iter().zip(&self.candidates).enumerate() {
+            all.extend(now.iter().filter(|p| !before.contains(p)).map(|&p| (s, p)));
+        }
+        if all.len() == used.len() {
+            return true;
+        }
+        let gaps = |pairs: &[(usize, usize)]| self.covered_gaps(pairs, &xs);
+        let (Some(before), Some(now)) = (gaps(&used), gaps(&all)) else {
+            return false;
+        };
+        let tolerance = 1e-9 * self.element_size;
+        let open = self.margin;
+        let nodes: std::collections::BTreeSet<usize> =
+            before.keys().chain(now.keys()).copied().collect();
+        let holds = nodes.iter().all(|n| {
+            let a = before.get(n).copied().unwrap_or(open);
+            let b = now.get(n).copied().unwrap_or(open);
+            (a - b).abs() <= tolerance || (a > 0.0 && b > 0.0)
+        });
+        holds
+    }
+
+    /// The normalised gap `g̃_j/D_j` of every covered secondary node
+    /// (see "Search") from the face `pairs` at coordinates `xs`; `None`
+    /// where a face cannot be integrated.
+    fn covered_gaps(
+        &self,
+        pairs: &[(usize, usize)],
+        xs: &[Vector3<f64>],
+    ) -> Option<BTreeMap<usize, f64>> {
+        let values =
+            mortar_row_values(&self.secondary_faces, &self.primary_faces, pairs, xs).ok()?;
+        let full = full_integrals(&self.secondary_faces, xs);
+        Some(
+            values
+                .into_iter()
+                .filter(|r| r.d > 0.0 && covered(r.d, full.get(&r.node)))
+                .map(|r| (r.node, r.weighted_gap / r.d))
+                .collect(),
+        )
     }
 
     /// The candidate (secondary face, primary face) pairs.
@@ -302,19 +369,20 @@ impl MortarSurfaces {
         nodes
     }
 
-    /// `D_j` of every secondary node `nodes` in the reference configuration
-    /// of `mesh` (`None` where the coupling fails to integrate; 0 at a node
-    /// without segments): the nodes' areas `A_j`, from the producer's rows'
-    /// values ([`row_values`](Self::row_values)).
+    /// The areas `A_j` of the secondary `nodes` in the reference
+    /// configuration of `mesh`: `∫ Ñ_j dA` over each node's faces, the
+    /// `D_j` of a fully covered node ([`node_integrals`], as the coverage
+    /// test reads it; 0 at a node on no face). Not the reference `D_j`
+    /// itself: where the bodies start apart, the first search pairs only
+    /// the faces within its margin, and the two spheres' contact edge read
+    /// 6 % too little area that way.
     pub fn reference_areas(&self, mesh: &Mesh, nodes: &[usize]) -> Option<Vec<f64>> {
-        let values = self
-            .row_values(&mesh.nodes, &vec![0.0; 3 * mesh.num_nodes()])
-            .ok()?;
-        let d: BTreeMap<usize, f64> = values.iter().map(|r| (r.node, r.d)).collect();
+        let xs = coordinates(&mesh.nodes, &vec![0.0; 3 * mesh.num_nodes()]);
+        let full = full_integrals(&self.secondary_faces, &xs);
         Some(
             nodes
                 .iter()
-                .map(|n| d.get(n).copied().unwrap_or(0.0))
+                .map(|n| full.get(n).copied().unwrap_or(0.0))
                 .collect(),
         )
     }
@@ -367,12 +435,17 @@ impl MortarSurfaces {
         )
         .unwrap_or_default();
         let full = full_integrals(&self.secondary_faces, coordinates);
-        let covered = |r: &MortarRow| r.d >= 0.5 * full.get(&r.node).copied().unwrap_or(0.0);
         rows.into_iter()
-            .filter(covered)
+            .filter(|r| covered(r.d, full.get(&r.node)))
             .map(|r| (r.node, r))
             .collect()
     }
+}
+
+/// Whether a node with `D_j = d` takes part: `D_j ≥ ½ ∫ Ñ_j dA` over its
+/// faces (`full`; see the module docs, "Search").
+fn covered(d: f64, full: Option<&f64>) -> bool {
+    d >= 0.5 * full.copied().unwrap_or(0.0)
 }
 
 /// `∫ Ñ_j dA` over all secondary faces of every node `j` (a fully covered

@@ -152,8 +152,8 @@ impl RowCache {
     fn rows(&self, key: Vec<f64>, integrate: impl FnOnce() -> MortarRows) -> Arc<MortarRows> {
         self.requested.fetch_add(1, Ordering::Relaxed);
         let mut entries = self.entries.lock().unwrap_or_else(|e| e.into_inner());
-        if let Some(at) = entries.iter().position(|(k, _)| *k == key) {
-            let entry = entries.remove(at).expect("a found entry");
+        let found = entries.iter().position(|(k, _)| *k == key);
+        if let Some(entry) = found.and_then(|at| entries.remove(at)) {
             let rows = entry.1.clone();
             entries.push_front(entry);
             return rows;

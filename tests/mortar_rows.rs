@@ -1,5 +1,6 @@
 //! The assembled mortar rows (`mortar_rows`): values equal to the
-//! reference path `mortar_coupling`, gradients of `D_j`, `M_jl`, `n_j`,
+//! reference path `mortar_coupling` and, bit for bit, to the values-only
+//! path `mortar_row_values`, gradients of `D_j`, `M_jl`, `n_j`,
 //! `g̃_j` and the lever `b_j` against central differences (`h = 1e-6`, to
 //! 1e-6 relative) on curved non-matching surfaces of every shape pairing,
 //! and the identities a wrong linearisation breaks (Popp, Gitterle, Gee &
@@ -19,7 +20,7 @@ use mortar_common::{
 use nalgebra::{DVector, Vector3};
 use signorini::contact::mortar::quadratic::{mid_side_edges, mortar_values};
 use signorini::contact::mortar::{
-    all_pairs, mortar_coupling, mortar_rows, FaceShape, MortarRow, SurfaceFace,
+    all_pairs, mortar_coupling, mortar_row_values, mortar_rows, FaceShape, MortarRow, SurfaceFace,
 };
 
 const H: f64 = 1e-6;
@@ -98,8 +99,19 @@ fn values_equal_the_coupling() {
             let gaps = coupling.weighted_gaps(&s.coords);
             let rows = rows(&s, &s.coords);
             assert_eq!(rows.len(), coupling.d.len());
-            for row in &rows {
+            let values = mortar_row_values(&s.secondary, &s.primary, &pairs, &s.coords).unwrap();
+            assert_eq!(values.len(), rows.len());
+            for (row, values) in rows.iter().zip(&values) {
                 let what = format!("{s_shape:?}–{p_shape:?} node {}", row.node);
+                // the values-only path: the same numbers, bit for bit
+                assert_eq!(values.node, row.node, "{what}");
+                assert_eq!(values.d, row.d, "{what}: D (values only)");
+                assert_eq!(values.m, row.m, "{what}: M (values only)");
+                assert_eq!(values.normal, row.normal, "{what}: n (values only)");
+                assert_eq!(
+                    values.weighted_gap, row.weighted_gap,
+                    "{what}: g̃ (values only)"
+                );
                 assert!((row.d - coupling.d[&row.node]).abs() < 1e-14, "{what}: D");
                 assert!(
                     (row.normal - coupling.normals[&row.node]).norm() < 1e-14,

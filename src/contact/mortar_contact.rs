@@ -45,6 +45,11 @@
 //! contact cap read −1e-2 for a true gap of +1e-3). The threshold is our
 //! choice, not Popp et al.'s; a consistent dual basis on the covered part
 //! (Cichosz & Bischoff 2011) is the published remedy, not done yet.
+//!
+//! After Newton converged, [`MortarSurfaces::pairs_hold`] searches again
+//! at the converged state: where the pairs it adds change a node's gap
+//! (bodies that started apart and closed within the increment), the
+//! stepper cuts the increment and the next search grows with the motion.
 
 use super::friction::{Coulomb, FrictionHistory, SlipKinematics, TangentialResponse};
 use super::kinematics::{
@@ -52,13 +57,16 @@ use super::kinematics::{
     SlipFrame,
 };
 use super::laws::NodeContactState;
-use super::mortar::quadratic::mortar_values;
-use super::mortar::{mortar_coupling, mortar_rows, FaceShape, MortarRow, SurfaceFace};
+use super::mortar::{
+    mortar_row_values, mortar_rows, node_integrals, FaceShape, MortarRow, RowValues, SurfaceFace,
+};
 use crate::mesh::{FacetKind, Mesh};
 use nalgebra::{DMatrix, Dyn, OMatrix, Vector3, U3};
 use rstar::primitives::{GeomWithData, Rectangle};
 use rstar::{RTree, AABB};
-use std::collections::BTreeMap;
+use std::collections::{BTreeMap, VecDeque};
+use std::sync::atomic::{AtomicUsize, Ordering};
+use std::sync::{Arc, Mutex};
 
 /// The two surfaces of a mortar interface and their candidate face pairs.
 #[derive(Clone, Debug)]
@@ -83,6 +91,86 @@ pub struct MortarSurfaces {
     /// The search margin of the last refresh: the gap reported for a node
     /// without a segment.
     pub margin: f64,
+    /// Every node of either surface's faces (sorted): the coordinates the
+    /// rows depend on.
+    surface_nodes: Vec<usize>,
+    /// The rows of the last configurations ([`RowCache`]).
+    cache: RowCache,
+}
+
+/// The producer's rows per secondary node (those covered, see "Search").
+pub type MortarRows = BTreeMap<usize, MortarRow>;
+
+/// How many configurations the row cache keeps: Newton's iterate and the
+/// line search's trial (the driver advances the states at the iterate
+/// after evaluating the trial).
+const CACHED_CONFIGURATIONS: usize = 2;
+
+/// The producer's rows at the last [`CACHED_CONFIGURATIONS`]
+/// configurations, keyed by the coordinates of the surfaces' nodes: every
+/// driver operation at one state (the residual, its tangent, the states'
+/// advance, the commit, the gaps) segments and integrates it once. A clone
+/// starts empty (it may refresh its candidates on its own); counts of rows
+/// asked for and integrated, [`MortarSurfaces::row_counts`].
+#[derive(Default)]
+struct RowCache {
+    entries: Mutex<VecDeque<(Vec<f64>, Arc<MortarRows>)>>,
+    requested: AtomicUsize,
+    integrated: AtomicUsize,
+}
+
+impl Clone for RowCache {
+    fn clone(&self) -> Self {
+        Self::default()
+    }
+}
+
+impl std::fmt::Debug for RowCache {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        write!(f, "RowCache({:?})", self.counts())
+    }
+}
+
+/// How often the producer asked for the rows of a configuration, and how
+/// often it segmented and integrated them (the rest came from the cache).
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+pub struct RowCounts {
+    pub requested: usize,
+    pub integrated: usize,
+}
+
+impl RowCache {
+    fn counts(&self) -> RowCounts {
+        RowCounts {
+            requested: self.requested.load(Ordering::Relaxed),
+            integrated: self.integrated.load(Ordering::Relaxed),
+        }
+    }
+
+    /// The rows at `key`, from the cache or from `integrate` (then kept,
+    /// the oldest configuration dropped).
+    fn rows(&self, key: Vec<f64>, integrate: impl FnOnce() -> MortarRows) -> Arc<MortarRows> {
+        self.requested.fetch_add(1, Ordering::Relaxed);
+        let mut entries = self.entries.lock().unwrap_or_else(|e| e.into_inner());
+        let found = entries.iter().position(|(k, _)| *k == key);
+        if let Some(entry) = found.and_then(|at| entries.remove(at)) {
+            let rows = entry.1.clone();
+            entries.push_front(entry);
+            return rows;
+        }
+        self.integrated.fetch_add(1, Ordering::Relaxed);
+        let rows = Arc::new(integrate());
+        entries.push_front((key, rows.clone()));
+        entries.truncate(CACHED_CONFIGURATIONS);
+        rows
+    }
+
+    fn clear(&self) {
+        self.entries
+            .lock()
+            .unwrap_or_else(|e| e.into_inner())
+            .clear();
+    }
 }
 
 /// The face shape of a mesh facet (same node order).
@@ -128,6 +216,11 @@ impl MortarSurfaces {
             .map(|f| face_size(f, &reference).powi(2))
             .sum();
         let element_size = (area / primary_faces.len().max(1) as f64).sqrt();
+        let mut surface_nodes: Vec<usize> = (secondary_faces.iter().chain(&primary_faces))
+            .flat_map(|f| f.nodes.iter().copied())
+            .collect();
+        surface_nodes.sort_unstable();
+        surface_nodes.dedup();
         let mut out = Self {
             primary_surface: primary.to_string(),
             secondary_faces,
@@ -137,6 +230,8 @@ impl MortarSurfaces {
             candidates: Vec::new(),
             element_size,
             margin: 2.0 * element_size,
+            surface_nodes,
+            cache: RowCache::default(),
         };
         out.refresh(&mesh.nodes, &vec![0.0; 3 * mesh.num_nodes()], 0.0);
         Some(out)
@@ -146,27 +241,42 @@ impl MortarSurfaces {
     /// primary face's box grown by `2 h_f + 2 motion` against the
     /// secondary faces' boxes. Returns whether a pair changed.
     pub fn refresh(&mut self, reference: &[[f64; 3]], x: &[f64], motion: f64) -> bool {
-        let xs = coordinates(reference, x);
+        let (candidates, smallest) = self.search(&coordinates(reference, x), motion);
+        let changed = candidates != self.candidates;
+        if changed {
+            self.cache.clear();
+        }
+        self.candidates = candidates;
+        if smallest.is_finite() {
+            self.margin = smallest.max(1e-3 * self.element_size);
+        }
+        changed
+    }
+
+    /// Per secondary face, the primary faces whose box grown by
+    /// `2 h_f + 2 motion` meets its box at coordinates `xs`; and the
+    /// smallest positive growth.
+    fn search(&self, xs: &[Vector3<f64>], motion: f64) -> (Vec<Vec<usize>>, f64) {
         let mut smallest = f64::INFINITY;
         let tree = RTree::bulk_load(
             self.primary_faces
                 .iter()
                 .enumerate()
                 .map(|(p, face)| {
-                    let margin = 2.0 * face_size(face, &xs) + 2.0 * motion;
+                    let margin = 2.0 * face_size(face, xs) + 2.0 * motion;
                     if margin > 0.0 {
                         smallest = smallest.min(margin);
                     }
-                    let (lo, hi) = face_box(face, &xs, margin);
+                    let (lo, hi) = face_box(face, xs, margin);
                     GeomWithData::new(Rectangle::from_corners(lo, hi), p)
                 })
                 .collect(),
         );
-        let candidates: Vec<Vec<usize>> = self
+        let candidates = self
             .secondary_faces
             .iter()
             .map(|face| {
-                let (lo, hi) = face_box(face, &xs, 0.0);
+                let (lo, hi) = face_box(face, xs, 0.0);
                 let mut found: Vec<usize> = tree
                     .locate_in_envelope_intersecting(AABB::from_corners(lo, hi))
                     .map(|p| p.data)
@@ -175,12 +285,62 @@ impl MortarSurfaces {
                 found
             })
             .collect();
-        let changed = candidates != self.candidates;
-        self.candidates = candidates;
-        if smallest.is_finite() {
-            self.margin = smallest.max(1e-3 * self.element_size);
+        (candidates, smallest)
+    }
+
+    /// Whether the candidate pairs of the increment's start still give
+    /// every secondary node the gap a fresh search at unknowns `x` would
+    /// (the same normalised gap `g̃_j/D_j` to 1e-9 of the element size, or
+    /// open either way), as [`PrimarySurface`](super::primary)'s pairs
+    /// must hold: otherwise the stepper cuts the increment, and the next
+    /// search grows with the motion. The gaps are the rows' values
+    /// ([`mortar_row_values`]) with the pairs used and with those and the
+    /// fresh ones.
+    pub fn pairs_hold(&self, reference: &[[f64; 3]], x: &[f64]) -> bool {
+        let xs = coordinates(reference, x);
+        let (fresh, _) = self.search(&xs, 0.0);
+        let used = self.pairs();
+        let mut all = used.clone();
+        for (s, (now, before)) in fresh.iter().zip(&self.candidates).enumerate() {
+            all.extend(now.iter().filter(|p| !before.contains(p)).map(|&p| (s, p)));
         }
-        changed
+        if all.len() == used.len() {
+            return true;
+        }
+        let gaps = |pairs: &[(usize, usize)]| self.covered_gaps(pairs, &xs);
+        let (Some(before), Some(now)) = (gaps(&used), gaps(&all)) else {
+            return false;
+        };
+        let tolerance = 1e-9 * self.element_size;
+        let open = self.margin;
+        let nodes: std::collections::BTreeSet<usize> =
+            before.keys().chain(now.keys()).copied().collect();
+        let holds = nodes.iter().all(|n| {
+            let a = before.get(n).copied().unwrap_or(open);
+            let b = now.get(n).copied().unwrap_or(open);
+            (a - b).abs() <= tolerance || (a > 0.0 && b > 0.0)
+        });
+        holds
+    }
+
+    /// The normalised gap `g̃_j/D_j` of every covered secondary node
+    /// (see "Search") from the face `pairs` at coordinates `xs`; `None`
+    /// where a face cannot be integrated.
+    fn covered_gaps(
+        &self,
+        pairs: &[(usize, usize)],
+        xs: &[Vector3<f64>],
+    ) -> Option<BTreeMap<usize, f64>> {
+        let values =
+            mortar_row_values(&self.secondary_faces, &self.primary_faces, pairs, xs).ok()?;
+        let full = full_integrals(&self.secondary_faces, xs);
+        Some(
+            values
+                .into_iter()
+                .filter(|r| r.d > 0.0 && covered(r.d, full.get(&r.node)))
+                .map(|r| (r.node, r.weighted_gap / r.d))
+                .collect(),
+        )
     }
 
     /// The candidate (secondary face, primary face) pairs.
@@ -209,30 +369,88 @@ impl MortarSurfaces {
         nodes
     }
 
-    /// `D_j` of every secondary node `nodes` in the reference configuration
-    /// of `mesh` (`None` where the coupling fails to integrate; 0 at a node
-    /// without segments): the nodes' areas `A_j`.
+    /// The areas `A_j` of the secondary `nodes` in the reference
+    /// configuration of `mesh`: `∫ Ñ_j dA` over each node's faces, the
+    /// `D_j` of a fully covered node ([`node_integrals`], as the coverage
+    /// test reads it; 0 at a node on no face). Not the reference `D_j`
+    /// itself: where the bodies start apart, the first search pairs only
+    /// the faces within its margin, and the two spheres' contact edge read
+    /// 6 % too little area that way.
     pub fn reference_areas(&self, mesh: &Mesh, nodes: &[usize]) -> Option<Vec<f64>> {
         let xs = coordinates(&mesh.nodes, &vec![0.0; 3 * mesh.num_nodes()]);
-        let coupling = mortar_coupling(
+        let full = full_integrals(&self.secondary_faces, &xs);
+        Some(
+            nodes
+                .iter()
+                .map(|n| full.get(n).copied().unwrap_or(0.0))
+                .collect(),
+        )
+    }
+
+    /// The rows' values at unknowns `x` (`g̃_j`, `D_j`, `M_jl`, `n_j` of
+    /// every node a segment reaches, [`mortar_row_values`]: no
+    /// derivatives, not filtered by coverage).
+    pub fn row_values(
+        &self,
+        reference: &[[f64; 3]],
+        x: &[f64],
+    ) -> Result<Vec<RowValues>, super::mortar::MortarError> {
+        let xs = coordinates(reference, x);
+        mortar_row_values(
             &self.secondary_faces,
             &self.primary_faces,
             &self.pairs(),
             &xs,
         )
-        .ok()?;
-        Some(
-            nodes
-                .iter()
-                .map(|n| coupling.d.get(n).copied().unwrap_or(0.0))
-                .collect(),
+    }
+
+    /// The producer's rows at unknowns `x`: every covered secondary node's
+    /// [`MortarRow`] (see [`MortarGap::at`]), from the cache where this
+    /// configuration was integrated last or the one before.
+    pub fn rows_at(&self, reference: &[[f64; 3]], x: &[f64]) -> Arc<MortarRows> {
+        let xs = coordinates(reference, x);
+        let key: Vec<f64> = self
+            .surface_nodes
+            .iter()
+            .flat_map(|&n| [xs[n].x, xs[n].y, xs[n].z])
+            .collect();
+        self.cache.rows(key, || self.covered_rows(&xs))
+    }
+
+    /// How often the producer asked for rows and how often it integrated
+    /// them, since this interface was built (or cloned).
+    pub fn row_counts(&self) -> RowCounts {
+        self.cache.counts()
+    }
+
+    /// Every covered node's row at `coordinates`: `D_j ≥ ½ ∫ Ñ_j dA` over
+    /// its faces (see the module docs, "Search"). A face the kernels cannot
+    /// integrate leaves every node open.
+    fn covered_rows(&self, coordinates: &[Vector3<f64>]) -> MortarRows {
+        let rows = mortar_rows(
+            &self.secondary_faces,
+            &self.primary_faces,
+            &self.pairs(),
+            coordinates,
         )
+        .unwrap_or_default();
+        let full = full_integrals(&self.secondary_faces, coordinates);
+        rows.into_iter()
+            .filter(|r| covered(r.d, full.get(&r.node)))
+            .map(|r| (r.node, r))
+            .collect()
     }
 }
 
+/// Whether a node with `D_j = d` takes part: `D_j ≥ ½ ∫ Ñ_j dA` over its
+/// faces (`full`; see the module docs, "Search").
+fn covered(d: f64, full: Option<&f64>) -> bool {
+    d >= 0.5 * full.copied().unwrap_or(0.0)
+}
+
 /// `∫ Ñ_j dA` over all secondary faces of every node `j` (a fully covered
-/// node's `D_j`), with each face's rule at the current `coordinates`; a
-/// face that cannot be formed adds nothing.
+/// node's `D_j`, [`node_integrals`]) at the current `coordinates`; a face
+/// that cannot be formed adds nothing.
 pub(crate) fn full_integrals(
     faces: &[SurfaceFace],
     coordinates: &[Vector3<f64>],
@@ -242,13 +460,8 @@ pub(crate) fn full_integrals(
         let Ok(geometry) = face.with_coordinates(coordinates) else {
             continue;
         };
-        let (points, weights) = face.shape.quadrature();
-        for (xi, w) in points.iter().zip(&weights) {
-            let da = w * geometry.area_normal(*xi).norm();
-            let values = mortar_values(face.shape, *xi);
-            for (&n, v) in face.nodes.iter().zip(values) {
-                *out.entry(n).or_insert(0.0) += v * da;
-            }
+        for (&n, v) in face.nodes.iter().zip(node_integrals(&geometry)) {
+            *out.entry(n).or_insert(0.0) += v;
         }
     }
     out
@@ -285,11 +498,12 @@ fn face_box(face: &SurfaceFace, xs: &[Vector3<f64>], margin: f64) -> ([f64; 3], 
 
 /// The mortar gap producer in one configuration: every secondary node's
 /// row of the coupling ([`mortar_rows`]: `g̃_j`, `D_j`, `M_jl`, `n_j`, the
-/// lever and their complete first derivatives) integrated there, and the
-/// nodes' current positions.
+/// lever and their complete first derivatives) integrated there (or taken
+/// from [`MortarSurfaces::rows_at`]'s cache), and the nodes' current
+/// positions.
 pub struct MortarGap<'a> {
     pub surfaces: &'a MortarSurfaces,
-    pub rows: BTreeMap<usize, MortarRow>,
+    pub rows: Arc<MortarRows>,
 }
 
 impl<'a> MortarGap<'a> {
@@ -298,24 +512,9 @@ impl<'a> MortarGap<'a> {
     /// this evaluation; the element assembly reports such a face's
     /// element.
     pub fn at(surfaces: &'a MortarSurfaces, reference: &[[f64; 3]], x: &[f64]) -> Self {
-        let coordinates = coordinates(reference, x);
-        let rows = mortar_rows(
-            &surfaces.secondary_faces,
-            &surfaces.primary_faces,
-            &surfaces.pairs(),
-            &coordinates,
-        )
-        .unwrap_or_default();
-        let full = full_integrals(&surfaces.secondary_faces, &coordinates);
-        // a node takes part where its faces are covered: D_j ≥ ½ ∫ Ñ_j dA
-        let covered = |r: &MortarRow| r.d >= 0.5 * full.get(&r.node).copied().unwrap_or(0.0);
         Self {
             surfaces,
-            rows: rows
-                .into_iter()
-                .filter(covered)
-                .map(|r| (r.node, r))
-                .collect(),
+            rows: surfaces.rows_at(reference, x),
         }
     }
 

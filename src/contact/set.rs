@@ -188,8 +188,10 @@ impl ContactSet {
     /// same gap, or open either way, to 1e-9 of the element size).
     pub fn pairs_hold(&self, reference: &[[f64; 3]], x: &[f64], contact: &ContactState) -> bool {
         self.iter().zip(&contact.interfaces).all(|(c, states)| {
-            let Primary::Surface(p) = &c.primary else {
-                return true;
+            let p = match &c.primary {
+                Primary::Surface(p) => p,
+                Primary::Mortar(m) => return m.pairs_hold(reference, x),
+                _ => return true,
             };
             let mut fresh = p.clone();
             fresh.refresh(reference, x, &c.nodes, 0.0);

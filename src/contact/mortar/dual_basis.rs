@@ -31,7 +31,7 @@ impl DualBasis {
     /// rule of [`FaceShape::quadrature`]. A degenerate face (zero area or
     /// a non-positive `∫ Ñ_j`) is an error.
     pub fn of_face(face: &MortarFace) -> Result<DualBasis, MortarError> {
-        let (mass, integrals) = face_matrices(face, |xi| face.area_normal(xi).norm());
+        let (mass, integrals) = face_matrices(face, area_element(face));
         let area: f64 = integrals.iter().sum();
         if integrals.iter().any(|i| *i <= 1e-12 * area.abs()) {
             return Err(MortarError::DegenerateFace {
@@ -60,7 +60,7 @@ impl DualBasis {
         face: &MortarFace,
         dx: &[Vector3<f64>],
     ) -> Result<DMatrix<f64>, MortarError> {
-        let (mass, _) = face_matrices(face, |xi| face.area_normal(xi).norm());
+        let (mass, _) = face_matrices(face, area_element(face));
         let (d_mass, d_integrals) = face_matrices(face, |xi| {
             face.unit_normal(xi)
                 .dot(&face.area_normal_derivative(xi, dx))
@@ -90,6 +90,18 @@ impl DualBasis {
     pub fn values(&self, xi: [f64; 2]) -> Vec<f64> {
         self.values_from(&quadratic::mortar_values(self.shape, xi))
     }
+}
+
+/// `∫_e Ñ_j dA` of every node `j` of a face on its current coordinates
+/// (the diagonal of `D_e`, with the face rule of [`FaceShape::quadrature`]):
+/// a node's `D_j` where the primary surface covers all of its faces.
+pub fn node_integrals(face: &MortarFace) -> Vec<f64> {
+    face_matrices(face, area_element(face)).1
+}
+
+/// The area element `|a(ξ)|` of a face.
+fn area_element(face: &MortarFace) -> impl Fn([f64; 2]) -> f64 + '_ {
+    |xi| face.area_normal(xi).norm()
 }
 
 /// `(M_e)_jk = Σ_q w_q Ñ_j Ñ_k α(ξ_q)` and `(∫ Ñ_j)_j = Σ_q w_q Ñ_j α(ξ_q)`

@@ -41,10 +41,10 @@ pub mod segment;
 pub mod segment_derivatives;
 pub mod weighted_gap;
 
-pub use dual_basis::DualBasis;
+pub use dual_basis::{node_integrals, DualBasis};
 pub use face::{FaceShape, MortarFace, SurfaceFace};
 pub use normals::{nodal_normal_derivatives, nodal_normal_gradient, nodal_normals};
-pub use rows::{mortar_rows, MortarRow};
+pub use rows::{mortar_row_values, mortar_rows, MortarRow, RowValues};
 pub use segment::{integrate_pair, overlap, Overlap, SegmentIntegrals};
 pub use weighted_gap::{all_pairs, mortar_coupling, MortarCoupling};
 

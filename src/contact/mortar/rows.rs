@@ -17,6 +17,12 @@
 //! `λ_j ∂b_j/∂x` to the tangent. `Σ_nodes b_j = (D_j Σ_k R_jk − Σ_l M_jl)
 //! n_j = 0`. Gradients are node-major over [`MortarRow::nodes`]: entry
 //! `3a + i` is coordinate `i` of `nodes[a]`.
+//!
+//! [`mortar_row_values`] gives the same `g̃_j`, `D_j`, `M_jl` and `n_j`
+//! without any derivative, from the same pair loop with the segment
+//! integration alone ([`integrate_pair`] instead of [`linearise_pair`], which
+//! adds one directional derivative of the segmentation per coordinate of
+//! the pair: `3 (n_s + n_m)` of them, the bulk of a row's cost).
 
 use std::collections::BTreeMap;
 
@@ -24,9 +30,11 @@ use nalgebra::{DMatrix, DVector, Vector3};
 
 use super::dual_basis::faces_and_duals;
 use super::face::SurfaceFace;
+use super::normals::nodal_normals;
 use super::normals::{nodal_normal_gradient, NodalNormalGradient};
 use super::pair_linearisation::linearise_pair;
 use super::quadratic;
+use super::segment::integrate_pair;
 use super::MortarError;
 
 /// One secondary node's mortar row (see the module doc).
@@ -51,6 +59,18 @@ pub struct MortarRow {
     pub lever_gradient: DMatrix<f64>,
 }
 
+/// One secondary node's row without derivatives: `g̃_j`, `D_j`, `M_jl`
+/// and `n_j`, the values of the [`MortarRow`] at the same coordinates.
+#[derive(Clone, Debug, PartialEq)]
+pub struct RowValues {
+    pub node: usize,
+    pub weighted_gap: f64,
+    pub d: f64,
+    /// `(l, M_jl)` sorted by the primary node `l`.
+    pub m: Vec<(usize, f64)>,
+    pub normal: Vector3<f64>,
+}
+
 /// A value with a sparse gradient: per node, `∂/∂x_node`.
 #[derive(Clone, Debug, Default)]
 struct Sparse {
@@ -73,13 +93,8 @@ pub fn mortar_rows(
     pairs: &[(usize, usize)],
     coordinates: &[Vector3<f64>],
 ) -> Result<Vec<MortarRow>, MortarError> {
-    let accumulated = accumulate_pairs(secondary, primary, pairs, coordinates)?;
-    let mut holding: BTreeMap<usize, Vec<&SurfaceFace>> = BTreeMap::new();
-    for face in secondary {
-        for &n in &face.nodes {
-            holding.entry(n).or_default().push(face);
-        }
-    }
+    let accumulated = accumulate_pairs(secondary, primary, pairs, coordinates, true)?;
+    let holding = holding_faces(secondary);
     accumulated
         .into_iter()
         .map(|(node, acc)| {
@@ -96,18 +111,81 @@ pub fn mortar_rows(
         .collect()
 }
 
-/// `D_j`, `M_jl` and their sparse gradients over all pairs.
+/// The values of [`mortar_rows`] (`g̃_j`, `D_j`, `M_jl`, `n_j`) without
+/// their derivatives: the same pair loop with the segment integration
+/// alone, for what needs no tangent.
+pub fn mortar_row_values(
+    secondary: &[SurfaceFace],
+    primary: &[SurfaceFace],
+    pairs: &[(usize, usize)],
+    coordinates: &[Vector3<f64>],
+) -> Result<Vec<RowValues>, MortarError> {
+    let accumulated = accumulate_pairs(secondary, primary, pairs, coordinates, false)?;
+    let holding = holding_faces(secondary);
+    accumulated
+        .into_iter()
+        .map(|(node, acc)| {
+            let faces: Vec<SurfaceFace> = holding[&node].iter().map(|&f| f.clone()).collect();
+            let normal = nodal_normals(&faces, coordinates)?[&node];
+            let m: Vec<(usize, f64)> = acc.m.iter().map(|(l, s)| (*l, s.value)).collect();
+            let r = transformation(holding[&node][0], node);
+            let v = gap_vector(&m, acc.d.value, &r, coordinates);
+            Ok(RowValues {
+                node,
+                weighted_gap: normal.dot(&v),
+                d: acc.d.value,
+                m,
+                normal,
+            })
+        })
+        .collect()
+}
+
+/// The secondary faces that hold each node.
+fn holding_faces(secondary: &[SurfaceFace]) -> BTreeMap<usize, Vec<&SurfaceFace>> {
+    let mut holding: BTreeMap<usize, Vec<&SurfaceFace>> = BTreeMap::new();
+    for face in secondary {
+        for &n in &face.nodes {
+            holding.entry(n).or_default().push(face);
+        }
+    }
+    holding
+}
+
+/// `v_j = Σ_l M_jl x_l − D_j x̃_j`, `x̃_j = Σ_k R_jk x_k`.
+fn gap_vector(
+    m: &[(usize, f64)],
+    d: f64,
+    r: &[(usize, f64)],
+    coordinates: &[Vector3<f64>],
+) -> Vector3<f64> {
+    let x_tilde: Vector3<f64> = r.iter().map(|(k, rk)| coordinates[*k] * *rk).sum();
+    m.iter()
+        .map(|(l, ml)| coordinates[*l] * *ml)
+        .sum::<Vector3<f64>>()
+        - x_tilde * d
+}
+
+/// `D_j`, `M_jl` over all pairs, with their sparse gradients where
+/// `gradients` (else the gradients stay empty).
 fn accumulate_pairs(
     secondary: &[SurfaceFace],
     primary: &[SurfaceFace],
     pairs: &[(usize, usize)],
     coordinates: &[Vector3<f64>],
+    gradients: bool,
 ) -> Result<BTreeMap<usize, Accumulated>, MortarError> {
     let (faces, duals) = faces_and_duals(secondary, coordinates)?;
     let mut out: BTreeMap<usize, Accumulated> = BTreeMap::new();
     for &(s, p) in pairs {
         let primary_face = primary[p].with_coordinates(coordinates)?;
-        let Some(lin) = linearise_pair(&faces[s], &duals[s], &primary_face)? else {
+        let pair = if gradients {
+            linearise_pair(&faces[s], &duals[s], &primary_face)?
+                .map(|lin| (lin.integrals, Some((lin.d_gradient, lin.m_gradient))))
+        } else {
+            integrate_pair(&faces[s], &duals[s], &primary_face)?.map(|seg| (seg, None))
+        };
+        let Some((integrals, gradient)) = pair else {
             continue;
         };
         let pair_nodes: Vec<usize> = secondary[s]
@@ -116,41 +194,34 @@ fn accumulate_pairs(
             .chain(&primary[p].nodes)
             .copied()
             .collect();
+        let nm = primary[p].nodes.len();
         for (j, &node_j) in secondary[s].nodes.iter().enumerate() {
             let acc = out.entry(node_j).or_default();
-            add_sparse(
-                &mut acc.d,
-                lin.integrals.d[j],
-                &lin.d_gradient,
-                j,
-                &pair_nodes,
-            );
+            let d_gradient = gradient.as_ref().map(|(d, _)| (d, j));
+            add_sparse(&mut acc.d, integrals.d[j], d_gradient, &pair_nodes);
             for (l, &node_l) in primary[p].nodes.iter().enumerate() {
-                let row = j * primary[p].nodes.len() + l;
                 let m = acc.m.entry(node_l).or_default();
-                add_sparse(
-                    m,
-                    lin.integrals.m[(j, l)],
-                    &lin.m_gradient,
-                    row,
-                    &pair_nodes,
-                );
+                let m_gradient = gradient.as_ref().map(|(_, m)| (m, j * nm + l));
+                add_sparse(m, integrals.m[(j, l)], m_gradient, &pair_nodes);
             }
         }
     }
     Ok(out)
 }
 
-/// Adds `value` and the gradient row `row` of a pair (columns over
-/// `pair_nodes`, see [`super::pair_linearisation::PairLinearisation`]) to `target`.
+/// Adds `value` and, where given, the row `row` of a pair's `gradient`
+/// (columns over `pair_nodes`, see
+/// [`super::pair_linearisation::PairLinearisation`]) to `target`.
 fn add_sparse(
     target: &mut Sparse,
     value: f64,
-    gradient: &DMatrix<f64>,
-    row: usize,
+    gradient: Option<(&DMatrix<f64>, usize)>,
     pair_nodes: &[usize],
 ) {
     target.value += value;
+    let Some((gradient, row)) = gradient else {
+        return;
+    };
     for (a, &node) in pair_nodes.iter().enumerate() {
         let g = Vector3::new(
             gradient[(row, 3 * a)],
@@ -206,11 +277,7 @@ fn assemble_row(
     let d_gradient = dense(&acc.d, &index);
     let m: Vec<(usize, f64)> = acc.m.iter().map(|(l, s)| (*l, s.value)).collect();
     let m_gradients: Vec<DVector<f64>> = acc.m.values().map(|s| dense(s, &index)).collect();
-    let v = m
-        .iter()
-        .map(|(l, ml)| coordinates[*l] * *ml)
-        .sum::<Vector3<f64>>()
-        - x_tilde * acc.d.value;
+    let v = gap_vector(&m, acc.d.value, &r, coordinates);
     let (lever, lever_gradient) = lever(
         &index,
         (acc.d.value, &d_gradient),

@@ -237,6 +237,29 @@ impl MortarSurfaces {
         Some(out)
     }
 
+    /// The secondary side alone (a rigid obstacle's primary side has no
+    /// faces, [`MortarObstacle`](super::mortar_rigid::MortarObstacle)): no
+    /// candidates, no row cache in use.
+    pub(crate) fn secondary_only(
+        secondary_faces: Vec<SurfaceFace>,
+        node_faces: Vec<Vec<usize>>,
+        element_size: f64,
+        margin: f64,
+    ) -> Self {
+        Self {
+            primary_surface: String::new(),
+            candidates: vec![Vec::new(); secondary_faces.len()],
+            secondary_faces,
+            primary_faces: Vec::new(),
+            primary_nodes: Vec::new(),
+            node_faces,
+            element_size,
+            margin,
+            surface_nodes: Vec::new(),
+            cache: RowCache::default(),
+        }
+    }
+
     /// Recompute the candidate face pairs at configuration `x`: each
     /// primary face's box grown by `2 h_f + 2 motion` against the
     /// secondary faces' boxes. Returns whether a pair changed.

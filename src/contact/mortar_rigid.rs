@@ -84,16 +84,8 @@ impl MortarObstacle {
             .copied()
             .filter(|m| *m > 0.0)
             .fold(f64::INFINITY, f64::min);
-        let surfaces = MortarSurfaces {
-            primary_surface: String::new(),
-            candidates: vec![Vec::new(); faces.len()],
-            secondary_faces: faces,
-            primary_faces: Vec::new(),
-            primary_nodes: Vec::new(),
-            node_faces,
-            element_size: mean,
-            margin: if margin.is_finite() { margin } else { mean },
-        };
+        let margin = if margin.is_finite() { margin } else { mean };
+        let surfaces = MortarSurfaces::secondary_only(faces, node_faces, mean, margin);
         Some(Self {
             obstacle,
             surfaces,
@@ -159,7 +151,7 @@ impl MortarObstacle {
     ) -> MortarGap<'_> {
         MortarGap {
             surfaces: &self.surfaces,
-            rows: self.rows(translation, reference, x),
+            rows: std::sync::Arc::new(self.rows(translation, reference, x)),
         }
     }
 }

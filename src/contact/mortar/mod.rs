@@ -19,6 +19,9 @@
 //!   and `M` (Popp, Gitterle, Gee & Wall 2010, §5), and a pair's gradients.
 //! - [`rows`]: per secondary node, `g̃_j`, `D_j`, `M_jl`, `n_j` and the
 //!   lever `b_j` with their gradients, as Newton needs them.
+//! - [`weighted_slip`]: the frame-indifferent weighted slip increment
+//!   `w_j` from the change of `D`, `M` since the last converged increment
+//!   (Gitterle, Popp, Gee & Wall 2010) and its derivative, for friction.
 //!
 //! Conventions as in `formulation.md`: `g̃_j ≥ 0` open, `λ_j ≥ 0`
 //! compressive; the secondary surface's normals point outward (toward the
@@ -37,6 +40,7 @@ pub mod rows;
 pub mod segment;
 pub mod segment_derivatives;
 pub mod weighted_gap;
+pub mod weighted_slip;
 
 pub use dual_basis::DualBasis;
 pub use face::{FaceShape, MortarFace, SurfaceFace};

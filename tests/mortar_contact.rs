@@ -214,8 +214,8 @@ fn mortar_through_the_case_file() {
 }
 
 /// The case file's refusals of mortar this session, each naming
-/// `contact[0]` and the key: against an obstacle, with friction, with
-/// `two_pass`; and an unknown discretisation.
+/// `contact[0]` and the key: against an obstacle, with `two_pass`; and an
+/// unknown discretisation (friction is accepted: `tests/mortar_friction.rs`).
 #[test]
 fn mortar_refusals_name_the_key() {
     let dir = tempfile::tempdir().unwrap();
@@ -232,11 +232,6 @@ fn mortar_refusals_name_the_key() {
         "not supported yet",
     ];
     assert_case_error(dir.path(), &with_obstacle, &expect);
-    let expect = [
-        "contact[0].discretisation = \"mortar\"",
-        "friction_coefficient",
-    ];
-    assert_case_error(dir.path(), &case("friction_coefficient = 0.3"), &expect);
     let expect = ["contact[0].discretisation = \"mortar\"", "two_pass"];
     assert_case_error(
         dir.path(),

@@ -397,19 +397,13 @@ impl Case {
     }
 
     /// `Ok` where `[[contact]]` `key` (`c`, against an obstacle when
-    /// `obstacle`) may take `discretisation = "mortar"`: between two bodies,
-    /// frictionless, one pass (this session's mortar), else the error
-    /// naming the key.
+    /// `obstacle`) may take `discretisation = "mortar"`: between two bodies
+    /// (with or without friction), one pass, else the error naming the key.
     fn mortar_supported(&self, key: &str, c: &ContactSpec, obstacle: bool) -> Result<()> {
         let why = if obstacle {
             Some(
                 "`obstacle`: mortar against a rigid obstacle is not supported yet; \
                  use discretisation = \"node_to_surface\" (the default) with an obstacle",
-            )
-        } else if c.friction_coefficient.is_some_and(|mu| mu > 0.0) {
-            Some(
-                "`friction_coefficient`: mortar contact is frictionless for now; remove the \
-                 friction coefficient or use discretisation = \"node_to_surface\"",
             )
         } else if c.two_pass {
             Some(

@@ -320,7 +320,8 @@ pub enum DiscretisationSpec {
     #[default]
     NodeToSurface,
     /// Dual mortar (segment-to-segment): weighted gaps and one multiplier
-    /// per secondary node (between two bodies, frictionless, one pass).
+    /// per secondary node (between two bodies, one pass; with Coulomb
+    /// friction on the frame-indifferent weighted slip).
     Mortar,
 }
 
@@ -378,8 +379,8 @@ pub struct ContactSpec {
     #[serde(default)]
     pub two_pass: bool,
     /// `"node_to_surface"` (default) or `"mortar"`: dual mortar between two
-    /// bodies (with `primary`), frictionless, one pass; linear and
-    /// quadratic faces.
+    /// bodies (with `primary`), one pass, with or without friction; linear
+    /// and quadratic faces.
     #[serde(default)]
     pub discretisation: DiscretisationSpec,
 }

@@ -57,6 +57,7 @@ pub mod kinematics;
 pub mod laws;
 pub mod mortar;
 pub mod mortar_contact;
+pub mod mortar_friction;
 pub mod obstacle;
 pub mod primary;
 pub mod projection;

@@ -1,5 +1,5 @@
-//! Frictionless dual mortar contact between two deformable bodies (issue
-//! 28), a gap producer of the node driver beside
+//! Dual mortar contact between two deformable bodies (issue 28; Coulomb
+//! friction in [`mortar_friction`](super::mortar_friction)), a gap producer of the node driver beside
 //! [`surface_contact`](super::surface_contact): the kernels of
 //! [`mortar`](super::mortar) give `D`, `M` and the averaged nodal normals;
 //! this file turns one secondary node's row of them into the
@@ -46,14 +46,16 @@
 //! choice, not Popp et al.'s; a consistent dual basis on the covered part
 //! (Cichosz & Bischoff 2011) is the published remedy, not done yet.
 
-use super::friction::{Coulomb, FrictionHistory, SlipKinematics, TangentialResponse};
+use super::friction::{Coulomb, FrictionHistory, TangentialResponse};
 use super::kinematics::{
     current_position, CoupledNodes, GapKinematics, GapProducer, PrimaryWeights, SecondaryNode,
     SlipFrame,
 };
 use super::laws::NodeContactState;
 use super::mortar::quadratic::mortar_values;
-use super::mortar::{mortar_coupling, mortar_rows, FaceShape, MortarRow, SurfaceFace};
+use super::mortar::{
+    mortar_coupling, mortar_rows, FaceShape, MortarCoupling, MortarRow, SurfaceFace,
+};
 use crate::mesh::{FacetKind, Mesh};
 use nalgebra::{DMatrix, Dyn, OMatrix, Vector3, U3};
 use rstar::primitives::{GeomWithData, Rectangle};
@@ -83,6 +85,11 @@ pub struct MortarSurfaces {
     /// The search margin of the last refresh: the gap reported for a node
     /// without a segment.
     pub margin: f64,
+    /// With friction, `D` and `M` at the last converged configuration
+    /// (integrated at each [`refresh`](Self::refresh)), which the weighted
+    /// slip is measured against ([`mortar_friction`](super::mortar_friction));
+    /// `None` without friction.
+    pub committed: Option<MortarCoupling>,
 }
 
 /// The face shape of a mesh facet (same node order).
@@ -137,6 +144,7 @@ impl MortarSurfaces {
             candidates: Vec::new(),
             element_size,
             margin: 2.0 * element_size,
+            committed: None,
         };
         out.refresh(&mesh.nodes, &vec![0.0; 3 * mesh.num_nodes()], 0.0);
         Some(out)
@@ -180,6 +188,7 @@ impl MortarSurfaces {
         if smallest.is_finite() {
             self.margin = smallest.max(1e-3 * self.element_size);
         }
+        self.commit_coupling(&xs);
         changed
     }
 
@@ -379,7 +388,8 @@ impl GapProducer<Dyn> for MortarGap<'_> {
         _state: &NodeContactState,
     ) -> Option<GapKinematics<Dyn>> {
         let row = self.node_row(node.mesh_node)?;
-        Some(self.row_kinematics(node.mesh_node, row))
+        let kinematics = self.row_kinematics(node.mesh_node, row);
+        Some(self.with_committed_nodes(node.mesh_node, kinematics))
     }
 
     fn open_gap(&self) -> f64 {
@@ -390,40 +400,34 @@ impl GapProducer<Dyn> for MortarGap<'_> {
         node.position()
     }
 
-    /// Mortar is frictionless this session (the case file refuses
-    /// `friction_coefficient` with `discretisation = "mortar"`): a frame
-    /// with no lever, so no tangential force reaches the nodes.
+    /// The weighted slip, the committed traction and the mortar lever
+    /// ([`mortar_friction`](super::mortar_friction)).
     fn slip(
         &self,
         node: &SecondaryNode,
         kinematics: &mut GapKinematics<Dyn>,
         history: &FrictionHistory,
     ) -> SlipFrame<Dyn> {
-        let q = Dyn(kinematics.gradient.len());
-        let zero = OMatrix::<f64, U3, Dyn>::zeros_generic(U3, q);
-        SlipFrame {
-            kinematics: SlipKinematics {
-                traction: Vector3::zeros(),
-                traction_gradient: zero.clone(),
-                offset: node.position() - history.anchor,
-                offset_gradient: zero.clone(),
-                normal: kinematics.normal,
-                normal_gradient: kinematics.normal_gradient.clone(),
-            },
-            lever: zero,
-        }
+        self.frictional_slip(node, kinematics, history)
+    }
+
+    fn lever_stiffness(
+        &self,
+        kinematics: &GapKinematics<Dyn>,
+        traction: &Vector3<f64>,
+    ) -> Option<DMatrix<f64>> {
+        self.frictional_lever_stiffness(kinematics, traction)
     }
 
     fn stick_stiffness(
         &self,
         kinematics: &GapKinematics<Dyn>,
-        _: &SlipFrame<Dyn>,
-        _: &TangentialResponse<Dyn>,
-        _: &Coulomb,
-        _: f64,
+        frame: &SlipFrame<Dyn>,
+        response: &TangentialResponse<Dyn>,
+        law: &Coulomb,
+        area: f64,
     ) -> DMatrix<f64> {
-        let q = kinematics.gradient.len();
-        DMatrix::zeros(q, q)
+        Self::frictional_stick_stiffness(kinematics, frame, response, law, area)
     }
 }
 

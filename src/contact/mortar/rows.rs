@@ -49,6 +49,8 @@ pub struct MortarRow {
     /// `b_j` (3·nodes) and `∂b_j/∂x` (3·nodes × 3·nodes).
     pub lever: DVector<f64>,
     pub lever_gradient: DMatrix<f64>,
+    /// `(k, R_jk)` of `x̃_j = Σ_k R_jk x_k` (`(j, 1)` on linear faces).
+    pub transformation: Vec<(usize, f64)>,
 }
 
 /// A value with a sparse gradient: per node, `∂/∂x_node`.
@@ -162,7 +164,7 @@ fn add_sparse(
 }
 
 /// `x̃_j = Σ_k R_jk x_k` as global `(k, R_jk)`, from a face holding `node`.
-pub fn transformation(face: &SurfaceFace, node: usize) -> Vec<(usize, f64)> {
+fn transformation(face: &SurfaceFace, node: usize) -> Vec<(usize, f64)> {
     let j = face.nodes.iter().position(|&n| n == node).unwrap_or(0);
     quadratic::nodal_transformation(face.shape)[j]
         .iter()
@@ -236,6 +238,7 @@ fn assemble_row(
         normal_gradient,
         lever,
         lever_gradient,
+        transformation: r,
     }
 }
 

@@ -58,14 +58,14 @@ pub fn committed_row(coupling: &MortarCoupling, j: usize) -> Option<(f64, Vec<(u
 }
 
 /// `w_j` and `∂w_j/∂x` (see the module docs) of the current `row` against
-/// the committed `(D_j,n, M_jl,n)`, with the node's transformation
-/// `(k, R_jk)` and the nodes' current `coordinates`.
+/// the committed `(D_j,n, M_jl,n)`, with the nodes' current positions
+/// `position(n)`.
 pub fn weighted_slip(
     row: &MortarRow,
     (d_n, m_n): (f64, &[(usize, f64)]),
-    transformation: &[(usize, f64)],
-    coordinates: &[Vector3<f64>],
+    position: impl Fn(usize) -> Vector3<f64>,
 ) -> WeightedSlip {
+    let transformation = &row.transformation;
     let mut nodes = row.nodes.clone();
     for (l, _) in m_n {
         if !nodes.contains(l) {
@@ -83,20 +83,17 @@ pub fn weighted_slip(
         }
     };
     for ((l, m), g) in row.m.iter().zip(&row.m_gradients) {
-        let x = coordinates[*l];
+        let x = position(*l);
         value += *m * x;
         let mut block = gradient.columns_mut(0, width);
         block += x * g.transpose();
         add_identity(&mut gradient, *l, *m);
     }
     for (l, m) in m_n {
-        value -= *m * coordinates[*l];
+        value -= *m * position(*l);
         add_identity(&mut gradient, *l, -m);
     }
-    let x_tilde: Vector3<f64> = transformation
-        .iter()
-        .map(|(k, r)| coordinates[*k] * *r)
-        .sum();
+    let x_tilde: Vector3<f64> = transformation.iter().map(|(k, r)| position(*k) * *r).sum();
     let change = row.d - d_n;
     value -= change * x_tilde;
     let mut block = gradient.columns_mut(0, width);
@@ -127,7 +124,7 @@ impl WeightedSlip {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::contact::mortar::rows::{mortar_rows, transformation};
+    use crate::contact::mortar::rows::mortar_rows;
     use crate::contact::mortar::weighted_gap::{all_pairs, mortar_coupling};
     use crate::contact::mortar::{FaceShape, SurfaceFace};
     use crate::mesh::structured::box_mesh;
@@ -203,8 +200,7 @@ mod tests {
         let rows = mortar_rows(secondary, primary, &pairs, xs).unwrap();
         let row = rows.into_iter().find(|r| r.node == j)?;
         let (d_n, m_n) = committed_row(committed, j)?;
-        let face = secondary.iter().find(|f| f.nodes.contains(&j)).unwrap();
-        let slip = weighted_slip(&row, (d_n, &m_n), &transformation(face, j), xs);
+        let slip = weighted_slip(&row, (d_n, &m_n), |n| xs[n]);
         Some((row, slip))
     }
 

@@ -152,10 +152,12 @@ impl MortarGap<'_> {
     ) -> SlipFrame<Dyn> {
         let (j, q) = (node.mesh_node, kinematics.gradient.len());
         let zero = || OMatrix::<f64, U3, Dyn>::zeros_generic(U3, Dyn(q));
-        let row = self.node_row(j).expect("a closed mortar node has a row");
+        // a closed node has a row; without one (never asked for) no
+        // lever: no tangential force reaches the nodes
+        let row = self.node_row(j);
         let mut offset_gradient = zero();
-        let offset = match self.committed_of(j) {
-            Some((d_n, m_n)) => {
+        let offset = match (row, self.committed_of(j)) {
+            (Some(row), Some((d_n, m_n))) => {
                 let position = |n| current_position(node.reference, node.x, n);
                 let slip = weighted_slip(row, (d_n, &m_n), position);
                 let (d, gradient) = slip.per_area(row);
@@ -166,7 +168,7 @@ impl MortarGap<'_> {
                 );
                 d
             }
-            None => {
+            _ => {
                 offset_gradient
                     .fixed_view_mut::<3, 3>(0, 0)
                     .fill_diagonal(1.0);
@@ -182,7 +184,7 @@ impl MortarGap<'_> {
                 normal: kinematics.normal,
                 normal_gradient: kinematics.normal_gradient.clone(),
             },
-            lever: lever(&kinematics.nodes, row),
+            lever: row.map_or_else(zero, |row| lever(&kinematics.nodes, row)),
         }
     }
 

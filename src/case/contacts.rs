@@ -185,7 +185,7 @@ impl Case {
             };
             let mortar = c.discretisation == DiscretisationSpec::Mortar;
             if mortar {
-                self.mortar_supported(&key, c)?;
+                self.mortar_supported(&key, c, matches!(target, Target::Obstacle(_)))?;
             }
             let enforcement = Enforcement {
                 method: match c.method {
@@ -403,15 +403,15 @@ impl Case {
         }
     }
 
-    /// `Ok` where `[[contact]]` `key` (`c`) may take `discretisation =
-    /// "mortar"`: between two bodies or against any rigid obstacle,
-    /// frictionless, one pass (this session's mortar), else the error
-    /// naming the key.
-    fn mortar_supported(&self, key: &str, c: &ContactSpec) -> Result<()> {
-        let why = if c.friction_coefficient.is_some_and(|mu| mu > 0.0) {
+    /// `Ok` where `[[contact]]` `key` (`c`, against an obstacle when
+    /// `obstacle`) may take `discretisation = "mortar"`: between two bodies
+    /// (with or without friction) or against any rigid obstacle
+    /// (frictionless), one pass, else the error naming the key.
+    fn mortar_supported(&self, key: &str, c: &ContactSpec, obstacle: bool) -> Result<()> {
+        let why = if obstacle && c.friction_coefficient.is_some_and(|mu| mu > 0.0) {
             Some(
-                "`friction_coefficient`: mortar contact is frictionless for now; remove the \
-                 friction coefficient or use discretisation = \"node_to_surface\"",
+                "`friction_coefficient` against an obstacle: mortar friction is between two bodies \
+                 for now; remove the friction coefficient or use discretisation = \"node_to_surface\"",
             )
         } else if c.two_pass {
             Some(

@@ -320,8 +320,9 @@ pub enum DiscretisationSpec {
     #[default]
     NodeToSurface,
     /// Dual mortar (segment-to-segment): weighted gaps and one multiplier
-    /// per secondary node (between two bodies or against a rigid obstacle,
-    /// frictionless, one pass).
+    /// per secondary node (between two bodies, with Coulomb friction on the
+    /// frame-indifferent weighted slip, or against a rigid obstacle,
+    /// frictionless; one pass).
     Mortar,
 }
 
@@ -382,8 +383,9 @@ pub struct ContactSpec {
     #[serde(default)]
     pub two_pass: bool,
     /// `"node_to_surface"` (default) or `"mortar"`: dual mortar between two
-    /// bodies (with `primary`) or against a rigid obstacle (with
-    /// `obstacle`), frictionless, one pass; linear and quadratic faces.
+    /// bodies (with `primary`, with or without friction) or against a rigid
+    /// obstacle (with `obstacle`, frictionless), one pass; linear and
+    /// quadratic faces.
     #[serde(default)]
     pub discretisation: DiscretisationSpec,
 }

@@ -331,7 +331,9 @@ impl ContactInterface {
             state.lambda = ctx.x[m];
         }
         match self.tangential_multiplier(ctx, &state, i) {
-            Some((_, t)) if !first_contact_pending(&state) => state.friction.traction = t.vector(),
+            Some((_, t)) if !self.first_contact_pending(&state) => {
+                state.friction.traction = t.vector()
+            }
             _ => {}
         }
         state
@@ -393,7 +395,7 @@ impl ContactInterface {
                     frame.kinematics.traction = state.friction.traction;
                     frame.kinematics.traction_gradient.fill(0.0);
                 }
-                if first_contact_pending(state) {
+                if self.first_contact_pending(state) {
                     let (g, grad) = (kinematics.gap, &kinematics.gradient);
                     friction::first_contact(&mut frame.kinematics, state.gap, g, grad);
                 }
@@ -533,12 +535,17 @@ impl ContactInterface {
                 }
                 if let Some((m, t)) = self.tangential_multiplier(ctx, &state, i) {
                     let closed = e.frame.as_ref().zip(e.tangential.as_ref());
-                    let closed = closed.filter(|_| !first_contact_pending(&state));
-                    let rows = friction::multiplier_rows(
+                    let closed = closed.filter(|_| !self.first_contact_pending(&state));
+                    let mut rows = friction::multiplier_rows(
                         &t,
                         closed.map(|(f, r)| (&f.kinematics, r)),
                         self.areas[i],
                     );
+                    // the node's force is on its own area where the producer
+                    // integrates one (mortar: D_j): ∂r_q/∂ℓ = −A Bᵀ ∂t_T/∂ℓ
+                    if let Some(area) = e.kinematics.area {
+                        rows.force_gradient *= area / self.areas[i];
+                    }
                     let lever = closed.map(|(f, _)| (nodes, &f.lever));
                     let tangent = tangent.as_mut().map(|(p, v)| (*p, &mut **v));
                     scatter_tangential(ctx, &rows, (m, multiplier), lever, residual, tangent);
@@ -738,15 +745,21 @@ impl ContactInterface {
     }
 }
 
-/// Whether the node was open at the last commit, at a positive gap: it
-/// may close in this increment, its slip counted from its first contact
-/// ([`friction::first_contact`]), which leaves its stick equation
-/// `(1 − α) T d = 0` met by `g = 0` whatever its tangential motion, so
-/// its tangential multiplier stays zero for the increment, as the outer
-/// loop's does (`λ_T ← t_T = 0`): the node carries no friction until
-/// the commit anchors it.
-fn first_contact_pending(state: &NodeContactState) -> bool {
-    state.friction.status == ContactStatus::Open && state.gap > 0.0
+impl ContactInterface {
+    /// Whether the node was open at the last commit, at a positive gap: it
+    /// may close in this increment, its slip counted from its first contact
+    /// ([`friction::first_contact`]), which leaves its stick equation
+    /// `(1 − α) T d = 0` met by `g = 0` whatever its tangential motion, so
+    /// its tangential multiplier stays zero for the increment, as the outer
+    /// loop's does (`λ_T ← t_T = 0`): the node carries no friction until
+    /// the commit anchors it. A committed gap within rounding of zero
+    /// (1e-12 of the element size: dual mortar's weighted gaps of touching
+    /// flat faces read ±2e-16) is touching, not open: the first-contact
+    /// fraction `α = g_n/(g_n − g)` would jump from 1 to 0 as `g` crosses
+    /// `−g_n`, and Newton hunt around the exact constraint `g = 0`.
+    fn first_contact_pending(&self, state: &NodeContactState) -> bool {
+        state.friction.status == ContactStatus::Open && state.gap > 1e-12 * self.element_size
+    }
 }
 
 /// The preconditioner's shift of one closed node with friction (see

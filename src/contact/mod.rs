@@ -59,6 +59,7 @@ pub mod laws;
 pub mod mortar;
 pub mod mortar_contact;
 pub mod mortar_rigid;
+pub mod mortar_friction;
 pub mod obstacle;
 pub mod primary;
 pub mod projection;

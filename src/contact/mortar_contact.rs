@@ -1,5 +1,5 @@
-//! Frictionless dual mortar contact between two deformable bodies (issue
-//! 28), a gap producer of the node driver beside
+//! Dual mortar contact between two deformable bodies (issue 28; Coulomb
+//! friction in [`mortar_friction`](super::mortar_friction)), a gap producer of the node driver beside
 //! [`surface_contact`](super::surface_contact): the kernels of
 //! [`mortar`](super::mortar) give `D`, `M` and the averaged nodal normals;
 //! this file turns one secondary node's row of them into the
@@ -51,14 +51,15 @@
 //! (bodies that started apart and closed within the increment), the
 //! stepper cuts the increment and the next search grows with the motion.
 
-use super::friction::{Coulomb, FrictionHistory, SlipKinematics, TangentialResponse};
+use super::friction::{Coulomb, FrictionHistory, TangentialResponse};
 use super::kinematics::{
     current_position, CoupledNodes, GapKinematics, GapProducer, PrimaryWeights, SecondaryNode,
     SlipFrame,
 };
 use super::laws::NodeContactState;
 use super::mortar::{
-    mortar_row_values, mortar_rows, node_integrals, FaceShape, MortarRow, RowValues, SurfaceFace,
+    mortar_row_values, mortar_rows, node_integrals, FaceShape, MortarCoupling, MortarRow, RowValues,
+    SurfaceFace,
 };
 use crate::mesh::{FacetKind, Mesh};
 use nalgebra::{DMatrix, Dyn, OMatrix, Vector3, U3};
@@ -171,6 +172,11 @@ impl RowCache {
             .unwrap_or_else(|e| e.into_inner())
             .clear();
     }
+    /// With friction, `D` and `M` at the last converged configuration
+    /// (integrated at each [`refresh`](Self::refresh)), which the weighted
+    /// slip is measured against ([`mortar_friction`](super::mortar_friction));
+    /// `None` without friction.
+    pub committed: Option<MortarCoupling>,
 }
 
 /// The face shape of a mesh facet (same node order).
@@ -232,6 +238,7 @@ impl MortarSurfaces {
             margin: 2.0 * element_size,
             surface_nodes,
             cache: RowCache::default(),
+            committed: None,
         };
         out.refresh(&mesh.nodes, &vec![0.0; 3 * mesh.num_nodes()], 0.0);
         Some(out)
@@ -257,6 +264,7 @@ impl MortarSurfaces {
             margin,
             surface_nodes: Vec::new(),
             cache: RowCache::default(),
+            committed: None,
         }
     }
 
@@ -264,7 +272,8 @@ impl MortarSurfaces {
     /// primary face's box grown by `2 h_f + 2 motion` against the
     /// secondary faces' boxes. Returns whether a pair changed.
     pub fn refresh(&mut self, reference: &[[f64; 3]], x: &[f64], motion: f64) -> bool {
-        let (candidates, smallest) = self.search(&coordinates(reference, x), motion);
+        let xs = coordinates(reference, x);
+        let (candidates, smallest) = self.search(&xs, motion);
         let changed = candidates != self.candidates;
         if changed {
             self.cache.clear();
@@ -273,6 +282,7 @@ impl MortarSurfaces {
         if smallest.is_finite() {
             self.margin = smallest.max(1e-3 * self.element_size);
         }
+        self.commit_coupling(&xs);
         changed
     }
 
@@ -604,7 +614,8 @@ impl GapProducer<Dyn> for MortarGap<'_> {
         _state: &NodeContactState,
     ) -> Option<GapKinematics<Dyn>> {
         let row = self.node_row(node.mesh_node)?;
-        Some(self.row_kinematics(node.mesh_node, row))
+        let kinematics = self.row_kinematics(node.mesh_node, row);
+        Some(self.with_committed_nodes(node.mesh_node, kinematics))
     }
 
     fn open_gap(&self) -> f64 {
@@ -615,40 +626,34 @@ impl GapProducer<Dyn> for MortarGap<'_> {
         node.position()
     }
 
-    /// Mortar is frictionless this session (the case file refuses
-    /// `friction_coefficient` with `discretisation = "mortar"`): a frame
-    /// with no lever, so no tangential force reaches the nodes.
+    /// The weighted slip, the committed traction and the mortar lever
+    /// ([`mortar_friction`](super::mortar_friction)).
     fn slip(
         &self,
         node: &SecondaryNode,
         kinematics: &mut GapKinematics<Dyn>,
         history: &FrictionHistory,
     ) -> SlipFrame<Dyn> {
-        let q = Dyn(kinematics.gradient.len());
-        let zero = OMatrix::<f64, U3, Dyn>::zeros_generic(U3, q);
-        SlipFrame {
-            kinematics: SlipKinematics {
-                traction: Vector3::zeros(),
-                traction_gradient: zero.clone(),
-                offset: node.position() - history.anchor,
-                offset_gradient: zero.clone(),
-                normal: kinematics.normal,
-                normal_gradient: kinematics.normal_gradient.clone(),
-            },
-            lever: zero,
-        }
+        self.frictional_slip(node, kinematics, history)
+    }
+
+    fn lever_stiffness(
+        &self,
+        kinematics: &GapKinematics<Dyn>,
+        traction: &Vector3<f64>,
+    ) -> Option<DMatrix<f64>> {
+        self.frictional_lever_stiffness(kinematics, traction)
     }
 
     fn stick_stiffness(
         &self,
         kinematics: &GapKinematics<Dyn>,
-        _: &SlipFrame<Dyn>,
-        _: &TangentialResponse<Dyn>,
-        _: &Coulomb,
-        _: f64,
+        frame: &SlipFrame<Dyn>,
+        response: &TangentialResponse<Dyn>,
+        law: &Coulomb,
+        area: f64,
     ) -> DMatrix<f64> {
-        let q = kinematics.gradient.len();
-        DMatrix::zeros(q, q)
+        Self::frictional_stick_stiffness(kinematics, frame, response, law, area)
     }
 }
 

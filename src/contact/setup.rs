@@ -365,7 +365,11 @@ impl ContactInterface {
         let nodes = mesh.surface_nodes(set);
         let surfaces = MortarSurfaces::from_mesh(mesh, secondary, primary, &nodes)
             .ok_or_else(|| SetupError::UnknownSurface(primary.to_string()))?;
-        Self::new(mesh, secondary, Primary::Mortar(surfaces), enforcement)
+        let mut c = Self::new(mesh, secondary, Primary::Mortar(surfaces), enforcement)?;
+        if let (true, Primary::Mortar(m)) = (c.has_friction(), &mut c.primary) {
+            m.track_slip(&mesh.nodes);
+        }
+        Ok(c)
     }
 
     /// Surface `secondary` against a rigid obstacle through dual mortar

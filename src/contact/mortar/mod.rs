@@ -21,6 +21,9 @@
 //!   obstacle, integrated over the secondary faces alone.
 //! - [`rows`]: per secondary node, `g̃_j`, `D_j`, `M_jl`, `n_j` and the
 //!   lever `b_j` with their gradients, as Newton needs them.
+//! - [`weighted_slip`]: the frame-indifferent weighted slip increment
+//!   `w_j` from the change of `D`, `M` since the last converged increment
+//!   (Gitterle, Popp, Gee & Wall 2010) and its derivative, for friction.
 //!
 //! Conventions as in `formulation.md`: `g̃_j ≥ 0` open, `λ_j ≥ 0`
 //! compressive; the secondary surface's normals point outward (toward the
@@ -40,6 +43,7 @@ pub mod rows;
 pub mod segment;
 pub mod segment_derivatives;
 pub mod weighted_gap;
+pub mod weighted_slip;
 
 pub use dual_basis::{node_integrals, DualBasis};
 pub use face::{FaceShape, MortarFace, SurfaceFace};

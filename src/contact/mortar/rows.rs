@@ -57,6 +57,8 @@ pub struct MortarRow {
     /// `b_j` (3·nodes) and `∂b_j/∂x` (3·nodes × 3·nodes).
     pub lever: DVector<f64>,
     pub lever_gradient: DMatrix<f64>,
+    /// `(k, R_jk)` of `x̃_j = Σ_k R_jk x_k` (`(j, 1)` on linear faces).
+    pub transformation: Vec<(usize, f64)>,
 }
 
 /// One secondary node's row without derivatives: `g̃_j`, `D_j`, `M_jl`
@@ -303,6 +305,7 @@ fn assemble_row(
         normal_gradient,
         lever,
         lever_gradient,
+        transformation: r,
     }
 }
 

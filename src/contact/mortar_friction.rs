@@ -1,0 +1,239 @@
+//! Coulomb friction on dual mortar (issue 28, item 4): the slip frame,
+//! lever and stick stiffness that [`MortarGap`]'s
+//! [`GapProducer`](super::kinematics::GapProducer) hands the node driver,
+//! so that the one friction law of [`friction`](super::friction) (return
+//! mapping, exact stick with tangential multipliers in Newton, the same
+//! keys) runs on mortar between deformable bodies.
+//!
+//! ## Slip: the frame-indifferent weighted slip (Gitterle et al. 2010)
+//! The driver's offset `d` of secondary node `j` is its weighted slip
+//! increment per area, `d_j = w_j / D_j` with
+//! `w_j = Σ_l (M_jl − M_jl,n) x_l − (D_j − D_j,n) x̃_j`
+//! ([`weighted_slip`](super::mortar::weighted_slip)): `D_j,n`, `M_jl,n`
+//! are the coupling integrated at the last converged configuration and
+//! kept in [`MortarSurfaces::committed`] (refreshed with the candidate
+//! pairs at the start of every increment). A node no segment reached at
+//! the last commit measures `d = x_s − x_s,n` from its own committed
+//! position (it is closing: the driver's first-contact rule counts its
+//! slip from where it touches).
+//!
+//! ## Force: the mortar lever
+//! The tangential traction `t_T` of node `j` (a dual multiplier, like
+//! `λ_j`) acts on the secondary nodes `k` as `D_j R_jk t_T` and on the
+//! primary nodes `l` as `−M_jl t_T`: the driver's `r_q −= A Bᵀ t_T` with
+//! `A = D_j` and the lever at fixed `D`, `M`
+//! ```text
+//! B = ∂(x̃_j − Σ_l (M_jl/D_j) x_l)/∂q = (R_jk I on k;  −(M_jl/D_j) I on l),
+//! ```
+//! so the forces balance where `Σ_l M_jl = D_j Σ_k R_jk`. Its own change
+//! (with the area's) at fixed `t_T`
+//! ([`lever_stiffness`](super::kinematics::GapProducer::lever_stiffness)):
+//! `∂(−A Bᵀ t)/∂q = (−R_jk t ⊗ ∇D_j on k;  t ⊗ ∇M_jl on l)`.
+//!
+//! The committed traction of a law without tangential multipliers
+//! (penalty) is kept as a global vector and projected on the current
+//! tangent plane, as against a rigid obstacle: a pair that turns as a
+//! whole while sticking loses `1 − cos θ` of it (the node-to-surface path
+//! carries it on the primary triangle's edges; not done here).
+
+use super::friction::{Coulomb, FrictionHistory, SlipKinematics, TangentialResponse};
+use super::kinematics::{current_position, GapKinematics, SecondaryNode, SlipFrame};
+use super::mortar::weighted_slip::{committed_row, weighted_slip};
+use super::mortar::{mortar_coupling, MortarCoupling, MortarRow};
+use super::mortar_contact::{MortarGap, MortarSurfaces};
+use nalgebra::{DMatrix, Dyn, Matrix3, OMatrix, Vector3, U3};
+
+impl MortarSurfaces {
+    /// Keep the coupling of every converged increment from now on
+    /// (friction needs it), starting with the one at `reference`.
+    pub fn track_slip(&mut self, reference: &[[f64; 3]]) {
+        self.committed = Some(MortarCoupling::default());
+        let xs: Vec<Vector3<f64>> = reference.iter().map(|x| Vector3::from(*x)).collect();
+        self.commit_coupling(&xs);
+    }
+
+    /// Integrate and keep `D`, `M` at the converged coordinates `xs` where
+    /// slip is tracked ([`track_slip`](Self::track_slip)); a face the
+    /// kernels cannot integrate leaves no committed row (its nodes then
+    /// slip from their own committed positions).
+    pub fn commit_coupling(&mut self, xs: &[Vector3<f64>]) {
+        if self.committed.is_some() {
+            let pairs = self.pairs();
+            let coupling = mortar_coupling(&self.secondary_faces, &self.primary_faces, &pairs, xs);
+            self.committed = Some(coupling.unwrap_or_default());
+        }
+    }
+}
+
+/// Position of every mesh node of `nodes` in `among` (the kinematics'
+/// `q` order), node-major offsets `3a`.
+fn offsets(among: &[usize], nodes: &[usize]) -> Vec<usize> {
+    nodes
+        .iter()
+        .map(|n| 3 * among.iter().position(|m| m == n).unwrap_or(0))
+        .collect()
+}
+
+/// Adds the 3-row block `block` (columns node-major over `nodes`) to
+/// `target` (columns over `q`, `offsets` of `nodes` there).
+fn add_columns(target: &mut OMatrix<f64, U3, Dyn>, block: &DMatrix<f64>, offsets: &[usize]) {
+    for (a, &c) in offsets.iter().enumerate() {
+        for i in 0..3 {
+            for k in 0..3 {
+                target[(i, c + k)] += block[(i, 3 * a + k)];
+            }
+        }
+    }
+}
+
+/// `B = (R_jk I on k; −(M_jl/D_j) I on l)` of `row` over `q`'s `nodes`.
+fn lever(nodes: &[usize], row: &MortarRow) -> OMatrix<f64, U3, Dyn> {
+    let mut lever = OMatrix::<f64, U3, Dyn>::zeros_generic(U3, Dyn(3 * nodes.len()));
+    let weights = row
+        .transformation
+        .iter()
+        .copied()
+        .chain(row.m.iter().map(|(l, m)| (*l, -m / row.d)));
+    for (n, w) in weights {
+        let c = offsets(nodes, &[n])[0];
+        for i in 0..3 {
+            lever[(i, c + i)] += w;
+        }
+    }
+    lever
+}
+
+impl MortarGap<'_> {
+    /// The node's committed `(D_j,n, M_jl,n)`, where slip is tracked and a
+    /// segment reached it at the last commit.
+    fn committed_of(&self, j: usize) -> Option<(f64, Vec<(usize, f64)>)> {
+        committed_row(self.surfaces.committed.as_ref()?, j)
+    }
+
+    /// `kinematics` of mesh node `j` with the committed primary nodes it
+    /// no longer couples to appended to `q` (zero entries), so that the
+    /// weighted slip's `−M_jl,n x_l` reaches them.
+    pub(super) fn with_committed_nodes(
+        &self,
+        j: usize,
+        mut kinematics: GapKinematics<Dyn>,
+    ) -> GapKinematics<Dyn> {
+        let Some((_, m_n)) = self.committed_of(j) else {
+            return kinematics;
+        };
+        let extra: Vec<usize> = m_n
+            .iter()
+            .map(|(l, _)| *l)
+            .filter(|l| !kinematics.nodes.contains(l))
+            .collect();
+        if extra.is_empty() {
+            return kinematics;
+        }
+        kinematics.nodes.extend_from_slice(&extra);
+        let q = 3 * kinematics.nodes.len();
+        let k = kinematics;
+        GapKinematics {
+            gradient: k.gradient.resize_vertically(q, 0.0),
+            lever: k.lever.map(|b| b.resize_vertically(q, 0.0)),
+            hessian: k.hessian.resize(q, q, 0.0),
+            normal_gradient: k.normal_gradient.resize_horizontally(q, 0.0),
+            ..k
+        }
+    }
+
+    /// The slip frame of a closed node (see the module docs): `d_j = w_j /
+    /// D_j` (or `x_s − x_s,n` without a committed row), the committed
+    /// traction, and the mortar lever `B`.
+    pub(super) fn frictional_slip(
+        &self,
+        node: &SecondaryNode,
+        kinematics: &GapKinematics<Dyn>,
+        history: &FrictionHistory,
+    ) -> SlipFrame<Dyn> {
+        let (j, q) = (node.mesh_node, kinematics.gradient.len());
+        let zero = || OMatrix::<f64, U3, Dyn>::zeros_generic(U3, Dyn(q));
+        // a closed node has a row; without one (never asked for) no
+        // lever: no tangential force reaches the nodes
+        let row = self.node_row(j);
+        let mut offset_gradient = zero();
+        let offset = match (row, self.committed_of(j)) {
+            (Some(row), Some((d_n, m_n))) => {
+                let position = |n| current_position(node.reference, node.x, n);
+                let slip = weighted_slip(row, (d_n, &m_n), position);
+                let (d, gradient) = slip.per_area(row);
+                add_columns(
+                    &mut offset_gradient,
+                    &gradient,
+                    &offsets(&kinematics.nodes, &slip.nodes),
+                );
+                d
+            }
+            _ => {
+                offset_gradient
+                    .fixed_view_mut::<3, 3>(0, 0)
+                    .fill_diagonal(1.0);
+                node.position() - history.anchor
+            }
+        };
+        SlipFrame {
+            kinematics: SlipKinematics {
+                traction: history.traction,
+                traction_gradient: zero(),
+                offset,
+                offset_gradient,
+                normal: kinematics.normal,
+                normal_gradient: kinematics.normal_gradient.clone(),
+            },
+            lever: row.map_or_else(zero, |row| lever(&kinematics.nodes, row)),
+        }
+    }
+
+    /// `∂(−A Bᵀ t)/∂q` at fixed `t = traction / A`, `A = D_j` (see the
+    /// module docs).
+    pub(super) fn frictional_lever_stiffness(
+        &self,
+        kinematics: &GapKinematics<Dyn>,
+        traction: &Vector3<f64>,
+    ) -> Option<DMatrix<f64>> {
+        let j = kinematics.nodes[0];
+        let row = self.node_row(j)?;
+        let t = traction / row.d;
+        let q = kinematics.gradient.len();
+        let columns = offsets(&kinematics.nodes, &row.nodes);
+        let mut stiffness = DMatrix::zeros(q, q);
+        let mut add = |n: usize, gradient: &nalgebra::DVector<f64>, scale: f64| {
+            let at = offsets(&kinematics.nodes, &[n])[0];
+            for (a, &c) in columns.iter().enumerate() {
+                for i in 0..3 {
+                    for k in 0..3 {
+                        stiffness[(at + i, c + k)] += scale * t[i] * gradient[3 * a + k];
+                    }
+                }
+            }
+        };
+        for (k, r) in &row.transformation {
+            add(*k, &row.d_gradient, -r);
+        }
+        for ((l, _), g) in row.m.iter().zip(&row.m_gradients) {
+            add(*l, g, 1.0);
+        }
+        Some(stiffness)
+    }
+
+    /// The stick stiffness at the current coupling scaled by the slip
+    /// ratio `β`, `A β ε_T Bᵀ T B` (positive semi-definite), for the
+    /// preconditioner of the frictional solve.
+    pub(super) fn frictional_stick_stiffness(
+        kinematics: &GapKinematics<Dyn>,
+        frame: &SlipFrame<Dyn>,
+        response: &TangentialResponse<Dyn>,
+        law: &Coulomb,
+        area: f64,
+    ) -> DMatrix<f64> {
+        let n = kinematics.normal;
+        let projector = Matrix3::identity() - n * n.transpose();
+        let lever = &frame.lever;
+        let stiffness = area * response.stick_scale * law.tangential_penalty;
+        stiffness * lever.transpose() * projector * lever
+    }
+}

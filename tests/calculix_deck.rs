@@ -16,11 +16,7 @@
 //!   node's multiplier is `λ_j = p` and the contact force `p A = 100`
 //!   (A = 1); pulled (end of step 2) the whole pad slides, and the
 //!   sideways reaction on its top is Coulomb's `μ p A = 30` with
-//!   `*FRICTION` μ = 0.3, zero without. Mortar contact is frictionless on
-//!   this branch: the deck as committed (with `*FRICTION`) is refused at
-//!   its pair's line (`tests/bad_decks.rs`), so the frictional checks are
-//!   ignored until mortar friction lands (branch `mfric`); the
-//!   frictionless deck (the same without its `*FRICTION`) runs now.
+//!   `*FRICTION` μ = 0.3 (Coulomb on mortar's weighted slip), zero without.
 
 mod ccx;
 
@@ -223,11 +219,13 @@ fn pressure_at(deck: &Path, outcome: &RunOutcome, time: f64) -> (f64, f64, f64) 
 }
 
 /// The press of the uniform state: `λ_j = p` at every node of the pad's
-/// bottom (to 1e-10 of p; measured 1e-14 pressed, 1e-13 slid), the force `p A` and
-/// the area `A` (1e-10).
-fn assert_uniform_press(worst: f64, force: f64, area: f64) {
+/// bottom (to `tolerance` of p: 1e-10 frictionless, measured 1e-14
+/// pressed, 1e-13 slid; 1e-8 with the deck's regularised friction, whose
+/// tangential unknowns leave Newton's tolerance on λ, measured 1.1e-9),
+/// the force `p A` and the area `A` (1e-10).
+fn assert_uniform_press(worst: f64, force: f64, area: f64, tolerance: f64) {
     println!("press: max |λ_j − p| {worst:.3e}, force {force:.12}, area {area:.12}");
-    assert!(worst <= 1e-10 * P, "max |λ_j − p| = {worst}");
+    assert!(worst <= tolerance * P, "max |λ_j − p| = {worst}");
     assert!((force - P * AREA).abs() <= 1e-10 * P, "force {force}");
     assert!((area - AREA).abs() <= 1e-10, "area {area}");
 }
@@ -255,9 +253,9 @@ fn c3d10_deck_without_friction_presses_uniformly() {
     );
     let as_deck = as_deck_and_as_case(&deck, dir.path(), MORTAR);
     let (worst, force, area) = pressure_at(&deck, &as_deck, 1.0);
-    assert_uniform_press(worst, force, area);
+    assert_uniform_press(worst, force, area, 1e-10);
     let (worst, force, area) = pressure_at(&deck, &as_deck, 2.0);
-    assert_uniform_press(worst, force, area);
+    assert_uniform_press(worst, force, area, 1e-10);
     let rf = last_row(&dir.path().join("deck/Pad-1.Top_RF.csv"));
     println!("pull without friction: reaction {rf:?}");
     assert_eq!(rf[0], 2.0);
@@ -269,20 +267,21 @@ fn c3d10_deck_without_friction_presses_uniformly() {
 /// 1e-12; press uniform as without friction (ν = 0: nothing slips while
 /// pressed); at the end of the pull the whole pad slides and the
 /// sideways reaction on its top is Coulomb's `μ p A = 30` (1e-6: Newton's
-/// tolerance), its y component zero.
+/// tolerance), its y component zero to 1e-5 of it (measured 1.2e-6: the
+/// pad's Kuhn split into tetrahedra is not mirror-symmetric in y, so the
+/// slip turns by that much).
 #[test]
-#[ignore = "needs mortar friction (branch mfric)"]
 fn c3d10_deck_press_then_pull_with_friction() {
     let dir = tempfile::tempdir().unwrap();
     let as_deck = as_deck_and_as_case(&c3d10_example(), dir.path(), MORTAR);
     let (worst, force, area) = pressure_at(&c3d10_example(), &as_deck, 1.0);
-    assert_uniform_press(worst, force, area);
+    assert_uniform_press(worst, force, area, 1e-8);
     let rf = last_row(&dir.path().join("deck/Pad-1.Top_RF.csv"));
     println!("pull with friction: reaction {rf:?}");
     assert_eq!(rf[0], 2.0);
     let coulomb = MU * P * AREA;
     assert!((rf[1].abs() - coulomb).abs() < 1e-6 * coulomb, "{rf:?}");
-    assert!(rf[2].abs() < 1e-6 * coulomb, "{rf:?}");
+    assert!(rf[2].abs() < 1e-5 * coulomb, "{rf:?}");
 }
 
 /// CalculiX's `TYPE=` on the C3D8 example's pair (linear faces, without

@@ -58,8 +58,8 @@ use super::kinematics::{
 };
 use super::laws::NodeContactState;
 use super::mortar::{
-    mortar_row_values, mortar_rows, node_integrals, FaceShape, MortarCoupling, MortarRow, RowValues,
-    SurfaceFace,
+    mortar_row_values, mortar_rows, node_integrals, FaceShape, MortarCoupling, MortarRow,
+    RowValues, SurfaceFace,
 };
 use crate::mesh::{FacetKind, Mesh};
 use nalgebra::{DMatrix, Dyn, OMatrix, Vector3, U3};
@@ -97,6 +97,11 @@ pub struct MortarSurfaces {
     surface_nodes: Vec<usize>,
     /// The rows of the last configurations ([`RowCache`]).
     cache: RowCache,
+    /// With friction, `D` and `M` at the last converged configuration
+    /// (integrated at each [`refresh`](Self::refresh)), which the weighted
+    /// slip is measured against ([`mortar_friction`](super::mortar_friction));
+    /// `None` without friction.
+    pub committed: Option<MortarCoupling>,
 }
 
 /// The producer's rows per secondary node (those covered, see "Search").
@@ -172,11 +177,6 @@ impl RowCache {
             .unwrap_or_else(|e| e.into_inner())
             .clear();
     }
-    /// With friction, `D` and `M` at the last converged configuration
-    /// (integrated at each [`refresh`](Self::refresh)), which the weighted
-    /// slip is measured against ([`mortar_friction`](super::mortar_friction));
-    /// `None` without friction.
-    pub committed: Option<MortarCoupling>,
 }
 
 /// The face shape of a mesh facet (same node order).

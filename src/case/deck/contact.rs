@@ -12,8 +12,8 @@
 //! quadratic faces (Tri6/Quad8 of C3D10, C3D20, C3D15), on which
 //! node-to-surface contact gives a face's corners no share of a uniform
 //! pressure; node-to-surface otherwise (no `TYPE=`, `NODE TO SURFACE`,
-//! `SURFACE TO SURFACE`). What mortar cannot do yet (friction) is refused
-//! at the pair's line ([`mortar_limits`]).
+//! `SURFACE TO SURFACE`). Mortar takes the pair's `*FRICTION` (Coulomb on
+//! the weighted slip).
 
 use super::super::schema::{ContactMethod, ContactSpec, DiscretisationSpec};
 use crate::mesh::inp::physics::{ContactPairDef, InteractionDef, Overclosure, PairType, Physics};
@@ -59,7 +59,6 @@ pub(super) fn contacts(
             }
         }
         if let Some(why) = discretisation {
-            mortar_limits(pair, i)?;
             notes.push(mortar_note(pair, why));
         }
         out.push(ContactSpec {
@@ -121,32 +120,6 @@ fn discretisation(pair: &ContactPairDef, mesh: &Mesh) -> Result<Option<WhyMortar
         ))),
         (_, Some(_)) => Ok(Some(WhyMortar::Quadratic)),
         (_, None) => Ok(None),
-    }
-}
-
-/// What mortar contact cannot do yet, refused at the pair's line: friction
-/// (mortar contact is frictionless in this version).
-fn mortar_limits(pair: &ContactPairDef, interaction: &InteractionDef) -> Result<()> {
-    match interaction.friction.filter(|f| f.mu != 0.0) {
-        None => Ok(()),
-        Some(f) => Err(pair.at.error(format!(
-            "*CONTACT PAIR {}, {}: this pair takes mortar contact ({}), which is frictionless \
-             in this version, but its *SURFACE INTERACTION '{}' (line {}) has *FRICTION with \
-             μ = {}: remove the *FRICTION for frictionless contact, or {}",
-            pair.secondary,
-            pair.primary,
-            match &pair.pair_type {
-                PairType::Mortar(t) => format!("TYPE={t}"),
-                _ => "its surfaces have quadratic faces".into(),
-            },
-            interaction.name,
-            interaction.at.line,
-            f.mu,
-            match &pair.pair_type {
-                PairType::Mortar(_) => "remove TYPE= (node-to-surface contact takes friction)",
-                _ => "mesh the contact bodies with linear elements (C3D4, C3D8) for node-to-surface contact with friction",
-            }
-        ))),
     }
 }
 

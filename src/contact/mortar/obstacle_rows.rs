@@ -208,18 +208,22 @@ pub fn obstacle_rows(
     obstacle: &impl Fn(&Vector3<f64>) -> Projection,
 ) -> Result<BTreeMap<usize, MortarRow>, MortarError> {
     // each node's coupled nodes: those of its selected faces, sorted
-    let mut coupled: BTreeMap<usize, Vec<usize>> = BTreeMap::new();
+    let mut coupled: BTreeMap<usize, (usize, Vec<usize>)> = BTreeMap::new();
     for &e in selected {
         for &j in &faces[e].nodes {
-            coupled.entry(j).or_default().extend(&faces[e].nodes);
+            let entry = coupled.entry(j).or_insert((e, Vec::new()));
+            entry.1.extend(&faces[e].nodes);
         }
     }
     let mut rows: BTreeMap<usize, MortarRow> = coupled
         .into_iter()
-        .map(|(j, mut nodes)| {
+        .map(|(j, (e, mut nodes))| {
             nodes.sort_unstable();
             nodes.dedup();
-            (j, empty_row(j, nodes))
+            (
+                j,
+                empty_row(j, nodes, super::rows::transformation(&faces[e], j)),
+            )
         })
         .collect();
     for &e in selected {
@@ -237,8 +241,9 @@ pub fn obstacle_rows(
     Ok(rows)
 }
 
-/// A row of `node` over `nodes` with every sum zero.
-fn empty_row(node: usize, nodes: Vec<usize>) -> MortarRow {
+/// A row of `node` over `nodes` with every sum zero, `x̃_j`'s
+/// `transformation` from a face holding it.
+fn empty_row(node: usize, nodes: Vec<usize>, transformation: Vec<(usize, f64)>) -> MortarRow {
     let size = 3 * nodes.len();
     MortarRow {
         node,
@@ -253,6 +258,7 @@ fn empty_row(node: usize, nodes: Vec<usize>) -> MortarRow {
         normal_gradient: DMatrix::zeros(3, size),
         lever: DVector::zeros(size),
         lever_gradient: DMatrix::zeros(size, size),
+        transformation,
     }
 }
 

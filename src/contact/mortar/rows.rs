@@ -235,7 +235,7 @@ fn add_sparse(
 }
 
 /// `x̃_j = Σ_k R_jk x_k` as global `(k, R_jk)`, from a face holding `node`.
-fn transformation(face: &SurfaceFace, node: usize) -> Vec<(usize, f64)> {
+pub(super) fn transformation(face: &SurfaceFace, node: usize) -> Vec<(usize, f64)> {
     let j = face.nodes.iter().position(|&n| n == node).unwrap_or(0);
     quadratic::nodal_transformation(face.shape)[j]
         .iter()

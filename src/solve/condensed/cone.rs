@@ -10,6 +10,10 @@
 //! Per contact node `a` the traction `t_a ∈ ℝ³` the obstacle exerts on the
 //! body (`t_N = n·t`, `t_T = T t`, `T = I − n nᵀ`) and the displacement of
 //! its free dofs `u_F` (the prescribed components `ū_a` are given). The
+//! "displacement" is whatever motion the columns of `E` measure: the
+//! node's own against a rigid obstacle, its motion relative to its
+//! projection point between bodies (the caller's columns are the rows of
+//! the lever `B`, and its gap and slip linearised in that motion). The
 //! structure, with the shifted stiffness `K̂ = K̃ + ρ Σ_{j∈S} e_j e_jᵀ` (the
 //! shift on a set `S` of contact dofs, so that `K̂` is regular even where
 //! only contact holds the body) and `Ŵ = Eᵀ K̂⁻¹ E` (`E` the unit columns
@@ -75,6 +79,12 @@ const HALVINGS: usize = 8;
 
 /// `|n_d|` below which axis `d` lies in the tangent plane.
 const AXIS_IN_PLANE: f64 = 1e-12;
+
+/// `|n_d|` below which a prescribed axis `d` is taken as lying near the
+/// tangent plane: exact stick keeps the committed traction along its
+/// direction there, `τ = T e_d/|T e_d|` (between bodies a node on a
+/// symmetry plane against a primary triangle tilted off it).
+const AXIS_NEAR_PLANE: f64 = 0.5;
 
 /// Converged when the scaled residual is below this fraction of the
 /// traction scale.
@@ -202,9 +212,16 @@ pub fn node_law(node: &ConeNode, u: &Vector3<f64>, t: &Vector3<f64>) -> NodeLaw 
     // prescribed tangential axes; its derivative `free T`
     let mut free = Matrix3::identity();
     let mut multiplier = tangential;
-    for d in (0..3).filter(|&d| node.prescribed[d] && n[d].abs() <= AXIS_IN_PLANE) {
-        free[(d, d)] = 0.0;
-        multiplier[d] = node.committed_traction[d];
+    for d in (0..3).filter(|&d| node.prescribed[d]) {
+        if n[d].abs() <= AXIS_IN_PLANE {
+            free[(d, d)] = 0.0;
+            multiplier[d] = node.committed_traction[d];
+        } else if n[d].abs() < AXIS_NEAR_PLANE {
+            // the axis's direction in the tangent plane, `τ = T e_d/|T e_d|`
+            let tau = (projector * Vector3::ith(d, 1.0)).normalize();
+            free -= tau * tau.transpose();
+            multiplier += tau * tau.dot(&(node.committed_traction - multiplier));
+        }
     }
     let mut kinematics = SlipKinematics {
         traction: if exact_stick {
@@ -270,7 +287,10 @@ pub struct ConeProblem<'a> {
     pub shift: f64,
     /// `û₀` on the contact dofs.
     pub free_displacement: &'a [f64],
-    /// Per node the prescribed displacement (its free components unused).
+    /// Per node the part of its motion `u_a` that is not an unknown: the
+    /// prescribed components, and on a free component what its column
+    /// leaves out (between bodies the prescribed dofs of the lever; zero
+    /// against a rigid obstacle): `u_a,d = prescribed_a,d + u_F,i`.
     pub prescribed: &'a [Vector3<f64>],
     pub nodes: &'a [ConeNode],
 }
@@ -316,11 +336,11 @@ struct Condensed {
 }
 
 impl ConeProblem<'_> {
-    /// Each node's full displacement at `u_F`.
+    /// Each node's full motion at `u_F`.
     fn node_displacements(&self, u: &[f64]) -> Vec<Vector3<f64>> {
         let mut full = self.prescribed.to_vec();
         for (i, &(a, d)) in self.columns.iter().enumerate() {
-            full[a][d] = u[i];
+            full[a][d] += u[i];
         }
         full
     }
@@ -573,13 +593,21 @@ mod tests {
                 ContactStatus::Slip,
             ),
         ];
-        for (normal_law, tangential_law, motion, status) in cases {
-            let n = node(normal_law, tangential_law);
+        // a prescribed y off the tangent plane (n_y ≠ 0): exact stick keeps
+        // the committed traction along `τ = T e_y/|T e_y|`
+        let axes = [[false; 3], [false, true, false]];
+        for ((normal_law, tangential_law, motion, status), prescribed) in
+            cases.into_iter().flat_map(|c| axes.map(|p| (c, p)))
+        {
+            let n = ConeNode {
+                prescribed,
+                ..node(normal_law, tangential_law)
+            };
             let u = Vector3::new(motion, 0.5 * motion, -0.01);
             let t = Vector3::new(0.2, 0.1, 5.0);
             let law = node_law(&n, &u, &t);
-            assert_eq!(
-                law.status, status,
+            assert!(
+                prescribed[1] || law.status == status,
                 "{normal_law:?} {tangential_law:?} {motion}"
             );
             let h = 1e-7;

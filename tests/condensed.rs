@@ -136,9 +136,10 @@ fn condensed_equals_monolithic_on_frictionless_hertz() {
 /// plane, frictionless, Rockafellar) and on examples/press-pull (linear
 /// elastic, Coulomb friction against a rigid plane, the block held in x by
 /// friction alone) and says why; it takes the monolithic one for a
-/// finite-strain material, for friction against a sphere and for two
-/// deformable bodies (examples/two-spheres), naming the reason; `condensed` asked for where it does not apply is an error
-/// naming the reason.
+/// finite-strain material and for friction against a sphere, naming the
+/// reason, and the condensed one for two linear elastic bodies
+/// (examples/two-spheres); `condensed` asked for where it does not apply
+/// is an error naming the reason.
 #[test]
 fn auto_takes_the_condensed_path_exactly_where_it_applies() {
     let (auto, _) = hertz("strategy = \"auto\"", &[]);
@@ -175,11 +176,14 @@ fn auto_takes_the_condensed_path_exactly_where_it_applies() {
     let curved = press_pull_problem(&sphere);
     let why = signorini::problem::condensed::not_applicable(curved.problem()).unwrap();
     assert!(why.contains("sphere"), "{why}");
-    // two linear elastic bodies in contact (examples/two-spheres): refused
+    // two linear elastic bodies in contact (examples/two-spheres): taken
     let root = Path::new(env!("CARGO_MANIFEST_DIR"));
     let pair = Simulation::from_file(&root.join("examples/two-spheres/case.toml")).unwrap();
-    let why = signorini::problem::condensed::not_applicable(pair.problem()).unwrap();
-    assert!(why.contains("between two bodies"), "{why}");
+    let why = signorini::problem::condensed::not_applicable(pair.problem());
+    assert_eq!(why, None);
+    let choice = signorini::problem::condensed::choose(pair.problem()).unwrap();
+    assert_eq!(choice.path.name(), "condensed");
+    assert!(choice.reason.contains("two bodies"), "{}", choice.reason);
     let Err(e) = run_case("press-pull", &sphere, "strategy = \"condensed\"") else {
         panic!("condensed ran against a sphere");
     };
@@ -671,7 +675,7 @@ fn pushed_blocks(contact: &str, solver: &str) -> (RunOutcome, PairState) {
 /// factorisation, and at every increment the displacements, nodal contact
 /// forces, pressures and gaps of monolithic Newton (residual tolerance
 /// 1e-11) to 1e-8 relative (the gaps against the largest displacement);
-/// `auto` keeps such a case on Newton's path.
+/// `auto` takes the condensed path there.
 #[test]
 fn bodies_in_contact_condensed_equal_monolithic() {
     for contact in [
@@ -716,7 +720,7 @@ fn bodies_in_contact_condensed_equal_monolithic() {
             .count();
         assert!(closed > 4, "the blocks touch over several nodes: {closed}");
         let (auto, _) = pushed_blocks(contact, "strategy = \"auto\"");
-        assert_eq!(auto.summary.strategy, "monolithic");
+        assert_eq!(auto.summary.strategy, "condensed");
     }
 }
 

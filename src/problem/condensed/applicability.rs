@@ -104,15 +104,14 @@ pub fn not_applicable(problem: &Problem) -> Option<String> {
             p.surface
         ));
     }
-    let strategy = problem.settings.strategy;
     for c in &problem.contacts {
         // the gap from the node driver, affine in `u`; a law whose
         // converged state is exact or a penalty (not an outer loop's)
         let why = match c.affine_gap() {
             Ok(()) => None,
-            // between bodies: asked for by name (`auto` keeps Newton's
-            // path there until it is measured)
-            Err(_) if c.projected_gap() && strategy == Strategy::Condensed => None,
+            // between bodies: the rows at the current projections
+            // ([`super::pairs`], [`super::friction`])
+            Err(_) if c.projected_gap() => None,
             Err(why) => Some(why),
         };
         let why = why.or_else(|| {

@@ -214,13 +214,12 @@ impl IncrementSolver for PairCondensation {
         self.base.warm_start()
     }
 
-    /// Not bitwise: the candidates' columns are those of the checkpoint's
-    /// projections only after the first increment; refused.
-    fn resume(&mut self, _: &WarmStart) -> Result<()> {
-        Err(Error::LinearSolver(
-            "a restart of the condensed path between bodies is not supported; run with \
-             [solver] strategy = \"monolithic\""
-                .into(),
-        ))
+    /// The candidates replayed in their batches (their columns at the
+    /// start's projections), the active set copied: the next increment's
+    /// first round forms `W` anew at the checkpoint's projections, as the
+    /// uninterrupted run does at every increment's start, so the resumed
+    /// run is the same bit for bit.
+    fn resume(&mut self, warm: &WarmStart) -> Result<()> {
+        self.base.resume(warm)
     }
 }

@@ -149,26 +149,27 @@ fn tangent_basis(n: &Vector3<f64>) -> [Vector3<f64>; 2] {
     [e1, n.cross(&e1)]
 }
 
-/// The equations of node `node` at displacement `u` and traction `t`
-/// (see the module docs).
-pub fn node_law(node: &ConeNode, u: &Vector3<f64>, t: &Vector3<f64>) -> NodeLaw {
+/// A closed node's pressure `p` bounding the cone, with `∂p/∂u`, `∂p/∂t`.
+type Pressure = (f64, Vector3<f64>, Vector3<f64>);
+
+/// The normal equation of `node` (row 0 of `law`) at gap `g` and normal
+/// traction `t_n`: exact (Alart–Curnier) `t_N − max(0, t_N − r g)`, or
+/// penalty `t_N − ε⟨−g⟩`; the pressure where the node is closed.
+fn normal_equation(node: &ConeNode, g: f64, t_n: f64, law: &mut NodeLaw) -> Option<Pressure> {
     let n = node.normal;
-    let basis = tangent_basis(&n);
-    let g = node.gap_at_rest + n.dot(u);
-    let t_n = n.dot(t);
-    let mut residual = Vector3::zeros();
-    let mut du = Matrix3::zeros();
-    let mut dt = Matrix3::zeros();
-    // the pressure p the cone is bounded by, ∂p/∂u and ∂p/∂t
-    let closed = match node.normal_law {
+    let (du, dt) = (
+        &mut law.displacement_derivative,
+        &mut law.traction_derivative,
+    );
+    match node.normal_law {
         NormalEnforcement::Exact { r } => {
             let xi = t_n - r * g;
             if xi > 0.0 {
-                residual[0] = r * g;
+                law.residual[0] = r * g;
                 du.set_row(0, &(r * n.transpose()));
                 Some((xi, -r * n, n))
             } else {
-                residual[0] = t_n;
+                law.residual[0] = t_n;
                 dt.set_row(0, &n.transpose());
                 None
             }
@@ -176,40 +177,27 @@ pub fn node_law(node: &ConeNode, u: &Vector3<f64>, t: &Vector3<f64>) -> NodeLaw 
         NormalEnforcement::Penalty { epsilon } => {
             dt.set_row(0, &n.transpose());
             if g <= 0.0 {
-                residual[0] = t_n + epsilon * g;
+                law.residual[0] = t_n + epsilon * g;
                 du.set_row(0, &(epsilon * n.transpose()));
                 Some((-epsilon * g, -epsilon * n, Vector3::zeros()))
             } else {
-                residual[0] = t_n;
+                law.residual[0] = t_n;
                 None
             }
         }
-    };
-    let exact_normal = matches!(node.normal_law, NormalEnforcement::Exact { .. });
-    let closing = exact_normal && node.was_open && node.committed_gap > 0.0;
-    let Some((p, dp_du, dp_dt)) = closed.filter(|_| !closing) else {
-        // open, or closing under an exact law: t_T = 0
-        for (k, e) in basis.iter().enumerate() {
-            residual[k + 1] = e.dot(t);
-            dt.set_row(k + 1, &e.transpose());
-        }
-        let status = if closed.is_some() {
-            ContactStatus::Stick
-        } else {
-            ContactStatus::Open
-        };
-        return NodeLaw {
-            residual,
-            displacement_derivative: du,
-            traction_derivative: dt,
-            status,
-        };
-    };
-    let projector = Matrix3::identity() - n * n.transpose();
-    let tangential = projector * t;
-    let exact_stick = node.tangential_law == TangentialLaw::ExactStick;
-    // exact stick's multiplier: T t, but the committed traction along the
-    // prescribed tangential axes; its derivative `free T`
+    }
+}
+
+/// Exact stick's multiplier `T t`, but the committed traction along the
+/// prescribed tangential axes (along `τ = T e_d/|T e_d|` where the axis is
+/// near the tangent plane), and its derivative's left factor `free`
+/// (`∂multiplier/∂t = free T`).
+fn stick_multiplier(
+    node: &ConeNode,
+    projector: &Matrix3<f64>,
+    tangential: Vector3<f64>,
+) -> (Vector3<f64>, Matrix3<f64>) {
+    let n = node.normal;
     let mut free = Matrix3::identity();
     let mut multiplier = tangential;
     for d in (0..3).filter(|&d| node.prescribed[d]) {
@@ -217,12 +205,47 @@ pub fn node_law(node: &ConeNode, u: &Vector3<f64>, t: &Vector3<f64>) -> NodeLaw 
             free[(d, d)] = 0.0;
             multiplier[d] = node.committed_traction[d];
         } else if n[d].abs() < AXIS_NEAR_PLANE {
-            // the axis's direction in the tangent plane, `τ = T e_d/|T e_d|`
             let tau = (projector * Vector3::ith(d, 1.0)).normalize();
             free -= tau * tau.transpose();
             multiplier += tau * tau.dot(&(node.committed_traction - multiplier));
         }
     }
+    (multiplier, free)
+}
+
+/// The equations of node `node` at displacement `u` and traction `t`
+/// (see the module docs): the normal one ([`normal_equation`]) and, in a
+/// basis `(e₁, e₂)` of the tangent plane, the tangential ones, `t_T = 0`
+/// where the node is open or closing under an exact law, else
+/// `T t − P_{μp}(trial)` by the monolithic return mapping.
+pub fn node_law(node: &ConeNode, u: &Vector3<f64>, t: &Vector3<f64>) -> NodeLaw {
+    let n = node.normal;
+    let basis = tangent_basis(&n);
+    let g = node.gap_at_rest + n.dot(u);
+    let mut law = NodeLaw {
+        residual: Vector3::zeros(),
+        displacement_derivative: Matrix3::zeros(),
+        traction_derivative: Matrix3::zeros(),
+        status: ContactStatus::Open,
+    };
+    let closed = normal_equation(node, g, n.dot(t), &mut law);
+    let exact_normal = matches!(node.normal_law, NormalEnforcement::Exact { .. });
+    let closing = exact_normal && node.was_open && node.committed_gap > 0.0;
+    let Some((p, dp_du, dp_dt)) = closed.filter(|_| !closing) else {
+        // open, or closing under an exact law: t_T = 0
+        for (k, e) in basis.iter().enumerate() {
+            law.residual[k + 1] = e.dot(t);
+            law.traction_derivative.set_row(k + 1, &e.transpose());
+        }
+        if closed.is_some() {
+            law.status = ContactStatus::Stick;
+        }
+        return law;
+    };
+    let projector = Matrix3::identity() - n * n.transpose();
+    let tangential = projector * t;
+    let exact_stick = node.tangential_law == TangentialLaw::ExactStick;
+    let (multiplier, free) = stick_multiplier(node, &projector, tangential);
     let mut kinematics = SlipKinematics {
         traction: if exact_stick {
             multiplier
@@ -258,19 +281,16 @@ pub fn node_law(node: &ConeNode, u: &Vector3<f64>, t: &Vector3<f64>) -> NodeLaw 
         };
     }
     let equation = tangential - response.traction;
-    let d_du = -response.traction_gradient;
-    let d_dt = projector - dtau_dt;
+    let (d_du, d_dt) = (-response.traction_gradient, projector - dtau_dt);
     for (k, e) in basis.iter().enumerate() {
-        residual[k + 1] = e.dot(&equation);
-        du.set_row(k + 1, &(e.transpose() * d_du));
-        dt.set_row(k + 1, &(e.transpose() * d_dt));
+        law.residual[k + 1] = e.dot(&equation);
+        law.displacement_derivative
+            .set_row(k + 1, &(e.transpose() * d_du));
+        law.traction_derivative
+            .set_row(k + 1, &(e.transpose() * d_dt));
     }
-    NodeLaw {
-        residual,
-        displacement_derivative: du,
-        traction_derivative: dt,
-        status: response.status,
-    }
+    law.status = response.status;
+    law
 }
 
 /// The condensed problem of one increment.

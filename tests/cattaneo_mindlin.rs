@@ -331,6 +331,9 @@ fn pinned(case: &Path, folder: &Path, form: &str) -> std::path::PathBuf {
         assert!(text.contains(&line), "{line}");
         text = text.replace(&line, &format!("{line}max_increment = {first}\n"));
     }
+    // Newton's path (`auto` takes the condensed one here)
+    assert!(!text.contains("[solver]"));
+    text.push_str("\n[solver]\nstrategy = \"monolithic\"\n");
     let path = folder.join(format!("{form}.toml"));
     std::fs::write(&path, text).unwrap();
     path

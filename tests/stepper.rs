@@ -214,7 +214,12 @@ fn resumes_bitwise(example: &str) -> Summary {
     let folder = Path::new(env!("CARGO_MANIFEST_DIR"))
         .join("examples")
         .join(example);
-    let simulation = || Simulation::from_file(&folder.join("case.toml")).unwrap();
+    resumes_bitwise_at(&folder.join("case.toml"), example)
+}
+
+/// [`resumes_bitwise`] of the case file `case` (`label` in messages).
+fn resumes_bitwise_at(case: &Path, example: &str) -> Summary {
+    let simulation = || Simulation::from_file(case).unwrap();
     let (full_dir, cut_dir) = (tempfile::tempdir().unwrap(), tempfile::tempdir().unwrap());
     let options = |dir: &Path, restart: bool| RunOptions {
         output: Some(dir.to_path_buf()),
@@ -287,4 +292,52 @@ fn hertz_on_the_default_path_resumes_bitwise() {
         assert_eq!(i.residuals.len(), i.iterations + 1);
         assert_eq!(i.method, "condensed");
     }
+}
+
+/// examples/cattaneo-mindlin on the tiny mesh of tests/condensed.rs
+/// (tests/data/cattaneo_tiny.msh), on the condensed path between bodies,
+/// with `changes` made, written into `folder`.
+fn tiny_cattaneo_case(folder: &Path, changes: &[(&str, &str)]) -> std::path::PathBuf {
+    let root = Path::new(env!("CARGO_MANIFEST_DIR"));
+    let mut text =
+        std::fs::read_to_string(root.join("examples/cattaneo-mindlin/case.toml")).unwrap();
+    let mesh = root.join("tests/data/cattaneo_tiny.msh");
+    text = text.replace(
+        "file = \"spheres.msh\"",
+        &format!("file = {:?}", mesh.display().to_string()),
+    );
+    for (old, new) in changes {
+        assert!(text.contains(old), "{old}");
+        text = text.replace(old, new);
+    }
+    text.push_str("\n[solver]\nstrategy = \"condensed\"\n");
+    let path = folder.join("case.toml");
+    std::fs::write(&path, text).unwrap();
+    path
+}
+
+/// `--restart` on the condensed path between bodies (issue 32): the
+/// Cattaneo–Mindlin spheres on a tiny mesh, with Coulomb friction (exact
+/// stick) and frictionless, stopped after half their increments and
+/// resumed: bit for bit the uninterrupted run (the candidates replayed in
+/// their batches, `W` formed anew at the checkpoint's projections as at
+/// every increment's start).
+#[test]
+fn bodies_in_contact_on_the_condensed_path_resume_bitwise() {
+    let dir = tempfile::tempdir().unwrap();
+    let frictional = tiny_cattaneo_case(dir.path(), &[]);
+    let summary = resumes_bitwise_at(&frictional, "frictional pair");
+    assert_eq!(summary.strategy, "condensed");
+    let last = summary.increments.last().unwrap();
+    assert!(last.contact["poles"].slip_nodes > 0);
+    let dir = tempfile::tempdir().unwrap();
+    let frictionless = tiny_cattaneo_case(
+        dir.path(),
+        &[
+            ("friction_coefficient = 0.3", "friction_coefficient = 0.0"),
+            ("exact_stick = true ", "# "),
+        ],
+    );
+    let summary = resumes_bitwise_at(&frictionless, "frictionless pair");
+    assert_eq!(summary.strategy, "condensed");
 }

@@ -165,7 +165,7 @@ macro_rules! with_producer {
 }
 
 mod rows;
-pub use rows::ConstraintRow;
+pub use rows::{ConstraintRow, SlipRow};
 
 impl ContactInterface {
     /// The law of secondary node `i` (the interface's law with the node's

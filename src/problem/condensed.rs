@@ -58,9 +58,10 @@
 //! a body held only by contact has a rigid-body mode) or, with friction,
 //! by those and the nodes touching the plane at the start. `auto` takes it
 //! exactly then; otherwise the run is monolithic and the log and
-//! `summary.json` say why. Frictionless contact between bodies
-//! (node-to-surface) is condensed when asked for by name
-//! (`strategy = "condensed"`): [`pairs`].
+//! `summary.json` say why. Contact between bodies (node-to-surface) is
+//! condensed when asked for by name (`strategy = "condensed"`):
+//! frictionless by [`pairs`], with Coulomb friction by [`friction`] on the
+//! rows of [`linearisation`], both at the current projections.
 
 use super::{ContactState, Problem};
 use crate::contact::interface::ConstraintRow;
@@ -68,6 +69,7 @@ use crate::contact::interface::ConstraintRow;
 mod applicability;
 mod condensation;
 mod friction;
+mod linearisation;
 mod method;
 mod pairs;
 

@@ -14,6 +14,7 @@
 //! from the same [`GapProducer`] as the assembly.
 
 use super::{ContactContext, ContactInterface, MortarGap, Primary, RigidGap, SurfaceGap};
+use crate::contact::friction::TangentialResponse;
 use crate::contact::kinematics::{GapProducer, PrimaryWeights};
 use crate::contact::laws::NodeContactState;
 use crate::contact::obstacle::RigidObstacle;
@@ -65,7 +66,90 @@ impl ConstraintRow {
     }
 }
 
+/// One secondary node's slip from its committed friction history at the
+/// unknowns ([`GapProducer::slip`]): what Coulomb's law of the node reads
+/// besides its [`ConstraintRow`].
+#[derive(Clone, Debug, PartialEq)]
+pub struct SlipRow {
+    /// `d`, the node's motion from its anchor: `(x_s − c(t)) − (x_s − c)ₙ`
+    /// against a rigid obstacle, `x_s − Σ N̄_j y_j` from its primary
+    /// material point between bodies.
+    pub offset: Vector3<f64>,
+    /// The committed traction `t_T,n` as the producer rebuilds it at the
+    /// unknowns (carried by the primary surface between bodies).
+    pub committed_traction: Vector3<f64>,
+}
+
 impl ContactInterface {
+    /// Every secondary node's [`SlipRow`] at time `t` and unknowns `x`
+    /// from the node `states` (their committed friction history, and the
+    /// kept triangle between bodies); `None` where the node has no primary
+    /// within the search margin.
+    pub fn slip_rows(
+        &self,
+        reference: &[[f64; 3]],
+        t: f64,
+        x: &[f64],
+        states: &[NodeContactState],
+    ) -> Vec<Option<SlipRow>> {
+        let ctx = ContactContext {
+            reference,
+            t,
+            x,
+            first_multiplier: 0,
+        };
+        let mut rows = Vec::with_capacity(self.nodes.len());
+        with_producer!(self, &ctx, p => {
+            self.for_each_node(p, &ctx, |i| states[i], |node, state, k| {
+                rows.push(k.map(|mut k| {
+                    let frame = p.slip(node, &mut k, &state.friction);
+                    SlipRow {
+                        offset: frame.kinematics.offset,
+                        committed_traction: frame.kinematics.traction,
+                    }
+                }));
+            });
+        });
+        rows
+    }
+
+    /// Exact stick's tangential multiplier of every node set to a solved
+    /// traction: `λ_T ← t_T` (`tractions[i] = (t_T, n)`, the unit normal
+    /// it lies normal to) in the form the producer's slip reads back
+    /// ([`GapProducer::augment`]: the global vector against a rigid
+    /// obstacle, its components on the anchor triangle's edges between
+    /// bodies), at unknowns `x`, time `t`. What a solve that meets
+    /// Coulomb's law directly (the condensed path) hands to the history.
+    pub fn set_friction_multipliers(
+        &self,
+        reference: &[[f64; 3]],
+        t: f64,
+        x: &[f64],
+        states: &mut [NodeContactState],
+        tractions: &[(Vector3<f64>, Vector3<f64>)],
+    ) {
+        let ctx = ContactContext {
+            reference,
+            t,
+            x,
+            first_multiplier: 0,
+        };
+        let mut histories = Vec::with_capacity(self.nodes.len());
+        with_producer!(self, &ctx, p => {
+            self.for_each_node(p, &ctx, |i| states[i], |node, state, _| {
+                let (traction, normal) = &tractions[node.index];
+                let response = TangentialResponse {
+                    traction: *traction,
+                    ..TangentialResponse::none()
+                };
+                histories.push(p.augment(node, &state.friction, Some((&response, normal))));
+            });
+        });
+        for (state, history) in states.iter_mut().zip(histories) {
+            state.friction = history;
+        }
+    }
+
     /// Every secondary node's [`ConstraintRow`] at time `t` and unknowns
     /// `x` (`None` for a node with no primary within the search margin),
     /// with the nodes' states where given (a deformable interface then uses

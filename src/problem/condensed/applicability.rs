@@ -37,7 +37,14 @@ pub fn choose(problem: &Problem) -> std::result::Result<Choice, String> {
     let strategy = problem.settings.strategy;
     let condensed = || Choice {
         path: Path::Condensed,
-        reason: if has_friction(problem) {
+        reason: if has_friction(problem) && super::has_pairs(problem) {
+            "the stiffness is constant and some contact is between two bodies with Coulomb \
+             friction: one factorisation per run with both contact surfaces ordered last, the \
+             frictional contact problem solved on the contact nodes by a dense semismooth \
+             Newton method at the current projections until they settle (monolithic Newton \
+             would factorise at every iteration)"
+                .into()
+        } else if has_friction(problem) {
             "the stiffness is constant and every contact is against a rigid plane with Coulomb \
              friction: one factorisation per run, the frictional contact problem solved on the \
              contact nodes by a dense semismooth Newton method (monolithic Newton would \
@@ -97,17 +104,14 @@ pub fn not_applicable(problem: &Problem) -> Option<String> {
             p.surface
         ));
     }
-    let strategy = problem.settings.strategy;
     for c in &problem.contacts {
         // the gap from the node driver, affine in `u`; a law whose
         // converged state is exact or a penalty (not an outer loop's)
         let why = match c.affine_gap() {
             Ok(()) => None,
-            // between bodies: frictionless, asked for by name (`auto`
-            // keeps Newton's path there until it is measured)
-            Err(_) if c.projected_gap() && strategy == Strategy::Condensed => c
-                .has_friction()
-                .then(|| "is between two bodies with friction (not condensed yet)".into()),
+            // between bodies: the rows at the current projections
+            // ([`super::pairs`], [`super::friction`])
+            Err(_) if c.projected_gap() => None,
             Err(why) => Some(why),
         };
         let why = why.or_else(|| {
@@ -119,11 +123,11 @@ pub fn not_applicable(problem: &Problem) -> Option<String> {
             return Some(format!("contact '{}' {why}", c.name));
         }
     }
-    if super::has_pairs(problem) && has_friction(problem) {
-        return Some("friction beside contact between two bodies is not condensed yet".into());
-    }
     let mut held = problem.constrained_dofs();
-    if has_friction(problem) {
+    // between bodies no dof is shifted: the prescribed displacements must
+    // hold every body
+    let shifted = has_friction(problem) && !super::has_pairs(problem);
+    if shifted {
         // the frictional path shifts the dofs of the nodes touching at the
         // start (`K̂ = K̃ + ρ Σ I₃`), which holds a body that friction holds
         for d in friction::initially_touching_dofs(problem) {
@@ -131,7 +135,7 @@ pub fn not_applicable(problem: &Problem) -> Option<String> {
         }
     }
     free_rigid_body_mode(problem, &held).map(|why| {
-        if has_friction(problem) {
+        if shifted {
             format!("{why}, and the nodes touching the obstacle at the start do not hold it")
         } else {
             why

@@ -1,8 +1,24 @@
-//! The frictional condensed path: Coulomb friction against rigid planes on
-//! a body of constant stiffness, three unknowns per contact node, solved
-//! per increment by the dense semismooth Newton method of
-//! [`crate::solve::condensed::cone`], with the friction history committed per
-//! increment by the problem itself (as the monolithic path does).
+//! The frictional condensed path: Coulomb friction against rigid planes,
+//! or between bodies, on bodies of constant stiffness, three unknowns per
+//! contact node, solved per increment by the dense semismooth Newton method
+//! of [`crate::solve::condensed::cone`], with the friction history
+//! committed per increment by the problem itself (as the monolithic path
+//! does).
+//!
+//! ## The node's relative motion
+//! The columns of `E` are the rows of each node's lever `B` (the node
+//! driver's [`ConstraintRow::lever_row`]: `e_s` against a rigid obstacle,
+//! `e_s − Σ N_i e_{p_i}` between bodies), one per free component of the
+//! secondary node, so that `Eᵀu` is the node's relative motion `v = B u`
+//! and `E A t` carries its traction to both bodies. The cone problem's
+//! gap and slip are those of [`Linearisation`]: exact at rest against a
+//! rigid plane; between bodies at the last answer `x̂`, the increment
+//! solved again at its answer (with `W` formed anew from `(K̃⁻¹)_SS`, the
+//! surfaces' dofs ordered last, [`super::pairs::surface_trailing`]) until
+//! the answer is the point it was linearised at. That fixed point is the
+//! monolithic node-to-surface problem with Coulomb friction, which the
+//! problem's evaluation then checks. Bodies held only by contact are not
+//! condensed between bodies (no shift).
 //!
 //! ## A body that only contact holds
 //! A body held in a tangential direction by friction alone (examples/
@@ -23,6 +39,7 @@
 //! columns are solves with the same factor, not shifted). One
 //! factorisation per run.
 
+use super::linearisation::Linearisation;
 use super::{constraint_rows, Condensation, ContactNode, ContactState, IncrementSolver, Problem};
 use crate::contact::friction::{ContactStatus, Coulomb};
 use crate::contact::interface::ConstraintRow;
@@ -41,7 +58,8 @@ struct FrictionNode {
     interface: usize,
     index: usize,
     node: usize,
-    /// Its unit normal (constant: the gaps are affine).
+    /// Its unit normal at the last linearisation (constant against a
+    /// plane).
     normal: Vector3<f64>,
     /// Its free components `d` with their columns in [`Condensation::nodes`].
     columns: Vec<(usize, usize)>,
@@ -71,7 +89,17 @@ pub(super) struct FrictionalCondensation {
     traction: Vec<Vector3<f64>>,
     displacement: Vec<Option<f64>>,
     iterations: usize,
+    /// Between bodies: the rows follow the projections (module docs).
+    projected: bool,
 }
+
+/// Rounds of the fixed point on the projections at most (between bodies).
+const MAX_ROUNDS: usize = 30;
+
+/// The projections are taken as settled when no normal component or
+/// primary weight changes by more than this, and the linearised gaps and
+/// slips are exact to this fraction of the model size.
+const ROUND_TOLERANCE: f64 = 1e-12;
 
 /// The gaps of every node of interface `c` at the reference position
 /// plus the prescribed displacements at `t = 0`.
@@ -106,73 +134,113 @@ pub(super) fn initially_touching_dofs(problem: &Problem) -> Vec<usize> {
     dofs
 }
 
-impl FrictionalCondensation {
-    /// The contact nodes and their columns; `K̂` factorised once (shifted
-    /// where only contact holds the body); the nodes touching at the start
-    /// made candidates.
-    pub(super) fn new(problem: &Problem) -> Result<Self> {
+/// The contact nodes of a run and their columns of `E`.
+#[derive(Default)]
+struct ContactColumns {
+    owners: Vec<ContactNode>,
+    columns: Vec<Column>,
+    column_owner: Vec<(usize, usize)>,
+    contact: Vec<FrictionNode>,
+    /// The nodes touching or penetrating at the start (into `contact`).
+    initial: Vec<usize>,
+}
+
+impl ContactColumns {
+    /// One node per secondary node of every interface, one column per free
+    /// component `d` of the node, row `d` of its lever `B` at `u = 0`
+    /// (`rows`; a node with no primary in reach gets `e_s`: its column
+    /// follows its projection once it has one).
+    fn of(problem: &Problem, rows: &[Vec<Option<ConstraintRow>>]) -> Self {
         let constrained = problem.constrained_dofs();
-        let (mut owners, mut columns) = (Vec::new(), Vec::new());
-        let mut column_owner = Vec::new();
-        let mut contact = Vec::new();
-        let mut initial = Vec::new();
         let tolerance = touching(problem);
-        let zero = vec![0.0; problem.num_unknowns()];
-        for (ci, rows) in constraint_rows(problem, 0.0, &zero).iter().enumerate() {
+        let mut all = ContactColumns::default();
+        for (ci, rows) in rows.iter().enumerate() {
             let gaps = initial_gaps(problem, ci);
+            let c = problem.contacts.interface(ci);
             for (i, row) in rows.iter().enumerate() {
-                let Some(row) = row else { continue };
-                let node = row.node;
+                let node = row.as_ref().map_or(c.nodes[i], |r| r.node);
                 let mut own = Vec::new();
                 for d in (0..3).filter(|&d| !constrained[3 * node + d]) {
-                    own.push((d, columns.len()));
-                    column_owner.push((contact.len(), d));
-                    owners.push(ContactNode {
+                    own.push((d, all.columns.len()));
+                    all.column_owner.push((all.contact.len(), d));
+                    all.owners.push(ContactNode {
                         interface: ci,
                         index: i,
                     });
-                    columns.push(Column {
-                        entries: row.lever_row(d),
+                    let entries = row
+                        .as_ref()
+                        .map_or_else(|| vec![(3 * node + d, 1.0)], |r| r.lever_row(d));
+                    all.columns.push(Column {
+                        entries,
                         compliance: 0.0,
                     });
                 }
                 if gaps[i] <= tolerance {
-                    initial.push(contact.len());
+                    all.initial.push(all.contact.len());
                 }
-                contact.push(FrictionNode {
+                all.contact.push(FrictionNode {
                     interface: ci,
                     index: i,
                     node,
-                    normal: row.normal,
+                    normal: row.as_ref().map_or(Vector3::z(), |r| r.normal),
                     columns: own,
                 });
             }
         }
+        all
+    }
+}
+
+impl FrictionalCondensation {
+    /// The contact nodes and their columns; `K̂` factorised once (against
+    /// rigid planes shifted where only contact holds the body; between
+    /// bodies with the surfaces' dofs last); the nodes touching at the
+    /// start made candidates.
+    pub(super) fn new(problem: &Problem) -> Result<Self> {
+        let projected = super::has_pairs(problem);
+        let constrained = problem.constrained_dofs();
+        let zero = vec![0.0; problem.num_unknowns()];
+        let rows = if projected {
+            let reference = &problem.model.mesh.nodes;
+            let mut kept = problem.contacts.initial_state(reference, &zero);
+            Linearisation::at(problem, 0.0, &zero, &mut kept).rows
+        } else {
+            constraint_rows(problem, 0.0, &zero)
+        };
+        let all = ContactColumns::of(problem, &rows);
         // shift only where the prescribed displacements do not hold a body
-        let floating = super::free_rigid_body_mode(problem, &constrained).is_some();
+        let floating = !projected && super::free_rigid_body_mode(problem, &constrained).is_some();
         let shifted_dofs: Vec<usize> = if floating {
-            initial
-                .iter()
+            (all.initial.iter())
                 .flat_map(|&a| {
-                    let node = contact[a].node;
-                    contact[a].columns.iter().map(move |&(d, _)| 3 * node + d)
+                    let node = all.contact[a].node;
+                    all.contact[a]
+                        .columns
+                        .iter()
+                        .map(move |&(d, _)| 3 * node + d)
                 })
                 .collect()
         } else {
             Vec::new()
         };
-        let base = Condensation::factorise(problem, owners, columns, &shifted_dofs, 1.0, false)?;
+        let (owners, columns) = (all.owners, all.columns);
+        let base = if projected {
+            let trailing = super::pairs::surface_trailing(problem);
+            Condensation::factorise_on(problem, owners, columns, &[], trailing, false)?
+        } else {
+            Condensation::factorise(problem, owners, columns, &shifted_dofs, 1.0, false)?
+        };
         let shift = if floating {
             base.flexibility.scale
         } else {
             0.0
         };
-        let count = contact.len();
+        let count = all.contact.len();
         let columns_count = base.flexibility.columns.len();
         let mut condensation = FrictionalCondensation {
             base,
-            contact,
-            column_owner,
+            contact: all.contact,
+            column_owner: all.column_owner,
             candidates: Vec::new(),
             batches: Vec::new(),
             is_candidate: vec![false; count],
@@ -182,8 +250,9 @@ impl FrictionalCondensation {
             traction: vec![Vector3::zeros(); count],
             displacement: vec![None; columns_count],
             iterations: 0,
+            projected,
         };
-        condensation.grow(&initial, floating)?;
+        condensation.grow(&all.initial, floating)?;
         Ok(condensation)
     }
 
@@ -204,24 +273,33 @@ impl FrictionalCondensation {
     }
 
     /// The condensed node of contact node `a` from its committed state and
-    /// its constraint row `rest` at `u = 0` (at the increment's time).
+    /// the contact linearised at `lin` (at the increment's time).
     fn cone_node(
         &self,
         problem: &Problem,
-        rest: &ConstraintRow,
+        lin: &Linearisation,
         state: &ContactState,
         a: usize,
-    ) -> ConeNode {
+    ) -> Result<ConeNode> {
         let c = &self.contact[a];
         let interface = problem.contacts.interface(c.interface);
+        let found = lin.rows[c.interface][c.index]
+            .as_ref()
+            .zip((lin.slips[c.interface][c.index].as_ref()).zip(lin.at_zero(c.interface, c.index)));
+        let Some((row, (slip, (gap_at_rest, offset_at_rest)))) = found else {
+            return Err(Error::LinearSolver(format!(
+                "contact node {} of '{}' has no obstacle within reach",
+                problem.model.mesh.node_ids[c.node], interface.name
+            )));
+        };
         let committed = &state.interfaces[c.interface][c.index];
         let coulomb = interface.friction_at(c.index).unwrap_or(Coulomb {
             coefficient: 0.0,
             tangential_penalty: 1.0,
         });
-        ConeNode {
-            normal: rest.normal,
-            area: rest.area,
+        Ok(ConeNode {
+            normal: row.normal,
+            area: row.area,
             normal_law: interface.law_at(c.index).converged(),
             tangential_law: if interface.exact_stick() {
                 TangentialLaw::ExactStick
@@ -229,60 +307,140 @@ impl FrictionalCondensation {
                 TangentialLaw::Regularised
             },
             coulomb,
-            committed_traction: committed.friction.traction,
-            gap_at_rest: rest.gap,
-            offset_at_rest: rest.relative_position - committed.friction.anchor,
+            committed_traction: slip.committed_traction,
+            gap_at_rest,
+            offset_at_rest,
             committed_gap: committed.gap,
             was_open: committed.friction.status == ContactStatus::Open,
-            prescribed: [0, 1, 2].map(|d| self.base.flexibility.constrained[3 * c.node + d]),
-        }
+            prescribed: self.prescribed_axes(c),
+        })
+    }
+
+    /// The node's components without a column (its prescribed ones).
+    fn prescribed_axes(&self, c: &FrictionNode) -> [bool; 3] {
+        [0, 1, 2].map(|d| self.base.flexibility.constrained[3 * c.node + d])
     }
 
     /// The displacements (all unknowns, multipliers zero) and the traction
-    /// of every contact node at time `t`: the condensed problem over the
-    /// candidates solved, then solved again with the nodes that penetrate
-    /// at its answer, until none does.
+    /// of every contact node at time `t`, each node's primary triangle kept
+    /// in `kept`: against rigid planes the problem linearised at rest,
+    /// between bodies the rounds on the projections from `start` (module
+    /// docs).
     fn solve_increment(
         &mut self,
         problem: &Problem,
         t: f64,
         state: &ContactState,
+        kept: &mut ContactState,
+        start: &[f64],
         history: &mut Vec<IterationRecord>,
     ) -> Result<(Vec<f64>, Vec<Vector3<f64>>)> {
-        let b = self.base.load(problem, t);
-        let mut u0 = b.clone();
-        self.base.flexibility.solve(&mut u0)?;
-        let mut prescribed = vec![0.0; b.len()];
-        problem.apply_prescribed(t, &mut prescribed);
-        let rest = constraint_rows(problem, t, &vec![0.0; b.len()]);
+        let load = Load::at(problem, t, &mut self.base)?;
+        if !self.projected {
+            let lin = Linearisation::at_rest(problem, t, state);
+            return self.solve_linearised(problem, &load, state, kept, &lin, history);
+        }
+        let mut lin = Linearisation::at(problem, t, start, kept);
+        let length = ROUND_TOLERANCE * problem.model.size();
+        for _ in 0..MAX_ROUNDS {
+            self.replace_columns(&lin)?;
+            let (u, traction) =
+                self.solve_linearised(problem, &load, state, kept, &lin, history)?;
+            let next = Linearisation::at(problem, t, &u, kept);
+            let nodes = (self.candidates.iter()).map(|&a| {
+                let c = &self.contact[a];
+                (c.interface, c.index, traction[a] != Vector3::zeros())
+            });
+            let defect = lin.defect(&next, &u, nodes);
+            if defect.is_some_and(|(geometry, l)| geometry <= ROUND_TOLERANCE && l <= length) {
+                self.take_normals(&next);
+                return Ok((u, traction));
+            }
+            lin = next;
+        }
+        Err(Error::LinearSolver(format!(
+            "the projections between the bodies did not settle in {MAX_ROUNDS} condensed \
+             frictional solves at time {t}; run with [solver] strategy = \"monolithic\""
+        )))
+    }
+
+    /// The columns of `E` at the projections of `lin` (a node without a
+    /// primary in reach keeps its last), `Ŵ` formed anew.
+    fn replace_columns(&mut self, lin: &Linearisation) -> Result<()> {
+        let flexibility = &self.base.flexibility;
+        let columns: Vec<Column> = (self.column_owner.iter().enumerate())
+            .map(|(col, &(a, d))| {
+                let c = &self.contact[a];
+                match &lin.rows[c.interface][c.index] {
+                    Some(row) => Column {
+                        entries: row.lever_row(d),
+                        compliance: 0.0,
+                    },
+                    None => flexibility.columns[col].clone(),
+                }
+            })
+            .collect();
+        self.base.flexibility.replace_columns(columns)?;
+        self.inverse = None;
+        Ok(())
+    }
+
+    /// Each contact node's normal from the rows of `lin` (where it has one).
+    fn take_normals(&mut self, lin: &Linearisation) {
+        for c in &mut self.contact {
+            if let Some(row) = &lin.rows[c.interface][c.index] {
+                c.normal = row.normal;
+            }
+        }
+    }
+
+    /// The condensed problem over the candidates with the contact
+    /// linearised at `lin`, solved, then solved again with the nodes that
+    /// penetrate at its answer, until none does.
+    fn solve_linearised(
+        &mut self,
+        problem: &Problem,
+        load: &Load,
+        state: &ContactState,
+        kept: &ContactState,
+        lin: &Linearisation,
+        history: &mut Vec<IterationRecord>,
+    ) -> Result<(Vec<f64>, Vec<Vector3<f64>>)> {
+        let t = load.time;
         loop {
-            let nodes = self.cone_nodes(problem, &rest, state)?;
+            let nodes = self.cone_nodes(problem, lin, state)?;
             let columns = self.cone_columns();
             let flexibility = &self.base.flexibility;
             let free: Vec<f64> = (flexibility.candidates.iter())
-                .map(|&c| flexibility.column_dot(c, &u0))
+                .map(|&c| flexibility.column_dot(c, &load.free))
                 .collect();
             let guess_u: Vec<f64> = (flexibility.candidates.iter().zip(&free))
                 .map(|(&c, &f)| self.displacement[c].unwrap_or(f))
                 .collect();
             let guess_t: Vec<Vector3<f64>> =
                 self.candidates.iter().map(|&a| self.traction[a]).collect();
+            let fixed: Vec<Vector3<f64>> = (self.candidates.iter())
+                .map(|&a| {
+                    let c = &self.contact[a];
+                    let columned = self.prescribed_axes(c).map(|p| !p);
+                    let constrained = &self.base.flexibility.constrained;
+                    lin.fixed_motion(
+                        c.interface,
+                        c.index,
+                        columned,
+                        constrained,
+                        &load.prescribed,
+                    )
+                })
+                .collect();
             let inverse = self.inverse_flexibility()?;
-            let at_nodes = |a: &usize| {
-                let n = self.contact[*a].node;
-                Vector3::new(
-                    prescribed[3 * n],
-                    prescribed[3 * n + 1],
-                    prescribed[3 * n + 2],
-                )
-            };
             let cone = ConeProblem {
                 inverse_flexibility: &inverse,
                 columns: &columns,
                 shifted: &self.shifted,
                 shift: self.shift,
                 free_displacement: &free,
-                prescribed: &self.candidates.iter().map(at_nodes).collect::<Vec<_>>(),
+                prescribed: &fixed,
                 nodes: &nodes,
             };
             let mut solution = solve_cone(&cone, guess_u, guess_t).map_err(|e| {
@@ -293,8 +451,8 @@ impl FrictionalCondensation {
             self.iterations += solution.iterations;
             history.append(&mut solution.history);
             self.inverse = Some(inverse);
-            let u = self.displacements(&b, &columns, &nodes, &solution)?;
-            let entering = self.entering(problem, t, &u);
+            let u = self.displacements(&load.b, &columns, &nodes, &solution)?;
+            let entering = self.entering(problem, t, &u, kept);
             if entering.is_empty() {
                 let mut traction = vec![Vector3::zeros(); self.contact.len()];
                 for &a in &self.candidates {
@@ -307,26 +465,16 @@ impl FrictionalCondensation {
         }
     }
 
-    /// The condensed node of every candidate from its constraint row at
-    /// rest (`rest`, per interface) and its committed state.
+    /// The condensed node of every candidate from the contact linearised at
+    /// `lin` and its committed state.
     fn cone_nodes(
         &self,
         problem: &Problem,
-        rest: &[Vec<Option<ConstraintRow>>],
+        lin: &Linearisation,
         state: &ContactState,
     ) -> Result<Vec<ConeNode>> {
         (self.candidates.iter())
-            .map(|&a| {
-                let c = &self.contact[a];
-                let row = rest[c.interface][c.index].as_ref().ok_or_else(|| {
-                    Error::LinearSolver(format!(
-                        "contact node {} of '{}' has no obstacle within reach",
-                        problem.model.mesh.node_ids[c.node],
-                        problem.contacts.interface(c.interface).name
-                    ))
-                })?;
-                Ok(self.cone_node(problem, row, state, a))
-            })
+            .map(|&a| self.cone_node(problem, lin, state, a))
             .collect()
     }
 
@@ -384,11 +532,12 @@ impl FrictionalCondensation {
         Ok(u)
     }
 
-    /// The contact nodes outside the candidates that penetrate at `u`.
-    fn entering(&self, problem: &Problem, t: f64, u: &[f64]) -> Vec<usize> {
+    /// The contact nodes outside the candidates that penetrate at `u` (on
+    /// the primary triangles kept in `kept`).
+    fn entering(&self, problem: &Problem, t: f64, u: &[f64], kept: &ContactState) -> Vec<usize> {
         let reference = &problem.model.mesh.nodes;
-        let gaps: Vec<Vec<f64>> = (problem.contacts.iter())
-            .map(|c| c.gaps(reference, t, u, None))
+        let gaps: Vec<Vec<f64>> = (problem.contacts.iter().enumerate())
+            .map(|(ci, c)| c.gaps(reference, t, u, Some(&kept.interfaces[ci])))
             .collect();
         let tolerance = touching(problem);
         (0..self.contact.len())
@@ -397,6 +546,31 @@ impl FrictionalCondensation {
                 !self.is_candidate[a] && gaps[c.interface][c.index] < -tolerance
             })
             .collect()
+    }
+}
+
+/// The load of an increment: `b(t)`, the answer without contact
+/// `K̂⁻¹ b` and the prescribed displacements `ū(t)` (zero elsewhere).
+struct Load {
+    time: f64,
+    b: Vec<f64>,
+    free: Vec<f64>,
+    prescribed: Vec<f64>,
+}
+
+impl Load {
+    fn at(problem: &Problem, t: f64, base: &mut Condensation) -> Result<Self> {
+        let b = base.load(problem, t);
+        let mut free = b.clone();
+        base.flexibility.solve(&mut free)?;
+        let mut prescribed = vec![0.0; b.len()];
+        problem.apply_prescribed(t, &mut prescribed);
+        Ok(Load {
+            time: t,
+            b,
+            free,
+            prescribed,
+        })
     }
 }
 
@@ -414,19 +588,26 @@ impl IncrementSolver for FrictionalCondensation {
         trial: &mut ContactState,
         history: &mut Vec<IterationRecord>,
     ) -> Result<()> {
-        let (u, traction) = self.solve_increment(problem, t, state, history)?;
+        let start = x.to_vec();
+        let (u, traction) = self.solve_increment(problem, t, state, trial, &start, history)?;
         let mut pressures = super::zero_per_node(problem);
+        let mut tangential: Vec<Vec<(Vector3<f64>, Vector3<f64>)>> = (problem.contacts.iter())
+            .map(|c| vec![(Vector3::zeros(), Vector3::z()); c.nodes.len()])
+            .collect();
         for (a, c) in self.contact.iter().enumerate() {
-            let interface = problem.contacts.interface(c.interface);
             let normal = &c.normal;
             let tn = normal.dot(&traction[a]);
             pressures[c.interface][c.index] = tn;
-            if interface.exact_stick() {
-                trial.interfaces[c.interface][c.index].friction.traction =
-                    traction[a] - normal * tn;
-            }
+            tangential[c.interface][c.index] = (traction[a] - normal * tn, *normal);
         }
         super::set_multipliers(problem, &pressures, &u, t, x, trial);
+        let reference = &problem.model.mesh.nodes;
+        for (ci, interface) in problem.contacts.iter().enumerate() {
+            if interface.exact_stick() {
+                let states = &mut trial.interfaces[ci];
+                interface.set_friction_multipliers(reference, t, x, states, &tangential[ci]);
+            }
+        }
         Ok(())
     }
 

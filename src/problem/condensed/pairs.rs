@@ -108,6 +108,33 @@ fn column_change(old: &[Column], new: &[Column], forces: &[f64]) -> f64 {
         .fold(0.0, f64::max)
 }
 
+/// The free dofs of every contact surface's nodes (secondary and
+/// primary), ordered last in the factorisation so that `(K̃⁻¹)_SS` is read
+/// off its trailing block (at most the flexibility's limit of them).
+pub(super) fn surface_trailing(problem: &Problem) -> Vec<usize> {
+    let mut surface: Vec<usize> = problem.contacts.deformable_nodes();
+    surface.extend(
+        problem
+            .contacts
+            .iter()
+            .flat_map(|c| c.nodes.iter().copied()),
+    );
+    surface.sort_unstable();
+    surface.dedup();
+    // every dof of a surface node as one trailing "column" each node
+    let all: Vec<Column> = (surface.iter())
+        .map(|&n| Column {
+            entries: (0..3).map(|d| (3 * n + d, 1.0)).collect(),
+            compliance: 0.0,
+        })
+        .collect();
+    let order: Vec<usize> = (0..all.len()).collect();
+    let mut constrained = problem.constrained_dofs();
+    let dofs = problem.model.num_dofs();
+    constrained[dofs..].iter_mut().for_each(|c| *c = true);
+    Flexibility::trailing_dofs(&all, &order, &constrained, 1.0)
+}
+
 impl PairCondensation {
     /// The columns at `u = 0`, and `K̃` factorised once in f64 with every
     /// free dof of the contact surfaces' nodes ordered last.
@@ -117,27 +144,7 @@ impl PairCondensation {
             .contacts
             .initial_state(&problem.model.mesh.nodes, &zero);
         let (nodes, columns) = columns_at(problem, 0.0, &zero, &mut initial);
-        let mut surface: Vec<usize> = problem.contacts.deformable_nodes();
-        surface.extend(
-            problem
-                .contacts
-                .iter()
-                .flat_map(|c| c.nodes.iter().copied()),
-        );
-        surface.sort_unstable();
-        surface.dedup();
-        // every dof of a surface node as one trailing "column" each node
-        let all: Vec<Column> = (surface.iter())
-            .map(|&n| Column {
-                entries: (0..3).map(|d| (3 * n + d, 1.0)).collect(),
-                compliance: 0.0,
-            })
-            .collect();
-        let order: Vec<usize> = (0..all.len()).collect();
-        let mut constrained = problem.constrained_dofs();
-        let dofs = problem.model.num_dofs();
-        constrained[dofs..].iter_mut().for_each(|c| *c = true);
-        let trailing = Flexibility::trailing_dofs(&all, &order, &constrained, 1.0);
+        let trailing = surface_trailing(problem);
         let base = Condensation::factorise_on(problem, nodes, columns, &[], trailing, false)?;
         Ok(PairCondensation { base, rounds: 0 })
     }
@@ -207,13 +214,12 @@ impl IncrementSolver for PairCondensation {
         self.base.warm_start()
     }
 
-    /// Not bitwise: the candidates' columns are those of the checkpoint's
-    /// projections only after the first increment; refused.
-    fn resume(&mut self, _: &WarmStart) -> Result<()> {
-        Err(Error::LinearSolver(
-            "a restart of the condensed path between bodies is not supported; run with \
-             [solver] strategy = \"monolithic\""
-                .into(),
-        ))
+    /// The candidates replayed in their batches (their columns at the
+    /// start's projections), the active set copied: the next increment's
+    /// first round forms `W` anew at the checkpoint's projections, as the
+    /// uninterrupted run does at every increment's start, so the resumed
+    /// run is the same bit for bit.
+    fn resume(&mut self, warm: &WarmStart) -> Result<()> {
+        self.base.resume(warm)
     }
 }

@@ -10,6 +10,10 @@
 //! Per contact node `a` the traction `t_a ∈ ℝ³` the obstacle exerts on the
 //! body (`t_N = n·t`, `t_T = T t`, `T = I − n nᵀ`) and the displacement of
 //! its free dofs `u_F` (the prescribed components `ū_a` are given). The
+//! "displacement" is whatever motion the columns of `E` measure: the
+//! node's own against a rigid obstacle, its motion relative to its
+//! projection point between bodies (the caller's columns are the rows of
+//! the lever `B`, and its gap and slip linearised in that motion). The
 //! structure, with the shifted stiffness `K̂ = K̃ + ρ Σ_{j∈S} e_j e_jᵀ` (the
 //! shift on a set `S` of contact dofs, so that `K̂` is regular even where
 //! only contact holds the body) and `Ŵ = Eᵀ K̂⁻¹ E` (`E` the unit columns
@@ -76,6 +80,12 @@ const HALVINGS: usize = 8;
 /// `|n_d|` below which axis `d` lies in the tangent plane.
 const AXIS_IN_PLANE: f64 = 1e-12;
 
+/// `|n_d|` below which a prescribed axis `d` is taken as lying near the
+/// tangent plane: exact stick keeps the committed traction along its
+/// direction there, `τ = T e_d/|T e_d|` (between bodies a node on a
+/// symmetry plane against a primary triangle tilted off it).
+const AXIS_NEAR_PLANE: f64 = 0.5;
+
 /// Converged when the scaled residual is below this fraction of the
 /// traction scale.
 const TOLERANCE: f64 = 1e-13;
@@ -139,26 +149,27 @@ fn tangent_basis(n: &Vector3<f64>) -> [Vector3<f64>; 2] {
     [e1, n.cross(&e1)]
 }
 
-/// The equations of node `node` at displacement `u` and traction `t`
-/// (see the module docs).
-pub fn node_law(node: &ConeNode, u: &Vector3<f64>, t: &Vector3<f64>) -> NodeLaw {
+/// A closed node's pressure `p` bounding the cone, with `∂p/∂u`, `∂p/∂t`.
+type Pressure = (f64, Vector3<f64>, Vector3<f64>);
+
+/// The normal equation of `node` (row 0 of `law`) at gap `g` and normal
+/// traction `t_n`: exact (Alart–Curnier) `t_N − max(0, t_N − r g)`, or
+/// penalty `t_N − ε⟨−g⟩`; the pressure where the node is closed.
+fn normal_equation(node: &ConeNode, g: f64, t_n: f64, law: &mut NodeLaw) -> Option<Pressure> {
     let n = node.normal;
-    let basis = tangent_basis(&n);
-    let g = node.gap_at_rest + n.dot(u);
-    let t_n = n.dot(t);
-    let mut residual = Vector3::zeros();
-    let mut du = Matrix3::zeros();
-    let mut dt = Matrix3::zeros();
-    // the pressure p the cone is bounded by, ∂p/∂u and ∂p/∂t
-    let closed = match node.normal_law {
+    let (du, dt) = (
+        &mut law.displacement_derivative,
+        &mut law.traction_derivative,
+    );
+    match node.normal_law {
         NormalEnforcement::Exact { r } => {
             let xi = t_n - r * g;
             if xi > 0.0 {
-                residual[0] = r * g;
+                law.residual[0] = r * g;
                 du.set_row(0, &(r * n.transpose()));
                 Some((xi, -r * n, n))
             } else {
-                residual[0] = t_n;
+                law.residual[0] = t_n;
                 dt.set_row(0, &n.transpose());
                 None
             }
@@ -166,46 +177,75 @@ pub fn node_law(node: &ConeNode, u: &Vector3<f64>, t: &Vector3<f64>) -> NodeLaw 
         NormalEnforcement::Penalty { epsilon } => {
             dt.set_row(0, &n.transpose());
             if g <= 0.0 {
-                residual[0] = t_n + epsilon * g;
+                law.residual[0] = t_n + epsilon * g;
                 du.set_row(0, &(epsilon * n.transpose()));
                 Some((-epsilon * g, -epsilon * n, Vector3::zeros()))
             } else {
-                residual[0] = t_n;
+                law.residual[0] = t_n;
                 None
             }
         }
+    }
+}
+
+/// Exact stick's multiplier `T t`, but the committed traction along the
+/// prescribed tangential axes (along `τ = T e_d/|T e_d|` where the axis is
+/// near the tangent plane), and its derivative's left factor `free`
+/// (`∂multiplier/∂t = free T`).
+fn stick_multiplier(
+    node: &ConeNode,
+    projector: &Matrix3<f64>,
+    tangential: Vector3<f64>,
+) -> (Vector3<f64>, Matrix3<f64>) {
+    let n = node.normal;
+    let mut free = Matrix3::identity();
+    let mut multiplier = tangential;
+    for d in (0..3).filter(|&d| node.prescribed[d]) {
+        if n[d].abs() <= AXIS_IN_PLANE {
+            free[(d, d)] = 0.0;
+            multiplier[d] = node.committed_traction[d];
+        } else if n[d].abs() < AXIS_NEAR_PLANE {
+            let tau = (projector * Vector3::ith(d, 1.0)).normalize();
+            free -= tau * tau.transpose();
+            multiplier += tau * tau.dot(&(node.committed_traction - multiplier));
+        }
+    }
+    (multiplier, free)
+}
+
+/// The equations of node `node` at displacement `u` and traction `t`
+/// (see the module docs): the normal one ([`normal_equation`]) and, in a
+/// basis `(e₁, e₂)` of the tangent plane, the tangential ones, `t_T = 0`
+/// where the node is open or closing under an exact law, else
+/// `T t − P_{μp}(trial)` by the monolithic return mapping.
+pub fn node_law(node: &ConeNode, u: &Vector3<f64>, t: &Vector3<f64>) -> NodeLaw {
+    let n = node.normal;
+    let basis = tangent_basis(&n);
+    let g = node.gap_at_rest + n.dot(u);
+    let mut law = NodeLaw {
+        residual: Vector3::zeros(),
+        displacement_derivative: Matrix3::zeros(),
+        traction_derivative: Matrix3::zeros(),
+        status: ContactStatus::Open,
     };
+    let closed = normal_equation(node, g, n.dot(t), &mut law);
     let exact_normal = matches!(node.normal_law, NormalEnforcement::Exact { .. });
     let closing = exact_normal && node.was_open && node.committed_gap > 0.0;
     let Some((p, dp_du, dp_dt)) = closed.filter(|_| !closing) else {
         // open, or closing under an exact law: t_T = 0
         for (k, e) in basis.iter().enumerate() {
-            residual[k + 1] = e.dot(t);
-            dt.set_row(k + 1, &e.transpose());
+            law.residual[k + 1] = e.dot(t);
+            law.traction_derivative.set_row(k + 1, &e.transpose());
         }
-        let status = if closed.is_some() {
-            ContactStatus::Stick
-        } else {
-            ContactStatus::Open
-        };
-        return NodeLaw {
-            residual,
-            displacement_derivative: du,
-            traction_derivative: dt,
-            status,
-        };
+        if closed.is_some() {
+            law.status = ContactStatus::Stick;
+        }
+        return law;
     };
     let projector = Matrix3::identity() - n * n.transpose();
     let tangential = projector * t;
     let exact_stick = node.tangential_law == TangentialLaw::ExactStick;
-    // exact stick's multiplier: T t, but the committed traction along the
-    // prescribed tangential axes; its derivative `free T`
-    let mut free = Matrix3::identity();
-    let mut multiplier = tangential;
-    for d in (0..3).filter(|&d| node.prescribed[d] && n[d].abs() <= AXIS_IN_PLANE) {
-        free[(d, d)] = 0.0;
-        multiplier[d] = node.committed_traction[d];
-    }
+    let (multiplier, free) = stick_multiplier(node, &projector, tangential);
     let mut kinematics = SlipKinematics {
         traction: if exact_stick {
             multiplier
@@ -241,19 +281,16 @@ pub fn node_law(node: &ConeNode, u: &Vector3<f64>, t: &Vector3<f64>) -> NodeLaw 
         };
     }
     let equation = tangential - response.traction;
-    let d_du = -response.traction_gradient;
-    let d_dt = projector - dtau_dt;
+    let (d_du, d_dt) = (-response.traction_gradient, projector - dtau_dt);
     for (k, e) in basis.iter().enumerate() {
-        residual[k + 1] = e.dot(&equation);
-        du.set_row(k + 1, &(e.transpose() * d_du));
-        dt.set_row(k + 1, &(e.transpose() * d_dt));
+        law.residual[k + 1] = e.dot(&equation);
+        law.displacement_derivative
+            .set_row(k + 1, &(e.transpose() * d_du));
+        law.traction_derivative
+            .set_row(k + 1, &(e.transpose() * d_dt));
     }
-    NodeLaw {
-        residual,
-        displacement_derivative: du,
-        traction_derivative: dt,
-        status: response.status,
-    }
+    law.status = response.status;
+    law
 }
 
 /// The condensed problem of one increment.
@@ -270,7 +307,10 @@ pub struct ConeProblem<'a> {
     pub shift: f64,
     /// `û₀` on the contact dofs.
     pub free_displacement: &'a [f64],
-    /// Per node the prescribed displacement (its free components unused).
+    /// Per node the part of its motion `u_a` that is not an unknown: the
+    /// prescribed components, and on a free component what its column
+    /// leaves out (between bodies the prescribed dofs of the lever; zero
+    /// against a rigid obstacle): `u_a,d = prescribed_a,d + u_F,i`.
     pub prescribed: &'a [Vector3<f64>],
     pub nodes: &'a [ConeNode],
 }
@@ -316,11 +356,11 @@ struct Condensed {
 }
 
 impl ConeProblem<'_> {
-    /// Each node's full displacement at `u_F`.
+    /// Each node's full motion at `u_F`.
     fn node_displacements(&self, u: &[f64]) -> Vec<Vector3<f64>> {
         let mut full = self.prescribed.to_vec();
         for (i, &(a, d)) in self.columns.iter().enumerate() {
-            full[a][d] = u[i];
+            full[a][d] += u[i];
         }
         full
     }
@@ -573,13 +613,21 @@ mod tests {
                 ContactStatus::Slip,
             ),
         ];
-        for (normal_law, tangential_law, motion, status) in cases {
-            let n = node(normal_law, tangential_law);
+        // a prescribed y off the tangent plane (n_y ≠ 0): exact stick keeps
+        // the committed traction along `τ = T e_y/|T e_y|`
+        let axes = [[false; 3], [false, true, false]];
+        for ((normal_law, tangential_law, motion, status), prescribed) in
+            cases.into_iter().flat_map(|c| axes.map(|p| (c, p)))
+        {
+            let n = ConeNode {
+                prescribed,
+                ..node(normal_law, tangential_law)
+            };
             let u = Vector3::new(motion, 0.5 * motion, -0.01);
             let t = Vector3::new(0.2, 0.1, 5.0);
             let law = node_law(&n, &u, &t);
-            assert_eq!(
-                law.status, status,
+            assert!(
+                prescribed[1] || law.status == status,
                 "{normal_law:?} {tangential_law:?} {motion}"
             );
             let h = 1e-7;

@@ -1,7 +1,7 @@
 //! `signorini` command line: parse arguments, call the library, map errors
 //! to exit codes (0 success, 1 error in the input or the solve, 2 usage).
 
-use clap::{Parser, Subcommand};
+use clap::{CommandFactory, Parser, Subcommand};
 use indicatif::{ProgressBar, ProgressStyle};
 use signorini::output::describe::counted;
 use signorini::output::{ConvergedIncrement, Cut, Iteration, StepObserver, Summary};
@@ -69,6 +69,18 @@ enum Command {
         #[arg(long)]
         force: bool,
     },
+    /// Print the shell completion script (e.g. `signorini completions bash >
+    /// ~/.local/share/bash-completion/completions/signorini`).
+    Completions {
+        /// The shell.
+        shell: clap_complete::Shell,
+    },
+    /// Print the man page in roff (`signorini man > signorini.1`), or a
+    /// subcommand's (`signorini man run > signorini-run.1`).
+    Man {
+        /// A subcommand (run, check, convert, completions).
+        subcommand: Option<String>,
+    },
 }
 
 fn main() -> ExitCode {
@@ -105,6 +117,16 @@ fn main() -> ExitCode {
             output,
             force,
         } => convert(deck, output, force),
+        Command::Completions { shell } => return print(&completions(shell)),
+        Command::Man { subcommand } => {
+            return match man_page(subcommand.as_deref()) {
+                Ok(page) => print(&page),
+                Err(message) => {
+                    eprintln!("error: {message}");
+                    ExitCode::from(2)
+                }
+            };
+        }
     };
     match result {
         Ok(()) => ExitCode::SUCCESS,
@@ -115,6 +137,59 @@ fn main() -> ExitCode {
         }
         Err(e) => {
             eprintln!("error: {e}");
+            ExitCode::from(1)
+        }
+    }
+}
+
+/// The completion script of `shell` for this command line, generated
+/// from its clap definition (every subcommand and flag).
+fn completions(shell: clap_complete::Shell) -> Vec<u8> {
+    let mut script = Vec::new();
+    clap_complete::generate(shell, &mut Cli::command(), "signorini", &mut script);
+    script
+}
+
+/// The roff man page of the command line, or of one of its subcommands
+/// (`signorini-run(1)`, …); an error naming the subcommands for another
+/// name.
+fn man_page(subcommand: Option<&str>) -> Result<Vec<u8>, String> {
+    let cli = Cli::command();
+    let command = match subcommand {
+        None => cli,
+        Some(name) => {
+            let names: Vec<&str> = cli.get_subcommands().map(|c| c.get_name()).collect();
+            let sub = cli
+                .find_subcommand(name)
+                .ok_or_else(|| format!("no subcommand '{name}': one of {}", names.join(", ")))?;
+            // signorini-run(1), its synopsis `signorini run …`
+            sub.clone()
+                .display_name(format!("signorini-{name}"))
+                .bin_name(format!("signorini {name}"))
+        }
+    };
+    let mut page = Vec::new();
+    clap_mangen::Man::new(command)
+        // the page's footer: `signorini 0.1.0 (commit …, features: …)`
+        .source(format!(
+            "signorini {}",
+            signorini::output::provenance::VERSION_LINE
+        ))
+        .render(&mut page)
+        .map_err(|e| format!("cannot render the man page: {e}"))?;
+    Ok(page)
+}
+
+/// Write `bytes` to the standard output: success, or exit code 1 with
+/// the reason (a closed pipe, as in `signorini man | head`, is success).
+fn print(bytes: &[u8]) -> ExitCode {
+    use std::io::Write;
+    let mut out = std::io::stdout().lock();
+    match out.write_all(bytes).and_then(|()| out.flush()) {
+        Ok(()) => ExitCode::SUCCESS,
+        Err(e) if e.kind() == std::io::ErrorKind::BrokenPipe => ExitCode::SUCCESS,
+        Err(e) => {
+            eprintln!("error: cannot write to the standard output: {e}");
             ExitCode::from(1)
         }
     }

@@ -23,6 +23,7 @@ mod mindlin;
 use mindlin::Comparison;
 use signorini::contact::friction::ContactStatus;
 use signorini::output::line_plot::{write_line_plot, Curve, CurveStyle, LinePlot};
+use signorini::output::units::{Dimension, Units};
 use signorini::output::{ConvergedIncrement, StepObserver, Summary};
 use signorini::run::{run_observed, RunOptions};
 use std::path::PathBuf;
@@ -60,7 +61,13 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
     let Some(last) = compare.0.last() else {
         return Err("no increment converged".into());
     };
-    write_traction_plot(last, &output)?;
+    // the case's [units], for the axis labels (nothing is converted)
+    let spec = signorini::case::parse(&case, &std::fs::read_to_string(&case)?)?.units;
+    let units = Units {
+        length: spec.length,
+        force: spec.force,
+    };
+    write_traction_plot(last, &units, &output)?;
     write_stick_radius_plot(&compare.0, &output)?;
     let mut csv = String::from(
         "time,iterations,force,tangential,ratio,contact_radius,peak_pressure,stick_radius_fit,\
@@ -135,8 +142,13 @@ fn verdict(all: &[Comparison], last: &Comparison) -> String {
     )
 }
 
-/// `q` of the nodes on the load axis against Mindlin's `q(r)` and `μ p(r)`.
-fn write_traction_plot(c: &Comparison, dir: &std::path::Path) -> signorini::Result<()> {
+/// `q` of the nodes on the load axis against Mindlin's `q(r)` and `μ p(r)`,
+/// labelled in words with the case's `units`.
+fn write_traction_plot(
+    c: &Comparison,
+    units: &Units,
+    dir: &std::path::Path,
+) -> signorini::Result<()> {
     let m = &c.mindlin;
     let a = m.hertz.radius;
     let mut axis: Vec<(f64, f64, ContactStatus)> = c
@@ -154,13 +166,20 @@ fn write_traction_plot(c: &Comparison, dir: &std::path::Path) -> signorini::Resu
             })
             .collect()
     };
+    let length = units
+        .of(Dimension::Length)
+        .map_or(String::new(), |u| format!(" {u}"));
     let plot = LinePlot {
         title: format!(
-            "Cattaneo–Mindlin: Q/(μP) = {:.3}, stick radius {:.4} (fit) vs c = {:.4}",
+            "Cattaneo–Mindlin at Q/(μP) = {:.3}: stick radius {:.4}{length} fitted, \
+             Mindlin's c = {:.4}{length}",
             m.ratio, c.stick_radius, m.stick_radius
         ),
-        x_label: "x along the load axis from the contact centre".into(),
-        y_label: "tangential traction q along the load".into(),
+        x_label: units.label(
+            "distance from the contact centre along the load axis",
+            Dimension::Length,
+        ),
+        y_label: units.label("tangential traction along the load", Dimension::Stress),
         curves: vec![
             Curve {
                 label: "Mindlin q(r)".into(),
@@ -207,9 +226,9 @@ fn write_stick_radius_plot(all: &[Comparison], dir: &std::path::Path) -> signori
         .filter(|c| c.mindlin.ratio > 1e-3 && c.stick_radius.is_finite())
         .collect();
     let plot = LinePlot {
-        title: "Cattaneo–Mindlin: stick radius c/a against Q/(μP)".into(),
-        x_label: "Q/(μP)".into(),
-        y_label: "c/a".into(),
+        title: "Cattaneo–Mindlin: stick radius against the shear force".into(),
+        x_label: "shear force over its slip limit, Q/(μP)".into(),
+        y_label: "stick radius over the contact radius, c/a".into(),
         curves: vec![
             Curve {
                 label: "Mindlin: c/a = (1 − Q/(μP))^(1/3)".into(),

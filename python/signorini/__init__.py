@@ -21,7 +21,7 @@ from __future__ import annotations
 
 import json
 import os
-from typing import Any, Callable, Dict, List, Mapping, Optional, Union
+from typing import Any, Callable, Dict, List, Mapping, Optional, Sequence, Union
 
 import numpy as np
 
@@ -59,6 +59,7 @@ NODAL_FIELDS = (
     "contact_status",
     "contact_traction",
     "slip",
+    "slip_increment",
 )
 
 
@@ -68,7 +69,12 @@ class Simulation:
     ``threads``: worker threads of assembly and factorisation (None: one
     per core). ``output``: a folder for the command line's result files
     (VTU, PVD, ``summary.json``, plots); None writes nothing, the results
-    stay in memory.
+    stay in memory. ``restart``: the output folder of an earlier run of
+    this case (interrupted, say) to resume from its checkpoint
+    (``NAME.checkpoint``) rather than from t = 0, as ``signorini run
+    --restart DIR``: the run goes on to the state an uninterrupted run
+    reaches, and ``output`` must be that folder or None (then the results
+    go on in it).
     """
 
     def __init__(
@@ -76,14 +82,16 @@ class Simulation:
         case: Case,
         threads: Optional[int] = None,
         output: Optional[Union[str, os.PathLike]] = None,
+        restart: Optional[Union[str, os.PathLike]] = None,
     ) -> None:
         self.case = case
-        self._native = _NativeSimulation(case, threads, output)
+        self._native = _NativeSimulation(case, threads, output, restart)
 
     def run(
         self,
         callback: Optional[Callable[[Increment], Optional[bool]]] = None,
         stresses: bool = False,
+        fields: Sequence[str] = (),
     ) -> "Result":
         """Run every step of the case and return its :class:`Result`.
 
@@ -94,12 +102,16 @@ class Simulation:
         at its next Newton iteration and raises ``KeyboardInterrupt``.
         An exception from the callback stops the run and is raised.
         ``stresses=True`` keeps the element stresses of every increment.
+        ``fields`` names other fields to keep at every increment, as
+        ``[output] fields`` does (e.g. ``"recovered_von_mises"``,
+        ``"principal_stress"``, ``"logarithmic_strain"``); each is then
+        :meth:`Increment.field`.
 
         A failed run raises :class:`ConvergenceError` (or another
         :class:`SignoriniError`); every exception raised here carries the
         partial result as its ``result`` attribute.
         """
-        status, increments, summary, error = self._native.run(callback, stresses)
+        status, increments, summary, error = self._native.run(callback, stresses, list(fields))
         result = Result(self.case, status, list(increments), json.loads(summary))
         if error is not None:
             try:
@@ -153,9 +165,16 @@ class Result:
         return np.array([i.time for i in self.increments])
 
     def history(self, field: str) -> np.ndarray:
-        """A nodal field (see ``NODAL_FIELDS``) or ``von_mises`` /
-        ``cauchy_stress`` over the increments: shape (increments, ...)."""
-        return np.stack([getattr(i, field) for i in self.increments])
+        """A field kept at every increment (see :meth:`Increment.field`:
+        the nodal ones of ``NODAL_FIELDS`` and more, ``von_mises`` /
+        ``cauchy_stress`` with stresses=True, those of ``run(fields=...)``)
+        over the increments: shape (increments, ...)."""
+        return np.stack([i.field(field) for i in self.increments])
+
+    def field(self, name: str) -> np.ndarray:
+        """A field of the last increment by its VTU name (see
+        :meth:`Increment.field`)."""
+        return self.last.field(name)
 
     def reaction_history(self, surface: str) -> np.ndarray:
         """The reaction force on a surface set at every increment, (k, 3)."""
@@ -195,6 +214,11 @@ class Result:
     def slip(self) -> np.ndarray:
         """Accumulated slip of the last increment, (n, 3)."""
         return self.last.slip
+
+    @property
+    def slip_increment(self) -> np.ndarray:
+        """The last increment's slip (accumulated slip now minus before), (n, 3)."""
+        return self.last.slip_increment
 
     @property
     def reaction_forces(self) -> Dict[str, np.ndarray]:

@@ -43,6 +43,11 @@ class Case:
         regions: Optional[Mapping[str, npt.ArrayLike]] = None,
         surfaces: Optional[Mapping[str, npt.ArrayLike]] = None,
         base_dir: _Path = ".",
+        tetrahedra10: Optional[npt.ArrayLike] = None,
+        hexahedra20: Optional[npt.ArrayLike] = None,
+        wedges: Optional[npt.ArrayLike] = None,
+        wedges15: Optional[npt.ArrayLike] = None,
+        node_sets: Optional[Mapping[str, npt.ArrayLike]] = None,
     ) -> "Case":
         """A case around a mesh given as arrays.
 
@@ -50,7 +55,9 @@ class Case:
         0-based node indices in Gmsh/VTK order (elements are numbered
         tetrahedra first); ``regions`` {name: element indices} (elements in
         none form the region "default"); ``surfaces`` {name: (k, 3) or
-        (k, 4) facet node indices, any orientation}; ``spec`` the rest of
+        (k, 4) facet node indices, any orientation}; ``node_sets`` {name:
+        node indices} (for ``[[displacement]] nodes =`` and
+        ``[[nodal_force]] nodes =``); ``spec`` the rest of
         the case file (materials, displacements, pressures, obstacles,
         contacts, steps, output) as TOML text or a dict, without ``[mesh]``.
         Errors are those of a case file (:class:`CaseError` with the key
@@ -68,6 +75,8 @@ class Case:
     def region_names(self) -> List[str]: ...
     @property
     def surface_names(self) -> List[str]: ...
+    @property
+    def node_set_names(self) -> List[str]: ...
     def surface_nodes(self, name: str) -> npt.NDArray[np.int64]:
         """Sorted node indices of a surface set."""
 
@@ -93,7 +102,9 @@ class Increment:
     contact_traction: npt.NDArray[np.float64]
     """(n, 3)"""
     slip: npt.NDArray[np.float64]
-    """(n, 3)"""
+    """(n, 3), accumulated"""
+    slip_increment: npt.NDArray[np.float64]
+    """(n, 3), this increment's slip"""
     reaction_forces: Dict[str, npt.NDArray[np.float64]]
     """{surface set: (3,)}"""
     contact: Dict[str, Dict[str, Any]]
@@ -102,15 +113,25 @@ class Increment:
     """(m, 3, 3), with stresses=True"""
     von_mises: Optional[npt.NDArray[np.float64]]
     """(m,), with stresses=True"""
+    fields: Dict[str, npt.NDArray[np.float64]]
+    """{VTU name: array} of every field kept"""
+    def field(self, name: str) -> npt.NDArray[np.float64]:
+        """A field by its VTU name; KeyError naming the fields, or how to
+        keep this one (run(fields=[name]))."""
 
 class NativeSimulation:
     def __init__(
-        self, case: Case, threads: Optional[int] = None, output: Optional[_Path] = None
+        self,
+        case: Case,
+        threads: Optional[int] = None,
+        output: Optional[_Path] = None,
+        restart: Optional[_Path] = None,
     ) -> None: ...
     def run(
         self,
         callback: Optional[Callable[[Increment], Optional[bool]]] = None,
         stresses: bool = False,
+        fields: List[str] = ...,
     ) -> Tuple[str, List[Increment], str, Optional[BaseException]]: ...
 
 def dict_to_toml(spec: Mapping[str, Any]) -> str:

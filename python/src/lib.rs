@@ -19,6 +19,7 @@ use pyo3::exceptions::PyException;
 use pyo3::prelude::*;
 use pyo3::types::{PyDict, PyList};
 use signorini::mesh::{ElementKind, Mesh};
+use signorini::output::OutputField;
 use signorini::run::{RunOptions, Simulation as RustSimulation};
 use signorini::Error;
 use std::path::PathBuf;
@@ -97,10 +98,12 @@ impl Case {
     /// {name: element indices} (elements in none form the region
     /// "default"); `surfaces` {name: (k, 3), (k, 4), (k, 6) or (k, 8) facet
     /// node indices};
-    /// `spec` the rest of the case file as TOML text or a dict (without
-    /// `[mesh]`). Errors are those of a case file.
+    /// `node_sets` {name: node indices} (for `[[displacement]] nodes =`
+    /// and `[[nodal_force]] nodes =`); `spec` the rest of the case file as
+    /// TOML text or a dict (without `[mesh]`). Errors are those of a case
+    /// file.
     #[staticmethod]
-    #[pyo3(signature = (nodes, spec, *, tetrahedra = None, hexahedra = None, regions = None, surfaces = None, base_dir = PathBuf::from("."), tetrahedra10 = None, hexahedra20 = None, wedges = None, wedges15 = None))]
+    #[pyo3(signature = (nodes, spec, *, tetrahedra = None, hexahedra = None, regions = None, surfaces = None, base_dir = PathBuf::from("."), tetrahedra10 = None, hexahedra20 = None, wedges = None, wedges15 = None, node_sets = None))]
     #[allow(clippy::too_many_arguments)]
     fn from_arrays(
         nodes: &Bound<'_, PyAny>,
@@ -114,6 +117,7 @@ impl Case {
         hexahedra20: Option<&Bound<'_, PyAny>>,
         wedges: Option<&Bound<'_, PyAny>>,
         wedges15: Option<&Bound<'_, PyAny>>,
+        node_sets: Option<&Bound<'_, PyDict>>,
     ) -> PyResult<Self> {
         let nodes: Vec<[f64; 3]> = convert::rows(nodes, "nodes")?;
         let mut elements: Vec<(ElementKind, Vec<usize>)> = Vec::new();
@@ -154,7 +158,15 @@ impl Case {
             let facets = convert::facets(&facets, &format!("surfaces['{name}']"), &[3, 4, 6, 8])?;
             surface_list.push((name, facets));
         }
-        let mesh = Mesh::from_arrays(nodes, elements, region_list, surface_list).map_err(to_py)?;
+        let mut node_set_list = Vec::new();
+        for (name, members) in node_sets.into_iter().flat_map(|d| d.iter()) {
+            let name: String = name.extract()?;
+            let members = convert::indices(&members, &format!("node_sets['{name}']"))?;
+            node_set_list.push((name, members));
+        }
+        let mesh = Mesh::from_arrays(nodes, elements, region_list, surface_list)
+            .and_then(|mesh| mesh.with_node_sets(node_set_list))
+            .map_err(to_py)?;
         let text = convert::spec_text(spec)?;
         let inner = signorini::case::from_mesh(&text, &base_dir, mesh).map_err(to_py)?;
         Ok(Case { inner })
@@ -219,6 +231,12 @@ impl Case {
         self.inner.mesh.surface_names()
     }
 
+    /// Names of the node sets.
+    #[getter]
+    fn node_set_names(&self) -> Vec<String> {
+        self.inner.mesh.node_set_names()
+    }
+
     /// Sorted node indices of a surface set.
     fn surface_nodes<'py>(&self, py: Python<'py>, name: &str) -> PyResult<Bound<'py, PyAny>> {
         let mesh = &self.inner.mesh;
@@ -257,8 +275,13 @@ struct NativeSimulation {
 #[pymethods]
 impl NativeSimulation {
     #[new]
-    #[pyo3(signature = (case, threads = None, output = None))]
-    fn new(case: &Case, threads: Option<usize>, output: Option<PathBuf>) -> PyResult<Self> {
+    #[pyo3(signature = (case, threads = None, output = None, restart = None))]
+    fn new(
+        case: &Case,
+        threads: Option<usize>,
+        output: Option<PathBuf>,
+        restart: Option<PathBuf>,
+    ) -> PyResult<Self> {
         if threads == Some(0) {
             return Err(CaseError::new_err(
                 "threads must be at least 1 (or None: one per core)",
@@ -271,22 +294,31 @@ impl NativeSimulation {
                 output,
                 threads,
                 cancel: None,
-                restart: None,
+                restart,
             },
         })
     }
 
     /// Run every step. Returns (status, increments, summary JSON, error):
     /// the error (not raised) when the run failed, the increments
-    /// converged before it kept.
-    #[pyo3(signature = (callback = None, stresses = false))]
+    /// converged before it kept. `fields`: names of the fields to keep
+    /// besides the nodal ones every increment has (the recovered nodal
+    /// stresses, the element stresses and strains), as `[output] fields`
+    /// names them.
+    #[pyo3(signature = (callback = None, stresses = false, fields = Vec::new()))]
     fn run(
         &mut self,
         py: Python<'_>,
         callback: Option<PyObject>,
         stresses: bool,
+        fields: Vec<String>,
     ) -> PyResult<(String, Py<PyList>, String, Option<PyObject>)> {
-        observer::run(py, &mut self.inner, &self.options, callback, stresses)
+        let fields = fields
+            .iter()
+            .map(|name| name.parse::<OutputField>().map_err(CaseError::new_err))
+            .collect::<PyResult<Vec<_>>>()?;
+        let keep = observer::Keep { stresses, fields };
+        observer::run(py, &mut self.inner, &self.options, callback, keep)
     }
 }
 

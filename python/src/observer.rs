@@ -9,8 +9,10 @@
 
 use crate::{convert, to_py, SignoriniError};
 use pyo3::prelude::*;
-use pyo3::types::PyList;
-use signorini::output::{CellField, ConvergedIncrement, NodalField, StepObserver, Summary};
+use pyo3::types::{PyDict, PyList};
+use signorini::output::{
+    CellField, ConvergedIncrement, NodalField, OutputField, StepObserver, Summary,
+};
 use signorini::run::{RunOptions, Simulation};
 use signorini::Error;
 use std::sync::atomic::{AtomicBool, Ordering};
@@ -30,17 +32,54 @@ struct IncrementData {
     increment: f64,
     iterations: usize,
     cuts: usize,
-    /// Every nodal field by name: its values, `components()` per node.
-    nodal: std::collections::HashMap<NodalField, Vec<f64>>,
+    /// Every nodal field of [`NodalField::ALL`], in that order: its
+    /// values, `components()` per node.
+    nodal: Vec<(NodalField, Vec<f64>)>,
     reaction_forces: Vec<(String, [f64; 3])>,
     /// The per-interface totals, as in `summary.json`.
     contact: String,
     /// Cauchy stress (9 per element) and von Mises, if asked for.
     stresses: Option<(Vec<f64>, Vec<f64>)>,
+    /// The other fields asked for by name, with their values.
+    extra: Vec<(OutputField, Vec<f64>)>,
+}
+
+/// What a run keeps of each increment besides the nodal fields of
+/// [`NodalField::ALL`], which it always keeps.
+pub struct Keep {
+    /// The element Cauchy stress and von Mises (`run(stresses=True)`).
+    pub stresses: bool,
+    /// Other fields by name (`run(fields=[...])`): the recovered nodal
+    /// stresses, the element stresses and strains.
+    pub fields: Vec<OutputField>,
+}
+
+/// The values of `fields` at `inc`: the nodal ones by name, the cell ones
+/// together (one stress evaluation for all).
+fn extra_fields(inc: &ConvergedIncrement, fields: &[OutputField]) -> Vec<(OutputField, Vec<f64>)> {
+    let cells: Vec<CellField> = fields
+        .iter()
+        .filter_map(|f| match f {
+            OutputField::Cell(c) => Some(*c),
+            OutputField::Nodal(_) => None,
+        })
+        .collect();
+    let mut cell_values = inc.cells(&cells).into_iter();
+    fields
+        .iter()
+        .map(|&field| {
+            let values = match field {
+                OutputField::Nodal(n) => inc.nodal(n).into_owned(),
+                OutputField::Cell(_) => cell_values.next().unwrap_or_default(),
+            };
+            (field, values)
+        })
+        .collect()
 }
 
 impl IncrementData {
-    fn new(inc: &ConvergedIncrement, index: usize, stresses: bool) -> Self {
+    fn new(inc: &ConvergedIncrement, index: usize, keep: &Keep) -> Self {
+        let stresses = keep.stresses;
         let record = inc.record;
         IncrementData {
             index,
@@ -65,6 +104,7 @@ impl IncrementData {
                 let von_mises = cells.next().unwrap_or_default();
                 (sigma, von_mises)
             }),
+            extra: extra_fields(inc, &keep.fields),
         }
     }
 }
@@ -80,7 +120,7 @@ enum Reply {
 struct Relay {
     to_python: mpsc::Sender<IncrementData>,
     from_python: mpsc::Receiver<Reply>,
-    stresses: bool,
+    keep: Keep,
     count: usize,
     summary: Option<String>,
 }
@@ -88,7 +128,7 @@ struct Relay {
 impl StepObserver for Relay {
     fn on_increment(&mut self, inc: &ConvergedIncrement, _: &Summary) -> signorini::Result<()> {
         self.count += 1;
-        let data = IncrementData::new(inc, self.count - 1, self.stresses);
+        let data = IncrementData::new(inc, self.count - 1, &self.keep);
         let reply = match self.to_python.send(data) {
             Ok(()) => self.from_python.recv().unwrap_or(Reply::GoOn),
             Err(_) => Reply::Stop("the Python side is gone".into()),
@@ -132,6 +172,9 @@ pub struct Increment {
     contact_traction: PyObject,
     /// Accumulated slip, (n, 3).
     slip: PyObject,
+    /// This increment's slip (accumulated slip now minus before), (n, 3):
+    /// nonzero exactly at the nodes that slipped during it.
+    slip_increment: PyObject,
     /// {surface set: (3,) total of the residual over its nodes}: the
     /// reaction force where displacements are prescribed.
     reaction_forces: PyObject,
@@ -141,10 +184,32 @@ pub struct Increment {
     /// the run was asked for stresses; else None.
     cauchy_stress: Option<PyObject>,
     von_mises: Option<PyObject>,
+    /// {field name: array} of every field kept: the nodal fields
+    /// (displacement, …, node_id, slip_increment, accumulated_slip), those
+    /// asked for with run(fields=[...]), and with stresses=True
+    /// cauchy_stress and von_mises. Nodal (n, k) or (n,), cell (m, k) or
+    /// (m,); 9 components as (·, 3, 3).
+    fields: Py<PyDict>,
 }
 
 #[pymethods]
 impl Increment {
+    /// A field by its VTU name (`[output] fields`): `KeyError` naming the
+    /// fields there are, or how to keep this one (`run(fields=[name])`).
+    fn field(&self, py: Python<'_>, name: &str) -> PyResult<PyObject> {
+        let fields = self.fields.bind(py);
+        if let Some(values) = fields.get_item(name)? {
+            return Ok(values.unbind());
+        }
+        let message = match name.parse::<OutputField>() {
+            Ok(_) => format!(
+                "the field '{name}' was not kept: run(fields=['{name}']) keeps it at every increment"
+            ),
+            Err(unknown) => unknown,
+        };
+        Err(pyo3::exceptions::PyKeyError::new_err(message))
+    }
+
     fn __repr__(&self) -> String {
         format!(
             "Increment(index={}, step='{}', time={}, iterations={})",
@@ -153,41 +218,55 @@ impl Increment {
     }
 }
 
+/// `values` as a numpy array of `components` per row: (k,) for one,
+/// (k, 3, 3) for nine (a tensor, row-major), (k, components) otherwise.
+fn field_array(py: Python<'_>, values: Vec<f64>, components: usize) -> PyResult<PyObject> {
+    let array = convert::array(py, values, components)?;
+    if components == 9 {
+        let rows = array.len()?;
+        return Ok(array.call_method1("reshape", (rows, 3, 3))?.unbind());
+    }
+    Ok(array.unbind())
+}
+
 impl Increment {
     fn new(py: Python<'_>, data: IncrementData) -> PyResult<Self> {
         let json = py.import("json")?;
-        let mut nodal = data.nodal;
-        // the relay sends every nodal field, taken here by name
-        let mut next = |field: NodalField| -> PyResult<PyObject> {
-            match nodal.remove(&field) {
-                Some(values) => Ok(convert::array(py, values, field.components())?.unbind()),
+        let fields = PyDict::new(py);
+        // every nodal field the relay sends, by name
+        for (field, values) in data.nodal {
+            fields.set_item(field.name(), field_array(py, values, field.components())?)?;
+        }
+        for (field, values) in data.extra {
+            let components = match field {
+                OutputField::Nodal(f) => f.components(),
+                OutputField::Cell(f) => f.components(),
+            };
+            fields.set_item(field.name(), field_array(py, values, components)?)?;
+        }
+        let (cauchy_stress, von_mises) = match data.stresses {
+            Some((sigma, vm)) => {
+                let sigma = field_array(py, sigma, 9)?;
+                let vm = field_array(py, vm, 1)?;
+                fields.set_item(CellField::CauchyStress.name(), sigma.clone_ref(py))?;
+                fields.set_item(CellField::VonMises.name(), vm.clone_ref(py))?;
+                (Some(sigma), Some(vm))
+            }
+            None => (None, None),
+        };
+        let nodal = |field: NodalField| -> PyResult<PyObject> {
+            match fields.get_item(field.name())? {
+                Some(values) => Ok(values.unbind()),
                 None => Err(SignoriniError::new_err(format!(
                     "internal error: the nodal field {} is missing from an increment (please report it)",
                     field.name()
                 ))),
             }
         };
-        let displacement = next(NodalField::Displacement)?;
-        let contact_pressure = next(NodalField::ContactPressure)?;
-        let gap = next(NodalField::Gap)?;
-        let contact_status = next(NodalField::ContactStatus)?;
-        let contact_traction = next(NodalField::ContactTraction)?;
-        let slip = next(NodalField::Slip)?;
-        let reactions = pyo3::types::PyDict::new(py);
+        let reactions = PyDict::new(py);
         for (name, force) in data.reaction_forces {
             reactions.set_item(name, convert::array(py, force.to_vec(), 1)?)?;
         }
-        let (cauchy_stress, von_mises) = match data.stresses {
-            Some((sigma, vm)) => {
-                let m = vm.len();
-                let sigma = convert::array(py, sigma, 9)?.call_method1("reshape", (m, 3, 3))?;
-                (
-                    Some(sigma.unbind()),
-                    Some(convert::array(py, vm, 1)?.unbind()),
-                )
-            }
-            None => (None, None),
-        };
         Ok(Increment {
             index: data.index,
             step: data.step,
@@ -196,16 +275,18 @@ impl Increment {
             increment: data.increment,
             iterations: data.iterations,
             cuts: data.cuts,
-            displacement,
-            contact_pressure,
-            gap,
-            contact_status,
-            contact_traction,
-            slip,
+            displacement: nodal(NodalField::Displacement)?,
+            contact_pressure: nodal(NodalField::ContactPressure)?,
+            gap: nodal(NodalField::Gap)?,
+            contact_status: nodal(NodalField::ContactStatus)?,
+            contact_traction: nodal(NodalField::ContactTraction)?,
+            slip: nodal(NodalField::Slip)?,
+            slip_increment: nodal(NodalField::SlipIncrement)?,
             reaction_forces: reactions.into_any().unbind(),
             contact: json.call_method1("loads", (data.contact,))?.unbind(),
             cauchy_stress,
             von_mises,
+            fields: fields.unbind(),
         })
     }
 }
@@ -259,7 +340,7 @@ pub fn run(
     simulation: &mut Simulation,
     options: &RunOptions,
     callback: Option<PyObject>,
-    stresses: bool,
+    keep: Keep,
 ) -> PyResult<(String, Py<PyList>, String, Option<PyObject>)> {
     let increments = PyList::empty(py).unbind();
     let list = increments.clone_ref(py);
@@ -278,7 +359,7 @@ pub fn run(
                 let mut relay = Relay {
                     to_python,
                     from_python,
-                    stresses,
+                    keep,
                     count: 0,
                     summary: None,
                 };

@@ -42,6 +42,21 @@ def test_results_equal_the_cli_vtu(repo, cli, tmp_path, press_pull):
     assert result.contact["base"]["tangential_force"][0] == pytest.approx(-4.8, rel=1e-9)
 
 
+def test_slip_increments_add_up_to_the_accumulated_slip(press_pull):
+    """examples/press-pull: the pull slides the leading end; each
+    increment's slip_increment is the accumulated slip now minus before, so
+    they sum to the final slip (and accumulated_slip is slip)."""
+    _, result = press_pull
+    total = sum(inc.slip_increment for inc in result.increments)
+    scale = np.abs(result.slip).max()
+    assert scale > 0
+    assert np.abs(total - result.slip).max() <= 1e-12 * scale
+    for before, inc in zip(result.increments, result.increments[1:]):
+        np.testing.assert_array_equal(inc.field("accumulated_slip"), inc.slip)
+        assert np.abs(inc.slip_increment - (inc.slip - before.slip)).max() <= 1e-12 * scale
+    np.testing.assert_array_equal(result.increments[0].slip_increment, result.increments[0].slip)
+
+
 def test_a_callback_stops_the_run_after_two_increments(press_pull):
     case, full = press_pull
     seen = []

@@ -179,6 +179,46 @@ impl Mesh {
     }
 }
 
+impl Mesh {
+    /// The mesh with named node sets given as arrays (`sets`: a name and
+    /// 0-based node indices each), as `[[displacement]] nodes =` and
+    /// `[[nodal_force]] nodes =` name them; checked as the other arrays:
+    /// a name non-empty and not given twice (a node set may share its name
+    /// with a surface set, as a Gmsh physical group of another dimension
+    /// may), every index below the node count and none twice, no set
+    /// empty. The sets follow any the mesh has.
+    pub fn with_node_sets(mut self, sets: Vec<(String, Vec<usize>)>) -> Result<Mesh> {
+        let n = self.num_nodes();
+        let mut named: Vec<String> = self.node_sets.iter().map(|s| s.name.clone()).collect();
+        for (name, nodes) in sets {
+            let seen: Vec<&str> = named.iter().map(String::as_str).collect();
+            check_name("node set", &name, &seen)?;
+            if nodes.is_empty() {
+                return Err(invalid(format!(
+                    "node set '{name}' is empty: give it at least one node index"
+                )));
+            }
+            let mut member = vec![false; n];
+            for &a in &nodes {
+                if a >= n {
+                    return Err(invalid(format!(
+                        "node set '{name}' refers to node {a}, but the mesh has {n} nodes (indices 0 to {})",
+                        n.saturating_sub(1)
+                    )));
+                }
+                if std::mem::replace(&mut member[a], true) {
+                    return Err(invalid(format!(
+                        "node set '{name}' has node {a} more than once"
+                    )));
+                }
+            }
+            named.push(name.clone());
+            self.node_sets.push(super::NodeSet { name, nodes });
+        }
+        Ok(self)
+    }
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
@@ -311,5 +351,45 @@ mod tests {
             m.contains("node 5 has a coordinate that is not finite"),
             "{m}"
         );
+    }
+
+    #[test]
+    fn node_sets_from_arrays_are_named_and_checked() {
+        let reference = box_mesh(ElementKind::Hex8, [1, 1, 1], [1.0, 1.0, 1.0]);
+        let (nodes, elements, regions, surfaces) = arrays(&reference);
+        let mesh = || {
+            Mesh::from_arrays(
+                nodes.clone(),
+                elements.clone(),
+                regions.clone(),
+                surfaces.clone(),
+            )
+            .unwrap()
+        };
+        let with = mesh()
+            .with_node_sets(vec![("corner".into(), vec![0]), ("tip".into(), vec![7, 6])])
+            .unwrap();
+        assert_eq!(with.node_set("corner").unwrap().nodes, [0]);
+        assert_eq!(with.node_set("tip").unwrap().nodes, [7, 6]);
+        assert_eq!(with.node_set_names(), ["corner", "tip"]);
+        let bad = |sets: Vec<(String, Vec<usize>)>| message(mesh().with_node_sets(sets));
+        let m = bad(vec![("tip".into(), vec![8])]);
+        assert!(
+            m.contains(
+                "node set 'tip' refers to node 8, but the mesh has 8 nodes (indices 0 to 7)"
+            ),
+            "{m}"
+        );
+        let m = bad(vec![("tip".into(), vec![3, 3])]);
+        assert!(
+            m.contains("node set 'tip' has node 3 more than once"),
+            "{m}"
+        );
+        let m = bad(vec![("a".into(), vec![1]), ("a".into(), vec![2])]);
+        assert!(m.contains("two node sets are named 'a'"), "{m}");
+        let m = bad(vec![("a".into(), vec![])]);
+        assert!(m.contains("node set 'a' is empty"), "{m}");
+        let m = bad(vec![(String::new(), vec![1])]);
+        assert!(m.contains("a node set has an empty name"), "{m}");
     }
 }

@@ -16,7 +16,7 @@
 //! the weighted slip).
 
 use super::super::schema::{ContactMethod, ContactSpec, DiscretisationSpec};
-use crate::mesh::inp::physics::{ContactPairDef, InteractionDef, Overclosure, PairType, Physics};
+use crate::mesh::inp::physics::{ContactPairDef, Overclosure, PairType, Physics};
 use crate::mesh::Mesh;
 use crate::Result;
 

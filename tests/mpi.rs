@@ -29,7 +29,12 @@ mod with_petsc {
             (
                 "[[displacement]]\nsurface = \"ymin\"\ny = 0.0\n\n\
                  [[displacement]]\nsurface = \"ymax\"\ny = 0.0\n",
-                "friction_coefficient = 0.3\n",
+                // the regularised law, as before exact stick became the
+                // default: exact stick's tangential multipliers as Newton
+                // unknowns stop PETSc's preconditioner (DIVERGED_PC_FAILED
+                // at the first increment, measured at 4c22117), an open
+                // defect of the distributed path (issue 29/31 notes)
+                "friction_coefficient = 0.3\nexact_stick = false\n",
                 "[[pressure]]\nsurface = \"xmax\"\nvalue = -3.0\namplitude = \"pull\"\n\n\
                  [[step]]\nname = \"pull\"\nend_time = 2.0\ninitial_increment = 0.5\n",
             )

@@ -180,7 +180,7 @@ impl RowCache {
 }
 
 /// The face shape of a mesh facet (same node order).
-pub(crate) fn face_shape(kind: FacetKind) -> FaceShape {
+fn face_shape(kind: FacetKind) -> FaceShape {
     match kind {
         FacetKind::Tri3 => FaceShape::Tri3,
         FacetKind::Quad4 => FaceShape::Quad4,
@@ -189,32 +189,41 @@ pub(crate) fn face_shape(kind: FacetKind) -> FaceShape {
     }
 }
 
+/// The faces of surface set `name` of `mesh`; `None` without that set.
+pub(crate) fn surface_faces(mesh: &Mesh, name: &str) -> Option<Vec<SurfaceFace>> {
+    let set = mesh.surface(name)?;
+    Some(
+        set.facets
+            .iter()
+            .map(|f| SurfaceFace {
+                shape: face_shape(f.kind),
+                nodes: f.nodes.clone(),
+            })
+            .collect(),
+    )
+}
+
+/// Per node of `nodes` (sorted), the indices of the `faces` that hold it.
+pub(crate) fn node_faces(faces: &[SurfaceFace], nodes: &[usize]) -> Vec<Vec<usize>> {
+    let mut out = vec![Vec::new(); nodes.len()];
+    for (e, face) in faces.iter().enumerate() {
+        for n in &face.nodes {
+            if let Ok(i) = nodes.binary_search(n) {
+                out[i].push(e);
+            }
+        }
+    }
+    out
+}
+
 impl MortarSurfaces {
     /// Surface set `secondary` of `mesh` (its nodes `nodes`, sorted)
     /// against surface set `primary`, paired in the reference
     /// configuration; `None` if the mesh lacks either set.
     pub fn from_mesh(mesh: &Mesh, secondary: &str, primary: &str, nodes: &[usize]) -> Option<Self> {
-        let faces = |name: &str| -> Option<Vec<SurfaceFace>> {
-            let set = mesh.surface(name)?;
-            Some(
-                set.facets
-                    .iter()
-                    .map(|f| SurfaceFace {
-                        shape: face_shape(f.kind),
-                        nodes: f.nodes.clone(),
-                    })
-                    .collect(),
-            )
-        };
-        let (secondary_faces, primary_faces) = (faces(secondary)?, faces(primary)?);
-        let mut node_faces = vec![Vec::new(); nodes.len()];
-        for (e, face) in secondary_faces.iter().enumerate() {
-            for n in &face.nodes {
-                if let Ok(i) = nodes.binary_search(n) {
-                    node_faces[i].push(e);
-                }
-            }
-        }
+        let secondary_faces = surface_faces(mesh, secondary)?;
+        let primary_faces = surface_faces(mesh, primary)?;
+        let node_faces = node_faces(&secondary_faces, nodes);
         let primary_nodes = mesh.surface_nodes(mesh.surface(primary)?);
         let reference = coordinates(&mesh.nodes, &vec![0.0; 3 * mesh.num_nodes()]);
         let area: f64 = primary_faces

@@ -22,8 +22,8 @@
 //! because every face that holds a near node is integrated.
 
 use super::mortar::obstacle_rows::obstacle_rows;
-use super::mortar::{MortarRow, SurfaceFace};
-use super::mortar_contact::{coordinates, face_shape, face_size, full_integrals};
+use super::mortar::MortarRow;
+use super::mortar_contact::{coordinates, face_size, full_integrals, node_faces, surface_faces};
 use super::mortar_contact::{MortarGap, MortarSurfaces};
 use super::obstacle::RigidObstacle;
 use crate::mesh::Mesh;
@@ -55,23 +55,8 @@ impl MortarObstacle {
         nodes: &[usize],
         obstacle: RigidObstacle,
     ) -> Option<Self> {
-        let faces: Vec<SurfaceFace> = mesh
-            .surface(secondary)?
-            .facets
-            .iter()
-            .map(|f| SurfaceFace {
-                shape: face_shape(f.kind),
-                nodes: f.nodes.clone(),
-            })
-            .collect();
-        let mut node_faces = vec![Vec::new(); nodes.len()];
-        for (e, face) in faces.iter().enumerate() {
-            for n in &face.nodes {
-                if let Ok(i) = nodes.binary_search(n) {
-                    node_faces[i].push(e);
-                }
-            }
-        }
+        let faces = surface_faces(mesh, secondary)?;
+        let node_faces = node_faces(&faces, nodes);
         let reference = coordinates(&mesh.nodes, &vec![0.0; 3 * mesh.num_nodes()]);
         let sizes: Vec<f64> = faces.iter().map(|f| face_size(f, &reference)).collect();
         let node_margins: Vec<f64> = node_faces

@@ -98,9 +98,10 @@ pub struct MortarSurfaces {
     /// The rows of the last configurations ([`RowCache`]).
     cache: RowCache,
     /// With friction, `D` and `M` at the last converged configuration
-    /// (integrated at each [`refresh`](Self::refresh)), which the weighted
-    /// slip is measured against ([`mortar_friction`](super::mortar_friction));
-    /// `None` without friction.
+    /// (the covered rows there, taken at each [`refresh`](Self::refresh)),
+    /// which the weighted slip is measured against
+    /// ([`mortar_friction`](super::mortar_friction)); `None` without
+    /// friction.
     pub committed: Option<MortarCoupling>,
 }
 
@@ -455,8 +456,12 @@ impl MortarSurfaces {
     /// [`MortarRow`] (see [`MortarGap::at`]), from the cache where this
     /// configuration was integrated last or the one before.
     pub fn rows_at(&self, reference: &[[f64; 3]], x: &[f64]) -> Arc<MortarRows> {
-        let xs = coordinates(reference, x);
-        self.cached_rows(&xs, &[], || self.covered_rows(&xs))
+        self.rows_at_coordinates(&coordinates(reference, x))
+    }
+
+    /// [`rows_at`](Self::rows_at) at the nodes' current coordinates `xs`.
+    pub fn rows_at_coordinates(&self, xs: &[Vector3<f64>]) -> Arc<MortarRows> {
+        self.cached_rows(xs, &[], || self.covered_rows(xs))
     }
 
     /// The rows at coordinates `xs` and the further parameters `extra`

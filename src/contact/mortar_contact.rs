@@ -98,9 +98,10 @@ pub struct MortarSurfaces {
     /// The rows of the last configurations ([`RowCache`]).
     cache: RowCache,
     /// With friction, `D` and `M` at the last converged configuration
-    /// (integrated at each [`refresh`](Self::refresh)), which the weighted
-    /// slip is measured against ([`mortar_friction`](super::mortar_friction));
-    /// `None` without friction.
+    /// (the covered rows there, taken at each [`refresh`](Self::refresh)),
+    /// which the weighted slip is measured against
+    /// ([`mortar_friction`](super::mortar_friction)); `None` without
+    /// friction.
     pub committed: Option<MortarCoupling>,
 }
 
@@ -255,13 +256,18 @@ impl MortarSurfaces {
 
     /// The secondary side alone (a rigid obstacle's primary side has no
     /// faces, [`MortarObstacle`](super::mortar_rigid::MortarObstacle)): no
-    /// candidates, no row cache in use.
+    /// candidates; the row cache keyed by the secondary faces' nodes.
     pub(crate) fn secondary_only(
         secondary_faces: Vec<SurfaceFace>,
         node_faces: Vec<Vec<usize>>,
         element_size: f64,
         margin: f64,
     ) -> Self {
+        let mut surface_nodes: Vec<usize> = (secondary_faces.iter())
+            .flat_map(|f| f.nodes.iter().copied())
+            .collect();
+        surface_nodes.sort_unstable();
+        surface_nodes.dedup();
         Self {
             primary_surface: String::new(),
             candidates: vec![Vec::new(); secondary_faces.len()],
@@ -271,7 +277,7 @@ impl MortarSurfaces {
             node_faces,
             element_size,
             margin,
-            surface_nodes: Vec::new(),
+            surface_nodes,
             cache: RowCache::default(),
             committed: None,
         }
@@ -450,13 +456,29 @@ impl MortarSurfaces {
     /// [`MortarRow`] (see [`MortarGap::at`]), from the cache where this
     /// configuration was integrated last or the one before.
     pub fn rows_at(&self, reference: &[[f64; 3]], x: &[f64]) -> Arc<MortarRows> {
-        let xs = coordinates(reference, x);
-        let key: Vec<f64> = self
-            .surface_nodes
-            .iter()
+        self.rows_at_coordinates(&coordinates(reference, x))
+    }
+
+    /// [`rows_at`](Self::rows_at) at the nodes' current coordinates `xs`.
+    pub fn rows_at_coordinates(&self, xs: &[Vector3<f64>]) -> Arc<MortarRows> {
+        self.cached_rows(xs, &[], || self.covered_rows(xs))
+    }
+
+    /// The rows at coordinates `xs` and the further parameters `extra`
+    /// (a rigid obstacle's translation), from the row cache keyed by the
+    /// surfaces' nodes' coordinates and `extra`, or from `integrate`: the
+    /// one cache of the deformable and the rigid producers.
+    pub(crate) fn cached_rows(
+        &self,
+        xs: &[Vector3<f64>],
+        extra: &[f64],
+        integrate: impl FnOnce() -> MortarRows,
+    ) -> Arc<MortarRows> {
+        let key: Vec<f64> = (self.surface_nodes.iter())
             .flat_map(|&n| [xs[n].x, xs[n].y, xs[n].z])
+            .chain(extra.iter().copied())
             .collect();
-        self.cache.rows(key, || self.covered_rows(&xs))
+        self.cache.rows(key, integrate)
     }
 
     /// How often the producer asked for rows and how often it integrated

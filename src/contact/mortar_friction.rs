@@ -10,9 +10,10 @@
 //! increment per area, `d_j = w_j / D_j` with
 //! `w_j = Σ_l (M_jl − M_jl,n) x_l − (D_j − D_j,n) x̃_j`
 //! ([`weighted_slip`](super::mortar::weighted_slip)): `D_j,n`, `M_jl,n`
-//! are the coupling integrated at the last converged configuration and
-//! kept in [`MortarSurfaces::committed`] (refreshed with the candidate
-//! pairs at the start of every increment). A node no segment reached at
+//! are the coupling at the last converged configuration, kept in
+//! [`MortarSurfaces::committed`] at the start of every increment from the
+//! producer's own rows there (the row cache's converged entry: one reader
+//! of `D` and `M`). A node no segment reached at
 //! the last commit measures `d = x_s − x_s,n` from its own committed
 //! position (it is closing: the driver's first-contact rule counts its
 //! slip from where it touches).
@@ -39,8 +40,8 @@
 use super::friction::{Coulomb, FrictionHistory, SlipKinematics, TangentialResponse};
 use super::kinematics::{current_position, GapKinematics, SecondaryNode, SlipFrame};
 use super::mortar::weighted_slip::{committed_row, weighted_slip};
-use super::mortar::{mortar_coupling, MortarCoupling, MortarRow};
-use super::mortar_contact::{MortarGap, MortarSurfaces};
+use super::mortar::{MortarCoupling, MortarRow};
+use super::mortar_contact::{MortarGap, MortarRows, MortarSurfaces};
 use nalgebra::{DMatrix, Dyn, Matrix3, OMatrix, Vector3, U3};
 
 impl MortarSurfaces {
@@ -52,17 +53,34 @@ impl MortarSurfaces {
         self.commit_coupling(&xs);
     }
 
-    /// Integrate and keep `D`, `M` at the converged coordinates `xs` where
-    /// slip is tracked ([`track_slip`](Self::track_slip)); a face the
-    /// kernels cannot integrate leaves no committed row (its nodes then
-    /// slip from their own committed positions).
+    /// Keep `D`, `M` at the converged coordinates `xs` where slip is
+    /// tracked ([`track_slip`](Self::track_slip)): the covered rows there
+    /// ([`rows_at_coordinates`](Self::rows_at_coordinates)), from the row
+    /// cache's converged entry while the candidate pairs hold (integrated
+    /// once more where they changed, which the increment's first iterate
+    /// then reads from the cache). A node without a covered row (a face the
+    /// kernels cannot integrate; less than half covered, whose `D_j,n`,
+    /// `M_jl,n` are as unreliable as its gap) slips from its own committed
+    /// position.
     pub fn commit_coupling(&mut self, xs: &[Vector3<f64>]) {
         if self.committed.is_some() {
-            let pairs = self.pairs();
-            let coupling = mortar_coupling(&self.secondary_faces, &self.primary_faces, &pairs, xs);
-            self.committed = Some(coupling.unwrap_or_default());
+            let rows = self.rows_at_coordinates(xs);
+            self.committed = Some(committed_coupling(&rows));
         }
     }
+}
+
+/// The coupling `D_j`, `M_jl`, `n_j`, `R_jk` of the producer's `rows`:
+/// what the weighted slip reads as the committed state.
+fn committed_coupling(rows: &MortarRows) -> MortarCoupling {
+    let mut out = MortarCoupling::default();
+    for (&j, row) in rows {
+        out.d.insert(j, row.d);
+        out.m.extend(row.m.iter().map(|&(l, v)| ((j, l), v)));
+        out.normals.insert(j, row.normal);
+        out.transformation.insert(j, row.transformation.clone());
+    }
+    out
 }
 
 /// Position of every mesh node of `nodes` in `among` (the kinematics'

@@ -24,7 +24,7 @@
 use super::mortar::obstacle_rows::obstacle_rows;
 use super::mortar::MortarRow;
 use super::mortar_contact::{coordinates, face_size, full_integrals, node_faces, surface_faces};
-use super::mortar_contact::{MortarGap, MortarSurfaces};
+use super::mortar_contact::{MortarGap, MortarSurfaces, RowCounts};
 use super::obstacle::RigidObstacle;
 use crate::mesh::Mesh;
 use nalgebra::Vector3;
@@ -127,16 +127,29 @@ impl MortarObstacle {
     }
 
     /// The gap producer at unknowns `x`, the obstacle translated by
-    /// `translation`: a [`MortarGap`] over [`rows`](Self::rows).
+    /// `translation`: a [`MortarGap`] over [`rows`](Self::rows), from the
+    /// surfaces' row cache (keyed by the secondary nodes' coordinates and
+    /// the translation) where this configuration was integrated last or
+    /// the one before.
     pub fn producer(
         &self,
         translation: &Vector3<f64>,
         reference: &[[f64; 3]],
         x: &[f64],
     ) -> MortarGap<'_> {
+        let xs = coordinates(reference, x);
+        let extra = [translation.x, translation.y, translation.z];
+        let rows =
+            (self.surfaces).cached_rows(&xs, &extra, || self.rows(translation, reference, x));
         MortarGap {
             surfaces: &self.surfaces,
-            rows: std::sync::Arc::new(self.rows(translation, reference, x)),
+            rows,
         }
+    }
+
+    /// How often the producer asked for rows and how often it integrated
+    /// them, since this interface was built (or cloned).
+    pub fn row_counts(&self) -> RowCounts {
+        self.surfaces.row_counts()
     }
 }

@@ -54,7 +54,9 @@
 //! laws are geometrically nonlinear, their `K` changes with `u`), no
 //! follower pressure, every contact against a rigid plane (translating or
 //! not), frictionless or with Coulomb friction, with an exact or penalty
-//! law, and every body held by its prescribed displacements (`K̃` regular:
+//! law (dual mortar on a plane: frictionless, exact; its gap
+//! `g_j = Σ_k R_jk g(x_k)` is affine, its columns `R_jk n` over a face's
+//! nodes, [`ConstraintRow::node_gradients`]), and every body held by its prescribed displacements (`K̃` regular:
 //! a body held only by contact has a rigid-body mode) or, with friction,
 //! by those and the nodes touching the plane at the start. `auto` takes it
 //! exactly then; otherwise the run is monolithic and the log and

@@ -24,6 +24,9 @@ fn single_unknown(row: &ConstraintRow) -> Option<(usize, f64)> {
 /// not (after `contact '{name}'`).
 fn linearises(c: &ContactInterface, reference: &[[f64; 3]], zero: &[f64]) -> Result<(), String> {
     c.affine_gap()?;
+    if !c.fixed_area() {
+        return Err("uses discretisation = \"mortar\" (its force D_j k λ follows the area D_j of the current surface)".into());
+    }
     let rows = c.constraint_rows(reference, 0.0, zero, None);
     if !rows.iter().flatten().all(|r| single_unknown(r).is_some()) {
         return Err("has a gap gradient that is not a coordinate axis".into());

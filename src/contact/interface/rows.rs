@@ -1,17 +1,26 @@
 //! The node driver's linearisation as constraint rows: per secondary node
-//! its gap at the unknowns, the unit normal `n`, its tributary area `A_s`
-//! and the lever `B = ∂(x_s − x̄)/∂u` at fixed projection (`+I` on the
-//! secondary node, `−w_i I` on the primary nodes of its reaction, none
-//! against a rigid obstacle), so that
+//! its gap at the unknowns, the unit normal `n`, its area `A` and the gap's
+//! gradient per coupled node, `∇g = Σ_k e_k ⊗ ∂g/∂x_k`, so that
 //!
 //! ```text
-//! g(u + δ) ≈ g(u) + nᵀ B δ,   ∇g = Bᵀ n,
+//! g(u + δ) ≈ g(u) + ∇g · δ,
 //! ```
 //!
-//! and a nodal traction `t` acts on the unknowns as `A_s Bᵀ t`. What a
-//! solve that meets the contact conditions directly reads (the condensed
-//! path, the Josephy–Newton step), whatever the primary kind: the rows come
-//! from the same [`GapProducer`] as the assembly.
+//! and a normal force `A t_N` of the node acts on the unknowns as
+//! `A t_N ∇g` where the gap is affine (the condensed path's columns).
+//! Node-to-surface, `∂g/∂x_k` is `n` on the secondary node and `−w_i n` on
+//! the primary nodes of its reaction (`∇g = Bᵀ n` with the lever
+//! `B = ∂(x_s − x̄)/∂u` at fixed projection: `+I` on the secondary node,
+//! `−w_i I` on the primary nodes, none against a rigid obstacle), and a
+//! nodal traction `t` acts as `A_s Bᵀ t`. Dual mortar (Popp, Gee & Wall
+//! 2009) gives the general form, `∂g_j/∂x_k` the normalised gap's complete
+//! gradient over every node its row couples; against a rigid plane it is
+//! `R_jk n` (Popp's `L_jk / D_j` at fixed `D`: biorthogonality,
+//! `∫ Φ_j Ñ_k dA = δ_jk D_j`), so that on linear faces the rows are
+//! node-to-surface's, and `A = D_j` is integrated over the current surface.
+//! What a solve that meets the contact conditions directly reads (the
+//! condensed path, the Josephy–Newton step), whatever the primary kind: the
+//! rows come from the same [`GapProducer`] as the assembly.
 
 use super::{ContactContext, ContactInterface, MortarGap, Primary, RigidGap, SurfaceGap};
 use crate::contact::friction::TangentialResponse;
@@ -27,12 +36,19 @@ pub struct ConstraintRow {
     pub gap: f64,
     /// Unit normal `n` toward the secondary body.
     pub normal: Vector3<f64>,
-    /// Tributary reference area `A_s`.
+    /// The node's area: the tributary reference area `A_s`, or dual
+    /// mortar's `D_j` at the unknowns.
     pub area: f64,
     /// The secondary mesh node `s`.
     pub node: usize,
     /// The primary nodes of the reaction and their weights `w_i`.
     pub primary: PrimaryWeights,
+    /// `(k, ∂g/∂x_k)` per coupled mesh node `k`, the secondary node first
+    /// (module docs): `n` on it and `−w_i n` on the primary nodes
+    /// node-to-surface, `R_jk n` of dual mortar on a rigid plane; entries
+    /// below 1e-13 of the largest (the integrals' round-off where
+    /// biorthogonality makes them zero) left out.
+    pub node_gradients: Vec<(usize, Vector3<f64>)>,
     /// The node's position in the frame its friction anchor is kept in
     /// ([`GapProducer::relative_position`]).
     pub relative_position: Vector3<f64>,
@@ -50,20 +66,31 @@ impl ConstraintRow {
             .collect()
     }
 
-    /// `∇g = Bᵀ n` as `(dof, value)`, components with `n_d = 0` left out:
-    /// the secondary node's three first (`d = 0, 1, 2`), then each primary
-    /// node's.
+    /// `∇g` as `(dof, value)` from [`node_gradients`](Self::node_gradients),
+    /// zero components left out: the secondary node's three first
+    /// (`d = 0, 1, 2`), then each other coupled node's (node-to-surface:
+    /// `Bᵀ n`).
     pub fn gradient(&self) -> Vec<(usize, f64)> {
-        let nodes =
-            std::iter::once((self.node, 1.0)).chain(self.primary.iter().map(|&(p, w)| (p, -w)));
-        nodes
-            .flat_map(|(a, w)| {
+        (self.node_gradients.iter())
+            .flat_map(|(a, v)| {
                 (0..3)
-                    .filter(|&d| self.normal[d] != 0.0)
-                    .map(move |d| (3 * a + d, w * self.normal[d]))
+                    .filter(|&d| v[d] != 0.0)
+                    .map(move |d| (3 * a + d, v[d]))
             })
             .collect()
     }
+}
+
+/// `(k, ∂g/∂x_k)` per node `k` of `nodes` from `gradient` (node-major),
+/// nodes whose largest entry is below 1e-13 of the largest left out (see
+/// [`ConstraintRow::node_gradients`]).
+fn node_gradients(nodes: &[usize], gradient: &[f64]) -> Vec<(usize, Vector3<f64>)> {
+    let at = |a: usize| Vector3::new(gradient[3 * a], gradient[3 * a + 1], gradient[3 * a + 2]);
+    let largest = (0..nodes.len()).map(|a| at(a).amax()).fold(0.0, f64::max);
+    (nodes.iter().enumerate())
+        .map(|(a, &k)| (k, at(a)))
+        .filter(|(_, v)| v.amax() >= 1e-13 * largest)
+        .collect()
 }
 
 /// One secondary node's slip from its committed friction history at the
@@ -176,9 +203,10 @@ impl ContactInterface {
                 rows.push(k.map(|k| ConstraintRow {
                     gap: k.gap,
                     normal: k.normal,
-                    area: self.areas[node.index],
+                    area: k.area.unwrap_or(self.areas[node.index]),
                     node: node.mesh_node,
                     primary: k.primary.clone(),
+                    node_gradients: node_gradients(&k.nodes, k.gradient.as_slice()),
                     relative_position: p.relative_position(node),
                     facet: k.facet,
                 }));
@@ -194,17 +222,26 @@ impl ContactInterface {
         matches!(self.primary, Primary::Surface(_))
     }
 
+    /// Whether every node's area is the fixed tributary `A_s` (`false`:
+    /// dual mortar's `D_j`, integrated over the current surface, so that
+    /// a penalty's force `D_j ε ⟨−g⟩` is not affine in the unknowns).
+    pub fn fixed_area(&self) -> bool {
+        !matches!(self.primary, Primary::Mortar(_) | Primary::MortarRigid(_))
+    }
+
     /// `Ok` where every node's gap is affine in the unknowns everywhere
-    /// (`g = g(0) + ∇g · u` with one `∇g`: a rigid plane), else what the
+    /// (`g = g(0) + ∇g · u` with one `∇g`: a rigid plane, node-to-surface
+    /// or dual mortar, whose `g_j = Σ_k R_jk g(x_k)` there), else what the
     /// primary is, in words ("is against a sphere, …").
     pub fn affine_gap(&self) -> Result<(), String> {
-        let curved = match &self.primary {
-            Primary::Rigid(RigidObstacle::Plane { .. }) => return Ok(()),
-            Primary::Rigid(RigidObstacle::Sphere { .. }) => "sphere",
-            Primary::Rigid(RigidObstacle::Cylinder { .. }) => "cylinder",
-            Primary::Rigid(_) => "triangulated surface",
-            Primary::Mortar(_) | Primary::MortarRigid(_) => {
-                return Err("uses discretisation = \"mortar\" (not condensed yet)".into())
+        let obstacle = match &self.primary {
+            Primary::Rigid(obstacle) => obstacle,
+            Primary::MortarRigid(m) => &m.obstacle,
+            Primary::Mortar(_) => {
+                return Err(
+                    "uses discretisation = \"mortar\" between two bodies (not condensed yet)"
+                        .into(),
+                )
             }
             // a primary surface (and any primary kind added later)
             _ => {
@@ -214,6 +251,12 @@ impl ContactInterface {
                         .into(),
                 )
             }
+        };
+        let curved = match obstacle {
+            RigidObstacle::Plane { .. } => return Ok(()),
+            RigidObstacle::Sphere { .. } => "sphere",
+            RigidObstacle::Cylinder { .. } => "cylinder",
+            _ => "triangulated surface",
         };
         Err(format!(
             "is against a {curved}, whose gap is not linear in the displacement"

@@ -2,6 +2,8 @@
 //! why the condensed one does not apply ([`not_applicable`]).
 
 use super::{friction, has_friction, Problem};
+use crate::contact::interface::ContactInterface;
+use crate::contact::laws::NormalEnforcement;
 use crate::material::Kinematics;
 use crate::solve::settings::Strategy;
 use nalgebra::{Matrix6, Vector3, Vector6};
@@ -127,6 +129,13 @@ pub fn not_applicable(problem: &Problem) -> Option<String> {
                 "uses uzawa, which meets the constraint only to its outer loop's tolerance".into()
             })
         });
+        let why = why.or_else(|| {
+            (!c.fixed_area() && penalty(c)).then(|| {
+                "uses penalty with discretisation = \"mortar\", whose force D_j ε ⟨−g⟩ changes \
+             with the area D_j of the current surface"
+                    .into()
+            })
+        });
         if let Some(why) = why {
             return Some(format!("contact '{}' {why}", c.name));
         }
@@ -149,6 +158,12 @@ pub fn not_applicable(problem: &Problem) -> Option<String> {
             why
         }
     })
+}
+
+/// Whether `c`'s law converges to a penalty (`t_N = ε ⟨−g⟩`) rather than
+/// to the exact contact conditions.
+fn penalty(c: &ContactInterface) -> bool {
+    matches!(c.law.converged(), NormalEnforcement::Penalty { .. })
 }
 
 /// A body (a connected set of elements) that the `constrained` dofs (its

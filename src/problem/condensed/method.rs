@@ -58,9 +58,12 @@ impl IncrementSolver for Condensation {
     ) -> Result<()> {
         let (u, forces) = self.solve_increment(problem, t, None, history)?;
         let mut pressures = zero_per_node(problem);
+        // the nodes' areas at `u` (dual mortar's `D_j` follows the surface)
+        let rows = super::constraint_rows(problem, t, &u);
         for (a, c) in self.nodes.iter().enumerate() {
-            pressures[c.interface][c.index] =
-                forces[a] / problem.contacts.interface(c.interface).areas[c.index];
+            let area = rows[c.interface][c.index].as_ref().map(|r| r.area);
+            let area = area.unwrap_or(problem.contacts.interface(c.interface).areas[c.index]);
+            pressures[c.interface][c.index] = forces[a] / area;
         }
         set_multipliers(problem, &pressures, &u, t, x, trial);
         Ok(())

@@ -1,0 +1,258 @@
+//! Dual mortar on the condensed path (issue 28 item 5): against a rigid
+//! plane the mortar gap is affine in the displacement,
+//! `g_j = Σ_k R_jk g(x_k)` (biorthogonality of the dual basis), so a
+//! frictionless small-strain run factorises its stiffness once, and the
+//! condensed answer is the monolithic one; on linear faces the rows are
+//! node-to-surface's, so the answers are node-to-surface's.
+
+mod common;
+
+use common::{msh22, relative_difference, CaseRun};
+use signorini::mesh::{structured::box_mesh, ElementKind};
+use std::path::Path;
+
+/// A linear elastic block (1 × 1 × 0.5 in 3 × 3 × 2 cells of `kind`,
+/// E = 100, ν = 0.3) with the symmetry planes x = 0 and y = 0 and its top
+/// pushed down by 0.03, on `obstacle` (a case-file `[[obstacle]]` body)
+/// through dual mortar, Rockafellar, with `solver` as its `[solver]`
+/// lines: the case file written into `dir`.
+fn block_case(dir: &Path, kind: ElementKind, obstacle: &str, solver: &str) -> std::path::PathBuf {
+    let mesh = box_mesh(kind, [3, 3, 2], [1.0, 1.0, 0.5]);
+    std::fs::write(dir.join("block.msh"), msh22(&mesh)).unwrap();
+    let case = format!(
+        r#"
+[mesh]
+file = "block.msh"
+
+[[material]]
+region = "body"
+model = "linear_elastic"
+youngs_modulus = 100.0
+poisson_ratio = 0.3
+
+[[displacement]]
+surface = "xmin"
+x = 0.0
+
+[[displacement]]
+surface = "ymin"
+y = 0.0
+
+[[displacement]]
+surface = "zmax"
+z = -0.03
+
+[[obstacle]]
+name = "floor"
+{obstacle}
+
+[[contact]]
+name = "bottom"
+surface = "zmin"
+obstacle = "floor"
+method = "rockafellar"
+discretisation = "mortar"
+
+[[step]]
+name = "press"
+end_time = 1.0
+initial_increment = 0.5
+
+[solver]
+{solver}
+"#
+    );
+    let path = dir.join("case.toml");
+    std::fs::write(&path, case).unwrap();
+    path
+}
+
+/// An oblique plane that the block's corner at the origin reaches first:
+/// the contact is partial and the pressure far from uniform.
+const OBLIQUE_PLANE: &str = r#"shape = "plane"
+point = [0.0, 0.0, 0.0]
+normal = [0.03, 0.02, 1.0]"#;
+
+/// The displacements of a run (its unknowns without the multipliers).
+fn displacements(run: &CaseRun) -> &[f64] {
+    &run.outcome.displacement[..run.problem.model.num_dofs()]
+}
+
+/// The block of [`block_case`] with `solver`, run (with its folder).
+fn block(kind: ElementKind, obstacle: &str, solver: &str) -> (CaseRun, tempfile::TempDir) {
+    let dir = tempfile::tempdir().unwrap();
+    let path = block_case(dir.path(), kind, obstacle, solver);
+    (CaseRun::new(&path, &dir.path().join("out")), dir)
+}
+
+/// Tet4 (Tri3 faces) and Tet10 (Tri6 faces, the quadratic basis
+/// transformation's rows `R_jk n` over a face's nodes) blocks on an
+/// oblique rigid plane: `strategy = "condensed"` (and `auto`, which takes
+/// it) equals monolithic Newton (residual 1e-13) to 1e-8 relative in the
+/// displacements and in `contact_pressure`, the multiplier `λ_j` on the
+/// current `D_j`; the contact is partial.
+#[test]
+fn condensed_mortar_equals_monolithic_on_a_plane() {
+    for kind in [ElementKind::Tet4, ElementKind::Tet10] {
+        let (mono, _m) = block(
+            kind,
+            OBLIQUE_PLANE,
+            "strategy = \"monolithic\"\nresidual_tolerance = 1e-13",
+        );
+        let (cond, _c) = block(kind, OBLIQUE_PLANE, "strategy = \"condensed\"");
+        let (auto, _a) = block(kind, OBLIQUE_PLANE, "strategy = \"auto\"");
+        assert_eq!(cond.outcome.summary.strategy, "condensed");
+        assert_eq!(auto.outcome.summary.strategy, "condensed");
+        assert_eq!(mono.outcome.summary.strategy, "monolithic");
+        let du = relative_difference(displacements(&cond), displacements(&mono));
+        let (pc, pm) = (
+            cond.last_field("contact_pressure"),
+            mono.last_field("contact_pressure"),
+        );
+        let dp = relative_difference(&pc, &pm);
+        let closed = pm.iter().filter(|p| **p > 1e-6).count();
+        let mesh = &mono.problem.model.mesh;
+        let bottom = mesh.surface_nodes(mesh.surface("zmin").unwrap()).len();
+        println!(
+            "{kind:?}: displacements {du:.1e}, contact_pressure {dp:.1e}, {closed} of {bottom} closed"
+        );
+        assert!(du <= 1e-8, "{kind:?}: displacements differ by {du:e}");
+        assert!(dp <= 1e-8, "{kind:?}: contact_pressure differs by {dp:e}");
+        assert!(closed >= 3 && closed < bottom, "{kind:?}: partial contact");
+        let da = relative_difference(displacements(&auto), displacements(&cond));
+        assert_eq!(da, 0.0, "{kind:?}: auto is the condensed run");
+    }
+}
+
+/// Against a sphere the mortar gap is not affine: `strategy = "condensed"`
+/// is refused with the reason in the user's words, and `auto` runs
+/// monolithic Newton. (The sphere starts 0.02 below the block's corner:
+/// the dual basis is signed, so a node's weighted gap on a curved
+/// obstacle lies below its own, and the case file refuses a start
+/// inside.)
+#[test]
+fn condensed_mortar_is_refused_on_a_sphere() {
+    let sphere = "shape = \"sphere\"\ncenter = [0.0, 0.0, -2.02]\nradius = 2.0";
+    let dir = tempfile::tempdir().unwrap();
+    let path = block_case(
+        dir.path(),
+        ElementKind::Tet4,
+        sphere,
+        "strategy = \"condensed\"",
+    );
+    let error = signorini::run::run(
+        &path,
+        &signorini::run::RunOptions {
+            output: Some(dir.path().join("out")),
+            threads: None,
+            cancel: None,
+            restart: None,
+        },
+    )
+    .expect_err("condensed does not apply on a sphere")
+    .to_string();
+    assert!(
+        error.contains("contact 'bottom'") && error.contains("sphere"),
+        "{error}"
+    );
+    let (auto, _dir) = block(ElementKind::Tet4, sphere, "strategy = \"auto\"");
+    assert_eq!(auto.outcome.summary.strategy, "monolithic");
+}
+
+/// The coarse Hertz hemisphere (tests/data/hemisphere_coarse.msh in
+/// examples/hertz, Tet4, Rockafellar, 4 increments) condensed with the
+/// `[[contact]]` lines `contact`, run in `dir`.
+fn hertz(dir: &Path, contact: &str) -> CaseRun {
+    let root = Path::new(env!("CARGO_MANIFEST_DIR"));
+    let text = std::fs::read_to_string(root.join("examples/hertz/case.toml")).unwrap();
+    let mesh = root.join("tests/data/hemisphere_coarse.msh");
+    let text = text
+        .replace(
+            "file = \"hemisphere.msh\"",
+            &format!("file = {:?}", mesh.display().to_string()),
+        )
+        .replace(
+            "method = \"rockafellar\"",
+            &format!("method = \"rockafellar\"\n{contact}"),
+        );
+    let path = dir.join("case.toml");
+    std::fs::write(&path, text + "\n[solver]\nstrategy = \"condensed\"\n").unwrap();
+    CaseRun::new(&path, &dir.join("out"))
+}
+
+/// Hertz on Tet4 against the rigid plane, both condensed: dual mortar's
+/// rows on linear faces are node-to-surface's (`∇g_j = n` on node `j`,
+/// `D_j` the lumped area at the start), so the displacements agree to
+/// 1e-10 relative, and so do the contact forces (summary.json's total:
+/// mortar's `contact_pressure` `λ_j` is the force over the current `D_j`,
+/// node-to-surface's over the reference `A_s`, so the pressures differ by
+/// the contact surface's strain, a few % at the pole).
+#[test]
+fn condensed_hertz_mortar_equals_node_to_surface() {
+    let (a, b) = (tempfile::tempdir().unwrap(), tempfile::tempdir().unwrap());
+    let mortar = hertz(a.path(), "discretisation = \"mortar\"");
+    let nts = hertz(b.path(), "discretisation = \"node_to_surface\"");
+    assert_eq!(mortar.outcome.summary.strategy, "condensed");
+    let du = relative_difference(displacements(&mortar), displacements(&nts));
+    let force = |r: &CaseRun| r.outcome.summary.increments.last().unwrap().contact["pole"].force;
+    let (fm, fn_) = (force(&mortar), force(&nts));
+    let df = relative_difference(&fm, &fn_);
+    println!("hertz Tet4 mortar − node-to-surface: displacements {du:.1e}, force {df:.1e}");
+    assert!(du <= 1e-10, "displacements differ by {du:e}");
+    assert!(df <= 1e-10, "forces {fm:?} and {fn_:?}");
+}
+
+/// examples/hertz (run by hand, the numbers of BENCHMARKS.md:
+/// `cargo test --release --test mortar_condensed -- --ignored
+/// --nocapture`): `case.toml` (Tet4) with `discretisation = "mortar"`
+/// against node-to-surface, both condensed, and `tet10.toml` (dual
+/// mortar) condensed against monolithic (residual 1e-11): displacements
+/// to 1e-10 relative, `contact_pressure` (Tet10) and the total force to
+/// 1e-10.
+#[test]
+#[ignore]
+fn hertz_examples_condensed() {
+    let root = Path::new(env!("CARGO_MANIFEST_DIR")).join("examples/hertz");
+    let run = |file: &str, from: &str, to: &str, solver: &str| {
+        let text = std::fs::read_to_string(root.join(file)).unwrap();
+        let dir = tempfile::tempdir().unwrap();
+        let mesh = text.lines().find(|l| l.starts_with("file = ")).unwrap();
+        let path = root.join(mesh.trim_start_matches("file = ").trim_matches('"'));
+        let text = text
+            .replace(mesh, &format!("file = {:?}", path.display().to_string()))
+            .replace(from, to);
+        let case = dir.path().join("case.toml");
+        std::fs::write(&case, format!("{text}\n[solver]\n{solver}\n")).unwrap();
+        let out = CaseRun::new(&case, &dir.path().join("out"));
+        (out, dir)
+    };
+    let force = |r: &CaseRun| r.outcome.summary.increments.last().unwrap().contact["pole"].force;
+    let method = "method = \"rockafellar\"";
+    let mortar = format!("{method}\ndiscretisation = \"mortar\"");
+    let condensed = "strategy = \"condensed\"";
+    let (m, _a) = run("case.toml", method, &mortar, condensed);
+    let (n, _b) = run("case.toml", method, method, condensed);
+    let du = relative_difference(displacements(&m), displacements(&n));
+    let df = relative_difference(&force(&m), &force(&n));
+    println!(
+        "hertz Tet4 condensed, mortar − node-to-surface: displacements {du:.1e}, force {df:.1e} \
+         ({:?} vs {:?})",
+        force(&m),
+        force(&n)
+    );
+    let monolithic = "strategy = \"monolithic\"\nresidual_tolerance = 1e-11";
+    let (c, _c) = run("tet10.toml", method, method, condensed);
+    let (w, _d) = run("tet10.toml", method, method, monolithic);
+    let du10 = relative_difference(displacements(&c), displacements(&w));
+    let dp10 = relative_difference(
+        &c.last_field("contact_pressure"),
+        &w.last_field("contact_pressure"),
+    );
+    let df10 = relative_difference(&force(&c), &force(&w));
+    println!(
+        "hertz Tet10 mortar, condensed − monolithic: displacements {du10:.1e}, contact_pressure \
+         {dp10:.1e}, force {df10:.1e}"
+    );
+    assert!(du <= 1e-10 && df <= 1e-10, "Tet4: {du:e} {df:e}");
+    assert!(du10 <= 1e-10 && dp10 <= 1e-10 && df10 <= 1e-10, "Tet10");
+}

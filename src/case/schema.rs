@@ -171,6 +171,9 @@ pub enum AmplitudeRef {
 
 /// `[[displacement]]`: any of `x`, `y`, `z` given are prescribed, the others
 /// are free, on the nodes of `surface` or of `nodes` (one of the two).
+/// With `rotation`, the set moves rigidly: all three components are
+/// prescribed, `u = (R(θ) − I)(X − c) + (x, y, z)` (a missing `x`, `y`,
+/// `z` is 0), and no other `[[displacement]]` may prescribe its nodes.
 #[derive(Debug, Deserialize, JsonSchema)]
 #[serde(deny_unknown_fields)]
 pub struct DisplacementSpec {
@@ -182,6 +185,27 @@ pub struct DisplacementSpec {
     pub y: Option<f64>,
     pub z: Option<f64>,
     /// Scales the values; default: ramp 0 → 1 over the first step.
+    pub amplitude: Option<AmplitudeRef>,
+    /// A finite rotation of the set about an axis (exact at any angle).
+    pub rotation: Option<RotationSpec>,
+}
+
+/// `rotation = { axis = [0, 0, 1], centre = [x, y, z], angle = 90 }`: the
+/// rotation `R(θ)` by `θ = angle · amplitude(t)` degrees, right-handed
+/// about `axis` through `centre` (Rodrigues' formula).
+#[derive(Debug, Deserialize, JsonSchema)]
+#[serde(deny_unknown_fields)]
+pub struct RotationSpec {
+    /// Axis direction (non-zero; its length does not matter).
+    #[serde(deserialize_with = "three")]
+    pub axis: [f64; 3],
+    /// A point of the axis, reference configuration (length unit).
+    #[serde(deserialize_with = "three")]
+    pub centre: [f64; 3],
+    /// Angle in degrees, right-handed about `axis`.
+    pub angle: f64,
+    /// Scales the angle; default: the `[[displacement]]`'s `amplitude`
+    /// (whose default is the ramp 0 → 1 over the first step).
     pub amplitude: Option<AmplitudeRef>,
 }
 

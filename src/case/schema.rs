@@ -541,6 +541,14 @@ pub enum HistoryQuantitySpec {
     ReactionForceX,
     ReactionForceY,
     ReactionForceZ,
+    /// The reaction moment `Σ (x_a − c) × r_a` of a surface or node set
+    /// about `point` (default: the set's current centroid), at the current
+    /// positions `x_a`: its x, y, z components.
+    ReactionMoment,
+    /// One component of it (a scalar column `reaction_moment_x`, …).
+    ReactionMomentX,
+    ReactionMomentY,
+    ReactionMomentZ,
 }
 
 impl HistoryQuantitySpec {
@@ -556,6 +564,10 @@ impl HistoryQuantitySpec {
             Self::ReactionForceX => "reaction_force_x",
             Self::ReactionForceY => "reaction_force_y",
             Self::ReactionForceZ => "reaction_force_z",
+            Self::ReactionMoment => "reaction_moment",
+            Self::ReactionMomentX => "reaction_moment_x",
+            Self::ReactionMomentY => "reaction_moment_y",
+            Self::ReactionMomentZ => "reaction_moment_z",
         }
     }
 }
@@ -571,16 +583,20 @@ pub struct HistorySpec {
     /// File stem: letters, digits, `-`, `_`, `.`.
     pub name: String,
     /// Reference-configuration point; the nearest node is used (every
-    /// quantity but `reaction_force`).
+    /// quantity but `reaction_force` and `reaction_moment`). For
+    /// `reaction_moment`: the fixed point `c` the moment is taken about
+    /// (default: the set's current centroid, the mean of its nodes'
+    /// current positions).
     #[serde(default, deserialize_with = "option_three")]
     pub point: Option<[f64; 3]>,
     /// `displacement_x`, `displacement_y`, `displacement_z`, `gap`,
-    /// `contact_pressure` or `reaction_force`.
+    /// `contact_pressure`, `reaction_force` or `reaction_moment` (and
+    /// their components `reaction_force_x`, …, `reaction_moment_z`).
     pub quantity: HistoryQuantitySpec,
     /// A `[[contact]]` name (required for `gap` and `contact_pressure`).
     pub interface: Option<String>,
-    /// A surface set (for `reaction_force` and its components, and only
-    /// there; or `nodes`).
+    /// A surface set (for `reaction_force`, `reaction_moment` and their
+    /// components, and only there; or `nodes`).
     pub surface: Option<String>,
     /// A node set, instead of `surface`, for `reaction_force` and its
     /// components.

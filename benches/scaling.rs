@@ -537,6 +537,7 @@ fn run_case(spec: &Spec) -> Value {
     let mut problem = Problem {
         model,
         prescribed: Vec::new(),
+        rotations: Vec::new(),
         pressures: Vec::new(),
         body_forces: Vec::new(),
         nodal_forces: Vec::new(),

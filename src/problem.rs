@@ -20,6 +20,9 @@ mod builder;
 pub mod condensed;
 mod constraints;
 mod nonlinear;
+mod rotation;
+
+pub use rotation::{rotation_displacement, rotation_matrix, PrescribedRotation};
 
 pub use crate::contact::set::ContactState;
 
@@ -101,6 +104,9 @@ pub struct Problem {
     /// contact multipliers, if any, after the displacements).
     pub model: Model,
     pub prescribed: Vec<PrescribedDisplacement>,
+    /// Prescribed rigid rotations of node sets (all three components of
+    /// their nodes), applied after `prescribed`.
+    pub rotations: Vec<PrescribedRotation>,
     pub pressures: Vec<PressureLoad>,
     pub body_forces: Vec<BodyForce>,
     pub nodal_forces: Vec<NodalForce>,
@@ -160,11 +166,17 @@ impl Problem {
                 }
             }
         }
+        for r in &self.rotations {
+            for &n in &r.nodes {
+                mask[3 * n..3 * n + 3].fill(true);
+            }
+        }
         mask
     }
 
     /// Write the prescribed displacements at time `t` into `u` (later
-    /// conditions win where two prescribe the same component).
+    /// conditions win where two prescribe the same component; the
+    /// rotations last).
     pub fn apply_prescribed(&self, t: f64, u: &mut [f64]) {
         for c in &self.prescribed {
             let a = c.amplitude.value(t);
@@ -173,6 +185,9 @@ impl Problem {
                     u[3 * n + i] = v * a;
                 }
             }
+        }
+        for r in &self.rotations {
+            r.apply(t, &self.model.mesh.nodes, u);
         }
     }
 

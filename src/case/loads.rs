@@ -74,11 +74,15 @@ impl Case {
         }
     }
 
-    /// `[[displacement]]`: the prescribed components of each node set or surface.
+    /// `[[displacement]]`: the prescribed components of each node set or
+    /// surface (those with a `rotation`: [`Case::rotations`]).
     pub(super) fn prescribed(&self) -> Result<Vec<PrescribedDisplacement>> {
         let spec = &self.spec;
         let mut prescribed = Vec::new();
         for (i, d) in spec.displacement.iter().enumerate() {
+            if super::rotations::is_rotation(d) {
+                continue;
+            }
             let key = format!("displacement[{i}]");
             let (set, nodes) = self.displacement_nodes(i)?;
             let components: Vec<(usize, f64)> = [d.x, d.y, d.z]

@@ -14,6 +14,7 @@ mod materials;
 pub mod output;
 mod read;
 pub mod reference;
+mod rotations;
 pub mod schema;
 mod solver;
 mod steps;
@@ -278,11 +279,13 @@ impl Case {
         let (materials, element_material) = self.element_materials()?;
         let (model, dissection) = self.model(materials, element_material)?;
         let prescribed = self.prescribed()?;
+        let rotations = self.rotations()?;
         let pressures = self.pressures()?;
         let body_forces = self.body_forces(&model)?;
         let nodal_forces = self.nodal_forces()?;
         let mut problem = Problem::builder(model)
             .prescribed(prescribed)
+            .rotations(rotations)
             .pressures(pressures)
             .body_forces(body_forces)
             .nodal_forces(nodal_forces)

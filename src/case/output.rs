@@ -134,6 +134,18 @@ impl Case {
                      record reaction_force_x, _y or _z in '{x}'"
                 )));
             }
+            if matches!(
+                histories[j].quantity,
+                HistoryQuantity::ReactionMoment {
+                    component: None,
+                    ..
+                }
+            ) {
+                return Err(self.err(format!(
+                    "{key} = '{x}' records reaction_moment, three components; an x axis is one column: \
+                     record reaction_moment_x, _y or _z in '{x}'"
+                )));
+            }
             let axis = histories[j].clone();
             histories[i] = histories[i].clone().against(&axis);
         }
@@ -184,14 +196,19 @@ impl Case {
         for (i, h) in self.spec.output.history.iter().enumerate() {
             let key = format!("output.history[{i}]");
             self.output_file_stem(&key, &h.name, &mut taken)?;
+            // (whether a moment, which component)
             let reaction = match h.quantity {
-                HistoryQuantitySpec::ReactionForce => Some(None),
-                HistoryQuantitySpec::ReactionForceX => Some(Some(0)),
-                HistoryQuantitySpec::ReactionForceY => Some(Some(1)),
-                HistoryQuantitySpec::ReactionForceZ => Some(Some(2)),
+                HistoryQuantitySpec::ReactionForce => Some((false, None)),
+                HistoryQuantitySpec::ReactionForceX => Some((false, Some(0))),
+                HistoryQuantitySpec::ReactionForceY => Some((false, Some(1))),
+                HistoryQuantitySpec::ReactionForceZ => Some((false, Some(2))),
+                HistoryQuantitySpec::ReactionMoment => Some((true, None)),
+                HistoryQuantitySpec::ReactionMomentX => Some((true, Some(0))),
+                HistoryQuantitySpec::ReactionMomentY => Some((true, Some(1))),
+                HistoryQuantitySpec::ReactionMomentZ => Some((true, Some(2))),
                 _ => None,
             };
-            if let Some(component) = reaction {
+            if let Some((moment, component)) = reaction {
                 let quantity = h.quantity.name();
                 let (name, nodes) = match (&h.surface, &h.nodes) {
                     (Some(name), None) => {
@@ -214,7 +231,7 @@ impl Case {
                     }
                 };
                 for (given, what) in [
-                    (h.point.is_some(), "point"),
+                    (h.point.is_some() && !moment, "point"),
                     (h.interface.is_some(), "interface"),
                 ] {
                     if given {
@@ -229,12 +246,22 @@ impl Case {
                     ))
                 })?;
                 let (set, quantity) = (name.clone(), quantity.to_string());
-                let history = match component {
-                    None => HistoryQuantity::ReactionForce {
+                if h.point.is_some_and(|p| p.iter().any(|v| !v.is_finite())) {
+                    return Err(self.err(format!("{key}.point must be finite")));
+                }
+                let history = match (moment, component) {
+                    (true, component) => HistoryQuantity::ReactionMoment {
+                        set,
+                        reference: nodes.iter().map(|&n| mesh.nodes[n]).collect(),
+                        nodes,
+                        centre: h.point,
+                        component,
+                    },
+                    (false, None) => HistoryQuantity::ReactionForce {
                         surface: set,
                         nodes,
                     },
-                    Some(component) => HistoryQuantity::ReactionComponent {
+                    (false, Some(component)) => HistoryQuantity::ReactionComponent {
                         set,
                         nodes,
                         component,
@@ -258,7 +285,7 @@ impl Case {
             ] {
                 if given {
                     return Err(self.err(format!(
-                        "{key}.{what} applies to reaction_force only (and its components reaction_force_x, _y, _z); remove it"
+                        "{key}.{what} applies to reaction_force only (and its components reaction_force_x, _y, _z, and reaction_moment and its components); remove it"
                     )));
                 }
             }
@@ -279,7 +306,11 @@ impl Case {
                 HistoryQuantitySpec::ReactionForce
                 | HistoryQuantitySpec::ReactionForceX
                 | HistoryQuantitySpec::ReactionForceY
-                | HistoryQuantitySpec::ReactionForceZ => unreachable!("handled above"),
+                | HistoryQuantitySpec::ReactionForceZ
+                | HistoryQuantitySpec::ReactionMoment
+                | HistoryQuantitySpec::ReactionMomentX
+                | HistoryQuantitySpec::ReactionMomentY
+                | HistoryQuantitySpec::ReactionMomentZ => unreachable!("handled above"),
             };
             let (node, quantity, label) = match (component, &h.interface) {
                 (Some(c), None) => {

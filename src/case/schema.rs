@@ -171,6 +171,9 @@ pub enum AmplitudeRef {
 
 /// `[[displacement]]`: any of `x`, `y`, `z` given are prescribed, the others
 /// are free, on the nodes of `surface` or of `nodes` (one of the two).
+/// With `rotation`, the set moves rigidly: all three components are
+/// prescribed, `u = (R(θ) − I)(X − c) + (x, y, z)` (a missing `x`, `y`,
+/// `z` is 0), and no other `[[displacement]]` may prescribe its nodes.
 #[derive(Debug, Deserialize, JsonSchema)]
 #[serde(deny_unknown_fields)]
 pub struct DisplacementSpec {
@@ -182,6 +185,27 @@ pub struct DisplacementSpec {
     pub y: Option<f64>,
     pub z: Option<f64>,
     /// Scales the values; default: ramp 0 → 1 over the first step.
+    pub amplitude: Option<AmplitudeRef>,
+    /// A finite rotation of the set about an axis (exact at any angle).
+    pub rotation: Option<RotationSpec>,
+}
+
+/// `rotation = { axis = [0, 0, 1], centre = [x, y, z], angle = 90 }`: the
+/// rotation `R(θ)` by `θ = angle · amplitude(t)` degrees, right-handed
+/// about `axis` through `centre` (Rodrigues' formula).
+#[derive(Debug, Deserialize, JsonSchema)]
+#[serde(deny_unknown_fields)]
+pub struct RotationSpec {
+    /// Axis direction (non-zero; its length does not matter).
+    #[serde(deserialize_with = "three")]
+    pub axis: [f64; 3],
+    /// A point of the axis, reference configuration (length unit).
+    #[serde(deserialize_with = "three")]
+    pub centre: [f64; 3],
+    /// Angle in degrees, right-handed about `axis`.
+    pub angle: f64,
+    /// Scales the angle; default: the `[[displacement]]`'s `amplitude`
+    /// (whose default is the ramp 0 → 1 over the first step).
     pub amplitude: Option<AmplitudeRef>,
 }
 
@@ -517,6 +541,14 @@ pub enum HistoryQuantitySpec {
     ReactionForceX,
     ReactionForceY,
     ReactionForceZ,
+    /// The reaction moment `Σ (x_a − c) × r_a` of a surface or node set
+    /// about `point` (default: the set's current centroid), at the current
+    /// positions `x_a`: its x, y, z components.
+    ReactionMoment,
+    /// One component of it (a scalar column `reaction_moment_x`, …).
+    ReactionMomentX,
+    ReactionMomentY,
+    ReactionMomentZ,
 }
 
 impl HistoryQuantitySpec {
@@ -532,6 +564,10 @@ impl HistoryQuantitySpec {
             Self::ReactionForceX => "reaction_force_x",
             Self::ReactionForceY => "reaction_force_y",
             Self::ReactionForceZ => "reaction_force_z",
+            Self::ReactionMoment => "reaction_moment",
+            Self::ReactionMomentX => "reaction_moment_x",
+            Self::ReactionMomentY => "reaction_moment_y",
+            Self::ReactionMomentZ => "reaction_moment_z",
         }
     }
 }
@@ -547,16 +583,20 @@ pub struct HistorySpec {
     /// File stem: letters, digits, `-`, `_`, `.`.
     pub name: String,
     /// Reference-configuration point; the nearest node is used (every
-    /// quantity but `reaction_force`).
+    /// quantity but `reaction_force` and `reaction_moment`). For
+    /// `reaction_moment`: the fixed point `c` the moment is taken about
+    /// (default: the set's current centroid, the mean of its nodes'
+    /// current positions).
     #[serde(default, deserialize_with = "option_three")]
     pub point: Option<[f64; 3]>,
     /// `displacement_x`, `displacement_y`, `displacement_z`, `gap`,
-    /// `contact_pressure` or `reaction_force`.
+    /// `contact_pressure`, `reaction_force` or `reaction_moment` (and
+    /// their components `reaction_force_x`, …, `reaction_moment_z`).
     pub quantity: HistoryQuantitySpec,
     /// A `[[contact]]` name (required for `gap` and `contact_pressure`).
     pub interface: Option<String>,
-    /// A surface set (for `reaction_force` and its components, and only
-    /// there; or `nodes`).
+    /// A surface set (for `reaction_force`, `reaction_moment` and their
+    /// components, and only there; or `nodes`).
     pub surface: Option<String>,
     /// A node set, instead of `surface`, for `reaction_force` and its
     /// components.

@@ -173,7 +173,20 @@ fn loads(problem: &Problem) -> Vec<String> {
             f.set
         )
     });
+    let rotations = problem.rotations.iter().map(|r| {
+        format!(
+            "rotation by {}° about axis {:?} through {:?} on '{}' ({} nodes, all components), \
+             times its amplitude, plus the translation {:?} times its amplitude",
+            r.angle.to_degrees(),
+            r.axis,
+            r.centre,
+            r.set,
+            r.nodes.len(),
+            r.translation
+        )
+    });
     prescribed
+        .chain(rotations)
         .chain(pressures)
         .chain(body)
         .chain(nodal)

@@ -9,12 +9,13 @@ use std::path::Path;
 
 use super::describe::counted;
 use super::line_plot::{write_line_plot, Curve, LinePlot};
+use super::reaction_moment::reaction_moment;
 use super::table::write_csv;
 use super::units::{Dimension, Units};
 use crate::contact::interface::NodeReport;
 
 /// What a history records at its node (or on its surface).
-#[derive(Clone, Debug, PartialEq, Eq)]
+#[derive(Clone, Debug, PartialEq)]
 pub enum HistoryQuantity {
     /// Displacement component `u_i` (0, 1, 2 for x, y, z).
     Displacement(usize),
@@ -34,6 +35,18 @@ pub enum HistoryQuantity {
         nodes: Vec<usize>,
         component: usize,
     },
+    /// `Σ (x_a − c) × r_a` over the nodes of the set `set` at their
+    /// current positions ([`reaction_moment`]): its x, y, z components
+    /// (`component` `None`) or one of them. `reference` holds the nodes'
+    /// reference positions; `centre` is `c` (`None`: the nodes' current
+    /// centroid).
+    ReactionMoment {
+        set: String,
+        nodes: Vec<usize>,
+        reference: Vec<[f64; 3]>,
+        centre: Option<[f64; 3]>,
+        component: Option<usize>,
+    },
 }
 
 /// The axis letters of components 0, 1, 2.
@@ -52,6 +65,10 @@ impl HistoryQuantity {
             HistoryQuantity::ReactionComponent { component, .. } => {
                 format!("reaction force F_{}", AXES[*component])
             }
+            HistoryQuantity::ReactionMoment { component, .. } => match component {
+                None => "reaction moment".into(),
+                Some(c) => format!("reaction moment M_{}", AXES[*c]),
+            },
         }
     }
 
@@ -63,6 +80,7 @@ impl HistoryQuantity {
             HistoryQuantity::Displacement(_)
                 | HistoryQuantity::ReactionForce { .. }
                 | HistoryQuantity::ReactionComponent { .. }
+                | HistoryQuantity::ReactionMoment { .. }
         )
     }
 }
@@ -142,6 +160,7 @@ impl History {
             HistoryQuantity::ReactionForce { .. } | HistoryQuantity::ReactionComponent { .. } => {
                 Dimension::Force
             }
+            HistoryQuantity::ReactionMoment { .. } => Dimension::Moment,
         }
     }
 
@@ -149,6 +168,11 @@ impl History {
     fn own_columns(&self) -> Vec<String> {
         match self.quantity {
             HistoryQuantity::ReactionForce { .. } => ["reaction_x", "reaction_y", "reaction_z"]
+                .map(String::from)
+                .to_vec(),
+            HistoryQuantity::ReactionMoment {
+                component: None, ..
+            } => ["moment_x", "moment_y", "moment_z"]
                 .map(String::from)
                 .to_vec(),
             _ => vec![self.label.clone()],
@@ -185,6 +209,21 @@ impl History {
             HistoryQuantity::ReactionComponent { set, nodes, .. } => {
                 format!("on set '{set}' ({} nodes)", nodes.len())
             }
+            HistoryQuantity::ReactionMoment {
+                set, nodes, centre, ..
+            } => match centre {
+                Some(c) => format!(
+                    "on set '{set}' ({} nodes) about ({}, {}, {})",
+                    nodes.len(),
+                    c[0],
+                    c[1],
+                    c[2]
+                ),
+                None => format!(
+                    "on set '{set}' ({} nodes) about its current centroid",
+                    nodes.len()
+                ),
+            },
             _ => {
                 let x = nodes[self.node];
                 format!("at node {} ({}, {}, {})", self.node_id, x[0], x[1], x[2])
@@ -197,7 +236,8 @@ impl History {
     fn place(&self) -> String {
         match &self.quantity {
             HistoryQuantity::ReactionForce { surface, .. } => format!("on surface '{surface}'"),
-            HistoryQuantity::ReactionComponent { set, .. } => format!("on set '{set}'"),
+            HistoryQuantity::ReactionComponent { set, .. }
+            | HistoryQuantity::ReactionMoment { set, .. } => format!("on set '{set}'"),
             _ => format!("at node {}", self.node_id),
         }
     }
@@ -218,6 +258,19 @@ impl History {
             HistoryQuantity::ReactionComponent {
                 nodes, component, ..
             } => vec![set_sum(nodes, residual, *component)],
+            HistoryQuantity::ReactionMoment {
+                nodes,
+                reference,
+                centre,
+                component,
+                ..
+            } => {
+                let m = reaction_moment(nodes, reference, *centre, u, residual);
+                match component {
+                    None => m.to_vec(),
+                    Some(c) => vec![m[*c]],
+                }
+            }
         }
     }
 
@@ -323,6 +376,9 @@ impl History {
     fn curve_label(&self, c: usize) -> String {
         match self.quantity {
             HistoryQuantity::ReactionForce { .. } => format!("F_{}", AXES[c]),
+            HistoryQuantity::ReactionMoment {
+                component: None, ..
+            } => format!("M_{}", AXES[c]),
             _ => self.name.clone(),
         }
     }

@@ -48,6 +48,7 @@ pub mod profile;
 pub mod provenance;
 pub mod pvd;
 pub mod pvtu;
+pub mod reaction_moment;
 pub mod recovery;
 pub mod schedule;
 pub mod summary;

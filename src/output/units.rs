@@ -14,6 +14,8 @@ pub enum Dimension {
     Force,
     /// Force per area: pressures and tractions.
     Stress,
+    /// Force times length: reaction moments.
+    Moment,
 }
 
 /// The length and force units of a case (`None`: not declared).
@@ -33,6 +35,7 @@ impl Units {
             Dimension::Length => length.map(str::to_string),
             Dimension::Force => force.map(str::to_string),
             Dimension::Stress => Some(format!("{}/{}²", force?, length?)),
+            Dimension::Moment => Some(format!("{}·{}", force?, length?)),
         }
     }
 
@@ -62,6 +65,7 @@ mod tests {
         );
         assert_eq!(declared.label("gap", Dimension::Length), "gap (mm)");
         assert_eq!(declared.of(Dimension::Force).as_deref(), Some("N"));
+        assert_eq!(declared.of(Dimension::Moment).as_deref(), Some("N·mm"));
         let none = Units::default();
         assert_eq!(
             none.label("contact pressure", Dimension::Stress),

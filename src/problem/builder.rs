@@ -2,7 +2,9 @@
 //! by the case file) without filling its public fields: a model, then the
 //! loads, steps, solver settings and contacts, each with a default.
 
-use super::{BodyForce, NodalForce, PrescribedDisplacement, PressureLoad, Problem};
+use super::{
+    BodyForce, NodalForce, PrescribedDisplacement, PrescribedRotation, PressureLoad, Problem,
+};
 use crate::assembly::Model;
 use crate::contact::interface::ContactInterface;
 use crate::contact::setup::SetupError;
@@ -25,6 +27,7 @@ impl Problem {
             problem: Problem {
                 model,
                 prescribed: Vec::new(),
+                rotations: Vec::new(),
                 pressures: Vec::new(),
                 body_forces: Vec::new(),
                 nodal_forces: Vec::new(),
@@ -43,6 +46,12 @@ impl ProblemBuilder {
     /// Prescribes displacements.
     pub fn prescribed(mut self, d: impl IntoIterator<Item = PrescribedDisplacement>) -> Self {
         self.problem.prescribed.extend(d);
+        self
+    }
+
+    /// Prescribes rigid rotations of node sets.
+    pub fn rotations(mut self, r: impl IntoIterator<Item = PrescribedRotation>) -> Self {
+        self.problem.rotations.extend(r);
         self
     }
 

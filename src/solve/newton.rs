@@ -85,6 +85,9 @@ impl<P: NonlinearProblem> Newton<'_, P> {
         let mut k_values = vec![0.0; blocks.nnz()];
         let mut kd = vec![0.0; u.len()];
         let mut last_correction = f64::INFINITY;
+        // the largest force the prescribed jump set up in this increment
+        // (`‖K d‖` at the first iteration), kept as a scale for the later ones
+        let mut jump_scale = 0.0f64;
         let nonsymmetric = problem.has_nonsymmetric_tangent();
         let signs = (blocks.dimension() > problem.num_dofs()).then(|| blocks.pivot_signs());
         let mut chatter = super::chattering::ChatterDetector::default();
@@ -146,10 +149,13 @@ impl<P: NonlinearProblem> Newton<'_, P> {
             // the force scale: internal and external forces, those of earlier
             // increments, and the forces the prescribed jump sets up (all there
             // is at the first iteration of a displacement-driven run)
+            // (kept over the increment: a prescribed rigid motion, e.g. a
+            // rotation, converges to a state with no force at all)
+            jump_scale = jump_scale.max(norm(&kd));
             let scale = evaluation
                 .force_scale()
                 .max(self.force_scale)
-                .max(norm(&kd))
+                .max(jump_scale)
                 .max(f64::MIN_POSITIVE);
             let relative = norm(&out_of_balance) / scale;
             records.push(IterationRecord {

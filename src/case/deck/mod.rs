@@ -423,6 +423,7 @@ fn boundaries(times: &StepTimes, spec: &mut CaseFile) -> Result<()> {
             y,
             z,
             amplitude: points_ref(&amplitudes[&key]),
+            rotation: None,
         });
     }
     Ok(())

@@ -67,6 +67,7 @@ use super::{ContactState, Problem};
 use crate::contact::interface::ConstraintRow;
 
 mod applicability;
+mod capacity;
 mod condensation;
 mod friction;
 mod linearisation;

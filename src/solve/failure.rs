@@ -66,6 +66,16 @@ pub enum IncrementFailure {
     /// A contact node slid beyond the primary triangles it was paired with
     /// at the start of the increment.
     PairsMoved,
+    /// Contact node `node` (its mesh id) of interface `interface` passed
+    /// through the rigid obstacle within the increment: its path relative
+    /// to the obstacle reached the signed distance `gap`, deeper than the
+    /// contact element size `size` ([`crate::contact::sweep`]).
+    PassedThrough {
+        node: u64,
+        interface: String,
+        gap: f64,
+        size: f64,
+    },
     /// The outer (Uzawa) loop did not reach its tolerance in `updates`.
     OuterLoopLimit { updates: usize },
     /// The condensed contact solve failed (its message).
@@ -174,6 +184,20 @@ impl std::fmt::Display for IncrementFailure {
                 f,
                 "a contact node slid beyond the primary triangles it was paired with at the \
                  start of the increment"
+            ),
+            IncrementFailure::PassedThrough {
+                node,
+                interface,
+                gap,
+                size,
+            } => write!(
+                f,
+                "contact node {node} of '{interface}' passed through the obstacle within the \
+                 increment: its path relative to the obstacle went {:.3e} deep inside, more \
+                 than the contact element size {size:.3e}; the obstacle moves farther in one \
+                 increment than the surface can follow, so take smaller increments \
+                 (initial_increment, max_increment) or a smaller motion",
+                -gap
             ),
             IncrementFailure::OuterLoopLimit { updates } => write!(
                 f,

@@ -367,10 +367,14 @@ fn attempt<P: NonlinearProblem>(
     };
     let (outcome, iterations) = method.solve(problem, increment, u, state, trial, &mut tell);
     let outcome = outcome.and_then(|evaluation| {
-        if problem.couplings_hold(trial, state) {
-            Ok(evaluation)
-        } else {
+        if !problem.couplings_hold(trial, state) {
             Err(IncrementFailure::PairsMoved)
+        } else if let Some(failure) =
+            problem.passed_through((increment.start, u), (increment.time, trial))
+        {
+            Err(failure)
+        } else {
+            Ok(evaluation)
         }
     });
     (outcome, iterations)

@@ -41,6 +41,23 @@ fn failed_press_pull(replacements: &[(&str, &str)], extra: &str) -> (String, ser
     (error.to_string(), serde_json::from_str(&summary).unwrap())
 }
 
+/// press-pull's pull raised to 1.2 μN (−14.4 for −9.6), its increments
+/// no smaller than 1/64 of the pull's quarter.
+const PULL: [(&str, &str); 2] = [
+    ("value = -9.6", "value = -14.4"),
+    (
+        "initial_increment = 0.25\n",
+        "initial_increment = 0.25\nmin_increment = 0.004\n",
+    ),
+];
+
+/// The time the last converged increment reached.
+fn reached(summary: &serde_json::Value) -> f64 {
+    summary["increments"].as_array().unwrap().last().unwrap()["time"]
+        .as_f64()
+        .unwrap()
+}
+
 /// The step's cuts in the message ("N cuts in the step in all") and in
 /// the summary (`steps[].cuts` of step `name`) are the same number.
 #[track_caller]
@@ -72,16 +89,9 @@ fn assert_cuts_agree(message: &str, summary: &serde_json::Value, name: &str) {
 /// (the run stops within a few cuts of t ≈ 1.833).
 #[test]
 fn a_pull_beyond_mu_n_says_so_and_counts_its_cuts_as_the_summary() {
-    let pull = [
-        ("value = -9.6", "value = -14.4"),
-        (
-            "initial_increment = 0.25\n",
-            "initial_increment = 0.25\nmin_increment = 0.004\n",
-        ),
-    ];
     for strategy in ["monolithic", "auto"] {
         let (message, summary) =
-            failed_press_pull(&pull, &format!("[solver]\nstrategy = \"{strategy}\"\n"));
+            failed_press_pull(&PULL, &format!("[solver]\nstrategy = \"{strategy}\"\n"));
         eprintln!("{strategy}: {message}");
         assert!(
             message.contains("step 'pull' did not converge"),
@@ -99,9 +109,7 @@ fn a_pull_beyond_mu_n_says_so_and_counts_its_cuts_as_the_summary() {
         assert!(!message.contains("reduce the tangential load"), "{message}");
         assert_cuts_agree(&message, &summary, "pull");
         // the failure is where the pull passes μN: t = 1 + 1/1.2
-        let reached = summary["increments"].as_array().unwrap().last().unwrap()["time"]
-            .as_f64()
-            .unwrap();
+        let reached = reached(&summary);
         assert!((reached - (1.0 + 1.0 / 1.2)).abs() < 0.01, "{reached}");
     }
 }
@@ -113,14 +121,7 @@ fn a_pull_beyond_mu_n_says_so_and_counts_its_cuts_as_the_summary() {
 /// count, and its cut count is the summary's.
 #[test]
 fn a_pull_beyond_mu_n_on_the_condensed_path_names_the_capacity() {
-    let pull = [
-        ("value = -9.6", "value = -14.4"),
-        (
-            "initial_increment = 0.25\n",
-            "initial_increment = 0.25\nmin_increment = 0.004\n",
-        ),
-    ];
-    let (message, summary) = failed_press_pull(&pull, "[solver]\nstrategy = \"condensed\"\n");
+    let (message, summary) = failed_press_pull(&PULL, "[solver]\nstrategy = \"condensed\"\n");
     eprintln!("condensed: {message}");
     assert!(
         message.contains("step 'pull' did not converge"),
@@ -149,9 +150,7 @@ fn a_pull_beyond_mu_n_on_the_condensed_path_names_the_capacity() {
         "{load} at {failed}"
     );
     assert!(load > 6.0, "{load}");
-    let reached = summary["increments"].as_array().unwrap().last().unwrap()["time"]
-        .as_f64()
-        .unwrap();
+    let reached = reached(&summary);
     assert!((reached - (1.0 + 1.0 / 1.2)).abs() < 0.01, "{reached}");
 }
 

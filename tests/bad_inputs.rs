@@ -2096,6 +2096,26 @@ fn restarts(c: &mut Catalogue) {
             "from the start",
         ],
     );
+    // the contact history and the stepping, checked by their own
+    // `is_finite` (a NaN gap, an infinite force scale)
+    restart_entry(
+        c,
+        "restart: a forged checkpoint with a NaN contact gap",
+        base(),
+        Some(forged(&good, |c| {
+            c.contact.to_mut().interfaces[0][0].gap = f64::NAN
+        })),
+        &["cube.checkpoint", "contact history is not finite"],
+    );
+    restart_entry(
+        c,
+        "restart: a forged checkpoint with an infinite force scale",
+        base(),
+        Some(forged(&good, |c| {
+            c.stepping.to_mut().force_scale = f64::INFINITY
+        })),
+        &["cube.checkpoint", "stepping state", "is not finite"],
+    );
     // issue 31: the .pvd listed files that were gone (the checkpoint's
     // folder `old` holds no VTU file)
     restart_entry(

@@ -6,6 +6,7 @@
 //!   friction capacity from t = 1 + 1/1.2 ≈ 1.833 on, every closed node
 //!   slips and the block moves off along +x: the message says so, on the
 //!   monolithic path and on `auto`'s (condensed, falling back to Newton);
+//!   on the condensed path the message gives the load and μN it measured;
 //! - frictionless (no `friction_coefficient`): nothing holds the block
 //!   along x, and the pull finds that direction unsupported — the message
 //!   says so and does not speak of a tangential load beyond μN.
@@ -40,6 +41,23 @@ fn failed_press_pull(replacements: &[(&str, &str)], extra: &str) -> (String, ser
     (error.to_string(), serde_json::from_str(&summary).unwrap())
 }
 
+/// press-pull's pull raised to 1.2 μN (−14.4 for −9.6), its increments
+/// no smaller than 1/64 of the pull's quarter.
+const PULL: [(&str, &str); 2] = [
+    ("value = -9.6", "value = -14.4"),
+    (
+        "initial_increment = 0.25\n",
+        "initial_increment = 0.25\nmin_increment = 0.004\n",
+    ),
+];
+
+/// The time the last converged increment reached.
+fn reached(summary: &serde_json::Value) -> f64 {
+    summary["increments"].as_array().unwrap().last().unwrap()["time"]
+        .as_f64()
+        .unwrap()
+}
+
 /// The step's cuts in the message ("N cuts in the step in all") and in
 /// the summary (`steps[].cuts` of step `name`) are the same number.
 #[track_caller]
@@ -71,16 +89,9 @@ fn assert_cuts_agree(message: &str, summary: &serde_json::Value, name: &str) {
 /// (the run stops within a few cuts of t ≈ 1.833).
 #[test]
 fn a_pull_beyond_mu_n_says_so_and_counts_its_cuts_as_the_summary() {
-    let pull = [
-        ("value = -9.6", "value = -14.4"),
-        (
-            "initial_increment = 0.25\n",
-            "initial_increment = 0.25\nmin_increment = 0.004\n",
-        ),
-    ];
     for strategy in ["monolithic", "auto"] {
         let (message, summary) =
-            failed_press_pull(&pull, &format!("[solver]\nstrategy = \"{strategy}\"\n"));
+            failed_press_pull(&PULL, &format!("[solver]\nstrategy = \"{strategy}\"\n"));
         eprintln!("{strategy}: {message}");
         assert!(
             message.contains("step 'pull' did not converge"),
@@ -98,11 +109,49 @@ fn a_pull_beyond_mu_n_says_so_and_counts_its_cuts_as_the_summary() {
         assert!(!message.contains("reduce the tangential load"), "{message}");
         assert_cuts_agree(&message, &summary, "pull");
         // the failure is where the pull passes μN: t = 1 + 1/1.2
-        let reached = summary["increments"].as_array().unwrap().last().unwrap()["time"]
-            .as_f64()
-            .unwrap();
+        let reached = reached(&summary);
         assert!((reached - (1.0 + 1.0 / 1.2)).abs() < 0.01, "{reached}");
     }
+}
+
+/// The same pull on the condensed path (`strategy = "condensed"`, which
+/// cuts as Newton's does): the message names the friction capacity it
+/// measured from the load — the pull along +x against μN = 0.3 × 20 (the
+/// press, p = 10 on the 4 × 0.5 top) — not the contact solve's iteration
+/// count, and its cut count is the summary's.
+#[test]
+fn a_pull_beyond_mu_n_on_the_condensed_path_names_the_capacity() {
+    let (message, summary) = failed_press_pull(&PULL, "[solver]\nstrategy = \"condensed\"\n");
+    eprintln!("condensed: {message}");
+    assert!(
+        message.contains("step 'pull' did not converge"),
+        "{message}"
+    );
+    assert!(
+        message.contains("the tangential load exceeds the friction capacity μN"),
+        "{message}"
+    );
+    assert!(message.contains("along (1.00, 0.00, 0.00)"), "{message}");
+    assert!(
+        message.contains("μN = 0.3 × 2.0000e1 = 6.0000e0"),
+        "{message}"
+    );
+    assert!(!message.contains("Newton iterations"), "{message}");
+    assert!(!message.contains("strategy"), "{message}");
+    assert_cuts_agree(&message, &summary, "pull");
+    // the load measured is the pull at the failed time, F = 14.4 × 0.5 ×
+    // (t − 1), beyond 6 from t = 1 + 1/1.2 on
+    let (_, tail) = message.split_once("the contact plane is ").unwrap();
+    let load: f64 = tail.split(' ').next().unwrap().parse().unwrap();
+    let (_, tail) = message.split_once("did not converge at time ").unwrap();
+    let failed: f64 = tail.split(' ').next().unwrap().parse().unwrap();
+    assert!(
+        (load - 7.2 * (failed - 1.0)).abs() < 1e-3 * load,
+        "{load} at {failed}"
+    );
+    assert!(load > 6.0, "{load}");
+    let reached = reached(&summary);
+    assert!((reached - (1.0 + 1.0 / 1.2)).abs() < 0.01, "{reached}");
 }
 
 /// Frictionless, the pull finds x unsupported: "an unsupported direction"

@@ -203,7 +203,9 @@ struct Corpus {
     msh: Vec<Vec<u8>>,
     stl: Vec<Vec<u8>>,
     cases: Vec<Vec<u8>>,
+    /// The valid decks, then the refused ones ([`include_seeds`]).
     decks: Vec<Vec<u8>>,
+    valid_decks: usize,
 }
 
 /// The seeds of [`Target::Inp`]: `tests/data/cube_hex.inp` with its
@@ -224,6 +226,50 @@ fn deck_seeds() -> Vec<Vec<u8>> {
     let block = data("inp/block.inp").replace("INPUT=block_nodes.inp", "INPUT=nodes.inp");
     let block = format!("{block}{INCLUDED}{}", data("inp/block_nodes.inp"));
     vec![cube.into_bytes(), block.into_bytes()]
+}
+
+/// The fixture's third deck file, `more.inp`: the cube's last eight nodes,
+/// which the nested seed of [`include_seeds`] includes from `nodes.inp`.
+fn more_nodes() -> String {
+    let cube = std::fs::read_to_string(root().join("tests/data/cube_hex.inp")).unwrap();
+    let nodes: Vec<&str> = cube.lines().skip(3).take(64).collect();
+    format!("*NODE\n{}\n", nodes[56..].join("\n"))
+}
+
+/// Seeds of [`Target::Inp`] whose `*INCLUDE` is one of the input guard's
+/// cases (issue 31 item 1), so that every mutation of them starts there:
+/// the cube deck's nodes included in two levels (`main.inp` → `nodes.inp`
+/// → `more.inp`, a valid deck), and the cube deck with one more include of
+/// the FIFO `fifo.inp`, of `/dev/zero`, of a binary mesh `cube_bin.msh`,
+/// of itself and of a missing file (each refused). Returns the valid
+/// seeds, then the refused ones.
+fn include_seeds(cube: &[u8]) -> (Vec<Vec<u8>>, Vec<Vec<u8>>) {
+    let cube = std::str::from_utf8(cube).unwrap();
+    let (main, included) = cube.split_once(INCLUDED).unwrap();
+    let nodes: Vec<&str> = included.lines().collect();
+    // `*NODE` and 56 of the 64 nodes here, the last 8 in more.inp
+    let nested = format!(
+        "{main}{INCLUDED}{}\n*INCLUDE, INPUT=more.inp\n",
+        nodes[..57].join("\n")
+    );
+    let refused = [
+        "fifo.inp",
+        "/dev/zero",
+        "cube_bin.msh",
+        "main.inp",
+        "absent.inp",
+    ]
+    .iter()
+    .map(|file| {
+        let main = main.replacen(
+            "*INCLUDE, INPUT=nodes.inp\n",
+            &format!("*INCLUDE, INPUT=nodes.inp\n*INCLUDE, INPUT={file}\n"),
+            1,
+        );
+        format!("{main}{INCLUDED}{included}").into_bytes()
+    })
+    .collect();
+    (vec![nested.into_bytes()], refused)
 }
 
 fn corpus() -> Corpus {
@@ -267,11 +313,17 @@ fn corpus() -> Corpus {
             .join("\n");
         cases.push(text.into_bytes());
     }
+    let mut decks = deck_seeds();
+    let (nested, refused) = include_seeds(&decks[0]);
+    decks.extend(nested);
+    let valid_decks = decks.len();
+    decks.extend(refused);
     Corpus {
         msh,
         stl,
         cases,
-        decks: deck_seeds(),
+        decks,
+        valid_decks,
     }
 }
 
@@ -349,8 +401,9 @@ fn mutate(d: &mut Vec<u8>, rng: &mut StdRng) {
 
 /// The fixed state `check` runs against: the cube mesh, and a folder with
 /// the files cases may name (the cube mesh, the case of the decks' cube
-/// mesh `inp_case.toml`, a FIFO `fifo.inp`), where [`Target::Inp`] writes
-/// its deck.
+/// mesh `inp_case.toml`, a FIFO `fifo.inp`, the third file of a nested
+/// include `more.inp`, a binary mesh `cube_bin.msh`), where
+/// [`Target::Inp`] writes its deck.
 struct Fixture {
     mesh: Arc<signorini::mesh::Mesh>,
     case_path: PathBuf,
@@ -367,6 +420,9 @@ fn fixture() -> Fixture {
         .arg(dir.path().join("fifo.inp"))
         .status();
     assert!(fifo.is_ok_and(|s| s.success()), "mkfifo");
+    std::fs::write(dir.path().join("more.inp"), more_nodes()).unwrap();
+    let binary = root().join("tests/data/cube_hex_41_bin.msh");
+    std::fs::copy(&binary, dir.path().join("cube_bin.msh")).unwrap();
     Fixture {
         mesh: Arc::new(signorini::mesh::gmsh::read_msh(&cube).unwrap()),
         case_path: dir.path().join("case.toml"),
@@ -578,7 +634,8 @@ fn fuzz_smoke() {
         assert!(execute(Target::MeshCheck, m, &f));
     }
     for (i, m) in c.decks.iter().enumerate() {
-        assert!(execute(Target::Inp, m, &f), "deck {i}");
+        let valid = i < c.valid_decks;
+        assert_eq!(execute(Target::Inp, m, &f), valid, "deck {i}");
     }
     let start = Instant::now();
     let (counts, crashes) = fuzz(1, 1, Duration::from_secs(120), 3000);

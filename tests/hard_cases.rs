@@ -17,16 +17,27 @@ use std::path::Path;
 /// `body.msh`); the outcome, which must be a success.
 fn solve(mesh: &Mesh, case: &str) -> RunOutcome {
     let dir = tempfile::tempdir().unwrap();
-    std::fs::write(dir.path().join("body.msh"), common::msh22(mesh)).unwrap();
-    let path = dir.path().join("case.toml");
+    run_in(dir.path(), mesh, case, None).unwrap_or_else(|e| panic!("the case did not run: {e}"))
+}
+
+/// Run `case` beside `mesh` (written as `body.msh`) in `dir`, writing into
+/// `output` (none: the case's own folder).
+fn run_in(
+    dir: &Path,
+    mesh: &Mesh,
+    case: &str,
+    output: Option<std::path::PathBuf>,
+) -> signorini::Result<RunOutcome> {
+    std::fs::write(dir.join("body.msh"), common::msh22(mesh)).unwrap();
+    let path = dir.join("case.toml");
     std::fs::write(&path, format!("[mesh]\nfile = \"body.msh\"\n{case}")).unwrap();
     let options = RunOptions {
-        output: None,
+        output,
         threads: None,
         cancel: None,
         restart: None,
     };
-    run(&path, &options).unwrap_or_else(|e| panic!("the case did not run: {e}"))
+    run(&path, &options)
 }
 
 /// The mean of component `d` of the displacement over the nodes of
@@ -497,6 +508,57 @@ name = "press"
 end_time = 1.0
 "#
     )
+}
+
+/// The frictionless ball of [`ball_case`] driven 0.9 down in one
+/// increment (issue 31): its centre goes from z = 1 to 0.1, past the top
+/// surface's nodes at z = 0.5, which then lie above the centre, inside the
+/// ball; their closest point is the ball's top, and the increment used to
+/// converge with the top node on the axis pushed up to z = 0.6 (the ball
+/// inside the block). A node's path relative to the ball now may not pass
+/// deeper inside than the contact element size (`contact/sweep.rs`): the
+/// first increment is cut with a message that says so, and at every
+/// converged increment that node lies at or below the ball's bottom,
+/// `z ≤ 0.5 − 0.9 t` (1e-6; it used to be 1.0 above it). The ball's bottom
+/// reaches the held bottom z = 0 at t = 0.556, after which the column
+/// under it cannot follow: the run must stop before the end.
+#[test]
+fn a_ball_driven_through_the_surface_in_one_increment_is_caught() {
+    let mesh = box_mesh(ElementKind::Hex8, [6, 6, 3], [1.0, 1.0, 0.5]);
+    let case = ball_case("")
+        .replace("friction_coefficient = 0.3\n", "")
+        .replace("motion = [0.0, 0.0, -0.5]", "motion = [0.0, 0.0, -0.9]");
+    let history = "[[output.history]]\nname = \"top\"\npoint = [0.0, 0.0, 0.5]\n\
+                   quantity = \"displacement_z\"\n";
+    let dir = tempfile::tempdir().unwrap();
+    let out = dir.path().join("out");
+    let ended = run_in(
+        dir.path(),
+        &mesh,
+        &format!("{case}\n{history}"),
+        Some(out.clone()),
+    );
+    assert!(ended.is_err(), "the ball went through the block to t = 1");
+    let log = std::fs::read_to_string(out.join("case.log")).unwrap();
+    assert!(
+        log.contains("of 'ball' passed through the obstacle within the increment")
+            && log.contains("take smaller increments"),
+        "{log}"
+    );
+    let top = std::fs::read_to_string(out.join("top.csv")).unwrap();
+    let mut rows = 0;
+    for line in top.lines().skip(1) {
+        let (t, u) = line.split_once(',').unwrap();
+        let (t, u): (f64, f64) = (t.parse().unwrap(), u.parse().unwrap());
+        let bottom = 0.5 - 0.9 * t;
+        assert!(
+            0.5 + u <= bottom + 1e-6,
+            "t = {t}: top node at {} above {bottom}",
+            0.5 + u
+        );
+        rows += 1;
+    }
+    assert!(rows > 0, "{top}");
 }
 
 /// An increment that was cut grows back once Newton converges well again:

@@ -380,7 +380,7 @@ fn frictional_mortar_tangent_matches_finite_differences() {
 
 /// The displacement and tangential multiplier rows of the assembled
 /// tangent at `(t, x)` against central differences of the residual,
-/// every column.
+/// every column ([`common::assert_tangent_rows_match_fd`]).
 fn assert_displacement_rows_match_fd(
     pr: &Problem,
     t: f64,
@@ -388,35 +388,16 @@ fn assert_displacement_rows_match_fd(
     state: &signorini::problem::ContactState,
     label: &str,
 ) {
-    let (n, dofs) = (pr.num_unknowns(), pr.model.num_dofs());
+    let dofs = pr.model.num_dofs();
     let normal = pr.contacts.interface(0).nodes.len();
-    let mut k = vec![0.0; pr.model.pattern.nnz()];
-    pr.residual_in(t, x, state, Some(&mut k)).unwrap();
-    let pattern = pr.model.pattern.symbolic();
-    let h = 1e-7;
-    for j in 0..n {
-        let (mut xp, mut xm) = (x.to_vec(), x.to_vec());
-        xp[j] += h;
-        xm[j] -= h;
-        let rp = pr.residual_in(t, &xp, state, None).unwrap().0.r;
-        let rm = pr.residual_in(t, &xm, state, None).unwrap().0.r;
-        let mut column = vec![0.0; n];
-        for idx in pattern.col_ptr()[j]..pattern.col_ptr()[j + 1] {
-            column[pattern.row_idx()[idx]] = k[idx];
+    let rows = |i: usize| i < dofs || i >= dofs + normal;
+    // the Jacobian's shift −δ, δ = STICK_SHIFT A ε_T (A ≤ 0.1 here)
+    let shift = |i: usize, j: usize| {
+        if i == j && i >= dofs {
+            STICK_SHIFT * 0.1 * 5.0 * E
+        } else {
+            0.0
         }
-        for i in (0..n).filter(|&i| i < dofs || i >= dofs + normal) {
-            let fd = (rp[i] - rm[i]) / (2.0 * h);
-            // the Jacobian's shift −δ, δ = STICK_SHIFT A ε_T (A ≤ 0.1 here)
-            let shift = if i == j && i >= dofs {
-                STICK_SHIFT * 0.1 * 5.0 * E
-            } else {
-                0.0
-            };
-            assert!(
-                (fd - column[i]).abs() < 1e-5 * (1.0 + column[i].abs()) + shift,
-                "{label}: K[{i},{j}] = {} vs fd {fd}",
-                column[i]
-            );
-        }
-    }
+    };
+    common::assert_tangent_rows_match_fd(pr, t, x, state, label, |_| {}, rows, shift);
 }

@@ -206,6 +206,19 @@ impl FrictionHistory {
             ..Self::default()
         }
     }
+
+    /// Whether every number of the history is finite: the traction, the
+    /// anchor, the slip and the material point's weights and traction.
+    pub fn is_finite(&self) -> bool {
+        let finite = |v: &Vector3<f64>| v.iter().all(|x| x.is_finite());
+        finite(&self.traction)
+            && finite(&self.anchor)
+            && finite(&self.slip)
+            && self
+                .material_point
+                .as_ref()
+                .is_none_or(|p| p.shape.iter().chain(&p.traction).all(|x| x.is_finite()))
+    }
 }
 
 /// The normal pressure the friction law is bounded by, with its derivatives

@@ -68,6 +68,7 @@ pub mod rigid;
 pub mod set;
 pub mod setup;
 pub mod surface_contact;
+pub mod sweep;
 pub mod triangle;
 pub mod triangle_gap;
 pub mod triangulated;

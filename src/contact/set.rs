@@ -31,6 +31,13 @@ pub struct ContactState {
     pub interfaces: Vec<Vec<NodeContactState>>,
 }
 
+impl ContactState {
+    /// Whether every node's state is finite ([`NodeContactState::is_finite`]).
+    pub fn is_finite(&self) -> bool {
+        self.interfaces.iter().flatten().all(|n| n.is_finite())
+    }
+}
+
 /// The contact interfaces of a problem, reached through narrow queries
 /// (each interface by index or name, their number, an iterator) and the
 /// operations of the life cycle; no slice of them is lent out, so what

@@ -69,6 +69,7 @@ use super::{ContactState, Problem};
 use crate::contact::interface::ConstraintRow;
 
 mod applicability;
+mod capacity;
 mod condensation;
 mod friction;
 mod linearisation;

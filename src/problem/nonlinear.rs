@@ -108,6 +108,20 @@ impl NonlinearProblem for Problem {
     fn couplings_hold(&self, x: &[f64], state: &ContactState) -> bool {
         self.contact_pairs_hold(x, state)
     }
+    /// A contact node's path through a rigid obstacle
+    /// ([`ContactInterface::passed_through`](crate::contact::interface::ContactInterface::passed_through)).
+    fn passed_through(&self, start: (f64, &[f64]), end: (f64, &[f64])) -> Option<IncrementFailure> {
+        let reference = &self.model.mesh.nodes;
+        self.contacts.iter().find_map(|c| {
+            let (node, gap) = c.passed_through(reference, start, end)?;
+            Some(IncrementFailure::PassedThrough {
+                node: self.model.mesh.node_ids[node],
+                interface: c.name.clone(),
+                gap,
+                size: c.element_size,
+            })
+        })
+    }
     fn moving_coupled_nodes(&self) -> Vec<usize> {
         self.deformable_contact_nodes()
     }

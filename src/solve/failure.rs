@@ -66,10 +66,31 @@ pub enum IncrementFailure {
     /// A contact node slid beyond the primary triangles it was paired with
     /// at the start of the increment.
     PairsMoved,
+    /// Contact node `node` (its mesh id) of interface `interface` passed
+    /// through the rigid obstacle within the increment: its path relative
+    /// to the obstacle reached the signed distance `gap`, deeper than the
+    /// contact element size `size` ([`crate::contact::sweep`]).
+    PassedThrough {
+        node: u64,
+        interface: String,
+        gap: f64,
+        size: f64,
+    },
     /// The outer (Uzawa) loop did not reach its tolerance in `updates`.
     OuterLoopLimit { updates: usize },
     /// The condensed contact solve failed (its message).
     Condensed(String),
+    /// The load exceeds the friction capacity of a body that only its
+    /// contact holds along the contact plane (measured from the load by
+    /// the condensed path: the tangential load `|F_T| = tangential` along
+    /// `direction` against `μN` = `coefficient × normal_force`), so no
+    /// equilibrium exists.
+    FrictionCapacity {
+        tangential: f64,
+        normal_force: f64,
+        coefficient: f64,
+        direction: [f64; 3],
+    },
     /// The condensed solution leaves a relative residual above the
     /// tolerance (a floating body's ill-conditioned shift, say).
     CondensedResidual { relative: f64, tolerance: f64 },
@@ -164,6 +185,20 @@ impl std::fmt::Display for IncrementFailure {
                 "a contact node slid beyond the primary triangles it was paired with at the \
                  start of the increment"
             ),
+            IncrementFailure::PassedThrough {
+                node,
+                interface,
+                gap,
+                size,
+            } => write!(
+                f,
+                "contact node {node} of '{interface}' passed through the obstacle within the \
+                 increment: its path relative to the obstacle went {:.3e} deep inside, more \
+                 than the contact element size {size:.3e}; the obstacle moves farther in one \
+                 increment than the surface can follow, so take smaller increments \
+                 (initial_increment, max_increment) or a smaller motion",
+                -gap
+            ),
             IncrementFailure::OuterLoopLimit { updates } => write!(
                 f,
                 "the Uzawa multipliers did not reach the penetration tolerance in {updates} updates"
@@ -171,6 +206,22 @@ impl std::fmt::Display for IncrementFailure {
             IncrementFailure::Condensed(message) => {
                 write!(f, "the condensed contact solve failed: {message}")
             }
+            IncrementFailure::FrictionCapacity {
+                tangential,
+                normal_force,
+                coefficient,
+                direction,
+            } => write!(
+                f,
+                "the tangential load exceeds the friction capacity μN: the external load along \
+                 the contact plane is {tangential:.4e} along {} against μN = {coefficient} × \
+                 {normal_force:.4e} = {:.4e}, and only friction holds the body in that \
+                 direction, so no increment size can reach equilibrium; reduce the load along \
+                 that direction below μ times the normal force, raise friction_coefficient, or \
+                 hold the body with a [[displacement]]",
+                along(direction),
+                coefficient * normal_force
+            ),
             IncrementFailure::CondensedResidual {
                 relative,
                 tolerance,
@@ -213,6 +264,12 @@ pub(crate) fn largest_motion(du: &[f64]) -> [f64; 3] {
     }
 }
 
+/// A unit direction as `(x, y, z)` to two decimals (no "-0.00").
+fn along(d: &[f64; 3]) -> String {
+    let c = |x: f64| if x.abs() < 5e-3 { 0.0 } else { x };
+    format!("({:.2}, {:.2}, {:.2})", c(d[0]), c(d[1]), c(d[2]))
+}
+
 /// The message of a rigid-body mode through closed contact nodes, by
 /// what they measured ([`ClosedContact`]): an unsupported direction
 /// (frictionless), a tangential load beyond the friction capacity `μN`
@@ -224,14 +281,10 @@ fn closed_rigid_body_mode(
     d: &[f64; 3],
     closed: ClosedContact,
 ) -> std::fmt::Result {
-    // no "-0.00"
-    let c = |x: f64| if x.abs() < 5e-3 { 0.0 } else { x };
     let motion = format!(
-        "the body moves as a whole along ({:.2}, {:.2}, {:.2}) (a correction of {largest:.3e} \
-         against a body of size {size:.3e})",
-        c(d[0]),
-        c(d[1]),
-        c(d[2])
+        "the body moves as a whole along {} (a correction of {largest:.3e} against a body of \
+         size {size:.3e})",
+        along(d)
     );
     match closed {
         ClosedContact::Frictionless => write!(

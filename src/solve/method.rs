@@ -48,6 +48,13 @@ pub struct WarmStart {
     pub set: Vec<bool>,
 }
 
+impl WarmStart {
+    /// Whether the last answer's numbers are finite.
+    pub fn is_finite(&self) -> bool {
+        self.values.iter().all(|x| x.is_finite())
+    }
+}
+
 /// A method that solves one increment.
 pub trait IncrementMethod<P: NonlinearProblem> {
     /// `"monolithic"` or `"condensed"`: the log's and summary's name.

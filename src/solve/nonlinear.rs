@@ -133,6 +133,16 @@ pub trait NonlinearProblem {
     /// Whether the couplings used for the increment still hold at the
     /// converged `x` (else the increment is cut).
     fn couplings_hold(&self, x: &[f64], state: &Self::State) -> bool;
+    /// Why the increment from `(t0, x0)` to the converged `(t1, x1)` must
+    /// be cut although it converged (a node that passed through a rigid
+    /// obstacle on the way), if it must.
+    fn passed_through(
+        &self,
+        _start: (f64, &[f64]),
+        _end: (f64, &[f64]),
+    ) -> Option<super::failure::IncrementFailure> {
+        None
+    }
     /// The nodes whose motion sets the search margin of
     /// [`NonlinearProblem::refresh_pattern`].
     fn moving_coupled_nodes(&self) -> Vec<usize>;

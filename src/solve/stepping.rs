@@ -68,6 +68,27 @@ pub struct Stepping {
     pub warm: Option<WarmStart>,
 }
 
+impl Stepping {
+    /// Whether every number of the stepping state is finite: the time, the
+    /// next increment, the force scale, the secant, the last motion and the
+    /// warm start.
+    pub fn is_finite(&self) -> bool {
+        let secant = self
+            .secant
+            .as_ref()
+            .is_none_or(|(du, length)| length.is_finite() && du.iter().all(|x| x.is_finite()));
+        let motion = self
+            .last_motion
+            .is_none_or(|(m, length)| m.is_finite() && length.is_finite());
+        [self.time, self.increment, self.force_scale]
+            .iter()
+            .all(|x| x.is_finite())
+            && secant
+            && motion
+            && self.warm.as_ref().is_none_or(WarmStart::is_finite)
+    }
+}
+
 /// A converged state to resume a run from: the unknowns, the committed
 /// history and the stepper's own state.
 #[derive(Clone, Debug)]
@@ -346,10 +367,14 @@ fn attempt<P: NonlinearProblem>(
     };
     let (outcome, iterations) = method.solve(problem, increment, u, state, trial, &mut tell);
     let outcome = outcome.and_then(|evaluation| {
-        if problem.couplings_hold(trial, state) {
-            Ok(evaluation)
-        } else {
+        if !problem.couplings_hold(trial, state) {
             Err(IncrementFailure::PairsMoved)
+        } else if let Some(failure) =
+            problem.passed_through((increment.start, u), (increment.time, trial))
+        {
+            Err(failure)
+        } else {
+            Ok(evaluation)
         }
     });
     (outcome, iterations)

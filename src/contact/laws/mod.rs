@@ -144,6 +144,16 @@ impl NodeContactState {
             normal_axis: z_axis(),
         }
     }
+
+    /// Whether every number of the state is finite (`λ`, the slack
+    /// unknowns, the friction history, the gap): a converged increment
+    /// leaves them so, and a restart refuses a checkpoint that does not.
+    pub fn is_finite(&self) -> bool {
+        self.lambda.is_finite()
+            && self.slack.is_finite()
+            && self.friction.is_finite()
+            && self.gap.is_finite()
+    }
 }
 
 /// The normal-contact enforcement law (formulation note §2.1, items 1–4).

@@ -191,6 +191,11 @@ pub fn local_system(
 }
 
 impl SlackState {
+    /// Whether `s` and `λ₁` are finite.
+    pub fn is_finite(&self) -> bool {
+        self.s.is_finite() && self.lambda1.is_finite()
+    }
+
     /// The local unknowns that solve the node's own equations for given
     /// `(g, λ)` (global sign `λ = −λ_p`): with `t̂ = kλ − p g`, clamped
     /// `(s, λ₁) = (0, t̂/k)` if `t̂ ≥ 0`, else free `(t̂/p, 0)`. Use it to

@@ -47,6 +47,7 @@ use crate::solve::condensed::cone::{
     solve_cone, ConeNode, ConeProblem, ConeSolution, TangentialLaw,
 };
 use crate::solve::condensed::flexibility::Column;
+use crate::solve::failure::IncrementFailure;
 use crate::solve::linear_solver::SolverStatistics;
 use crate::solve::method::WarmStart;
 use crate::solve::newton::IterationRecord;
@@ -637,6 +638,22 @@ impl IncrementSolver for FrictionalCondensation {
             values,
             set,
         }
+    }
+
+    /// A body that only contact holds, loaded along rigid planes beyond
+    /// their friction capacity ([`super::capacity::overload_failure`]).
+    fn diagnose(&self, problem: &Problem, t: f64) -> Option<IncrementFailure> {
+        if self.projected {
+            return None;
+        }
+        let nodes = self.contact.iter().map(|c| {
+            let interface = problem.contacts.interface(c.interface);
+            let mu = interface
+                .friction_at(c.index)
+                .map_or(0.0, |f| f.coefficient);
+            (c.normal, mu)
+        });
+        super::capacity::overload_failure(problem, t, nodes)
     }
 
     fn resume(&mut self, warm: &WarmStart) -> Result<()> {

@@ -44,6 +44,12 @@ pub(super) trait IncrementSolver: Send {
     /// Take up a checkpointed warm start: the candidates added again in
     /// the same batches (so `W` is the same to the bit), the rest copied.
     fn resume(&mut self, warm: &WarmStart) -> Result<()>;
+
+    /// Why the increment at time `t` failed, measured from the problem
+    /// (its load against the friction capacity), when the solver can tell.
+    fn diagnose(&self, _problem: &Problem, _t: f64) -> Option<IncrementFailure> {
+        None
+    }
 }
 
 impl IncrementSolver for Condensation {
@@ -157,7 +163,9 @@ impl IncrementMethod<Problem> for Condensed {
             }
         }
         if let Err(e) = solved {
-            return (Err(IncrementFailure::Condensed(e.to_string())), history);
+            let failure = (self.solver.diagnose(problem, t))
+                .unwrap_or_else(|| IncrementFailure::Condensed(e.to_string()));
+            return (Err(failure), history);
         }
         let evaluation = match problem.evaluate(t, x, state, None) {
             Ok(e) => e,

@@ -141,6 +141,13 @@ pub struct Simulation {
 /// [`Simulation::from_case`] and `signorini check` both build it here, so
 /// that the check describes the model the run solves.
 pub fn problem_as_run(case: &Case) -> Result<(Problem, condensed::Choice)> {
+    problem_as_run_noted(case).map(|(problem, strategy, _)| (problem, strategy))
+}
+
+/// [`problem_as_run`], and the notes for the log on what the run changed
+/// of the case's model (exact stick's multipliers on PETSc,
+/// [`distributed::friction_multipliers_for_petsc`]).
+fn problem_as_run_noted(case: &Case) -> Result<(Problem, condensed::Choice, Vec<String>)> {
     let mut problem = case.build_problem()?;
     let strategy = condensed::choose(&problem).map_err(|message| Error::Case {
         path: case.path.clone(),
@@ -150,13 +157,14 @@ pub fn problem_as_run(case: &Case) -> Result<(Problem, condensed::Choice)> {
     if strategy.path == SolvePath::Condensed {
         problem.keep_friction_multipliers_in_history();
     }
-    Ok((problem, strategy))
+    let notes = distributed::friction_multipliers_for_petsc(&mut problem, case);
+    Ok((problem, strategy, notes.into_iter().collect()))
 }
 
 impl Simulation {
     /// From a case: builds the problem and validates the output requests.
     pub fn from_case(case: &Case) -> Result<Self> {
-        let (problem, strategy) = problem_as_run(case)?;
+        let (problem, strategy, run_notes) = problem_as_run_noted(case)?;
         let requests = case.output_requests(&problem)?;
         let (nodal_fields, cell_fields) = case.output_fields();
         let every = case.output_every()?;
@@ -171,7 +179,7 @@ impl Simulation {
             cell_fields,
             every,
             compress: case.spec.output.compress.unwrap_or(true),
-            notes: case.notes.clone(),
+            notes: case.notes.iter().cloned().chain(run_notes).collect(),
             strategy,
             warnings: case.diagnose(&problem),
             case_key,

@@ -104,15 +104,83 @@ mod with_petsc {
     /// Newton's residual tolerance, not to the 1e-8 compared here.
     const FAER_MONOLITHIC: &str = "linear = \"auto\"\nstrategy = \"monolithic\"";
 
+    /// MUMPS on the saddle point with exact stick's tangential
+    /// multipliers as unknowns (asked for: a run on PETSc keeps them in
+    /// the outer loop by default), the faer run likewise.
     #[test]
     fn mumps_gives_the_faer_answer_on_press_pull() {
         let dir = tempfile::tempdir().unwrap();
         let case = press_pull(dir.path());
+        let text = std::fs::read_to_string(&case).unwrap();
+        assert!(text.contains("exact_stick = true"));
+        let text = text.replacen(
+            "exact_stick = true",
+            "friction_multiplier = \"newton\"\nexact_stick = true",
+            1,
+        );
+        std::fs::write(&case, text).unwrap();
         let faer = run_with(&case, &dir.path().join("faer"), FAER_MONOLITHIC);
         let petsc = run_with(&case, &dir.path().join("mumps"), "linear = \"petsc\"");
         assert_same(&faer, &petsc, 1e-8, "press-pull, MUMPS");
         assert_same_forces(&faer, &petsc, "base", 1e-8, "press-pull, MUMPS");
         assert!(petsc.summary.krylov_solves > 0);
+    }
+
+    /// A frictional case with default keys (press-pull without its
+    /// `exact_stick` line: exact stick is the default) on `linear =
+    /// "petsc"`: the tangential multipliers are updated in the outer loop
+    /// (the log says so, and `friction_multiplier = "newton"` would be
+    /// needed for PETSc to see them as unknowns), and the answer is the
+    /// direct solver's (faer LDLᵀ/LU, the multipliers solved by Newton)
+    /// exact-stick answer on the same increments to 1e-8 of the contact
+    /// element size `h` in the displacements (1e-8 h/|u|max of the
+    /// normal force in the contact forces): the outer loop stops at a
+    /// stick error of 1e-9 h.
+    #[test]
+    fn default_keys_with_friction_on_petsc_give_the_direct_exact_stick_answer() {
+        let dir = tempfile::tempdir().unwrap();
+        let case = press_pull(dir.path());
+        let text = std::fs::read_to_string(&case).unwrap();
+        assert!(text.contains("exact_stick = true"));
+        // the increments pinned (friction's answer depends on the path,
+        // and the two forms grow the increments differently)
+        let text: String = text
+            .lines()
+            .filter(|l| !l.starts_with("exact_stick"))
+            .map(|l| match l.strip_prefix("initial_increment = ") {
+                Some(dt) => format!("{l}\nmax_increment = {dt}\n"),
+                None => format!("{l}\n"),
+            })
+            .collect();
+        std::fs::write(&case, text).unwrap();
+        let faer = run_with(&case, &dir.path().join("faer"), FAER_MONOLITHIC);
+        let out = dir.path().join("petsc");
+        let petsc = run_with(&case, &out, "linear = \"petsc\"");
+        let log = std::fs::read_dir(&out)
+            .unwrap()
+            .flatten()
+            .find(|e| e.path().extension().is_some_and(|x| x == "log"))
+            .map(|e| std::fs::read_to_string(e.path()).unwrap())
+            .expect("a log");
+        assert!(log.contains("updated by an outer loop"), "{log}");
+        assert!(
+            !log.contains("tangential multipliers solved by Newton"),
+            "{log}"
+        );
+        // to 1e-8 h: the outer loop stops at a stick error of 1e-9 h
+        let h: f64 = log
+            .split("contact element size ")
+            .nth(1)
+            .and_then(|rest| rest.split([';', ' ', '\n']).next())
+            .and_then(|h| h.parse().ok())
+            .unwrap_or_else(|| panic!("no contact element size in the log: {log}"));
+        let scale = faer.displacement.iter().fold(0.0f64, |m, v| m.max(v.abs()));
+        let what = "default friction keys, PETSc";
+        assert_same(&faer, &petsc, 1e-8 * h / scale, what);
+        assert_same_forces(&faer, &petsc, "base", 1e-8 * h / scale, what);
+        // the pull reached 0.8 μN = 4.8 of friction
+        let last = &petsc.summary.increments.last().unwrap().contact["base"];
+        assert!((last.tangential_force[0] + 4.8).abs() < 1e-6, "{last:?}");
     }
 
     #[test]

@@ -19,6 +19,8 @@
 //! (`crate::solve::petsc::fault`).
 
 use super::{RunOptions, RunOutcome};
+use crate::case::schema::FrictionMultiplierSpec;
+use crate::case::Case;
 use crate::problem::condensed::{Choice, Path as SolvePath};
 use crate::problem::{LinearMethod, Problem};
 use crate::solve::partition::MeshPartition;
@@ -42,6 +44,37 @@ pub(super) fn strategy_for_petsc(problem: &Problem, choice: Choice) -> Choice {
         };
     }
     choice
+}
+
+/// Exact stick's tangential multipliers on PETSc (`[solver] linear =
+/// "petsc"`, or any run under `mpirun`): updated by the outer loop
+/// ([`Problem::keep_friction_multipliers_in_history`], Simo–Laursen;
+/// still exact stick) rather than solved by Newton beside the
+/// displacements, where the case does not ask for `friction_multiplier =
+/// "newton"`. As Newton unknowns their rows have a zero diagonal in stick
+/// (`∂r_ℓ/∂ℓ = 0`, Alart–Curnier), which PETSc's preconditioners (ILU,
+/// GAMG, MUMPS's default pivoting on the distributed matrix) do not take:
+/// `DIVERGED_PC_FAILED` at the first increment. Returns the note for the
+/// log when it changed the problem.
+pub(super) fn friction_multipliers_for_petsc(problem: &mut Problem, case: &Case) -> Option<String> {
+    let on_petsc = problem.settings.linear == LinearMethod::Petsc
+        || (cfg!(feature = "petsc") && launched_processes().is_some());
+    let asked = case
+        .spec
+        .contact
+        .iter()
+        .any(|c| c.friction_multiplier == Some(FrictionMultiplierSpec::Newton));
+    if !on_petsc || asked || !problem.contacts.has_tangential_multipliers() {
+        return None;
+    }
+    problem.keep_friction_multipliers_in_history();
+    Some(
+        "exact stick's tangential multipliers are updated by an outer loop after each Newton \
+         solve (friction_multiplier = \"outer\"), not solved by Newton: PETSc's \
+         preconditioners fail on them as unknowns; friction_multiplier = \"newton\" asks for \
+         them anyway"
+            .into(),
+    )
 }
 
 /// The number of processes `mpirun` (Open MPI, MPICH) started, from the

@@ -282,6 +282,24 @@ impl Problem {
         self.rebuild_pattern();
     }
 
+    /// A distributed run: assemble only `share`'s elements, on a pattern
+    /// of this process's rows ([`Model::set_share_with_local_rows`]) with
+    /// the contact couplings (on every process: the contact set is
+    /// replicated) and, on the lead, which adds the loads' tangent, the
+    /// faces of the follower pressures.
+    pub fn set_share(&mut self, share: crate::assembly::share::Share) {
+        let faces: Vec<Vec<usize>> = if share.is_lead() {
+            let followers = self.pressures.iter().filter(|p| p.follower);
+            followers
+                .flat_map(|p| p.facets.iter().map(|f| f.nodes.clone()))
+                .collect()
+        } else {
+            Vec::new()
+        };
+        self.model.set_share_with_local_rows(share, &faces);
+        self.rebuild_pattern();
+    }
+
     /// The sparsity pattern of the elements, of each secondary node with the
     /// primary nodes it may touch, and of the multipliers.
     fn rebuild_pattern(&mut self) {

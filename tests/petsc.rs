@@ -99,6 +99,17 @@ mod with_petsc {
         work.join("case.toml")
     }
 
+    /// [`press_pull`] with each line `l` of its case replaced by `edit(l)`
+    /// (its lines, each ending in a newline).
+    fn press_pull_with(dir: &Path, edit: impl Fn(&str) -> String) -> std::path::PathBuf {
+        let case = press_pull(dir);
+        let text = std::fs::read_to_string(&case).unwrap();
+        assert!(text.contains("exact_stick = true"));
+        let text: String = text.lines().map(edit).collect();
+        std::fs::write(&case, text).unwrap();
+        case
+    }
+
     /// faer on Newton's path, as PETSc runs: `auto` would take the
     /// condensed path for press-pull, whose answer equals Newton's only to
     /// Newton's residual tolerance, not to the 1e-8 compared here.
@@ -110,15 +121,13 @@ mod with_petsc {
     #[test]
     fn mumps_gives_the_faer_answer_on_press_pull() {
         let dir = tempfile::tempdir().unwrap();
-        let case = press_pull(dir.path());
-        let text = std::fs::read_to_string(&case).unwrap();
-        assert!(text.contains("exact_stick = true"));
-        let text = text.replacen(
-            "exact_stick = true",
-            "friction_multiplier = \"newton\"\nexact_stick = true",
-            1,
-        );
-        std::fs::write(&case, text).unwrap();
+        let case = press_pull_with(dir.path(), |l| {
+            if l.starts_with("exact_stick") {
+                format!("friction_multiplier = \"newton\"\n{l}\n")
+            } else {
+                format!("{l}\n")
+            }
+        });
         let faer = run_with(&case, &dir.path().join("faer"), FAER_MONOLITHIC);
         let petsc = run_with(&case, &dir.path().join("mumps"), "linear = \"petsc\"");
         assert_same(&faer, &petsc, 1e-8, "press-pull, MUMPS");
@@ -139,20 +148,17 @@ mod with_petsc {
     #[test]
     fn default_keys_with_friction_on_petsc_give_the_direct_exact_stick_answer() {
         let dir = tempfile::tempdir().unwrap();
-        let case = press_pull(dir.path());
-        let text = std::fs::read_to_string(&case).unwrap();
-        assert!(text.contains("exact_stick = true"));
         // the increments pinned (friction's answer depends on the path,
         // and the two forms grow the increments differently)
-        let text: String = text
-            .lines()
-            .filter(|l| !l.starts_with("exact_stick"))
-            .map(|l| match l.strip_prefix("initial_increment = ") {
+        let case = press_pull_with(dir.path(), |l| {
+            if l.starts_with("exact_stick") {
+                return String::new();
+            }
+            match l.strip_prefix("initial_increment = ") {
                 Some(dt) => format!("{l}\nmax_increment = {dt}\n"),
                 None => format!("{l}\n"),
-            })
-            .collect();
-        std::fs::write(&case, text).unwrap();
+            }
+        });
         let faer = run_with(&case, &dir.path().join("faer"), FAER_MONOLITHIC);
         let out = dir.path().join("petsc");
         let petsc = run_with(&case, &out, "linear = \"petsc\"");
@@ -186,22 +192,15 @@ mod with_petsc {
     #[test]
     fn mumps_and_gamg_give_the_faer_answer_on_press_pull_with_penalty_contact() {
         let dir = tempfile::tempdir().unwrap();
-        let case = press_pull(dir.path());
         // the penalty method (GAMG takes no multiplier blocks), friction by
         // its tangential penalty (exact stick needs multipliers)
-        let text = std::fs::read_to_string(&case).unwrap();
-        assert!(text.contains("exact_stick = true"));
-        let text: String = text
-            .lines()
-            .map(|l| {
-                if l.starts_with("exact_stick") {
-                    "method = \"penalty\"\n".to_string()
-                } else {
-                    format!("{l}\n")
-                }
-            })
-            .collect();
-        std::fs::write(&case, text).unwrap();
+        let case = press_pull_with(dir.path(), |l| {
+            if l.starts_with("exact_stick") {
+                "method = \"penalty\"\n".to_string()
+            } else {
+                format!("{l}\n")
+            }
+        });
         let faer = run_with(&case, &dir.path().join("faer"), FAER_MONOLITHIC);
         let mumps = run_with(&case, &dir.path().join("mumps"), "linear = \"petsc\"");
         assert_same(&faer, &mumps, 1e-8, "press-pull penalty, MUMPS");

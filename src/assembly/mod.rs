@@ -365,7 +365,7 @@ impl Model {
                 let map = Arc::new(ScatterMap::lower(
                     &self.pattern,
                     &lower,
-                    self.mesh.elements.iter().map(|e| e.nodes.as_slice()),
+                    (0..self.mesh.elements.len()).map(|e| self.assembled_nodes(e)),
                 ));
                 *slot = Some(Arc::clone(&map));
                 (lower, map)
@@ -384,7 +384,7 @@ impl Model {
             _ => {
                 let map = Arc::new(ScatterMap::new(
                     &self.pattern,
-                    self.mesh.elements.iter().map(|e| e.nodes.as_slice()),
+                    (0..self.mesh.elements.len()).map(|e| self.assembled_nodes(e)),
                 ));
                 *slot = Some(Arc::clone(&map));
                 map

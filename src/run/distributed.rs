@@ -6,7 +6,8 @@
 //! the elements into N parts in parallel by PETSc's partitioner, or
 //! serial METIS where it has none ([`MeshPartition`],
 //! `crate::solve::petsc::partitioning`); each process
-//! assembles its own elements ([`Share`]), the internal force is summed
+//! assembles its own elements ([`Share`]) on a pattern of their rows
+//! ([`Problem::set_share`]), the internal force is summed
 //! over the processes, and the contact surfaces, contact states, Newton
 //! and the stepping are replicated: every process computes them alike
 //! from the same whole unknowns. PETSc solves each Newton system on the
@@ -230,7 +231,7 @@ impl Distribution {
                     message: e.to_string(),
                 }
             })?;
-        problem.model.set_share(Share {
+        problem.set_share(Share {
             owned: partition.owned_elements(rank),
             communicator: world.clone(),
         });
@@ -336,23 +337,26 @@ impl Distribution {
 }
 
 impl Distribution {
-    /// What each process holds of the tangent and the residual today (the
-    /// whole pattern's entries and every dof, on every process), beside
-    /// what it would hold with only its rows and a ghost layer
+    /// What each process holds of the tangent (the entries of its own
+    /// pattern, [`Problem::set_share`], gathered from every process: a
+    /// collective) and of the residual (every dof, still whole), beside its
+    /// own rows and ghost layer as the partition counts them
     /// ([`MeshPartition::local_sizes`], issue 29 item 1), for the log.
     fn rows_held(&self, problem: &Problem) -> Vec<String> {
         let mesh = &problem.model.mesh;
-        let (entries, dofs) = (
-            problem.model.pattern.nnz(),
-            problem.model.pattern.dimension(),
-        );
+        let mut held = vec![0.0; self.partition.parts];
+        held[self.rank] = problem.model.pattern.nnz() as f64;
+        if let Some(share) = problem.model.share() {
+            share.communicator.sum(&mut held);
+        }
+        let dofs = problem.model.pattern.dimension();
         (0..self.partition.parts)
             .map(|p| {
                 let s = self.partition.local_sizes(mesh, p);
                 format!(
-                    "rows: rank {p}: holds {entries} tangent entries and {dofs} residual values; \
+                    "rows: rank {p}: holds {} tangent entries and {dofs} residual values; \
                      its own rows {} entries ({} nodes), ghost rows {} entries ({} nodes)",
-                    s.own_entries, s.own_nodes, s.ghost_entries, s.ghost_nodes
+                    held[p] as usize, s.own_entries, s.own_nodes, s.ghost_entries, s.ghost_nodes
                 )
             })
             .collect()

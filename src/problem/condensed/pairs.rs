@@ -123,10 +123,10 @@ fn column_change(old: &[Column], new: &[Column], forces: &[f64]) -> f64 {
 pub(super) fn surface_trailing(problem: &Problem) -> Vec<usize> {
     let zero = vec![0.0; problem.num_unknowns()];
     let reference = &problem.model.mesh.nodes;
-    let mut kept = problem.contacts.initial_state(reference, &zero);
+    let kept = problem.contacts.initial_state(reference, &zero);
     let mut near: Vec<(f64, Vec<usize>)> = Vec::new();
     for (ci, c) in problem.contacts.iter().enumerate() {
-        let rows = c.constraint_rows(reference, 0.0, &zero, Some(&mut kept.interfaces[ci]));
+        let rows = c.constraint_rows(reference, 0.0, &zero, Some(&kept.interfaces[ci]));
         for (i, row) in rows.iter().enumerate() {
             let Some(row) = row else {
                 near.push((f64::INFINITY, vec![c.nodes[i]]));

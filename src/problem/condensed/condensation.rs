@@ -196,7 +196,7 @@ impl Condensation {
 
     /// The gap of every column's node at unknowns `x`, time `t` (on the
     /// primary triangles kept in `states`, where given).
-    fn gaps(
+    pub(super) fn gaps(
         nodes: &[ContactNode],
         problem: &Problem,
         t: f64,

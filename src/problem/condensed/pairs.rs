@@ -12,12 +12,13 @@
 //! column `a` of `E(u)` the gap gradient `∇g_a = Bᵀn` of secondary node `a`
 //! (its own dofs and those of the primary triangle it projects on, with
 //! the weights `−N_i`). A fixed point on the projections: `E` from the rows
-//! at the last answer, `W = Eᵀ K̃⁻¹ E` formed anew from `(K̃⁻¹)_SS` (no
+//! at the last answer `û`, `W = Eᵀ K̃⁻¹ E` formed anew from `(K̃⁻¹)_SS` (no
 //! solves while every column lies on the trailing block), the
-//! complementarity problem solved with the exact gaps taking up the
-//! defect of the linearisation ([`Flexibility::solve_increment`]), the rows
-//! read again at the answer, until the columns of the nodes that carry a
-//! force change by less than [`COLUMN_TOLERANCE`]. At the fixed point `K̃u = b + E(u)λ` and
+//! complementarity problem solved once on the gaps linearised at `û`,
+//! `g(û) + Eᵀ(u − û)` (one solve with the factor, and its refinement),
+//! the rows read again at the answer, until the columns of the nodes that
+//! carry a force change by less than [`COLUMN_TOLERANCE`] and the exact
+//! gaps equal the linearised ones to the gap tolerance. At the fixed point `K̃u = b + E(u)λ` and
 //! `g(u) ⊥ λ`: the equations of the monolithic node-to-surface problem
 //! (whose `∇g` at fixed projection is `Bᵀn`), whose residual the problem's
 //! evaluation then checks.
@@ -25,7 +26,7 @@
 use super::condensation::normal_column;
 use super::{set_multipliers, zero_per_node};
 use super::{Condensation, ContactNode, ContactState, IncrementSolver, Problem};
-use crate::solve::condensed::flexibility::{Column, Flexibility};
+use crate::solve::condensed::flexibility::{Column, MAX_TRAILING};
 use crate::solve::linear_solver::SolverStatistics;
 use crate::solve::method::WarmStart;
 use crate::solve::newton::IterationRecord;
@@ -41,6 +42,10 @@ const COLUMN_TOLERANCE: f64 = 1e-12;
 /// The frictionless condensation of bodies in contact with each other.
 pub(super) struct PairCondensation {
     base: Condensation,
+    /// Whether every free dof of the contact surfaces is on the trailing
+    /// block: then a round needs no solve with the factor
+    /// ([`crate::solve::condensed::flexibility::Flexibility::solve_on_block`]), one per increment at its end.
+    on_block: bool,
     /// Rounds of the fixed point, over the run.
     rounds: usize,
 }
@@ -110,29 +115,44 @@ fn column_change(old: &[Column], new: &[Column], forces: &[f64]) -> f64 {
 
 /// The free dofs of every contact surface's nodes (secondary and
 /// primary), ordered last in the factorisation so that `(K̃⁻¹)_SS` is read
-/// off its trailing block (at most the flexibility's limit of them).
+/// off its trailing block: the secondary nodes nearest to contact first
+/// (by their gap at rest), each with the primary nodes it projects on,
+/// then the other surface nodes, all three dofs of a node together, at
+/// most [`MAX_TRAILING`] of them (a column beyond them gets its column of
+/// `W` by a solve).
 pub(super) fn surface_trailing(problem: &Problem) -> Vec<usize> {
-    let mut surface: Vec<usize> = problem.contacts.deformable_nodes();
-    surface.extend(
-        problem
-            .contacts
-            .iter()
-            .flat_map(|c| c.nodes.iter().copied()),
-    );
-    surface.sort_unstable();
-    surface.dedup();
-    // every dof of a surface node as one trailing "column" each node
-    let all: Vec<Column> = (surface.iter())
-        .map(|&n| Column {
-            entries: (0..3).map(|d| (3 * n + d, 1.0)).collect(),
-            compliance: 0.0,
-        })
-        .collect();
-    let order: Vec<usize> = (0..all.len()).collect();
-    let mut constrained = problem.constrained_dofs();
-    let dofs = problem.model.num_dofs();
-    constrained[dofs..].iter_mut().for_each(|c| *c = true);
-    Flexibility::trailing_dofs(&all, &order, &constrained, 1.0)
+    let zero = vec![0.0; problem.num_unknowns()];
+    let reference = &problem.model.mesh.nodes;
+    let kept = problem.contacts.initial_state(reference, &zero);
+    let mut near: Vec<(f64, Vec<usize>)> = Vec::new();
+    for (ci, c) in problem.contacts.iter().enumerate() {
+        let rows = c.constraint_rows(reference, 0.0, &zero, Some(&kept.interfaces[ci]));
+        for (i, row) in rows.iter().enumerate() {
+            let Some(row) = row else {
+                near.push((f64::INFINITY, vec![c.nodes[i]]));
+                continue;
+            };
+            let nodes = std::iter::once(row.node).chain(row.primary.iter().map(|&(p, _)| p));
+            near.push((row.gap, nodes.collect()));
+        }
+    }
+    near.sort_by(|a, b| a.0.total_cmp(&b.0));
+    let rest = problem.contacts.deformable_nodes();
+    let ordered = near.into_iter().flat_map(|(_, nodes)| nodes).chain(rest);
+    let constrained = problem.constrained_dofs();
+    let mut taken = vec![false; problem.num_unknowns()];
+    let mut dofs = Vec::new();
+    for n in ordered {
+        let free: Vec<usize> = (3 * n..3 * n + 3)
+            .filter(|&d| !constrained[d] && !taken[d])
+            .collect();
+        if dofs.len() + free.len() > MAX_TRAILING {
+            break;
+        }
+        free.iter().for_each(|&d| taken[d] = true);
+        dofs.extend(free);
+    }
+    dofs
 }
 
 impl PairCondensation {
@@ -145,13 +165,28 @@ impl PairCondensation {
             .initial_state(&problem.model.mesh.nodes, &zero);
         let (nodes, columns) = columns_at(problem, 0.0, &zero, &mut initial);
         let trailing = surface_trailing(problem);
+        let constrained = problem.constrained_dofs();
+        let surface_dofs = (problem.contacts.deformable_nodes().iter())
+            .flat_map(|&n| 3 * n..3 * n + 3)
+            .filter(|&d| !constrained[d])
+            .count();
+        let on_block = trailing.len() == surface_dofs;
         let base = Condensation::factorise_on(problem, nodes, columns, &[], trailing, false)?;
-        Ok(PairCondensation { base, rounds: 0 })
+        Ok(PairCondensation {
+            base,
+            on_block,
+            rounds: 0,
+        })
     }
 
     /// The displacements and the contact force of every node at time `t`
     /// from the unknowns `start` (the last answer): the fixed point on the
     /// projections (module docs), the primary triangles kept in `kept`.
+    /// Each round solves the complementarity problem once on the gaps
+    /// linearised at the last answer `û`, `g(u) ≈ g(û) + E(û)ᵀ(u − û)`
+    /// (affine: [`crate::solve::condensed::flexibility::Flexibility::solve_increment`] settles in one or two
+    /// passes), until the columns have settled and the exact gaps equal
+    /// the linearised ones to the gap tolerance.
     fn solve_increment(
         &mut self,
         problem: &Problem,
@@ -160,23 +195,72 @@ impl PairCondensation {
         kept: &mut ContactState,
         history: &mut Vec<IterationRecord>,
     ) -> Result<(Vec<f64>, Vec<f64>)> {
+        let tolerance = 1e-12 * problem.model.size();
+        let b = self.base.load(problem, t);
+        let free = if self.on_block {
+            let mut u_b = b.clone();
+            self.base.flexibility.solve(&mut u_b)?;
+            Some(u_b)
+        } else {
+            None
+        };
         let (_, mut columns) = columns_at(problem, t, start, kept);
+        let mut at = start.to_vec();
+        let mut gaps_at = Condensation::gaps(&self.base.nodes, problem, t, start, Some(kept));
         for _ in 0..MAX_ROUNDS {
             self.rounds += 1;
-            self.base.flexibility.replace_columns(columns)?;
-            let (u, forces) = self.base.solve_increment(problem, t, Some(kept), history)?;
+            self.base.flexibility.replace_columns(columns.clone())?;
+            let linear = |u: &[f64]| linearised_gaps(&columns, &gaps_at, &at, u);
+            let flexibility = &mut self.base.flexibility;
+            let (u, forces) = match &free {
+                Some(u_b) => flexibility.solve_on_block(u_b, &linear, tolerance, history)?,
+                None => flexibility.solve_increment(&b, &linear, tolerance, history)?,
+            };
             let (_, next) = columns_at(problem, t, &u, kept);
-            let change = column_change(&self.base.flexibility.columns, &next, &forces);
-            if change <= COLUMN_TOLERANCE {
+            let change = column_change(&columns, &next, &forces);
+            let exact = Condensation::gaps(&self.base.nodes, problem, t, &u, Some(kept));
+            let consistent = (exact.iter().zip(linear(&u)).zip(&forces)).all(|((g, l), f)| {
+                if *f != 0.0 {
+                    (g - l).abs() <= tolerance
+                } else {
+                    *g >= -tolerance
+                }
+            });
+            if change <= COLUMN_TOLERANCE && consistent {
+                if free.is_none() {
+                    return Ok((u, forces));
+                }
+                // the displacements off the surfaces: one solve
+                let flexibility = &mut self.base.flexibility;
+                let mut u = b;
+                for (a, &force) in forces.iter().enumerate() {
+                    flexibility.add_column(a, force, &mut u);
+                }
+                flexibility.solve(&mut u)?;
                 return Ok((u, forces));
             }
-            columns = next;
+            (at, gaps_at, columns) = (u, exact, next);
         }
         Err(Error::LinearSolver(format!(
             "the projections between the bodies did not settle in {MAX_ROUNDS} condensed \
              solves at time {t}; run with [solver] strategy = \"monolithic\""
         )))
     }
+}
+
+/// The gaps linearised at `û`: `g_a(u) = g_a(û) + e_aᵀ(u − û)` for every
+/// column `e_a` of `E(û)` (on every unknown, the prescribed ones too: `û`
+/// may be the last increment's answer), `gaps` the exact gaps at `û`.
+fn linearised_gaps(columns: &[Column], gaps: &[f64], at: &[f64], u: &[f64]) -> Vec<f64> {
+    (columns.iter().zip(gaps))
+        .map(|(c, g)| {
+            g + c
+                .entries
+                .iter()
+                .map(|&(i, e)| e * (u[i] - at[i]))
+                .sum::<f64>()
+        })
+        .collect()
 }
 
 impl IncrementSolver for PairCondensation {

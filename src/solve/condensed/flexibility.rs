@@ -98,7 +98,7 @@ const ENTERING_FRACTION: f64 = 0.5;
 /// block: `2c³/3` flops to read, `c²` entries): the free dofs of the
 /// columns nearest to contact; a column beyond them gets its column of `W`
 /// by a solve.
-const MAX_TRAILING: usize = 4000;
+pub const MAX_TRAILING: usize = 4000;
 
 /// Below this many unknowns the one factorisation of `K̃`, its solves and
 /// `(K̃⁻¹)_TT` run on one thread (faer's `Par::Seq`) whatever the run's
@@ -398,6 +398,81 @@ impl Flexibility {
             .collect()
     }
 
+    /// The contact forces (per column, `λ_a`) and the displacements `u`
+    /// on the trailing unknowns (elsewhere those of `u_b`) for the free
+    /// solution `u_b = K̃⁻¹ b` and affine gaps `gaps(u)`, every candidate
+    /// column on the trailing block: `u_T = (u_b)_T + (K̃⁻¹)_TT (E λ)_T`,
+    /// without a solve with the factor. The candidates grow by the nodes
+    /// that penetrate below `−tolerance` at the answer until none does;
+    /// the active-set steps pushed to `history`. An error if a candidate
+    /// leaves the block (the caller solves with the factor then).
+    pub fn solve_on_block(
+        &mut self,
+        u_b: &[f64],
+        gaps: &dyn Fn(&[f64]) -> Vec<f64>,
+        tolerance: f64,
+        history: &mut Vec<IterationRecord>,
+    ) -> Result<(Vec<f64>, Vec<f64>)> {
+        let g0 = gaps(u_b);
+        let mut entering = self.entering(&g0, tolerance);
+        loop {
+            self.grow(&entering)?;
+            if let Some(&a) =
+                (self.candidates.iter()).find(|&&a| !self.trailing.covers(&self.direction(a)))
+            {
+                return Err(Error::LinearSolver(format!(
+                    "condensed contact column {a} is not on the trailing block"
+                )));
+            }
+            let q: Vec<f64> = self.candidates.iter().map(|&a| g0[a]).collect();
+            let forces = self.complementarity(&q, tolerance, history)?;
+            let mut load: Direction = Vec::new();
+            for &a in &self.candidates {
+                if forces[a] != 0.0 {
+                    load.extend(self.direction(a).iter().map(|&(i, e)| (i, forces[a] * e)));
+                }
+            }
+            let mut u = u_b.to_vec();
+            self.trailing.add_response(&load, &mut u);
+            entering = self.entering(&gaps(&u), tolerance);
+            if entering.is_empty() {
+                return Ok((u, forces));
+            }
+        }
+    }
+
+    /// The complementarity problem over the candidates, `q + (W + C)λ ≥ 0
+    /// ⊥ λ ≥ 0` (`C` the compliances), from the last active set: the
+    /// forces per column (zero off the candidates).
+    fn complementarity(
+        &mut self,
+        q: &[f64],
+        tolerance: f64,
+        history: &mut Vec<IterationRecord>,
+    ) -> Result<Vec<f64>> {
+        let mut w = self.w.clone();
+        for (i, &a) in self.candidates.iter().enumerate() {
+            w[(i, i)] += self.columns[a].compliance;
+        }
+        let lambda_scale = (0..q.len()).map(|i| w[(i, i)]).fold(0.0f64, f64::max);
+        let solution = solve_lcp(
+            &w,
+            q,
+            &self.active,
+            tolerance,
+            1e-14 * tolerance / lambda_scale.max(f64::MIN_POSITIVE),
+        )
+        .map_err(Error::LinearSolver)?;
+        self.active_set_iterations += solution.iterations;
+        self.active = solution.active;
+        history.extend(solution.history);
+        let mut forces = vec![0.0; self.columns.len()];
+        for (i, &a) in self.candidates.iter().enumerate() {
+            forces[a] = solution.lambda[i];
+        }
+        Ok(forces)
+    }
+
     /// The displacements and the contact forces (per column, `λ_a`) at
     /// the load `b`, `gaps(u)` the gap of every column at displacements `u`
     /// (`g(u) = g(0) + Eᵀu` up to round-off: the gaps are affine), a node
@@ -437,27 +512,10 @@ impl Flexibility {
         let mut previous = u0;
         for _ in 0..MAX_CORRECTIONS {
             let q: Vec<f64> = self.candidates.iter().map(|&a| g0[a] + defect[a]).collect();
-            let mut w = self.w.clone();
-            for (i, &a) in self.candidates.iter().enumerate() {
-                w[(i, i)] += self.columns[a].compliance;
-            }
-            let lambda_scale = (0..q.len()).map(|i| w[(i, i)]).fold(0.0f64, f64::max);
-            let solution = solve_lcp(
-                &w,
-                &q,
-                &self.active,
-                tolerance,
-                1e-14 * tolerance / lambda_scale.max(f64::MIN_POSITIVE),
-            )
-            .map_err(Error::LinearSolver)?;
-            self.active_set_iterations += solution.iterations;
-            self.active = solution.active;
-            history.extend(solution.history);
+            let forces = self.complementarity(&q, tolerance, history)?;
             let mut rhs = b.to_vec();
-            let mut forces = vec![0.0; self.columns.len()];
-            for (i, &a) in self.candidates.iter().enumerate() {
-                forces[a] = solution.lambda[i];
-                self.add_column(a, solution.lambda[i], &mut rhs);
+            for &a in &self.candidates {
+                self.add_column(a, forces[a], &mut rhs);
             }
             // from the last pass's displacements: its forces differ by
             // the defect's correction only
@@ -468,8 +526,8 @@ impl Flexibility {
             let mut change = 0.0f64;
             for (i, &a) in self.candidates.iter().enumerate() {
                 let predicted = g0[a]
-                    + (0..self.candidates.len())
-                        .map(|j| self.w[(i, j)] * solution.lambda[j])
+                    + (self.candidates.iter().enumerate())
+                        .map(|(j, &b)| self.w[(i, j)] * forces[b])
                         .sum::<f64>();
                 let d = g[a] - predicted;
                 change = change.max((d - defect[a]).abs());

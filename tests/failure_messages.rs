@@ -51,6 +51,19 @@ const PULL: [(&str, &str); 2] = [
     ),
 ];
 
+/// The pull's failure names the step, the friction capacity and the
+/// direction of the motion (+x).
+#[track_caller]
+fn assert_pull_beyond_mu_n(message: &str) {
+    assert!(
+        message.contains("step 'pull' did not converge"),
+        "{message}"
+    );
+    let capacity = "the tangential load exceeds the friction capacity μN";
+    assert!(message.contains(capacity), "{message}");
+    assert!(message.contains("along (1.00, 0.00, 0.00)"), "{message}");
+}
+
 /// The time the last converged increment reached.
 fn reached(summary: &serde_json::Value) -> f64 {
     summary["increments"].as_array().unwrap().last().unwrap()["time"]
@@ -93,19 +106,11 @@ fn a_pull_beyond_mu_n_says_so_and_counts_its_cuts_as_the_summary() {
         let (message, summary) =
             failed_press_pull(&PULL, &format!("[solver]\nstrategy = \"{strategy}\"\n"));
         eprintln!("{strategy}: {message}");
-        assert!(
-            message.contains("step 'pull' did not converge"),
-            "{message}"
-        );
-        assert!(
-            message.contains("the tangential load exceeds the friction capacity μN"),
-            "{message}"
-        );
+        assert_pull_beyond_mu_n(&message);
         assert!(
             message.contains("every closed contact node slips"),
             "{message}"
         );
-        assert!(message.contains("along (1.00, 0.00, 0.00)"), "{message}");
         assert!(!message.contains("reduce the tangential load"), "{message}");
         assert_cuts_agree(&message, &summary, "pull");
         // the failure is where the pull passes μN: t = 1 + 1/1.2
@@ -123,15 +128,7 @@ fn a_pull_beyond_mu_n_says_so_and_counts_its_cuts_as_the_summary() {
 fn a_pull_beyond_mu_n_on_the_condensed_path_names_the_capacity() {
     let (message, summary) = failed_press_pull(&PULL, "[solver]\nstrategy = \"condensed\"\n");
     eprintln!("condensed: {message}");
-    assert!(
-        message.contains("step 'pull' did not converge"),
-        "{message}"
-    );
-    assert!(
-        message.contains("the tangential load exceeds the friction capacity μN"),
-        "{message}"
-    );
-    assert!(message.contains("along (1.00, 0.00, 0.00)"), "{message}");
+    assert_pull_beyond_mu_n(&message);
     assert!(
         message.contains("μN = 0.3 × 2.0000e1 = 6.0000e0"),
         "{message}"

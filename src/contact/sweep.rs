@@ -94,10 +94,11 @@ mod tests {
         let ball = RigidObstacle::sphere(Vector3::zeros(), 0.5).unwrap();
         let (above, below) = (Vector3::new(0.0, 0.0, 0.6), Vector3::new(0.0, 0.0, -0.6));
         let (s, g) = path_inside(&ball, &above, &below, 0.05).expect("through the centre");
-        assert!(g < -0.05 && g >= -0.5, "{g}");
+        assert!((-0.5..-0.05).contains(&g), "{g}");
         // the first point 0.05 deep is at z = 0.45, s = 0.15/1.2, passed
         // by at most the smallest step δ/100 over the length 1.2
-        assert!(s >= 0.15 / 1.2 && s <= (0.15 + 5e-4) / 1.2 + 1e-12, "{s}");
+        let first = 0.15 / 1.2;
+        assert!((first..=first + 5e-4 / 1.2 + 1e-12).contains(&s), "{s}");
         let beside = Vector3::new(0.6, 0.0, 0.0);
         assert!(path_inside(&ball, &(above + beside), &(below + beside), 0.05).is_none());
         // a chord between two surface points at ±θ: sagitta R(1 − cos θ)

@@ -125,6 +125,9 @@ pub struct Summary {
     pub symbolic_analyses: usize,
     /// Stored entries of the tangent (at the last converged increment: new
     /// deformable contact pairs change the pattern) and of its LDLᵀ factor.
+    /// Under `mpirun` each process keeps only its own rows' pattern, and
+    /// `matrix_nnz` is rank 0's (the log's `rows:` lines give every
+    /// process's).
     pub matrix_nnz: usize,
     pub factor_nnz: usize,
     /// Wall time split by phase, seconds (totals of the run so far,

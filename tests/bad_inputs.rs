@@ -1210,13 +1210,14 @@ fn contacts_and_output(c: &mut Catalogue) {
         ("two_pass with rockafellar", "surface = \"contact\"\nprimary = \"top\"\ntwo_pass = true", "two_pass needs method"),
         ("negative friction", "surface = \"contact\"\nobstacle = \"wall\"\nfriction_coefficient = -0.1", "friction_coefficient = -0.1 must be zero or positive"),
         ("nan friction", "surface = \"contact\"\nobstacle = \"wall\"\nfriction_coefficient = nan", "friction_coefficient"),
+        ("infinite friction", "surface = \"contact\"\nobstacle = \"wall\"\nfriction_coefficient = inf", "friction_coefficient = inf is not a finite number; give zero or a positive value"),
         ("tangential penalty without friction", "surface = \"contact\"\nobstacle = \"wall\"\ntangential_penalty = 10.0", "without contact[0].friction_coefficient"),
         ("penalty 0", "surface = \"contact\"\nobstacle = \"wall\"\npenalty = 0.0", "contact[0].penalty = 0 must be positive"),
         ("penalty inf", "surface = \"contact\"\nobstacle = \"wall\"\npenalty = inf", "contact[0].penalty = inf is not a finite number"),
         ("scaling negative", "surface = \"contact\"\nobstacle = \"wall\"\nscaling = -1.0", "contact[0].scaling = -1 must be positive"),
         ("tangential penalty nan", "surface = \"contact\"\nobstacle = \"wall\"\nfriction_coefficient = 0.2\ntangential_penalty = nan", "contact[0].tangential_penalty = NaN is not a finite number"),
         ("negative penetration tolerance", "surface = \"contact\"\nobstacle = \"wall\"\ninitial_penetration_tolerance = -1.0", "initial_penetration_tolerance = -1 must be zero or positive"),
-        ("infinite penetration tolerance", "surface = \"contact\"\nobstacle = \"wall\"\ninitial_penetration_tolerance = inf", "initial_penetration_tolerance = inf"),
+        ("infinite penetration tolerance", "surface = \"contact\"\nobstacle = \"wall\"\ninitial_penetration_tolerance = inf", "initial_penetration_tolerance = inf is not a finite number"),
         ("exact stick without friction", "surface = \"contact\"\nobstacle = \"wall\"\nexact_stick = true", "exact_stick = true: it needs friction"),
         ("exact stick with penalty", "surface = \"contact\"\nobstacle = \"wall\"\nfriction_coefficient = 0.2\nmethod = \"penalty\"\nexact_stick = true", "penalty method keeps the regularised law"),
         ("friction multiplier with the regularised law", "surface = \"contact\"\nobstacle = \"wall\"\nfriction_coefficient = 0.2\nexact_stick = false\nfriction_multiplier = \"outer\"", "friction_multiplier: it applies to exact stick only: remove exact_stick = false"),
@@ -1250,6 +1251,12 @@ fn contacts_and_output(c: &mut Catalogue) {
             "output name with a space",
             "name = \"my run\"",
             "output.name = 'my run'",
+        ),
+        // the rule is ASCII: an accented letter is a letter, so say which
+        (
+            "output name with an accented letter",
+            "name = \"résultat\"",
+            "so use ASCII letters",
         ),
         (
             "output name of 2000 characters",

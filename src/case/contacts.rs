@@ -177,8 +177,10 @@ impl Case {
                     )))
                 }
                 (Some(mu), _) if !(mu >= 0.0 && mu.is_finite()) => {
-                    return Err(self.err(format!(
-                        "{key}.friction_coefficient = {mu} must be zero or positive"
+                    return Err(self.err(super::not_non_negative(
+                        &format!("{key}.friction_coefficient"),
+                        mu,
+                        "",
                     )))
                 }
                 (mu, _) => mu,
@@ -346,9 +348,10 @@ impl Case {
                     .initial_penetration_tolerance
                     .unwrap_or_else(|| interface.default_penetration_tolerance());
                 if !(tolerance >= 0.0 && tolerance.is_finite()) {
-                    return Err(self.err(format!(
-                        "{key}.initial_penetration_tolerance = {tolerance} must be zero or positive \
-                         (the largest initial penetration accepted, a length)"
+                    return Err(self.err(super::not_non_negative(
+                        &format!("{key}.initial_penetration_tolerance"),
+                        tolerance,
+                        " (the largest initial penetration accepted, a length)",
                     )));
                 }
                 let plane = match &target {

@@ -52,6 +52,16 @@ pub(crate) fn not_positive(key: &str, value: f64) -> String {
     }
 }
 
+/// `{key} = {value} must be zero or positive` (`why` after it), or, for
+/// an infinite or NaN value, that it is not a finite number.
+pub(crate) fn not_non_negative(key: &str, value: f64, why: &str) -> String {
+    if value.is_finite() {
+        format!("{key} = {value} must be zero or positive{why}")
+    } else {
+        format!("{key} = {value} is not a finite number; give zero or a positive value{why}")
+    }
+}
+
 /// `name` is a file stem that stays in the output folder: not empty, not
 /// hidden, letters, digits, `-`, `_` and `.` only (no `/`, no `..`).
 pub(crate) fn is_file_stem(name: &str) -> bool {
@@ -237,8 +247,8 @@ impl Case {
         if let Some(name) = &spec.output.name {
             if !is_file_stem(name) {
                 return Err(self.err(format!(
-                    "output.name = '{}': it names the output files, so use letters, digits, '-', '_' \
-                     and '.', not first (no folder: set output.folder for that)",
+                    "output.name = '{}': it names the output files, so use ASCII letters, digits, '-', \
+                     '_' and '.', not first (no folder: set output.folder for that)",
                     crate::input::shorten(name)
                 )));
             }

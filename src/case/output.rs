@@ -55,7 +55,7 @@ impl Case {
     fn output_file_stem(&self, key: &str, name: &str, taken: &mut Vec<String>) -> Result<()> {
         if !super::is_file_stem(name) {
             return Err(self.err(format!(
-                "{key}.name = '{}': use letters, digits, '-', '_' and '.', not first (it names the output files)",
+                "{key}.name = '{}': use ASCII letters, digits, '-', '_' and '.', not first (it names the output files)",
                 crate::input::shorten(name)
             )));
         }

@@ -1,0 +1,72 @@
+#!/usr/bin/env python3
+"""Compare two result folders of the same case (two strategies, two paths).
+
+    scripts/compare_results.py FOLDER_A FOLDER_B [PROFILE.csv ...]
+
+Prints, for the last increment of each run: whether the increment times
+agree; every contact interface's numbers of `summary.json` (force,
+tangential force, node counts, area, penetration) with their relative
+difference; for each profile CSV named (such as `load_axis_shear.csv`),
+the largest difference of `contact_pressure` and `tangential_traction`
+over the largest magnitude in B, and the nodes whose stick/slip status
+differs; and the largest difference of the last VTU's `displacement`
+over the largest displacement in B. Used for issue 32's condensed against
+monolithic Cattaneo–Mindlin (BENCHMARKS.md, session 15). Only the
+standard library is needed (the VTU reader of `compare_examples.py`).
+"""
+
+import csv
+import glob
+import json
+import pathlib
+import sys
+
+sys.path.insert(0, str(pathlib.Path(__file__).resolve().parent))
+from compare_examples import read_point_field  # noqa: E402
+
+
+def flat(value, prefix=""):
+    """The numbers of a JSON value, keyed by their path."""
+    if isinstance(value, dict):
+        return {k: v for key, item in value.items() for k, v in flat(item, f"{prefix}.{key}").items()}
+    if isinstance(value, list):
+        return {k: v for i, item in enumerate(value) for k, v in flat(item, f"{prefix}[{i}]").items()}
+    if isinstance(value, (int, float)) and not isinstance(value, bool):
+        return {prefix: value}
+    return {}
+
+
+def last_displacement(folder):
+    frames = sorted(glob.glob(f"{folder}/*_[0-9][0-9][0-9][0-9].vtu"))
+    return read_point_field(frames[-1], "displacement")
+
+
+def main():
+    if len(sys.argv) < 3:
+        sys.exit(__doc__)
+    a, b, profiles = sys.argv[1], sys.argv[2], sys.argv[3:]
+    sa = json.load(open(f"{a}/summary.json"))
+    sb = json.load(open(f"{b}/summary.json"))
+    times = lambda s: [i["time"] for i in s["increments"]]  # noqa: E731
+    print(f"increments {len(sa['increments'])} and {len(sb['increments'])}, same times: {times(sa) == times(sb)}")
+    ca, cb = flat(sa["increments"][-1]["contact"]), flat(sb["increments"][-1]["contact"])
+    for key in ca:
+        if key in cb:
+            rel = abs(ca[key] - cb[key]) / max(abs(cb[key]), 1e-300)
+            print(f"contact{key}: {ca[key]!r} and {cb[key]!r}, relative {rel:.3g}")
+    for name in profiles:
+        ra = list(csv.DictReader(open(f"{a}/{name}")))
+        rb = list(csv.DictReader(open(f"{b}/{name}")))
+        for key in ["contact_pressure", "tangential_traction"]:
+            xa = [float(r[key]) for r in ra]
+            xb = [float(r[key]) for r in rb]
+            peak = max(abs(v) for v in xb) or 1.0
+            print(f"{name} {key}: largest difference {max(abs(p - q) for p, q in zip(xa, xb)) / peak:.3g} of the peak")
+        differ = [r["node"] for r, s in zip(ra, rb) if r["status"] != s["status"]]
+        print(f"{name}: status differs at nodes {differ}")
+    ua, ub = last_displacement(a), last_displacement(b)
+    print(f"displacement: largest difference {max(abs(p - q) for p, q in zip(ua, ub)) / max(abs(v) for v in ub):.3g} of the largest")
+
+
+if __name__ == "__main__":
+    main()

@@ -281,24 +281,8 @@ fn gmsh_surface_obstacle_through_the_case_file() {
         facets,
     });
     std::fs::write(dir.path().join("floor.msh"), common::msh22(&floor)).unwrap();
-    let case = r#"
-[mesh]
-file = "block.msh"
-
-[[material]]
-region = "body"
-model = "linear_elastic"
-youngs_modulus = 100.0
-poisson_ratio = 0.3
-
-[[displacement]]
-surface = "xmin"
-x = 0.0
-
-[[displacement]]
-surface = "ymin"
-y = 0.0
-
+    let case = common::SYMMETRIC_BLOCK.to_string()
+        + r#"
 [[pressure]]
 surface = "zmax"
 value = 3.0

@@ -19,25 +19,9 @@ use std::path::Path;
 fn block_case(dir: &Path, kind: ElementKind, obstacle: &str, solver: &str) -> std::path::PathBuf {
     let mesh = box_mesh(kind, [3, 3, 2], [1.0, 1.0, 0.5]);
     std::fs::write(dir.join("block.msh"), msh22(&mesh)).unwrap();
+    let head = common::SYMMETRIC_BLOCK;
     let case = format!(
-        r#"
-[mesh]
-file = "block.msh"
-
-[[material]]
-region = "body"
-model = "linear_elastic"
-youngs_modulus = 100.0
-poisson_ratio = 0.3
-
-[[displacement]]
-surface = "xmin"
-x = 0.0
-
-[[displacement]]
-surface = "ymin"
-y = 0.0
-
+        r#"{head}
 [[displacement]]
 surface = "zmax"
 z = -0.03

@@ -446,25 +446,9 @@ fn mortar_obstacle_through_the_case_file() {
     let mesh = box_mesh(ElementKind::Hex20, [3, 3, 2], [1.0, 1.0, 0.5]);
     std::fs::write(dir.path().join("block.msh"), common::msh22(&mesh)).unwrap();
     let case = |extra: &str| {
+        let head = common::SYMMETRIC_BLOCK;
         format!(
-            r#"
-[mesh]
-file = "block.msh"
-
-[[material]]
-region = "body"
-model = "linear_elastic"
-youngs_modulus = 100.0
-poisson_ratio = 0.3
-
-[[displacement]]
-surface = "xmin"
-x = 0.0
-
-[[displacement]]
-surface = "ymin"
-y = 0.0
-
+            r#"{head}
 [[pressure]]
 surface = "zmax"
 value = 2.0

@@ -793,6 +793,29 @@ pub fn relative_difference(a: &[f64], b: &[f64]) -> f64 {
         / scale
 }
 
+/// The start of a case file for a linear elastic block (`block.msh`, its
+/// region `body`, E = 100, ν = 0.3) held on its symmetry planes x = 0 and
+/// y = 0 (surface sets `xmin`, `ymin`): the tests add its load, obstacle
+/// and contact.
+pub const SYMMETRIC_BLOCK: &str = r#"
+[mesh]
+file = "block.msh"
+
+[[material]]
+region = "body"
+model = "linear_elastic"
+youngs_modulus = 100.0
+poisson_ratio = 0.3
+
+[[displacement]]
+surface = "xmin"
+x = 0.0
+
+[[displacement]]
+surface = "ymin"
+y = 0.0
+"#;
+
 /// A fresh folder holding the tests' cube mesh (`cube.msh`, from
 /// `tests/data/cube_hex_41_ascii.msh`) and `case.toml` with `case`: the
 /// folder (removed when dropped) and the case file's path.

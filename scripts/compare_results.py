@@ -10,14 +10,22 @@ difference; for each profile CSV named (such as `load_axis_shear.csv`),
 the largest difference of `contact_pressure` and `tangential_traction`
 over the largest magnitude in B, and the nodes whose stick/slip status
 differs; and the largest difference of the last VTU's `displacement`
-over the largest displacement in B. Used for issue 32's condensed against
-monolithic Cattaneo–Mindlin (BENCHMARKS.md, session 15). Only the
-standard library is needed (the VTU reader of `compare_examples.py`).
+over the largest displacement in B. A distributed run's last data set
+(`.pvtu`) is read from its pieces, each node through `global_node`.
+
+    --tolerance TOL   exit 1 unless the displacements agree to TOL of the
+                      largest and each interface's force and tangential
+                      force to TOL of the force's length
+
+Used for issue 32's condensed against monolithic Cattaneo–Mindlin
+(BENCHMARKS.md, session 15) and for issue 29's `mpirun -np 2` against
+serial on the examples (`.ci/run`). Only the standard library is needed
+(the VTU reader of `compare_examples.py`).
 """
 
 import csv
-import glob
 import json
+import re
 import pathlib
 import sys
 
@@ -36,15 +44,43 @@ def flat(value, prefix=""):
     return {}
 
 
-def last_displacement(folder):
-    frames = sorted(glob.glob(f"{folder}/*_[0-9][0-9][0-9][0-9].vtu"))
-    return read_point_field(frames[-1], "displacement")
+def last_displacement(folder, summary):
+    """The last increment's displacement, by global node: one `.vtu`, or a
+    `.pvtu`'s pieces through their `global_node` arrays."""
+    name = summary["increments"][-1]["file"]
+    if not name.endswith(".pvtu"):
+        return read_point_field(f"{folder}/{name}", "displacement")
+    whole = {}
+    for piece in re.findall(r'Source="([^"]+)"', open(f"{folder}/{name}").read()):
+        nodes = read_point_field(f"{folder}/{piece}", "global_node")
+        u = read_point_field(f"{folder}/{piece}", "displacement")
+        for k, n in enumerate(nodes):
+            whole[int(n)] = u[3 * k : 3 * k + 3]
+    return [v for n in sorted(whole) for v in whole[n]]
+
+
+def force_differences(ca, cb):
+    """Each interface's largest difference of `force` and
+    `tangential_force` over the length of B's force."""
+    out = {}
+    for name, b in cb.items():
+        a = ca.get(name, {})
+        scale = sum(f * f for f in b["force"]) ** 0.5 or 1.0
+        for key in ["force", "tangential_force"]:
+            out[f"{name}.{key}"] = max(abs(p - q) for p, q in zip(a[key], b[key])) / scale
+    return out
 
 
 def main():
-    if len(sys.argv) < 3:
+    args = sys.argv[1:]
+    tolerance = None
+    if "--tolerance" in args:
+        at = args.index("--tolerance")
+        tolerance = float(args[at + 1])
+        del args[at : at + 2]
+    if len(args) < 2:
         sys.exit(__doc__)
-    a, b, profiles = sys.argv[1], sys.argv[2], sys.argv[3:]
+    a, b, profiles = args[0], args[1], args[2:]
     sa = json.load(open(f"{a}/summary.json"))
     sb = json.load(open(f"{b}/summary.json"))
     times = lambda s: [i["time"] for i in s["increments"]]  # noqa: E731
@@ -64,8 +100,16 @@ def main():
             print(f"{name} {key}: largest difference {max(abs(p - q) for p, q in zip(xa, xb)) / peak:.3g} of the peak")
         differ = [r["node"] for r, s in zip(ra, rb) if r["status"] != s["status"]]
         print(f"{name}: status differs at nodes {differ}")
-    ua, ub = last_displacement(a), last_displacement(b)
-    print(f"displacement: largest difference {max(abs(p - q) for p, q in zip(ua, ub)) / max(abs(v) for v in ub):.3g} of the largest")
+    ua, ub = last_displacement(a, sa), last_displacement(b, sb)
+    if len(ua) != len(ub):
+        sys.exit(f"{a} and {b}: {len(ua) // 3} and {len(ub) // 3} nodes")
+    worst = {"displacement": max(abs(p - q) for p, q in zip(ua, ub)) / max(abs(v) for v in ub)}
+    print(f"displacement: largest difference {worst['displacement']:.3g} of the largest")
+    worst.update(force_differences(sa["increments"][-1]["contact"], sb["increments"][-1]["contact"]))
+    if tolerance is not None:
+        over = {k: v for k, v in worst.items() if not v <= tolerance}
+        print(f"within {tolerance:g}: {'no: ' + repr(over) if over else 'yes'}")
+        sys.exit(1 if over else 0)
 
 
 if __name__ == "__main__":

@@ -87,6 +87,7 @@ fn ironing_mortar_slides_smoothly_at_mu() {
             i.time
         );
     }
+    assert_forces_balance_the_die(&increments);
     let fx: Vec<f64> = steady
         .iter()
         .map(|i| i.reaction_forces["die_top"][0])
@@ -98,4 +99,36 @@ fn ironing_mortar_slides_smoothly_at_mu() {
         100.0 * ripple
     );
     assert!(ripple < 0.01, "F_x ripple {ripple}");
+}
+
+/// After every increment, `summary.json`'s contact forces are the forces
+/// assembled on the nodes: the die's reaction (`Σ (f_int − f_ext)` over
+/// its loaded face, the die itself in equilibrium) equals the slab's
+/// normal and tangential contact force, `force + tangential_force`
+/// (`Σ D_j λ_j n_j + Σ D_j t_T`), and minus the force on the die's arc,
+/// `primary_force`, to 1e-8 of the reaction (the residual tolerance).
+fn assert_forces_balance_the_die(increments: &[IncrementSummary]) {
+    for i in increments.iter().filter(|i| i.time > 0.4) {
+        let reaction = i.reaction_forces["die_top"];
+        let c = &i.contact["ironing"];
+        let primary = c.primary_force.expect("mortar reports the die's force");
+        let size = reaction[0].hypot(reaction[2]);
+        for d in 0..3 {
+            let secondary = c.force[d] + c.tangential_force[d];
+            println!(
+                "t = {:.3} {d}: reaction {:.10} secondary {secondary:.10} primary {:.10}",
+                i.time, reaction[d], primary[d]
+            );
+            assert!(
+                (reaction[d] - secondary).abs() < 1e-8 * size,
+                "t = {}: reaction {reaction:?}, force + tangential_force {secondary}",
+                i.time
+            );
+            assert!(
+                (reaction[d] + primary[d]).abs() < 1e-8 * size,
+                "t = {}: reaction {reaction:?}, primary_force {primary:?}",
+                i.time
+            );
+        }
+    }
 }

@@ -180,7 +180,8 @@ fn patch_test_on_non_matching_quadratic_meshes() {
 /// `discretisation = "mortar"` through the CLI's `run` (the stacked
 /// blocks, Hex8 4 × 4 against 3 × 3, rockafellar, residual tolerance
 /// 1e-13): `summary.json`'s force is P × its area (1e-10), the area the
-/// whole contact surface (1, 1e-12), `contact_pressure` is `λ_j =
+/// whole contact surface (1, 1e-12), `primary_force` minus the force
+/// (1e-10 of P), `contact_pressure` is `λ_j =
 /// P/(1 + νP/E)²` at every secondary node (1e-10 of P); `auto` takes the
 /// monolithic path (the condensed one does not take mortar pairs yet).
 #[test]
@@ -199,6 +200,20 @@ fn mortar_through_the_case_file() {
         (force - P * contact.area).abs() < 1e-10 * P,
         "force {force}"
     );
+    // Newton's third law through M (every secondary face fully covered,
+    // Σ_l M_jl = D_j): the force on the primary surface is minus the
+    // secondary's
+    let primary = contact
+        .primary_force
+        .expect("mortar reports the primary force");
+    for d in 0..3 {
+        let secondary = contact.force[d] + contact.tangential_force[d];
+        assert!(
+            (primary[d] + secondary).abs() < 1e-10 * P,
+            "primary_force {primary:?}, secondary force {:?}",
+            contact.force
+        );
+    }
     let why = signorini::problem::condensed::not_applicable(&run.problem).unwrap();
     assert!(why.contains("mortar"), "{why}");
     let pressure = run.last_field("contact_pressure");

@@ -61,7 +61,7 @@ pub struct NodalContact {
 }
 
 /// The totals of one interface.
-#[derive(Clone, Copy, Debug, Default, PartialEq)]
+#[derive(Clone, Debug, Default, PartialEq)]
 pub struct InterfaceTotals {
     /// `Σ A_s t_N n` on the body.
     pub force: [f64; 3],
@@ -81,6 +81,10 @@ pub struct InterfaceTotals {
     /// `−Σ A_s (t_N n + t_T) w_i` (mortar: [`mortar_primary_force`];
     /// `None` against a rigid obstacle).
     pub primary_force: Option<[f64; 3]>,
+    /// Why contact could not be evaluated on part of the interface at
+    /// this state (mortar: a face pair that cannot be integrated leaves
+    /// every node open, [`MortarSurfaces::integration_failure`](super::mortar_contact::MortarSurfaces::integration_failure)).
+    pub warning: Option<String>,
 }
 
 /// What contact reports of a converged increment.
@@ -129,8 +133,11 @@ impl ContactSet {
                     };
                     sum.primary_force = Some(nodal.add_primary_side(reference, x, c, p, &side));
                 }
-                Primary::Mortar(_) => {
+                Primary::Mortar(m) => {
                     sum.primary_force = Some(mortar_primary_force(c, nodes, states));
+                    sum.warning = m
+                        .integration_failure(reference, x)
+                        .map(|why| format!("contact '{}': {why}", c.name));
                 }
                 Primary::Rigid(_) | Primary::MortarRigid(_) => {}
             }

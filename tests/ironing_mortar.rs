@@ -88,6 +88,7 @@ fn ironing_mortar_slides_smoothly_at_mu() {
         );
     }
     assert_forces_balance_the_die(&increments);
+    assert_newton_iterations(&increments);
     let fx: Vec<f64> = steady
         .iter()
         .map(|i| i.reaction_forces["die_top"][0])
@@ -130,5 +131,37 @@ fn assert_forces_balance_the_die(increments: &[IncrementSummary]) {
                 i.time
             );
         }
+    }
+}
+
+/// Newton per increment on the coarse run: no cut, and at most 7
+/// iterations in every increment, one above the bound of 6, which
+/// two increments exceed (measured 2026-11-27: the press's first contact,
+/// 0.01 apart then pressed 0.28, 7 with 20, 20 and 15 status switches; the
+/// slide at t = 1.3, 7 with 14, 6 and 2; every other increment 4–6). On the
+/// example's own mesh the first slide increment takes 18 (see its README,
+/// "Newton at the stick–slip turn": an open defect). Each increment's
+/// residuals and status switches are printed.
+fn assert_newton_iterations(increments: &[IncrementSummary]) {
+    for i in increments {
+        let residuals: Vec<String> = i.residuals.iter().map(|r| format!("{r:.1e}")).collect();
+        println!(
+            "{} t = {:.3}: {} iterations, residuals {}, switched {:?}",
+            i.step_name,
+            i.time,
+            i.iterations,
+            residuals.join(" "),
+            i.switched
+        );
+    }
+    for i in increments {
+        assert!(
+            i.cuts == 0 && i.iterations <= 7,
+            "{} t = {}: {} iterations, {} cuts",
+            i.step_name,
+            i.time,
+            i.iterations,
+            i.cuts
+        );
     }
 }

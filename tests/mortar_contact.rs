@@ -337,7 +337,10 @@ fn a_face_pair_that_cannot_be_integrated_is_reported() {
     x[3 * edge] = 0.5;
     x[3 * edge + 1] = -0.5;
     let folded = totals(&x);
-    let warning = folded.warning.clone().expect("a warning on the folded face");
+    let warning = folded
+        .warning
+        .clone()
+        .expect("a warning on the folded face");
     println!("{warning}");
     assert!(
         warning.contains("contact 'upper.zmin'")

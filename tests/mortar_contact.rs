@@ -17,7 +17,7 @@ use common::{
     assert_case_error, problem, run, stacked_blocks_case, support_stacked_blocks, two_bodies,
     write_stacked_blocks_case, CaseRun,
 };
-use signorini::contact::interface::ContactInterface;
+use signorini::contact::interface::{ContactContext, ContactInterface};
 use signorini::contact::laws::NormalLaw;
 use signorini::material::LinearElastic;
 use signorini::mesh::{structured::box_mesh, ElementKind, Mesh};
@@ -180,7 +180,8 @@ fn patch_test_on_non_matching_quadratic_meshes() {
 /// `discretisation = "mortar"` through the CLI's `run` (the stacked
 /// blocks, Hex8 4 × 4 against 3 × 3, rockafellar, residual tolerance
 /// 1e-13): `summary.json`'s force is P × its area (1e-10), the area the
-/// whole contact surface (1, 1e-12), `contact_pressure` is `λ_j =
+/// whole contact surface (1, 1e-12), `primary_force` minus the force
+/// (1e-10 of P), `contact_pressure` is `λ_j =
 /// P/(1 + νP/E)²` at every secondary node (1e-10 of P); `auto` takes the
 /// monolithic path (the condensed one does not take mortar pairs yet).
 #[test]
@@ -199,6 +200,20 @@ fn mortar_through_the_case_file() {
         (force - P * contact.area).abs() < 1e-10 * P,
         "force {force}"
     );
+    // Newton's third law through M (every secondary face fully covered,
+    // Σ_l M_jl = D_j): the force on the primary surface is minus the
+    // secondary's
+    let primary = contact
+        .primary_force
+        .expect("mortar reports the primary force");
+    for d in 0..3 {
+        let secondary = contact.force[d] + contact.tangential_force[d];
+        assert!(
+            (primary[d] + secondary).abs() < 1e-10 * P,
+            "primary_force {primary:?}, secondary force {:?}",
+            contact.force
+        );
+    }
     let why = signorini::problem::condensed::not_applicable(&run.problem).unwrap();
     assert!(why.contains("mortar"), "{why}");
     let pressure = run.last_field("contact_pressure");
@@ -265,4 +280,80 @@ fn patch_test_with_every_law() {
         assert!(p <= 1e-10, "{name}: pressure error {p:e}");
         assert!(s <= 1e-10, "{name}: stress error {s:e}");
     }
+}
+
+/// A face pair the mortar kernels cannot integrate leaves every node of
+/// the interface open (`MortarSurfaces::covered_rows`); the report says
+/// so, as `summary.json`'s `warning` of the interface (which the log
+/// prints as a `warning:` line), instead of an open interface without a
+/// word. One secondary face of the stacked blocks is collapsed onto a
+/// line (zero area: its integrals are NaN, which leave its nodes open;
+/// 3 of its 4 measured): the warning names the interface, the failure and
+/// how many nodes are left open, some of the face's 4, and at least that
+/// many are no longer closed; in the pressed state before, every node is
+/// closed and there is none.
+#[test]
+fn a_face_pair_that_cannot_be_integrated_is_reported() {
+    let pr = stacked(
+        blocks(ElementKind::Hex8, 3, 2),
+        "upper.zmin",
+        "lower.zmax",
+        rockafellar(),
+    );
+    let mesh = &pr.model.mesh;
+    let secondary = mesh.surface_nodes(mesh.surface("upper.zmin").unwrap());
+    let at = |x: f64, y: f64| {
+        (secondary.iter().copied())
+            .find(|&n| mesh.nodes[n][0] == x && mesh.nodes[n][1] == y)
+            .expect("a node of the upper bottom")
+    };
+    let totals = |x: &[f64]| {
+        let state = pr.initial_contact_state(x);
+        let ctx = ContactContext {
+            reference: &mesh.nodes,
+            t: 1.0,
+            x,
+            first_multiplier: pr.model.num_dofs(),
+        };
+        let mut residual = vec![0.0; pr.num_unknowns()];
+        let interface = pr.contacts.interface(0);
+        let reports = interface.assemble(&ctx, &state.interfaces[0], &mut residual, None);
+        let report = pr
+            .contacts
+            .report(&mesh.nodes, x, &state, &state, vec![reports]);
+        report.totals[0].1.clone()
+    };
+    // pressed in by 1e-3: every node closed
+    let mut x = vec![0.0; pr.num_unknowns()];
+    secondary.iter().for_each(|&n| x[3 * n + 2] = -1e-3);
+    let pressed = totals(&x);
+    assert!(pressed.warning.is_none(), "{:?}", pressed.warning);
+    assert_eq!(pressed.closed_nodes, secondary.len());
+    // the corner face's nodes (0, 0), (0.5, 0), (0.5, 0.5), (0, 0.5) put on
+    // the line x = 0.5: (0, 0) onto (0.5, 0.5), (0, 0.5) onto (0.5, 0)
+    let (corner, edge) = (at(0.0, 0.0), at(0.0, 0.5));
+    x[3 * corner] = 0.5;
+    x[3 * corner + 1] = 0.5;
+    x[3 * edge] = 0.5;
+    x[3 * edge + 1] = -0.5;
+    let folded = totals(&x);
+    let warning = folded
+        .warning
+        .clone()
+        .expect("a warning on the folded face");
+    println!("{warning}");
+    assert!(
+        warning.contains("contact 'upper.zmin'")
+            && warning.contains("not finite")
+            && warning.contains("left open"),
+        "{warning}"
+    );
+    // the nodes named are among the face's 4, and they are open (the
+    // distorted neighbouring face may open more: 5 of 9 closed measured)
+    let open: usize = (warning.split("integrals of ").nth(1))
+        .and_then(|w| w.split(' ').next())
+        .and_then(|n| n.parse().ok())
+        .expect("the count of nodes left open");
+    assert!((1..=4).contains(&open), "{warning}");
+    assert!(folded.closed_nodes <= secondary.len() - open, "{folded:?}");
 }

@@ -122,6 +122,11 @@ pub struct NodeReport {
     /// The primary nodes the node's reaction acts on, with their weights
     /// (deformable interfaces only: [`GapKinematics::primary`]).
     pub primary: PrimaryWeights,
+    /// The area the node's forces act on where the producer integrates
+    /// its own ([`GapKinematics::area`]; mortar: the current `D_j`), so
+    /// that `area t_T` is the tangential force assembled; `None` where it
+    /// is the interface's `areas[i]`.
+    pub area: Option<f64>,
 }
 
 /// Where the contact operations are evaluated: the mesh's reference
@@ -562,6 +567,7 @@ impl ContactInterface {
                     tangential_traction: t.traction.into(),
                     facet: e.kinematics.facet,
                     primary: e.kinematics.primary,
+                    area: e.kinematics.area,
                 });
             });
         });

@@ -391,6 +391,38 @@ impl MortarSurfaces {
         )
     }
 
+    /// What leaves secondary nodes open at unknowns `x` because their
+    /// face pairs cannot be integrated ([`covered_rows`](Self::covered_rows)
+    /// filters them out without a word), for the report's warning: a face
+    /// the kernels refuse ([`mortar_row_values`]' error: a degenerate face,
+    /// a projection that fails) leaves every node of the interface open; a
+    /// face whose integrals are not finite (one folded onto a line has no
+    /// normal: NaN, not an error) leaves its nodes open. `None` where every
+    /// row is finite.
+    pub fn integration_failure(&self, reference: &[[f64; 3]], x: &[f64]) -> Option<String> {
+        let rows = match self.row_values(reference, x) {
+            Err(e) => {
+                let n = self.node_faces.len();
+                return Some(format!(
+                    "a mortar face pair cannot be integrated ({e}); all {n} secondary \
+                     nodes of the interface are left open, with no contact force"
+                ));
+            }
+            Ok(rows) => rows,
+        };
+        let finite = |r: &RowValues| {
+            r.d.is_finite() && r.weighted_gap.is_finite() && r.m.iter().all(|m| m.1.is_finite())
+        };
+        let bad = rows.iter().filter(|r| !finite(r)).count();
+        (bad > 0).then(|| {
+            format!(
+                "the mortar integrals of {bad} secondary nodes are not finite (a degenerate \
+                 face, e.g. one folded onto a line); those nodes are left open, with no \
+                 contact force"
+            )
+        })
+    }
+
     /// The candidate (secondary face, primary face) pairs.
     pub fn pairs(&self) -> Vec<(usize, usize)> {
         self.candidates
@@ -489,7 +521,8 @@ impl MortarSurfaces {
 
     /// Every covered node's row at `coordinates`: `D_j ≥ ½ ∫ Ñ_j dA` over
     /// its faces (see the module docs, "Search"). A face the kernels cannot
-    /// integrate leaves every node open.
+    /// integrate leaves every node open (the report warns:
+    /// [`integration_failure`](Self::integration_failure)).
     fn covered_rows(&self, coordinates: &[Vector3<f64>]) -> MortarRows {
         let rows = mortar_rows(
             &self.secondary_faces,

@@ -8,6 +8,12 @@
 //!   its whole tributary area ([`ContactInterface::report_areas`]; a
 //!   two-pass interface assembles on half of it) for the pressure and the
 //!   traction; its own gap, status and slip.
+//! - **Mortar totals**: `force` and `tangential_force` are the forces as
+//!   assembled, `Σ D_j λ_j n_j` and `Σ D_j t_T` on the current `D_j`
+//!   ([`NodeReport::area`]; the nodal fields keep the reference areas), and
+//!   `primary_force` their counterpart through `M`
+//!   ([`mortar_primary_force`]); the primary surface's nodal fields are
+//!   not filled.
 //! - **Primary nodes** (deformable interfaces): each secondary node's force
 //!   `A_s (t_N n + t_T)` goes, opposite, to the primary nodes of its
 //!   reaction with the weights `w_i` of [`report_weights`], divided by the
@@ -55,11 +61,12 @@ pub struct NodalContact {
 }
 
 /// The totals of one interface.
-#[derive(Clone, Copy, Debug, Default, PartialEq)]
+#[derive(Clone, Debug, Default, PartialEq)]
 pub struct InterfaceTotals {
     /// `Σ A_s t_N n` on the body.
     pub force: [f64; 3],
-    /// `Σ A_s t_T` on the body.
+    /// `Σ A_s t_T` on the body (mortar: `Σ D_j t_T`, the current `D_j`
+    /// the force is assembled on, [`NodeReport::area`]).
     pub tangential_force: [f64; 3],
     /// Closed nodes that stick (every closed node without friction) and
     /// that slip.
@@ -71,8 +78,13 @@ pub struct InterfaceTotals {
     /// `max(0, −g)` over the secondary nodes.
     pub largest_penetration: f64,
     /// The total force on a deformable primary surface,
-    /// `−Σ A_s (t_N n + t_T) w_i` (`None` against a rigid obstacle).
+    /// `−Σ A_s (t_N n + t_T) w_i` (mortar: [`mortar_primary_force`];
+    /// `None` against a rigid obstacle).
     pub primary_force: Option<[f64; 3]>,
+    /// Why contact could not be evaluated on part of the interface at
+    /// this state (mortar: a face pair that cannot be integrated leaves
+    /// every node open, [`MortarSurfaces::integration_failure`](super::mortar_contact::MortarSurfaces::integration_failure)).
+    pub warning: Option<String>,
 }
 
 /// What contact reports of a converged increment.
@@ -112,13 +124,22 @@ impl ContactSet {
             let before = previous.interfaces.get(i).map(Vec::as_slice);
             let increments = slip_increments(states, before);
             let mut sum = nodal.add_secondary_side(c, nodes, states, &increments);
-            if let Primary::Surface(p) = &c.primary {
-                let side = SecondarySide {
-                    states,
-                    increments: &increments,
-                    reports: nodes,
-                };
-                sum.primary_force = Some(nodal.add_primary_side(reference, x, c, p, &side));
+            match &c.primary {
+                Primary::Surface(p) => {
+                    let side = SecondarySide {
+                        states,
+                        increments: &increments,
+                        reports: nodes,
+                    };
+                    sum.primary_force = Some(nodal.add_primary_side(reference, x, c, p, &side));
+                }
+                Primary::Mortar(m) => {
+                    sum.primary_force = Some(mortar_primary_force(c, nodes, states));
+                    sum.warning = m
+                        .integration_failure(reference, x)
+                        .map(|why| format!("contact '{}': {why}", c.name));
+                }
+                Primary::Rigid(_) | Primary::MortarRigid(_) => {}
             }
             totals.push((c.name.clone(), sum));
         }
@@ -129,6 +150,28 @@ impl ContactSet {
             nodes: reports,
         }
     }
+}
+
+/// The total force on a mortar interface's primary surface: each
+/// secondary node `j`'s forces as assembled on the primary nodes `l`,
+/// `−(M_jl/D_j) (D_j λ_j n_j + D_j t_T,j)` (the weights `M_jl/D_j` of its
+/// report, unclamped; the committed traction as on the secondary side),
+/// summed. It is minus the secondary side's `force + tangential_force`
+/// where every closed node is fully covered, `Σ_l M_jl = D_j` (Newton's
+/// third law through `M`; a node only partly over the primary surface
+/// has `Σ_l M_jl < D_j`).
+fn mortar_primary_force(
+    c: &ContactInterface,
+    reports: &[NodeReport],
+    states: &[NodeContactState],
+) -> [f64; 3] {
+    let mut total = Vector3::zeros();
+    for (k, (r, state)) in reports.iter().zip(states).enumerate() {
+        let weight: f64 = r.primary.iter().map(|(_, w)| w).sum();
+        let area = r.area.unwrap_or(c.areas[k]);
+        total -= (Vector3::from(r.force) + area * state.friction.traction) * weight;
+    }
+    total.into()
 }
 
 /// Each node's slip of this increment, the accumulated slip in `states`
@@ -188,6 +231,8 @@ impl NodalContact {
         let mut sum = InterfaceTotals::default();
         for (k, (r, state)) in reports.iter_mut().zip(states).enumerate() {
             let (s, area, increment) = (c.nodes[k], c.areas[k], increments[k]);
+            // the area the assembled tangential force acts on (mortar: D_j)
+            let applied = r.area.unwrap_or(area);
             let history = &state.friction;
             r.status = history.status;
             r.tangential_traction = history.traction.into();
@@ -198,7 +243,7 @@ impl NodalContact {
             self.status[s] = self.status[s].max(history.status.code() as f64);
             for d in 0..3 {
                 sum.force[d] += r.force[d];
-                sum.tangential_force[d] += area * history.traction[d];
+                sum.tangential_force[d] += applied * history.traction[d];
                 // a force here, a traction once every pass has added its share
                 self.traction[3 * s + d] += r.force[d] + area * history.traction[d];
                 self.slip[3 * s + d] = history.slip[d];

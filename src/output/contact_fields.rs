@@ -68,5 +68,6 @@ fn summary(t: &InterfaceTotals) -> InterfaceSummary {
         closed_nodes: t.closed_nodes,
         largest_penetration: t.largest_penetration,
         primary_force: t.primary_force,
+        warning: t.warning.clone(),
     }
 }

@@ -123,6 +123,9 @@ impl StepObserver for LogWriter {
                 c.tangential_force[0], c.tangential_force[1], c.tangential_force[2],
                 c.closed_nodes, c.stick_nodes, c.slip_nodes, c.largest_penetration
             ));
+            if let Some(warning) = &c.warning {
+                self.line(&format!("  warning: {warning}"));
+            }
         }
         Ok(())
     }

@@ -86,6 +86,11 @@ pub struct InterfaceSummary {
     /// tangential_force`: action and reaction); absent for a rigid obstacle.
     #[serde(skip_serializing_if = "Option::is_none")]
     pub primary_force: Option<[f64; 3]>,
+    /// A note where contact could not be evaluated on part of the
+    /// interface (a mortar face pair that cannot be integrated leaves every
+    /// node open); the log prints it as a `warning:` line.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub warning: Option<String>,
 }
 
 /// Totals of one load step over its converged increments.

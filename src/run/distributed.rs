@@ -233,6 +233,7 @@ impl Distribution {
             })?;
         problem.set_share(Share {
             owned: partition.owned_elements(rank),
+            own_nodes: partition.node_part.iter().map(|&p| p == rank).collect(),
             communicator: world.clone(),
         });
         Ok(Some(Distribution {

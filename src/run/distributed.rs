@@ -236,6 +236,7 @@ impl Distribution {
             own_nodes: partition.node_part.iter().map(|&p| p == rank).collect(),
             communicator: world.clone(),
         });
+        crate::solve::petsc::distributed::release_freed_memory();
         Ok(Some(Distribution {
             rank,
             partition,

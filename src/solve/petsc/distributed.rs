@@ -40,6 +40,7 @@ mod ffi {
             len: usize,
         ) -> c_int;
         pub fn sg_mpi_sum(v: *mut f64, n: usize, err: *mut c_char, len: usize) -> c_int;
+        pub fn sg_release_freed_memory();
         pub fn sg_petsc_mpi_solver_new(
             out: *mut *mut c_void,
             options: *const c_char,
@@ -148,6 +149,16 @@ impl Communicator for MpiWorld {
             super::fault::fault(&message(&err));
         }
     }
+}
+
+/// Give the pages of memory freed so far back to the system (glibc's
+/// `malloc_trim`; nothing elsewhere): after a distributed run's set-up
+/// (each process's share of the model), the other processes' element
+/// geometry and the whole element graph, freed in small pieces, would
+/// otherwise stay resident.
+pub fn release_freed_memory() {
+    // SAFETY: no arguments; malloc_trim only returns free pages
+    unsafe { ffi::sg_release_freed_memory() };
 }
 
 /// The numbering of PETSc's rows: displacement dofs part after part,

@@ -103,13 +103,31 @@ impl Model {
         element_material: Vec<usize>,
         on_graph: impl FnOnce(&NodeGraph) + Send,
     ) -> Result<Self, ElementFailure> {
+        Self::with_graph_of(mesh, materials, element_material, on_graph, true)
+    }
+
+    /// [`Self::with_graph`]; without `elements`, the pattern (and the
+    /// graph handed on) holds each node's diagonal block only: a process
+    /// of a distributed run, whose pattern is made when the partition is
+    /// known ([`Model::set_share_with_local_rows`]), so that no process
+    /// ever holds the whole one.
+    pub fn with_graph_of(
+        mesh: Arc<Mesh>,
+        materials: Vec<Arc<dyn Material>>,
+        element_material: Vec<usize>,
+        on_graph: impl FnOnce(&NodeGraph) + Send,
+        elements: bool,
+    ) -> Result<Self, ElementFailure> {
         // the elements' graph first (the ordering waits for it), beside
         // the geometry
         let (pattern, geometry) = rayon::join(
             || {
                 let graph = NodeGraph::of_elements(
                     mesh.num_nodes(),
-                    mesh.elements.iter().map(|e| e.nodes.as_slice()),
+                    mesh.elements
+                        .iter()
+                        .filter(|_| elements)
+                        .map(|e| e.nodes.as_slice()),
                 );
                 on_graph(&graph);
                 SparsityPattern::from_graph(&graph)

@@ -685,21 +685,23 @@ name = "block"
         );
     }
 
+    /// The serial (faer) run of `case` and its 2-process MUMPS run, in
+    /// `dir`: equal to 1e-8 after the same Newton iterations
+    /// ([`assert_same`]); the distributed run's outcome.
+    fn assert_mumps_as_serial(case: &Path, dir: &Path, what: &str) -> Distributed {
+        let faer = serial(case, &dir.join("serial"));
+        let mumps = run_distributed(case, &dir.join("mpi"), &[]);
+        assert_same(&faer, &mumps, 1e-8, true, what);
+        mumps
+    }
+
     #[test]
     fn two_processes_give_the_serial_answer_without_friction() {
         let dir = tempfile::tempdir().unwrap();
         // Newton's own start in both runs: `auto` takes the contact
         // predictor in a serial run only, in other iterations
         let case = block_case(dir.path(), false, "", "predictor = \"none\"");
-        let faer = serial(&case, &dir.path().join("serial"));
-        let mumps = run_distributed(&case, &dir.path().join("mpi"), &[]);
-        assert_same(
-            &faer,
-            &mumps,
-            1e-8,
-            true,
-            "frictionless, MUMPS on 2 processes",
-        );
+        let mumps = assert_mumps_as_serial(&case, dir.path(), "frictionless, MUMPS on 2 processes");
         assert!(mumps.log.contains("distributed over 2 processes"));
         assert_parallel_partition(&mumps.log);
         // GAMG on the penalty method (no multiplier unknowns: block size 3
@@ -744,15 +746,8 @@ name = "block"
         let text = text.replacen("value = 10.0\n", "value = 10.0\nfollower = true\n", 1);
         assert!(text.contains("follower = true"), "{text}");
         std::fs::write(&case, text).unwrap();
-        let faer = serial(&case, &dir.path().join("serial"));
-        let mumps = run_distributed(&case, &dir.path().join("mpi"), &[]);
-        assert_same(
-            &faer,
-            &mumps,
-            1e-8,
-            true,
-            "follower pressure, MUMPS on 2 processes",
-        );
+        let what = "follower pressure, MUMPS on 2 processes";
+        assert_mumps_as_serial(&case, dir.path(), what);
     }
 
     /// The largest penetration of interface `base` over the increments

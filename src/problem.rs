@@ -284,18 +284,13 @@ impl Problem {
 
     /// A distributed run: assemble only `share`'s elements, on a pattern
     /// of this process's rows ([`Model::set_share_with_local_rows`]) with
-    /// the contact couplings (on every process: the contact set is
-    /// replicated) and, on the lead, which adds the loads' tangent, the
-    /// faces of the follower pressures.
+    /// the contact couplings and the faces of the follower pressures (on
+    /// every process: each adds their tangent in the rows it owns).
     pub fn set_share(&mut self, share: crate::assembly::share::Share) {
-        let faces: Vec<Vec<usize>> = if share.is_lead() {
-            let followers = self.pressures.iter().filter(|p| p.follower);
-            followers
-                .flat_map(|p| p.facets.iter().map(|f| f.nodes.clone()))
-                .collect()
-        } else {
-            Vec::new()
-        };
+        let followers = self.pressures.iter().filter(|p| p.follower);
+        let faces: Vec<Vec<usize>> = followers
+            .flat_map(|p| p.facets.iter().map(|f| f.nodes.clone()))
+            .collect();
         self.model.set_share_with_local_rows(share, &faces);
         self.rebuild_pattern();
     }
@@ -433,9 +428,9 @@ impl Problem {
         let start = std::time::Instant::now();
         let pattern = &self.model.pattern;
         // distributed (`mpirun`): every process holds the whole internal
-        // force and computes contact and loads alike; only the lead adds
-        // their tangent to its part of K
-        let mut tangent = tangent.filter(|_| self.model.is_lead());
+        // force and computes contact and loads alike, and adds their
+        // tangent to its part of K in the rows it owns only
+        let foreign = tangent.as_deref().map(|k| self.model.foreign_entries(k));
         let reports = self.contacts.assemble(
             &self.contact_context(t, x),
             contact,
@@ -445,7 +440,10 @@ impl Problem {
         PhaseTimings::add(&self.timings.contact_ns, start);
         let start = std::time::Instant::now();
         let internal_norm = norm(&r);
-        let f_ext = self.external_force(t, x, tangent);
+        let f_ext = self.external_force(t, x, tangent.as_deref_mut());
+        if let (Some(k), Some(foreign)) = (tangent, foreign) {
+            self.model.restore_entries(k, &foreign);
+        }
         PhaseTimings::add(&self.timings.assembly_ns, start);
         for (ri, fi) in r.iter_mut().zip(&f_ext) {
             *ri -= fi;

@@ -141,14 +141,23 @@ pub struct Simulation {
 /// [`Simulation::from_case`] and `signorini check` both build it here, so
 /// that the check describes the model the run solves.
 pub fn problem_as_run(case: &Case) -> Result<(Problem, condensed::Choice)> {
-    problem_as_run_noted(case).map(|(problem, strategy, _)| (problem, strategy))
+    problem_as_run_noted(case, true).map(|(problem, strategy, _)| (problem, strategy))
 }
 
 /// [`problem_as_run`], and the notes for the log on what the run changed
 /// of the case's model (exact stick's multipliers on PETSc,
-/// [`distributed::friction_multipliers_for_petsc`]).
-fn problem_as_run_noted(case: &Case) -> Result<(Problem, condensed::Choice, Vec<String>)> {
-    let mut problem = case.build_problem()?;
+/// [`distributed::friction_multipliers_for_petsc`]). Without
+/// `whole_pattern` (a process of a distributed run) the pattern waits for
+/// the partition ([`Case::build_distributed_problem`]).
+fn problem_as_run_noted(
+    case: &Case,
+    whole_pattern: bool,
+) -> Result<(Problem, condensed::Choice, Vec<String>)> {
+    let mut problem = if whole_pattern {
+        case.build_problem()?
+    } else {
+        case.build_distributed_problem()?
+    };
     let strategy = condensed::choose(&problem).map_err(|message| Error::Case {
         path: case.path.clone(),
         message,
@@ -164,7 +173,10 @@ fn problem_as_run_noted(case: &Case) -> Result<(Problem, condensed::Choice, Vec<
 impl Simulation {
     /// From a case: builds the problem and validates the output requests.
     pub fn from_case(case: &Case) -> Result<Self> {
-        let (problem, strategy, run_notes) = problem_as_run_noted(case)?;
+        // under mpirun (a build with PETSc, which gives every process its
+        // share before the run starts): no whole pattern
+        let distributed = cfg!(feature = "petsc") && launched_processes().is_some();
+        let (problem, strategy, run_notes) = problem_as_run_noted(case, !distributed)?;
         let requests = case.output_requests(&problem)?;
         let (nodal_fields, cell_fields) = case.output_fields();
         let every = case.output_every()?;

@@ -647,10 +647,12 @@ name = "block"
     /// penalty contact on a rigid plane: no multipliers, no couplings
     /// beyond the elements) holds only its share of the tangent: at most
     /// its own rows, its ghost rows and the 3 × 3 diagonal block of each
-    /// other node, and at most 0.6 of the whole pattern (the own rows of
+    /// other node, and at most 0.55 of the whole pattern (the own rows of
     /// both processes, which make the whole once: a count that fails if a
-    /// row is lost or counted twice), as do its own and ghost rows
-    /// themselves. The residual is still whole (every dof).
+    /// row is lost or counted twice; measured 11 187 of 20 475, 0.546);
+    /// its own and ghost rows, whole as the partition counts them, at
+    /// most 0.6 (measured 0.560). The residual is still whole (every
+    /// dof).
     fn assert_rows_measured(log: &str) {
         let rows = rows_held(log);
         assert_eq!(rows.len(), 2, "{log}");
@@ -667,7 +669,7 @@ name = "block"
             );
             assert_eq!(dofs, 3 * 135);
             assert!(held <= own + ghost + 9 * others, "{r:?}");
-            assert!(held as f64 <= 0.6 * whole as f64, "{r:?} of {whole}");
+            assert!(held as f64 <= 0.55 * whole as f64, "{r:?} of {whole}");
             assert!(
                 (own + ghost) as f64 <= 0.6 * whole as f64,
                 "{r:?} of {whole}"
@@ -683,21 +685,23 @@ name = "block"
         );
     }
 
+    /// The serial (faer) run of `case` and its 2-process MUMPS run, in
+    /// `dir`: equal to 1e-8 after the same Newton iterations
+    /// ([`assert_same`]); the distributed run's outcome.
+    fn assert_mumps_as_serial(case: &Path, dir: &Path, what: &str) -> Distributed {
+        let faer = serial(case, &dir.join("serial"));
+        let mumps = run_distributed(case, &dir.join("mpi"), &[]);
+        assert_same(&faer, &mumps, 1e-8, true, what);
+        mumps
+    }
+
     #[test]
     fn two_processes_give_the_serial_answer_without_friction() {
         let dir = tempfile::tempdir().unwrap();
         // Newton's own start in both runs: `auto` takes the contact
         // predictor in a serial run only, in other iterations
         let case = block_case(dir.path(), false, "", "predictor = \"none\"");
-        let faer = serial(&case, &dir.path().join("serial"));
-        let mumps = run_distributed(&case, &dir.path().join("mpi"), &[]);
-        assert_same(
-            &faer,
-            &mumps,
-            1e-8,
-            true,
-            "frictionless, MUMPS on 2 processes",
-        );
+        let mumps = assert_mumps_as_serial(&case, dir.path(), "frictionless, MUMPS on 2 processes");
         assert!(mumps.log.contains("distributed over 2 processes"));
         assert_parallel_partition(&mumps.log);
         // GAMG on the penalty method (no multiplier unknowns: block size 3
@@ -726,6 +730,24 @@ name = "block"
         );
         assert!(gamg.log.contains("pc gamg"), "{}", gamg.log);
         assert_rows_measured(&gamg.log);
+    }
+
+    /// A follower pressure on the top (its load stiffness, nonsymmetric,
+    /// couples each face's nodes) and the multipliers of the default
+    /// Rockafellar contact: each process adds the load's and the
+    /// contact's tangent in the rows it owns only (the last process the
+    /// multipliers' rows), and the 2-process MUMPS run equals the serial
+    /// faer one to 1e-8, increment for increment.
+    #[test]
+    fn two_processes_give_the_serial_answer_with_a_follower_pressure() {
+        let dir = tempfile::tempdir().unwrap();
+        let case = block_case(dir.path(), false, "", "predictor = \"none\"");
+        let text = std::fs::read_to_string(&case).unwrap();
+        let text = text.replacen("value = 10.0\n", "value = 10.0\nfollower = true\n", 1);
+        assert!(text.contains("follower = true"), "{text}");
+        std::fs::write(&case, text).unwrap();
+        let what = "follower pressure, MUMPS on 2 processes";
+        assert_mumps_as_serial(&case, dir.path(), what);
     }
 
     /// The largest penetration of interface `base` over the increments

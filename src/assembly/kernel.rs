@@ -27,6 +27,7 @@ pub enum KernelFailure {
 }
 
 /// Reference gradients `∂N_a/∂X` at one quadrature point and `det(∂X/∂ξ)·w`.
+#[derive(Clone)]
 pub struct PointGeometry {
     pub gradients: Vec<Vector3<f64>>,
     pub dv: f64,

@@ -103,13 +103,31 @@ impl Model {
         element_material: Vec<usize>,
         on_graph: impl FnOnce(&NodeGraph) + Send,
     ) -> Result<Self, ElementFailure> {
+        Self::with_graph_of(mesh, materials, element_material, on_graph, true)
+    }
+
+    /// [`Self::with_graph`]; without `elements`, the pattern (and the
+    /// graph handed on) holds each node's diagonal block only: a process
+    /// of a distributed run, whose pattern is made when the partition is
+    /// known ([`Model::set_share_with_local_rows`]), so that no process
+    /// ever holds the whole one.
+    pub fn with_graph_of(
+        mesh: Arc<Mesh>,
+        materials: Vec<Arc<dyn Material>>,
+        element_material: Vec<usize>,
+        on_graph: impl FnOnce(&NodeGraph) + Send,
+        elements: bool,
+    ) -> Result<Self, ElementFailure> {
         // the elements' graph first (the ordering waits for it), beside
         // the geometry
         let (pattern, geometry) = rayon::join(
             || {
                 let graph = NodeGraph::of_elements(
                     mesh.num_nodes(),
-                    mesh.elements.iter().map(|e| e.nodes.as_slice()),
+                    mesh.elements
+                        .iter()
+                        .filter(|_| elements)
+                        .map(|e| e.nodes.as_slice()),
                 );
                 on_graph(&graph);
                 SparsityPattern::from_graph(&graph)
@@ -192,9 +210,8 @@ impl Model {
         self.share.as_ref()
     }
 
-    /// Whether this process adds the contributions that are not an
-    /// element's (contact, loads) to the tangent: always without a share,
-    /// the lead process with one.
+    /// Whether this process is the lead (rank 0, which writes the run's
+    /// files): always without a share.
     pub fn is_lead(&self) -> bool {
         self.share.as_ref().is_none_or(Share::is_lead)
     }
@@ -564,7 +581,7 @@ impl Model {
             .map(|e| {
                 self.with_element_displacements(e, u, |d| {
                     kernel::element_cauchy_stress(
-                        &self.geometry[e],
+                        &self.geometry_of(e),
                         d,
                         self.materials[self.element_material[e]].as_ref(),
                     )
@@ -582,7 +599,7 @@ impl Model {
             .map(|e| {
                 self.with_element_displacements(e, u, |displacements| {
                     let (mut sum, mut volume) = (Mat3::zeros(), 0.0);
-                    for p in &self.geometry[e] {
+                    for p in self.geometry_of(e).iter() {
                         let f = kernel::deformation_gradient(&p.gradients, displacements);
                         sum += g(&f) * p.dv;
                         volume += p.dv;
@@ -595,9 +612,8 @@ impl Model {
 
     /// Reference volume of every element.
     pub fn element_volumes(&self) -> Vec<f64> {
-        self.geometry
-            .iter()
-            .map(|g| g.iter().map(|p| p.dv).sum())
+        (0..self.geometry.len())
+            .map(|e| self.geometry_of(e).iter().map(|p| p.dv).sum())
             .collect()
     }
 
@@ -608,7 +624,7 @@ impl Model {
         for &e in elements {
             let el = &self.mesh.elements[e];
             let r = crate::fem::volume_reference(el.kind);
-            for (q, p) in self.geometry[e].iter().enumerate() {
+            for (q, p) in self.geometry_of(e).iter().enumerate() {
                 for (a, &n) in el.nodes.iter().enumerate() {
                     w[n] += r.values[q][a] * p.dv;
                 }
@@ -957,8 +973,10 @@ mod tests {
                     rank,
                     other: Mutex::new(other),
                 });
+                let nn = m.mesh.num_nodes();
                 m.set_share(Share {
                     owned: (0..ne).map(|e| e % 2 == rank).collect(),
+                    own_nodes: (0..nn).map(|n| n % 2 == rank).collect(),
                     communicator,
                 });
                 m
@@ -992,6 +1010,7 @@ mod tests {
         );
         m.set_share(Share {
             owned: (0..ne).map(|e| e % 2 == 0).collect(),
+            own_nodes: vec![true; m.mesh.num_nodes()],
             communicator: Arc::new(OtherProcess {
                 rank: 0,
                 other: Mutex::new(vec![vec![0.0; 3 * m.mesh.num_nodes()], failure]),

@@ -3,7 +3,9 @@
 //! processes assemble apart.
 //!
 //! Every process holds the whole mesh and the unknowns; it evaluates only
-//! its own elements, and its sparsity pattern holds only their entries
+//! its own elements, keeps the reference geometry of those only
+//! ([`Model::geometry_of`] makes the others' again where output asks),
+//! and its sparsity pattern holds only their entries
 //! ([`Model::set_share_with_local_rows`]): the rows of its own nodes and of
 //! the ghost nodes its elements touch, each restricted to the columns its
 //! elements couple, plus the diagonal block of every other node (9 entries
@@ -16,9 +18,20 @@
 //! each process's part, `K = Σ_p K^p`, and the distributed linear solver
 //! adds the parts in its matrix. Products with the tangent are completed
 //! the same way: `K v = Σ_p K^p v`.
+//!
+//! What is not an element's (contact, follower loads) every process
+//! evaluates alike, but adds to its part of the tangent only in the rows
+//! it owns ([`Share::owns_row`]: the rows of its nodes, and the
+//! multipliers' on the last process, as the distributed solver numbers
+//! them): `K = Σ_p (K_e^p + P_p K_c)` with `P_p` the projection on process
+//! `p`'s rows, `Σ_p P_p = I`. So each contact row is added once, by its
+//! owner, and no process gives the solver rows it neither owns nor
+//! touches ([`Model::foreign_entries`], [`Model::restore_entries`]).
 
+use super::kernel::{self, PointGeometry};
 use super::pattern::{NodeGraph, SparsityPattern};
 use super::Model;
+use std::borrow::Cow;
 use std::sync::Arc;
 
 /// The processes of a distributed run (MPI's world, through PETSc).
@@ -31,19 +44,33 @@ pub trait Communicator: Send + Sync {
     fn sum(&self, v: &mut [f64]);
 }
 
-/// The elements this process assembles and its communicator.
+/// The elements this process assembles, the nodes whose rows it owns and
+/// its communicator.
 #[derive(Clone)]
 pub struct Share {
     /// `owned[e]`: element `e` is assembled here.
     pub owned: Vec<bool>,
+    /// `own_nodes[n]`: the rows of node `n` are this process's (the
+    /// distributed solver's numbering, one part per process).
+    pub own_nodes: Vec<bool>,
     pub communicator: Arc<dyn Communicator>,
 }
 
 impl Share {
-    /// The lead process (rank 0) adds what is not an element's: contact
-    /// and load contributions to the tangent.
+    /// The lead process (rank 0) writes the run's files and log.
     pub fn is_lead(&self) -> bool {
         self.communicator.rank() == 0
+    }
+
+    /// Whether row `i` (of `dofs` displacement rows, then the
+    /// multipliers) is this process's: a displacement row of one of its
+    /// nodes, or a multiplier's on the last process.
+    pub fn owns_row(&self, i: usize, dofs: usize) -> bool {
+        if i < dofs {
+            self.own_nodes[i / 3]
+        } else {
+            self.communicator.rank() + 1 == self.communicator.size()
+        }
     }
 }
 
@@ -52,7 +79,7 @@ impl Model {
     /// rows: that of the owned elements' node graph (each node its own
     /// neighbour, the other nodes' diagonal blocks only) with every pair of
     /// nodes in one of `groups` coupled too (what the caller adds to the
-    /// tangent outside the elements: the lead's follower-load faces). A
+    /// tangent outside the elements: the follower-load faces). A
     /// later [`SparsityPattern::coupled`] keeps both. `K^p`, its cached
     /// constant part and the scatter maps live on this pattern, which
     /// holds about `1/N` of the whole one's entries on `N` processes plus
@@ -70,7 +97,63 @@ impl Model {
             owned.chain(groups.iter().map(Vec::as_slice)),
         );
         self.pattern = SparsityPattern::from_graph(&graph);
+        // the other processes' elements keep no reference geometry (the
+        // shape-function gradients of every quadrature point, ~2 kB a
+        // Hex8): made again where asked for ([`Model::geometry_of`])
+        for (g, &own) in self.geometry.iter_mut().zip(&share.owned) {
+            if !own {
+                *g = Vec::new();
+            }
+        }
         self.set_share(share);
+    }
+
+    /// The reference geometry of element `e` (its quadrature points'
+    /// `∂N_a/∂X` and `dV₀ = det J₀ w_q`): the one kept, or for an element
+    /// of another process ([`Model::set_share_with_local_rows`]) the same
+    /// [`kernel::reference_geometry`] made again from the mesh (it
+    /// succeeded when the model was made; bit for bit the kept one).
+    pub fn geometry_of(&self, e: usize) -> Cow<'_, [PointGeometry]> {
+        let kept = &self.geometry[e];
+        if !kept.is_empty() {
+            return Cow::Borrowed(kept);
+        }
+        let element = &self.mesh.elements[e];
+        let coordinates: Vec<[f64; 3]> =
+            element.nodes.iter().map(|&n| self.mesh.nodes[n]).collect();
+        Cow::Owned(kernel::reference_geometry(element.kind, &coordinates).unwrap_or_default())
+    }
+
+    /// The entries of `tangent` (on this process's pattern) in the rows
+    /// this process does not own, as (position, value): what
+    /// [`Model::restore_entries`] puts back after the contact and load
+    /// contributions, which each process adds in its own rows only. Empty
+    /// without a share (a serial run adds everything). One pass over the
+    /// pattern; the entries kept are the ghost rows and the other nodes'
+    /// diagonal blocks, a few per cent of the part.
+    pub fn foreign_entries(&self, tangent: &[f64]) -> Vec<(usize, f64)> {
+        let Some(share) = &self.share else {
+            return Vec::new();
+        };
+        let symbolic = self.pattern.symbolic();
+        let (cp, ri) = (symbolic.col_ptr(), symbolic.row_idx());
+        let dofs = self.num_dofs();
+        let mut kept = Vec::new();
+        for j in 0..symbolic.ncols() {
+            for k in cp[j]..cp[j + 1] {
+                if !share.owns_row(ri[k], dofs) {
+                    kept.push((k, tangent[k]));
+                }
+            }
+        }
+        kept
+    }
+
+    /// Put back the entries [`Model::foreign_entries`] took.
+    pub fn restore_entries(&self, tangent: &mut [f64], kept: &[(usize, f64)]) {
+        for &(k, v) in kept {
+            tangent[k] = v;
+        }
     }
 
     /// The node list of element `e` as the scatter maps see it: empty for

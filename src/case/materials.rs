@@ -90,11 +90,14 @@ impl Case {
 
     /// The model of the mesh and its materials, and the nested dissection
     /// of the elements' graph, started on the idle core as soon as that
-    /// graph exists if the run will order it so.
+    /// graph exists if the run will order it so; without
+    /// `whole_pattern`, a distributed run's process's, whose pattern waits
+    /// for the partition ([`Model::with_graph_of`]).
     pub(super) fn model(
         &self,
         materials: Vec<Arc<dyn Material>>,
         element_material: Vec<usize>,
+        whole_pattern: bool,
     ) -> Result<(Model, Option<EarlyDissection>)> {
         let spec = &self.spec;
         let mesh = &self.mesh;
@@ -111,7 +114,13 @@ impl Case {
                 dissection = Some(EarlyDissection::start(graph));
             }
         };
-        let model = Model::with_graph(mesh.clone(), materials, element_material, on_graph);
+        let model = Model::with_graph_of(
+            mesh.clone(),
+            materials,
+            element_material,
+            on_graph,
+            whole_pattern,
+        );
         let model = model.map_err(|f| {
             let (quadrature_point, det_j) = match f.failure {
                 KernelFailure::ReferenceInverted {

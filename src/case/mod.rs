@@ -279,6 +279,20 @@ impl Case {
     /// solver settings, then the contacts (which read the model's
     /// materials for their automatic parameters).
     pub fn build_problem(&self) -> Result<Problem> {
+        self.problem_with(true)
+    }
+
+    /// [`Case::build_problem`] for a process of a distributed run
+    /// (`mpirun`): the same problem, but its sparsity pattern holds only
+    /// each node's diagonal block until the run gives the process its
+    /// share of the elements and the pattern of their rows
+    /// (`Problem::set_share`), so that no process builds the whole one.
+    pub fn build_distributed_problem(&self) -> Result<Problem> {
+        self.problem_with(false)
+    }
+
+    /// [`Case::build_problem`], with the whole pattern or not.
+    fn problem_with(&self, whole_pattern: bool) -> Result<Problem> {
         self.check_names()?;
         for name in self.spec.amplitudes.keys() {
             self.amplitude(
@@ -287,7 +301,7 @@ impl Case {
             )?;
         }
         let (materials, element_material) = self.element_materials()?;
-        let (model, dissection) = self.model(materials, element_material)?;
+        let (model, dissection) = self.model(materials, element_material, whole_pattern)?;
         let prescribed = self.prescribed()?;
         let rotations = self.rotations()?;
         let pressures = self.pressures()?;

@@ -233,8 +233,10 @@ impl Distribution {
             })?;
         problem.set_share(Share {
             owned: partition.owned_elements(rank),
+            own_nodes: partition.node_part.iter().map(|&p| p == rank).collect(),
             communicator: world.clone(),
         });
+        crate::solve::petsc::distributed::release_freed_memory();
         Ok(Some(Distribution {
             rank,
             partition,

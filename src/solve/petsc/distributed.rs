@@ -9,8 +9,8 @@
 //! places at the end and belong to the last process), so that each
 //! process owns one contiguous block of PETSc's rows: the rows of its
 //! nodes. Each process gives PETSc, in coordinate form, every entry of the
-//! rows of its pattern it gives ([`RowLayout`]: its own, those its
-//! elements or the contact touch, on the lead every row)
+//! rows of its pattern it gives ([`RowLayout`]: its own, and those its
+//! elements or the contact couplings touch)
 //! (`MatSetPreallocationCOO` once per pattern); at each solve
 //! `MatSetValuesCOO` takes the values straight from `K^p`'s array, PETSc
 //! summing the processes' parts and sending the ghost rows' to their
@@ -40,6 +40,7 @@ mod ffi {
             len: usize,
         ) -> c_int;
         pub fn sg_mpi_sum(v: *mut f64, n: usize, err: *mut c_char, len: usize) -> c_int;
+        pub fn sg_release_freed_memory();
         pub fn sg_petsc_mpi_solver_new(
             out: *mut *mut c_void,
             options: *const c_char,
@@ -150,6 +151,16 @@ impl Communicator for MpiWorld {
     }
 }
 
+/// Give the pages of memory freed so far back to the system (glibc's
+/// `malloc_trim`; nothing elsewhere): after a distributed run's set-up
+/// (each process's share of the model), the other processes' element
+/// geometry and the whole element graph, freed in small pieces, would
+/// otherwise stay resident.
+pub fn release_freed_memory() {
+    // SAFETY: no arguments; malloc_trim only returns free pages
+    unsafe { ffi::sg_release_freed_memory() };
+}
+
 /// The numbering of PETSc's rows: displacement dofs part after part,
 /// multipliers last (on the last process).
 struct Numbering {
@@ -201,14 +212,13 @@ impl Numbering {
 /// own ([`crate::assembly::share`]): its elements' rows, the contact
 /// couplings and the diagonal block of every other node. It gives every
 /// entry of its own rows and of the rows it touches (a node coupled to
-/// another node or to a multiplier: a ghost node, a contact node); the
-/// lead, which adds the contact and the loads, gives every row (a node
-/// pressed on a rigid obstacle without multipliers has only its diagonal
-/// block: 9 entries a node more, about 4 % of a Hex8 mesh's rows). The
-/// rows left out elsewhere are the diagonal blocks of nodes the process
-/// does not touch (zero, or the scaled identity of a prescribed dof,
-/// which its owner gives) and the multipliers' rows (zero, or an unused
-/// multiplier's identity, which the lead gives).
+/// another node or to a multiplier: a ghost node, a contact node). Every
+/// process adds the contact and loads in its own rows only
+/// ([`crate::assembly::Model::foreign_entries`]), so the rows left out
+/// are the diagonal blocks of nodes the process does not touch (zero, or
+/// the scaled identity of a prescribed dof, which its owner gives) and
+/// the other processes' multiplier rows (zero: the last process owns the
+/// multipliers and adds their rows).
 struct RowLayout {
     fingerprint: u64,
     /// `given[old]`: the entries of row `old` (old numbering) are in this
@@ -217,14 +227,9 @@ struct RowLayout {
 }
 
 impl RowLayout {
-    /// The rows this process `rank` gives of `pattern` (of `nodes` nodes,
-    /// their dofs first, then the multipliers).
-    fn new(
-        pattern: &SymbolicSparseColMat<usize>,
-        numbering: &Numbering,
-        nodes: usize,
-        rank: usize,
-    ) -> Self {
+    /// The rows this process (of `numbering`) gives of `pattern` (of
+    /// `nodes` nodes, their dofs first, then the multipliers).
+    fn new(pattern: &SymbolicSparseColMat<usize>, numbering: &Numbering, nodes: usize) -> Self {
         let end = numbering.first + numbering.owned.len();
         let col_ptr = pattern.col_ptr();
         // the pattern is symmetric: row i holds column i's rows
@@ -234,8 +239,7 @@ impl RowLayout {
         };
         let given = (0..pattern.nrows())
             .map(|i| {
-                rank == 0
-                    || (numbering.first..end).contains(&numbering.global[i])
+                (numbering.first..end).contains(&numbering.global[i])
                     || (i < 3 * nodes && touched(i))
             })
             .collect();
@@ -310,12 +314,7 @@ impl DistributedPetscSolver {
         let Some(numbering) = &self.numbering else {
             return Err("no numbering".into());
         };
-        let layout = RowLayout::new(
-            pattern,
-            numbering,
-            self.partition.node_part.len(),
-            self.rank,
-        );
+        let layout = RowLayout::new(pattern, numbering, self.partition.node_part.len());
         let global = &numbering.global;
         let (mut rows, mut columns) = coordinate_entries(pattern, false, |i, j| {
             layout.given[i].then(|| (global[i], global[j]))
@@ -465,11 +464,12 @@ mod tests {
     /// Process `rank` of two (nodes 0 and 1 part 0's, 2 to 4 part 1's)
     /// on its own pattern: its element couples nodes 1 and 2 (node 2 a
     /// ghost of part 0, node 1 of part 1), a contact multiplier couples
-    /// node 3, node 4 only its diagonal block. Part 0, the lead, gives
-    /// every row; part 1 (which owns the multiplier, last) its own and
-    /// the ghost's, not node 0's diagonal block.
+    /// node 3, node 4 only its diagonal block. Part 0 gives its own rows,
+    /// the ghost's and the contact node's, not node 4's diagonal block nor
+    /// the multiplier's row; part 1 (which owns the multiplier, last) its
+    /// own and the ghost's, not node 0's diagonal block.
     #[test]
-    fn a_process_gives_its_rows_the_ones_it_touches_and_the_lead_the_multipliers() {
+    fn a_process_gives_its_rows_and_the_ones_it_touches() {
         use crate::assembly::pattern::SparsityPattern;
         let partition = MeshPartition {
             parts: 2,
@@ -481,13 +481,13 @@ mod tests {
         let pattern = SparsityPattern::with_multipliers(5, [element].into_iter(), &[vec![3]]);
         let given = |rank: usize| -> Vec<usize> {
             let numbering = Numbering::new(&partition, rank, 16);
-            let layout = RowLayout::new(pattern.symbolic(), &numbering, 5, rank);
+            let layout = RowLayout::new(pattern.symbolic(), &numbering, 5);
             (0..16).filter(|&i| layout.given[i]).collect()
         };
         let dofs = |nodes: &[usize]| -> Vec<usize> {
             nodes.iter().flat_map(|&a| 3 * a..3 * a + 3).collect()
         };
-        assert_eq!(given(0), (0..16).collect::<Vec<_>>());
+        assert_eq!(given(0), dofs(&[0, 1, 2, 3]));
         let mut one = dofs(&[1, 2, 3, 4]);
         one.push(15);
         assert_eq!(given(1), one);

@@ -264,6 +264,21 @@ int sg_mpi_world(int *rank, int *size, char *err, size_t err_len) {
 /* v <- the sum of every process's v, the same bits on every process: a
  * reduction to rank 0, then a broadcast (an MPI_Allreduce may round
  * differently on different processes). */
+/* Give the pages of freed memory back to the system (glibc's
+ * malloc_trim, which releases free pages anywhere in the heap, not only at
+ * its top): after a distributed run's set-up the whole-mesh structures made
+ * at reading the case (the other processes' element geometry, the whole
+ * element graph) are freed in small pieces that would otherwise stay in
+ * the process's resident memory. Nothing elsewhere. */
+#ifdef __GLIBC__
+#include <malloc.h>
+#endif
+void sg_release_freed_memory(void) {
+#ifdef __GLIBC__
+  malloc_trim(0);
+#endif
+}
+
 int sg_mpi_sum(double *v, size_t n, char *err, size_t err_len) {
   int rank;
   CHECK(MPI_Comm_rank(PETSC_COMM_WORLD, &rank));

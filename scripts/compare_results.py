@@ -36,9 +36,12 @@ def flat(value, prefix=""):
     return {}
 
 
+def last_frame(folder):
+    return sorted(glob.glob(f"{folder}/*_[0-9][0-9][0-9][0-9].vtu"))[-1]
+
+
 def last_displacement(folder):
-    frames = sorted(glob.glob(f"{folder}/*_[0-9][0-9][0-9][0-9].vtu"))
-    return read_point_field(frames[-1], "displacement")
+    return read_point_field(last_frame(folder), "displacement")
 
 
 def main():
@@ -66,6 +69,29 @@ def main():
         print(f"{name}: status differs at nodes {differ}")
     ua, ub = last_displacement(a), last_displacement(b)
     print(f"displacement: largest difference {max(abs(p - q) for p, q in zip(ua, ub)) / max(abs(v) for v in ub):.3g} of the largest")
+    compare_tractions(a, b, ub)
+
+
+def compare_tractions(a, b, ub):
+    """The last VTU's `contact_traction` node by node, over the largest
+    traction component in B: apart for the nodes with a displacement
+    component exactly zero in B (on a symmetry plane, where the traction's
+    component along the plane's normal is fixed by neither path's
+    equations but through the primary weights off the plane: DESIGN.md,
+    "Coulomb friction on the condensed path") and for the others, each with
+    the node (0-based index) where it is largest."""
+    ta = read_point_field(last_frame(a), "contact_traction")
+    tb = read_point_field(last_frame(b), "contact_traction")
+    peak = max(abs(v) for v in tb) or 1.0
+    worst = {True: (0.0, None), False: (0.0, None)}
+    for n in range(len(tb) // 3):
+        on_plane = any(ub[3 * n + k] == 0.0 for k in range(3)) and any(tb[3 * n : 3 * n + 3])
+        d = max(abs(ta[3 * n + k] - tb[3 * n + k]) for k in range(3)) / peak
+        if d > worst[on_plane][0]:
+            worst[on_plane] = (d, n)
+    for on_plane, label in [(False, "off"), (True, "on")]:
+        d, n = worst[on_plane]
+        print(f"contact_traction {label} the planes of prescribed zero displacement: largest difference {d:.3g} of the peak (node index {n})")
 
 
 if __name__ == "__main__":

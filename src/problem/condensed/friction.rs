@@ -44,7 +44,7 @@ use super::{constraint_rows, Condensation, ContactNode, ContactState, IncrementS
 use crate::contact::friction::{ContactStatus, Coulomb};
 use crate::contact::interface::ConstraintRow;
 use crate::solve::condensed::cone::{
-    solve_cone, ConeNode, ConeProblem, ConeSolution, TangentialLaw,
+    solve_cone, ConeNode, ConeProblem, ConeSolution, Flexibility, TangentialLaw,
 };
 use crate::solve::condensed::flexibility::Column;
 use crate::solve::failure::IncrementFailure;
@@ -80,8 +80,8 @@ pub(super) struct FrictionalCondensation {
     /// (a restart's replay).
     batches: Vec<Vec<usize>>,
     is_candidate: Vec<bool>,
-    /// `Ŵ⁻¹` (a Cholesky inverse), once per `Ŵ`.
-    inverse: Option<nalgebra::DMatrix<f64>>,
+    /// `Ŵ` and its Cholesky factor, once per `Ŵ`.
+    factor: Option<Flexibility>,
     /// Per column of `Ŵ`: shifted by `ρ`.
     shifted: Vec<bool>,
     /// The shift `ρ` (0 when nothing is shifted).
@@ -245,7 +245,7 @@ impl FrictionalCondensation {
             candidates: Vec::new(),
             batches: Vec::new(),
             is_candidate: vec![false; count],
-            inverse: None,
+            factor: None,
             shifted: Vec::new(),
             shift,
             traction: vec![Vector3::zeros(); count],
@@ -264,7 +264,7 @@ impl FrictionalCondensation {
             .flat_map(|&a| self.contact[a].columns.iter().map(|&(_, col)| col))
             .collect();
         self.base.flexibility.grow(&columns)?;
-        self.inverse = None;
+        self.factor = None;
         self.shifted.extend(columns.iter().map(|_| shifted));
         for &a in new {
             self.is_candidate[a] = true;
@@ -382,7 +382,7 @@ impl FrictionalCondensation {
             })
             .collect();
         self.base.flexibility.replace_columns(columns)?;
-        self.inverse = None;
+        self.factor = None;
         Ok(())
     }
 
@@ -434,9 +434,9 @@ impl FrictionalCondensation {
                     )
                 })
                 .collect();
-            let inverse = self.inverse_flexibility()?;
+            let factor = self.flexibility_factor()?;
             let cone = ConeProblem {
-                inverse_flexibility: &inverse,
+                flexibility: &factor,
                 columns: &columns,
                 shifted: &self.shifted,
                 shift: self.shift,
@@ -451,7 +451,7 @@ impl FrictionalCondensation {
             })?;
             self.iterations += solution.iterations;
             history.append(&mut solution.history);
-            self.inverse = Some(inverse);
+            self.factor = Some(factor);
             let u = self.displacements(&load.b, &columns, &nodes, &solution)?;
             let entering = self.entering(problem, t, &u, kept);
             if entering.is_empty() {
@@ -492,16 +492,13 @@ impl FrictionalCondensation {
             .collect()
     }
 
-    /// `Ŵ⁻¹`: the one kept since `Ŵ` last changed, else its Cholesky
-    /// inverse.
-    fn inverse_flexibility(&mut self) -> Result<nalgebra::DMatrix<f64>> {
-        if let Some(inverse) = self.inverse.take() {
-            return Ok(inverse);
+    /// `Ŵ` with its Cholesky factor: the one kept since `Ŵ` last changed,
+    /// else factorised anew.
+    fn flexibility_factor(&mut self) -> Result<Flexibility> {
+        if let Some(factor) = self.factor.take() {
+            return Ok(factor);
         }
-        let cholesky = self.base.flexibility.w.clone().cholesky().ok_or_else(|| {
-            Error::LinearSolver("the condensed contact flexibility is not positive definite".into())
-        })?;
-        Ok(cholesky.inverse())
+        Flexibility::new(&self.base.flexibility.w).map_err(Error::LinearSolver)
     }
 
     /// `u = K̂⁻¹ (b + E (A t + ρ P_S u_F))` from the condensed `solution`,

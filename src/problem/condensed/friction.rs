@@ -38,6 +38,22 @@
 //! at an increment's answer (the increment is solved again with it; its
 //! columns are solves with the same factor, not shifted). One
 //! factorisation per run.
+//!
+//! ## Increments
+//! The next increment grows (`[solver] growth_factor`, up to the step's
+//! `max_increment`) after an easy one, as Newton's do: one whose first
+//! contact solve, the semismooth Newton iterations from the last answer
+//! (the analogue of Newton's from the converged state; the rounds after
+//! it follow the projections, the solves after it the nodes that
+//! entered), took at most `[solver] easy_iterations`. Only the count, not
+//! Newton's second clause ("settled and fast",
+//! [`crate::solve::record`]): a semismooth solve starts from the last
+//! increment's statuses and settles them within its count, and with the
+//! clause examples/press-pull's pull increments (8–9 iterations, the last
+//! switch at the fourth) grew where Newton's (21–26) do not, moving its
+//! answer by 1.1e-5. Friction's answer depends on the increments, so the
+//! condensed and the monolithic path equal each other where they take the
+//! same ones: compare with `max_increment` pinned.
 
 use super::linearisation::Linearisation;
 use super::{constraint_rows, Condensation, ContactNode, ContactState, IncrementSolver, Problem};
@@ -92,6 +108,9 @@ pub(super) struct FrictionalCondensation {
     iterations: usize,
     /// Between bodies: the rows follow the projections (module docs).
     projected: bool,
+    /// The iterations of the last increment's first contact solve (module
+    /// docs, "Increments").
+    first_solve: Option<usize>,
 }
 
 /// Rounds of the fixed point on the projections at most (between bodies).
@@ -252,6 +271,7 @@ impl FrictionalCondensation {
             displacement: vec![None; columns_count],
             iterations: 0,
             projected,
+            first_solve: None,
         };
         condensation.grow(&all.initial, floating)?;
         Ok(condensation)
@@ -450,6 +470,7 @@ impl FrictionalCondensation {
                 ))
             })?;
             self.iterations += solution.iterations;
+            self.first_solve.get_or_insert(solution.iterations);
             history.append(&mut solution.history);
             self.factor = Some(factor);
             let u = self.displacements(&load.b, &columns, &nodes, &solution)?;
@@ -587,6 +608,7 @@ impl IncrementSolver for FrictionalCondensation {
         history: &mut Vec<IterationRecord>,
     ) -> Result<()> {
         let start = x.to_vec();
+        self.first_solve = None;
         let (u, traction) = self.solve_increment(problem, t, state, trial, &start, history)?;
         let mut pressures = super::zero_per_node(problem);
         let mut tangential: Vec<Vec<(Vector3<f64>, Vector3<f64>)>> = (problem.contacts.iter())
@@ -651,6 +673,13 @@ impl IncrementSolver for FrictionalCondensation {
             (c.normal, mu)
         });
         super::capacity::overload_failure(problem, t, nodes)
+    }
+
+    /// After an increment whose first contact solve took at most `easy`
+    /// iterations (module docs, "Increments").
+    fn grows(&self, easy: usize) -> bool {
+        self.first_solve
+            .is_some_and(|iterations| iterations <= easy)
     }
 
     fn resume(&mut self, warm: &WarmStart) -> Result<()> {

@@ -734,17 +734,20 @@ fn bodies_in_contact_condensed_equal_monolithic() {
 /// `|trial| ≥ (1 − 1e-9) μ t_N`, `friction::ON_THE_CONE`).
 const TIE: f64 = 1e-8;
 
+/// A secondary node whose status differs: `(increment, node, |t_T|/(μ t_N))`.
+type OffEdge = (usize, usize, f64);
+
 /// The stick/slip/open statuses of two runs compared increment by
 /// increment: the secondary nodes whose status differs and which are no
 /// tie ([`TIE`]), as `(increment, node, |t_T|/(μ t_N))`; and the primary
-/// nodes whose status differs, as `(increment, node)`. A primary node
+/// nodes whose status differs, as `[increment, node]`. A primary node
 /// reports the largest status of the closed secondary nodes whose reaction
 /// reaches it with a positive weight, so where every secondary status
 /// agrees it can differ only through a weight at round-off (a secondary
 /// node projecting onto a primary edge): measured on the tiny
 /// Cattaneo–Mindlin mesh, 3 of them (the earlier bound of 3 differing
 /// statuses), every one on the primary surface.
-fn status_differences(a: &Forces, b: &Forces) -> (Vec<(usize, usize, f64)>, Vec<(usize, usize)>) {
+fn status_differences(a: &Forces, b: &Forces) -> (Vec<OffEdge>, Vec<[usize; 2]>) {
     let (mut off_edge, mut primary) = (Vec::new(), Vec::new());
     for k in 0..b.2.len() {
         for (i, (x, y)) in a.2[k].iter().zip(&b.2[k]).enumerate() {
@@ -752,7 +755,7 @@ fn status_differences(a: &Forces, b: &Forces) -> (Vec<(usize, usize, f64)>, Vec<
                 continue;
             }
             if !b.5[k][i] {
-                primary.push((k, i));
+                primary.push([k, i]);
                 continue;
             }
             let t = &b.1[k][3 * i..3 * i + 3];

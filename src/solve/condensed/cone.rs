@@ -722,11 +722,11 @@ mod tests {
     /// with exact stick it sticks (`u_x = 0`, `t_x = −F_x`) while
     /// `F_x ≤ μ F_z` and slips beyond (`t_x = −μ F_z`,
     /// `u_x = (F_x − μ F_z)/k`); with the regularised law it sticks
-    /// elastically, `u_x = F_x/(k + A ε_T)`.
+    /// elastically, `u_x = F_x/(k + A ε_T)`. The same with every dof
+    /// shifted by `ρ` (`Ŵ = I/(k + ρ)`, the shift carried in `J Ŵ`).
     #[test]
     fn a_spring_on_the_plane_sticks_and_slips_by_coulomb() {
         let (k, f_z) = (200.0, 10.0);
-        let flexibility = Flexibility::new(&(DMatrix::identity(3, 3) / k)).unwrap();
         let columns = [(0, 0), (0, 1), (0, 2)];
         let mut n = node(
             NormalEnforcement::Exact { r: 500.0 },
@@ -754,30 +754,35 @@ mod tests {
                 tangential_law: law,
                 ..n
             }];
-            let u0 = [f_x / k, 0.0, -f_z / k];
-            let problem = ConeProblem {
-                flexibility: &flexibility,
-                columns: &columns,
-                shifted: &[false; 3],
-                shift: 0.0,
-                free_displacement: &u0,
-                prescribed: &[Vector3::zeros()],
-                nodes: &nodes,
-            };
-            let s = solve_cone(&problem, u0.to_vec(), vec![Vector3::zeros()]).unwrap();
-            let (u, t) = (&s.displacement, s.traction[0]);
-            assert!(
-                (u[0] - u_x).abs() < 1e-15,
-                "{law:?} F_x = {f_x}: u_x {}",
-                u[0]
-            );
-            assert!(u[1].abs() < 1e-15 && u[2].abs() < 1e-15, "{u:?}");
-            assert!(
-                (t.x - t_x).abs() < 1e-12,
-                "{law:?} F_x = {f_x}: t_x {}",
-                t.x
-            );
-            assert!((t.z - f_z).abs() < 1e-12 && t.y.abs() < 1e-12, "{t}");
+            // unshifted, and shifted by ρ on every dof (a floating body's
+            // `K̂ = K + ρ I`, `Ŵ = I/(k + ρ)`, `û₀ = F/(k + ρ)`): the same answer
+            for rho in [0.0, 300.0] {
+                let flexibility = Flexibility::new(&(DMatrix::identity(3, 3) / (k + rho))).unwrap();
+                let u0 = [f_x / (k + rho), 0.0, -f_z / (k + rho)];
+                let problem = ConeProblem {
+                    flexibility: &flexibility,
+                    columns: &columns,
+                    shifted: &[rho > 0.0; 3],
+                    shift: rho,
+                    free_displacement: &u0,
+                    prescribed: &[Vector3::zeros()],
+                    nodes: &nodes,
+                };
+                let s = solve_cone(&problem, u0.to_vec(), vec![Vector3::zeros()]).unwrap();
+                let (u, t) = (&s.displacement, s.traction[0]);
+                assert!(
+                    (u[0] - u_x).abs() < 1e-15,
+                    "{law:?} F_x = {f_x}, ρ = {rho}: u_x {}",
+                    u[0]
+                );
+                assert!(u[1].abs() < 1e-15 && u[2].abs() < 1e-15, "{u:?}");
+                assert!(
+                    (t.x - t_x).abs() < 1e-12,
+                    "{law:?} F_x = {f_x}, ρ = {rho}: t_x {}",
+                    t.x
+                );
+                assert!((t.z - f_z).abs() < 1e-12 && t.y.abs() < 1e-12, "{t}");
+            }
         }
     }
 }

@@ -10,7 +10,9 @@ difference; for each profile CSV named (such as `load_axis_shear.csv`),
 the largest difference of `contact_pressure` and `tangential_traction`
 over the largest magnitude in B, and the nodes whose stick/slip status
 differs; and the largest difference of the last VTU's `displacement`
-over the largest displacement in B. A distributed run's last data set
+over the largest displacement in B, and of its `contact_traction` node
+by node (apart on and off the planes of prescribed zero displacement).
+A distributed run's last data set
 (`.pvtu`) is read from its pieces, each node through `global_node`.
 
     --tolerance TOL   exit 1 unless the displacements agree to TOL of the
@@ -44,18 +46,18 @@ def flat(value, prefix=""):
     return {}
 
 
-def last_displacement(folder, summary):
-    """The last increment's displacement, by global node: one `.vtu`, or a
-    `.pvtu`'s pieces through their `global_node` arrays."""
+def last_field(folder, summary, field):
+    """Point field `field` of the last increment, by global node: one
+    `.vtu`, or a `.pvtu`'s pieces through their `global_node` arrays."""
     name = summary["increments"][-1]["file"]
     if not name.endswith(".pvtu"):
-        return read_point_field(f"{folder}/{name}", "displacement")
+        return read_point_field(f"{folder}/{name}", field)
     whole = {}
     for piece in re.findall(r'Source="([^"]+)"', open(f"{folder}/{name}").read()):
         nodes = read_point_field(f"{folder}/{piece}", "global_node")
-        u = read_point_field(f"{folder}/{piece}", "displacement")
+        values = read_point_field(f"{folder}/{piece}", field)
         for k, n in enumerate(nodes):
-            whole[int(n)] = u[3 * k : 3 * k + 3]
+            whole[int(n)] = values[3 * k : 3 * k + 3]
     return [v for n in sorted(whole) for v in whole[n]]
 
 
@@ -100,16 +102,39 @@ def main():
             print(f"{name} {key}: largest difference {max(abs(p - q) for p, q in zip(xa, xb)) / peak:.3g} of the peak")
         differ = [r["node"] for r, s in zip(ra, rb) if r["status"] != s["status"]]
         print(f"{name}: status differs at nodes {differ}")
-    ua, ub = last_displacement(a, sa), last_displacement(b, sb)
+    ua, ub = last_field(a, sa, "displacement"), last_field(b, sb, "displacement")
     if len(ua) != len(ub):
         sys.exit(f"{a} and {b}: {len(ua) // 3} and {len(ub) // 3} nodes")
     worst = {"displacement": max(abs(p - q) for p, q in zip(ua, ub)) / max(abs(v) for v in ub)}
     print(f"displacement: largest difference {worst['displacement']:.3g} of the largest")
+    compare_tractions(a, sa, b, sb, ub)
     worst.update(force_differences(sa["increments"][-1]["contact"], sb["increments"][-1]["contact"]))
     if tolerance is not None:
         over = {k: v for k, v in worst.items() if not v <= tolerance}
         print(f"within {tolerance:g}: {'no: ' + repr(over) if over else 'yes'}")
         sys.exit(1 if over else 0)
+
+
+def compare_tractions(a, sa, b, sb, ub):
+    """The last VTU's `contact_traction` node by node, over the largest
+    traction component in B: apart for the nodes with a displacement
+    component exactly zero in B (on a symmetry plane, where the traction's
+    component along the plane's normal is fixed by neither path's
+    equations but through the primary weights off the plane: DESIGN.md,
+    "Coulomb friction on the condensed path") and for the others, each with
+    the node (0-based index) where it is largest."""
+    ta = last_field(a, sa, "contact_traction")
+    tb = last_field(b, sb, "contact_traction")
+    peak = max(abs(v) for v in tb) or 1.0
+    worst = {True: (0.0, None), False: (0.0, None)}
+    for n in range(len(tb) // 3):
+        on_plane = any(ub[3 * n + k] == 0.0 for k in range(3)) and any(tb[3 * n : 3 * n + 3])
+        d = max(abs(ta[3 * n + k] - tb[3 * n + k]) for k in range(3)) / peak
+        if d > worst[on_plane][0]:
+            worst[on_plane] = (d, n)
+    for on_plane, label in [(False, "off"), (True, "on")]:
+        d, n = worst[on_plane]
+        print(f"contact_traction {label} the planes of prescribed zero displacement: largest difference {d:.3g} of the peak (node index {n})")
 
 
 if __name__ == "__main__":

@@ -12,8 +12,8 @@ use common::relative_difference;
 
 /// Per converged increment: the nodal contact force (`A_s t_N n`, 3 per
 /// node) of every interface node (`.0`), the contact traction `t_N n + t_T`
-/// (`.1`), the contact status (`.2`), the displacements (`.3`) and the
-/// pressure `t_N` (`.4`).
+/// (`.1`), the contact status (`.2`), the displacements (`.3`), the
+/// pressure `t_N` (`.4`) and whether each node is a secondary node (`.5`).
 #[derive(Default)]
 struct Forces(
     Vec<Vec<f64>>,
@@ -21,6 +21,7 @@ struct Forces(
     Vec<Vec<f64>>,
     Vec<Vec<f64>>,
     Vec<Vec<f64>>,
+    Vec<Vec<bool>>,
 );
 
 impl StepObserver for Forces {
@@ -30,6 +31,7 @@ impl StepObserver for Forces {
         self.1.push(inc.contact_fields.nodal.traction.clone());
         self.2.push(inc.contact_fields.nodal.status.clone());
         self.4.push(inc.contact_fields.nodal.pressure.clone());
+        self.5.push(inc.contact_fields.nodal.secondary.clone());
         Ok(())
     }
 }
@@ -726,6 +728,51 @@ fn bodies_in_contact_condensed_equal_monolithic() {
     }
 }
 
+/// A closed secondary node whose `|t_T|/(μ t_N)` (μ = 0.3) is within this
+/// of 1 is a tie: which path reports it as slip depends on round-off (the
+/// tractions agree to 1e-8 of the largest, and the cone's own test is
+/// `|trial| ≥ (1 − 1e-9) μ t_N`, `friction::ON_THE_CONE`).
+const TIE: f64 = 1e-8;
+
+/// A secondary node whose status differs: `(increment, node, |t_T|/(μ t_N))`.
+type OffEdge = (usize, usize, f64);
+
+/// The stick/slip/open statuses of two runs compared increment by
+/// increment: the secondary nodes whose status differs and which are no
+/// tie ([`TIE`]), as `(increment, node, |t_T|/(μ t_N))`; and the primary
+/// nodes whose status differs, as `[increment, node]`. A primary node
+/// reports the largest status of the closed secondary nodes whose reaction
+/// reaches it with a positive weight, so where every secondary status
+/// agrees it can differ only through a weight at round-off (a secondary
+/// node projecting onto a primary edge): measured on the tiny
+/// Cattaneo–Mindlin mesh, 3 of them (the earlier bound of 3 differing
+/// statuses), every one on the primary surface.
+fn status_differences(a: &Forces, b: &Forces) -> (Vec<OffEdge>, Vec<[usize; 2]>) {
+    let (mut off_edge, mut primary) = (Vec::new(), Vec::new());
+    for k in 0..b.2.len() {
+        for (i, (x, y)) in a.2[k].iter().zip(&b.2[k]).enumerate() {
+            if x == y {
+                continue;
+            }
+            if !b.5[k][i] {
+                primary.push([k, i]);
+                continue;
+            }
+            let t = &b.1[k][3 * i..3 * i + 3];
+            let t_n = b.4[k][i];
+            let t_t = (t.iter().map(|v| v * v).sum::<f64>() - t_n * t_n)
+                .max(0.0)
+                .sqrt();
+            let ratio = t_t / (0.3 * t_n);
+            eprintln!("increment {k}: secondary node {i} status {x} against {y}, |t_T|/(μ t_N) = {ratio:.12}");
+            if (ratio - 1.0).abs() > TIE {
+                off_edge.push((k, i, ratio));
+            }
+        }
+    }
+    (off_edge, primary)
+}
+
 /// examples/cattaneo-mindlin on a tiny copy of its mesh
 /// (tests/data/cattaneo_tiny.msh: `spheres.geo` with `smin = 0.025`,
 /// `smax = 0.35`, 961 nodes), its increments pinned at 0.25 (press) and
@@ -760,8 +807,10 @@ fn tiny_cattaneo(solver: &str, extra: &[(&str, String)]) -> (RunOutcome, Forces)
 /// Newton (residual tolerance 1e-11; its tangential multipliers are
 /// unknowns of Newton, so it meets Coulomb's law to that tolerance) at
 /// every increment: displacements and contact tractions (normal and
-/// tangential) to 1e-8 relative, the same stick/slip/open status; and
-/// the shear does slip part of the contact.
+/// tangential, off the symmetry plane) to 1e-8 relative, the same
+/// stick/slip/open status at every secondary node but ties on the cone's
+/// edge ([`status_differences`]; none measured); and the shear does slip
+/// part of the contact.
 #[test]
 fn bodies_in_contact_with_friction_condensed_equal_monolithic() {
     let mono = tiny_cattaneo("strategy = \"monolithic\"\nresidual_tolerance = 1e-11", &[]);
@@ -797,32 +846,12 @@ fn bodies_in_contact_with_friction_condensed_equal_monolithic() {
         dt_plane < 1e-6,
         "t_y on the symmetry plane differs by {dt_plane:e}"
     );
-    // the same stick/slip/open status but at three node-increments
-    // (measured: nodes whose tractions agree to 1e-12, |t_T| = 0.33, 0.64
-    // and 0.97 μ t_N: the reported status is that of the augmented trial
-    // `t_old − ε_T s`, whose slip `s` at round-off is scaled by ε_T =
-    // 1.3e6, so which path reports a tie as slip depends on round-off; one
-    // such node with the surfaces half on the trailing block, three with
-    // all of them there)
-    let mut borderline = 0;
-    for k in 0..mono.1 .2.len() {
-        for (i, (a, b)) in cond.1 .2[k].iter().zip(&mono.1 .2[k]).enumerate() {
-            if a != b {
-                let t = &mono.1 .1[k][3 * i..3 * i + 3];
-                let t_n = mono.1 .4[k][i];
-                let t_t = (t.iter().map(|v| v * v).sum::<f64>() - t_n * t_n)
-                    .max(0.0)
-                    .sqrt();
-                let ratio = t_t / (0.3 * t_n);
-                eprintln!(
-                    "increment {k}: node {i} status {a} (condensed) against {b}, \
-                     |t_T|/(μ t_N) = {ratio:.12}"
-                );
-                borderline += 1;
-            }
-        }
-    }
-    assert!(borderline <= 3, "{borderline} statuses differ");
+    let (off_edge, primary) = status_differences(&cond.1, &mono.1);
+    assert!(
+        off_edge.is_empty(),
+        "statuses differ off the cone's edge: {off_edge:?}"
+    );
+    eprintln!("primary nodes whose reported status differs: {primary:?}");
     let last = cond.0.summary.increments.last().unwrap().contact["poles"].clone();
     assert!(
         last.slip_nodes > 0 && last.stick_nodes > 0,

@@ -38,13 +38,29 @@
 //! at an increment's answer (the increment is solved again with it; its
 //! columns are solves with the same factor, not shifted). One
 //! factorisation per run.
+//!
+//! ## Increments
+//! The next increment grows (`[solver] growth_factor`, up to the step's
+//! `max_increment`) after an easy one, as Newton's do: one whose first
+//! contact solve, the semismooth Newton iterations from the last answer
+//! (the analogue of Newton's from the converged state; the rounds after
+//! it follow the projections, the solves after it the nodes that
+//! entered), took at most `[solver] easy_iterations`. Only the count, not
+//! Newton's second clause ("settled and fast",
+//! [`crate::solve::record`]): a semismooth solve starts from the last
+//! increment's statuses and settles them within its count, and with the
+//! clause examples/press-pull's pull increments (8–9 iterations, the last
+//! switch at the fourth) grew where Newton's (21–26) do not, moving its
+//! answer by 1.1e-5. Friction's answer depends on the increments, so the
+//! condensed and the monolithic path equal each other where they take the
+//! same ones: compare with `max_increment` pinned.
 
 use super::linearisation::Linearisation;
 use super::{constraint_rows, Condensation, ContactNode, ContactState, IncrementSolver, Problem};
 use crate::contact::friction::{ContactStatus, Coulomb};
 use crate::contact::interface::ConstraintRow;
 use crate::solve::condensed::cone::{
-    solve_cone, ConeNode, ConeProblem, ConeSolution, TangentialLaw,
+    solve_cone, ConeNode, ConeProblem, ConeSolution, Flexibility, TangentialLaw,
 };
 use crate::solve::condensed::flexibility::Column;
 use crate::solve::failure::IncrementFailure;
@@ -80,8 +96,8 @@ pub(super) struct FrictionalCondensation {
     /// (a restart's replay).
     batches: Vec<Vec<usize>>,
     is_candidate: Vec<bool>,
-    /// `Ŵ⁻¹` (a Cholesky inverse), once per `Ŵ`.
-    inverse: Option<nalgebra::DMatrix<f64>>,
+    /// `Ŵ` and its Cholesky factor, once per `Ŵ`.
+    factor: Option<Flexibility>,
     /// Per column of `Ŵ`: shifted by `ρ`.
     shifted: Vec<bool>,
     /// The shift `ρ` (0 when nothing is shifted).
@@ -92,6 +108,9 @@ pub(super) struct FrictionalCondensation {
     iterations: usize,
     /// Between bodies: the rows follow the projections (module docs).
     projected: bool,
+    /// The iterations of the last increment's first contact solve (module
+    /// docs, "Increments").
+    first_solve: Option<usize>,
 }
 
 /// Rounds of the fixed point on the projections at most (between bodies).
@@ -245,13 +264,14 @@ impl FrictionalCondensation {
             candidates: Vec::new(),
             batches: Vec::new(),
             is_candidate: vec![false; count],
-            inverse: None,
+            factor: None,
             shifted: Vec::new(),
             shift,
             traction: vec![Vector3::zeros(); count],
             displacement: vec![None; columns_count],
             iterations: 0,
             projected,
+            first_solve: None,
         };
         condensation.grow(&all.initial, floating)?;
         Ok(condensation)
@@ -264,7 +284,7 @@ impl FrictionalCondensation {
             .flat_map(|&a| self.contact[a].columns.iter().map(|&(_, col)| col))
             .collect();
         self.base.flexibility.grow(&columns)?;
-        self.inverse = None;
+        self.factor = None;
         self.shifted.extend(columns.iter().map(|_| shifted));
         for &a in new {
             self.is_candidate[a] = true;
@@ -382,7 +402,7 @@ impl FrictionalCondensation {
             })
             .collect();
         self.base.flexibility.replace_columns(columns)?;
-        self.inverse = None;
+        self.factor = None;
         Ok(())
     }
 
@@ -434,9 +454,9 @@ impl FrictionalCondensation {
                     )
                 })
                 .collect();
-            let inverse = self.inverse_flexibility()?;
+            let factor = self.flexibility_factor()?;
             let cone = ConeProblem {
-                inverse_flexibility: &inverse,
+                flexibility: &factor,
                 columns: &columns,
                 shifted: &self.shifted,
                 shift: self.shift,
@@ -450,8 +470,9 @@ impl FrictionalCondensation {
                 ))
             })?;
             self.iterations += solution.iterations;
+            self.first_solve.get_or_insert(solution.iterations);
             history.append(&mut solution.history);
-            self.inverse = Some(inverse);
+            self.factor = Some(factor);
             let u = self.displacements(&load.b, &columns, &nodes, &solution)?;
             let entering = self.entering(problem, t, &u, kept);
             if entering.is_empty() {
@@ -492,16 +513,13 @@ impl FrictionalCondensation {
             .collect()
     }
 
-    /// `Ŵ⁻¹`: the one kept since `Ŵ` last changed, else its Cholesky
-    /// inverse.
-    fn inverse_flexibility(&mut self) -> Result<nalgebra::DMatrix<f64>> {
-        if let Some(inverse) = self.inverse.take() {
-            return Ok(inverse);
+    /// `Ŵ` with its Cholesky factor: the one kept since `Ŵ` last changed,
+    /// else factorised anew.
+    fn flexibility_factor(&mut self) -> Result<Flexibility> {
+        if let Some(factor) = self.factor.take() {
+            return Ok(factor);
         }
-        let cholesky = self.base.flexibility.w.clone().cholesky().ok_or_else(|| {
-            Error::LinearSolver("the condensed contact flexibility is not positive definite".into())
-        })?;
-        Ok(cholesky.inverse())
+        Flexibility::new(&self.base.flexibility.w).map_err(Error::LinearSolver)
     }
 
     /// `u = K̂⁻¹ (b + E (A t + ρ P_S u_F))` from the condensed `solution`,
@@ -590,6 +608,7 @@ impl IncrementSolver for FrictionalCondensation {
         history: &mut Vec<IterationRecord>,
     ) -> Result<()> {
         let start = x.to_vec();
+        self.first_solve = None;
         let (u, traction) = self.solve_increment(problem, t, state, trial, &start, history)?;
         let mut pressures = super::zero_per_node(problem);
         let mut tangential: Vec<Vec<(Vector3<f64>, Vector3<f64>)>> = (problem.contacts.iter())
@@ -654,6 +673,13 @@ impl IncrementSolver for FrictionalCondensation {
             (c.normal, mu)
         });
         super::capacity::overload_failure(problem, t, nodes)
+    }
+
+    /// After an increment whose first contact solve took at most `easy`
+    /// iterations (module docs, "Increments").
+    fn grows(&self, easy: usize) -> bool {
+        self.first_solve
+            .is_some_and(|iterations| iterations <= easy)
     }
 
     fn resume(&mut self, warm: &WarmStart) -> Result<()> {

@@ -50,6 +50,13 @@ pub(super) trait IncrementSolver: Send {
     fn diagnose(&self, _problem: &Problem, _t: f64) -> Option<IncrementFailure> {
         None
     }
+
+    /// Whether the next increment grows after this one (`easy`: `[solver]
+    /// easy_iterations`): by default always (a frictionless increment is
+    /// solved exactly, and its answer does not depend on the increments).
+    fn grows(&self, _easy: usize) -> bool {
+        true
+    }
 }
 
 impl IncrementSolver for Condensation {
@@ -109,29 +116,24 @@ impl IncrementSolver for Condensation {
 /// path) and reports. Its iterations are the contact solve's (active-set
 /// steps, semismooth Newton iterations), the last record the evaluation.
 /// Frictionless increments grow after every increment (each is solved
-/// exactly); frictional ones stay the case's (friction is path dependent,
-/// and they are the ones Newton takes where it needs no cut).
+/// exactly); frictional ones after an increment whose first contact solve
+/// was easy ([`friction`], "Increments").
 pub struct Condensed {
     solver: Box<dyn IncrementSolver>,
-    path_dependent: bool,
 }
 
 impl Condensed {
     /// The condensation of `problem` (the caller checked
     /// [`not_applicable`]): `K̃` assembled and factorised once.
     pub fn new(problem: &Problem) -> Result<Self> {
-        let path_dependent = has_friction(problem);
-        let solver: Box<dyn IncrementSolver> = if path_dependent {
+        let solver: Box<dyn IncrementSolver> = if has_friction(problem) {
             Box::new(friction::FrictionalCondensation::new(problem)?)
         } else if has_pairs(problem) {
             Box::new(pairs::PairCondensation::new(problem)?)
         } else {
             Box::new(Condensation::new(problem)?)
         };
-        Ok(Condensed {
-            solver,
-            path_dependent,
-        })
+        Ok(Condensed { solver })
     }
 }
 
@@ -202,8 +204,8 @@ impl IncrementMethod<Problem> for Condensed {
         (Ok(evaluation), history)
     }
 
-    fn grows(&self, _: &[IterationRecord], _: usize) -> bool {
-        !self.path_dependent
+    fn grows(&self, _: &[IterationRecord], easy: usize) -> bool {
+        self.solver.grows(easy)
     }
 
     fn statistics(&self) -> SolverStatistics {

@@ -54,12 +54,20 @@
 //!
 //! ## Newton
 //! The structure rows are eliminated exactly: with `Ŵ` symmetric positive
-//! definite (as `K̂` is), `R_S = 0` is `A t_F = S u_F − q`, `S = Ŵ⁻¹ − ρ P_S`
-//! (the condensed stiffness, singular where only contact holds the body),
-//! `q = Ŵ⁻¹ û₀` (`Ŵ⁻¹` from the caller, once per `Ŵ`): the traction's free components follow from `u_F`. The
-//! unknowns are `u_F` and the traction's prescribed components (no column
-//! of `Ŵ`; only the node law fixes them), `3m` in all, and the equations
-//! the `3m` node laws. The generalized Jacobian `D_u + D_t A⁻¹ S` is dense,
+//! definite (as `K̂` is), `R_S = 0` is `A t_F = Ŵ⁻¹ (u_F − û₀) − ρ P_S u_F`
+//! (`S = Ŵ⁻¹ − ρ P_S` the condensed stiffness, singular where only
+//! contact holds the body): the traction's free components follow from
+//! `u_F`, by a solve with the Cholesky factor of `Ŵ` ([`Flexibility`],
+//! from the caller once per `Ŵ`; `Ŵ⁻¹` is never formed). The unknowns are
+//! `u_F` and the traction's prescribed components (no column of `Ŵ`; only
+//! the node law fixes them), `3m` in all, and the equations the `3m` node
+//! laws. The generalized Jacobian `J = D_u + D_t A⁻¹ S` is dense; Newton's
+//! step `J δu = −L` is taken as `δu = Ŵ y` with
+//!
+//! ```text
+//! (D_u Ŵ + D_t A⁻¹ (I − ρ P_S Ŵ)) y = −L        (J Ŵ, no inverse)
+//! ```
+//!
 //! `3m × 3m` (half the size of the `(u_F, t)` system), factorised by LU
 //! with partial pivoting (faer). A step that does not lower `½|L|²` is
 //! halved (at most [`HALVINGS`] times, then taken whole). Converged when
@@ -69,7 +77,7 @@
 use crate::contact::friction::{self, ContactStatus, Coulomb, NormalPressure, SlipKinematics};
 pub use crate::contact::laws::NormalEnforcement;
 use faer::linalg::solvers::Solve;
-use nalgebra::{DMatrix, DVector, Matrix3, Vector3};
+use nalgebra::{DMatrix, Matrix3, Vector3};
 
 /// Most Newton iterations of one solve.
 const MAX_ITERATIONS: usize = 200;
@@ -293,12 +301,57 @@ pub fn node_law(node: &ConeNode, u: &Vector3<f64>, t: &Vector3<f64>) -> NodeLaw 
     law
 }
 
+/// `Ŵ`, the flexibility over the contact dofs (`n_F × n_F`, symmetric
+/// positive definite), with its Cholesky factor `Ŵ = L Lᵀ` (faer's blocked
+/// dense one): the condensed solve works with `Ŵ` and solves by the
+/// factor and never forms `Ŵ⁻¹` (nalgebra's unblocked Cholesky inverse of
+/// `Ŵ` took 58 % of examples/cattaneo-mindlin's press, `n_F` ≈ 1 100,
+/// BENCHMARKS.md session 15).
+pub struct Flexibility {
+    w: faer::Mat<f64>,
+    factor: faer::linalg::solvers::Llt<f64>,
+}
+
+impl Flexibility {
+    /// `Ŵ` factorised; an error when it is not positive definite.
+    pub fn new(w: &DMatrix<f64>) -> Result<Self, String> {
+        let w = faer::Mat::<f64>::from_fn(w.nrows(), w.ncols(), |r, c| w[(r, c)]);
+        let factor = w.llt(faer::Side::Lower).map_err(|_| {
+            "the condensed contact flexibility is not positive definite".to_string()
+        })?;
+        Ok(Flexibility { w, factor })
+    }
+
+    /// `Ŵ⁻¹ v`.
+    fn solve(&self, v: &[f64]) -> Vec<f64> {
+        let mut x = faer::Mat::<f64>::from_fn(v.len(), 1, |i, _| v[i]);
+        self.factor.solve_in_place(x.as_mut());
+        x.col_as_slice(0).to_vec()
+    }
+
+    /// Row `i` of `Ŵ` (its column: `Ŵ` is symmetric).
+    fn row(&self, i: usize) -> &[f64] {
+        self.w.col_as_slice(i)
+    }
+
+    /// `Ŵ y`.
+    fn apply(&self, y: &[f64]) -> Vec<f64> {
+        let mut v = vec![0.0; y.len()];
+        for (j, &yj) in y.iter().enumerate() {
+            if yj != 0.0 {
+                for (vi, wij) in v.iter_mut().zip(self.row(j)) {
+                    *vi += wij * yj;
+                }
+            }
+        }
+        v
+    }
+}
+
 /// The condensed problem of one increment.
 pub struct ConeProblem<'a> {
-    /// `Ŵ⁻¹`, the inverse of the flexibility over the contact dofs
-    /// (`n_F × n_F`, symmetric positive definite; computed once per `Ŵ`
-    /// by the caller).
-    pub inverse_flexibility: &'a DMatrix<f64>,
+    /// `Ŵ` and its factor (once per `Ŵ`, by the caller).
+    pub flexibility: &'a Flexibility,
     /// Contact dof `i` is component `columns[i].1` of node `columns[i].0`.
     pub columns: &'a [(usize, usize)],
     /// Whether contact dof `i` carries the shift `ρ`.
@@ -343,12 +396,11 @@ enum Component {
     Prescribed(usize),
 }
 
-/// The structure condensed onto the contact dofs: `A t_F = S u_F − q`.
+/// The structure condensed onto the contact dofs:
+/// `A t_F = Ŵ⁻¹ (u_F − û₀) − ρ P_S u_F`.
 struct Condensed {
-    /// `S = Ŵ⁻¹ − ρ P_S`.
-    stiffness: DMatrix<f64>,
-    /// `q = Ŵ⁻¹ û₀`.
-    load: DVector<f64>,
+    /// `q = Ŵ⁻¹ û₀` (its size sets the traction scale).
+    load: Vec<f64>,
     /// Per node, per component.
     components: Vec<[Component; 3]>,
     /// Number of prescribed components (unknowns after `u_F`).
@@ -365,15 +417,9 @@ impl ConeProblem<'_> {
         full
     }
 
-    /// `S`, `q` and the numbering of the unknowns.
+    /// `q` and the numbering of the unknowns.
     fn condense(&self) -> Condensed {
-        let mut stiffness = self.inverse_flexibility.clone();
-        let load = &stiffness * DVector::from_column_slice(self.free_displacement);
-        for (i, &shifted) in self.shifted.iter().enumerate() {
-            if shifted {
-                stiffness[(i, i)] -= self.shift;
-            }
-        }
+        let load = self.flexibility.solve(self.free_displacement);
         let mut components = vec![[Component::Prescribed(usize::MAX); 3]; self.nodes.len()];
         for (i, &(a, d)) in self.columns.iter().enumerate() {
             components[a][d] = Component::Free(i);
@@ -388,7 +434,6 @@ impl ConeProblem<'_> {
             }
         }
         Condensed {
-            stiffness,
             load,
             components,
             prescribed,
@@ -398,8 +443,15 @@ impl ConeProblem<'_> {
     /// The tractions at the unknowns `z = (u_F, t_prescribed)`.
     fn tractions(&self, c: &Condensed, z: &[f64]) -> Vec<Vector3<f64>> {
         let f = self.columns.len();
-        let u = DVector::from_column_slice(&z[..f]);
-        let force = &c.stiffness * u - &c.load;
+        let relative: Vec<f64> = (z[..f].iter().zip(self.free_displacement))
+            .map(|(u, u0)| u - u0)
+            .collect();
+        let mut force = self.flexibility.solve(&relative);
+        for (i, &shifted) in self.shifted.iter().enumerate() {
+            if shifted {
+                force[i] -= self.shift * z[i];
+            }
+        }
         c.components
             .iter()
             .zip(self.nodes)
@@ -430,9 +482,9 @@ impl ConeProblem<'_> {
         (r, laws, t)
     }
 
-    /// The generalized Jacobian of the node laws with respect to `z`:
-    /// `∂L_a/∂u_F = D_u + D_t A⁻¹ S` on the free components,
-    /// `∂L_a/∂t_p = D_t` on the prescribed ones.
+    /// The generalized Jacobian of the node laws with respect to
+    /// `(y, t_p)`, `δu_F = Ŵ y`: `J Ŵ = D_u Ŵ + D_t A⁻¹ (I − ρ P_S Ŵ)` on
+    /// the free components, `∂L_a/∂t_p = D_t` on the prescribed ones.
     fn jacobian(&self, c: &Condensed, laws: &[NodeLaw]) -> faer::Mat<f64> {
         let f = self.columns.len();
         let size = f + c.prescribed;
@@ -445,13 +497,14 @@ impl ConeProblem<'_> {
                     let dt = law.traction_derivative[(k, d)];
                     match c.components[a][d] {
                         Component::Free(i) => {
-                            j[(row, i)] += law.displacement_derivative[(k, d)];
-                            if dt != 0.0 {
-                                let factor = dt / area;
-                                for col in 0..f {
-                                    j[(row, col)] += factor * c.stiffness[(i, col)];
+                            let shift = if self.shifted[i] { self.shift } else { 0.0 };
+                            let factor = law.displacement_derivative[(k, d)] - shift * dt / area;
+                            if factor != 0.0 {
+                                for (col, w) in self.flexibility.row(i).iter().enumerate() {
+                                    j[(row, col)] += factor * w;
                                 }
                             }
+                            j[(row, i)] += dt / area;
                         }
                         Component::Prescribed(p) => j[(row, f + p)] += dt,
                     }
@@ -459,6 +512,16 @@ impl ConeProblem<'_> {
             }
         }
         j
+    }
+
+    /// The step `δz = (Ŵ y, δt_p)` from the solution `(y, δt_p)` of the
+    /// system of [`Self::jacobian`].
+    fn step(&self, solution: &faer::Mat<f64>) -> Vec<f64> {
+        let f = self.columns.len();
+        let all = solution.col_as_slice(0);
+        let mut step = self.flexibility.apply(&all[..f]);
+        step.extend_from_slice(&all[f..]);
+        step
     }
 }
 
@@ -509,8 +572,8 @@ pub fn solve_cone(
         }
         let jacobian = problem.jacobian(&condensed, &laws);
         let rhs = faer::Mat::<f64>::from_fn(r.len(), 1, |i, _| -r[i]);
-        let step = jacobian.partial_piv_lu().solve(&rhs);
-        if (0..r.len()).any(|i| !step[(i, 0)].is_finite()) {
+        let step = problem.step(&jacobian.partial_piv_lu().solve(&rhs));
+        if step.iter().any(|v| !v.is_finite()) {
             return Err(format!(
                 "the condensed Coulomb problem's Jacobian is singular (Newton iteration \
                  {iteration})"
@@ -518,7 +581,7 @@ pub fn solve_cone(
         }
         let old = merit(&r);
         let trial = |alpha: f64| {
-            let trial_z: Vec<f64> = (0..z.len()).map(|i| z[i] + alpha * step[(i, 0)]).collect();
+            let trial_z: Vec<f64> = (0..z.len()).map(|i| z[i] + alpha * step[i]).collect();
             let (trial_r, trial_laws, trial_t) = problem.residual(&condensed, &trial_z);
             (trial_z, trial_r, trial_laws, trial_t)
         };
@@ -659,11 +722,11 @@ mod tests {
     /// with exact stick it sticks (`u_x = 0`, `t_x = −F_x`) while
     /// `F_x ≤ μ F_z` and slips beyond (`t_x = −μ F_z`,
     /// `u_x = (F_x − μ F_z)/k`); with the regularised law it sticks
-    /// elastically, `u_x = F_x/(k + A ε_T)`.
+    /// elastically, `u_x = F_x/(k + A ε_T)`. The same with every dof
+    /// shifted by `ρ` (`Ŵ = I/(k + ρ)`, the shift carried in `J Ŵ`).
     #[test]
     fn a_spring_on_the_plane_sticks_and_slips_by_coulomb() {
         let (k, f_z) = (200.0, 10.0);
-        let inverse = DMatrix::identity(3, 3) * k;
         let columns = [(0, 0), (0, 1), (0, 2)];
         let mut n = node(
             NormalEnforcement::Exact { r: 500.0 },
@@ -691,30 +754,35 @@ mod tests {
                 tangential_law: law,
                 ..n
             }];
-            let u0 = [f_x / k, 0.0, -f_z / k];
-            let problem = ConeProblem {
-                inverse_flexibility: &inverse,
-                columns: &columns,
-                shifted: &[false; 3],
-                shift: 0.0,
-                free_displacement: &u0,
-                prescribed: &[Vector3::zeros()],
-                nodes: &nodes,
-            };
-            let s = solve_cone(&problem, u0.to_vec(), vec![Vector3::zeros()]).unwrap();
-            let (u, t) = (&s.displacement, s.traction[0]);
-            assert!(
-                (u[0] - u_x).abs() < 1e-15,
-                "{law:?} F_x = {f_x}: u_x {}",
-                u[0]
-            );
-            assert!(u[1].abs() < 1e-15 && u[2].abs() < 1e-15, "{u:?}");
-            assert!(
-                (t.x - t_x).abs() < 1e-12,
-                "{law:?} F_x = {f_x}: t_x {}",
-                t.x
-            );
-            assert!((t.z - f_z).abs() < 1e-12 && t.y.abs() < 1e-12, "{t}");
+            // unshifted, and shifted by ρ on every dof (a floating body's
+            // `K̂ = K + ρ I`, `Ŵ = I/(k + ρ)`, `û₀ = F/(k + ρ)`): the same answer
+            for rho in [0.0, 300.0] {
+                let flexibility = Flexibility::new(&(DMatrix::identity(3, 3) / (k + rho))).unwrap();
+                let u0 = [f_x / (k + rho), 0.0, -f_z / (k + rho)];
+                let problem = ConeProblem {
+                    flexibility: &flexibility,
+                    columns: &columns,
+                    shifted: &[rho > 0.0; 3],
+                    shift: rho,
+                    free_displacement: &u0,
+                    prescribed: &[Vector3::zeros()],
+                    nodes: &nodes,
+                };
+                let s = solve_cone(&problem, u0.to_vec(), vec![Vector3::zeros()]).unwrap();
+                let (u, t) = (&s.displacement, s.traction[0]);
+                assert!(
+                    (u[0] - u_x).abs() < 1e-15,
+                    "{law:?} F_x = {f_x}, ρ = {rho}: u_x {}",
+                    u[0]
+                );
+                assert!(u[1].abs() < 1e-15 && u[2].abs() < 1e-15, "{u:?}");
+                assert!(
+                    (t.x - t_x).abs() < 1e-12,
+                    "{law:?} F_x = {f_x}, ρ = {rho}: t_x {}",
+                    t.x
+                );
+                assert!((t.z - f_z).abs() < 1e-12 && t.y.abs() < 1e-12, "{t}");
+            }
         }
     }
 }

@@ -613,6 +613,54 @@ mod tests {
         (pattern, values)
     }
 
+    /// `K` factorised with the unknowns `trailing` ordered last, and
+    /// `(K⁻¹)_TT` read off the factor.
+    fn factor_with_trailing(
+        pattern: &SparsityPattern,
+        k: &[f64],
+        trailing: &[usize],
+    ) -> (SparseLdlt, TrailingInverse) {
+        let mut marked = vec![false; pattern.dimension()];
+        trailing.iter().for_each(|&i| marked[i] = true);
+        let ordering = trailing_ordering(pattern, &marked, None).unwrap();
+        let mut ldlt = SparseLdlt::new(ordering, 1);
+        ldlt.factorize(pattern.symbolic(), k, None).unwrap();
+        let inverse = TrailingInverse::of(&ldlt, trailing).unwrap();
+        (ldlt, inverse)
+    }
+
+    /// `W` equals `Eᵀ K⁻¹ E` solved column by column with the factor (each
+    /// solve checked against `K`) to 1e-13; the largest entry returned.
+    fn assert_solved_flexibility(
+        ldlt: &mut SparseLdlt,
+        pattern: &SparsityPattern,
+        k: &[f64],
+        w: &DMatrix<f64>,
+        directions: &[Direction],
+    ) -> f64 {
+        let dim = pattern.dimension();
+        let mut largest = 0.0f64;
+        for (j, ej) in directions.iter().enumerate() {
+            let mut z = vec![0.0; dim];
+            ej.iter().for_each(|&(i, v)| z[i] += v);
+            let b = z.clone();
+            ldlt.solve_in_place(&mut z).unwrap();
+            let mut kz = vec![0.0; dim];
+            multiply(pattern.symbolic(), k, &z, &mut kz);
+            assert!(kz.iter().zip(&b).all(|(a, b)| (a - b).abs() < 1e-12));
+            for (i, ei) in directions.iter().enumerate() {
+                let exact = component(ei, &z);
+                largest = largest.max(exact.abs());
+                assert!(
+                    (w[(i, j)] - exact).abs() < 1e-13,
+                    "W[{i},{j}] = {} against {exact}",
+                    w[(i, j)]
+                );
+            }
+        }
+        largest
+    }
+
     /// `(K⁻¹)_TT` read from the factor equals `K⁻¹`'s columns solved one by
     /// one, to round-off, for a simplicial (small) and a supernodal
     /// (larger) factor; the flexibility of mixed directions (some on `T`,
@@ -624,12 +672,7 @@ mod tests {
             let (pattern, k) = grid(n);
             let dim = pattern.dimension();
             let trailing: Vec<usize> = (0..dim).filter(|i| i % 3 == 2 && i % 7 < 3).collect();
-            let mut marked = vec![false; dim];
-            trailing.iter().for_each(|&i| marked[i] = true);
-            let ordering = trailing_ordering(&pattern, &marked, None).unwrap();
-            let mut ldlt = SparseLdlt::new(ordering, 1);
-            ldlt.factorize(pattern.symbolic(), &k, None).unwrap();
-            let inverse = TrailingInverse::of(&ldlt, &trailing).unwrap();
+            let (mut ldlt, inverse) = factor_with_trailing(&pattern, &k, &trailing);
             let (symbolic, _) = ldlt.factor_parts().unwrap();
             kinds.push(matches!(symbolic.raw(), SymbolicCholeskyRaw::Supernodal(_)));
             assert_eq!(inverse.len(), trailing.len());
@@ -642,26 +685,8 @@ mod tests {
             ];
             let w = grow_flexibility(&mut ldlt, &inverse, &DMatrix::zeros(0, 0), &directions, dim)
                 .unwrap();
-            let mut largest = 0.0f64;
-            for (j, ej) in directions.iter().enumerate() {
-                let mut z = vec![0.0; dim];
-                ej.iter().for_each(|&(i, v)| z[i] += v);
-                let b = z.clone();
-                ldlt.solve_in_place(&mut z).unwrap();
-                let mut kz = vec![0.0; dim];
-                multiply(pattern.symbolic(), &k, &z, &mut kz);
-                assert!(kz.iter().zip(&b).all(|(a, b)| (a - b).abs() < 1e-12));
-                for (i, ei) in directions.iter().enumerate() {
-                    let exact = component(ei, &z);
-                    largest = largest.max(exact.abs());
-                    assert!(
-                        (w[(i, j)] - exact).abs() < 1e-13,
-                        "n = {n}: W[{i},{j}] = {} against {exact}",
-                        w[(i, j)]
-                    );
-                }
-            }
-            assert!(largest > 1e-2);
+            let largest = assert_solved_flexibility(&mut ldlt, &pattern, &k, &w, &directions);
+            assert!(largest > 1e-2, "n = {n}");
             // the Schur complement is the inverse of the trailing block
             let schur = trailing_schur(&ldlt, &trailing).unwrap();
             let c = trailing.len();
@@ -695,12 +720,7 @@ mod tests {
         let half = dim / 2;
         // every 4th dof of both bodies, interleaved in the unknowns' order
         let trailing: Vec<usize> = (0..dim).filter(|i| i % 4 == 1).collect();
-        let mut marked = vec![false; dim];
-        trailing.iter().for_each(|&i| marked[i] = true);
-        let ordering = trailing_ordering(&pattern, &marked, None).unwrap();
-        let mut ldlt = SparseLdlt::new(ordering, 1);
-        ldlt.factorize(pattern.symbolic(), &k, None).unwrap();
-        let inverse = TrailingInverse::of(&ldlt, &trailing).unwrap();
+        let (mut ldlt, inverse) = factor_with_trailing(&pattern, &k, &trailing);
         assert_eq!(inverse.blocks(), 2);
         let (a, b) = (
             trailing[2],
@@ -714,21 +734,7 @@ mod tests {
         assert!(directions.iter().all(|e| inverse.covers(e)));
         let w =
             grow_flexibility(&mut ldlt, &inverse, &DMatrix::zeros(0, 0), &directions, dim).unwrap();
-        let mut largest = 0.0f64;
-        for (j, ej) in directions.iter().enumerate() {
-            let mut z = vec![0.0; dim];
-            ej.iter().for_each(|&(i, v)| z[i] += v);
-            ldlt.solve_in_place(&mut z).unwrap();
-            for (i, ei) in directions.iter().enumerate() {
-                let exact = component(ei, &z);
-                largest = largest.max(exact.abs());
-                assert!(
-                    (w[(i, j)] - exact).abs() < 1e-13,
-                    "W[{i},{j}] = {} against {exact}",
-                    w[(i, j)]
-                );
-            }
-        }
+        let largest = assert_solved_flexibility(&mut ldlt, &pattern, &k, &w, &directions);
         assert!(largest > 1e-2);
         assert!(
             w[(0, 1)].abs() < 1e-15 && w[(1, 0)].abs() < 1e-15,

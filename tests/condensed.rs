@@ -139,8 +139,9 @@ fn condensed_equals_monolithic_on_frictionless_hertz() {
 /// elastic, Coulomb friction against a rigid plane, the block held in x by
 /// friction alone) and says why; it takes the monolithic one for a
 /// finite-strain material and for friction against a sphere, naming the
-/// reason, and the monolithic one for two linear elastic bodies
-/// (examples/two-spheres: condensed only by name); `condensed` asked for where it does not apply
+/// reason; the condensed one for two linear elastic bodies without
+/// friction (examples/two-spheres) and the monolithic one with Coulomb
+/// friction between them (condensed only by name); `condensed` asked for where it does not apply
 /// is an error naming the reason.
 #[test]
 fn auto_takes_the_condensed_path_exactly_where_it_applies() {
@@ -178,16 +179,28 @@ fn auto_takes_the_condensed_path_exactly_where_it_applies() {
     let curved = press_pull_problem(&sphere);
     let why = signorini::problem::condensed::not_applicable(curved.problem()).unwrap();
     assert!(why.contains("sphere"), "{why}");
-    // two linear elastic bodies in contact (examples/two-spheres): the
-    // condensed path applies, but `auto` keeps Newton's (not faster yet),
-    // naming the reason
+    // two linear elastic bodies in contact, frictionless
+    // (examples/two-spheres): `auto` takes the condensed path, saying so;
+    // with Coulomb friction (examples/cattaneo-mindlin/coarse.toml) it
+    // keeps Newton's, naming the reason
     let root = Path::new(env!("CARGO_MANIFEST_DIR"));
     let pair = Simulation::from_file(&root.join("examples/two-spheres/case.toml")).unwrap();
-    let why = signorini::problem::condensed::not_applicable(pair.problem()).unwrap();
-    assert!(why.contains("strategy = \"condensed\""), "{why}");
+    assert_eq!(
+        signorini::problem::condensed::not_applicable(pair.problem()),
+        None
+    );
     let choice = signorini::problem::condensed::choose(pair.problem()).unwrap();
-    assert_eq!(choice.path.name(), "monolithic");
+    assert_eq!(choice.path.name(), "condensed");
     assert!(choice.reason.contains("two bodies"), "{}", choice.reason);
+    let coarse = root.join("examples/cattaneo-mindlin/coarse.toml");
+    let frictional = Simulation::from_file(&coarse).unwrap();
+    let why = signorini::problem::condensed::not_applicable(frictional.problem()).unwrap();
+    assert!(
+        why.contains("Coulomb friction") && why.contains("strategy = \"condensed\""),
+        "{why}"
+    );
+    let choice = signorini::problem::condensed::choose(frictional.problem()).unwrap();
+    assert_eq!(choice.path.name(), "monolithic");
     let Err(e) = run_case("press-pull", &sphere, "strategy = \"condensed\"") else {
         panic!("condensed ran against a sphere");
     };
@@ -679,7 +692,7 @@ fn pushed_blocks(contact: &str, solver: &str) -> (RunOutcome, PairState) {
 /// factorisation, and at every increment the displacements, nodal contact
 /// forces, pressures and gaps of monolithic Newton (residual tolerance
 /// 1e-11) to 1e-8 relative (the gaps against the largest displacement);
-/// `auto` keeps Newton's path there (the condensed pairs path is not faster yet).
+/// `auto` takes the condensed path there (frictionless between bodies).
 #[test]
 fn bodies_in_contact_condensed_equal_monolithic() {
     for contact in [
@@ -724,7 +737,7 @@ fn bodies_in_contact_condensed_equal_monolithic() {
             .count();
         assert!(closed > 4, "the blocks touch over several nodes: {closed}");
         let (auto, _) = pushed_blocks(contact, "strategy = \"auto\"");
-        assert_eq!(auto.summary.strategy, "monolithic");
+        assert_eq!(auto.summary.strategy, "condensed");
     }
 }
 

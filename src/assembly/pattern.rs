@@ -303,6 +303,13 @@ impl SparsityPattern {
         self.neighbours.len()
     }
 
+    /// Sorted neighbour nodes of each node through the elements alone
+    /// (itself included): the adjacency without contact couplings, that
+    /// of a stiffness assembled from the elements.
+    pub fn element_neighbours(&self) -> &[Vec<usize>] {
+        &self.elements
+    }
+
     /// Number of multiplier unknowns (numbered after the displacements).
     pub fn num_multipliers(&self) -> usize {
         self.multiplier_nodes.len()

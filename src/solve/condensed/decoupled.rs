@@ -44,30 +44,77 @@ pub struct Decoupled {
     symbolic: SymbolicSparseColMat<usize>,
     /// `source[k]`: the full values' index of kept entry `k`.
     source: Vec<usize>,
+    /// The full values' index of each entry between coupled unknowns
+    /// dropped as sharing no element ([`Self::within_elements`]).
+    uncoupled: Vec<usize>,
 }
 
 impl Decoupled {
     /// From the full (both triangles, sorted rows) `pattern` and the
     /// unknowns whose couplings are dropped (`decoupled[i]`).
     pub fn new(pattern: &SymbolicSparseColMat<usize>, decoupled: &[bool]) -> Self {
+        Self::keeping(pattern, decoupled, |_, _| true)
+    }
+
+    /// [`Self::new`], and dropped too every entry between two nodes' dofs
+    /// (3 per node, numbered first) that share no element in `elements`
+    /// (each node's sorted neighbours through the elements): a stiffness
+    /// assembled from the elements is zero there (the pattern's contact
+    /// couplings), and bodies in contact with each other stay apart in
+    /// the factor ([`super::schur::TrailingInverse`]).
+    /// [`Self::couples_across`] checks that the values are zero there.
+    pub fn within_elements(
+        pattern: &SymbolicSparseColMat<usize>,
+        decoupled: &[bool],
+        elements: &[Vec<usize>],
+    ) -> Self {
+        let displacements = 3 * elements.len();
+        Self::keeping(pattern, decoupled, |i, j| {
+            i >= displacements
+                || j >= displacements
+                || elements[i / 3].binary_search(&(j / 3)).is_ok()
+        })
+    }
+
+    /// The entries `(i, j)` kept: the diagonal, and those of two coupled
+    /// unknowns for which `coupled(i, j)`; the others that `coupled`
+    /// drops remembered in `uncoupled`.
+    fn keeping(
+        pattern: &SymbolicSparseColMat<usize>,
+        decoupled: &[bool],
+        coupled: impl Fn(usize, usize) -> bool,
+    ) -> Self {
         let n = pattern.ncols();
         let (cp, ri) = (pattern.col_ptr(), pattern.row_idx());
         let mut col_ptr = Vec::with_capacity(n + 1);
         let mut row_idx = Vec::with_capacity(ri.len());
         let mut source = Vec::with_capacity(ri.len());
+        let mut uncoupled = Vec::new();
         col_ptr.push(0);
         for j in 0..n {
             for (k, &i) in ri.iter().enumerate().take(cp[j + 1]).skip(cp[j]) {
-                if i == j || !(decoupled[i] || decoupled[j]) {
+                if i == j || !(decoupled[i] || decoupled[j]) && coupled(i, j) {
                     row_idx.push(i);
                     source.push(k);
+                } else if !(decoupled[i] || decoupled[j]) {
+                    uncoupled.push(k);
                 }
             }
             col_ptr.push(row_idx.len());
         }
         // a subset of the sorted, in-range rows of each column
         let symbolic = SymbolicSparseColMat::new_checked(n, n, col_ptr, None, row_idx);
-        Decoupled { symbolic, source }
+        Decoupled {
+            symbolic,
+            source,
+            uncoupled,
+        }
+    }
+
+    /// Whether `full` (values on the full pattern) has a nonzero entry
+    /// between two coupled unknowns that [`Self::within_elements`] dropped.
+    pub fn couples_across(&self, full: &[f64]) -> bool {
+        self.uncoupled.iter().any(|&k| full[k] != 0.0)
     }
 
     /// The structure the factorisation analyses.

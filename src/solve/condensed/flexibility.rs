@@ -147,9 +147,11 @@ impl Flexibility {
     }
 
     /// The factorisation's ordering and symbolic analysis: the `trailing`
-    /// unknowns last, the decoupled identity rows of `constrained` first
-    /// and without their couplings ([`Decoupled`]); the nested dissection
-    /// of the rest mostly done before (`dissection`).
+    /// unknowns last (grouped by body, [`trailing_ordering`]), the
+    /// decoupled identity rows of `constrained` first and without their
+    /// couplings, and no entry between nodes that share no element
+    /// ([`Decoupled::within_elements`]: `K` is the elements' alone); the
+    /// nested dissection of the rest mostly done before (`dissection`).
     pub fn analyse(
         pattern: &SparsityPattern,
         lower: &LowerTriangle,
@@ -163,7 +165,8 @@ impl Flexibility {
         // 1: one thread (`Par::Seq`), 0: the run's pool
         let threads = usize::from(dimension < PARALLEL_FACTOR_UNKNOWNS);
         // the structure first: the dissection may still be running
-        let decoupled = Decoupled::new(lower.symbolic(), constrained);
+        let decoupled =
+            Decoupled::within_elements(lower.symbolic(), constrained, pattern.element_neighbours());
         let ordering = trailing_ordering(pattern, &marked, dissection)?;
         let ordering = decoupled_first(ordering, constrained);
         let mut ldlt = SparseLdlt::new(ordering, threads).threads_as_given();
@@ -218,6 +221,11 @@ impl Flexibility {
                 (k_tilde, scale, values)
             },
         );
+        if decoupled.couples_across(&k_tilde) {
+            return Err(Error::LinearSolver(
+                "the condensed stiffness couples nodes that share no element".into(),
+            ));
+        }
         match precision {
             Precision::Single => ldlt.factorize_single(decoupled.symbolic(), &values, None)?,
             Precision::Double => ldlt.factorize(decoupled.symbolic(), &values, None)?,

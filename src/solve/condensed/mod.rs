@@ -2,6 +2,8 @@
 //! not change with the displacement, the contact problem of an increment
 //! written on the contact unknowns alone, with one factorisation per run.
 //!
+//! - [`anderson`]: Anderson acceleration of a fixed point (the rounds of
+//!   the projections between bodies);
 //! - [`flexibility`]: `K̃` factorised once with the contact unknowns
 //!   ordered last, `W = Eᵀ K̃⁻¹ E` over the candidate columns of `E`, and
 //!   the frictionless increment solved exactly;
@@ -21,6 +23,7 @@
 //! obstacle or a law (the normal law enters as
 //! [`crate::contact::laws::NormalEnforcement`]).
 
+pub mod anderson;
 pub mod complementarity;
 pub mod cone;
 pub mod decoupled;

@@ -32,11 +32,12 @@
 //! before.
 
 use crate::assembly::pattern::SparsityPattern;
+use crate::solve::linear::FactorValues;
 use crate::solve::linear::{Ordering, SparseLdlt};
 use crate::solve::ordering::{node_dissection, EarlyDissection};
 use crate::{Error, Result};
 use faer::linalg::matmul::triangular::BlockStructure;
-use faer::sparse::linalg::cholesky::SymbolicCholeskyRaw;
+use faer::sparse::linalg::cholesky::{SymbolicCholesky, SymbolicCholeskyRaw};
 use faer::{Mat, Par};
 use nalgebra::DMatrix;
 
@@ -58,7 +59,11 @@ const BLOCK: usize = 64;
 /// The nested-dissection ordering of `pattern`'s node graph (each node's
 /// dofs together, each multiplier after its node), with the unknowns
 /// marked in `trailing` moved to the end in the same relative order
-/// (the dissection `early`'s when it is of that graph).
+/// (the dissection `early`'s when it is of that graph), grouped by the
+/// body (connected set of elements) they belong to: bodies in contact
+/// share no element, so `K` couples no unknown of one with one of
+/// another, their trailing unknowns contiguous make `L_TT` block
+/// diagonal, one dense block per body ([`TrailingInverse`]).
 pub fn trailing_ordering(
     pattern: &SparsityPattern,
     trailing: &[bool],
@@ -66,10 +71,164 @@ pub fn trailing_ordering(
 ) -> Result<Ordering> {
     let nodes = node_dissection(pattern, early)?;
     let forward = pattern.dof_ordering(&nodes);
-    let (mut front, back): (Vec<usize>, Vec<usize>) =
+    let (mut front, mut back): (Vec<usize>, Vec<usize>) =
         forward.into_iter().partition(|&i| !trailing[i]);
+    let body = element_components(pattern);
+    // stable: within a body the dissection's order
+    back.sort_by_key(|&i| body.get(i / 3).copied().unwrap_or(usize::MAX));
     front.extend(back);
     Ok(Ordering::Custom(front))
+}
+
+/// The connected component of each node in `pattern`'s element graph
+/// (the elements' adjacency, without contact couplings), numbered from 0.
+fn element_components(pattern: &SparsityPattern) -> Vec<usize> {
+    let neighbours = pattern.element_neighbours();
+    let mut component = vec![usize::MAX; neighbours.len()];
+    let mut stack = Vec::new();
+    let mut next = 0;
+    for start in 0..neighbours.len() {
+        if component[start] != usize::MAX {
+            continue;
+        }
+        component[start] = next;
+        stack.push(start);
+        while let Some(a) = stack.pop() {
+            for &b in &neighbours[a] {
+                if component[b] == usize::MAX {
+                    component[b] = next;
+                    stack.push(b);
+                }
+            }
+        }
+        next += 1;
+    }
+    component
+}
+
+/// The factor of `ldlt` and where the unknowns `trailing` are in its last
+/// `trailing.len()` columns: the first of those columns, and each
+/// unknown's position among them (`usize::MAX`: not in `T`); an error if
+/// one of them is not there.
+fn trailing_positions<'a>(
+    ldlt: &'a SparseLdlt,
+    trailing: &[usize],
+) -> Result<(
+    &'a SymbolicCholesky<usize>,
+    FactorValues<'a>,
+    usize,
+    Vec<usize>,
+)> {
+    let (symbolic, values) = ldlt
+        .factor_parts()
+        .ok_or_else(|| Error::LinearSolver("the trailing block needs a factorisation".into()))?;
+    let n = symbolic.nrows();
+    let first = n - trailing.len();
+    let inverse: Vec<usize> = match symbolic.perm() {
+        Some(p) => p.arrays().1.to_vec(),
+        None => (0..n).collect(),
+    };
+    let mut position = vec![usize::MAX; n];
+    for &i in trailing {
+        let at = inverse[i];
+        if at < first {
+            return Err(Error::LinearSolver(format!(
+                "unknown {i} is not in the factor's trailing block"
+            )));
+        }
+        position[i] = at - first;
+    }
+    Ok((symbolic, values, first, position))
+}
+
+/// Every stored entry of the factor's columns from `first` on, as
+/// `visit(row, column, value)` with positions counted from `first`
+/// (`row ≥ column`; on the diagonal `D`, below it `L`).
+fn trailing_entries(
+    symbolic: &SymbolicCholesky<usize>,
+    values: &FactorValues<'_>,
+    first: usize,
+    mut visit: impl FnMut(usize, usize, f64),
+) {
+    match symbolic.raw() {
+        SymbolicCholeskyRaw::Supernodal(s) => {
+            let (begin, end) = (s.supernode_begin(), s.supernode_end());
+            let (ptr_row, ptr_val, rows) =
+                (s.col_ptr_for_row_idx(), s.col_ptr_for_val(), s.row_idx());
+            for k in 0..s.n_supernodes() {
+                if end[k] <= first {
+                    continue;
+                }
+                let width = end[k] - begin[k];
+                let pattern = &rows[ptr_row[k]..ptr_row[k + 1]];
+                let height = width + pattern.len();
+                for jj in 0..width {
+                    let j = begin[k] + jj;
+                    if j < first {
+                        continue;
+                    }
+                    let column = ptr_val[k] + jj * height;
+                    for ii in jj..width {
+                        visit(begin[k] + ii - first, j - first, values.get(column + ii));
+                    }
+                    for (p, &row) in pattern.iter().enumerate() {
+                        visit(row - first, j - first, values.get(column + width + p));
+                    }
+                }
+            }
+        }
+        SymbolicCholeskyRaw::Simplicial(s) => {
+            let factor = s.factor();
+            let (cp, ri) = (factor.col_ptr(), factor.row_idx());
+            for j in first..symbolic.nrows() {
+                for (k, &row) in ri.iter().enumerate().take(cp[j + 1]).skip(cp[j]) {
+                    visit(row - first, j - first, values.get(k));
+                }
+            }
+        }
+    }
+}
+
+/// The diagonal blocks of the factor's trailing `c` columns from `first`
+/// on, from its structure: the start of each (ascending, from 0), a
+/// block ending where no stored entry of a column before it lies in a row
+/// after it. Unknowns that `K` does not couple (two bodies) make two.
+fn trailing_blocks(symbolic: &SymbolicCholesky<usize>, first: usize, c: usize) -> Vec<usize> {
+    // the last stored row of each trailing column
+    let mut reach: Vec<usize> = (0..c).collect();
+    match symbolic.raw() {
+        SymbolicCholeskyRaw::Supernodal(s) => {
+            let (begin, end) = (s.supernode_begin(), s.supernode_end());
+            let (ptr_row, rows) = (s.col_ptr_for_row_idx(), s.row_idx());
+            for k in 0..s.n_supernodes() {
+                if end[k] <= first {
+                    continue;
+                }
+                let pattern = &rows[ptr_row[k]..ptr_row[k + 1]];
+                let last = pattern.iter().copied().fold(end[k] - 1, usize::max);
+                for j in begin[k].max(first)..end[k] {
+                    reach[j - first] = last - first;
+                }
+            }
+        }
+        SymbolicCholeskyRaw::Simplicial(s) => {
+            let factor = s.factor();
+            let (cp, ri) = (factor.col_ptr(), factor.row_idx());
+            for j in first..symbolic.nrows() {
+                let rows = &ri[cp[j]..cp[j + 1]];
+                reach[j - first] = rows.iter().copied().fold(j, usize::max) - first;
+            }
+        }
+    }
+    let mut starts = vec![0];
+    let mut furthest = 0;
+    for (p, &r) in reach.iter().enumerate() {
+        furthest = furthest.max(r);
+        if furthest == p && p + 1 < c {
+            starts.push(p + 1);
+        }
+    }
+    starts
 }
 
 /// The trailing block of an LDLᵀ factor: `L_TT` (unit lower, dense) and
@@ -87,89 +246,84 @@ impl TrailingFactor {
     /// (all of them in the last `trailing.len()` positions of its ordering,
     /// else an error; a zero pivot among them is an error too).
     fn of(ldlt: &SparseLdlt, trailing: &[usize]) -> Result<Self> {
-        let (symbolic, values) = ldlt.factor_parts().ok_or_else(|| {
-            Error::LinearSolver("the trailing block needs a factorisation".into())
-        })?;
-        let n = symbolic.nrows();
+        let (symbolic, values, first, position) = trailing_positions(ldlt, trailing)?;
         let c = trailing.len();
-        let first = n - c;
-        let inverse: Vec<usize> = match symbolic.perm() {
-            Some(p) => p.arrays().1.to_vec(),
-            None => (0..n).collect(),
-        };
-        let mut position = vec![usize::MAX; n];
-        for &i in trailing {
-            let at = inverse[i];
-            if at < first {
-                return Err(Error::LinearSolver(format!(
-                    "unknown {i} is not in the factor's trailing block"
-                )));
-            }
-            position[i] = at - first;
-        }
-        // L_TT (unit lower, dense) and D_T from the factor's last columns
         let mut l = Mat::<f64>::zeros(c, c);
         let mut d = vec![0.0; c];
-        let mut put = |row: usize, col: usize, v: f64| {
+        trailing_entries(symbolic, &values, first, |row, col, v| {
             if row == col {
-                d[col - first] = v;
-            } else if row > col {
-                l[(row - first, col - first)] = v;
+                d[col] = v;
+            } else {
+                l[(row, col)] = v;
             }
-        };
-        match symbolic.raw() {
-            SymbolicCholeskyRaw::Supernodal(s) => {
-                let (begin, end) = (s.supernode_begin(), s.supernode_end());
-                let (ptr_row, ptr_val, rows) =
-                    (s.col_ptr_for_row_idx(), s.col_ptr_for_val(), s.row_idx());
-                for k in 0..s.n_supernodes() {
-                    if end[k] <= first {
-                        continue;
-                    }
-                    let width = end[k] - begin[k];
-                    let pattern = &rows[ptr_row[k]..ptr_row[k + 1]];
-                    let height = width + pattern.len();
-                    for jj in 0..width {
-                        let j = begin[k] + jj;
-                        if j < first {
-                            continue;
-                        }
-                        let column = ptr_val[k] + jj * height;
-                        for ii in jj..width {
-                            put(begin[k] + ii, j, values.get(column + ii));
-                        }
-                        for (p, &row) in pattern.iter().enumerate() {
-                            put(row, j, values.get(column + width + p));
-                        }
-                    }
-                }
-            }
-            SymbolicCholeskyRaw::Simplicial(s) => {
-                let factor = s.factor();
-                let (cp, ri) = (factor.col_ptr(), factor.row_idx());
-                for j in first..n {
-                    for (k, &row) in ri.iter().enumerate().take(cp[j + 1]).skip(cp[j]) {
-                        put(row, j, values.get(k));
-                    }
-                }
-            }
-        }
-        if d.iter().any(|v| *v == 0.0 || !v.is_finite()) {
-            return Err(Error::LinearSolver(
-                "a zero pivot in the trailing block".into(),
-            ));
-        }
+        });
+        check_pivots(&d)?;
         Ok(TrailingFactor { position, l, d })
     }
 }
 
+/// An error for a zero (or not finite) pivot of the trailing block.
+fn check_pivots(d: &[f64]) -> Result<()> {
+    if d.iter().any(|v| *v == 0.0 || !v.is_finite()) {
+        return Err(Error::LinearSolver(
+            "a zero pivot in the trailing block".into(),
+        ));
+    }
+    Ok(())
+}
+
+/// `(L D Lᵀ)⁻¹ = L⁻ᵀ D⁻¹ L⁻¹` for a unit lower `L` (its strict lower
+/// triangle in `l`) and the diagonal `d`: `M = L⁻¹`, then `Mᵀ (D⁻¹ M)`,
+/// an upper triangle times a lower one, its lower triangle only (`c³/6`
+/// multiply-adds instead of the dense product's `c³`), mirrored; on `par`.
+fn ldl_inverse(l: Mat<f64>, d: &[f64], par: Par) -> Mat<f64> {
+    let c = d.len();
+    let mut m = Mat::<f64>::zeros(c, c);
+    faer::linalg::triangular_inverse::invert_unit_lower_triangular(m.as_mut(), l.as_ref(), par);
+    // D⁻¹ M on its lower triangle, in `l`'s storage (no longer read)
+    let mut scaled = l;
+    for j in 0..c {
+        let (source, target) = (m.col_as_slice(j), scaled.col_as_slice_mut(j));
+        target[j] = 1.0 / d[j];
+        for i in j + 1..c {
+            target[i] = source[i] / d[i];
+        }
+    }
+    let mut inverse = Mat::<f64>::zeros(c, c);
+    faer::linalg::matmul::triangular::matmul(
+        inverse.as_mut(),
+        BlockStructure::TriangularLower,
+        faer::Accum::Replace,
+        m.transpose(),
+        BlockStructure::UnitTriangularUpper,
+        scaled.as_ref(),
+        BlockStructure::TriangularLower,
+        1.0,
+        par,
+    );
+    for j in 0..c {
+        for i in j + 1..c {
+            inverse[(j, i)] = inverse[(i, j)];
+        }
+    }
+    inverse
+}
+
 /// `(K⁻¹)_TT`, read from the factor of `K` whose ordering put the
-/// unknowns `T` last ([`trailing_ordering`]).
+/// unknowns `T` last ([`trailing_ordering`]), as its diagonal blocks:
+/// where `K` couples no unknown of one set of `T` with one of another
+/// (bodies in contact with each other), `L_TT`, `S` and `S⁻¹` are block
+/// diagonal, and each block costs `(2/3) b³` flops to invert instead of
+/// the whole block's `(2/3) c³` (two bodies of equal share: a quarter).
 #[derive(Clone, Debug)]
 pub struct TrailingInverse {
-    /// Index of each unknown in the block (`usize::MAX`: not in `T`).
+    /// Index of each unknown in `T` (`usize::MAX`: not in `T`).
     position: Vec<usize>,
-    block: Mat<f64>,
+    /// The first position of each diagonal block, ascending, and its
+    /// inverse.
+    blocks: Vec<(usize, Mat<f64>)>,
+    /// The block of each position in `T`.
+    block_of: Vec<usize>,
 }
 
 impl TrailingInverse {
@@ -177,56 +331,68 @@ impl TrailingInverse {
     pub fn empty(dimension: usize) -> Self {
         TrailingInverse {
             position: vec![usize::MAX; dimension],
-            block: Mat::zeros(0, 0),
+            blocks: Vec::new(),
+            block_of: Vec::new(),
         }
     }
 
     /// `(K⁻¹)_TT = L_TT⁻ᵀ D_T⁻¹ L_TT⁻¹` from the last factorisation of
     /// `ldlt` (in f64 arithmetic from an f32 factor's values: then the
-    /// inverse of the f32 factor's Schur complement), for the unknowns `trailing` (all of them in the last
-    /// `trailing.len()` positions of its ordering, else an error).
+    /// inverse of the f32 factor's Schur complement), for the unknowns
+    /// `trailing` (all of them in the last `trailing.len()` positions of
+    /// its ordering, else an error), block by diagonal block of the
+    /// factor's structure ([`ldl_inverse`] each, on the factor's threads).
     pub fn of(ldlt: &SparseLdlt, trailing: &[usize]) -> Result<Self> {
-        let TrailingFactor { position, l, d } = TrailingFactor::of(ldlt, trailing)?;
+        let (symbolic, values, first, position) = trailing_positions(ldlt, trailing)?;
         let c = trailing.len();
-        // M = L_TT⁻¹ (unit lower), then (K⁻¹)_TT = Mᵀ (D⁻¹ M): an upper
-        // triangle times a lower one, its lower triangle only (c³/6
-        // multiply-adds instead of the dense product's c³), mirrored; on
-        // the factor's threads
-        let par = ldlt.parallelism();
-        let mut m = Mat::<f64>::zeros(c, c);
-        faer::linalg::triangular_inverse::invert_unit_lower_triangular(m.as_mut(), l.as_ref(), par);
-        let scaled = Mat::<f64>::from_fn(c, c, |i, j| match i.cmp(&j) {
-            std::cmp::Ordering::Greater => m[(i, j)] / d[i],
-            std::cmp::Ordering::Equal => 1.0 / d[i],
-            std::cmp::Ordering::Less => 0.0,
-        });
-        let mut block = Mat::<f64>::zeros(c, c);
-        faer::linalg::matmul::triangular::matmul(
-            block.as_mut(),
-            BlockStructure::TriangularLower,
-            faer::Accum::Replace,
-            m.transpose(),
-            BlockStructure::UnitTriangularUpper,
-            scaled.as_ref(),
-            BlockStructure::TriangularLower,
-            1.0,
-            par,
-        );
-        for j in 0..c {
-            for i in j + 1..c {
-                block[(j, i)] = block[(i, j)];
-            }
+        let starts = trailing_blocks(symbolic, first, c);
+        let mut block_of = vec![0; c];
+        for (k, &s) in starts.iter().enumerate() {
+            block_of[s..].iter_mut().for_each(|b| *b = k);
         }
-        Ok(TrailingInverse { position, block })
+        let size = |k: usize| starts.get(k + 1).copied().unwrap_or(c) - starts[k];
+        let mut l: Vec<Mat<f64>> = (0..starts.len())
+            .map(|k| Mat::zeros(size(k), size(k)))
+            .collect();
+        let mut d = vec![0.0; c];
+        // a stored row lies in its column's block (`trailing_blocks`)
+        trailing_entries(symbolic, &values, first, |row, col, v| {
+            let (k, s) = (block_of[col], starts[block_of[col]]);
+            if row == col {
+                d[col] = v;
+            } else {
+                l[k][(row - s, col - s)] = v;
+            }
+        });
+        check_pivots(&d)?;
+        let par = ldlt.parallelism();
+        let blocks = (l.into_iter().enumerate())
+            .map(|(k, l)| {
+                (
+                    starts[k],
+                    ldl_inverse(l, &d[starts[k]..starts[k] + size(k)], par),
+                )
+            })
+            .collect();
+        Ok(TrailingInverse {
+            position,
+            blocks,
+            block_of,
+        })
     }
 
     /// Number of unknowns in `T`.
     pub fn len(&self) -> usize {
-        self.block.nrows()
+        self.block_of.len()
     }
 
     pub fn is_empty(&self) -> bool {
         self.len() == 0
+    }
+
+    /// Number of diagonal blocks of `(K⁻¹)_TT`.
+    pub fn blocks(&self) -> usize {
+        self.blocks.len()
     }
 
     /// Whether every component of `e` lies on `T`.
@@ -236,19 +402,21 @@ impl TrailingInverse {
     }
 
     /// `(K⁻¹)_TT b` on `T` (in the block's order) for a direction `b` on
-    /// `T`: a sum of the block's columns (contiguous), `c` multiply-adds
-    /// per entry of `b`.
+    /// `T`: a sum of the blocks' columns (contiguous), as many
+    /// multiply-adds per entry of `b` as its block has rows.
     fn apply(&self, b: &Direction) -> Vec<f64> {
         let mut z = vec![0.0; self.len()];
         for &(j, bj) in b {
-            let column = self.block.col(self.position[j]);
-            z.iter_mut()
-                .zip(column.iter())
+            let p = self.position[j];
+            let (s, block) = &self.blocks[self.block_of[p]];
+            let column = block.col_as_slice(p - s);
+            z[*s..*s + column.len()]
+                .iter_mut()
+                .zip(column)
                 .for_each(|(zi, kij)| *zi += bj * kij);
         }
         z
     }
-
     /// `v_T += (K⁻¹)_TT e` for a direction `e` on `T`: the displacement of
     /// the unknowns `T` under the load `e` (`v` on every unknown, the
     /// others untouched).
@@ -400,9 +568,15 @@ mod tests {
     /// A 3D grid Laplacian-like SPD matrix on `n³` nodes, 3 dofs per node
     /// (the pattern of `SparsityPattern::from_elements` over 2-node edges).
     fn grid(n: usize) -> (SparsityPattern, Vec<f64>) {
+        grids(n, 1)
+    }
+
+    /// [`grid`] `copies` times, the copies sharing no edge (bodies apart).
+    fn grids(n: usize, copies: usize) -> (SparsityPattern, Vec<f64>) {
         let id = |i: usize, j: usize, k: usize| i + n * (j + n * k);
         let mut edges = Vec::new();
-        for k in 0..n {
+        for k in 0..n * copies {
+            let k_in = k % n;
             for j in 0..n {
                 for i in 0..n {
                     if i + 1 < n {
@@ -411,13 +585,14 @@ mod tests {
                     if j + 1 < n {
                         edges.push([id(i, j, k), id(i, j + 1, k)]);
                     }
-                    if k + 1 < n {
+                    if k_in + 1 < n {
                         edges.push([id(i, j, k), id(i, j, k + 1)]);
                     }
                 }
             }
         }
-        let pattern = SparsityPattern::from_elements(n * n * n, edges.iter().map(|e| &e[..]));
+        let nodes = n * n * n * copies;
+        let pattern = SparsityPattern::from_elements(nodes, edges.iter().map(|e| &e[..]));
         let s = pattern.symbolic();
         let (cp, ri) = (s.col_ptr(), s.row_idx());
         let mut values = vec![0.0; pattern.nnz()];
@@ -438,6 +613,54 @@ mod tests {
         (pattern, values)
     }
 
+    /// `K` factorised with the unknowns `trailing` ordered last, and
+    /// `(K⁻¹)_TT` read off the factor.
+    fn factor_with_trailing(
+        pattern: &SparsityPattern,
+        k: &[f64],
+        trailing: &[usize],
+    ) -> (SparseLdlt, TrailingInverse) {
+        let mut marked = vec![false; pattern.dimension()];
+        trailing.iter().for_each(|&i| marked[i] = true);
+        let ordering = trailing_ordering(pattern, &marked, None).unwrap();
+        let mut ldlt = SparseLdlt::new(ordering, 1);
+        ldlt.factorize(pattern.symbolic(), k, None).unwrap();
+        let inverse = TrailingInverse::of(&ldlt, trailing).unwrap();
+        (ldlt, inverse)
+    }
+
+    /// `W` equals `Eᵀ K⁻¹ E` solved column by column with the factor (each
+    /// solve checked against `K`) to 1e-13; the largest entry returned.
+    fn assert_solved_flexibility(
+        ldlt: &mut SparseLdlt,
+        pattern: &SparsityPattern,
+        k: &[f64],
+        w: &DMatrix<f64>,
+        directions: &[Direction],
+    ) -> f64 {
+        let dim = pattern.dimension();
+        let mut largest = 0.0f64;
+        for (j, ej) in directions.iter().enumerate() {
+            let mut z = vec![0.0; dim];
+            ej.iter().for_each(|&(i, v)| z[i] += v);
+            let b = z.clone();
+            ldlt.solve_in_place(&mut z).unwrap();
+            let mut kz = vec![0.0; dim];
+            multiply(pattern.symbolic(), k, &z, &mut kz);
+            assert!(kz.iter().zip(&b).all(|(a, b)| (a - b).abs() < 1e-12));
+            for (i, ei) in directions.iter().enumerate() {
+                let exact = component(ei, &z);
+                largest = largest.max(exact.abs());
+                assert!(
+                    (w[(i, j)] - exact).abs() < 1e-13,
+                    "W[{i},{j}] = {} against {exact}",
+                    w[(i, j)]
+                );
+            }
+        }
+        largest
+    }
+
     /// `(K⁻¹)_TT` read from the factor equals `K⁻¹`'s columns solved one by
     /// one, to round-off, for a simplicial (small) and a supernodal
     /// (larger) factor; the flexibility of mixed directions (some on `T`,
@@ -449,12 +672,7 @@ mod tests {
             let (pattern, k) = grid(n);
             let dim = pattern.dimension();
             let trailing: Vec<usize> = (0..dim).filter(|i| i % 3 == 2 && i % 7 < 3).collect();
-            let mut marked = vec![false; dim];
-            trailing.iter().for_each(|&i| marked[i] = true);
-            let ordering = trailing_ordering(&pattern, &marked, None).unwrap();
-            let mut ldlt = SparseLdlt::new(ordering, 1);
-            ldlt.factorize(pattern.symbolic(), &k, None).unwrap();
-            let inverse = TrailingInverse::of(&ldlt, &trailing).unwrap();
+            let (mut ldlt, inverse) = factor_with_trailing(&pattern, &k, &trailing);
             let (symbolic, _) = ldlt.factor_parts().unwrap();
             kinds.push(matches!(symbolic.raw(), SymbolicCholeskyRaw::Supernodal(_)));
             assert_eq!(inverse.len(), trailing.len());
@@ -467,26 +685,8 @@ mod tests {
             ];
             let w = grow_flexibility(&mut ldlt, &inverse, &DMatrix::zeros(0, 0), &directions, dim)
                 .unwrap();
-            let mut largest = 0.0f64;
-            for (j, ej) in directions.iter().enumerate() {
-                let mut z = vec![0.0; dim];
-                ej.iter().for_each(|&(i, v)| z[i] += v);
-                let b = z.clone();
-                ldlt.solve_in_place(&mut z).unwrap();
-                let mut kz = vec![0.0; dim];
-                multiply(pattern.symbolic(), &k, &z, &mut kz);
-                assert!(kz.iter().zip(&b).all(|(a, b)| (a - b).abs() < 1e-12));
-                for (i, ei) in directions.iter().enumerate() {
-                    let exact = component(ei, &z);
-                    largest = largest.max(exact.abs());
-                    assert!(
-                        (w[(i, j)] - exact).abs() < 1e-13,
-                        "n = {n}: W[{i},{j}] = {} against {exact}",
-                        w[(i, j)]
-                    );
-                }
-            }
-            assert!(largest > 1e-2);
+            let largest = assert_solved_flexibility(&mut ldlt, &pattern, &k, &w, &directions);
+            assert!(largest > 1e-2, "n = {n}");
             // the Schur complement is the inverse of the trailing block
             let schur = trailing_schur(&ldlt, &trailing).unwrap();
             let c = trailing.len();
@@ -506,5 +706,39 @@ mod tests {
         }
         // one simplicial and one supernodal factor were read
         assert_eq!(kinds, [false, true]);
+    }
+
+    /// Two bodies apart (two grids that share no edge), a trailing set on
+    /// both: `(K⁻¹)_TT` comes in two diagonal blocks, and the flexibility
+    /// of directions on one body, on the other and across both equals
+    /// `Eᵀ K⁻¹ E` solved column by column to round-off (zero across).
+    #[test]
+    fn two_bodies_give_two_trailing_blocks() {
+        let n = 5;
+        let (pattern, k) = grids(n, 2);
+        let dim = pattern.dimension();
+        let half = dim / 2;
+        // every 4th dof of both bodies, interleaved in the unknowns' order
+        let trailing: Vec<usize> = (0..dim).filter(|i| i % 4 == 1).collect();
+        let (mut ldlt, inverse) = factor_with_trailing(&pattern, &k, &trailing);
+        assert_eq!(inverse.blocks(), 2);
+        let (a, b) = (
+            trailing[2],
+            *trailing.iter().find(|&&i| i > half + 7).unwrap(),
+        );
+        let directions: Vec<Direction> = vec![
+            vec![(a, 1.0)],
+            vec![(b, -0.5), (b + 4, 2.0)],
+            vec![(a, 0.7), (b, 0.3)],
+        ];
+        assert!(directions.iter().all(|e| inverse.covers(e)));
+        let w =
+            grow_flexibility(&mut ldlt, &inverse, &DMatrix::zeros(0, 0), &directions, dim).unwrap();
+        let largest = assert_solved_flexibility(&mut ldlt, &pattern, &k, &w, &directions);
+        assert!(largest > 1e-2);
+        assert!(
+            w[(0, 1)].abs() < 1e-15 && w[(1, 0)].abs() < 1e-15,
+            "no coupling across"
+        );
     }
 }

@@ -831,3 +831,80 @@ fn bodies_in_contact_with_friction_condensed_equal_monolithic() {
         last.stick_nodes
     );
 }
+
+/// The largest differences of two runs over their increments (issue 32
+/// item 3's measures): displacements over the largest displacement,
+/// nodal contact forces over the total contact force `|F|` of interface
+/// `contact`, contact tractions `t_N n + t_T` over the peak traction.
+fn curved_differences(
+    contact: &str,
+    (cond, cond_forces): &(RunOutcome, Forces),
+    (mono, mono_forces): &(RunOutcome, Forces),
+) -> (f64, f64, f64) {
+    let common = cond.displacement.len().min(mono.displacement.len());
+    let du = relative_difference(&cond.displacement[..common], &mono.displacement[..common]);
+    assert_eq!(cond_forces.0.len(), mono_forces.0.len());
+    let (mut df, mut dt) = (0.0f64, 0.0f64);
+    for (k, increment) in mono.summary.increments.iter().enumerate() {
+        let total = increment.contact[contact].force;
+        let total = total.iter().map(|f| f * f).sum::<f64>().sqrt();
+        let (c, m) = (&cond_forces.0[k], &mono_forces.0[k]);
+        let largest = c
+            .iter()
+            .zip(m)
+            .fold(0.0f64, |a, (x, y)| a.max((x - y).abs()));
+        df = df.max(largest / total);
+        dt = dt.max(relative_difference(&cond_forces.1[k], &mono_forces.1[k]));
+    }
+    (du, df, dt)
+}
+
+/// Frictionless Hertz-like contact against curved rigid obstacles (issue
+/// 32 item 3): the coarse Hertz hemisphere (R = 1) pressed by 0.0115 onto
+/// a rigid sphere of radius 2 under its pole, and onto a rigid cylinder of
+/// radius 2 across it (axis x), in 4 increments. The condensed path (its
+/// rows at the current normals, in rounds until they settle) equals
+/// monolithic Newton (residual tolerance 1e-11) to 1e-8: displacements
+/// over the largest, nodal contact forces over |F|, tractions over the
+/// peak, at every increment; one factorisation; `auto` takes it and says
+/// the obstacle is curved.
+#[test]
+fn frictionless_condensed_against_curved_obstacles_equals_monolithic() {
+    let plane = "shape = \"plane\"\npoint = [0.0, 0.0, 0.0]\nnormal = [0.0, 0.0, 1.0]";
+    let shapes = [
+        (
+            "sphere",
+            "shape = \"sphere\"\ncenter = [0.0, 0.0, -2.0]\nradius = 2.0",
+        ),
+        (
+            "cylinder",
+            "shape = \"cylinder\"\npoint = [0.0, 0.0, -2.0]\naxis = [1.0, 0.0, 0.0]\nradius = 2.0",
+        ),
+    ];
+    for (name, shape) in shapes {
+        let curved = [(plane, shape.to_string())];
+        let mono = hertz(
+            "strategy = \"monolithic\"\nresidual_tolerance = 1e-11",
+            &curved,
+        );
+        let cond = hertz("strategy = \"auto\"", &curved);
+        assert_eq!(cond.0.summary.strategy, "condensed");
+        assert_eq!(cond.0.summary.fallback_increments, 0);
+        let reason = &cond.0.summary.strategy_reason;
+        assert!(reason.contains("curved"), "{reason}");
+        assert_eq!(cond.0.summary.factorisations, 1);
+        let (du, df, dt) = curved_differences("pole", &cond, &mono);
+        eprintln!("hertz on a {name}: displacements {du:.1e}, forces {df:.1e}, tractions {dt:.1e}");
+        assert!(du < 1e-8, "{name}: displacements differ by {du:e}");
+        assert!(df < 1e-8, "{name}: contact forces differ by {df:e}");
+        assert!(dt < 1e-8, "{name}: contact tractions differ by {dt:e}");
+        let closed =
+            |r: &RunOutcome| r.summary.increments.last().unwrap().contact["pole"].closed_nodes;
+        assert_eq!(closed(&cond.0), closed(&mono.0));
+        assert!(
+            closed(&cond.0) > 3,
+            "{name}: {} closed nodes",
+            closed(&cond.0)
+        );
+    }
+}

@@ -93,6 +93,13 @@ fn has_pairs(problem: &Problem) -> bool {
     problem.contacts.iter().any(|c| c.projected_gap())
 }
 
+/// Whether some interface's rows move with the unknowns (between bodies,
+/// or against a rigid sphere or cylinder): its increments are solved in
+/// rounds at the current rows until they settle ([`pairs`], [`friction`]).
+fn has_moving_rows(problem: &Problem) -> bool {
+    problem.contacts.iter().any(|c| c.rows_move())
+}
+
 /// A zero per secondary node of every interface.
 fn zero_per_node(problem: &Problem) -> Vec<Vec<f64>> {
     problem

@@ -52,6 +52,13 @@ pub fn choose(problem: &Problem) -> std::result::Result<Choice, String> {
              contact nodes by a dense semismooth Newton method (monolithic Newton would \
              factorise at every iteration)"
                 .into()
+        } else if super::has_moving_rows(problem) && !super::has_pairs(problem) {
+            "the stiffness is constant and every contact is frictionless against a rigid \
+             obstacle, some curved (a sphere or a cylinder): one factorisation per run with the \
+             contact surfaces ordered last, the contact problem solved on the contact nodes at \
+             the current normals until they settle (monolithic Newton would factorise at every \
+             iteration)"
+                .into()
         } else if super::has_pairs(problem) {
             "the stiffness is constant and every contact is frictionless, some between two \
              bodies: one factorisation per run with both contact surfaces ordered last, the \
@@ -112,6 +119,9 @@ pub fn not_applicable(problem: &Problem) -> Option<String> {
         // converged state is exact or a penalty (not an outer loop's)
         let why = match c.affine_gap() {
             Ok(()) => None,
+            // a rigid sphere or cylinder, frictionless: the rows at the
+            // current normals, in rounds as between bodies
+            Err(_) if c.rows_move() && !c.projected_gap() && !c.has_friction() => None,
             // between bodies: the rows at the current projections
             // ([`super::pairs`], [`super::friction`]), only when asked for
             // by name: on examples/two-spheres the condensed pairs path

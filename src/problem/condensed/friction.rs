@@ -1,5 +1,5 @@
 //! The frictional condensed path: Coulomb friction against rigid planes,
-//! or between bodies, on bodies of constant stiffness, three unknowns per
+//! rigid spheres or cylinders, or between bodies, on bodies of constant stiffness, three unknowns per
 //! contact node, solved per increment by the dense semismooth Newton method
 //! of [`crate::solve::condensed::cone`], with the friction history
 //! committed per increment by the problem itself (as the monolithic path

@@ -306,6 +306,7 @@ mod tests {
         for (o, obstacle) in obstacles.into_iter().enumerate() {
             let c = ContactInterface::rigid(&mesh, "zmin", obstacle, &enforcement).unwrap();
             assert_eq!(c.affine_gap().is_ok(), o == 0);
+            assert_eq!(c.rows_move(), o == 1);
             let rows = c.constraint_rows(&mesh.nodes, 0.0, &x, None);
             let gaps = c.gaps(&mesh.nodes, 0.0, &x, None);
             for (i, row) in rows.iter().enumerate() {

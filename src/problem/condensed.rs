@@ -53,7 +53,7 @@
 //! Every material small-strain (`linear_elastic`: the total-Lagrangian
 //! laws are geometrically nonlinear, their `K` changes with `u`), no
 //! follower pressure, every contact against a rigid plane (translating or
-//! not), frictionless or with Coulomb friction, with an exact or penalty
+//! not) or a rigid sphere or cylinder, frictionless or with Coulomb friction, with an exact or penalty
 //! law (dual mortar on a plane: frictionless, exact; its gap
 //! `g_j = Σ_k R_jk g(x_k)` is affine, its columns `R_jk n` over a face's
 //! nodes, [`ConstraintRow::node_gradients`]), and every body held by its prescribed displacements (`K̃` regular:
@@ -63,7 +63,9 @@
 //! `summary.json` say why. Contact between bodies (node-to-surface) is
 //! condensed when asked for by name (`strategy = "condensed"`):
 //! frictionless by [`pairs`], with Coulomb friction by [`friction`] on the
-//! rows of [`linearisation`], both at the current projections.
+//! rows of [`linearisation`], both at the current projections. So is
+//! contact against a rigid sphere or cylinder, under `auto` too, its rows
+//! at the current normals (`ContactInterface::rows_move`).
 
 use super::{ContactState, Problem};
 use crate::contact::interface::ConstraintRow;
@@ -91,6 +93,13 @@ fn has_friction(problem: &Problem) -> bool {
 /// [`pairs`]).
 fn has_pairs(problem: &Problem) -> bool {
     problem.contacts.iter().any(|c| c.projected_gap())
+}
+
+/// Whether some interface's rows move with the unknowns (between bodies,
+/// or against a rigid sphere or cylinder): its increments are solved in
+/// rounds at the current rows until they settle ([`pairs`], [`friction`]).
+fn has_moving_rows(problem: &Problem) -> bool {
+    problem.contacts.iter().any(|c| c.rows_move())
 }
 
 /// A zero per secondary node of every interface.

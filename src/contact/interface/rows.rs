@@ -222,6 +222,21 @@ impl ContactInterface {
         matches!(self.primary, Primary::Surface(_))
     }
 
+    /// Whether the rows move with the unknowns and are each exact only at
+    /// the point they were taken (a solve on them repeats at its answer
+    /// until they settle): between bodies ([`Self::projected_gap`]), and
+    /// against a rigid sphere or cylinder, whose normal `n(x_s)` turns
+    /// with the node's position (`∇g = n` on the secondary node alone, the
+    /// lever `B = I`). A triangulated obstacle is not among them: its
+    /// nearest facet is not kept from one solve to the next.
+    pub fn rows_move(&self) -> bool {
+        self.projected_gap()
+            || matches!(
+                &self.primary,
+                Primary::Rigid(RigidObstacle::Sphere { .. } | RigidObstacle::Cylinder { .. })
+            )
+    }
+
     /// Whether every node's area is the fixed tributary `A_s` (`false`:
     /// dual mortar's `D_j`, integrated over the current surface, so that
     /// a penalty's force `D_j ε ⟨−g⟩` is not affine in the unknowns).
@@ -291,6 +306,7 @@ mod tests {
         for (o, obstacle) in obstacles.into_iter().enumerate() {
             let c = ContactInterface::rigid(&mesh, "zmin", obstacle, &enforcement).unwrap();
             assert_eq!(c.affine_gap().is_ok(), o == 0);
+            assert_eq!(c.rows_move(), o == 1);
             let rows = c.constraint_rows(&mesh.nodes, 0.0, &x, None);
             let gaps = c.gaps(&mesh.nodes, 0.0, &x, None);
             for (i, row) in rows.iter().enumerate() {

@@ -46,11 +46,25 @@ pub fn choose(problem: &Problem) -> std::result::Result<Choice, String> {
              Newton method at the current projections until they settle (monolithic Newton \
              would factorise at every iteration)"
                 .into()
+        } else if has_friction(problem) && super::has_moving_rows(problem) {
+            "the stiffness is constant and every contact is against a rigid obstacle with \
+             Coulomb friction, some curved (a sphere or a cylinder): one factorisation per run, \
+             the frictional contact problem solved on the contact nodes by a dense semismooth \
+             Newton method at the current normals until they settle (monolithic Newton would \
+             factorise at every iteration)"
+                .into()
         } else if has_friction(problem) {
             "the stiffness is constant and every contact is against a rigid plane with Coulomb \
              friction: one factorisation per run, the frictional contact problem solved on the \
              contact nodes by a dense semismooth Newton method (monolithic Newton would \
              factorise at every iteration)"
+                .into()
+        } else if super::has_moving_rows(problem) && !super::has_pairs(problem) {
+            "the stiffness is constant and every contact is frictionless against a rigid \
+             obstacle, some curved (a sphere or a cylinder): one factorisation per run with the \
+             contact surfaces ordered last, the contact problem solved on the contact nodes at \
+             the current normals until they settle (monolithic Newton would factorise at every \
+             iteration)"
                 .into()
         } else if super::has_pairs(problem) {
             "the stiffness is constant and every contact is frictionless, some between two \
@@ -112,6 +126,9 @@ pub fn not_applicable(problem: &Problem) -> Option<String> {
         // converged state is exact or a penalty (not an outer loop's)
         let why = match c.affine_gap() {
             Ok(()) => None,
+            // a rigid sphere or cylinder: the rows at the current normals,
+            // in rounds as between bodies
+            Err(_) if c.rows_move() && !c.projected_gap() => None,
             // between bodies: the rows at the current projections
             // ([`super::pairs`], [`super::friction`]); `auto` takes them
             // frictionless (faster than Newton paired on

@@ -1,5 +1,5 @@
 //! The frictional condensed path: Coulomb friction against rigid planes,
-//! or between bodies, on bodies of constant stiffness, three unknowns per
+//! rigid spheres or cylinders, or between bodies, on bodies of constant stiffness, three unknowns per
 //! contact node, solved per increment by the dense semismooth Newton method
 //! of [`crate::solve::condensed::cone`], with the friction history
 //! committed per increment by the problem itself (as the monolithic path
@@ -217,7 +217,10 @@ impl FrictionalCondensation {
     /// bodies with the surfaces' dofs last); the nodes touching at the
     /// start made candidates.
     pub(super) fn new(problem: &Problem) -> Result<Self> {
-        let projected = super::has_pairs(problem);
+        // rounds at the current rows between bodies and against a curved
+        // rigid obstacle; the surfaces' dofs last (no shift) between bodies
+        let projected = super::has_moving_rows(problem);
+        let between = super::has_pairs(problem);
         let constrained = problem.constrained_dofs();
         let zero = vec![0.0; problem.num_unknowns()];
         let rows = if projected {
@@ -229,7 +232,7 @@ impl FrictionalCondensation {
         };
         let all = ContactColumns::of(problem, &rows);
         // shift only where the prescribed displacements do not hold a body
-        let floating = !projected && super::free_rigid_body_mode(problem, &constrained).is_some();
+        let floating = !between && super::free_rigid_body_mode(problem, &constrained).is_some();
         let shifted_dofs: Vec<usize> = if floating {
             (all.initial.iter())
                 .flat_map(|&a| {
@@ -244,7 +247,7 @@ impl FrictionalCondensation {
             Vec::new()
         };
         let (owners, columns) = (all.owners, all.columns);
-        let base = if projected {
+        let base = if between {
             let trailing = super::pairs::surface_trailing(problem);
             Condensation::factorise_on(problem, owners, columns, &[], trailing, false)?
         } else {

@@ -9,7 +9,8 @@
 //! ```
 //!
 //! Against rigid planes these are exact for every `x̂` (`B = I`, a fixed
-//! normal) and `x̂ = 0`. Between bodies the projections move with `u`:
+//! normal) and `x̂ = 0`. Between bodies the projections move with `u`,
+//! against a rigid sphere or cylinder the normal (`B = I`):
 //! `x̂` is the last answer, and the rounds repeat until the answer is the
 //! point it was linearised at ([`Linearisation::defect`]), where every
 //! value the node laws read is the exact one.

@@ -2,7 +2,7 @@
 //! an increment (frictionless or frictional), the check of its answer by
 //! the problem's residual, and its warm state for a restart.
 
-use super::{friction, has_friction, has_pairs, pairs, set_multipliers, zero_per_node};
+use super::{friction, has_friction, has_moving_rows, pairs, set_multipliers, zero_per_node};
 use super::{Condensation, ContactState, Path, Problem};
 use crate::contact::interface::NodeReport;
 use crate::solve::failure::IncrementFailure;
@@ -128,7 +128,7 @@ impl Condensed {
     pub fn new(problem: &Problem) -> Result<Self> {
         let solver: Box<dyn IncrementSolver> = if has_friction(problem) {
             Box::new(friction::FrictionalCondensation::new(problem)?)
-        } else if has_pairs(problem) {
+        } else if has_moving_rows(problem) {
             Box::new(pairs::PairCondensation::new(problem)?)
         } else {
             Box::new(Condensation::new(problem)?)

@@ -147,6 +147,12 @@ fn condensed_mortar_is_refused_on_a_sphere() {
 /// examples/hertz, Tet4, Rockafellar, 4 increments) condensed with the
 /// `[[contact]]` lines `contact`, run in `dir`.
 fn hertz(dir: &Path, contact: &str) -> CaseRun {
+    let path = hertz_case(dir, contact);
+    CaseRun::new(&path, &dir.join("out"))
+}
+
+/// The case file of [`hertz`], written into `dir`.
+fn hertz_case(dir: &Path, contact: &str) -> std::path::PathBuf {
     let root = Path::new(env!("CARGO_MANIFEST_DIR"));
     let text = std::fs::read_to_string(root.join("examples/hertz/case.toml")).unwrap();
     let mesh = root.join("tests/data/hemisphere_coarse.msh");
@@ -161,7 +167,7 @@ fn hertz(dir: &Path, contact: &str) -> CaseRun {
         );
     let path = dir.join("case.toml");
     std::fs::write(&path, text + "\n[solver]\nstrategy = \"condensed\"\n").unwrap();
-    CaseRun::new(&path, &dir.join("out"))
+    path
 }
 
 /// Hertz on Tet4 against the rigid plane, both condensed: dual mortar's
@@ -184,6 +190,48 @@ fn condensed_hertz_mortar_equals_node_to_surface() {
     println!("hertz Tet4 mortar − node-to-surface: displacements {du:.1e}, force {df:.1e}");
     assert!(du <= 1e-10, "displacements differ by {du:e}");
     assert!(df <= 1e-10, "forces {fm:?} and {fn_:?}");
+}
+
+/// The contact solve of condensed mortar reads only gaps, and those come
+/// without derivatives ([`MortarObstacle::gaps`]: on the plane the closed
+/// form `g(x̃_j)`): on the coarse Hertz hemisphere (Tet4, 4 increments)
+/// the rows with their derivatives are integrated once for the columns of
+/// `E` and once per increment at its answer (the nodes' areas `D_j`, then
+/// the problem's evaluation from the row cache), while the gaps are
+/// evaluated without derivatives at least once per increment (the free
+/// solution, the answers; 7 times in 3 increments). Building the rows at
+/// every gap evaluation again would make `integrated` about
+/// `integrated + values` here.
+#[test]
+fn condensed_mortar_integrates_rows_once_per_increment() {
+    use signorini::contact::interface::Primary;
+    use signorini::problem::condensed::Condensed;
+    let dir = tempfile::tempdir().unwrap();
+    hertz_case(dir.path(), "discretisation = \"mortar\"");
+    let mut problem = signorini::case::load(&dir.path().join("case.toml"))
+        .unwrap()
+        .build_problem()
+        .unwrap();
+    let mut method = Condensed::new(&problem).unwrap();
+    let mut recorder = common::Recorder::default();
+    signorini::solve::stepping::resume_steps(
+        &mut problem,
+        &mut method,
+        None,
+        &mut recorder,
+        dir.path().join("out"),
+        None,
+    )
+    .unwrap();
+    let increments = recorder.increments.len();
+    let Primary::MortarRigid(m) = &problem.contacts.interface(0).primary else {
+        panic!("a mortar interface");
+    };
+    let counts = m.row_counts();
+    println!("{increments} increments: {counts:?}");
+    assert!(increments >= 3, "{increments} increments");
+    assert!(counts.integrated <= increments + 1, "{counts:?}");
+    assert!(counts.values >= increments, "{counts:?}");
 }
 
 /// examples/hertz (run by hand, the numbers of BENCHMARKS.md:

@@ -143,6 +143,70 @@ fn condensed_mortar_is_refused_on_a_sphere() {
     assert_eq!(auto.outcome.summary.strategy, "monolithic");
 }
 
+/// A `[[contact]]` without `discretisation` on quadratic faces takes dual
+/// mortar (node-to-surface would give the Tri6 corners no share of a
+/// uniform pressure): the Tet10 block of [`block_case`] on the oblique
+/// plane without the key runs mortar (condensed, as `auto` takes it),
+/// says so in a `note:` line of its log, and equals the same case with
+/// `discretisation = "mortar"` bit for bit (displacements,
+/// `contact_pressure`). With friction against the obstacle, which mortar
+/// does not take, the default stays node-to-surface, and its refusal of
+/// the quadratic faces names the surface.
+#[test]
+fn quadratic_faces_default_to_mortar() {
+    let given = tempfile::tempdir().unwrap();
+    let path = block_case(
+        given.path(),
+        ElementKind::Tet10,
+        OBLIQUE_PLANE,
+        "strategy = \"auto\"",
+    );
+    let with_key = CaseRun::new(&path, &given.path().join("out"));
+    let text = std::fs::read_to_string(&path).unwrap();
+    let without = text.replace("discretisation = \"mortar\"\n", "");
+    assert_ne!(text, without);
+    let dir = tempfile::tempdir().unwrap();
+    std::fs::write(
+        dir.path().join("block.msh"),
+        std::fs::read(given.path().join("block.msh")).unwrap(),
+    )
+    .unwrap();
+    std::fs::write(dir.path().join("case.toml"), &without).unwrap();
+    let default = CaseRun::new(&dir.path().join("case.toml"), &dir.path().join("out"));
+    assert_eq!(default.outcome.summary.strategy, "condensed");
+    assert_eq!(displacements(&default), displacements(&with_key));
+    assert_eq!(
+        default.last_field("contact_pressure"),
+        with_key.last_field("contact_pressure")
+    );
+    let log = std::fs::read_dir(dir.path().join("out"))
+        .unwrap()
+        .map(|e| e.unwrap().path())
+        .find(|p| p.extension().is_some_and(|e| e == "log"))
+        .unwrap();
+    let log = std::fs::read_to_string(log).unwrap();
+    assert!(
+        log.lines()
+            .any(|l| l.starts_with("note: ")
+                && l.contains("'bottom' takes discretisation = \"mortar\"")),
+        "{log}"
+    );
+    let friction = without.replace(
+        "method = \"rockafellar\"",
+        "method = \"rockafellar\"\nfriction_coefficient = 0.3",
+    );
+    std::fs::write(dir.path().join("case.toml"), friction).unwrap();
+    let error = signorini::case::load(&dir.path().join("case.toml"))
+        .and_then(|c| c.build_problem())
+        .err()
+        .expect("node-to-surface refuses Tri6 faces")
+        .to_string();
+    assert!(
+        error.contains("surface 'zmin' has quadratic faces"),
+        "{error}"
+    );
+}
+
 /// The coarse Hertz hemisphere (tests/data/hemisphere_coarse.msh in
 /// examples/hertz, Tet4, Rockafellar, 4 increments) condensed with the
 /// `[[contact]]` lines `contact`, run in `dir`.

@@ -298,6 +298,39 @@ fn condensed_mortar_integrates_rows_once_per_increment() {
     assert!(counts.values >= increments, "{counts:?}");
 }
 
+/// On linear faces against a plane the condensed path's columns of `E`
+/// are node-to-surface's: every mortar row of the coarse Hertz hemisphere
+/// (Tet4) at `u = 0` couples its own node alone, `∂g_j/∂x_j = n` to 1e-13
+/// (biorthogonality: the entries on the face neighbours are round-off, and
+/// a column with them would leave the trailing block).
+#[test]
+fn condensed_mortar_columns_on_linear_faces_are_node_to_surface() {
+    let dir = tempfile::tempdir().unwrap();
+    hertz_case(dir.path(), "discretisation = \"mortar\"");
+    let problem = signorini::case::load(&dir.path().join("case.toml"))
+        .unwrap()
+        .build_problem()
+        .unwrap();
+    let c = problem.contacts.interface(0);
+    let zero = vec![0.0; problem.num_unknowns()];
+    let rows = c.constraint_rows(&problem.model.mesh.nodes, 0.0, &zero, None);
+    let (mut count, mut wide, mut worst) = (0, 0, 0.0f64);
+    for row in rows.iter().flatten() {
+        count += 1;
+        wide += usize::from(row.node_gradients.len() != 1);
+        let own = &row.node_gradients[0];
+        assert_eq!(own.0, row.node);
+        worst = worst.max((own.1 - nalgebra::Vector3::z()).amax());
+        for (_, g) in &row.node_gradients[1..] {
+            worst = worst.max(g.amax());
+        }
+    }
+    println!("{count} rows, {wide} with more than their own node, largest deviation {worst:e}");
+    assert!(count > 100);
+    assert!(worst <= 1e-13, "{worst:e}");
+    assert_eq!(wide, 0, "rows coupling their neighbours");
+}
+
 /// examples/hertz (run by hand, the numbers of BENCHMARKS.md:
 /// `cargo test --release --test mortar_condensed -- --ignored
 /// --nocapture`): `case.toml` (Tet4) with `discretisation = "mortar"`

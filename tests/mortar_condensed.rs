@@ -143,10 +143,80 @@ fn condensed_mortar_is_refused_on_a_sphere() {
     assert_eq!(auto.outcome.summary.strategy, "monolithic");
 }
 
+/// A `[[contact]]` without `discretisation` on quadratic faces takes dual
+/// mortar (node-to-surface would give the Tri6 corners no share of a
+/// uniform pressure): the Tet10 block of [`block_case`] on the oblique
+/// plane without the key runs mortar (condensed, as `auto` takes it),
+/// says so in a `note:` line of its log, and equals the same case with
+/// `discretisation = "mortar"` bit for bit (displacements,
+/// `contact_pressure`). With friction against the obstacle, which mortar
+/// does not take, the default stays node-to-surface, and its refusal of
+/// the quadratic faces names the surface.
+#[test]
+fn quadratic_faces_default_to_mortar() {
+    let given = tempfile::tempdir().unwrap();
+    let path = block_case(
+        given.path(),
+        ElementKind::Tet10,
+        OBLIQUE_PLANE,
+        "strategy = \"auto\"",
+    );
+    let with_key = CaseRun::new(&path, &given.path().join("out"));
+    let text = std::fs::read_to_string(&path).unwrap();
+    let without = text.replace("discretisation = \"mortar\"\n", "");
+    assert_ne!(text, without);
+    let dir = tempfile::tempdir().unwrap();
+    std::fs::write(
+        dir.path().join("block.msh"),
+        std::fs::read(given.path().join("block.msh")).unwrap(),
+    )
+    .unwrap();
+    std::fs::write(dir.path().join("case.toml"), &without).unwrap();
+    let default = CaseRun::new(&dir.path().join("case.toml"), &dir.path().join("out"));
+    assert_eq!(default.outcome.summary.strategy, "condensed");
+    assert_eq!(displacements(&default), displacements(&with_key));
+    assert_eq!(
+        default.last_field("contact_pressure"),
+        with_key.last_field("contact_pressure")
+    );
+    let log = std::fs::read_dir(dir.path().join("out"))
+        .unwrap()
+        .map(|e| e.unwrap().path())
+        .find(|p| p.extension().is_some_and(|e| e == "log"))
+        .unwrap();
+    let log = std::fs::read_to_string(log).unwrap();
+    assert!(
+        log.lines()
+            .any(|l| l.starts_with("note: ")
+                && l.contains("'bottom' takes discretisation = \"mortar\"")),
+        "{log}"
+    );
+    let friction = without.replace(
+        "method = \"rockafellar\"",
+        "method = \"rockafellar\"\nfriction_coefficient = 0.3",
+    );
+    std::fs::write(dir.path().join("case.toml"), friction).unwrap();
+    let error = signorini::case::load(&dir.path().join("case.toml"))
+        .and_then(|c| c.build_problem())
+        .err()
+        .expect("node-to-surface refuses Tri6 faces")
+        .to_string();
+    assert!(
+        error.contains("surface 'zmin' has quadratic faces"),
+        "{error}"
+    );
+}
+
 /// The coarse Hertz hemisphere (tests/data/hemisphere_coarse.msh in
 /// examples/hertz, Tet4, Rockafellar, 4 increments) condensed with the
 /// `[[contact]]` lines `contact`, run in `dir`.
 fn hertz(dir: &Path, contact: &str) -> CaseRun {
+    let path = hertz_case(dir, contact);
+    CaseRun::new(&path, &dir.join("out"))
+}
+
+/// The case file of [`hertz`], written into `dir`.
+fn hertz_case(dir: &Path, contact: &str) -> std::path::PathBuf {
     let root = Path::new(env!("CARGO_MANIFEST_DIR"));
     let text = std::fs::read_to_string(root.join("examples/hertz/case.toml")).unwrap();
     let mesh = root.join("tests/data/hemisphere_coarse.msh");
@@ -161,7 +231,7 @@ fn hertz(dir: &Path, contact: &str) -> CaseRun {
         );
     let path = dir.join("case.toml");
     std::fs::write(&path, text + "\n[solver]\nstrategy = \"condensed\"\n").unwrap();
-    CaseRun::new(&path, &dir.join("out"))
+    path
 }
 
 /// Hertz on Tet4 against the rigid plane, both condensed: dual mortar's
@@ -184,6 +254,81 @@ fn condensed_hertz_mortar_equals_node_to_surface() {
     println!("hertz Tet4 mortar − node-to-surface: displacements {du:.1e}, force {df:.1e}");
     assert!(du <= 1e-10, "displacements differ by {du:e}");
     assert!(df <= 1e-10, "forces {fm:?} and {fn_:?}");
+}
+
+/// The contact solve of condensed mortar reads only gaps, and those come
+/// without derivatives ([`MortarObstacle::gaps`]: on the plane the closed
+/// form `g(x̃_j)`): on the coarse Hertz hemisphere (Tet4, 4 increments)
+/// the rows with their derivatives are integrated once for the columns of
+/// `E` and once per increment at its answer (the nodes' areas `D_j`, then
+/// the problem's evaluation from the row cache), while the gaps are
+/// evaluated without derivatives at least once per increment (the free
+/// solution, the answers; 7 times in 3 increments). Building the rows at
+/// every gap evaluation again would make `integrated` about
+/// `integrated + values` here.
+#[test]
+fn condensed_mortar_integrates_rows_once_per_increment() {
+    use signorini::contact::interface::Primary;
+    use signorini::problem::condensed::Condensed;
+    let dir = tempfile::tempdir().unwrap();
+    hertz_case(dir.path(), "discretisation = \"mortar\"");
+    let mut problem = signorini::case::load(&dir.path().join("case.toml"))
+        .unwrap()
+        .build_problem()
+        .unwrap();
+    let mut method = Condensed::new(&problem).unwrap();
+    let mut recorder = common::Recorder::default();
+    signorini::solve::stepping::resume_steps(
+        &mut problem,
+        &mut method,
+        None,
+        &mut recorder,
+        dir.path().join("out"),
+        None,
+    )
+    .unwrap();
+    let increments = recorder.increments.len();
+    let Primary::MortarRigid(m) = &problem.contacts.interface(0).primary else {
+        panic!("a mortar interface");
+    };
+    let counts = m.row_counts();
+    println!("{increments} increments: {counts:?}");
+    assert!(increments >= 3, "{increments} increments");
+    assert!(counts.integrated <= increments + 1, "{counts:?}");
+    assert!(counts.values >= increments, "{counts:?}");
+}
+
+/// On linear faces against a plane the condensed path's columns of `E`
+/// are node-to-surface's: every mortar row of the coarse Hertz hemisphere
+/// (Tet4) at `u = 0` couples its own node alone, `∂g_j/∂x_j = n` to 1e-13
+/// (biorthogonality: the entries on the face neighbours are round-off, and
+/// a column with them would leave the trailing block).
+#[test]
+fn condensed_mortar_columns_on_linear_faces_are_node_to_surface() {
+    let dir = tempfile::tempdir().unwrap();
+    hertz_case(dir.path(), "discretisation = \"mortar\"");
+    let problem = signorini::case::load(&dir.path().join("case.toml"))
+        .unwrap()
+        .build_problem()
+        .unwrap();
+    let c = problem.contacts.interface(0);
+    let zero = vec![0.0; problem.num_unknowns()];
+    let rows = c.constraint_rows(&problem.model.mesh.nodes, 0.0, &zero, None);
+    let (mut count, mut wide, mut worst) = (0, 0, 0.0f64);
+    for row in rows.iter().flatten() {
+        count += 1;
+        wide += usize::from(row.node_gradients.len() != 1);
+        let own = &row.node_gradients[0];
+        assert_eq!(own.0, row.node);
+        worst = worst.max((own.1 - nalgebra::Vector3::z()).amax());
+        for (_, g) in &row.node_gradients[1..] {
+            worst = worst.max(g.amax());
+        }
+    }
+    println!("{count} rows, {wide} with more than their own node, largest deviation {worst:e}");
+    assert!(count > 100);
+    assert!(worst <= 1e-13, "{worst:e}");
+    assert_eq!(wide, 0, "rows coupling their neighbours");
 }
 
 /// examples/hertz (run by hand, the numbers of BENCHMARKS.md:

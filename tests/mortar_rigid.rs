@@ -316,6 +316,71 @@ fn block_on(kind: ElementKind, obstacle: RigidObstacle) -> Problem {
     pr
 }
 
+/// The gaps without derivatives ([`MortarObstacle::gaps`], what the
+/// condensed path's contact solve reads) against the rows' own
+/// `g̃_j / D_j` at a warped, pressed state, on a fresh interface each
+/// (no row cache): to the bit on a sphere and a cylinder (the same sums),
+/// to 1e-15 of the block's size on an oblique plane (the closed form
+/// `g(x̃_j)`), for Tet4, Tet10 and Hex20 faces; some nodes open, some
+/// penetrating.
+#[test]
+fn gaps_without_derivatives_are_the_rows_gaps() {
+    let plane = RigidObstacle::plane(Vector3::zeros(), Vector3::new(0.03, 0.02, 1.0)).unwrap();
+    let sphere = RigidObstacle::sphere(Vector3::new(0.0, 0.0, -2.0), 2.0).unwrap();
+    let cylinder =
+        RigidObstacle::cylinder(Vector3::new(0.0, 0.0, -2.0), Vector3::y(), 2.0).unwrap();
+    for kind in [ElementKind::Tet4, ElementKind::Tet10, ElementKind::Hex20] {
+        for (o, obstacle) in [plane.clone(), sphere.clone(), cylinder.clone()]
+            .iter()
+            .enumerate()
+        {
+            let fresh = || block_on(kind, obstacle.clone());
+            let pr = fresh();
+            let n = pr.num_unknowns();
+            let mut x: Vec<f64> = (0..n).map(|i| 0.004 * ((i as f64) * 0.77).sin()).collect();
+            for (i, xi) in x.iter_mut().enumerate().take(pr.model.num_dofs()) {
+                if i % 3 == 2 {
+                    *xi -= 0.02;
+                }
+            }
+            let reference = &pr.model.mesh.nodes;
+            let c = pr.contacts.interface(0);
+            let gaps = c.gaps(reference, 1.0, &x, None);
+            let (counts, open) = match &c.primary {
+                signorini::contact::interface::Primary::MortarRigid(m) => {
+                    (m.row_counts(), m.surfaces.margin)
+                }
+                _ => unreachable!("a mortar interface"),
+            };
+            assert_eq!((counts.integrated, counts.values), (0, 1), "{counts:?}");
+            let rows = fresh()
+                .contacts
+                .interface(0)
+                .constraint_rows(reference, 1.0, &x, None);
+            let (mut closed, mut far) = (0, 0);
+            for (i, (g, row)) in gaps.iter().zip(&rows).enumerate() {
+                let Some(row) = row else {
+                    assert_eq!(*g, open, "{kind:?} obstacle {o} node {i}");
+                    far += 1;
+                    continue;
+                };
+                closed += usize::from(row.gap < 0.0);
+                if o == 0 {
+                    assert!(
+                        (g - row.gap).abs() <= 1e-15,
+                        "{kind:?} node {i}: {g} {}",
+                        row.gap
+                    );
+                } else {
+                    assert_eq!(*g, row.gap, "{kind:?} obstacle {o} node {i}");
+                }
+            }
+            println!("{kind:?} obstacle {o}: {closed} penetrating, {far} open at the margin");
+            assert!(closed >= 1, "{kind:?} obstacle {o}: none penetrating");
+        }
+    }
+}
+
 /// The driver's terms of mortar nodes on a sphere (Hex8, Tet10 faces) and
 /// a cylinder (Hex20 faces) against central differences (h = 1e-6) of the producer itself,
 /// whose dual basis, area elements and obstacle normals follow the nodes:

@@ -2,13 +2,14 @@
 //! obstacles and contact interfaces.
 
 use super::schema::{
-    ContactMethod, ContactSpec, DiscretisationSpec, FrictionMultiplierSpec, ObstacleShape,
+    CaseFile, ContactMethod, ContactSpec, DiscretisationSpec, FrictionMultiplierSpec, ObstacleShape,
 };
 use super::{not_positive, Case};
 use crate::contact::friction::FrictionMultiplier;
 use crate::contact::interface::ContactInterface;
 use crate::contact::setup::{Enforcement, Method, SetupError};
 use crate::contact::{RigidObstacle, TriangulatedSurface};
+use crate::mesh::Mesh;
 use crate::problem::Problem;
 use crate::{Error, Result};
 use nalgebra::Vector3;
@@ -185,7 +186,7 @@ impl Case {
                 }
                 (mu, _) => mu,
             };
-            let mortar = c.discretisation == DiscretisationSpec::Mortar;
+            let mortar = c.discretisation == Some(DiscretisationSpec::Mortar);
             if mortar {
                 self.mortar_supported(&key, c, matches!(target, Target::Obstacle(_)))?;
             }
@@ -411,23 +412,61 @@ impl Case {
     /// (with or without friction) or against any rigid obstacle
     /// (frictionless), one pass, else the error naming the key.
     fn mortar_supported(&self, key: &str, c: &ContactSpec, obstacle: bool) -> Result<()> {
-        let why = if obstacle && c.friction_coefficient.is_some_and(|mu| mu > 0.0) {
-            Some(
-                "`friction_coefficient` against an obstacle: mortar friction is between two bodies \
-                 for now; remove the friction coefficient or use discretisation = \"node_to_surface\"",
-            )
-        } else if c.two_pass {
-            Some(
-                "`two_pass`: mortar contact has one pass (its forces balance on both surfaces); \
-                 remove two_pass",
-            )
-        } else {
-            None
-        };
-        match why {
+        match mortar_refusal(c, obstacle) {
             Some(why) => Err(self.err(format!("{key}.discretisation = \"mortar\" with {why}"))),
             None => Ok(()),
         }
+    }
+}
+
+/// Why `[[contact]]` `c` (against an obstacle when `obstacle`) cannot take
+/// dual mortar, in the user's words; `None` where it can.
+fn mortar_refusal(c: &ContactSpec, obstacle: bool) -> Option<&'static str> {
+    if obstacle && c.friction_coefficient.is_some_and(|mu| mu > 0.0) {
+        Some(
+            "`friction_coefficient` against an obstacle: mortar friction is between two bodies \
+             for now; remove the friction coefficient or use discretisation = \"node_to_surface\"",
+        )
+    } else if c.two_pass {
+        Some(
+            "`two_pass`: mortar contact has one pass (its forces balance on both surfaces); \
+             remove two_pass",
+        )
+    } else {
+        None
+    }
+}
+
+/// The default `discretisation` of every `[[contact]]` of `spec` that does
+/// not give one, on `mesh`: `"mortar"` where its secondary surface has
+/// quadratic faces (Tri6/Quad8: node-to-surface gives their corner nodes
+/// no share of a uniform pressure, and refuses them) and mortar takes the
+/// pairing ([`mortar_refusal`]), with a note for the log; else
+/// `"node_to_surface"` (on quadratic faces its refusal then says what to
+/// change). Linear faces keep node-to-surface: mortar's
+/// `contact_pressure` is the force over the current `D_j`, not over the
+/// reference tributary area.
+pub(crate) fn default_discretisations(spec: &mut CaseFile, mesh: &Mesh, notes: &mut Vec<String>) {
+    for (i, c) in spec.contact.iter_mut().enumerate() {
+        if c.discretisation.is_some() {
+            continue;
+        }
+        let quadratic = (mesh.surface(&c.surface))
+            .is_some_and(|s| s.facets.iter().any(|f| f.kind.is_quadratic()));
+        let mortar = quadratic && mortar_refusal(c, c.obstacle.is_some()).is_none();
+        c.discretisation = Some(if mortar {
+            let name = c.name.as_deref().unwrap_or(&c.surface);
+            notes.push(format!(
+                "contact[{i}] '{name}' takes discretisation = \"mortar\" (dual mortar): its \
+                 surface '{}' has quadratic faces (Tri6/Quad8), whose corner nodes \
+                 node-to-surface contact gives no share of a uniform pressure; give \
+                 discretisation to choose",
+                c.surface
+            ));
+            DiscretisationSpec::Mortar
+        } else {
+            DiscretisationSpec::NodeToSurface
+        });
     }
 }
 

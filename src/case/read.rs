@@ -119,12 +119,14 @@ pub fn from_mesh(text: &str, base_dir: &Path, mesh: Mesh) -> Result<Case> {
         "{text}\n[mesh]\nfile = \"{}\"\n",
         crate::mesh::arrays::ARRAYS
     );
-    let spec = parse(&path, &text)?;
+    let mut spec = parse(&path, &text)?;
+    let mut notes = Vec::new();
+    super::contacts::default_discretisations(&mut spec, &mesh, &mut notes);
     Ok(Case {
         path,
         spec,
         mesh: Arc::new(mesh),
-        notes: Vec::new(),
+        notes,
         text,
     })
 }
@@ -143,7 +145,7 @@ fn from_text(path: &Path, text: &str) -> Result<Case> {
         .parent()
         .unwrap_or(Path::new("."))
         .join(&spec.mesh.file);
-    let (mesh, notes) = crate::mesh::read_mesh_with(&mesh_path, &spec.mesh.input_limits())
+    let (mesh, mut notes) = crate::mesh::read_mesh_with(&mesh_path, &spec.mesh.input_limits())
         .map_err(|e| file_error(path, text, "mesh.file", e))?;
     if mesh_path
         .extension()
@@ -157,6 +159,7 @@ fn from_text(path: &Path, text: &str) -> Result<Case> {
             message: "the mesh has no volume elements (Tet4 or Hex8); mesh the volume (gmsh -3) and save it".into(),
         });
     }
+    super::contacts::default_discretisations(&mut spec, &mesh, &mut notes);
     Ok(Case {
         path: path.to_path_buf(),
         spec,

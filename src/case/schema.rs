@@ -406,12 +406,14 @@ pub struct ContactSpec {
     /// half of each node's tributary area (default false: one pass).
     #[serde(default)]
     pub two_pass: bool,
-    /// `"node_to_surface"` (default) or `"mortar"`: dual mortar between two
-    /// bodies (with `primary`, with or without friction) or against a rigid
+    /// `"node_to_surface"` or `"mortar"`: dual mortar between two bodies
+    /// (with `primary`, with or without friction) or against a rigid
     /// obstacle (with `obstacle`, frictionless), one pass; linear and
-    /// quadratic faces.
-    #[serde(default)]
-    pub discretisation: DiscretisationSpec,
+    /// quadratic faces. Default: `"mortar"` where the secondary surface
+    /// has quadratic faces (Tri6/Quad8, whose corner nodes node-to-surface
+    /// gives no share of a uniform pressure) and mortar takes the pairing
+    /// (the log says so in a note), else `"node_to_surface"`.
+    pub discretisation: Option<DiscretisationSpec>,
 }
 
 /// `[[step]]`

@@ -426,7 +426,9 @@ impl ContactInterface {
     /// The signed gap of every secondary node at time `t` and unknowns `x`
     /// (the search margin for a node without primary candidates), with the
     /// nodes' states where given (a deformable interface then uses each
-    /// node's kept triangle, as the assembly does).
+    /// node's kept triangle, as the assembly does). Dual mortar against a
+    /// rigid obstacle: the values alone ([`MortarObstacle::gaps`]), no
+    /// derivatives.
     pub fn gaps(
         &self,
         reference: &[[f64; 3]],
@@ -434,6 +436,10 @@ impl ContactInterface {
         x: &[f64],
         states: Option<&[NodeContactState]>,
     ) -> Vec<f64> {
+        if let Primary::MortarRigid(m) = &self.primary {
+            // values only: no derivatives of the mortar rows
+            return m.gaps(&self.translation_at(t), reference, x);
+        }
         let ctx = ContactContext {
             reference,
             t,

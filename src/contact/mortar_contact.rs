@@ -118,12 +118,14 @@ const CACHED_CONFIGURATIONS: usize = 2;
 /// driver operation at one state (the residual, its tangent, the states'
 /// advance, the commit, the gaps) segments and integrates it once. A clone
 /// starts empty (it may refresh its candidates on its own); counts of rows
-/// asked for and integrated, [`MortarSurfaces::row_counts`].
+/// asked for and integrated, and of the evaluations of values alone
+/// (gaps without derivatives), [`MortarSurfaces::row_counts`].
 #[derive(Default)]
 struct RowCache {
     entries: Mutex<VecDeque<(Vec<f64>, Arc<MortarRows>)>>,
     requested: AtomicUsize,
     integrated: AtomicUsize,
+    values: AtomicUsize,
 }
 
 impl Clone for RowCache {
@@ -139,11 +141,14 @@ impl std::fmt::Debug for RowCache {
 }
 
 /// How often the producer asked for the rows of a configuration, and how
-/// often it segmented and integrated them (the rest came from the cache).
+/// often it segmented and integrated them (the rest came from the cache);
+/// how often the gaps alone were evaluated, without derivatives (a rigid
+/// obstacle's [`MortarObstacle::gaps`](super::mortar_rigid::MortarObstacle::gaps)).
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
 pub struct RowCounts {
     pub requested: usize,
     pub integrated: usize,
+    pub values: usize,
 }
 
 impl RowCache {
@@ -151,6 +156,7 @@ impl RowCache {
         RowCounts {
             requested: self.requested.load(Ordering::Relaxed),
             integrated: self.integrated.load(Ordering::Relaxed),
+            values: self.values.load(Ordering::Relaxed),
         }
     }
 
@@ -170,6 +176,15 @@ impl RowCache {
         entries.push_front((key, rows.clone()));
         entries.truncate(CACHED_CONFIGURATIONS);
         rows
+    }
+
+    /// The rows at `key` if the cache holds them, leaving the cache and
+    /// its counts as they are.
+    fn peek(&self, key: &[f64]) -> Option<Arc<MortarRows>> {
+        let entries = self.entries.lock().unwrap_or_else(|e| e.into_inner());
+        (entries.iter())
+            .find(|(k, _)| k == key)
+            .map(|(_, rows)| rows.clone())
     }
 
     fn clear(&self) {
@@ -506,17 +521,32 @@ impl MortarSurfaces {
         extra: &[f64],
         integrate: impl FnOnce() -> MortarRows,
     ) -> Arc<MortarRows> {
-        let key: Vec<f64> = (self.surface_nodes.iter())
+        self.cache.rows(self.cache_key(xs, extra), integrate)
+    }
+
+    /// The rows at coordinates `xs` and `extra` where the row cache holds
+    /// them (not counted as asked for), else `None`.
+    pub(crate) fn cached(&self, xs: &[Vector3<f64>], extra: &[f64]) -> Option<Arc<MortarRows>> {
+        self.cache.peek(&self.cache_key(xs, extra))
+    }
+
+    /// The row cache's key: the surfaces' nodes' coordinates, then `extra`.
+    fn cache_key(&self, xs: &[Vector3<f64>], extra: &[f64]) -> Vec<f64> {
+        (self.surface_nodes.iter())
             .flat_map(|&n| [xs[n].x, xs[n].y, xs[n].z])
             .chain(extra.iter().copied())
-            .collect();
-        self.cache.rows(key, integrate)
+            .collect()
     }
 
     /// How often the producer asked for rows and how often it integrated
     /// them, since this interface was built (or cloned).
     pub fn row_counts(&self) -> RowCounts {
         self.cache.counts()
+    }
+
+    /// Count one evaluation of the gaps without derivatives.
+    pub(crate) fn count_values(&self) {
+        self.cache.values.fetch_add(1, Ordering::Relaxed);
     }
 
     /// Every covered node's row at `coordinates`: `D_j ≥ ½ ∫ Ñ_j dA` over

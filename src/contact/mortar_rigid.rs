@@ -21,11 +21,12 @@
 //! integrated only for the nodes that are near: a node's row is complete
 //! because every face that holds a near node is integrated.
 
-use super::mortar::obstacle_rows::obstacle_rows;
+use super::mortar::obstacle_rows::{obstacle_row_values, obstacle_rows, transformed_point};
 use super::mortar::MortarRow;
 use super::mortar_contact::{coordinates, face_size, full_integrals, node_faces, surface_faces};
 use super::mortar_contact::{MortarGap, MortarSurfaces, RowCounts};
 use super::obstacle::RigidObstacle;
+use super::projection::Projection;
 use crate::mesh::Mesh;
 use nalgebra::Vector3;
 use std::collections::BTreeMap;
@@ -109,21 +110,84 @@ impl MortarObstacle {
     ) -> BTreeMap<usize, MortarRow> {
         let xs = coordinates(reference, x);
         let project = |p: &Vector3<f64>| self.obstacle.project(&(p - translation));
-        let near: Vec<usize> = (0..self.nodes.len())
-            .filter(|&i| project(&xs[self.nodes[i]]).gap < self.node_margins[i])
-            .collect();
-        let mut selected: Vec<usize> = near
-            .iter()
-            .flat_map(|&i| self.surfaces.node_faces[i].iter().copied())
-            .collect();
-        selected.sort_unstable();
-        selected.dedup();
+        let near = self.near(&xs, &project);
+        let selected = self.faces_of(&near);
         let mut rows = obstacle_rows(&self.surfaces.secondary_faces, &selected, &xs, &project)
             .unwrap_or_default();
         let near_nodes: std::collections::BTreeSet<usize> =
             near.iter().map(|&i| self.nodes[i]).collect();
         rows.retain(|n, _| near_nodes.contains(n));
         rows
+    }
+
+    /// The near nodes (indices into [`nodes`](Self::nodes), module docs)
+    /// at coordinates `xs`, `project` the translated obstacle's projection.
+    fn near(
+        &self,
+        xs: &[Vector3<f64>],
+        project: &impl Fn(&Vector3<f64>) -> Projection,
+    ) -> Vec<usize> {
+        (0..self.nodes.len())
+            .filter(|&i| project(&xs[self.nodes[i]]).gap < self.node_margins[i])
+            .collect()
+    }
+
+    /// The faces that hold the nodes `near` (sorted, once each).
+    fn faces_of(&self, near: &[usize]) -> Vec<usize> {
+        let mut selected: Vec<usize> = near
+            .iter()
+            .flat_map(|&i| self.surfaces.node_faces[i].iter().copied())
+            .collect();
+        selected.sort_unstable();
+        selected.dedup();
+        selected
+    }
+
+    /// Every secondary node's normalised gap `g_j = g̃_j / D_j` at unknowns
+    /// `x`, the obstacle translated by `translation` (the interface's node
+    /// order; the open gap `margin` of the surfaces beyond a node's own
+    /// margin): the gaps of [`producer`](Self::producer)'s rows without
+    /// their derivatives, for a solve that reads only gaps. From the row
+    /// cache where this configuration's rows are there; otherwise on a
+    /// plane in closed form, `g_j = g(x̃_j)`
+    /// ([`transformed_point`]: biorthogonality, exact to round-off), on a
+    /// curved obstacle by the rows' own sums ([`obstacle_row_values`], to
+    /// the bit). A face the kernels cannot integrate leaves every node
+    /// open, as the rows do.
+    pub fn gaps(&self, translation: &Vector3<f64>, reference: &[[f64; 3]], x: &[f64]) -> Vec<f64> {
+        let xs = coordinates(reference, x);
+        let open = self.surfaces.margin;
+        let extra = [translation.x, translation.y, translation.z];
+        if let Some(rows) = self.surfaces.cached(&xs, &extra) {
+            let gap = |node: &usize| rows.get(node).filter(|r| r.d > 0.0);
+            let gap = |node| gap(node).map_or(open, |r| r.weighted_gap / r.d);
+            return self.nodes.iter().map(gap).collect();
+        }
+        self.surfaces.count_values();
+        let project = |p: &Vector3<f64>| self.obstacle.project(&(p - translation));
+        let near = self.near(&xs, &project);
+        let mut gaps = vec![open; self.nodes.len()];
+        if let RigidObstacle::Plane { .. } = self.obstacle {
+            let faces = &self.surfaces.secondary_faces;
+            for i in near {
+                if let Some(&e) = self.surfaces.node_faces[i].first() {
+                    let point = transformed_point(&faces[e], self.nodes[i], &xs);
+                    gaps[i] = project(&point).gap;
+                }
+            }
+            return gaps;
+        }
+        let selected = self.faces_of(&near);
+        let faces = &self.surfaces.secondary_faces;
+        let Ok(values) = obstacle_row_values(faces, &selected, &xs, &project) else {
+            return gaps;
+        };
+        for i in near {
+            if let Some(v) = values.get(&self.nodes[i]).filter(|v| v.d > 0.0) {
+                gaps[i] = v.weighted_gap / v.d;
+            }
+        }
+        gaps
     }
 
     /// The gap producer at unknowns `x`, the obstacle translated by

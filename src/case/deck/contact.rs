@@ -75,15 +75,15 @@ pub(super) fn contacts(
             friction_multiplier: None,
             initial_penetration_tolerance: None,
             two_pass: false,
-            discretisation: match discretisation {
+            discretisation: Some(match discretisation {
                 Some(_) => DiscretisationSpec::Mortar,
                 None => DiscretisationSpec::NodeToSurface,
-            },
+            }),
         });
     }
     if out
         .iter()
-        .any(|c| c.discretisation == DiscretisationSpec::NodeToSurface)
+        .any(|c| c.discretisation == Some(DiscretisationSpec::NodeToSurface))
     {
         notes.push(
             "*CONTACT PAIR: node-to-surface contact of the secondary (first) surface's nodes on the primary (second) surface; HARD is the exact Lagrangian, LINEAR a penalty with the deck's slope, the *FRICTION stick slope the tangential penalty".into(),

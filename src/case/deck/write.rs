@@ -95,7 +95,7 @@ fn contact(out: &mut String, c: &ContactSpec) {
         ContactMethod::Slack => "slack",
     };
     let _ = writeln!(out, "method = \"{method}\"");
-    if c.discretisation == DiscretisationSpec::Mortar {
+    if c.discretisation == Some(DiscretisationSpec::Mortar) {
         let _ = writeln!(out, "discretisation = \"mortar\"");
     }
     opt(out, "penalty", c.penalty);

@@ -157,6 +157,15 @@ impl FacePoint {
             .collect()
     }
 
+    /// Node `j`'s values at this point, weight `w`: `w Ñ_j |a|` to `d`,
+    /// `w Φ_j g |a|` to `weighted_gap` (the one place that sums them, so
+    /// that [`obstacle_row_values`] are [`obstacle_rows`]' to the bit).
+    fn add_values_to(&self, d: &mut [f64], weighted_gap: &mut [f64], j: usize, w: f64) {
+        let da = self.da;
+        d[j] += w * self.mortar[j] * da;
+        weighted_gap[j] += w * self.phi[j] * self.obstacle.gap * da;
+    }
+
     /// Node `j`'s terms at this point, weight `w`, with `∂|a|` (`dj`) and
     /// `∂(Φ_j |a|)` (`d_phi_da`) along every coordinate.
     fn add_to(
@@ -173,8 +182,7 @@ impl FacePoint {
             self.obstacle.curvature,
         );
         let (phi, da) = (self.phi[j], self.da);
-        out.d[j] += w * self.mortar[j] * da;
-        out.weighted_gap[j] += w * phi * g * da;
+        self.add_values_to(&mut out.d, &mut out.weighted_gap, j, w);
         let size = dj.len();
         for c in 0..size {
             let (m, d) = (c / 3, c % 3);
@@ -307,4 +315,74 @@ fn finish_normal(row: &mut MortarRow) {
         let dn = unit_derivative(&w, &Vector3::new(dw[(0, c)], dw[(1, c)], dw[(2, c)]));
         row.normal_gradient.set_column(c, &(-dn));
     }
+}
+
+/// One secondary node's row without derivatives: `D_j` and the weighted
+/// gap `g̃_j` (the values of its [`MortarRow`] at the same coordinates).
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct ObstacleRowValues {
+    pub d: f64,
+    pub weighted_gap: f64,
+}
+
+/// The face's `∫_e Ñ_j dA` and `∫_e Φ_j g dA` alone, on the face rule: the
+/// values of [`face_obstacle_integrals`] without the `3n` derivatives of
+/// the dual basis (what the gap of a solve that reads only values costs).
+fn face_obstacle_values(
+    face: &MortarFace,
+    obstacle: &impl Fn(&Vector3<f64>) -> Projection,
+) -> Result<(Vec<f64>, Vec<f64>), MortarError> {
+    let n = face.shape.node_count();
+    let dual = DualBasis::of_face(face)?;
+    let (mut d, mut weighted_gap) = (vec![0.0; n], vec![0.0; n]);
+    let (points, weights) = face.shape.quadrature();
+    for (xi, w) in points.iter().zip(&weights) {
+        let point = FacePoint::at(face, *xi, &dual, obstacle);
+        for j in 0..n {
+            point.add_values_to(&mut d, &mut weighted_gap, j, *w);
+        }
+    }
+    Ok((d, weighted_gap))
+}
+
+/// `D_j` and `g̃_j` of every node of the faces `selected` against
+/// `obstacle` at `coordinates`: the values of [`obstacle_rows`] to the bit
+/// (the same sums in the same order), without derivatives.
+pub fn obstacle_row_values(
+    faces: &[SurfaceFace],
+    selected: &[usize],
+    coordinates: &[Vector3<f64>],
+    obstacle: &impl Fn(&Vector3<f64>) -> Projection,
+) -> Result<BTreeMap<usize, ObstacleRowValues>, MortarError> {
+    let mut rows: BTreeMap<usize, ObstacleRowValues> = BTreeMap::new();
+    for &e in selected {
+        let face = &faces[e];
+        let (d, weighted_gap) =
+            face_obstacle_values(&face.with_coordinates(coordinates)?, obstacle)?;
+        for (j, &node) in face.nodes.iter().enumerate() {
+            let row = rows.entry(node).or_insert(ObstacleRowValues {
+                d: 0.0,
+                weighted_gap: 0.0,
+            });
+            row.d += d[j];
+            row.weighted_gap += weighted_gap[j];
+        }
+    }
+    Ok(rows)
+}
+
+/// The transformed point `x̃_j = Σ_k R_jk x_k` of `node` on `face` (which
+/// holds it) at `coordinates`. Against a plane, whose gap `g` is affine,
+/// biorthogonality gives `g̃_j = Σ_k g(x_k) ∫ Φ_j N_k dA = D_j g(x̃_j)`
+/// (module docs), so the normalised gap is `g̃_j / D_j = g(x̃_j)` in
+/// closed form, with no integration.
+pub fn transformed_point(
+    face: &SurfaceFace,
+    node: usize,
+    coordinates: &[Vector3<f64>],
+) -> Vector3<f64> {
+    super::rows::transformation(face, node)
+        .iter()
+        .map(|&(k, r)| r * coordinates[k])
+        .sum()
 }

@@ -1,7 +1,8 @@
-//! Contact on quadratic faces is refused at set-up until the mortar
-//! method lands (issue 33): node-to-surface gives the corners of a Tri6
-//! face no share of a uniform pressure. The error names the surface, says
-//! why and what to do.
+//! Node-to-surface contact on quadratic faces is refused at set-up:
+//! it gives the corners of a Tri6 face no share of a uniform pressure.
+//! The error names the surface, says why and what to do. Without a
+//! `discretisation` key quadratic faces take dual mortar (issue 28), and
+//! the case builds.
 
 use signorini::mesh::structured::box_mesh;
 use signorini::mesh::ElementKind;
@@ -42,13 +43,16 @@ fn build_error(kind: ElementKind, contact: &str) -> String {
 }
 
 /// A Tet10 body's Tri6 face against a rigid plane, and a Hex20 body's
-/// Quad8 faces paired as secondary and primary surfaces: both
-/// refused with the surface's name, the reason (mortar) and the way out
-/// (a linear mesh); the same case on Tet4 builds.
+/// Quad8 faces paired as secondary and primary surfaces, both with
+/// `discretisation = "node_to_surface"`: refused with the surface's name,
+/// the reason (mortar) and the way out (a linear mesh); the same case on
+/// Tet4 builds, and so does the Tet10 case without the key (mortar by
+/// default).
 #[test]
 fn quadratic_contact_surfaces_are_refused_with_the_way_out() {
+    let nodal = "\ndiscretisation = \"node_to_surface\"";
     let obstacle = "surface = \"zmax\"\nobstacle = \"wall\"";
-    let message = build_error(ElementKind::Tet10, obstacle);
+    let message = build_error(ElementKind::Tet10, &format!("{obstacle}{nodal}"));
     for words in [
         "contact[0]",
         "'zmax'",
@@ -59,11 +63,15 @@ fn quadratic_contact_surfaces_are_refused_with_the_way_out() {
         assert!(message.contains(words), "missing '{words}' in: {message}");
     }
     let between = "surface = \"zmax\"\nprimary = \"xmin\"";
-    let message = build_error(ElementKind::Hex20, between);
+    let message = build_error(ElementKind::Hex20, &format!("{between}{nodal}"));
     // the primary surface is checked first
     assert!(
         message.contains("'xmin'") && message.contains("mortar"),
         "{message}"
     );
-    assert_eq!(build_error(ElementKind::Tet4, obstacle), "");
+    assert_eq!(
+        build_error(ElementKind::Tet4, &format!("{obstacle}{nodal}")),
+        ""
+    );
+    assert_eq!(build_error(ElementKind::Tet10, obstacle), "");
 }

@@ -189,8 +189,9 @@ impl SetupError {
         format!(
             "surface '{s}' has quadratic faces (Tri6/Quad8, of Tet10, Hex20 or Wedge15 \
              elements): node-to-surface contact gives their corner nodes no share of a uniform \
-             pressure: between two bodies give the contact discretisation = \"mortar\", or \
-             mesh the contact bodies with linear elements (Gmsh -order 1; C3D4, C3D8)"
+             pressure: give the contact discretisation = \"mortar\" (the default for quadratic \
+             faces where mortar takes the pairing), or mesh the contact bodies with linear \
+             elements (Gmsh -order 1; C3D4, C3D8)"
         )
     }
 }

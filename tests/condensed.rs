@@ -139,9 +139,9 @@ fn condensed_equals_monolithic_on_frictionless_hertz() {
 /// elastic, Coulomb friction against a rigid plane, the block held in x by
 /// friction alone) and says why; it takes the monolithic one for a
 /// finite-strain material and for press-pull on a sphere (held only by
-/// contact), naming the reason; the condensed one for two linear elastic
-/// bodies without friction (examples/two-spheres) and the monolithic one
-/// with Coulomb friction between them (condensed only by name); `condensed` asked for where it does not apply
+/// contact), naming the reason; the monolithic one for two linear elastic
+/// bodies, with or without friction (examples/two-spheres,
+/// cattaneo-mindlin: condensed only by name); `condensed` asked for where it does not apply
 /// is an error naming the reason.
 #[test]
 fn auto_takes_the_condensed_path_exactly_where_it_applies() {
@@ -177,27 +177,20 @@ fn auto_takes_the_condensed_path_exactly_where_it_applies() {
     let why = signorini::problem::condensed::not_applicable(curved.problem()).unwrap();
     assert!(why.contains("held only by contact"), "{why}");
     // two linear elastic bodies in contact, frictionless
-    // (examples/two-spheres): `auto` takes the condensed path, saying so;
-    // with Coulomb friction (examples/cattaneo-mindlin/coarse.toml) it
-    // keeps Newton's, naming the reason
+    // (examples/two-spheres) and with Coulomb friction
+    // (examples/cattaneo-mindlin/coarse.toml): `auto` keeps Newton's
+    // path, naming the reason
     let root = Path::new(env!("CARGO_MANIFEST_DIR"));
-    let pair = Simulation::from_file(&root.join("examples/two-spheres/case.toml")).unwrap();
-    assert_eq!(
-        signorini::problem::condensed::not_applicable(pair.problem()),
-        None
-    );
-    let choice = signorini::problem::condensed::choose(pair.problem()).unwrap();
-    assert_eq!(choice.path.name(), "condensed");
-    assert!(choice.reason.contains("two bodies"), "{}", choice.reason);
-    let coarse = root.join("examples/cattaneo-mindlin/coarse.toml");
-    let frictional = Simulation::from_file(&coarse).unwrap();
-    let why = signorini::problem::condensed::not_applicable(frictional.problem()).unwrap();
-    assert!(
-        why.contains("Coulomb friction") && why.contains("strategy = \"condensed\""),
-        "{why}"
-    );
-    let choice = signorini::problem::condensed::choose(frictional.problem()).unwrap();
-    assert_eq!(choice.path.name(), "monolithic");
+    for example in ["two-spheres/case.toml", "cattaneo-mindlin/coarse.toml"] {
+        let pair = Simulation::from_file(&root.join("examples").join(example)).unwrap();
+        let why = signorini::problem::condensed::not_applicable(pair.problem()).unwrap();
+        assert!(
+            why.contains("two bodies") && why.contains("strategy = \"condensed\""),
+            "{example}: {why}"
+        );
+        let choice = signorini::problem::condensed::choose(pair.problem()).unwrap();
+        assert_eq!(choice.path.name(), "monolithic", "{example}");
+    }
     // (a sphere is condensed since issue 32 item 3: a finite-strain
     // material names the reason instead)
     let Err(e) = run_case("press-pull", &neo, "strategy = \"condensed\"") else {
@@ -691,7 +684,7 @@ fn pushed_blocks(contact: &str, solver: &str) -> (RunOutcome, PairState) {
 /// factorisation, and at every increment the displacements, nodal contact
 /// forces, pressures and gaps of monolithic Newton (residual tolerance
 /// 1e-11) to 1e-8 relative (the gaps against the largest displacement);
-/// `auto` takes the condensed path there (frictionless between bodies).
+/// `auto` keeps Newton's path there (between bodies: condensed only by name).
 #[test]
 fn bodies_in_contact_condensed_equal_monolithic() {
     for contact in [
@@ -736,7 +729,7 @@ fn bodies_in_contact_condensed_equal_monolithic() {
             .count();
         assert!(closed > 4, "the blocks touch over several nodes: {closed}");
         let (auto, _) = pushed_blocks(contact, "strategy = \"auto\"");
-        assert_eq!(auto.summary.strategy, "condensed");
+        assert_eq!(auto.summary.strategy, "monolithic");
     }
 }
 

@@ -29,7 +29,7 @@ use super::condensation::normal_column;
 use super::{set_multipliers, zero_per_node};
 use super::{Condensation, ContactNode, ContactState, IncrementSolver, Problem};
 use crate::solve::condensed::anderson::Anderson;
-use crate::solve::condensed::flexibility::{Column, MAX_TRAILING};
+use crate::solve::condensed::flexibility::{take_trailing, Column, MAX_TRAILING};
 use crate::solve::linear_solver::SolverStatistics;
 use crate::solve::method::WarmStart;
 use crate::solve::newton::IterationRecord;
@@ -149,20 +149,8 @@ pub(super) fn surface_trailing(problem: &Problem) -> Vec<usize> {
     near.sort_by(|a, b| a.0.total_cmp(&b.0));
     let rest = problem.contacts.deformable_nodes();
     let ordered = near.into_iter().flat_map(|(_, nodes)| nodes).chain(rest);
-    let constrained = problem.constrained_dofs();
-    let mut taken = vec![false; problem.num_unknowns()];
-    let mut dofs = Vec::new();
-    for n in ordered {
-        let free: Vec<usize> = (3 * n..3 * n + 3)
-            .filter(|&d| !constrained[d] && !taken[d])
-            .collect();
-        if dofs.len() + free.len() > MAX_TRAILING {
-            break;
-        }
-        free.iter().for_each(|&d| taken[d] = true);
-        dofs.extend(free);
-    }
-    dofs
+    let groups = ordered.map(|n| 3 * n..3 * n + 3);
+    take_trailing(groups, &problem.constrained_dofs(), MAX_TRAILING)
 }
 
 impl PairCondensation {

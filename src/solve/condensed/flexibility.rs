@@ -119,6 +119,29 @@ const PARALLEL_FACTOR_UNKNOWNS: usize = 10_000;
 /// Refinement steps at most on an f32 factor before the f64 fallback.
 const MIXED_REFINEMENTS: usize = 10;
 
+/// The unknowns ordered last: the free (not `constrained`) dofs of the
+/// `groups` in turn, each dof once, a group whole or not at all, until the
+/// next group would take them past `limit`.
+pub fn take_trailing<G: IntoIterator<Item = usize>>(
+    groups: impl IntoIterator<Item = G>,
+    constrained: &[bool],
+    limit: usize,
+) -> Vec<usize> {
+    let mut dofs = Vec::new();
+    let mut taken = vec![false; constrained.len()];
+    for group in groups {
+        let free: Vec<usize> = (group.into_iter())
+            .filter(|&d| !constrained[d] && !taken[d])
+            .collect();
+        if dofs.len() + free.len() > limit {
+            break;
+        }
+        free.iter().for_each(|&d| taken[d] = true);
+        dofs.extend(free);
+    }
+    dofs
+}
+
 impl Flexibility {
     /// The free dofs of the `columns` taken in `order` (nearest to contact
     /// first), of the first `fraction` of them, at most [`MAX_TRAILING`]:
@@ -130,20 +153,12 @@ impl Flexibility {
         fraction: f64,
     ) -> Vec<usize> {
         let limit = MAX_TRAILING.min((fraction * columns.len() as f64).ceil() as usize);
-        let mut dofs = Vec::new();
-        let mut taken = vec![false; constrained.len()];
-        for &a in order {
-            let free: Vec<usize> = (columns[a].entries.iter())
-                .filter(|&&(i, n)| !constrained[i] && n != 0.0 && !taken[i])
+        let groups = order.iter().map(|&a| {
+            (columns[a].entries.iter())
+                .filter(|&&(_, n)| n != 0.0)
                 .map(|&(i, _)| i)
-                .collect();
-            if dofs.len() + free.len() > limit {
-                break;
-            }
-            free.iter().for_each(|&i| taken[i] = true);
-            dofs.extend(free);
-        }
-        dofs
+        });
+        take_trailing(groups, constrained, limit)
     }
 
     /// The factorisation's ordering and symbolic analysis: the `trailing`

@@ -34,8 +34,11 @@ pub use crate::assembly::amplitude::Amplitude;
 /// against a rigid obstacle): then [`Problem::dissection`] is started as
 /// soon as that graph exists. So it is with contacts all against rigid
 /// obstacles (the condensed path's trailing ordering, and a saddle system,
-/// at any size) or more than [`AMD_DOFS`] unknowns; not with contact
-/// between bodies (their couplings make another graph) nor for PETSc
+/// at any size) or more than [`AMD_DOFS`] unknowns; with contact between
+/// bodies only when the condensed path is asked for (its factor drops the
+/// contact couplings and is ordered on the elements' graph,
+/// [`crate::solve::ordering::element_dissection`]; Newton's pattern with
+/// those couplings is another graph); not for PETSc
 /// (which orders its own systems; the condensed path excepted), where the
 /// ordering is made where it is used, as before. Small penalty contact
 /// decided monolithic is ordered by AMD: its dissection, of fewer than
@@ -48,7 +51,8 @@ pub fn dissects_element_graph(
 ) -> bool {
     let petsc = linear == LinearMethod::Petsc && strategy != Strategy::Condensed;
     let contact = against_rigid.len() > 0;
-    !petsc && against_rigid.all(|rigid| rigid) && (contact || num_dofs > AMD_DOFS)
+    let all_rigid = against_rigid.all(|rigid| rigid);
+    !petsc && (all_rigid || strategy == Strategy::Condensed) && (contact || num_dofs > AMD_DOFS)
 }
 
 /// Prescribed displacement components on the nodes of a surface set or a
@@ -502,7 +506,8 @@ mod tests {
 
     /// The dissection starts for contact against rigid obstacles at any
     /// size and for large problems; not for small ones without contact
-    /// (AMD), contact between bodies, or PETSc unless condensed is asked for.
+    /// (AMD), contact between bodies unless condensed is asked for, or PETSc
+    /// unless condensed is asked for.
     #[test]
     fn the_dissection_starts_where_the_run_orders_the_element_graph() {
         use LinearMethod::{Auto, Lu, Petsc};
@@ -516,6 +521,8 @@ mod tests {
         assert!(starts(Petsc, Condensed, 900, &[true]));
         assert!(!starts(Auto, Either, AMD_DOFS, &[]));
         assert!(!starts(Auto, Either, 3 * AMD_DOFS, &[true, false]));
+        assert!(!starts(Auto, Monolithic, 3 * AMD_DOFS, &[false]));
+        assert!(starts(Auto, Condensed, 900, &[true, false]));
         assert!(!starts(Petsc, Either, 3 * AMD_DOFS, &[true]));
     }
 }

@@ -435,6 +435,14 @@ impl SparsityPattern {
         self.graph().csr()
     }
 
+    /// The elements' node adjacency alone (without the contact couplings of
+    /// [`Self::coupled`]'s groups) as a shared graph: the graph handed to
+    /// `on_graph` when the model was made, so that an ordering started
+    /// from it fits ([`NodeGraph::is`]).
+    pub fn element_graph(&self) -> NodeGraph {
+        NodeGraph(Arc::clone(&self.elements))
+    }
+
     /// The node adjacency (elements and contact couplings) as a shared
     /// graph: the patterns [`Self::coupled`] makes without node groups
     /// (rigid obstacles only) share their elements' graph, so an ordering

@@ -141,9 +141,63 @@ impl EarlyDissection {
     }
 }
 
+/// The nested dissection of `graph`, each connected component (a body)
+/// dissected on its own and the components one after the other (METIS's
+/// `CCORDER`, by hand): METIS bisects a graph of two bodies as if they
+/// were one, and on examples/two-spheres' elements that ordering filled
+/// 14 % more than one dissection per body. One component: the one call,
+/// as before.
 fn dissect(graph: &NodeGraph) -> std::result::Result<Vec<usize>, String> {
     let (xadj, adjncy) = graph.csr();
-    metis_node_nd(&xadj, &adjncy)
+    let component = graph_components(&xadj, &adjncy);
+    let count = component.iter().copied().max().map_or(0, |m| m + 1);
+    if count <= 1 {
+        return metis_node_nd(&xadj, &adjncy);
+    }
+    let mut nodes = vec![Vec::new(); count];
+    component
+        .iter()
+        .enumerate()
+        .for_each(|(a, &c)| nodes[c].push(a));
+    let mut local = vec![0usize; component.len()];
+    let mut forward = Vec::with_capacity(component.len());
+    for members in &nodes {
+        members.iter().enumerate().for_each(|(l, &a)| local[a] = l);
+        let (mut sub_x, mut sub_adj) = (vec![0], Vec::new());
+        for &a in members {
+            sub_adj.extend(adjncy[xadj[a]..xadj[a + 1]].iter().map(|&b| local[b]));
+            sub_x.push(sub_adj.len());
+        }
+        let order = metis_node_nd(&sub_x, &sub_adj)?;
+        forward.extend(order.into_iter().map(|l| members[l]));
+    }
+    Ok(forward)
+}
+
+/// The connected component of each node of a CSR graph, numbered from 0
+/// in the order of their first node.
+fn graph_components(xadj: &[usize], adjncy: &[usize]) -> Vec<usize> {
+    let n = xadj.len().saturating_sub(1);
+    let mut component = vec![usize::MAX; n];
+    let mut next = 0;
+    let mut stack = Vec::new();
+    for start in 0..n {
+        if component[start] != usize::MAX {
+            continue;
+        }
+        component[start] = next;
+        stack.push(start);
+        while let Some(a) = stack.pop() {
+            for &b in &adjncy[xadj[a]..xadj[a + 1]] {
+                if component[b] == usize::MAX {
+                    component[b] = next;
+                    stack.push(b);
+                }
+            }
+        }
+        next += 1;
+    }
+    component
 }
 
 /// The nested dissection of `pattern`'s node graph (`forward[new] = old`,
@@ -157,6 +211,26 @@ pub fn node_dissection(
     }
     let (xadj, adjncy) = pattern.node_graph();
     nested_dissection(&xadj, &adjncy)
+}
+
+/// The nested dissection of the graph of `pattern`'s elements alone
+/// (`forward[new] = old`, nodes), without its contact couplings: the
+/// ordering of a matrix assembled from the elements only (the condensed
+/// path's `K̃`, whose factor drops those couplings); `early`'s when it
+/// dissects that graph (it was started on it), else computed here.
+pub fn element_dissection(
+    pattern: &SparsityPattern,
+    early: Option<&EarlyDissection>,
+) -> Result<Vec<usize>> {
+    let graph = pattern.element_graph();
+    if let Some(early) = early.filter(|e| e.graph.is(&graph)) {
+        return early
+            .nodes
+            .get_or_init(|| dissect(&early.graph))
+            .clone()
+            .map_err(Error::LinearSolver);
+    }
+    dissect(&graph).map_err(Error::LinearSolver)
 }
 
 /// AMD for small problems, METIS nested dissection above [`AMD_DOFS`]
@@ -200,6 +274,26 @@ mod tests {
         assert_eq!(p.len(), n);
         p.sort_unstable();
         assert!(p.iter().enumerate().all(|(i, &v)| i == v));
+    }
+
+    /// A graph of two components (two chains of tetrahedra-like elements)
+    /// is dissected one component after the other: a permutation whose
+    /// first half is the first chain's nodes.
+    #[test]
+    fn components_are_dissected_one_after_the_other() {
+        let chain = |first: usize| -> Vec<Vec<usize>> {
+            (0..30)
+                .map(|e| (first + e..first + e + 4).collect())
+                .collect()
+        };
+        let mut elements = chain(0);
+        elements.extend(chain(33));
+        let pattern = SparsityPattern::from_elements(66, elements.iter().map(Vec::as_slice));
+        let forward = dissect(&pattern.graph()).unwrap();
+        let mut sorted = forward.clone();
+        sorted.sort_unstable();
+        assert!(sorted.iter().enumerate().all(|(i, &v)| i == v));
+        assert!(forward[..33].iter().all(|&a| a < 33));
     }
 
     /// The early dissection is the dissection of the graph it was started

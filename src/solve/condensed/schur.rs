@@ -34,7 +34,7 @@
 use crate::assembly::pattern::SparsityPattern;
 use crate::solve::linear::FactorValues;
 use crate::solve::linear::{Ordering, SparseLdlt};
-use crate::solve::ordering::{node_dissection, EarlyDissection};
+use crate::solve::ordering::{element_dissection, EarlyDissection};
 use crate::{Error, Result};
 use faer::linalg::matmul::triangular::BlockStructure;
 use faer::sparse::linalg::cholesky::{SymbolicCholesky, SymbolicCholeskyRaw};
@@ -56,8 +56,10 @@ pub type Direction = Vec<(usize, f64)>;
 /// Right-hand sides solved together for the directions outside `T`.
 const BLOCK: usize = 64;
 
-/// The nested-dissection ordering of `pattern`'s node graph (each node's
-/// dofs together, each multiplier after its node), with the unknowns
+/// The nested-dissection ordering of `pattern`'s elements' node graph
+/// (without its contact couplings: the factor drops them,
+/// [`super::decoupled::Decoupled::within_elements`]; each node's dofs
+/// together, each multiplier after its node), with the unknowns
 /// marked in `trailing` moved to the end in the same relative order
 /// (the dissection `early`'s when it is of that graph), grouped by the
 /// body (connected set of elements) they belong to: bodies in contact
@@ -69,7 +71,7 @@ pub fn trailing_ordering(
     trailing: &[bool],
     early: Option<&EarlyDissection>,
 ) -> Result<Ordering> {
-    let nodes = node_dissection(pattern, early)?;
+    let nodes = element_dissection(pattern, early)?;
     let forward = pattern.dof_ordering(&nodes);
     let (mut front, mut back): (Vec<usize>, Vec<usize>) =
         forward.into_iter().partition(|&i| !trailing[i]);

@@ -481,30 +481,67 @@ impl SparseLdlt {
         max_refinements: usize,
         stop_on_stall: bool,
     ) -> Result<f64> {
-        let b_norm = b
-            .iter()
-            .map(|v| v * v)
-            .sum::<f64>()
-            .sqrt()
-            .max(f64::MIN_POSITIVE);
-        let mut ax = vec![0.0; b.len()];
-        let mut relative = f64::INFINITY;
-        for k in 0..=max_refinements {
-            product(x, &mut ax);
-            let mut r: Vec<f64> = b.iter().zip(&ax).map(|(bi, ai)| bi - ai).collect();
-            let previous = relative;
-            relative = r.iter().map(|v| v * v).sum::<f64>().sqrt() / b_norm;
-            let stalled = stop_on_stall && !(relative < 0.5 * previous);
-            if relative < 1e-13 || k == max_refinements || stalled {
-                break;
-            }
-            self.timings.refinement_steps += 1;
-            self.solve_in_place(&mut r)?;
-            for (xi, d) in x.iter_mut().zip(&r) {
-                *xi += d;
-            }
-        }
+        let solve = |r: &mut [f64]| self.solve_in_place(r);
+        let (relative, steps) = refinement(product, solve, b, x, max_refinements, stop_on_stall)?;
+        self.timings.refinement_steps += steps;
         Ok(relative)
+    }
+}
+
+/// Iterative refinement of `x` for `A x = b`, `x += A⁻¹ (b − A x)` with
+/// `product` (`y = A x`) and `solve` (`r ← A⁻¹ r`, a factor's), until the
+/// relative residual `‖b − A x‖ / ‖b‖` is below 1e-13, after at most
+/// `max_refinements` steps, or (`stop_on_stall`) when a step does not
+/// halve it: the final relative residual and the steps taken.
+pub fn refinement(
+    product: impl Fn(&[f64], &mut [f64]),
+    mut solve: impl FnMut(&mut [f64]) -> Result<()>,
+    b: &[f64],
+    x: &mut [f64],
+    max_refinements: usize,
+    stop_on_stall: bool,
+) -> Result<(f64, usize)> {
+    let b_norm = b
+        .iter()
+        .map(|v| v * v)
+        .sum::<f64>()
+        .sqrt()
+        .max(f64::MIN_POSITIVE);
+    let mut ax = vec![0.0; b.len()];
+    let mut relative = f64::INFINITY;
+    let mut steps = 0;
+    for k in 0..=max_refinements {
+        product(x, &mut ax);
+        let mut r: Vec<f64> = b.iter().zip(&ax).map(|(bi, ai)| bi - ai).collect();
+        let previous = relative;
+        relative = r.iter().map(|v| v * v).sum::<f64>().sqrt() / b_norm;
+        let stalled = stop_on_stall && !(relative < 0.5 * previous);
+        if relative < 1e-13 || k == max_refinements || stalled {
+            break;
+        }
+        steps += 1;
+        solve(&mut r)?;
+        for (xi, d) in x.iter_mut().zip(&r) {
+            *xi += d;
+        }
+    }
+    Ok((relative, steps))
+}
+
+/// What a report reads of a factorisation: its timings and the entries of
+/// its factor ([`crate::solve::linear_solver::SolverStatistics::of_ldlt`]).
+pub trait FactorReport {
+    fn timings(&self) -> SolverTimings;
+    fn factor_nnz(&self) -> usize;
+}
+
+impl FactorReport for SparseLdlt {
+    fn timings(&self) -> SolverTimings {
+        self.timings
+    }
+
+    fn factor_nnz(&self) -> usize {
+        SparseLdlt::factor_nnz(self)
     }
 }
 

@@ -5,7 +5,7 @@
 //! [`super::krylov::PreconditionedGmres`], [`super::lu::SparseLu`]; the
 //! `[solver] linear` key picks one in [`super::backend::linear_solver`].
 
-use super::linear::{Ordering, SparseLdlt};
+use super::linear::{FactorReport, Ordering};
 use faer::sparse::SymbolicSparseColMat;
 use std::time::Duration;
 
@@ -57,8 +57,8 @@ pub struct SolverStatistics {
 
 impl SolverStatistics {
     /// The analyses, times and factor size of an LDLᵀ.
-    pub fn of_ldlt(ldlt: &SparseLdlt) -> Self {
-        let t = &ldlt.timings;
+    pub fn of_ldlt(ldlt: &impl FactorReport) -> Self {
+        let t = &ldlt.timings();
         SolverStatistics {
             analyses: t.analyses,
             symbolic: t.symbolic_total,

@@ -15,10 +15,13 @@
 
 use super::complementarity::solve_lcp;
 use super::decoupled::{decoupled_first, Decoupled};
-use super::schur::{grow_flexibility, trailing_ordering, Direction, TrailingInverse};
+use super::parts::PartedLdlt;
+use super::schur::{
+    grow_flexibility, refresh_flexibility, trailing_ordering, Direction, TrailingInverse,
+};
 use crate::assembly::pattern::SparsityPattern;
 use crate::assembly::triangle::{self, LowerTriangle};
-use crate::solve::linear::{scaled_identity_rows, Precision, SparseLdlt};
+use crate::solve::linear::{scaled_identity_rows, Precision};
 use crate::solve::ordering::EarlyDissection;
 use crate::solve::record::IterationRecord;
 use crate::{Error, Result};
@@ -48,13 +51,15 @@ pub struct Stiffness {
 pub struct Analysis {
     pub trailing: Vec<usize>,
     pub decoupled: Decoupled,
-    pub ldlt: SparseLdlt,
+    pub ldlt: PartedLdlt,
 }
 
 /// The condensed solver of a run: the factor of `K̃`, the columns of `E`,
 /// the candidates and their flexibility `W`.
 pub struct Flexibility {
-    pub ldlt: SparseLdlt,
+    /// The factor of `K̃`, per body when there are two or more
+    /// ([`PartedLdlt`]).
+    pub ldlt: PartedLdlt,
     /// `(K̃⁻¹)_TT` on the trailing unknowns (the free dofs of the columns
     /// nearest to contact), ordered last in the factorisation: `W` of
     /// those columns without solves ([`super::schur`]).
@@ -103,7 +108,7 @@ pub const MAX_TRAILING: usize = 4000;
 /// Below this many unknowns the one factorisation of `K̃`, its solves and
 /// `(K̃⁻¹)_TT` run on one thread (faer's `Par::Seq`) whatever the run's
 /// thread count, from it on the run's threads: the one constant of that
-/// choice ([`SparseLdlt::threads_as_given`]; the dense `(K̃⁻¹)_TT` follows
+/// choice ([`crate::solve::linear::SparseLdlt::threads_as_given`]; the dense `(K̃⁻¹)_TT` follows
 /// the factor's threads). On the small race mesh (19 100 unknowns, 9.0 M
 /// factor entries) the f32 factorisation took 0.13–0.14 s on one thread at
 /// any load, on two 0.11 s on an idle machine but 0.24–0.32 s beside two
@@ -140,6 +145,15 @@ pub fn take_trailing<G: IntoIterator<Item = usize>>(
         dofs.extend(free);
     }
     dofs
+}
+
+/// A column on the free (not `constrained`) dofs, its zero entries left
+/// out, as a direction.
+fn direction_on(column: &Column, constrained: &[bool]) -> Direction {
+    (column.entries.iter())
+        .filter(|&&(i, n)| !constrained[i] && n != 0.0)
+        .copied()
+        .collect()
 }
 
 impl Flexibility {
@@ -184,8 +198,7 @@ impl Flexibility {
             Decoupled::within_elements(lower.symbolic(), constrained, pattern.element_neighbours());
         let ordering = trailing_ordering(pattern, &marked, dissection)?;
         let ordering = decoupled_first(ordering, constrained);
-        let mut ldlt = SparseLdlt::new(ordering, threads).threads_as_given();
-        ldlt.analyse(decoupled.symbolic())?;
+        let ldlt = PartedLdlt::analyse(decoupled.symbolic(), ordering, threads)?;
         Ok(Analysis {
             trailing,
             decoupled,
@@ -241,11 +254,8 @@ impl Flexibility {
                 "the condensed stiffness couples nodes that share no element".into(),
             ));
         }
-        match precision {
-            Precision::Single => ldlt.factorize_single(decoupled.symbolic(), &values, None)?,
-            Precision::Double => ldlt.factorize(decoupled.symbolic(), &values, None)?,
-        }
-        let trailing = TrailingInverse::of(&ldlt, &trailing_dofs)?;
+        ldlt.factorize(&values, precision)?;
+        let trailing = ldlt.trailing_inverse(&trailing_dofs)?;
         let count = columns.len();
         Ok(Flexibility {
             ldlt,
@@ -271,10 +281,7 @@ impl Flexibility {
 
     /// `E e_a`: column `a` on the free dofs, as a direction.
     pub fn direction(&self, a: usize) -> Direction {
-        (self.columns[a].entries.iter())
-            .filter(|&&(i, n)| !self.constrained[i] && n != 0.0)
-            .copied()
-            .collect()
+        direction_on(&self.columns[a], &self.constrained)
     }
 
     /// `v += factor E e_a`.
@@ -306,7 +313,8 @@ impl Flexibility {
         let directions: Vec<Direction> =
             self.candidates.iter().map(|&a| self.direction(a)).collect();
         let n = self.constrained.len();
-        self.w = grow_flexibility(&mut self.ldlt, &self.trailing, &self.w, &directions, n)?;
+        let solve = |z: &mut [f64], k| self.ldlt.solve_columns_in_place(z, k);
+        self.w = grow_flexibility(solve, &self.trailing, &self.w, &directions, n)?;
         self.active.resize(self.candidates.len(), false);
         Ok(())
     }
@@ -325,9 +333,46 @@ impl Flexibility {
         self.columns = columns;
         let directions: Vec<Direction> =
             self.candidates.iter().map(|&a| self.direction(a)).collect();
+        if directions.iter().all(|e| self.trailing.covers(e)) {
+            // every column from the block, on the run's threads
+            let every: Vec<usize> = (0..directions.len()).collect();
+            self.w = DMatrix::zeros(every.len(), every.len());
+            refresh_flexibility(&self.trailing, &mut self.w, &directions, &every);
+            return Ok(());
+        }
         let n = self.constrained.len();
         let none = DMatrix::zeros(0, 0);
-        self.w = grow_flexibility(&mut self.ldlt, &self.trailing, &none, &directions, n)?;
+        let solve = |z: &mut [f64], k| self.ldlt.solve_columns_in_place(z, k);
+        self.w = grow_flexibility(solve, &self.trailing, &none, &directions, n)?;
+        Ok(())
+    }
+
+    /// [`Self::replace_columns`] keeping `W`'s entries between candidates
+    /// whose columns did not change (the same entries): the rows and
+    /// columns of the changed ones formed anew from `(K̃⁻¹)_TT`
+    /// ([`refresh_flexibility`], one response `z_j` per changed `j`),
+    /// nothing when none changed; anew as there when a candidate is off the
+    /// trailing block.
+    pub fn update_columns(&mut self, columns: Vec<Column>) -> Result<()> {
+        if columns.len() != self.columns.len() {
+            return self.replace_columns(columns);
+        }
+        let changed: Vec<usize> = (self.candidates.iter().enumerate())
+            .filter(|(_, &a)| columns[a].entries != self.columns[a].entries)
+            .map(|(i, _)| i)
+            .collect();
+        if changed.is_empty() {
+            self.columns = columns;
+            return Ok(());
+        }
+        let directions: Vec<Direction> = (self.candidates.iter())
+            .map(|&a| direction_on(&columns[a], &self.constrained))
+            .collect();
+        if !directions.iter().all(|e| self.trailing.covers(e)) {
+            return self.replace_columns(columns);
+        }
+        self.columns = columns;
+        refresh_flexibility(&self.trailing, &mut self.w, &directions, &changed);
         Ok(())
     }
 
@@ -376,14 +421,14 @@ impl Flexibility {
         if single && relative > 1e-12 {
             self.fallbacks += 1;
             let values = self.decoupled.values(&self.k_tilde);
-            self.ldlt
-                .factorize(self.decoupled.symbolic(), &values, None)?;
-            self.trailing = TrailingInverse::of(&self.ldlt, &self.trailing_dofs)?;
+            self.ldlt.factorize(&values, Precision::Double)?;
+            self.trailing = self.ldlt.trailing_inverse(&self.trailing_dofs)?;
             let directions: Vec<Direction> =
                 self.candidates.iter().map(|&a| self.direction(a)).collect();
             let n = self.constrained.len();
             let none = DMatrix::zeros(0, 0);
-            self.w = grow_flexibility(&mut self.ldlt, &self.trailing, &none, &directions, n)?;
+            let solve = |z: &mut [f64], k| self.ldlt.solve_columns_in_place(z, k);
+            self.w = grow_flexibility(solve, &self.trailing, &none, &directions, n)?;
             x.copy_from_slice(b);
             self.ldlt.solve_in_place(x)?;
             relative = self.ldlt.refine_with(product, b, x, 3, false)?;

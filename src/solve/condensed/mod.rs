@@ -15,7 +15,9 @@
 //! - [`cone`]: the condensed Coulomb problem (three unknowns per node), a
 //!   dense semismooth Newton method;
 //! - [`decoupled`]: the factor without the couplings of the unknowns whose
-//!   rows are a scaled identity.
+//!   rows are a scaled identity;
+//! - [`parts`]: that factor as its independent diagonal blocks (the
+//!   bodies), factorised side by side.
 //!
 //! The columns of `E` are linear forms on the unknowns read by the caller
 //! from the contact's linearisation
@@ -28,4 +30,5 @@ pub mod complementarity;
 pub mod cone;
 pub mod decoupled;
 pub mod flexibility;
+pub mod parts;
 pub mod schur;

@@ -383,6 +383,30 @@ impl TrailingInverse {
         })
     }
 
+    /// The inverse of a block diagonal matrix's trailing block from each
+    /// diagonal block's own ([`Self::of`] on its factor), each `piece` on
+    /// its own unknowns (`unknowns[local]` the index among `dimension`):
+    /// their blocks side by side.
+    pub fn joined(dimension: usize, pieces: Vec<(TrailingInverse, &[usize])>) -> Self {
+        let mut position = vec![usize::MAX; dimension];
+        let (mut blocks, mut block_of) = (Vec::new(), Vec::new());
+        for (piece, unknowns) in pieces.into_iter().filter(|(p, _)| !p.is_empty()) {
+            let (offset, first_block) = (block_of.len(), blocks.len());
+            for (l, &p) in piece.position.iter().enumerate() {
+                if p != usize::MAX {
+                    position[unknowns[l]] = offset + p;
+                }
+            }
+            block_of.extend(piece.block_of.iter().map(|b| first_block + b));
+            blocks.extend(piece.blocks.into_iter().map(|(s, m)| (offset + s, m)));
+        }
+        TrailingInverse {
+            position,
+            blocks,
+            block_of,
+        }
+    }
+
     /// Number of unknowns in `T`.
     pub fn len(&self) -> usize {
         self.block_of.len()
@@ -496,10 +520,11 @@ fn component(e: &Direction, v: &[f64]) -> f64 {
 /// The flexibility `W_ij = e_iᵀ K⁻¹ e_j` over `directions`, of which the
 /// first `w.nrows()` have theirs in `w` already: the new columns from
 /// `inverse` where both directions lie on its unknowns, by block solves
-/// with `ldlt` (the factor of `K`) otherwise; symmetric (the mean of the
-/// two triangles where both were computed).
+/// with the factor of `K` otherwise (`solve(z, k)`: `Z ← K⁻¹ Z` for `k`
+/// columns of `dimension` each); symmetric (the mean of the two triangles
+/// where both were computed).
 pub fn grow_flexibility(
-    ldlt: &mut SparseLdlt,
+    mut solve: impl FnMut(&mut [f64], usize) -> Result<()>,
     inverse: &TrailingInverse,
     w: &DMatrix<f64>,
     directions: &[Direction],
@@ -537,7 +562,7 @@ pub fn grow_flexibility(
                 z[k * n + i] += v;
             }
         }
-        ldlt.solve_columns_in_place(&mut z, chunk.len())?;
+        solve(&mut z, chunk.len())?;
         for (k, &j) in chunk.iter().enumerate() {
             let zj = &z[k * n..(k + 1) * n];
             for i in 0..total {
@@ -560,6 +585,33 @@ pub fn grow_flexibility(
         }
     }
     Ok(grown)
+}
+
+/// `W_ij = e_iᵀ (K⁻¹)_TT e_j` formed anew in the rows and columns
+/// `changed` of `w` (the others kept), every direction on `inverse`'s
+/// unknowns: one response `z_j = (K⁻¹)_TT e_j` per changed `j`, then
+/// `W_ij = W_ji = e_iᵀ z_j` for every `i`.
+/// The columns on the run's threads, written in the order of `changed`
+/// (the same `W` whatever the threads).
+pub fn refresh_flexibility(
+    inverse: &TrailingInverse,
+    w: &mut DMatrix<f64>,
+    directions: &[Direction],
+    changed: &[usize],
+) {
+    use rayon::prelude::*;
+    let columns: Vec<Vec<f64>> = (changed.par_iter())
+        .map(|&j| {
+            let z = inverse.apply(&directions[j]);
+            directions.iter().map(|e| inverse.dot(e, &z)).collect()
+        })
+        .collect();
+    for (&j, column) in changed.iter().zip(columns) {
+        for (i, value) in column.into_iter().enumerate() {
+            w[(i, j)] = value;
+            w[(j, i)] = value;
+        }
+    }
 }
 
 #[cfg(test)]
@@ -685,8 +737,9 @@ mod tests {
                 vec![(0, 1.0)],
                 vec![(trailing[3], 1.0), (3, 0.5)],
             ];
-            let w = grow_flexibility(&mut ldlt, &inverse, &DMatrix::zeros(0, 0), &directions, dim)
-                .unwrap();
+            let solve = |z: &mut [f64], k| ldlt.solve_columns_in_place(z, k);
+            let w =
+                grow_flexibility(solve, &inverse, &DMatrix::zeros(0, 0), &directions, dim).unwrap();
             let largest = assert_solved_flexibility(&mut ldlt, &pattern, &k, &w, &directions);
             assert!(largest > 1e-2, "n = {n}");
             // the Schur complement is the inverse of the trailing block
@@ -708,6 +761,31 @@ mod tests {
         }
         // one simplicial and one supernodal factor were read
         assert_eq!(kinds, [false, true]);
+    }
+
+    /// `W` refreshed in the rows and columns of the directions that
+    /// changed equals `W` formed anew over the new directions to 1e-15 of
+    /// its largest entry.
+    #[test]
+    fn refreshed_flexibility_equals_the_one_formed_anew() {
+        let (pattern, k) = grid(5);
+        let dim = pattern.dimension();
+        let trailing: Vec<usize> = (0..dim).filter(|i| i % 3 == 2).collect();
+        let (mut ldlt, inverse) = factor_with_trailing(&pattern, &k, &trailing);
+        let mut directions: Vec<Direction> = (0..6)
+            .map(|a| vec![(trailing[3 * a], 1.0), (trailing[3 * a + 1], -0.3)])
+            .collect();
+        let none = DMatrix::zeros(0, 0);
+        let solve = |z: &mut [f64], c| ldlt.solve_columns_in_place(z, c);
+        let mut w = grow_flexibility(solve, &inverse, &none, &directions, dim).unwrap();
+        directions[2] = vec![(trailing[20], 0.8), (trailing[6], 0.6)];
+        directions[4][1].1 = 0.25;
+        refresh_flexibility(&inverse, &mut w, &directions, &[2, 4]);
+        let solve = |z: &mut [f64], c| ldlt.solve_columns_in_place(z, c);
+        let anew = grow_flexibility(solve, &inverse, &none, &directions, dim).unwrap();
+        let largest = anew.iter().fold(0.0f64, |m, v| m.max(v.abs()));
+        assert!(largest > 1e-2);
+        assert!((&w - &anew).iter().all(|d| d.abs() <= 1e-15 * largest));
     }
 
     /// Two bodies apart (two grids that share no edge), a trailing set on
@@ -734,8 +812,8 @@ mod tests {
             vec![(a, 0.7), (b, 0.3)],
         ];
         assert!(directions.iter().all(|e| inverse.covers(e)));
-        let w =
-            grow_flexibility(&mut ldlt, &inverse, &DMatrix::zeros(0, 0), &directions, dim).unwrap();
+        let solve = |z: &mut [f64], k| ldlt.solve_columns_in_place(z, k);
+        let w = grow_flexibility(solve, &inverse, &DMatrix::zeros(0, 0), &directions, dim).unwrap();
         let largest = assert_solved_flexibility(&mut ldlt, &pattern, &k, &w, &directions);
         assert!(largest > 1e-2);
         assert!(

@@ -28,6 +28,7 @@
 use super::condensation::normal_column;
 use super::{set_multipliers, zero_per_node};
 use super::{Condensation, ContactNode, ContactState, IncrementSolver, Problem};
+use crate::contact::interface::ConstraintRow;
 use crate::solve::condensed::anderson::Anderson;
 use crate::solve::condensed::flexibility::{take_trailing, Column, MAX_TRAILING};
 use crate::solve::linear_solver::SolverStatistics;
@@ -60,40 +61,66 @@ pub(super) struct PairCondensation {
     rounds: usize,
 }
 
+/// The constraint rows of every interface at unknowns `u`, time `t`, on
+/// the primary triangles kept in `kept`, each node's triangle then kept
+/// (as Newton keeps it: a node over the kink between two triangles does
+/// not flip from one round to the next).
+fn rows_at(
+    problem: &Problem,
+    t: f64,
+    u: &[f64],
+    kept: &mut ContactState,
+) -> Vec<Vec<Option<ConstraintRow>>> {
+    let reference = &problem.model.mesh.nodes;
+    (problem.contacts.iter().enumerate())
+        .map(|(ci, c)| {
+            let states = &mut kept.interfaces[ci];
+            let rows = c.constraint_rows(reference, t, u, Some(states));
+            for (state, row) in states.iter_mut().zip(&rows) {
+                if let Some(row) = row {
+                    state.facet = row.facet;
+                }
+            }
+            rows
+        })
+        .collect()
+}
+
 /// Per secondary node of every interface its owner and its column of `E`
-/// at unknowns `u`, time `t`: `∇g = Bᵀn` and a penalty law's compliance
-/// `1/(A ε)` (an empty column where the node has no primary in reach:
-/// it is open at the search margin); the primary triangle of each node
-/// kept in `kept` (as Newton keeps it: a node over the kink between two
-/// triangles does not flip from one round to the next).
+/// from its row: `∇g = Bᵀn` and a penalty law's compliance `1/(A ε)` (an
+/// empty column where the node has no primary in reach: it is open at the
+/// search margin).
+fn columns_of(
+    problem: &Problem,
+    rows: &[Vec<Option<ConstraintRow>>],
+) -> (Vec<ContactNode>, Vec<Column>) {
+    let (mut nodes, mut columns) = (Vec::new(), Vec::new());
+    for (ci, (c, rows)) in problem.contacts.iter().zip(rows).enumerate() {
+        for (i, row) in rows.iter().enumerate() {
+            nodes.push(ContactNode {
+                interface: ci,
+                index: i,
+            });
+            columns.push(match row {
+                Some(row) => normal_column(c.law_at(i).converged(), row),
+                None => Column {
+                    entries: Vec::new(),
+                    compliance: 0.0,
+                },
+            });
+        }
+    }
+    (nodes, columns)
+}
+
+/// [`columns_of`] the rows at `u` ([`rows_at`]), the triangles kept.
 fn columns_at(
     problem: &Problem,
     t: f64,
     u: &[f64],
     kept: &mut ContactState,
 ) -> (Vec<ContactNode>, Vec<Column>) {
-    let (mut nodes, mut columns) = (Vec::new(), Vec::new());
-    let reference = &problem.model.mesh.nodes;
-    for (ci, c) in problem.contacts.iter().enumerate() {
-        let states = &mut kept.interfaces[ci];
-        let rows = c.constraint_rows(reference, t, u, Some(states));
-        for (i, row) in rows.iter().enumerate() {
-            nodes.push(ContactNode {
-                interface: ci,
-                index: i,
-            });
-            let Some(row) = row else {
-                columns.push(Column {
-                    entries: Vec::new(),
-                    compliance: 0.0,
-                });
-                continue;
-            };
-            states[i].facet = row.facet;
-            columns.push(normal_column(c.law_at(i).converged(), row));
-        }
-    }
-    (nodes, columns)
+    columns_of(problem, &rows_at(problem, t, u, kept))
 }
 
 /// The largest change of an entry between two sets of columns of the
@@ -134,9 +161,16 @@ pub(super) fn surface_trailing(problem: &Problem) -> Vec<usize> {
     let zero = vec![0.0; problem.num_unknowns()];
     let reference = &problem.model.mesh.nodes;
     let kept = problem.contacts.initial_state(reference, &zero);
+    let rows: Vec<_> = (problem.contacts.iter().enumerate())
+        .map(|(ci, c)| c.constraint_rows(reference, 0.0, &zero, Some(&kept.interfaces[ci])))
+        .collect();
+    trailing_of_rows(problem, &rows)
+}
+
+/// [`surface_trailing`] from the rows at rest (on the initial state).
+fn trailing_of_rows(problem: &Problem, rows: &[Vec<Option<ConstraintRow>>]) -> Vec<usize> {
     let mut near: Vec<(f64, Vec<usize>)> = Vec::new();
-    for (ci, c) in problem.contacts.iter().enumerate() {
-        let rows = c.constraint_rows(reference, 0.0, &zero, Some(&kept.interfaces[ci]));
+    for (c, rows) in problem.contacts.iter().zip(rows) {
         for (i, row) in rows.iter().enumerate() {
             let Some(row) = row else {
                 near.push((f64::INFINITY, vec![c.nodes[i]]));
@@ -161,8 +195,10 @@ impl PairCondensation {
         let mut initial = problem
             .contacts
             .initial_state(&problem.model.mesh.nodes, &zero);
-        let (nodes, columns) = columns_at(problem, 0.0, &zero, &mut initial);
-        let trailing = surface_trailing(problem);
+        // the rows at rest once: the columns and the trailing unknowns
+        let rows = rows_at(problem, 0.0, &zero, &mut initial);
+        let (nodes, columns) = columns_of(problem, &rows);
+        let trailing = trailing_of_rows(problem, &rows);
         let constrained = problem.constrained_dofs();
         let surface_dofs = (problem.contacts.deformable_nodes().iter())
             .flat_map(|&n| 3 * n..3 * n + 3)
@@ -207,9 +243,16 @@ impl PairCondensation {
         let mut gaps_at = Condensation::gaps(&self.base.nodes, problem, t, start, Some(kept));
         let mut anderson = Anderson::new(ANDERSON_DEPTH);
         let mut support: Vec<bool> = Vec::new();
-        for _ in 0..MAX_ROUNDS {
+        for round in 0..MAX_ROUNDS {
             self.rounds += 1;
-            self.base.flexibility.replace_columns(columns.clone())?;
+            // anew at an increment's first round (as a restart makes it),
+            // then only where the columns changed
+            let flexibility = &mut self.base.flexibility;
+            if round == 0 {
+                flexibility.replace_columns(columns.clone())?;
+            } else {
+                flexibility.update_columns(columns.clone())?;
+            }
             let linear = |u: &[f64]| linearised_gaps(&columns, &gaps_at, &at, u);
             let flexibility = &mut self.base.flexibility;
             let (u, forces) = match &free {

@@ -434,15 +434,15 @@ mod tests {
         let dim = structure.ncols();
         // join the chains: a structure whose only component is large
         let (cp, ri) = (structure.col_ptr(), structure.row_idx());
-        let mut full = vec![vec![false; dim]; dim];
-        for j in 0..dim {
-            ri[cp[j]..cp[j + 1]].iter().for_each(|&i| full[i][j] = true);
-        }
-        full[0][1] = true;
-        full[1][0] = true;
+        // each column's rows, and the entries (0, 1), (1, 0)
+        let mut columns: Vec<Vec<usize>> =
+            (0..dim).map(|j| ri[cp[j]..cp[j + 1]].to_vec()).collect();
+        columns[0].push(1);
+        columns[1].push(0);
         let (mut col_ptr, mut row_idx) = (vec![0], Vec::new());
-        for j in 0..dim {
-            row_idx.extend((0..dim).filter(|&i| full[i][j]));
+        for mut rows in columns {
+            rows.sort_unstable();
+            row_idx.extend(rows);
             col_ptr.push(row_idx.len());
         }
         let joined = SymbolicSparseColMat::new_checked(dim, dim, col_ptr, None, row_idx);

@@ -446,8 +446,22 @@ impl TrailingInverse {
     /// `v_T += (K⁻¹)_TT e` for a direction `e` on `T`: the displacement of
     /// the unknowns `T` under the load `e` (`v` on every unknown, the
     /// others untouched).
+    /// The entries of `e` on one unknown are summed first (a load of many
+    /// nodes' columns repeats the primary nodes they share): one column of
+    /// the block per unknown.
     pub fn add_response(&self, e: &Direction, v: &mut [f64]) {
-        let z = self.apply(e);
+        let mut merged = vec![0.0; self.len()];
+        let mut unknown = vec![usize::MAX; self.len()];
+        for &(i, ei) in e {
+            let p = self.position[i];
+            merged[p] += ei;
+            unknown[p] = i;
+        }
+        let once: Direction = (unknown.iter().zip(&merged))
+            .filter(|(&i, _)| i != usize::MAX)
+            .map(|(&i, &m)| (i, m))
+            .collect();
+        let z = self.apply(&once);
         for (i, &p) in self.position.iter().enumerate() {
             if p != usize::MAX {
                 v[i] += z[p];

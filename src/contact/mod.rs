@@ -4,10 +4,11 @@
 //! the interfaces' life cycle and report. Imports point one way, in the
 //! order of this list.
 //!
-//! - [`projection`], [`obstacle`]: rigid obstacles (plane, sphere,
+//! - [`compensated`], [`projection`], [`obstacle`]: rigid obstacles (plane, sphere,
 //!   cylinder, triangulated surface) and their [`Projection`] of a point:
 //!   closest point `x̄`, unit outward normal `n`, signed gap `g` and
-//!   curvature `∂²g/∂x²`; [`gap`]: that projection as the laws read it.
+//!   curvature `∂²g/∂x²` (the gap to a sphere or a cylinder without
+//!   cancellation by [`compensated`]); [`gap`]: that projection as the laws read it.
 //! - [`triangle`]: the closest point on one triangle, with the Voronoi
 //!   feature (face, edge, vertex) it lies on.
 //! - [`triangulated`]: a triangulated surface with an R*-tree (`rstar`) for
@@ -49,6 +50,7 @@
 //! - In two-body contact the surfaces are *primary* (projected onto) and
 //!   *secondary* (whose nodes are projected).
 
+pub mod compensated;
 pub mod dimension;
 pub mod friction;
 pub mod gap;

@@ -18,6 +18,11 @@
 //! | cylinder, axis through `p` along unit `a`, radius `R` (body outside) | `|r⊥| − R`, `r⊥ = (I − a aᵀ)(x − p)` | `r⊥/|r⊥|` | `(I − a aᵀ − n nᵀ)/|r⊥|` |
 //! | triangulated surface | see [`TriangulatedSurface::project`] | | |
 //!
+//! The gap `|r| − R` is evaluated without the cancellation of its two
+//! terms ([`compensated`](super::compensated)): against a sphere of radius
+//! 100 the naive difference was off by an ulp of 100, and Newton stood
+//! still at that floor.
+//!
 //! At the sphere's centre or on the cylinder's axis the normal is not
 //! defined and the curvature is unbounded: there the projection picks a
 //! fixed normal (`+z` for the sphere; for the cylinder the unit vector
@@ -28,6 +33,7 @@
 //! Only the outside of spheres and cylinders is modelled (a body inside a
 //! spherical cavity or a pipe is not).
 
+use crate::contact::compensated::ExactVector;
 pub use crate::contact::projection::Projection;
 use crate::contact::triangulated::TriangulatedSurface;
 use crate::error::{Error, Result};
@@ -141,8 +147,9 @@ impl RigidObstacle {
     /// documentation for the formulas).
     pub fn project(&self, x: &Vector3<f64>) -> Projection {
         // a sphere or a cylinder: the centre `c` (on the axis) nearest `x`,
-        // `r = x − c` across the axis, the projector `P` on the directions
-        // across it (`I`, `I − a aᵀ`) and the normal at the centre
+        // `r = x − c` across the axis (kept exactly, see `compensated`),
+        // the projector `P` on the directions across it (`I`, `I − a aᵀ`)
+        // and the normal at the centre
         let (centre, r, projector, radius, at_centre) = match self {
             RigidObstacle::Plane { point, normal } => {
                 let gap = (x - point).dot(normal);
@@ -155,7 +162,7 @@ impl RigidObstacle {
             }
             RigidObstacle::Sphere { center, radius } => (
                 *center,
-                x - center,
+                ExactVector::difference(x, center),
                 Matrix3::identity(),
                 radius,
                 Vector3::z(),
@@ -165,13 +172,13 @@ impl RigidObstacle {
                 axis,
                 radius,
             } => {
-                let r = x - point_on_axis;
-                let along = axis.dot(&r);
+                let r = ExactVector::difference(x, point_on_axis);
+                let along = axis.dot(&r.hi);
                 let projector = Matrix3::identity() - axis * axis.transpose();
                 let centre = point_on_axis + axis * along;
                 (
                     centre,
-                    r - axis * along,
+                    r.across(axis),
                     projector,
                     radius,
                     perpendicular_unit(axis),
@@ -179,19 +186,24 @@ impl RigidObstacle {
             }
             RigidObstacle::Triangulated(surface) => return surface.project(x),
         };
-        // n = r/|r|, H = (P − n nᵀ)/|r|, x̄ = c + R n
-        let d = r.norm();
+        // n = r/|r|, H = (P − n nᵀ)/|r|, x̄ = c + R n, g = |r| − R
+        let d = r.hi.norm();
         let (normal, curvature) = if d > 1e-14 * radius {
-            let n = r / d;
+            let n = r.hi / d;
             (n, (projector - n * n.transpose()) / d)
         } else {
             (at_centre, Matrix3::zeros())
         };
         let point = centre + normal * *radius;
+        let gap = if d > 1e-14 * radius {
+            r.distance_minus(*radius)
+        } else {
+            (x - point).dot(&normal)
+        };
         Projection {
             point,
             normal,
-            gap: (x - point).dot(&normal),
+            gap,
             curvature,
         }
     }

@@ -9,17 +9,33 @@
 //! that mortar promises, a tangential force that stays level while the
 //! slab's nodes enter and leave the contact.
 
+use signorini::contact::friction::STICK_SHIFT;
+use signorini::contact::interface::NodeReport;
 use signorini::output::summary::IncrementSummary;
+use signorini::problem::{ContactState, Problem};
 use signorini::run::{RunOptions, Simulation};
-use std::path::Path;
+use signorini::solve::backend::linear_solver;
+use signorini::solve::josephy::Josephy;
+use signorini::solve::linear_solver::SolverStatistics;
+use signorini::solve::method::{Increment, IncrementMethod, Monolithic};
+use signorini::solve::newton::{IterationRecord, NewtonOutcome};
+use signorini::solve::stepping::resume_steps;
+use std::path::{Path, PathBuf};
 
 const MU: f64 = 0.3;
 
-/// The example's case on `coarse.msh`: pressed in 5 increments, slid 2.0
-/// (to t = 1.5) in increments of 0.2.
-fn coarse_run() -> Vec<IncrementSummary> {
+/// The example's case text on `coarse.msh`, pressed in 5 increments and
+/// slid 2.0 (to t = 1.5) in increments of 0.2, writing into `out`; and
+/// the example's folder (the mesh's).
+fn coarse_case(out: &Path) -> (String, PathBuf) {
     let folder = Path::new(env!("CARGO_MANIFEST_DIR")).join("examples/ironing-mortar");
     let text = std::fs::read_to_string(folder.join("case.toml")).unwrap();
+    if std::env::var("IRONING_FULL").is_ok() {
+        // diagnostics on the example's own mesh and increments
+        let case = text.replace("every = 5", "every = 1000");
+        let case = case.replace("[output]\n", &format!("[output]\nfolder = {out:?}\n"));
+        return (case, folder);
+    }
     let edits = [
         ("file = \"ironing.msh\"", "file = \"coarse.msh\""),
         (
@@ -37,11 +53,14 @@ fn coarse_run() -> Vec<IncrementSummary> {
         assert!(case.contains(from), "case.toml no longer holds {from:?}");
         case = case.replace(from, to);
     }
+    case = case.replace("[output]\n", &format!("[output]\nfolder = {out:?}\n"));
+    (case, folder)
+}
+
+/// The example's case on `coarse.msh` ([`coarse_case`]), run.
+fn coarse_run() -> Vec<IncrementSummary> {
     let out = tempfile::tempdir().unwrap();
-    case = case.replace(
-        "[output]\n",
-        &format!("[output]\nfolder = {:?}\n", out.path()),
-    );
+    let (case, folder) = coarse_case(out.path());
     let mut simulation = Simulation::from_toml(&case, &folder).unwrap();
     let outcome = simulation
         .run(
@@ -134,14 +153,15 @@ fn assert_forces_balance_the_die(increments: &[IncrementSummary]) {
     }
 }
 
-/// Newton per increment on the coarse run: no cut, and at most 7
-/// iterations in every increment, one above the issue's bound of 6, which
-/// two increments exceed (measured 2026-11-27: the press's first contact,
-/// 0.01 apart then pressed 0.28, 7 with 20, 20 and 15 status switches; the
-/// slide at t = 1.3, 7 with 14, 6 and 2; every other increment 4–6). On the
-/// example's own mesh the first slide increment takes 18 (see its README,
-/// "Newton at the stick–slip turn": an open defect). Each increment's
-/// residuals and status switches are printed.
+/// Newton per increment on the coarse run: no cut, and at most 6
+/// iterations in every increment (the issue's bound). Measured
+/// 2026-11-27: 4–6; the press's first contact (0.01 apart, then pressed
+/// 0.28) 6 with 20, 7 and 2 status switches, the slide at t = 1.3 6 with
+/// 14 and 6 (7 each before a closing node's first-contact fraction was
+/// taken at its solution value, mortar_friction.rs). On the example's own
+/// mesh the first slide increment takes 18 (see its README, "Newton at
+/// the stick–slip turn": open). Each increment's residuals and status
+/// switches are printed.
 fn assert_newton_iterations(increments: &[IncrementSummary]) {
     for i in increments {
         let residuals: Vec<String> = i.residuals.iter().map(|r| format!("{r:.1e}")).collect();
@@ -156,12 +176,291 @@ fn assert_newton_iterations(increments: &[IncrementSummary]) {
     }
     for i in increments {
         assert!(
-            i.cuts == 0 && i.iterations <= 7,
+            i.cuts == 0 && i.iterations <= 6,
             "{} t = {}: {} iterations, {} cuts",
             i.step_name,
             i.time,
             i.iterations,
             i.cuts
+        );
+    }
+}
+
+/// Newton's iterates as the run takes them ([`Monolithic`]), stopped in
+/// the slide (from `from`) at the first iteration whose line search
+/// shortens the step (or, if none does, at iteration `fallback` of the
+/// slide's first increment): the iterate `x` there, its trial history
+/// and the increment's time.
+struct StopInSlide<'a> {
+    newton: Monolithic<'a>,
+    from: f64,
+    fallback: usize,
+    captured: Option<(Vec<f64>, ContactState, f64)>,
+}
+
+impl IncrementMethod<Problem> for StopInSlide<'_> {
+    fn name(&self) -> &'static str {
+        "monolithic"
+    }
+
+    fn pattern_changed(&mut self, problem: &Problem) -> signorini::Result<()> {
+        self.newton.pattern_changed(problem)
+    }
+
+    fn solve(
+        &mut self,
+        problem: &Problem,
+        increment: &Increment<'_>,
+        u: &[f64],
+        state: &mut ContactState,
+        x: &mut Vec<f64>,
+        on_iteration: &mut dyn FnMut(&IterationRecord) -> bool,
+    ) -> NewtonOutcome<Vec<Vec<NodeReport>>> {
+        if increment.time <= self.from {
+            return self
+                .newton
+                .solve(problem, increment, u, state, x, on_iteration);
+        }
+        let first = (increment.start - self.from).abs() < 1e-9;
+        let (fallback, mut count, mut stopped) = (self.fallback, 0, false);
+        let mut stop = |r: &IterationRecord| {
+            count += 1;
+            println!(
+                "t = {:.3} iteration {count}: residual {:.2e} step {:.3} switched {}",
+                increment.time, r.residual, r.step_length, r.switched
+            );
+            stopped = r.step_length < 1.0 || (first && count == fallback);
+            on_iteration(r) && !stopped
+        };
+        let outcome = self
+            .newton
+            .solve(problem, increment, u, state, x, &mut stop);
+        if stopped {
+            self.captured = Some((x.clone(), state.clone(), increment.time));
+        }
+        outcome
+    }
+
+    fn statistics(&self) -> SolverStatistics {
+        IncrementMethod::<Problem>::statistics(&self.newton)
+    }
+}
+
+/// The coarse ironing run as the example runs it, stopped at a slide
+/// iterate ([`StopInSlide`]): the problem (its pattern that of the
+/// increment), the iterate, its trial history and its time.
+fn slide_iterate() -> (Problem, Vec<f64>, ContactState, f64) {
+    let out = tempfile::tempdir().unwrap();
+    let (text, folder) = coarse_case(out.path());
+    let case = signorini::case::from_toml(&text, &folder).unwrap();
+    let (mut problem, _) = signorini::run::problem_as_run(&case).unwrap();
+    let ordering = signorini::run::fill_reducing_ordering(&problem).unwrap();
+    let mut solver = linear_solver(&problem.settings, ordering, 0);
+    let mut josephy = Josephy::default();
+    let newton = Monolithic::new(&problem, &mut *solver, &mut josephy);
+    let mut method = StopInSlide {
+        newton,
+        from: 1.0,
+        fallback: if std::env::var("IRONING_FULL").is_ok() {
+            usize::MAX
+        } else {
+            2
+        },
+        captured: None,
+    };
+    let mut quiet = Quiet;
+    let result = resume_steps(
+        &mut problem,
+        &mut method,
+        None,
+        &mut quiet,
+        out.path().into(),
+        None,
+    );
+    let (x, state, t) = method.captured.take().expect("stopped in the slide");
+    assert!(result.is_err(), "the run stops where it was stopped");
+    (problem, x, state, t)
+}
+
+/// The stepper's observer that keeps nothing.
+struct Quiet;
+
+impl signorini::solve::stepping::StepObserver<Problem> for Quiet {
+    fn on_converged(
+        &mut self,
+        _: &Problem,
+        _: &signorini::solve::stepping::IncrementRecord,
+        _: &[f64],
+        _: &signorini::solve::nonlinear::Evaluation<Vec<Vec<NodeReport>>>,
+        _: &ContactState,
+    ) -> signorini::Result<()> {
+        Ok(())
+    }
+}
+
+/// The unknowns' kinds: displacement, normal multiplier, tangential
+/// multiplier.
+const KINDS: [&str; 3] = ["u", "λ_N", "λ_T"];
+
+/// The largest `|K_ij − FD_ij|` and `|K_ij|` of each block (rows × columns
+/// by kind, [`KINDS`]) of the assembled tangent at `(t, x, state)` against
+/// central differences of the assembled residual (step `h`), over the
+/// columns of the contact nodes' displacements and every multiplier.
+/// The tangential rows' diagonal is compared after taking out the
+/// Jacobian's shift `−STICK_SHIFT A_s ε_T` (friction.rs), which the
+/// residual does not hold.
+fn tangent_block_errors(
+    pr: &Problem,
+    t: f64,
+    x: &[f64],
+    state: &ContactState,
+    h: f64,
+) -> [[(f64, f64); 3]; 3] {
+    let (n, dofs) = (pr.num_unknowns(), pr.model.num_dofs());
+    let interface = pr.contacts.interface(0);
+    let normal = interface.nodes.len();
+    let kind = |i: usize| match i {
+        i if i < dofs => 0,
+        i if i < dofs + normal => 1,
+        _ => 2,
+    };
+    let mut k = vec![0.0; pr.model.pattern.nnz()];
+    pr.residual_in(t, x, state, Some(&mut k)).unwrap();
+    let pattern = pr.model.pattern.symbolic();
+    let mut columns: Vec<usize> = pr
+        .deformable_contact_nodes()
+        .iter()
+        .flat_map(|&a| 3 * a..3 * a + 3)
+        .collect();
+    columns.extend(dofs..n);
+    let eps_t = interface.friction.expect("friction").tangential_penalty;
+    let rows_of = |j: usize| &pattern.row_idx()[pattern.col_ptr()[j]..pattern.col_ptr()[j + 1]];
+    let mut blocks = [[(0.0f64, 0.0f64); 3]; 3];
+    for group in structurally_orthogonal(&columns, n, rows_of) {
+        let (mut xp, mut xm) = (x.to_vec(), x.to_vec());
+        for &j in &group {
+            xp[j] += h;
+            xm[j] -= h;
+        }
+        let rp = pr.residual_in(t, &xp, state, None).unwrap().0.r;
+        let rm = pr.residual_in(t, &xm, state, None).unwrap().0.r;
+        // the rows of the group's columns are disjoint: each row's
+        // difference is one column's (a row outside them, which the
+        // pattern says no column reaches, must not change)
+        let mut owner: Vec<Option<usize>> = vec![None; n];
+        for &j in &group {
+            rows_of(j).iter().for_each(|&i| owner[i] = Some(j));
+        }
+        for i in 0..n {
+            let fd = (rp[i] - rm[i]) / (2.0 * h);
+            let Some(j) = owner[i] else {
+                let block = &mut blocks[kind(i)][kind(group[0])];
+                block.0 = block.0.max(fd.abs());
+                continue;
+            };
+            let idx = pattern.col_ptr()[j] + rows_of(j).iter().position(|&r| r == i).unwrap();
+            let exact = k[idx];
+            let mut err = (fd - exact).abs();
+            if i == j && kind(i) == 2 {
+                // a closed node's Jacobian shift (none where open)
+                let node = (i - dofs - normal) / 2;
+                let shift = STICK_SHIFT * interface.areas[node] * eps_t;
+                err = err.min((fd - exact - shift).abs());
+            }
+            let block = &mut blocks[kind(i)][kind(j)];
+            block.0 = block.0.max(err);
+            block.1 = block.1.max(exact.abs());
+        }
+    }
+    blocks
+}
+
+/// `columns` in groups whose rows (`rows_of`, of `n`) do not meet, so that
+/// one central difference per group gives each of its columns
+/// (Curtis, Powell & Reid 1974; greedy, in the given order).
+fn structurally_orthogonal<'a>(
+    columns: &[usize],
+    n: usize,
+    rows_of: impl Fn(usize) -> &'a [usize],
+) -> Vec<Vec<usize>> {
+    let mut groups: Vec<(Vec<usize>, Vec<bool>)> = Vec::new();
+    for &j in columns {
+        let fits = |used: &Vec<bool>| rows_of(j).iter().all(|&i| !used[i]);
+        let at = match groups.iter().position(|(_, used)| fits(used)) {
+            Some(at) => at,
+            None => {
+                groups.push((Vec::new(), vec![false; n]));
+                groups.len() - 1
+            }
+        };
+        let (group, used) = &mut groups[at];
+        group.push(j);
+        rows_of(j).iter().for_each(|&i| used[i] = true);
+    }
+    groups.into_iter().map(|(group, _)| group).collect()
+}
+
+/// The assembled tangent of the frictional mortar ironing (every row: the
+/// structure's with the contact forces, the normal and the tangential
+/// multipliers' equations) against central differences of the assembled
+/// residual, at a real slide state of the coarse run: Newton's iterate
+/// where the line search first shortens a step in the slide
+/// ([`slide_iterate`]), with the trial history Newton holds there
+/// (statuses as the residual decides them at that state; a node at a kink
+/// would show as a mismatch). Columns: the contact nodes' displacements
+/// and every multiplier. The largest error of each block relative to the
+/// block's largest entry is at most 1e-6 (central differences with
+/// `h = 1e-7` on coordinates of order 1: truncation `O(h²)` ≈ 1e-14 of the
+/// third derivative, round-off ≈ 1e-16 ‖r‖/h ≈ 1e-9 ‖r‖; a missing
+/// term is off by its own size).
+#[test]
+fn frictional_mortar_tangent_matches_fd_at_a_slide_iterate() {
+    let (pr, x, state, t) = slide_iterate();
+    let blocks = tangent_block_errors(&pr, t, &x, &state, 1e-7);
+    for (r, row) in blocks.iter().enumerate() {
+        for (c, &(err, size)) in row.iter().enumerate() {
+            let relative = if size > 0.0 { err / size } else { err };
+            println!(
+                "∂r_{}/∂{}: largest |K − FD| {err:.2e}, largest |K| {size:.2e}, relative {relative:.2e}",
+                KINDS[r], KINDS[c]
+            );
+            // the normal rows leave out ∂r_λ/∂A ∇D_j (r_λ = A c(g, λ) on
+            // A = D_j; mortar_contact.rs), of the size of the iterate's
+            // relative residual (2.6e-5 here) and zero at convergence
+            let bound = if (r, c) == (1, 0) { 1e-4 } else { 1e-6 };
+            assert!(
+                relative <= bound,
+                "∂r_{}/∂{}: relative error {relative:e} at t = {t}",
+                KINDS[r],
+                KINDS[c]
+            );
+        }
+    }
+}
+
+/// Diagnostics (not a check): the run stopped where the slide's line
+/// search first shortens a step ([`slide_iterate`]; `IRONING_FULL=1` for
+/// the example's own mesh and increments), and every closed node there:
+/// status, committed status and gap, gap, pressure, `|t_T|` against
+/// `μ t_N`.
+#[test]
+#[ignore]
+fn ironing_mortar_slide_iterate_nodes() {
+    let (pr, x, state, t) = slide_iterate();
+    let (_, reports) = pr.residual_in(t, &x, &state, None).unwrap();
+    let interface = pr.contacts.interface(0);
+    for (i, (r, s)) in reports[0].iter().zip(&state.interfaces[0]).enumerate() {
+        if !r.active && s.friction.status == signorini::contact::friction::ContactStatus::Open {
+            continue;
+        }
+        let node = interface.nodes[i];
+        let position: Vec<f64> = (0..3)
+            .map(|d| pr.model.mesh.nodes[node][d] + x[3 * node + d])
+            .collect();
+        let t_t = nalgebra::Vector3::from(r.tangential_traction).norm();
+        println!(
+            "node {node} at ({:.3}, {:.3}, {:.3}): {:?} (committed {:?}, gap {:.3e}) gap {:.3e} t_N {:.4e} |t_T| {:.4e} μ t_N {:.4e} D {:?}",
+            position[0], position[1], position[2], r.status, s.friction.status, s.gap, r.gap, r.pressure, t_t, MU * r.pressure, r.area
         );
     }
 }

@@ -489,6 +489,23 @@ pub fn first_contact<K: Dim>(
         (1.0 - alpha) * &kinematics.offset_gradient - d * alpha_gradient.transpose();
 }
 
+/// [`first_contact`] where the normal constraint is exact at the solution
+/// (`g = 0` at every converged closed node: a normal multiplier in
+/// Newton): `α = 1`, `d' = 0`, `∂d'/∂q = 0`, the value [`first_contact`]
+/// takes there, in every iteration. A closing node then carries no
+/// tangential traction in the increment it closes (as at the converged
+/// state of [`first_contact`]), without the fraction's kink at `g = 0`:
+/// `∂d'/∂q` jumps there by `d ⊗ ∇g / g_n` (zero for `g ≥ 0`), a tangential
+/// stiffness `ε_T |d| / g_n` on one side only, exactly where the converged
+/// state lies.
+pub fn first_contact_at_solution<K: Dim>(kinematics: &mut SlipKinematics<K>)
+where
+    DefaultAllocator: QAllocator<K>,
+{
+    kinematics.offset = Vector3::zeros();
+    kinematics.offset_gradient.fill(0.0);
+}
+
 /// The history with its tangential multiplier augmented (Simo–Laursen's
 /// update `λ_T ← t_T`, see the module docs) to the traction of `response`
 /// (`None`: the node is open, `λ_T ← 0`); anchor, slip and status stay

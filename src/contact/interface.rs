@@ -400,7 +400,9 @@ impl ContactInterface {
                     frame.kinematics.traction = state.friction.traction;
                     frame.kinematics.traction_gradient.fill(0.0);
                 }
-                if self.first_contact_pending(state) {
+                if self.first_contact_pending(state) && self.closes_exactly() {
+                    friction::first_contact_at_solution(&mut frame.kinematics);
+                } else if self.first_contact_pending(state) {
                     let (g, grad) = (kinematics.gap, &kinematics.gradient);
                     friction::first_contact(&mut frame.kinematics, state.gap, g, grad);
                 }
@@ -771,6 +773,16 @@ impl ContactInterface {
     /// `−g_n`, and Newton hunt around the exact constraint `g = 0`.
     fn first_contact_pending(&self, state: &NodeContactState) -> bool {
         state.friction.status == ContactStatus::Open && state.gap > 1e-12 * self.element_size
+    }
+
+    /// Whether a closing node's first-contact fraction is taken at its
+    /// value at the solution, `α = 1` ([`friction::first_contact_at_solution`]):
+    /// dual mortar between bodies with a normal multiplier in Newton, whose
+    /// constraint `g_j = 0` holds exactly at every converged closed node
+    /// (see [`mortar_friction`](super::mortar_friction), "A node that
+    /// closes in the increment").
+    fn closes_exactly(&self) -> bool {
+        matches!(self.primary, Primary::Mortar(_)) && self.law.has_multiplier_dof()
     }
 }
 

@@ -257,7 +257,7 @@ fn condensed_hertz_mortar_equals_node_to_surface() {
 }
 
 /// The contact solve of condensed mortar reads only gaps, and those come
-/// without derivatives ([`MortarObstacle::gaps`]: on the plane the closed
+/// without derivatives ([`MortarObstacle::gap_values`]: on the plane the closed
 /// form `g(x̃_j)`): on the coarse Hertz hemisphere (Tet4, 4 increments)
 /// the rows with their derivatives are integrated once for the columns of
 /// `E` and once per increment at its answer (the nodes' areas `D_j`, then
@@ -384,4 +384,62 @@ fn hertz_examples_condensed() {
     );
     assert!(du <= 1e-10 && df <= 1e-10, "Tet4: {du:e} {df:e}");
     assert!(du10 <= 1e-10 && dp10 <= 1e-10 && df10 <= 1e-10, "Tet10");
+}
+
+/// Between two bodies the gaps a solve reads alone (`ContactInterface::
+/// gaps`, the mortar producer's `GapProducer::gap`) come from the rows'
+/// values without their derivatives (`mortar_row_values` over the
+/// candidate pairs, the covered nodes): on a fresh interface they are the
+/// rows' own `g̃_j / D_j` to the bit, with no integration of the rows and
+/// one evaluation of values; nodes off the primary block are open at the
+/// margin either way. Non-matching Hex8 and Tet10 blocks (5 × 5 on 3 × 3
+/// cells, the upper one shifted by 0.3 in x so that part of its bottom
+/// hangs over the edge), warped and pressed in.
+#[test]
+fn gaps_between_bodies_without_derivatives_are_the_rows_gaps() {
+    use signorini::contact::interface::{ContactInterface, Primary};
+    use signorini::contact::laws::NormalLaw;
+    use signorini::material::LinearElastic;
+    for kind in [ElementKind::Hex8, ElementKind::Tet10] {
+        let fresh = || {
+            let a = box_mesh(kind, [3, 3, 1], [1.0, 1.0, 0.5]);
+            let b = box_mesh(kind, [5, 5, 1], [1.0, 1.0, 0.5]);
+            let mesh = common::two_bodies(a, "lower", b, "upper", [0.3, 0.0, 0.5]);
+            let law = NormalLaw::Rockafellar { p: 1e3, k: 1e3 };
+            let c = ContactInterface::mortar(&mesh, "upper.zmin", "lower.zmax", &law.into());
+            let material = std::sync::Arc::new(LinearElastic::new(100.0, 0.3, "m").unwrap());
+            let mut pr = common::problem(mesh, material);
+            pr.set_contacts(vec![c.unwrap()]);
+            pr
+        };
+        let pr = fresh();
+        let mesh = &pr.model.mesh;
+        let c = pr.contacts.interface(0);
+        let mut x: Vec<f64> = (0..pr.num_unknowns())
+            .map(|i| 0.004 * ((i as f64) * 0.77).sin())
+            .collect();
+        c.nodes.iter().for_each(|&n| x[3 * n + 2] -= 0.01);
+        let gaps = c.gaps(&mesh.nodes, 1.0, &x, None);
+        let Primary::Mortar(m) = &c.primary else {
+            panic!("a mortar interface");
+        };
+        let counts = m.row_counts();
+        assert_eq!((counts.integrated, counts.values), (0, 1), "{counts:?}");
+        let rows = (fresh().contacts.interface(0)).constraint_rows(&mesh.nodes, 1.0, &x, None);
+        let (mut closed, mut open) = (0, 0);
+        for (i, (g, row)) in gaps.iter().zip(&rows).enumerate() {
+            match row {
+                Some(row) => {
+                    closed += usize::from(row.gap < 0.0);
+                    assert_eq!(*g, row.gap, "{kind:?} node {i}");
+                }
+                None => {
+                    open += 1;
+                    assert_eq!(*g, m.margin, "{kind:?} node {i}");
+                }
+            }
+        }
+        println!("{kind:?}: {closed} penetrating, {open} open at the margin");
+        assert!(closed >= 3 && open >= 3, "{kind:?}: {closed} {open}");
+    }
 }

@@ -183,7 +183,8 @@ fn patch_test_on_non_matching_quadratic_meshes() {
 /// whole contact surface (1, 1e-12), `primary_force` minus the force
 /// (1e-10 of P), `contact_pressure` is `λ_j =
 /// P/(1 + νP/E)²` at every secondary node (1e-10 of P); `auto` takes the
-/// monolithic path (the condensed one does not take mortar pairs yet).
+/// monolithic path (mortar between bodies is condensed only by name, and
+/// the upper block is held only by contact).
 #[test]
 fn mortar_through_the_case_file() {
     let dir = tempfile::tempdir().unwrap();

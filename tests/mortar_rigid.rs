@@ -316,7 +316,7 @@ fn block_on(kind: ElementKind, obstacle: RigidObstacle) -> Problem {
     pr
 }
 
-/// The gaps without derivatives ([`MortarObstacle::gaps`], what the
+/// The gaps without derivatives ([`MortarObstacle::gap_values`], what the
 /// condensed path's contact solve reads) against the rows' own
 /// `g̃_j / D_j` at a warped, pressed state, on a fresh interface each
 /// (no row cache): to the bit on a sphere and a cylinder (the same sums),

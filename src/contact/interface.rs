@@ -428,9 +428,10 @@ impl ContactInterface {
     /// The signed gap of every secondary node at time `t` and unknowns `x`
     /// (the search margin for a node without primary candidates), with the
     /// nodes' states where given (a deformable interface then uses each
-    /// node's kept triangle, as the assembly does). Dual mortar against a
-    /// rigid obstacle: the values alone ([`MortarObstacle::gaps`]), no
-    /// derivatives.
+    /// node's kept triangle, as the assembly does): each producer's gap
+    /// without its derivatives ([`GapProducer::gap`]; dual mortar's from
+    /// its rows' values, node-to-surface's and a rigid obstacle's through
+    /// their kinematics, which cost little more).
     pub fn gaps(
         &self,
         reference: &[[f64; 3]],
@@ -438,10 +439,6 @@ impl ContactInterface {
         x: &[f64],
         states: Option<&[NodeContactState]>,
     ) -> Vec<f64> {
-        if let Primary::MortarRigid(m) = &self.primary {
-            // values only: no derivatives of the mortar rows
-            return m.gaps(&self.translation_at(t), reference, x);
-        }
         let ctx = ContactContext {
             reference,
             t,
@@ -453,9 +450,10 @@ impl ContactInterface {
             let state_of = |i| {
                 states.map_or_else(|| NodeContactState::initial(&self.law_at(i), p.open_gap()), |s| s[i])
             };
-            self.for_each_node(p, &ctx, state_of, |_, _, k| {
-                gaps.push(k.map_or(p.open_gap(), |k| k.gap));
-            });
+            for i in 0..self.nodes.len() {
+                let node = self.secondary_node(reference, x, i);
+                gaps.push(p.gap(&node, &state_of(i)).unwrap_or(p.open_gap()));
+            }
         });
         gaps
     }

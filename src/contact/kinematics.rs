@@ -231,6 +231,17 @@ where
         state: &NodeContactState,
     ) -> Option<GapKinematics<Q, Self::Point>>;
 
+    /// The node's gap alone, without its derivatives: what a solve that
+    /// reads only gaps asks for (the condensed path's contact solve);
+    /// `None` where [`kinematics`](Self::kinematics) is `None` (open at
+    /// [`open_gap`](Self::open_gap)). The default takes it from
+    /// `kinematics`; a producer whose derivatives cost much more than its
+    /// values (dual mortar: a pass over the segmentation per coupled
+    /// coordinate) gives it from its values, equal to `kinematics`' gap.
+    fn gap(&self, node: &SecondaryNode, state: &NodeContactState) -> Option<f64> {
+        self.kinematics(node, state).map(|k| k.gap)
+    }
+
     /// The gap reported for a node without kinematics.
     fn open_gap(&self) -> f64;
 

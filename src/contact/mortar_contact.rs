@@ -67,7 +67,7 @@ use rstar::primitives::{GeomWithData, Rectangle};
 use rstar::{RTree, AABB};
 use std::collections::{BTreeMap, VecDeque};
 use std::sync::atomic::{AtomicUsize, Ordering};
-use std::sync::{Arc, Mutex};
+use std::sync::{Arc, Mutex, OnceLock};
 
 /// The two surfaces of a mortar interface and their candidate face pairs.
 #[derive(Clone, Debug)]
@@ -142,8 +142,8 @@ impl std::fmt::Debug for RowCache {
 
 /// How often the producer asked for the rows of a configuration, and how
 /// often it segmented and integrated them (the rest came from the cache);
-/// how often the gaps alone were evaluated, without derivatives (a rigid
-/// obstacle's [`MortarObstacle::gaps`](super::mortar_rigid::MortarObstacle::gaps)).
+/// how often the gaps alone were evaluated, without derivatives
+/// ([`RowSource::gaps`], where the configuration's rows were not cached).
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
 pub struct RowCounts {
     pub requested: usize,
@@ -625,12 +625,65 @@ fn face_box(face: &SurfaceFace, xs: &[Vector3<f64>], margin: f64) -> ([f64; 3], 
 
 /// The mortar gap producer in one configuration: every secondary node's
 /// row of the coupling ([`mortar_rows`]: `g̃_j`, `D_j`, `M_jl`, `n_j`, the
-/// lever and their complete first derivatives) integrated there (or taken
-/// from [`MortarSurfaces::rows_at`]'s cache), and the nodes' current
-/// positions.
+/// lever and their complete first derivatives), integrated there (or taken
+/// from [`MortarSurfaces::rows_at`]'s cache) when an operation first asks
+/// for a node's kinematics; the gaps alone ([`GapProducer::gap`]) from the
+/// rows' values without their derivatives where the rows are not there
+/// ([`RowSource::gaps`]).
 pub struct MortarGap<'a> {
     pub surfaces: &'a MortarSurfaces,
-    pub rows: Arc<MortarRows>,
+    source: Box<dyn RowSource + 'a>,
+    rows: OnceLock<Arc<MortarRows>>,
+    gaps: OnceLock<BTreeMap<usize, f64>>,
+}
+
+/// Where a [`MortarGap`] takes what it reads in its configuration: the
+/// deformable primary surface ([`SurfaceRows`]) or a rigid obstacle
+/// ([`MortarObstacle`](super::mortar_rigid::MortarObstacle)'s source).
+pub(crate) trait RowSource {
+    /// The rows with their derivatives, from the surfaces' row cache or
+    /// integrated (then kept there).
+    fn rows(&self) -> Arc<MortarRows>;
+
+    /// The normalised gap `g̃_j / D_j` of every node with a row (mesh node
+    /// to gap), from the same sums as [`rows`](Self::rows)' values without
+    /// their derivatives: from the cache where this configuration's rows
+    /// are there (not counted), else evaluated (counted as values,
+    /// [`RowCounts::values`]).
+    fn gaps(&self) -> BTreeMap<usize, f64>;
+}
+
+/// The normalised gaps `g̃_j / D_j` of `rows` where `D_j > 0` (the nodes
+/// [`MortarGap::node_row`] gives).
+pub(crate) fn row_gaps(rows: &MortarRows) -> BTreeMap<usize, f64> {
+    (rows.iter())
+        .filter(|(_, r)| r.d > 0.0)
+        .map(|(&n, r)| (n, r.weighted_gap / r.d))
+        .collect()
+}
+
+/// The deformable mortar surfaces at the nodes' current coordinates.
+struct SurfaceRows<'a> {
+    surfaces: &'a MortarSurfaces,
+    xs: Vec<Vector3<f64>>,
+}
+
+impl RowSource for SurfaceRows<'_> {
+    fn rows(&self) -> Arc<MortarRows> {
+        self.surfaces.rows_at_coordinates(&self.xs)
+    }
+
+    /// [`MortarSurfaces::covered_gaps`] over the candidate pairs: the
+    /// covered rows' values ([`mortar_row_values`], the rows' sums to the
+    /// bit), none where a face cannot be integrated (as the rows).
+    fn gaps(&self) -> BTreeMap<usize, f64> {
+        if let Some(rows) = self.surfaces.cached(&self.xs, &[]) {
+            return row_gaps(&rows);
+        }
+        self.surfaces.count_values();
+        let pairs = self.surfaces.pairs();
+        (self.surfaces.covered_gaps(&pairs, &self.xs)).unwrap_or_default()
+    }
 }
 
 impl<'a> MortarGap<'a> {
@@ -639,17 +692,33 @@ impl<'a> MortarGap<'a> {
     /// this evaluation; the element assembly reports such a face's
     /// element.
     pub fn at(surfaces: &'a MortarSurfaces, reference: &[[f64; 3]], x: &[f64]) -> Self {
+        let xs = coordinates(reference, x);
+        Self::from_source(surfaces, Box::new(SurfaceRows { surfaces, xs }))
+    }
+
+    /// The producer over `surfaces` reading `source`.
+    pub(crate) fn from_source(
+        surfaces: &'a MortarSurfaces,
+        source: Box<dyn RowSource + 'a>,
+    ) -> Self {
         Self {
             surfaces,
-            rows: surfaces.rows_at(reference, x),
+            source,
+            rows: OnceLock::new(),
+            gaps: OnceLock::new(),
         }
+    }
+
+    /// The rows of this configuration (taken at the first call).
+    pub fn rows(&self) -> &MortarRows {
+        self.rows.get_or_init(|| self.source.rows())
     }
 
     /// Mesh node `j`'s row: the one place that gathers it; `None` where
     /// `D_j ≤ 0` or where less than half of `∫ Ñ_j dA` over its faces is
     /// covered by the primary surface (see the module docs, "Search").
     pub fn node_row(&self, j: usize) -> Option<&MortarRow> {
-        self.rows.get(&j).filter(|row| row.d > 0.0)
+        self.rows().get(&j).filter(|row| row.d > 0.0)
     }
 
     /// The node's kinematics from its `row` (see the module docs): `q`
@@ -710,6 +779,17 @@ impl GapProducer<Dyn> for MortarGap<'_> {
         let row = self.node_row(node.mesh_node)?;
         let kinematics = self.row_kinematics(node.mesh_node, row);
         Some(self.with_committed_nodes(node.mesh_node, kinematics))
+    }
+
+    /// `g̃_j / D_j` of the node's row without the row's derivatives:
+    /// from the rows where an operation took them in this configuration,
+    /// else from [`RowSource::gaps`] (evaluated once per producer).
+    fn gap(&self, node: &SecondaryNode, _state: &NodeContactState) -> Option<f64> {
+        if self.rows.get().is_some() {
+            return (self.node_row(node.mesh_node)).map(|r| r.weighted_gap / r.d);
+        }
+        let gaps = self.gaps.get_or_init(|| self.source.gaps());
+        gaps.get(&node.mesh_node).copied()
     }
 
     fn open_gap(&self) -> f64 {

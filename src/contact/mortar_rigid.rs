@@ -22,14 +22,16 @@
 //! because every face that holds a near node is integrated.
 
 use super::mortar::obstacle_rows::{obstacle_row_values, obstacle_rows, transformed_point};
-use super::mortar::MortarRow;
 use super::mortar_contact::{coordinates, face_size, full_integrals, node_faces, surface_faces};
-use super::mortar_contact::{MortarGap, MortarSurfaces, RowCounts};
+use super::mortar_contact::{
+    row_gaps, MortarGap, MortarRows, MortarSurfaces, RowCounts, RowSource,
+};
 use super::obstacle::RigidObstacle;
 use super::projection::Projection;
 use crate::mesh::Mesh;
 use nalgebra::Vector3;
 use std::collections::BTreeMap;
+use std::sync::Arc;
 
 /// A secondary surface against a rigid obstacle through dual mortar.
 #[derive(Clone, Debug)]
@@ -97,22 +99,17 @@ impl MortarObstacle {
         self.surfaces.coupled_nodes(i, self.nodes[i])
     }
 
-    /// The rows of the near nodes (module docs) at unknowns `x` with the
-    /// obstacle translated by `translation`: every node's `D_j`, `g̃_j`,
-    /// lever and normal with their derivatives, keyed by mesh node. A face
-    /// the kernels cannot integrate (degenerate) leaves every node open in
-    /// this evaluation; the element assembly reports such a face's element.
-    pub fn rows(
-        &self,
-        translation: &Vector3<f64>,
-        reference: &[[f64; 3]],
-        x: &[f64],
-    ) -> BTreeMap<usize, MortarRow> {
-        let xs = coordinates(reference, x);
+    /// The rows of the near nodes (module docs) at the nodes' current
+    /// coordinates `xs` with the obstacle translated by `translation`:
+    /// every node's `D_j`, `g̃_j`, lever and normal with their derivatives,
+    /// keyed by mesh node. A face the kernels cannot integrate (degenerate)
+    /// leaves every node open in this evaluation; the element assembly
+    /// reports such a face's element.
+    pub fn rows(&self, translation: &Vector3<f64>, xs: &[Vector3<f64>]) -> MortarRows {
         let project = |p: &Vector3<f64>| self.obstacle.project(&(p - translation));
-        let near = self.near(&xs, &project);
+        let near = self.near(xs, &project);
         let selected = self.faces_of(&near);
-        let mut rows = obstacle_rows(&self.surfaces.secondary_faces, &selected, &xs, &project)
+        let mut rows = obstacle_rows(&self.surfaces.secondary_faces, &selected, xs, &project)
             .unwrap_or_default();
         let near_nodes: std::collections::BTreeSet<usize> =
             near.iter().map(|&i| self.nodes[i]).collect();
@@ -143,77 +140,98 @@ impl MortarObstacle {
         selected
     }
 
-    /// Every secondary node's normalised gap `g_j = g̃_j / D_j` at unknowns
-    /// `x`, the obstacle translated by `translation` (the interface's node
-    /// order; the open gap `margin` of the surfaces beyond a node's own
-    /// margin): the gaps of [`producer`](Self::producer)'s rows without
-    /// their derivatives, for a solve that reads only gaps. From the row
-    /// cache where this configuration's rows are there; otherwise on a
-    /// plane in closed form, `g_j = g(x̃_j)`
+    /// The normalised gap `g_j = g̃_j / D_j` of every near node with
+    /// `D_j > 0` (mesh node to gap) at the nodes' current coordinates
+    /// `xs`, the obstacle translated by `translation`: the gaps of
+    /// [`rows`](Self::rows) without their derivatives, for a solve that
+    /// reads only gaps. On a plane in closed form, `g_j = g(x̃_j)`
     /// ([`transformed_point`]: biorthogonality, exact to round-off), on a
     /// curved obstacle by the rows' own sums ([`obstacle_row_values`], to
     /// the bit). A face the kernels cannot integrate leaves every node
     /// open, as the rows do.
-    pub fn gaps(&self, translation: &Vector3<f64>, reference: &[[f64; 3]], x: &[f64]) -> Vec<f64> {
-        let xs = coordinates(reference, x);
-        let open = self.surfaces.margin;
-        let extra = [translation.x, translation.y, translation.z];
-        if let Some(rows) = self.surfaces.cached(&xs, &extra) {
-            let gap = |node: &usize| rows.get(node).filter(|r| r.d > 0.0);
-            let gap = |node| gap(node).map_or(open, |r| r.weighted_gap / r.d);
-            return self.nodes.iter().map(gap).collect();
-        }
-        self.surfaces.count_values();
+    pub fn gap_values(
+        &self,
+        translation: &Vector3<f64>,
+        xs: &[Vector3<f64>],
+    ) -> BTreeMap<usize, f64> {
         let project = |p: &Vector3<f64>| self.obstacle.project(&(p - translation));
-        let near = self.near(&xs, &project);
-        let mut gaps = vec![open; self.nodes.len()];
+        let near = self.near(xs, &project);
+        let faces = &self.surfaces.secondary_faces;
         if let RigidObstacle::Plane { .. } = self.obstacle {
-            let faces = &self.surfaces.secondary_faces;
-            for i in near {
-                if let Some(&e) = self.surfaces.node_faces[i].first() {
-                    let point = transformed_point(&faces[e], self.nodes[i], &xs);
-                    gaps[i] = project(&point).gap;
-                }
-            }
-            return gaps;
+            let gap = |i: usize| {
+                let &e = self.surfaces.node_faces[i].first()?;
+                let point = transformed_point(&faces[e], self.nodes[i], xs);
+                Some((self.nodes[i], project(&point).gap))
+            };
+            return near.into_iter().filter_map(gap).collect();
         }
         let selected = self.faces_of(&near);
-        let faces = &self.surfaces.secondary_faces;
-        let Ok(values) = obstacle_row_values(faces, &selected, &xs, &project) else {
-            return gaps;
+        let Ok(values) = obstacle_row_values(faces, &selected, xs, &project) else {
+            return BTreeMap::new();
         };
-        for i in near {
-            if let Some(v) = values.get(&self.nodes[i]).filter(|v| v.d > 0.0) {
-                gaps[i] = v.weighted_gap / v.d;
-            }
-        }
-        gaps
+        let value = |i: usize| {
+            let v = values.get(&self.nodes[i]).filter(|v| v.d > 0.0)?;
+            Some((self.nodes[i], v.weighted_gap / v.d))
+        };
+        near.into_iter().filter_map(value).collect()
     }
 
     /// The gap producer at unknowns `x`, the obstacle translated by
-    /// `translation`: a [`MortarGap`] over [`rows`](Self::rows), from the
-    /// surfaces' row cache (keyed by the secondary nodes' coordinates and
-    /// the translation) where this configuration was integrated last or
-    /// the one before.
+    /// `translation`: a [`MortarGap`] over [`rows`](Self::rows) (from the
+    /// surfaces' row cache, keyed by the secondary nodes' coordinates and
+    /// the translation, where this configuration was integrated last or
+    /// the one before), its gaps alone over
+    /// [`gap_values`](Self::gap_values).
     pub fn producer(
         &self,
         translation: &Vector3<f64>,
         reference: &[[f64; 3]],
         x: &[f64],
     ) -> MortarGap<'_> {
-        let xs = coordinates(reference, x);
-        let extra = [translation.x, translation.y, translation.z];
-        let rows =
-            (self.surfaces).cached_rows(&xs, &extra, || self.rows(translation, reference, x));
-        MortarGap {
-            surfaces: &self.surfaces,
-            rows,
-        }
+        let source = ObstacleRows {
+            obstacle: self,
+            translation: *translation,
+            xs: coordinates(reference, x),
+        };
+        MortarGap::from_source(&self.surfaces, Box::new(source))
     }
 
     /// How often the producer asked for rows and how often it integrated
     /// them, since this interface was built (or cloned).
     pub fn row_counts(&self) -> RowCounts {
         self.surfaces.row_counts()
+    }
+}
+
+/// A rigid obstacle's rows in one configuration: the secondary nodes'
+/// current coordinates and the obstacle's translation.
+struct ObstacleRows<'a> {
+    obstacle: &'a MortarObstacle,
+    translation: Vector3<f64>,
+    xs: Vec<Vector3<f64>>,
+}
+
+impl ObstacleRows<'_> {
+    /// The row cache's further key: the translation.
+    fn extra(&self) -> [f64; 3] {
+        let t = &self.translation;
+        [t.x, t.y, t.z]
+    }
+}
+
+impl RowSource for ObstacleRows<'_> {
+    fn rows(&self) -> Arc<MortarRows> {
+        let surfaces = &self.obstacle.surfaces;
+        let integrate = || self.obstacle.rows(&self.translation, &self.xs);
+        surfaces.cached_rows(&self.xs, &self.extra(), integrate)
+    }
+
+    fn gaps(&self) -> BTreeMap<usize, f64> {
+        let surfaces = &self.obstacle.surfaces;
+        if let Some(rows) = surfaces.cached(&self.xs, &self.extra()) {
+            return row_gaps(&rows);
+        }
+        surfaces.count_values();
+        self.obstacle.gap_values(&self.translation, &self.xs)
     }
 }

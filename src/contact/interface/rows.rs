@@ -55,6 +55,14 @@ pub struct ConstraintRow {
     /// The primary triangle the node projects on, to be kept in its state
     /// (node-to-surface only: [`GapKinematics::facet`](crate::contact::kinematics::GapKinematics)).
     pub facet: Option<usize>,
+    /// `(k, b_k)` per coupled mesh node: the direction a normal force `A t_N`
+    /// of the node acts along on the unknowns (`A t_N b`), where it differs
+    /// from `∇g` (dual mortar: Popp's lever at fixed `D`, `M`, `n`,
+    /// `R_jk n` on the secondary nodes and `−(M_jl/D_j) n` on the primary
+    /// ones; components below 1e-13 of the largest, the integrals'
+    /// round-off where a flat face or biorthogonality makes them zero, left
+    /// out); `None`: `b = ∇g` (node-to-surface, rigid obstacles).
+    pub force: Option<Vec<(usize, Vector3<f64>)>>,
 }
 
 impl ConstraintRow {
@@ -66,19 +74,46 @@ impl ConstraintRow {
             .collect()
     }
 
+    /// The force direction `b` as `(dof, value)`, zero components left out
+    /// ([`force`](Self::force), else [`gradient`](Self::gradient)): the
+    /// condensed path's column of `E`.
+    pub fn force_direction(&self) -> Vec<(usize, f64)> {
+        match &self.force {
+            Some(force) => dof_entries(force),
+            None => self.gradient(),
+        }
+    }
+
     /// `∇g` as `(dof, value)` from [`node_gradients`](Self::node_gradients),
     /// zero components left out: the secondary node's three first
     /// (`d = 0, 1, 2`), then each other coupled node's (node-to-surface:
     /// `Bᵀ n`).
     pub fn gradient(&self) -> Vec<(usize, f64)> {
-        (self.node_gradients.iter())
-            .flat_map(|(a, v)| {
-                (0..3)
-                    .filter(|&d| v[d] != 0.0)
-                    .map(move |d| (3 * a + d, v[d]))
-            })
-            .collect()
+        dof_entries(&self.node_gradients)
     }
+}
+
+/// Per-node vectors `(a, v)` as `(dof, value)`, zero components left out.
+fn dof_entries(vectors: &[(usize, Vector3<f64>)]) -> Vec<(usize, f64)> {
+    (vectors.iter())
+        .flat_map(|(a, v)| {
+            (0..3)
+                .filter(|&d| v[d] != 0.0)
+                .map(move |d| (3 * a + d, v[d]))
+        })
+        .collect()
+}
+
+/// `(k, b_k)` per node `k` of `nodes` from the lever `b` (node-major),
+/// components below 1e-13 of the largest set to zero and nodes left with
+/// none left out (see [`ConstraintRow::force`]).
+fn force_vectors(nodes: &[usize], lever: &[f64]) -> Vec<(usize, Vector3<f64>)> {
+    let largest = lever.iter().fold(0.0f64, |m, v| m.max(v.abs()));
+    let clean = |v: f64| if v.abs() < 1e-13 * largest { 0.0 } else { v };
+    (nodes.iter().enumerate())
+        .map(|(a, &k)| (k, Vector3::from_fn(|d, _| clean(lever[3 * a + d]))))
+        .filter(|(_, v)| *v != Vector3::zeros())
+        .collect()
 }
 
 /// `(k, ∂g/∂x_k)` per node `k` of `nodes` from `gradient` (node-major),
@@ -209,6 +244,7 @@ impl ContactInterface {
                     node_gradients: node_gradients(&k.nodes, k.gradient.as_slice()),
                     relative_position: p.relative_position(node),
                     facet: k.facet,
+                    force: k.lever.as_ref().map(|b| force_vectors(&k.nodes, b.as_slice())),
                 }));
             });
         });
@@ -217,9 +253,10 @@ impl ContactInterface {
 
     /// Whether the rows follow projections on a primary surface of
     /// another body (node-to-surface between bodies: each row exact at
-    /// fixed projection, [`ConstraintRow`]).
+    /// fixed projection, [`ConstraintRow`]; dual mortar between bodies:
+    /// at fixed segmentation, `D`, `M` and normals).
     pub fn projected_gap(&self) -> bool {
-        matches!(self.primary, Primary::Surface(_))
+        matches!(self.primary, Primary::Surface(_) | Primary::Mortar(_))
     }
 
     /// Whether the rows move with the unknowns and are each exact only at
@@ -254,7 +291,8 @@ impl ContactInterface {
             Primary::MortarRigid(m) => &m.obstacle,
             Primary::Mortar(_) => {
                 return Err(
-                    "uses discretisation = \"mortar\" between two bodies (not condensed yet)"
+                    "uses discretisation = \"mortar\" between two bodies (its gap \
+                            follows the segmentation on the primary surface)"
                         .into(),
                 )
             }

@@ -466,16 +466,23 @@ impl SparsityPattern {
 
     /// Set each entry above the diagonal of `values` to its mirror's
     /// (`A_ij = A_ji` for `i < j`): the whole symmetric matrix from its
-    /// lower triangle.
+    /// lower triangle. The mirrors are found as [`transpose_positions`]
+    /// finds them, a cursor per column (one index per unknown), not read
+    /// from [`Self::mirror`]'s stored ones (one index per entry, as large
+    /// as the values): the cached constant `K` of a large run expands
+    /// without them.
     pub fn mirror_lower_into_upper(&self, values: &mut [f64]) {
         let (cp, ri) = (self.symbolic.col_ptr(), self.symbolic.row_idx());
-        let mirror = self.mirrors();
+        let mut cursor: Vec<usize> = cp[..self.dimension()].to_vec();
         for j in 0..self.dimension() {
             for k in cp[j]..cp[j + 1] {
-                if ri[k] >= j {
-                    break; // sorted: the rest is on and below the diagonal
+                let i = ri[k];
+                // entry (j, i), in column i, where the cursor stands
+                let mirror = cursor[i];
+                cursor[i] += 1;
+                if i < j {
+                    values[k] = values[mirror];
                 }
-                values[k] = values[mirror[k]];
             }
         }
     }

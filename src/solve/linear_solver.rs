@@ -156,4 +156,10 @@ pub trait LinearSolver {
     fn description(&self) -> String {
         String::new()
     }
+    /// Whether [`LinearSystem::symmetric_neighbour`] is read (a
+    /// preconditioner of ours); a solver that ignores it (PETSc's) spares
+    /// Newton a tangent-sized array and its mirror positions per solve.
+    fn reads_symmetric_neighbour(&self) -> bool {
+        true
+    }
 }

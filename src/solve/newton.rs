@@ -218,12 +218,13 @@ impl<P: NonlinearProblem> Newton<'_, P> {
                     debug_assert!(have_tangent);
                     // the preconditioner of a nonsymmetric solve: the symmetric part,
                     // with friction's slip blocks replaced by stick blocks
-                    let neighbour = nonsymmetric.then(|| {
-                        let mut p = blocks.symmetric_part(&k_values);
-                        problem.symmetric_neighbour(t, u, state, constrained, &mut p);
-                        apply_identity_rows(problem, constrained, &mut p);
-                        p
-                    });
+                    let neighbour =
+                        (nonsymmetric && self.solver.reads_symmetric_neighbour()).then(|| {
+                            let mut p = blocks.symmetric_part(&k_values);
+                            problem.symmetric_neighbour(t, u, state, constrained, &mut p);
+                            apply_identity_rows(problem, constrained, &mut p);
+                            p
+                        });
                     // rhs: −(r_f + K_fc d) on the free dofs, (diagonal scale) · d on the prescribed ones
                     let diagonal = apply_identity_rows(problem, constrained, &mut k_values);
                     let rhs: Vec<f64> = (0..u.len())

@@ -8,19 +8,21 @@
 //! their three dofs together; contact multipliers, if any, keep their
 //! places at the end and belong to the last process), so that each
 //! process owns one contiguous block of PETSc's rows: the rows of its
-//! nodes. Each process gives PETSc, in coordinate form, every entry of the
-//! rows of its pattern it gives ([`RowLayout`]: its own, and those its
-//! elements or the contact couplings touch)
-//! (`MatSetPreallocationCOO` once per pattern); at each solve
-//! `MatSetValuesCOO` takes the values straight from `K^p`'s array, PETSc
-//! summing the processes' parts and sending the ghost rows' to their
-//! owners. Each process sets the right-hand side of its
+//! nodes. Each process gives PETSc every entry of the rows of its pattern
+//! it gives ([`RowLayout`]: its own, and those its elements or the contact
+//! couplings touch), column by column (`MatSetValues` of each compressed
+//! column, straight from `K^p`'s arrays, rows mapped to PETSc's), into a
+//! matrix preallocated once per pattern for what every process gives
+//! (PETSc's `MATPREALLOCATOR`) and zeroed before each solve: PETSc adds
+//! the processes' parts, sending the ghost rows' to their owners at the
+//! assembly, and keeps no map from our entries to its. Each process sets
+//! the right-hand side of its
 //! own rows; the KSP solves distributed and the
 //! solution is scattered whole to every process (`VecScatterCreateToAll`),
 //! so every process goes on with the same unknowns.
 
 use super::fault::{self, Agreement};
-use super::{coordinate_entries, make_ksp, message, Tally, MESSAGE, PETSC};
+use super::{check_indices, make_ksp, message, Columns, Tally, MESSAGE, PETSC};
 use crate::assembly::share::Communicator;
 use crate::solve::linear::{pattern_fingerprint, Ordering};
 use crate::solve::linear_solver::{LinearSolver, LinearSystem, SolverStatistics};
@@ -71,28 +73,24 @@ mod ffi {
 }
 
 /// The matrix layout for the C layer (`DistributedLayout` in `shim.c`):
-/// the entries this process gives, in coordinate form (-1: left out).
+/// the columns of the entries this process gives, rows mapped to PETSc's
+/// (negative: left out).
 #[repr(C)]
 struct DistributedLayout {
     global: c_int,
     first: c_int,
     local: c_int,
     block_size: c_int,
-    entries: i64,
-    rows: *mut c_int,
-    columns: *mut c_int,
+    columns: Columns,
     coordinates: *const f64,
 }
 
 /// This process's part of a system for the C layer (`DistributedSystem`):
-/// the values of the layout's entries and the strays outside it.
+/// the layout's columns and their values.
 #[repr(C)]
 struct DistributedSystem {
+    columns: Columns,
     values: *const f64,
-    strays: c_int,
-    stray_rows: *const c_int,
-    stray_columns: *const c_int,
-    stray_values: *const f64,
     b: *const f64,
     x: *mut f64,
     iterations: *mut c_int,
@@ -166,6 +164,8 @@ pub fn release_freed_memory() {
 struct Numbering {
     /// `global[old]`: PETSc's row of unknown `old`.
     global: Vec<usize>,
+    /// The same, as PETSc's indices (its column of column `old`).
+    columns: Vec<c_int>,
     /// This process's rows `[first, first + local)`, and the unknown of
     /// each (`owned[k]` is the unknown of row `first + k`).
     first: usize,
@@ -200,6 +200,7 @@ impl Numbering {
             }
         }
         Numbering {
+            columns: global.iter().map(|&g| g as c_int).collect(),
             global,
             first,
             owned,
@@ -221,9 +222,9 @@ impl Numbering {
 /// multipliers and adds their rows).
 struct RowLayout {
     fingerprint: u64,
-    /// `given[old]`: the entries of row `old` (old numbering) are in this
-    /// process's coordinate entries.
-    given: Vec<bool>,
+    /// `rows[old]`: PETSc's row of row `old` (old numbering) if this
+    /// process gives its entries, else -1.
+    rows: Vec<c_int>,
 }
 
 impl RowLayout {
@@ -237,16 +238,27 @@ impl RowLayout {
             let first = 3 * (i / 3);
             col_ptr[first + 1] - col_ptr[first] > 3
         };
-        let given = (0..pattern.nrows())
+        let rows = (0..pattern.nrows())
             .map(|i| {
-                (numbering.first..end).contains(&numbering.global[i])
-                    || (i < 3 * nodes && touched(i))
+                let given = (numbering.first..end).contains(&numbering.global[i])
+                    || (i < 3 * nodes && touched(i));
+                if given {
+                    numbering.columns[i]
+                } else {
+                    -1
+                }
             })
             .collect();
         RowLayout {
             fingerprint: pattern_fingerprint(pattern),
-            given,
+            rows,
         }
+    }
+
+    /// Whether this process gives the entries of row `old`.
+    #[cfg(test)]
+    fn gives(&self, old: usize) -> bool {
+        self.rows[old] >= 0
     }
 }
 
@@ -296,9 +308,8 @@ impl DistributedPetscSolver {
     }
 
     /// A new pattern: the numbering (when the unknowns changed), the rows
-    /// this process gives (from its part `values` of the tangent) and
-    /// PETSc's matrix preallocated from their entries, its vectors and
-    /// near-null space.
+    /// this process gives and PETSc's matrix preallocated for the entries
+    /// every process gives, its vectors and near-null space.
     fn lay_out(
         &mut self,
         pattern: &SymbolicSparseColMat<usize>,
@@ -314,12 +325,8 @@ impl DistributedPetscSolver {
         let Some(numbering) = &self.numbering else {
             return Err("no numbering".into());
         };
+        check_indices(pattern, false).map_err(|e| e.to_string())?;
         let layout = RowLayout::new(pattern, numbering, self.partition.node_part.len());
-        let global = &numbering.global;
-        let (mut rows, mut columns) = coordinate_entries(pattern, false, |i, j| {
-            layout.given[i].then(|| (global[i], global[j]))
-        })
-        .map_err(|e| e.to_string())?;
         let displacement_only = 3 * self.partition.node_part.len() == unknowns;
         let coordinates: Vec<f64> = if displacement_only {
             numbering
@@ -335,9 +342,7 @@ impl DistributedPetscSolver {
             first: numbering.first as c_int,
             local: numbering.owned.len() as c_int,
             block_size: if displacement_only { 3 } else { 1 },
-            entries: rows.len() as i64,
-            rows: rows.as_mut_ptr(),
-            columns: columns.as_mut_ptr(),
+            columns: Columns::of(pattern, &layout.rows, &numbering.columns),
             coordinates: if displacement_only {
                 coordinates.as_ptr()
             } else {
@@ -346,8 +351,8 @@ impl DistributedPetscSolver {
         };
         let mut err = [0 as c_char; MESSAGE];
         let _lock = PETSC.lock().unwrap_or_else(|e| e.into_inner());
-        // SAFETY: the arrays live until the call returns; PETSc keeps its
-        // map from them, not the arrays
+        // SAFETY: the pattern's arrays and the maps (one per unknown) live
+        // until the call returns; PETSc keeps none of them
         let code = unsafe {
             ffi::sg_petsc_mpi_layout(self.handle, &arguments, err.as_mut_ptr(), err.len())
         };
@@ -392,6 +397,11 @@ impl LinearSolver for DistributedPetscSolver {
     fn statistics(&self) -> SolverStatistics {
         self.tally.statistics()
     }
+
+    /// PETSc's preconditioners are its own.
+    fn reads_symmetric_neighbour(&self) -> bool {
+        false
+    }
 }
 
 /// The outcome every process agreed on, given this process's `local` one:
@@ -426,7 +436,7 @@ impl DistributedPetscSolver {
         {
             self.lay_out(system.pattern)?;
         }
-        let (Some(numbering), Some(_)) = (&self.numbering, &self.layout) else {
+        let (Some(numbering), Some(layout)) = (&self.numbering, &self.layout) else {
             return Err("no matrix layout".into());
         };
         let n = rhs.len();
@@ -434,11 +444,8 @@ impl DistributedPetscSolver {
         let mut solution = vec![0.0; n];
         let mut iterations: c_int = 0;
         let arguments = DistributedSystem {
+            columns: Columns::of(system.pattern, &layout.rows, &numbering.columns),
             values: system.matrix.as_ptr(),
-            strays: 0,
-            stray_rows: std::ptr::null(),
-            stray_columns: std::ptr::null(),
-            stray_values: std::ptr::null(),
             b: b.as_ptr(),
             x: solution.as_mut_ptr(),
             iterations: &mut iterations,
@@ -446,8 +453,9 @@ impl DistributedPetscSolver {
         let mut err = [0 as c_char; MESSAGE];
         let code = {
             let _lock = PETSC.lock().unwrap_or_else(|e| e.into_inner());
-            // SAFETY: the arrays live until the call returns; `solution`
-            // holds the n unknowns PETSc writes
+            // SAFETY: the pattern's arrays, the maps and the values (one
+            // per entry) live until the call returns; `solution` holds the
+            // n unknowns PETSc writes
             unsafe { ffi::sg_petsc_mpi_solve(self.handle, &arguments, err.as_mut_ptr(), err.len()) }
         };
         for (old, xi) in x.iter_mut().enumerate() {
@@ -482,7 +490,7 @@ mod tests {
         let given = |rank: usize| -> Vec<usize> {
             let numbering = Numbering::new(&partition, rank, 16);
             let layout = RowLayout::new(pattern.symbolic(), &numbering, 5);
-            (0..16).filter(|&i| layout.given[i]).collect()
+            (0..16).filter(|&i| layout.gives(i)).collect()
         };
         let dofs = |nodes: &[usize]| -> Vec<usize> {
             nodes.iter().flat_map(|&a| 3 * a..3 * a + 3).collect()

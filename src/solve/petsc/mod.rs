@@ -13,9 +13,10 @@
 //! PETSc's interface is partly C macros, so the calls go through a small C
 //! layer (`shim.c`, compiled by `build.rs` against the installed headers);
 //! this module owns the bookkeeping of [`LinearSolver`]. The tangent goes
-//! to PETSc in coordinate form (`MatSetPreallocationCOO` once per pattern,
-//! `MatSetValuesCOO` at each solve, straight from the tangent's own array
-//! of values): PETSc holds the one compressed-row copy of it.
+//! to PETSc column by column (`MatSetValues` of each compressed column,
+//! straight from the tangent's own arrays, into a matrix preallocated
+//! once per pattern by PETSc's `MATPREALLOCATOR`): PETSc holds the one
+//! compressed-row copy of it, and no map from our entries to its.
 //!
 //! Each solver has an options database of its own (the environment's
 //! `PETSC_OPTIONS`, then the case's options), so two runs in one process
@@ -63,16 +64,47 @@ mod ffi {
     }
 }
 
+/// The tangent's compressed columns for the C layer (`Columns` in
+/// `shim.c`, the same layout): the pattern's arrays as faer holds them,
+/// and PETSc's row of each row (negative: left out) and column of each
+/// column (null: the identity).
+#[repr(C)]
+struct Columns {
+    columns: usize,
+    col_ptr: *const usize,
+    row_idx: *const usize,
+    row_map: *const c_int,
+    column_map: *const c_int,
+}
+
+impl Columns {
+    /// The columns of `pattern`, with PETSc's `rows` and `columns` (empty:
+    /// the identity); they borrow the arrays until the C call returns.
+    fn of(pattern: &SymbolicSparseColMat<usize>, rows: &[c_int], columns: &[c_int]) -> Self {
+        let map = |m: &[c_int]| {
+            if m.is_empty() {
+                std::ptr::null()
+            } else {
+                m.as_ptr()
+            }
+        };
+        Columns {
+            columns: pattern.ncols(),
+            col_ptr: pattern.col_ptr().as_ptr(),
+            row_idx: pattern.row_idx().as_ptr(),
+            row_map: map(rows),
+            column_map: map(columns),
+        }
+    }
+}
+
 /// One linear system for the C layer (`SystemArguments` in `shim.c`, the
-/// same layout): the tangent's `entries` in coordinate form (their rows
-/// and columns for a new pattern only, else null), their values, the
-/// right-hand side, the solution and the Krylov iterations written back.
+/// same layout): the tangent's columns and their values, the right-hand
+/// side, the solution and the Krylov iterations written back.
 #[repr(C)]
 struct SystemArguments {
     n: c_int,
-    entries: i64,
-    rows: *mut c_int,
-    columns: *mut c_int,
+    columns: Columns,
     values: *const f64,
     same_pattern: c_int,
     block_size: c_int,
@@ -100,18 +132,10 @@ pub(crate) fn message(buffer: &[c_char]) -> String {
         .into_owned()
 }
 
-/// The entries of the column-compressed `pattern` in coordinate form, in
-/// its order: the row and column `index` gives each (row, column), or -1
-/// for both when it gives `None` (an entry PETSc is to ignore). An error
-/// when the unknowns, or with `local` the entries (one process's
-/// compressed rows), do not fit PETSc's 32-bit indices.
-fn coordinate_entries(
-    pattern: &SymbolicSparseColMat<usize>,
-    local: bool,
-    index: impl Fn(usize, usize) -> Option<(usize, usize)>,
-) -> Result<(Vec<c_int>, Vec<c_int>)> {
-    let (col_ptr, row_idx) = (pattern.col_ptr(), pattern.row_idx());
-    let nnz = row_idx.len();
+/// An error when `pattern`'s unknowns, or with `local` its entries (one
+/// process's compressed rows), do not fit PETSc's 32-bit indices.
+fn check_indices(pattern: &SymbolicSparseColMat<usize>, local: bool) -> Result<()> {
+    let nnz = pattern.row_idx().len();
     if pattern.nrows() > c_int::MAX as usize || (local && nnz > c_int::MAX as usize) {
         return Err(Error::LinearSolver(format!(
             "{} unknowns and {nnz} matrix entries exceed PETSc's 32-bit indices (this \
@@ -119,17 +143,7 @@ fn coordinate_entries(
             pattern.nrows()
         )));
     }
-    let mut rows = vec![-1 as c_int; nnz];
-    let mut columns = vec![-1 as c_int; nnz];
-    for j in 0..pattern.ncols() {
-        for k in col_ptr[j]..col_ptr[j + 1] {
-            if let Some((r, c)) = index(row_idx[k], j) {
-                rows[k] = r as c_int;
-                columns[k] = c as c_int;
-            }
-        }
-    }
-    Ok((rows, columns))
+    Ok(())
 }
 
 /// Initialise PETSc (and MPI: the world of `mpirun`, or a singleton) once
@@ -322,14 +336,9 @@ impl LinearSolver for PetscSolver {
         let n = rhs.len();
         let fingerprint = pattern_fingerprint(system.pattern);
         let same_pattern = self.fingerprint == Some(fingerprint);
-        // the entries' indices for a new pattern (PETSc keeps its map from
-        // them, not the arrays)
-        let (mut rows, mut columns) = if same_pattern {
-            (Vec::new(), Vec::new())
-        } else {
-            coordinate_entries(system.pattern, true, |i, j| Some((i, j)))
-                .map_err(|e| e.to_string())?
-        };
+        if !same_pattern {
+            check_indices(system.pattern, true).map_err(|e| e.to_string())?;
+        }
         self.fingerprint = Some(fingerprint);
         let displacement_only = self.coordinates.as_ref().is_some_and(|c| c.len() == n);
         let coordinates = match (&self.coordinates, displacement_only) {
@@ -340,18 +349,9 @@ impl LinearSolver for PetscSolver {
         let mut iterations: c_int = 0;
         let mut err = [0 as c_char; MESSAGE];
         let _lock = PETSC.lock().unwrap_or_else(|e| e.into_inner());
-        let pointer = |v: &mut Vec<c_int>| {
-            if v.is_empty() {
-                std::ptr::null_mut()
-            } else {
-                v.as_mut_ptr()
-            }
-        };
         let system = SystemArguments {
             n: n as c_int,
-            entries: system.matrix.len() as i64,
-            rows: pointer(&mut rows),
-            columns: pointer(&mut columns),
+            columns: Columns::of(system.pattern, &[], &[]),
             values: system.matrix.as_ptr(),
             same_pattern: same_pattern as c_int,
             block_size,
@@ -360,6 +360,8 @@ impl LinearSolver for PetscSolver {
             x: x.as_mut_ptr(),
             iterations: &mut iterations,
         };
+        // SAFETY: the pattern's arrays, the values (one per entry), b and x
+        // (n each) live until the call returns
         let code =
             unsafe { ffi::sg_petsc_solve(self.handle, &system, err.as_mut_ptr(), err.len()) };
         self.tally.record(start, iterations, code, &err, x)
@@ -371,6 +373,11 @@ impl LinearSolver for PetscSolver {
 
     fn statistics(&self) -> SolverStatistics {
         self.tally.statistics()
+    }
+
+    /// PETSc's preconditioners are its own.
+    fn reads_symmetric_neighbour(&self) -> bool {
+        false
     }
 }
 
@@ -385,29 +392,6 @@ mod tests {
             .map(|&(i, j, v)| Triplet::new(i, j, v))
             .collect();
         SparseColMat::try_new_from_triplets(n, n, &t).unwrap()
-    }
-
-    #[test]
-    fn coordinate_entries_follow_the_columns() {
-        let a = system(
-            &[
-                (0, 0, 1.0),
-                (2, 0, 2.0),
-                (1, 1, 3.0),
-                (0, 2, 4.0),
-                (2, 2, 5.0),
-            ],
-            3,
-        );
-        let pattern = a.symbolic().to_owned().unwrap();
-        let (rows, columns) = coordinate_entries(&pattern, true, |i, j| Some((i, j))).unwrap();
-        assert_eq!(rows, vec![0, 2, 1, 0, 2]);
-        assert_eq!(columns, vec![0, 0, 1, 2, 2]);
-        // an entry left out is -1 in both; the others are renumbered
-        let (rows, columns) =
-            coordinate_entries(&pattern, true, |i, j| (i != 1).then_some((2 - i, 2 - j))).unwrap();
-        assert_eq!(rows, vec![2, 0, -1, 2, 0]);
-        assert_eq!(columns, vec![2, 2, -1, 0, 0]);
     }
 
     #[test]

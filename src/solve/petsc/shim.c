@@ -9,10 +9,11 @@
  * and writes a message for the user into `err`.
  *
  * One solver holds a sequential AIJ matrix (block size 3 when asked), its
- * right-hand side and solution vectors and a KSP. The matrix is built from
- * CSR arrays the first time and refilled in place while the pattern stays
- * the same, so that PETSc's preconditioner (MUMPS, GAMG, hypre) keeps its
- * symbolic set-up.
+ * right-hand side and solution vectors and a KSP. The matrix is
+ * preallocated for the pattern the first time and refilled in place,
+ * column by column from the caller's compressed columns, while the pattern
+ * stays the same, so that PETSc's preconditioner (MUMPS, GAMG, hypre)
+ * keeps its symbolic set-up.
  */
 #include <petscksp.h>
 
@@ -180,15 +181,82 @@ static int attach_rigid_body_modes(Mat matrix, MPI_Comm comm, PetscInt local,
   return 0;
 }
 
+/* The tangent's compressed columns as the caller holds them (faer's CSC,
+ * `Columns` in mod.rs): column j's rows are row_idx[col_ptr[j] ..
+ * col_ptr[j + 1]) and its values the same positions of a values array.
+ * PETSc's row of row i is row_map[i] (negative: an entry PETSc is to
+ * ignore) and its column of column j column_map[j]; a NULL map is the
+ * identity. The pattern is structurally symmetric. */
+typedef struct {
+  size_t columns;
+  const size_t *col_ptr;
+  const size_t *row_idx;
+  const int *row_map;
+  const int *column_map;
+} Columns;
+
+/* Put `values` (NULL: zeros) into `matrix` one column at a time, an m x 1
+ * block per MatSetValues (the same in PETSc's row or column orientation),
+ * with `mode`: PETSc finds each entry's place in its compressed rows, so
+ * no map from the caller's positions to PETSc's is kept. Rows another
+ * process owns go through PETSc's stash at the next assembly. */
+static int set_columns(Mat matrix, const Columns *c, const double *values,
+                       InsertMode mode, char *err, size_t err_len) {
+  size_t longest = 1;
+  for (size_t j = 0; j < c->columns; j++) {
+    size_t len = c->col_ptr[j + 1] - c->col_ptr[j];
+    if (len > longest) longest = len;
+  }
+  PetscInt *rows;
+  PetscScalar *zeros;
+  CHECK(PetscMalloc1(longest, &rows));
+  CHECK(PetscCalloc1(longest, &zeros));
+  for (size_t j = 0; j < c->columns; j++) {
+    size_t first = c->col_ptr[j], len = c->col_ptr[j + 1] - first;
+    for (size_t k = 0; k < len; k++) {
+      size_t i = c->row_idx[first + k];
+      rows[k] = c->row_map ? c->row_map[i] : (PetscInt)i;
+    }
+    PetscInt column = c->column_map ? c->column_map[j] : (PetscInt)j;
+    CHECK(MatSetValues(matrix, (PetscInt)len, rows, 1, &column,
+                       values ? values + first : zeros, mode));
+  }
+  CHECK(PetscFree(rows));
+  CHECK(PetscFree(zeros));
+  return 0;
+}
+
+/* Preallocate `matrix` (its type, sizes and block size set) for exactly
+ * the entries of `c`, its own and those other processes give in its rows:
+ * PETSc's MATPREALLOCATOR counts each row's distinct (block) columns in a
+ * hash set, freed before this returns, and MatXAIJSetPreallocation
+ * reserves them. A later entry outside them is an error. */
+static int preallocate(Mat matrix, const Columns *c, char *err, size_t err_len) {
+  Mat counter;
+  PetscInt local_rows, local_columns, rows, columns, block_size;
+  CHECK(MatGetLocalSize(matrix, &local_rows, &local_columns));
+  CHECK(MatGetSize(matrix, &rows, &columns));
+  CHECK(MatGetBlockSize(matrix, &block_size));
+  CHECK(MatCreate(PetscObjectComm((PetscObject)matrix), &counter));
+  CHECK(MatSetType(counter, MATPREALLOCATOR));
+  CHECK(MatSetSizes(counter, local_rows, local_columns, rows, columns));
+  CHECK(MatSetBlockSize(counter, block_size));
+  CHECK(MatSetUp(counter));
+  int failed = set_columns(counter, c, NULL, INSERT_VALUES, err, err_len);
+  if (failed) return failed;
+  CHECK(MatAssemblyBegin(counter, MAT_FINAL_ASSEMBLY));
+  CHECK(MatAssemblyEnd(counter, MAT_FINAL_ASSEMBLY));
+  CHECK(MatPreallocatorPreallocate(counter, PETSC_FALSE, matrix));
+  CHECK(MatDestroy(&counter));
+  return 0;
+}
+
 /* One linear system, as `sg_petsc_solve` takes it (the same layout as
- * `SystemArguments` in mod.rs): the tangent's `entries` in coordinate
- * form, `rows` and `columns` of each (for a new pattern only, else NULL;
- * PETSc may overwrite them) and `values` in the same order. */
+ * `SystemArguments` in mod.rs): the tangent's columns and their
+ * `values`. */
 typedef struct {
   int n;
-  int64_t entries;
-  int *rows;
-  int *columns;
+  Columns columns;
   const double *values;
   int same_pattern;
   int block_size;
@@ -198,25 +266,20 @@ typedef struct {
   int *iterations;
 } SystemArguments;
 
-/* Solve K x = b with K given entry by entry. A new pattern (`same_pattern`
- * 0, or none yet) makes the matrix and its coordinate preallocation
- * (MatSetPreallocationCOO: PETSc keeps the map from each entry to its
- * nonzero, not the indices); every call sets the values in place
- * (MatSetValuesCOO), straight from the caller's array, so the tangent is
- * not copied into compressed rows first. `block_size` 3 when the unknowns
- * are nodal displacements only (then `coordinates`, 3 per node, if not
- * NULL, give GAMG the rigid-body near-null space). Returns the Krylov
- * iterations in `iterations`. */
+/* Solve K x = b with K given by compressed columns. A new pattern
+ * (`same_pattern` 0, or none yet) makes the matrix, preallocated for its
+ * entries (`preallocate`); every call puts the values in (`set_columns`,
+ * straight from the caller's array: PETSc holds the one compressed-row
+ * copy of the tangent and no map to it). `block_size` 3 when the
+ * unknowns are nodal displacements only (then `coordinates`, 3 per node,
+ * if not NULL, give GAMG the rigid-body near-null space). Returns the
+ * Krylov iterations in `iterations`. */
 int sg_petsc_solve(void *handle, const SystemArguments *system, char *err,
                    size_t err_len) {
   Solver *s = handle;
   int n = system->n, block_size = system->block_size;
-  PetscInt nnz = (PetscInt)system->entries;
+  PetscInt nnz = (PetscInt)system->columns.col_ptr[system->columns.columns];
   if (!(system->same_pattern && s->matrix && s->n == n && s->nnz == nnz)) {
-    if (!system->rows || !system->columns) {
-      snprintf(err, err_len, "a new matrix pattern without its entries' indices");
-      return 1;
-    }
     if (s->matrix) MatDestroy(&s->matrix);
     if (s->rhs) VecDestroy(&s->rhs);
     if (s->solution) VecDestroy(&s->solution);
@@ -225,8 +288,8 @@ int sg_petsc_solve(void *handle, const SystemArguments *system, char *err,
     CHECK(MatSetSizes(s->matrix, n, n, n, n));
     CHECK(MatSetType(s->matrix, MATSEQAIJ));
     if (block_size > 1) CHECK(MatSetBlockSize(s->matrix, block_size));
-    CHECK(MatSetPreallocationCOO(s->matrix, system->entries, system->rows,
-                                 system->columns));
+    int failed = preallocate(s->matrix, &system->columns, err, err_len);
+    if (failed) return failed;
     CHECK(MatCreateVecs(s->matrix, &s->solution, &s->rhs));
     s->n = n;
     s->nnz = nnz;
@@ -235,14 +298,18 @@ int sg_petsc_solve(void *handle, const SystemArguments *system, char *err,
                                     system->coordinates, err, err_len));
     }
   }
-  CHECK(MatSetValuesCOO(s->matrix, system->values, INSERT_VALUES));
+  int failed = set_columns(s->matrix, &system->columns, system->values,
+                           INSERT_VALUES, err, err_len);
+  if (failed) return failed;
+  CHECK(MatAssemblyBegin(s->matrix, MAT_FINAL_ASSEMBLY));
+  CHECK(MatAssemblyEnd(s->matrix, MAT_FINAL_ASSEMBLY));
   CHECK(KSPSetOperators(s->ksp, s->matrix, s->matrix));
 
   PetscScalar *a;
   CHECK(VecGetArray(s->rhs, &a));
   memcpy(a, system->b, sizeof(double) * (size_t)n);
   CHECK(VecRestoreArray(s->rhs, &a));
-  int failed = solve_ksp(s->ksp, s->rhs, s->solution, system->iterations, err, err_len);
+  failed = solve_ksp(s->ksp, s->rhs, s->solution, system->iterations, err, err_len);
   if (failed) return failed;
   const PetscScalar *y;
   CHECK(VecGetArrayRead(s->solution, &y));
@@ -342,26 +409,24 @@ int sg_petsc_mpi_describe(void *handle, char *text, size_t text_len,
 
 /* The distributed matrix's layout (`DistributedLayout` in
  * distributed.rs): this process owns the global rows [first, first +
- * local) of `global`; it gives `entries` entries in coordinate form,
- * `rows` and `columns` global (-1: an entry this process leaves to the
- * others; PETSc may overwrite the arrays), every entry of its own rows
- * and those of other processes' rows that its part of K touches (PETSc
- * sends those to their owners at each MatSetValuesCOO); `coordinates` (3
- * per owned node, or NULL) the rigid-body near-null space when
- * block_size is 3. */
+ * local) of `global`; `columns` are its part of the tangent's columns,
+ * their rows mapped to PETSc's (negative: a row this process leaves to
+ * the others), every entry of its own rows and of the other processes'
+ * rows its part of K touches (PETSc sends those to their owners at each
+ * assembly); `coordinates` (3 per owned node, or NULL) the rigid-body
+ * near-null space when block_size is 3. */
 typedef struct {
   int global;
   int first;
   int local;
   int block_size;
-  int64_t entries;
-  int *rows;
-  int *columns;
+  Columns columns;
   const double *coordinates;
 } DistributedLayout;
 
-/* Make the matrix (MPIAIJ, preallocated from the coordinate entries), its
- * vectors and the scatter of the solution to every process. */
+/* Make the matrix (MPIAIJ, preallocated for the entries every process
+ * gives: `preallocate`), its vectors and the scatter of the solution to
+ * every process. */
 int sg_petsc_mpi_layout(void *handle, const DistributedLayout *layout,
                         char *err, size_t err_len) {
   DistributedSolver *s = handle;
@@ -372,9 +437,8 @@ int sg_petsc_mpi_layout(void *handle, const DistributedLayout *layout,
                     layout->global));
   CHECK(MatSetType(s->matrix, MATMPIAIJ));
   if (layout->block_size > 1) CHECK(MatSetBlockSize(s->matrix, layout->block_size));
-  CHECK(MatSetPreallocationCOO(s->matrix, layout->entries, layout->rows,
-                               layout->columns));
-  CHECK(MatSetOption(s->matrix, MAT_NEW_NONZERO_ALLOCATION_ERR, PETSC_TRUE));
+  int failed = preallocate(s->matrix, &layout->columns, err, err_len);
+  if (failed) return failed;
   CHECK(MatCreateVecs(s->matrix, &s->solution, &s->rhs));
   CHECK(VecScatterCreateToAll(s->solution, &s->to_all, &s->everywhere));
   if (layout->coordinates && layout->block_size == 3) {
@@ -386,18 +450,14 @@ int sg_petsc_mpi_layout(void *handle, const DistributedLayout *layout,
 }
 
 /* This process's part of one system (`DistributedSystem` in
- * distributed.rs): `values` of the layout's entries (its part of K, in
- * the layout's order; those of entries left to others are ignored) and
- * `strays`, entries of its part of K outside the layout (rows of other
- * processes that a contact came to touch), added one by one through
- * PETSc's stash; `b` the right-hand side of its own rows; `x` the whole
+ * distributed.rs): the layout's `columns` (the same pattern) and their
+ * `values` (its part of K), added to the other processes' parts
+ * (ADD_VALUES on a zeroed matrix: PETSc sums the ghost rows' entries at
+ * their owners); `b` the right-hand side of its own rows; `x` the whole
  * solution (global numbering) on return, on every process. */
 typedef struct {
+  Columns columns;
   const double *values;
-  int strays;
-  const int *stray_rows;
-  const int *stray_columns;
-  const double *stray_values;
   const double *b;
   double *x;
   int *iterations;
@@ -406,13 +466,13 @@ typedef struct {
 int sg_petsc_mpi_solve(void *handle, const DistributedSystem *system,
                        char *err, size_t err_len) {
   DistributedSolver *s = handle;
-  CHECK(MatSetValuesCOO(s->matrix, system->values, INSERT_VALUES));
-  for (int r = 0; r < system->strays; r++) {
-    PetscInt row = system->stray_rows[r], column = system->stray_columns[r];
-    CHECK(MatSetValues(s->matrix, 1, &row, 1, &column, system->stray_values + r,
-                       ADD_VALUES));
-  }
-  /* collective: every process, with strays or not */
+  PetscBool assembled;
+  CHECK(MatAssembled(s->matrix, &assembled));
+  if (assembled) CHECK(MatZeroEntries(s->matrix));
+  int failed = set_columns(s->matrix, &system->columns, system->values,
+                           ADD_VALUES, err, err_len);
+  if (failed) return failed;
+  /* collective: every process */
   CHECK(MatAssemblyBegin(s->matrix, MAT_FINAL_ASSEMBLY));
   CHECK(MatAssemblyEnd(s->matrix, MAT_FINAL_ASSEMBLY));
   CHECK(KSPSetOperators(s->ksp, s->matrix, s->matrix));
@@ -422,8 +482,8 @@ int sg_petsc_mpi_solve(void *handle, const DistributedSystem *system,
   CHECK(VecGetArray(s->rhs, &a));
   memcpy(a, system->b, sizeof(double) * (size_t)local);
   CHECK(VecRestoreArray(s->rhs, &a));
-  int failed = solve_ksp(s->ksp, s->rhs, s->solution, system->iterations, err,
-                         err_len);
+  failed = solve_ksp(s->ksp, s->rhs, s->solution, system->iterations, err,
+                     err_len);
   if (failed) return failed;
   CHECK(VecScatterBegin(s->to_all, s->solution, s->everywhere, INSERT_VALUES,
                         SCATTER_FORWARD));

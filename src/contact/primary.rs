@@ -285,10 +285,12 @@ pub fn boxes_containing(
 
 /// Closest-point distances within `TIE_TOLERANCE · h` of the smallest
 /// tie (`h` the longest edge of the nearest triangle), and so do
-/// alignments `|n_t · e|` within `TIE_TOLERANCE` of the largest: far above
-/// the round-off of a position (1e-16 relative) or of two paths' answers
-/// (1e-12), far below any distance the surface resolves.
-pub const TIE_TOLERANCE: f64 = 1e-8;
+/// alignments `|n_t · e|` within `TIE_TOLERANCE` of the largest: above the
+/// round-off of a position or a distance (1e-16 relative), and small
+/// enough that the chosen triangle's distance is the smallest to 1e-14 `h`
+/// (a rigid triangulated obstacle's signed distance is exact to 1e-13:
+/// tests/contact_geometry.rs; 1e-8 put it 2e-9 off).
+pub const TIE_TOLERANCE: f64 = 1e-14;
 
 /// The facet choice of [`best_triangle`]: the chosen triangle, the closest
 /// point on it, and every candidate tied with it by distance.

@@ -1042,3 +1042,128 @@ fn frictional_condensed_against_a_sphere_equals_monolithic() {
         assert_partial_slip(&cond.0, "base", law);
     }
 }
+
+/// An ASCII STL file at `path`: the surface `z = height(x, y)` over
+/// `[x0, x1] × [y0, y1]` on an `n × n` grid of squares, each split in two
+/// triangles counter-clockwise seen from above (normals up, toward a body
+/// above it).
+fn write_stl_grid(
+    path: &Path,
+    height: impl Fn(f64, f64) -> f64,
+    [x0, x1]: [f64; 2],
+    [y0, y1]: [f64; 2],
+    n: usize,
+) {
+    let point = |i: usize, j: usize| {
+        let (x, y) = (
+            x0 + (x1 - x0) * i as f64 / n as f64,
+            y0 + (y1 - y0) * j as f64 / n as f64,
+        );
+        format!("vertex {x:e} {y:e} {:e}\n", height(x, y))
+    };
+    let mut text = String::from("solid grid\n");
+    for i in 0..n {
+        for j in 0..n {
+            let corners = [
+                point(i, j),
+                point(i + 1, j),
+                point(i + 1, j + 1),
+                point(i, j + 1),
+            ];
+            for [a, b, c] in [[0, 1, 2], [0, 2, 3]] {
+                text.push_str("facet normal 0 0 1\nouter loop\n");
+                for k in [a, b, c] {
+                    text.push_str(&corners[k]);
+                }
+                text.push_str("endloop\nendfacet\n");
+            }
+        }
+    }
+    text.push_str("endsolid grid\n");
+    std::fs::write(path, text).unwrap();
+}
+
+/// `[[obstacle]]` lines of the STL file `path`.
+fn stl_obstacle(path: &Path) -> String {
+    format!("shape = \"stl\"\nfile = {:?}", path.display().to_string())
+}
+
+/// Frictionless contact against a triangulated rigid obstacle (issue 32
+/// item 3): the coarse Hertz hemisphere pressed by 0.0115 in 4 increments
+/// onto a flat STL plane (8 × 8 squares over [−1.2, 1.2]²). The condensed
+/// path (the rows at the current nearest facet, in rounds until they
+/// settle) equals monolithic Newton (residual tolerance 1e-11) to 1e-8:
+/// displacements over the largest, nodal contact forces over |F|,
+/// tractions over the peak, at every increment; one factorisation; `auto`
+/// takes it. A curved STL surface (a cap of the sphere of radius 2, 16 × 16
+/// squares) is not condensed by `auto` (the paths differ there: 1.9e-5 of
+/// the displacements, 2 % of the peak traction).
+#[test]
+fn frictionless_condensed_against_triangulated_obstacles_equals_monolithic() {
+    let dir = tempfile::tempdir().unwrap();
+    let (flat, cap) = (dir.path().join("flat.stl"), dir.path().join("cap.stl"));
+    write_stl_grid(&flat, |_, _| 0.0, [-1.2, 1.2], [-1.2, 1.2], 8);
+    let sphere = |x: f64, y: f64| -2.0 + (4.0 - x * x - y * y).sqrt();
+    write_stl_grid(&cap, sphere, [-0.6, 0.6], [-0.6, 0.6], 16);
+    let plane = "shape = \"plane\"\npoint = [0.0, 0.0, 0.0]\nnormal = [0.0, 0.0, 1.0]";
+    let shape = [(plane, stl_obstacle(&flat))];
+    let mono = hertz(
+        "strategy = \"monolithic\"\nresidual_tolerance = 1e-11",
+        &shape,
+    );
+    let cond = hertz("strategy = \"auto\"", &shape);
+    assert_eq!(cond.0.summary.strategy, "condensed");
+    assert_eq!(cond.0.summary.fallback_increments, 0);
+    assert_eq!(cond.0.summary.factorisations, 1);
+    let (du, df, dt) = curved_differences("pole", &cond, &mono);
+    eprintln!("hertz on a triangulated plane: displacements {du:.1e}, forces {df:.1e}, tractions {dt:.1e}");
+    assert!(du < 1e-8 && df < 1e-8 && dt < 1e-8, "{du:e} {df:e} {dt:e}");
+    let closed = |r: &RunOutcome| r.summary.increments.last().unwrap().contact["pole"].closed_nodes;
+    assert_eq!(closed(&cond.0), closed(&mono.0));
+    assert!(closed(&cond.0) > 3, "{} closed nodes", closed(&cond.0));
+    let (capped, _) = hertz("strategy = \"auto\"", &[(plane, stl_obstacle(&cap))]);
+    assert_eq!(capped.summary.strategy, "monolithic");
+    let reason = &capped.summary.strategy_reason;
+    assert!(reason.contains("triangulated surface"), "{reason}");
+}
+
+/// Coulomb friction against a triangulated rigid obstacle (issue 32 item
+/// 3): [`frictional_condensed_against_a_sphere_equals_monolithic`]'s case
+/// (examples/press-pull, ε_T = 100, regularised stick, pressed and pulled
+/// into partial slip) on a flat STL plane
+/// (12 × 12 squares over [−1, 5] × [−1, 1.5]) instead of the sphere. The
+/// condensed path equals monolithic Newton (residual tolerance 1e-10) at
+/// every increment: displacements over the largest and nodal contact
+/// forces over |F| to 1e-8, tractions over the peak to 1e-8, the same
+/// stick/slip status; `auto` takes it.
+#[test]
+fn frictional_condensed_against_a_triangulated_obstacle_equals_monolithic() {
+    let dir = tempfile::tempdir().unwrap();
+    let cap = dir.path().join("flat.stl");
+    write_stl_grid(&cap, |_, _| 0.0, [-1.0, 5.0], [-1.0, 1.5], 12);
+    let tighter = |p: &mut signorini::problem::Problem| {
+        (0..p.contacts.len()).for_each(|i| p.contacts.interface_mut(i).element_size *= 1e-2)
+    };
+    let plane = "shape = \"plane\"\npoint = [0.0, 0.0, 0.0]\nnormal = [0.0, 0.0, 1.0]";
+    let extra = [
+        (plane, stl_obstacle(&cap)),
+        (
+            "exact_stick = true",
+            "exact_stick = false\ntangential_penalty = 100.0".to_string(),
+        ),
+    ];
+    let mono = press_pull_adjusted(
+        "strategy = \"monolithic\"\nresidual_tolerance = 1e-10",
+        &extra,
+        tighter,
+    );
+    let cond = press_pull("strategy = \"auto\"", &extra);
+    assert_eq!(cond.0.summary.strategy, "condensed");
+    assert_eq!(cond.0.summary.fallback_increments, 0);
+    assert_eq!(cond.0.summary.factorisations, 1);
+    let (du, df, dt) = curved_differences("base", &cond, &mono);
+    eprintln!("press-pull on a triangulated plane: displacements {du:.1e}, forces {df:.1e}, tractions {dt:.1e}");
+    assert!(du < 1e-8 && df < 1e-8 && dt < 1e-8, "{du:e} {df:e} {dt:e}");
+    assert!(cond.1 .2 == mono.1 .2, "the stick/slip status differs");
+    assert_partial_slip(&cond.0, "base", "triangulated plane");
+}

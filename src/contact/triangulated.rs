@@ -40,10 +40,16 @@
 //! the georust spatial index); a query is its exact nearest-neighbour
 //! search with the point-to-triangle distance (branch and bound on the
 //! boxes' distances), so the result is the brute-force minimum over all
-//! triangles.
+//! triangles. The triangles as near within the tie tolerance (a point over
+//! an edge or a vertex) are then gathered from the tree and one is chosen
+//! by the geometric rule of deformable primary surfaces
+//! ([`best_triangle`](crate::contact::primary::best_triangle)), so the
+//! projection is a function of the point alone: the same in Newton's
+//! iterations and in the condensed path's rounds.
 //!
 //! [`Mesh::orient_surfaces`]: crate::mesh::Mesh::orient_surfaces
 
+use crate::contact::primary::{best_triangle, TIE_TOLERANCE};
 use crate::contact::projection::Projection;
 use crate::contact::triangle::{closest_point_on_triangle, Feature, TriangleProjection};
 use crate::contact::triangle_gap::facet_triangles;
@@ -252,6 +258,17 @@ impl TriangulatedSurface {
         &self.triangles
     }
 
+    /// Whether every triangle lies in one plane: all unit normals within
+    /// 1e-12 of the first's, and every vertex within 1e-12 `L` of its
+    /// plane (`L` the bounding box's diagonal).
+    pub fn is_flat(&self) -> bool {
+        let n = self.face_normals[0];
+        let origin = self.vertices[self.triangles[0][0]];
+        let scale = self.tiny / DIRECTION_TOLERANCE;
+        self.face_normals.iter().all(|m| (m - n).norm() <= 1e-12)
+            && (self.vertices.iter()).all(|v| (v - origin).dot(&n).abs() <= 1e-12 * scale)
+    }
+
     /// Unit right-hand normal of triangle `t`.
     pub fn face_normal(&self, t: usize) -> Vector3<f64> {
         self.face_normals[t]
@@ -268,11 +285,24 @@ impl TriangulatedSurface {
     }
 
     /// The closest point on the surface to `x`: the triangle's index and the
-    /// projection onto it. `None` only for a surface without triangles,
-    /// which the constructors do not make.
+    /// projection onto it. Where several triangles are as near (a point
+    /// over an edge or a vertex), the one [`best_triangle`] chooses among
+    /// them (the facet choice of deformable primary surfaces: a function of
+    /// the geometry, not of the tree's order or of round-off). `None` only
+    /// for a surface without triangles, which the constructors do not make.
     pub fn closest_point(&self, x: &Vector3<f64>) -> Option<(usize, TriangleProjection)> {
-        let t = self.tree.nearest_neighbor([x.x, x.y, x.z])?;
-        Some((t.index, t.project(x)))
+        let point = [x.x, x.y, x.z];
+        let nearest = self.tree.nearest_neighbor(point)?;
+        let size = (0..3)
+            .map(|i| (nearest.corners[(i + 1) % 3] - nearest.corners[i]).norm())
+            .fold(0.0, f64::max);
+        let reach = nearest.distance_2(&point).sqrt() + 2.0 * TIE_TOLERANCE * size;
+        let near: Vec<(usize, [Vector3<f64>; 3])> = (self.tree)
+            .locate_within_distance(point, reach * reach)
+            .map(|t| (t.index, t.corners))
+            .collect();
+        let choice = best_triangle(x, &near)?;
+        Some((choice.triangle, choice.projection))
     }
 
     /// Projects the spatial point `x` onto the surface: closest point,

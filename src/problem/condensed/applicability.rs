@@ -48,9 +48,10 @@ pub fn choose(problem: &Problem) -> std::result::Result<Choice, String> {
                 .into()
         } else if has_friction(problem) && super::has_moving_rows(problem) {
             "the stiffness is constant and every contact is against a rigid obstacle with \
-             Coulomb friction, some curved (a sphere or a cylinder): one factorisation per run, \
-             the frictional contact problem solved on the contact nodes by a dense semismooth \
-             Newton method at the current normals until they settle (monolithic Newton would \
+             Coulomb friction, some curved or triangulated (a sphere, a cylinder, a flat STL or \
+             Gmsh surface): one factorisation per run, the frictional contact problem solved on the \
+             contact nodes by a dense semismooth Newton method at the current normals until \
+             they settle (monolithic Newton would \
              factorise at every iteration)"
                 .into()
         } else if has_friction(problem) {
@@ -61,8 +62,8 @@ pub fn choose(problem: &Problem) -> std::result::Result<Choice, String> {
                 .into()
         } else if super::has_moving_rows(problem) && !super::has_pairs(problem) {
             "the stiffness is constant and every contact is frictionless against a rigid \
-             obstacle, some curved (a sphere or a cylinder): one factorisation per run with the \
-             contact surfaces ordered last, the contact problem solved on the contact nodes at \
+             obstacle, some curved or triangulated (a sphere, a cylinder, a flat STL or \
+             Gmsh surface): one factorisation per run with the contact surfaces ordered last, the contact problem solved on the contact nodes at \
              the current normals until they settle (monolithic Newton would factorise at every \
              iteration)"
                 .into()
@@ -126,8 +127,8 @@ pub fn not_applicable(problem: &Problem) -> Option<String> {
         // converged state is exact or a penalty (not an outer loop's)
         let why = match c.affine_gap() {
             Ok(()) => None,
-            // a rigid sphere or cylinder: the rows at the current normals,
-            // in rounds as between bodies
+            // a rigid sphere, cylinder or flat triangulated surface: the
+            // rows at the current normals, in rounds as between bodies
             Err(_) if c.rows_move() && !c.projected_gap() => None,
             // between bodies: the rows at the current projections
             // ([`super::pairs`], [`super::friction`]), only when asked for

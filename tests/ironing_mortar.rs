@@ -413,7 +413,13 @@ fn structurally_orthogonal<'a>(
 /// `h = 1e-7` on coordinates of order 1: truncation `O(h²)` ≈ 1e-14 of the
 /// third derivative, round-off ≈ 1e-16 ‖r‖/h ≈ 1e-9 ‖r‖; a missing
 /// term is off by its own size).
+///
+/// Not in the default run: it takes about two minutes on a quiet machine
+/// (the FD columns of a whole slide state), which `.ci/run`'s 20-minute
+/// budget cannot carry. Run it with
+/// `cargo test --release --test ironing_mortar -- --ignored frictional_mortar_tangent`.
 #[test]
+#[ignore = "about 2 min; run with --ignored (the FD check of the frictional mortar tangent)"]
 fn frictional_mortar_tangent_matches_fd_at_a_slide_iterate() {
     let (pr, x, state, t) = slide_iterate();
     let blocks = tangent_block_errors(&pr, t, &x, &state, 1e-7);

@@ -469,11 +469,23 @@ impl SparseLdlt {
         let product = |v: &[f64], y: &mut [f64]| multiply(pattern, values, v, y);
         self.refine_with(product, b, x, max_refinements, stop_on_stall)
     }
+}
 
-    /// [`Self::refine_from`] with the product `y = A x` given: for a matrix
-    /// stored otherwise than on its whole pattern (a symmetric one's lower
-    /// triangle, [`crate::assembly::triangle::multiply`]).
-    pub fn refine_with(
+/// A factor that refines a solution iteratively with its own solves,
+/// counting the steps in its timings: [`Self::refine_with`] with the
+/// product `y = A x` given, for a matrix stored otherwise than on its
+/// whole pattern (a symmetric one's lower triangle,
+/// [`crate::assembly::triangle::multiply`]).
+pub trait IterativeRefinement {
+    /// `r ← A⁻¹ r` with the factor.
+    fn solve_with_factor(&mut self, rhs: &mut [f64]) -> Result<()>;
+
+    /// The timings the refinement steps are counted in.
+    fn timings_mut(&mut self) -> &mut SolverTimings;
+
+    /// [`refinement`] of `x` for `A x = b` with the factor's solves: the
+    /// final relative residual; the steps are added to the timings.
+    fn refine_with(
         &mut self,
         product: impl Fn(&[f64], &mut [f64]),
         b: &[f64],
@@ -481,10 +493,20 @@ impl SparseLdlt {
         max_refinements: usize,
         stop_on_stall: bool,
     ) -> Result<f64> {
-        let solve = |r: &mut [f64]| self.solve_in_place(r);
+        let solve = |r: &mut [f64]| self.solve_with_factor(r);
         let (relative, steps) = refinement(product, solve, b, x, max_refinements, stop_on_stall)?;
-        self.timings.refinement_steps += steps;
+        self.timings_mut().refinement_steps += steps;
         Ok(relative)
+    }
+}
+
+impl IterativeRefinement for SparseLdlt {
+    fn solve_with_factor(&mut self, rhs: &mut [f64]) -> Result<()> {
+        self.solve_in_place(rhs)
+    }
+
+    fn timings_mut(&mut self) -> &mut SolverTimings {
+        &mut self.timings
     }
 }
 

@@ -21,7 +21,7 @@ use super::schur::{
 };
 use crate::assembly::pattern::SparsityPattern;
 use crate::assembly::triangle::{self, LowerTriangle};
-use crate::solve::linear::{scaled_identity_rows, Precision};
+use crate::solve::linear::{scaled_identity_rows, IterativeRefinement, Precision};
 use crate::solve::ordering::EarlyDissection;
 use crate::solve::record::IterationRecord;
 use crate::{Error, Result};

@@ -26,7 +26,7 @@
 
 use super::schur::TrailingInverse;
 use crate::solve::linear::{
-    refinement, FactorReport, Ordering, Precision, SolverTimings, SparseLdlt,
+    FactorReport, IterativeRefinement, Ordering, Precision, SolverTimings, SparseLdlt,
 };
 use crate::Result;
 use faer::sparse::SymbolicSparseColMat;
@@ -291,22 +291,6 @@ impl PartedLdlt {
         self.solve_columns_in_place(rhs, 1)
     }
 
-    /// Iterative refinement of `x` for `A x = b`, `product` computing
-    /// `y = A x` ([`refinement`]): the final relative residual.
-    pub fn refine_with(
-        &mut self,
-        product: impl Fn(&[f64], &mut [f64]),
-        b: &[f64],
-        x: &mut [f64],
-        max_refinements: usize,
-        stop_on_stall: bool,
-    ) -> Result<f64> {
-        let solve = |r: &mut [f64]| self.solve_in_place(r);
-        let (relative, steps) = refinement(product, solve, b, x, max_refinements, stop_on_stall)?;
-        self.timings.refinement_steps += steps;
-        Ok(relative)
-    }
-
     /// `(A⁻¹)_TT` on the unknowns `trailing` (each block's ordered last in
     /// it): per block ([`TrailingInverse::of`]) at once, joined.
     pub fn trailing_inverse(&self, trailing: &[usize]) -> Result<TrailingInverse> {
@@ -347,6 +331,16 @@ impl FactorReport for PartedLdlt {
 
     fn factor_nnz(&self) -> usize {
         self.parts.iter().map(|p| p.ldlt.factor_nnz()).sum()
+    }
+}
+
+impl IterativeRefinement for PartedLdlt {
+    fn solve_with_factor(&mut self, rhs: &mut [f64]) -> Result<()> {
+        self.solve_in_place(rhs)
+    }
+
+    fn timings_mut(&mut self) -> &mut SolverTimings {
+        &mut self.timings
     }
 }
 

@@ -400,11 +400,13 @@ impl ContactInterface {
                     frame.kinematics.traction = state.friction.traction;
                     frame.kinematics.traction_gradient.fill(0.0);
                 }
-                if self.first_contact_pending(state) && self.closes_exactly() {
-                    friction::first_contact_at_solution(&mut frame.kinematics);
-                } else if self.first_contact_pending(state) {
-                    let (g, grad) = (kinematics.gap, &kinematics.gradient);
-                    friction::first_contact(&mut frame.kinematics, state.gap, g, grad);
+                if self.first_contact_pending(state) {
+                    if self.closes_exactly() {
+                        friction::first_contact_at_solution(&mut frame.kinematics);
+                    } else {
+                        let (g, grad) = (kinematics.gap, &kinematics.gradient);
+                        friction::first_contact(&mut frame.kinematics, state.gap, g, grad);
+                    }
                 }
                 let t = friction::return_map_on(&coulomb, &frame.kinematics, &response.pressure);
                 let lever_t = frame.lever.transpose();

@@ -460,6 +460,20 @@ impl ContactInterface {
         gaps
     }
 
+    /// The gap [`Self::gaps`] reports for a node without a constraint row
+    /// (no primary within the search margin): the producer's
+    /// [`GapProducer::open_gap`] at unknowns `x` (the margin between
+    /// bodies, `∞` against a rigid obstacle; it does not move with `x`).
+    pub fn open_gap(&self, reference: &[[f64; 3]], x: &[f64]) -> f64 {
+        let ctx = ContactContext {
+            reference,
+            t: 0.0,
+            x,
+            first_multiplier: 0,
+        };
+        with_producer!(self, &ctx, p => p.open_gap())
+    }
+
     /// The states of the nodes when the interface is set up at unknowns `x`
     /// (time 0): the normal law's initial state at the node's gap (open at
     /// the search margin where a node has no primary candidate), friction

@@ -59,6 +59,9 @@ pub(super) struct PairCondensation {
     on_block: bool,
     /// Rounds of the fixed point, over the run.
     rounds: usize,
+    /// Per interface the gap of a node without a row
+    /// ([`crate::contact::interface::ContactInterface::open_gap`]).
+    open: Vec<f64>,
 }
 
 /// The constraint rows of every interface at unknowns `u`, time `t`, on
@@ -113,14 +116,23 @@ fn columns_of(
     (nodes, columns)
 }
 
-/// [`columns_of`] the rows at `u` ([`rows_at`]), the triangles kept.
-fn columns_at(
+/// The columns of `E` and the exact gaps of every secondary node at
+/// unknowns `u`, from one reading of the rows ([`rows_at`], the triangles
+/// kept): a row's gap is the one [`Condensation::gaps`] gives on the same
+/// triangle (both the node driver's kinematics), `open[ci]` that of a
+/// node of interface `ci` without a row (beyond the search margin).
+fn columns_and_gaps_at(
     problem: &Problem,
     t: f64,
     u: &[f64],
     kept: &mut ContactState,
-) -> (Vec<ContactNode>, Vec<Column>) {
-    columns_of(problem, &rows_at(problem, t, u, kept))
+    open: &[f64],
+) -> (Vec<Column>, Vec<f64>) {
+    let rows = rows_at(problem, t, u, kept);
+    let gaps = (rows.iter().zip(open))
+        .flat_map(|(rows, &open)| rows.iter().map(move |r| r.as_ref().map_or(open, |r| r.gap)))
+        .collect();
+    (columns_of(problem, &rows).1, gaps)
 }
 
 /// The largest change of an entry between two sets of columns of the
@@ -206,10 +218,15 @@ impl PairCondensation {
             .count();
         let on_block = trailing.len() == surface_dofs;
         let base = Condensation::factorise_on(problem, nodes, columns, &[], trailing, false)?;
+        let reference = &problem.model.mesh.nodes;
+        let open = (problem.contacts.iter())
+            .map(|c| c.open_gap(reference, &zero))
+            .collect();
         Ok(PairCondensation {
             base,
             on_block,
             rounds: 0,
+            open,
         })
     }
 
@@ -238,9 +255,8 @@ impl PairCondensation {
         } else {
             None
         };
-        let (_, mut columns) = columns_at(problem, t, start, kept);
+        let (mut columns, mut gaps_at) = columns_and_gaps_at(problem, t, start, kept, &self.open);
         let mut at = start.to_vec();
-        let mut gaps_at = Condensation::gaps(&self.base.nodes, problem, t, start, Some(kept));
         let mut anderson = Anderson::new(ANDERSON_DEPTH);
         let mut support: Vec<bool> = Vec::new();
         for round in 0..MAX_ROUNDS {
@@ -259,9 +275,8 @@ impl PairCondensation {
                 Some(u_b) => flexibility.solve_on_block(u_b, &linear, tolerance, history)?,
                 None => flexibility.solve_increment(&b, &linear, tolerance, history)?,
             };
-            let (_, next) = columns_at(problem, t, &u, kept);
+            let (next, exact) = columns_and_gaps_at(problem, t, &u, kept, &self.open);
             let change = column_change(&columns, &next, &forces);
-            let exact = Condensation::gaps(&self.base.nodes, problem, t, &u, Some(kept));
             let consistent = (exact.iter().zip(linear(&u)).zip(&forces)).all(|((g, l), f)| {
                 if *f != 0.0 {
                     (g - l).abs() <= tolerance
@@ -293,8 +308,7 @@ impl PairCondensation {
             if mixed == u {
                 (at, gaps_at, columns) = (u, exact, next);
             } else {
-                columns = columns_at(problem, t, &mixed, kept).1;
-                gaps_at = Condensation::gaps(&self.base.nodes, problem, t, &mixed, Some(kept));
+                (columns, gaps_at) = columns_and_gaps_at(problem, t, &mixed, kept, &self.open);
                 at = mixed;
             }
         }

@@ -40,7 +40,7 @@ load_before=$(uptime)
 # shellcheck disable=SC2086 # LAUNCH is a command line to split
 /usr/bin/time -v ${LAUNCH:-} "$signorini" run "$work/case.toml" --output "$work/results" --quiet \
     ${THREADS:+--threads "$THREADS"} \
-    > "$work/run.log" 2> "$work/time.txt" || { tail -20 "$work/run.log" "$work/time.txt"; exit 1; }
+    > "$work/run.log" 2> "$work/time.txt" || { tail -n 20 "$work/run.log" "$work/time.txt"; exit 1; }
 load_after=$(uptime)
 python3 - "$work" "$load_before" "$load_after" <<'PY'
 import json, re, sys

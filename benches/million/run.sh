@@ -16,6 +16,10 @@
 # METHOD=uzawa runs the contact by Uzawa's augmented Lagrangian (an outer
 # loop of multiplier updates on the penalty path, no multiplier unknowns,
 # so GAMG still applies) instead of the case's penalty method.
+# EXACT_STICK=false (or true) sets the contact's `exact_stick` (with uzawa
+# the default is true: exact stick by a second, tangential, outer loop;
+# false keeps the penalty run's regularised stick, so that only the normal
+# enforcement differs from it).
 # Distributed (a `petsc` build with helper "mpi"'s `mpirun` support):
 #     LAUNCH="mpirun -np 2 --allow-run-as-root --oversubscribe" THREADS=1 \
 #         sh benches/million/run.sh 45
@@ -29,13 +33,14 @@ work=${WORK:-$root/target/million}/n$n
 mkdir -p "$work"
 gmsh -3 "$here/block.geo" -setnumber n "$n" -format msh41 -bin -o "$work/block.msh" > "$work/gmsh.log"
 sed -e "/^options = /s|\"\$| ${PETSC_EXTRA:-}\"|" \
-    -e "/^method = /s|\"penalty\"|\"${METHOD:-penalty}\"|" "$here/case.toml" > "$work/case.toml"
+    -e "/^method = /s|\"penalty\"|\"${METHOD:-penalty}\"|" \
+    -e "/^method = /s|\$|${EXACT_STICK:+\\nexact_stick = $EXACT_STICK}|" "$here/case.toml" > "$work/case.toml"
 rm -rf "$work/results"
 load_before=$(uptime)
 # shellcheck disable=SC2086 # LAUNCH is a command line to split
 /usr/bin/time -v ${LAUNCH:-} "$signorini" run "$work/case.toml" --output "$work/results" --quiet \
     ${THREADS:+--threads "$THREADS"} \
-    > "$work/run.log" 2> "$work/time.txt" || { tail -20 "$work/run.log" "$work/time.txt"; exit 1; }
+    > "$work/run.log" 2> "$work/time.txt" || { tail -n 20 "$work/run.log" "$work/time.txt"; exit 1; }
 load_after=$(uptime)
 python3 - "$work" "$load_before" "$load_after" <<'PY'
 import json, re, sys
@@ -62,9 +67,28 @@ print(f"end shear   normal force {-c['force'][2]:.5f}, contact area {c['area']:.
       f"stick {c['stick_nodes']}, slip {c['slip_nodes']}")
 log = open(f"{work}/results/million.log").read()
 h = float(re.search(r"contact element size ([0-9.eE+-]+)", log).group(1))
-worst = max(i["contact"]["indentation"]["largest_penetration"] for i in s["increments"])
+# a Newton solve ends at an evaluation with no correction (0.0): one per
+# solve, so the solves of an increment less one are its outer updates
+# (Uzawa's multiplier updates, with exact stick the tangential ones too)
+solves = [sum(1 for c in i["corrections"] if c == 0.0) for i in s["increments"]]
+print(f"outer       Newton solves per increment {solves}, "
+      f"{sum(solves) - len(solves)} multiplier updates (solves less one per increment)")
+# the residual at the start of each solve after an update is the update's
+# force (A_s Δλ): its ratio from one update to the next is the outer loop's
+# measured contraction rate
+for i in s["increments"]:
+    starts = [r for r, c in zip(i["residuals"][1:], i["corrections"]) if c == 0.0]
+    rates = [b / a for a, b in zip(starts, starts[1:]) if a > 0]
+    if starts:
+        print(f"  t = {i['time']:g}: residual after each update {', '.join(f'{r:.1e}' for r in starts)}; "
+              f"ratios {', '.join(f'{q:.1e}' for q in rates) or '-'}")
+pens = [i["contact"]["indentation"]["largest_penetration"] for i in s["increments"]]
+worst = max(pens)
+h_min = 0.3 / int(s_n) if (s_n := work.rstrip("/").rsplit("/n", 1)[-1]).isdigit() else float("nan")
+print(f"penetration per increment {', '.join(f'{p:.2e}' for p in pens)}")
 print(f"penetration largest over the increments {worst:.2e} = {worst / h:.2e} h "
-      f"(h = {h:.3e}, the log's contact element size; exact contact: below 1e-8 h)")
+      f"(h = {h:.3e}, the log's contact element size; exact contact: below 1e-8 h) "
+      f"= {worst / h_min:.2e} h_min (h_min = 0.3/n = {h_min:.3e}, the finest element, at the origin)")
 print(f"load        before: {before.strip()}")
 print(f"            after:  {after.strip()}")
 PY

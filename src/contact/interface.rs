@@ -594,11 +594,11 @@ impl ContactInterface {
                 if let Some((m, t)) = self.tangential_multiplier(ctx, &state, i) {
                     let closed = e.frame.as_ref().zip(e.tangential.as_ref());
                     let closed = closed.filter(|_| !self.first_contact_pending(&state));
-                    let held = closed.zip(e.committed_traction.as_ref()).map(|((f, _), c)| {
+                    let held = closed.zip(e.committed_traction).map(|((f, _), c)| {
                         friction::HeldTraction {
                             held: self.held_tangent(i, &f.kinematics.normal),
                             committed: c.0,
-                            committed_gradient: c.1.clone(),
+                            committed_gradient: c.1,
                         }
                     });
                     let mut rows = friction::multiplier_rows(

@@ -261,7 +261,11 @@ impl Problem {
     /// reference configuration and rebuild the sparsity pattern (every
     /// secondary node keeps its multiplier, active or not: the number of
     /// unknowns is fixed for the run).
-    pub fn set_contacts(&mut self, contacts: Vec<ContactInterface>) {
+    pub fn set_contacts(&mut self, mut contacts: Vec<ContactInterface>) {
+        let constrained = self.constrained_dofs();
+        for c in &mut contacts {
+            c.set_prescribed_axes(&constrained);
+        }
         self.contacts.install(contacts);
         let zero = vec![0.0; self.model.num_dofs()];
         self.refresh_contact_pairs(&zero, 0.0);

@@ -576,6 +576,147 @@ impl TangentialMultiplier {
     }
 }
 
+/// `|n_d|` below which a prescribed axis `d` counts as tangential: the
+/// rule of [`HeldTangent`] holds the traction along `T e_d` there (above
+/// it the axis is nearer the normal, and what its prescription leaves
+/// undetermined is the normal traction, which the normal law fixes).
+pub const AXIS_NEAR_PLANE: f64 = 0.5;
+
+/// The tangential directions along which a sticking secondary node's
+/// traction is not determined by the equations, and the rule that fixes
+/// it there (DESIGN.md, "Coulomb friction", "An undetermined tangential
+/// traction").
+///
+/// A node with a prescribed component `d` (a symmetry plane's `u_y`, a
+/// held face) has `3 − p` free dofs, `p` the number prescribed, but exact
+/// stick imposes three equations on its motion `d`: `g = 0` and `T d = 0`,
+/// rows `[n  τ_d  τ⊥]ᵀ` of an orthonormal frame restricted to the free
+/// columns. Their left null vector is `(n_d, |T e_d|, 0)`: the
+/// combination `n_d g + |T e_d| τ_d·d` is the prescribed component
+/// `e_d·d`, which no free dof moves. Dually, the node's force `A t` enters
+/// only the free rows, so the traction is known up to `s e_d = s (n_d n +
+/// T e_d)`: where `|n_d| < `[`AXIS_NEAR_PLANE`] that is the tangential
+/// component along
+/// ```text
+/// τ_d = T e_d / |T e_d|
+/// ```
+/// (and a little normal traction). Replacing the stick row along `τ_d` by
+/// ```text
+/// τ_d·(λ_T − t_T,n) = 0            (the undetermined component keeps its committed value)
+/// ```
+/// leaves rows `n`, `τ⊥` on the free dofs, of determinant `±|T e_d|`: the
+/// node's motion is determined by `g = 0` and the stick across `τ_d`, its
+/// multiplier along `τ_d` by the rule. `λ_T` is the trial's old traction
+/// (the multiplier of exact stick), so the traction there is `τ_d·t_T =
+/// τ_d·t_T,n − ε_T τ_d·T d` in stick. Two such axes: the whole tangent
+/// plane, `T (λ_T − t_T,n) = 0`. The rule holds in stick and slip alike
+/// (the multiplier, not the status, is what is held), on both paths: the
+/// monolithic one replaces the rows of Alart–Curnier's `ℓ`
+/// ([`multiplier_rows`]), the condensed one the multiplier inside its
+/// node law ([`held_multiplier`]). A node with no prescribed tangential
+/// axis is unchanged. The clash is the one 4C's manual names "contact and
+/// symmetry conditions" (a contact surface touching a Dirichlet plane):
+/// it drops the contact condition at those nodes (`RemoveDBCSlaveNodes`)
+/// or flags the Dirichlet directions per node ("mortar symmetry
+/// conditions", `ONOFF`) so that the two coexist; the rule here is the
+/// second kind, kept to the one component the equations leave free.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub enum HeldTangent {
+    /// No prescribed axis near the tangent plane: the rule does not apply.
+    None,
+    /// One, axis `d`: `τ_d = T e_d/|T e_d|`, `P = τ_d τ_dᵀ`.
+    Axis(usize),
+    /// Two or more: the whole tangent plane, `P = T`.
+    Plane,
+}
+
+impl HeldTangent {
+    /// The held directions of a node with unit normal `n` and `prescribed`
+    /// components.
+    pub fn of(n: &Vector3<f64>, prescribed: [bool; 3]) -> Self {
+        let mut axes = (0..3).filter(|&d| prescribed[d] && n[d].abs() < AXIS_NEAR_PLANE);
+        match (axes.next(), axes.next()) {
+            (None, _) => HeldTangent::None,
+            (Some(d), None) => HeldTangent::Axis(d),
+            _ => HeldTangent::Plane,
+        }
+    }
+
+    /// `P w`, `P` the projector on the held directions at normal `n`
+    /// (zero, `τ_d τ_dᵀ` or `T`), and `∂(P w)/∂q` at fixed `w` with
+    /// `∂n/∂q = n_prime`:
+    /// ```text
+    /// Axis(d):  v = e_d − n n_d,  P w = v (v·w)/(v·v),
+    ///           ∂(P w)/∂q = [((v·w) I + v wᵀ)/(v·v) − 2 (v·w) v vᵀ/(v·v)²] ∂v/∂q,
+    ///           ∂v/∂q = −(n (∂n/∂q)_d + n_d ∂n/∂q)
+    /// Plane:    T w,  −(n·w) ∂n/∂q − n (wᵀ ∂n/∂q)
+    /// ```
+    pub fn project<K: Dim>(
+        &self,
+        n: &Vector3<f64>,
+        n_prime: &OMatrix<f64, U3, K>,
+        w: &Vector3<f64>,
+    ) -> (Vector3<f64>, OMatrix<f64, U3, K>)
+    where
+        DefaultAllocator: QAllocator<K>,
+    {
+        match *self {
+            HeldTangent::None => (Vector3::zeros(), n_prime * 0.0),
+            HeldTangent::Plane => (
+                w - n * n.dot(w),
+                -n.dot(w) * n_prime - n * (w.transpose() * n_prime),
+            ),
+            HeldTangent::Axis(d) => {
+                let v = unit_axis(d) - n * n[d];
+                let (s, vw) = (v.norm_squared(), v.dot(w));
+                let dv = -(n * n_prime.row(d) + n[d] * n_prime);
+                let m = (vw * Matrix3::identity() + v * w.transpose()) / s
+                    - (2.0 * vw / (s * s)) * v * v.transpose();
+                (v * (vw / s), m * dv)
+            }
+        }
+    }
+
+    /// The projector `P` on the held directions at normal `n`.
+    pub fn projector(&self, n: &Vector3<f64>) -> Matrix3<f64> {
+        let fixed = Matrix3::<f64>::zeros();
+        Matrix3::from_columns(&[0, 1, 2].map(|j| self.project(n, &fixed, &unit_axis(j)).0))
+    }
+}
+
+/// `e_d`.
+fn unit_axis(d: usize) -> Vector3<f64> {
+    Vector3::ith(d, 1.0)
+}
+
+/// The multiplier of exact stick under the rule of [`HeldTangent`]: `λ`
+/// with its held components replaced by the committed traction's,
+/// `λ + P (t_T,n − λ)`, and `I − P` (its derivative with respect to `λ`).
+/// The condensed path's node law takes `λ = T t`.
+pub fn held_multiplier(
+    held: &HeldTangent,
+    n: &Vector3<f64>,
+    lambda: &Vector3<f64>,
+    committed: &Vector3<f64>,
+) -> (Vector3<f64>, Matrix3<f64>) {
+    let p = held.projector(n);
+    (lambda + p * (committed - lambda), Matrix3::identity() - p)
+}
+
+/// What [`multiplier_rows`] needs of a node under the rule of
+/// [`HeldTangent`]: the held directions and the committed traction
+/// `t_T,n` as the producer carries it, with `∂t_T,n/∂q` (zero against a
+/// rigid obstacle).
+#[derive(Clone, Debug, PartialEq)]
+pub struct HeldTraction<K: Dim>
+where
+    DefaultAllocator: QAllocator<K>,
+{
+    pub held: HeldTangent,
+    pub committed: Vector3<f64>,
+    pub committed_gradient: OMatrix<f64, U3, K>,
+}
+
 /// The equations of a tangential multiplier ([`multiplier_rows`]) and
 /// their derivatives.
 #[derive(Clone, Debug, PartialEq)]
@@ -618,10 +759,18 @@ where
 ///                                              (β − 1) A_s ε_T across it in slip)
 /// ∂r_ℓ/∂λ = A_s Eᵀ ∂t_T/∂λ
 /// ```
+/// Where `held` is given (a closed node with a prescribed tangential
+/// axis, [`HeldTangent`]), the rows along the held directions (projector
+/// `P`) are the rule `P (t_T,n − λ_T) = 0`:
+/// ```text
+/// r_ℓ = A_s Eᵀ [(I − P)(t_T − T λ_T) + P (t_T,n − λ_T)]
+/// ```
+/// differentiated with `P(q)` and `t_T,n(q)` ([`HeldTangent::project`]).
 pub fn multiplier_rows<K: Dim>(
     multiplier: &TangentialMultiplier,
     closed: Option<(&SlipKinematics<K>, &TangentialResponse<K>)>,
     area: f64,
+    held: Option<&HeldTraction<K>>,
 ) -> MultiplierRows<K>
 where
     DefaultAllocator: QAllocator<K>,
@@ -643,13 +792,30 @@ where
     let projector = Matrix3::identity() - n * n.transpose();
     let projected_gradient =
         projection_derivative(kinematics, &lambda) + projector * &kinematics.traction_gradient;
-    let block = area * e.transpose() * (r.multiplier_gradient - projector) * dlambda
+    let inner = r.traction - projector * lambda;
+    let inner_gradient = &r.traction_gradient - projected_gradient;
+    let mut inner_lambda = r.multiplier_gradient - projector;
+    let mut normal = r.traction_multiplier_derivative;
+    let (residual, gradient) = match held.filter(|h| h.held != HeldTangent::None) {
+        None => (inner, inner_gradient),
+        Some(h) => {
+            let p = h.held.projector(&n);
+            let w = h.committed - lambda - inner;
+            let (pw, dpw) = h.held.project(&n, &kinematics.normal_gradient, &w);
+            let free = Matrix3::identity() - p;
+            inner_lambda = free * inner_lambda - p;
+            normal = free * normal;
+            let gradient = free * inner_gradient + dpw + p * &h.committed_gradient;
+            (inner + pw, gradient)
+        }
+    };
+    let block = area * e.transpose() * inner_lambda * dlambda
         - STICK_SHIFT * area * multiplier.scale * Matrix2::identity();
     MultiplierRows {
-        residual: area * e.transpose() * (r.traction - projector * lambda),
-        gradient: area * e.transpose() * (&r.traction_gradient - projected_gradient),
+        residual: area * e.transpose() * residual,
+        gradient: area * e.transpose() * gradient,
         multiplier: block,
-        normal_multiplier: area * e.transpose() * r.traction_multiplier_derivative,
+        normal_multiplier: area * e.transpose() * normal,
         force_gradient: area * r.multiplier_gradient * dlambda,
     }
 }
@@ -870,6 +1036,7 @@ mod tests {
         l: [f64; 2],
         lambda: f64,
         anchor: &Vector3<f64>,
+        held: Option<(HeldTangent, Vector3<f64>)>,
     ) -> (
         Vector2<f64>,
         Vector3<f64>,
@@ -889,7 +1056,12 @@ mod tests {
         let g = geometry(x);
         let kinematics = SlipKinematics::rigid(&history, x, &g.normal, &g.hessian);
         let t = return_map_on(&law(), &kinematics, &pressure_at(&g, lambda));
-        let rows = multiplier_rows(&multiplier, Some((&kinematics, &t)), area);
+        let held = held.map(|(held, committed)| HeldTraction {
+            held,
+            committed,
+            committed_gradient: Matrix3::zeros(),
+        });
+        let rows = multiplier_rows(&multiplier, Some((&kinematics, &t)), area, held.as_ref());
         (rows.residual, -area * t.traction, rows, t)
     }
 
@@ -902,8 +1074,9 @@ mod tests {
         lambda: f64,
         anchor: Vector3<f64>,
         expect: ContactStatus,
+        held: Option<(HeldTangent, Vector3<f64>)>,
     ) {
-        let (_, _, rows, t) = multiplier_equations(geometry, &x, l, lambda, &anchor);
+        let (_, _, rows, t) = multiplier_equations(geometry, &x, l, lambda, &anchor, held);
         assert_eq!(t.status, expect);
         let h = 1e-8;
         let scale = rows.gradient.norm().max(rows.multiplier.norm()).max(1.0);
@@ -916,8 +1089,8 @@ mod tests {
         for j in 0..3 {
             let mut e = Vector3::zeros();
             e[j] = h;
-            let (rp, _, _, _) = multiplier_equations(geometry, &(x + e), l, lambda, &anchor);
-            let (rm, _, _, _) = multiplier_equations(geometry, &(x - e), l, lambda, &anchor);
+            let (rp, _, _, _) = multiplier_equations(geometry, &(x + e), l, lambda, &anchor, held);
+            let (rm, _, _, _) = multiplier_equations(geometry, &(x - e), l, lambda, &anchor, held);
             close(
                 (rp - rm) / (2.0 * h),
                 rows.gradient.column(j).into(),
@@ -929,8 +1102,8 @@ mod tests {
             let (mut lp, mut lm) = (l, l);
             lp[j] += h;
             lm[j] -= h;
-            let (rp, fp, _, _) = multiplier_equations(geometry, &x, lp, lambda, &anchor);
-            let (rm, fm, _, _) = multiplier_equations(geometry, &x, lm, lambda, &anchor);
+            let (rp, fp, _, _) = multiplier_equations(geometry, &x, lp, lambda, &anchor, held);
+            let (rm, fm, _, _) = multiplier_equations(geometry, &x, lm, lambda, &anchor, held);
             let exact = (rows.multiplier + shift).column(j).into();
             close((rp - rm) / (2.0 * h), exact, "∂r_ℓ/∂ℓ");
             let fd = (fp - fm) / (2.0 * h);
@@ -940,8 +1113,8 @@ mod tests {
                 "∂r_q/∂ℓ: {fd:?} vs {exact:?}"
             );
         }
-        let (rp, _, _, _) = multiplier_equations(geometry, &x, l, lambda + h, &anchor);
-        let (rm, _, _, _) = multiplier_equations(geometry, &x, l, lambda - h, &anchor);
+        let (rp, _, _, _) = multiplier_equations(geometry, &x, l, lambda + h, &anchor, held);
+        let (rm, _, _, _) = multiplier_equations(geometry, &x, l, lambda - h, &anchor, held);
         close((rp - rm) / (2.0 * h), rows.normal_multiplier, "∂r_ℓ/∂λ");
     }
 
@@ -966,6 +1139,7 @@ mod tests {
                 0.1,
                 x - near,
                 ContactStatus::Stick,
+                None,
             );
             check_multiplier_rows(
                 geometry,
@@ -974,10 +1148,12 @@ mod tests {
                 0.1,
                 x - far,
                 ContactStatus::Slip,
+                None,
             );
             // the tip: t_N = K λ − P g = 1e-3 |t*|/μ
             let g = geometry(&x);
-            let (_, _, _, t) = multiplier_equations(geometry, &x, [0.0, 0.0], 0.1, &(x - far));
+            let (_, _, _, t) =
+                multiplier_equations(geometry, &x, [0.0, 0.0], 0.1, &(x - far), None);
             let size = t.traction.norm() / t.stick_scale;
             let lambda = (1e-3 * size / MU + P * g.signed_gap) / K;
             check_multiplier_rows(
@@ -987,6 +1163,7 @@ mod tests {
                 lambda,
                 x - far,
                 ContactStatus::Slip,
+                None,
             );
             // the edge: |t*| = (1 ± 1e-6) μ t_N
             for (factor, status) in [
@@ -994,10 +1171,11 @@ mod tests {
                 (1.0 - 1e-6, ContactStatus::Stick),
             ] {
                 let lambda = (size / (MU * factor) + P * g.signed_gap) / K;
-                check_multiplier_rows(geometry, x, [0.0, 0.0], lambda, x - far, status);
+                check_multiplier_rows(geometry, x, [0.0, 0.0], lambda, x - far, status, None);
             }
             // stick: the equations say the node does not move
-            let (r, _, _, _) = multiplier_equations(geometry, &x, [2e-4, -1e-4], 0.1, &(x - near));
+            let (r, _, _, _) =
+                multiplier_equations(geometry, &x, [2e-4, -1e-4], 0.1, &(x - near), None);
             let n = g.normal;
             let slip = near - n * n.dot(&near);
             let expected = -0.7 * EPS_T * Vector2::new(slip.x, slip.y);
@@ -1005,6 +1183,52 @@ mod tests {
                 (r - expected).norm() < 1e-12 * EPS_T,
                 "{r:?} vs {expected:?}"
             );
+        }
+    }
+
+    /// The rows under the rule of [`HeldTangent`] (one held axis, `y`,
+    /// and the whole plane) against central differences in stick and slip
+    /// on a plane and a sphere (whose `P` turns with the node); and their
+    /// solution: in stick the held component of `λ_T` is the committed
+    /// traction's, the other row still says the node does not move.
+    #[test]
+    fn held_tangential_rows_match_finite_differences() {
+        for geometry in [plane as fn(&Vector3<f64>) -> GapGeometry, sphere] {
+            let x = Vector3::new(0.05, 0.02, -0.003);
+            let (near, far) = (
+                Vector3::new(1e-5, 2e-5, 0.0),
+                Vector3::new(0.02, -0.01, 0.0),
+            );
+            let n = geometry(&x).normal;
+            let held = HeldTangent::of(&n, [false, true, false]);
+            assert_eq!(held, HeldTangent::Axis(1));
+            assert_eq!(HeldTangent::of(&n, [false, false, true]), HeldTangent::None);
+            assert_eq!(HeldTangent::of(&n, [true, true, false]), HeldTangent::Plane);
+            let committed = Vector3::new(3.0, -7.0, 0.5);
+            for h in [held, HeldTangent::Plane] {
+                let l = [2e-4, -1e-4];
+                let stick = ContactStatus::Stick;
+                check_multiplier_rows(geometry, x, l, 0.1, x - near, stick, Some((h, committed)));
+                let slip = ContactStatus::Slip;
+                check_multiplier_rows(geometry, x, l, 0.1, x - far, slip, Some((h, committed)));
+            }
+            // stick: P (t_T,n − λ_T) plus (I − P) of the plain rows
+            let l = [2e-4, -1e-4];
+            let (r, _, _, _) =
+                multiplier_equations(geometry, &x, l, 0.1, &(x - near), Some((held, committed)));
+            let lambda = EPS_T * Vector3::new(l[0], l[1], 0.0);
+            let p = held.projector(&n);
+            let slip = near - n * n.dot(&near);
+            let expected =
+                0.7 * ((Matrix3::identity() - p) * (-EPS_T * slip) + p * (committed - lambda));
+            let expected = Vector2::new(expected.x, expected.y);
+            assert!(
+                (r - expected).norm() < 1e-12 * EPS_T,
+                "{r:?} vs {expected:?}"
+            );
+            // the projector: symmetric, idempotent, tangent, along T e_y
+            let tau = (Vector3::y() - n * n.y).normalize();
+            assert!((p - tau * tau.transpose()).norm() < 1e-15);
         }
     }
 

@@ -102,6 +102,11 @@ pub struct ContactInterface {
     /// friction_multiplier`): as unknowns of Newton where
     /// [`tangential_multipliers`](Self::tangential_multipliers) says.
     pub friction_multiplier: FrictionMultiplier,
+    /// Each secondary node's prescribed components (empty: none), set by
+    /// the problem ([`set_prescribed_axes`](Self::set_prescribed_axes)):
+    /// exact stick holds the traction along a prescribed tangential axis
+    /// ([`friction::HeldTangent`]).
+    pub prescribed_axes: Vec<[bool; 3]>,
 }
 
 /// What one node of an interface looks like in a state, for output.
@@ -208,6 +213,33 @@ impl ContactInterface {
             && self.exact_stick()
             && self.law.has_multiplier_dof()
             && self.friction_multiplier == FrictionMultiplier::Newton
+    }
+
+    /// Record which components of each secondary node are prescribed,
+    /// from the mask `constrained` over all dofs (`3 × node + component`).
+    pub fn set_prescribed_axes(&mut self, constrained: &[bool]) {
+        self.prescribed_axes = (self.nodes.iter())
+            .map(|&a| [0, 1, 2].map(|d| constrained.get(3 * a + d) == Some(&true)))
+            .collect();
+    }
+
+    /// Whether exact stick's rule of [`friction::HeldTangent`] may apply
+    /// at node `i`: node-to-surface (a rigid obstacle or a primary
+    /// surface, the condensed path's node law alike; dual mortar's rows
+    /// weight several secondary nodes, so a node's own prescribed
+    /// components do not count its equations), tangential multipliers as
+    /// unknowns and a prescribed component.
+    fn holds_tangent(&self, i: usize) -> bool {
+        matches!(self.primary, Primary::Rigid(_) | Primary::Surface(_))
+            && self.tangential_multipliers()
+            && (self.prescribed_axes.get(i)).is_some_and(|a| a.iter().any(|&p| p))
+    }
+
+    /// Node `i`'s held tangential directions at unit normal `n` under
+    /// exact stick's rule ([`friction::HeldTangent`]).
+    pub fn held_tangent(&self, i: usize, n: &Vector3<f64>) -> friction::HeldTangent {
+        let axes = self.prescribed_axes.get(i).copied().unwrap_or_default();
+        friction::HeldTangent::of(n, axes)
     }
 
     /// Whether friction makes the tangent nonsymmetric.
@@ -368,19 +400,23 @@ impl ContactInterface {
     }
 
     /// Node `i`'s kinematics through its normal law and, closed, its
-    /// friction law (the chain rule of [`kinematics`](super::kinematics)).
+    /// friction law (the chain rule of [`kinematics`](super::kinematics));
+    /// with the node's `committed_history` where its tangential rows need
+    /// the committed traction ([`NodeEvaluation::committed_traction`]).
     fn evaluate<Q: Dim, G: GapProducer<Q>>(
         &self,
         producer: &G,
         node: &SecondaryNode,
         mut kinematics: GapKinematics<Q, G::Point>,
         state: &NodeContactState,
+        committed_history: Option<&FrictionHistory>,
     ) -> NodeEvaluation<Q, G::Point>
     where
         DefaultAllocator: QAllocator<Q>,
     {
         let area = kinematics.area.unwrap_or(self.areas[node.index]);
         let mut response = kinematics.normal_response(&self.law_at(node.index), area, state);
+        let mut committed = None;
         // a closed node at zero pressure sticks at its anchor (the return
         // mapping with a zero bound): its tangential stiffness holds a body
         // whose only tangential support is friction before the load arrives
@@ -394,11 +430,19 @@ impl ContactInterface {
                 (Some(stick), None)
             }
             (true, Some(coulomb)) => {
-                let mut frame = producer.slip(node, &mut kinematics, &state.friction);
+                // the committed history where given (the state's traction is
+                // λ_T with tangential multipliers; the rest is the same)
+                let history = committed_history.unwrap_or(&state.friction);
+                let mut frame = producer.slip(node, &mut kinematics, history);
                 if self.tangential_multipliers() {
-                    // the multiplier λ_T, an unknown (not carried by the surface)
-                    frame.kinematics.traction = state.friction.traction;
-                    frame.kinematics.traction_gradient.fill(0.0);
+                    // the multiplier λ_T, an unknown (not carried by the surface);
+                    // the committed traction as carried kept for HeldTangent's rule
+                    let k = &mut frame.kinematics;
+                    if committed_history.is_some() && self.holds_tangent(node.index) {
+                        committed = Some((k.traction, k.traction_gradient.clone()));
+                    }
+                    k.traction = state.friction.traction;
+                    k.traction_gradient.fill(0.0);
                 }
                 if self.first_contact_pending(state) {
                     if self.closes_exactly() {
@@ -424,6 +468,7 @@ impl ContactInterface {
             response,
             tangential,
             frame,
+            committed_traction: committed,
         }
     }
 
@@ -535,7 +580,7 @@ impl ContactInterface {
                         }
                     }
                     if let Some((m, t)) = self.tangential_multiplier(ctx, &state, i) {
-                        let rows = friction::multiplier_rows::<U3>(&t, None, self.areas[i]);
+                        let rows = friction::multiplier_rows::<U3>(&t, None, self.areas[i], None);
                         let tangent = tangent.as_mut().map(|(p, v)| (*p, &mut **v));
                         scatter_tangential(ctx, &rows, (m, multiplier), None, residual, tangent);
                     }
@@ -545,7 +590,7 @@ impl ContactInterface {
                     });
                     return;
                 };
-                let e = self.evaluate(p, node, k, &state);
+                let e = self.evaluate(p, node, k, &state, Some(&states[i].friction));
                 let (nodes, c) = (e.kinematics.nodes(), &e.response);
                 add_nodal(residual, nodes, |a| c.residual[a]);
                 if let Some(m) = multiplier {
@@ -563,10 +608,18 @@ impl ContactInterface {
                 if let Some((m, t)) = self.tangential_multiplier(ctx, &state, i) {
                     let closed = e.frame.as_ref().zip(e.tangential.as_ref());
                     let closed = closed.filter(|_| !self.first_contact_pending(&state));
+                    let held = closed.zip(e.committed_traction).map(|((f, _), c)| {
+                        friction::HeldTraction {
+                            held: self.held_tangent(i, &f.kinematics.normal),
+                            committed: c.0,
+                            committed_gradient: c.1,
+                        }
+                    });
                     let mut rows = friction::multiplier_rows(
                         &t,
                         closed.map(|(f, r)| (&f.kinematics, r)),
                         self.areas[i],
+                        held.as_ref(),
                     );
                     // the node's force is on its own area where the producer
                     // integrates one (mortar: D_j): ∂r_q/∂ℓ = −A Bᵀ ∂t_T/∂ℓ
@@ -608,7 +661,7 @@ impl ContactInterface {
             self.for_each_node(p, ctx, state_of, |node, state, k| {
                 let facet = k.as_ref().and_then(|k| k.facet);
                 let gap = k.as_ref().map_or(p.open_gap(), |k| k.gap);
-                let e = k.map(|k| self.evaluate(p, node, k, &state));
+                let e = k.map(|k| self.evaluate(p, node, k, &state, None));
                 let response = e.as_ref().and_then(|e| e.tangential.as_ref());
                 let mut history =
                     friction::commit(&state.friction, response, p.relative_position(node));
@@ -657,7 +710,7 @@ impl ContactInterface {
             let state_of = |i| self.node_state(ctx, states, i);
             self.for_each_node(p, ctx, state_of, |node, state, k| {
                 let Some(k) = k else { return };
-                let e = self.evaluate(p, node, k, &state);
+                let e = self.evaluate(p, node, k, &state, None);
                 let (Some(t), Some(frame), Some(coulomb)) =
                     (e.tangential, e.frame, self.friction_at(node.index))
                 else {
@@ -738,7 +791,7 @@ impl ContactInterface {
         with_producer!(self, ctx, p => {
             let state_of = |i| self.node_state(ctx, states, i);
             self.for_each_node(p, ctx, state_of, |node, state, k| {
-                let e = k.map(|k| self.evaluate(p, node, k, &state));
+                let e = k.map(|k| self.evaluate(p, node, k, &state, None));
                 let response = e
                     .as_ref()
                     .and_then(|e| e.tangential.as_ref().map(|t| (t, &e.kinematics.normal)));

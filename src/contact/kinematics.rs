@@ -327,4 +327,8 @@ where
     pub tangential: Option<TangentialResponse<Q>>,
     /// The slip frame where the node is closed with friction.
     pub frame: Option<SlipFrame<Q>>,
+    /// With exact stick's tangential multipliers as unknowns: the
+    /// committed traction `t_T,n` as the producer carries it and
+    /// `∂t_T,n/∂q` (the frame's traction is the multiplier `λ_T` then).
+    pub committed_traction: Option<(Vector3<f64>, OMatrix<f64, U3, Q>)>,
 }

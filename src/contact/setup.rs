@@ -344,6 +344,7 @@ impl ContactInterface {
             multiplier_offset: 0,
             exact_stick_requested: enforcement.exact_stick,
             friction_multiplier: enforcement.friction_multiplier,
+            prescribed_axes: Vec::new(),
         };
         enforcement.apply(&mut c);
         if let Primary::Surface(p) = &mut c.primary {

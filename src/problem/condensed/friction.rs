@@ -104,6 +104,9 @@ pub(super) struct FrictionalCondensation {
     shift: f64,
     /// The last answer per contact node (the next increment's start).
     traction: Vec<Vector3<f64>>,
+    /// Exact stick's multiplier `λ_T` per contact node at the last answer
+    /// ([`ConeSolution::multiplier`]), handed to the friction history.
+    multiplier: Vec<Vector3<f64>>,
     displacement: Vec<Option<f64>>,
     iterations: usize,
     /// Between bodies: the rows follow the projections (module docs).
@@ -271,6 +274,7 @@ impl FrictionalCondensation {
             shifted: Vec::new(),
             shift,
             traction: vec![Vector3::zeros(); count],
+            multiplier: vec![Vector3::zeros(); count],
             displacement: vec![None; columns_count],
             iterations: 0,
             projected,
@@ -549,6 +553,7 @@ impl FrictionalCondensation {
         }
         for (s, &a) in self.candidates.iter().enumerate() {
             self.traction[a] = solution.traction[s];
+            self.multiplier[a] = solution.multiplier[s];
         }
         self.base.flexibility.solve(&mut u)?;
         Ok(u)
@@ -599,8 +604,11 @@ impl Load {
 impl IncrementSolver for FrictionalCondensation {
     /// The condensed answer as the monolithic unknowns: the multipliers
     /// from the pressures; with exact stick each node's tangential
-    /// multiplier `λ_T` set to its traction (the augmented Lagrangian's
-    /// fixed point, which the problem's evaluation and commit then read).
+    /// multiplier `λ_T` set to the solve's (its traction, but along the
+    /// held directions of [`HeldTangent`](crate::contact::friction::HeldTangent),
+    /// where the trial's old traction is the committed one: the augmented
+    /// Lagrangian's fixed point, which the problem's evaluation and commit
+    /// then read and return the solved traction from).
     fn increment(
         &mut self,
         problem: &Problem,
@@ -621,7 +629,12 @@ impl IncrementSolver for FrictionalCondensation {
             let normal = &c.normal;
             let tn = normal.dot(&traction[a]);
             pressures[c.interface][c.index] = tn;
-            tangential[c.interface][c.index] = (traction[a] - normal * tn, *normal);
+            let multiplier = if self.is_candidate[a] {
+                self.multiplier[a]
+            } else {
+                traction[a] - normal * tn
+            };
+            tangential[c.interface][c.index] = (multiplier, *normal);
         }
         super::set_multipliers(problem, &pressures, &u, t, x, trial);
         let reference = &problem.model.mesh.nodes;

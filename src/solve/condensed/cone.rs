@@ -85,15 +85,6 @@ const MAX_ITERATIONS: usize = 200;
 /// Most halvings of a step that does not lower the merit.
 const HALVINGS: usize = 8;
 
-/// `|n_d|` below which axis `d` lies in the tangent plane.
-const AXIS_IN_PLANE: f64 = 1e-12;
-
-/// `|n_d|` below which a prescribed axis `d` is taken as lying near the
-/// tangent plane: exact stick keeps the committed traction along its
-/// direction there, `τ = T e_d/|T e_d|` (between bodies a node on a
-/// symmetry plane against a primary triangle tilted off it).
-const AXIS_NEAR_PLANE: f64 = 0.5;
-
 /// Converged when the scaled residual is below this fraction of the
 /// traction scale.
 const TOLERANCE: f64 = 1e-13;
@@ -130,10 +121,10 @@ pub struct ConeNode {
     /// [`friction::first_contact`]).
     pub committed_gap: f64,
     pub was_open: bool,
-    /// The node's prescribed components: along a prescribed axis in the
-    /// tangent plane the node cannot slip, and exact stick leaves its
-    /// traction there undetermined; it keeps the committed one (as the
-    /// monolithic outer loop, which starts from it, does in stick).
+    /// The node's prescribed components: along a prescribed axis near the
+    /// tangent plane exact stick leaves the traction undetermined, and the
+    /// rule of [`HeldTangent`](friction::HeldTangent) keeps the committed
+    /// one there (the monolithic path's multiplier rows alike).
     pub prescribed: [bool; 3],
 }
 
@@ -148,6 +139,10 @@ pub struct NodeLaw {
     pub traction_derivative: Matrix3<f64>,
     /// Open, stick or slip.
     pub status: ContactStatus,
+    /// Exact stick's multiplier `λ_T` at `t` (the trial's old traction,
+    /// [`stick_multiplier`]: `T t` but along held directions); `T t` for
+    /// the regularised law and where the node is open or closing.
+    pub multiplier: Vector3<f64>,
 }
 
 /// A unit basis `(e₁, e₂)` of the plane normal to `n`.
@@ -196,29 +191,14 @@ fn normal_equation(node: &ConeNode, g: f64, t_n: f64, law: &mut NodeLaw) -> Opti
     }
 }
 
-/// Exact stick's multiplier `T t`, but the committed traction along the
-/// prescribed tangential axes (along `τ = T e_d/|T e_d|` where the axis is
-/// near the tangent plane), and its derivative's left factor `free`
-/// (`∂multiplier/∂t = free T`).
-fn stick_multiplier(
-    node: &ConeNode,
-    projector: &Matrix3<f64>,
-    tangential: Vector3<f64>,
-) -> (Vector3<f64>, Matrix3<f64>) {
-    let n = node.normal;
-    let mut free = Matrix3::identity();
-    let mut multiplier = tangential;
-    for d in (0..3).filter(|&d| node.prescribed[d]) {
-        if n[d].abs() <= AXIS_IN_PLANE {
-            free[(d, d)] = 0.0;
-            multiplier[d] = node.committed_traction[d];
-        } else if n[d].abs() < AXIS_NEAR_PLANE {
-            let tau = (projector * Vector3::ith(d, 1.0)).normalize();
-            free -= tau * tau.transpose();
-            multiplier += tau * tau.dot(&(node.committed_traction - multiplier));
-        }
-    }
-    (multiplier, free)
+/// Exact stick's multiplier `T t` under the rule of
+/// [`HeldTangent`](friction::HeldTangent) (the committed traction along
+/// the node's prescribed tangential axes, as the monolithic path's
+/// multiplier rows have it: [`friction::held_multiplier`]), and its
+/// derivative's left factor `free` (`∂multiplier/∂t = free T`).
+fn stick_multiplier(node: &ConeNode, tangential: Vector3<f64>) -> (Vector3<f64>, Matrix3<f64>) {
+    let held = friction::HeldTangent::of(&node.normal, node.prescribed);
+    friction::held_multiplier(&held, &node.normal, &tangential, &node.committed_traction)
 }
 
 /// The equations of node `node` at displacement `u` and traction `t`
@@ -235,6 +215,7 @@ pub fn node_law(node: &ConeNode, u: &Vector3<f64>, t: &Vector3<f64>) -> NodeLaw 
         displacement_derivative: Matrix3::zeros(),
         traction_derivative: Matrix3::zeros(),
         status: ContactStatus::Open,
+        multiplier: t - n * n.dot(t),
     };
     let closed = normal_equation(node, g, n.dot(t), &mut law);
     let exact_normal = matches!(node.normal_law, NormalEnforcement::Exact { .. });
@@ -253,7 +234,7 @@ pub fn node_law(node: &ConeNode, u: &Vector3<f64>, t: &Vector3<f64>) -> NodeLaw 
     let projector = Matrix3::identity() - n * n.transpose();
     let tangential = projector * t;
     let exact_stick = node.tangential_law == TangentialLaw::ExactStick;
-    let (multiplier, free) = stick_multiplier(node, &projector, tangential);
+    let (multiplier, free) = stick_multiplier(node, tangential);
     let mut kinematics = SlipKinematics {
         traction: if exact_stick {
             multiplier
@@ -298,6 +279,9 @@ pub fn node_law(node: &ConeNode, u: &Vector3<f64>, t: &Vector3<f64>) -> NodeLaw 
             .set_row(k + 1, &(e.transpose() * d_dt));
     }
     law.status = response.status;
+    if exact_stick {
+        law.multiplier = multiplier;
+    }
     law
 }
 
@@ -377,6 +361,10 @@ pub struct ConeSolution {
     pub traction: Vec<Vector3<f64>>,
     /// Per node open, stick or slip.
     pub status: Vec<ContactStatus>,
+    /// Per node exact stick's multiplier `λ_T` ([`NodeLaw::multiplier`]):
+    /// what the problem's own evaluation takes for the committed traction
+    /// of the trial to return the solved traction.
+    pub multiplier: Vec<Vector3<f64>>,
     /// Newton iterations (dense LU solves).
     pub iterations: usize,
     /// Per Newton iteration, as reported to the user
@@ -566,6 +554,7 @@ pub fn solve_cone(
                 displacement: z[..f].to_vec(),
                 traction: t,
                 status: laws.iter().map(|l| l.status).collect(),
+                multiplier: laws.iter().map(|l| l.multiplier).collect(),
                 iterations: iteration - 1,
                 history,
             });

@@ -87,10 +87,26 @@ impl ClipTrace {
     }
 }
 
+/// Relative tolerance of the clipping: a vertex within `TOLERANCE · L` of
+/// a clip edge's line (`L` the clip's size, its largest coordinate) is on
+/// that line, vertices closer than that are merged, and an overlap of area
+/// below `TOLERANCE` times the clip's is a sliver, dropped.
+pub const TOLERANCE: f64 = 1e-12;
+
 /// Sutherland–Hodgman: the part of `subject` inside the convex `clip`, both
-/// counter-clockwise. A vertex on an edge counts as inside. Consecutive
-/// vertices closer than `1e-12` of the clip's size are merged; an overlap
-/// of fewer than three vertices is empty.
+/// counter-clockwise, robust where edges coincide or are parallel (Puso &
+/// Laursen 2004; Popp, Gitterle, Gee & Wall 2010, §4.2), with
+/// [`TOLERANCE`] relative to the clip's size:
+/// - a vertex at signed distance `d ≥ −tol` from an edge's line is inside;
+/// - an edge `(s, e)` that crosses the line gets the intersection
+///   `t = d_s / (d_s − d_e)` only if its inside end is strictly inside
+///   (`d > tol`): an inside end on the line (`|d| ≤ tol`) is the crossing
+///   itself. So every `t` is in `(0, 1)` with `|d_s − d_e| > 2 tol`; without
+///   the rule an edge running along the line within the band (`d_s = −0.9
+///   tol`, `d_e = −1.1 tol`) gave `t = −4.5`, a vertex far off the faces;
+/// - consecutive vertices closer than `tol` are merged, and an overlap of
+///   fewer than three vertices, or of an area below `TOLERANCE` times the
+///   clip's, is empty.
 pub fn clip_convex(subject: &[[f64; 2]], clip: &[[f64; 2]]) -> Polygon {
     clip_convex_traced(subject, clip).polygon_points()
 }
@@ -102,7 +118,7 @@ pub fn clip_convex_traced(subject: &[[f64; 2]], clip: &[[f64; 2]]) -> ClipTrace 
         .flat_map(|p| p.iter())
         .fold(0.0f64, |m, c| m.max(c.abs()))
         .max(f64::MIN_POSITIVE);
-    let tol = 1e-12 * size;
+    let tol = TOLERANCE * size;
     let mut trace = ClipTrace::default();
     let mut output: Vec<usize> = subject
         .iter()
@@ -112,12 +128,17 @@ pub fn clip_convex_traced(subject: &[[f64; 2]], clip: &[[f64; 2]]) -> ClipTrace 
     for edge in 0..clip.len() {
         let (a, b) = (clip[edge], clip[(edge + 1) % clip.len()]);
         let length = ((b[0] - a[0]).powi(2) + (b[1] - a[1]).powi(2)).sqrt();
+        if length == 0.0 {
+            continue; // two coincident corners: no edge to clip by
+        }
         let input = std::mem::take(&mut output);
-        let inside = |v: usize, t: &ClipTrace| cross(a, b, t.points[v]) >= -tol * length;
+        // the signed distance from the edge's line, `(b − a) × (p − a) / L`
+        let distance = |v: usize, t: &ClipTrace| cross(a, b, t.points[v]) / length;
         for k in 0..input.len() {
             let (s, e) = (input[(k + input.len() - 1) % input.len()], input[k]);
-            let (s_in, e_in) = (inside(s, &trace), inside(e, &trace));
-            if s_in != e_in {
+            let (ds, de) = (distance(s, &trace), distance(e, &trace));
+            let (s_in, e_in) = (ds >= -tol, de >= -tol);
+            if s_in != e_in && ds.max(de) > tol {
                 let p = intersection(trace.points[s], trace.points[e], a, b);
                 output.push(trace.push(VertexOrigin::Intersection { s, e, edge }, p));
             }
@@ -130,6 +151,10 @@ pub fn clip_convex_traced(subject: &[[f64; 2]], clip: &[[f64; 2]]) -> ClipTrace 
         }
     }
     trace.polygon = merge_close(output, &trace.points, tol);
+    let points = trace.polygon_points();
+    if signed_area(&points).abs() <= TOLERANCE * signed_area(clip).abs() {
+        trace.polygon.clear();
+    }
     trace
 }
 

@@ -522,6 +522,13 @@ impl Flexibility {
         for (i, &a) in self.candidates.iter().enumerate() {
             w[(i, i)] += self.columns[a].compliance;
         }
+        // a candidate whose column is empty (its node lost its row between
+        // rounds: dual mortar's node that fell below half covered) has a
+        // zero row of `W` and carries no force: it starts open, and its
+        // gap (the search margin) keeps it so
+        for (i, active) in self.active.iter_mut().enumerate() {
+            *active &= w[(i, i)] > 0.0;
+        }
         let lambda_scale = (0..q.len()).map(|i| w[(i, i)]).fold(0.0f64, f64::max);
         let solution = solve_lcp(
             &w,
@@ -735,6 +742,73 @@ mod tests {
                     gc * lambda[c]
                 );
             }
+        }
+    }
+
+    /// A node that closed in one round and lost its column in the next
+    /// (dual mortar's node that fell below half covered: an empty column,
+    /// its gap the search margin) starts the next round open: the chain of
+    /// [`the_increment_meets_the_contact_problem`] solved, then solved
+    /// again with the deepest closed node's column emptied and its gap
+    /// `+0.01`. Before, the last active set kept it active, its row of
+    /// `W` zero, and the solve failed ("W is not positive definite", the
+    /// matching two-spheres caps through mortar on the condensed path);
+    /// now its force is 0 and every other node's answer meets the contact
+    /// problem (`λ ≥ 0`, `g ≥ −1e-12`, `g λ = 0` to 1e-12).
+    #[test]
+    fn a_column_emptied_between_rounds_starts_open() {
+        let n = 12;
+        let (pattern, stiffness) = chain(n);
+        let column = |a: usize| Column {
+            entries: vec![(3 * a + 2, 1.0)],
+            compliance: 0.0,
+        };
+        let columns: Vec<Column> = (1..n).map(column).collect();
+        let order: Vec<usize> = (0..columns.len()).collect();
+        let constrained = stiffness.constrained.clone();
+        let trailing = Flexibility::trailing_dofs(&columns, &order, &constrained, 1.0);
+        let analysis =
+            Flexibility::analyse(&pattern, &stiffness.lower, trailing, &constrained, None).unwrap();
+        let mut flexibility =
+            Flexibility::factorise(stiffness, columns.clone(), &[], analysis, Precision::Double)
+                .unwrap();
+        let f_ext: Vec<f64> = (0..3 * n)
+            .map(|d| if d % 3 == 2 { -0.1 } else { 0.0 })
+            .collect();
+        let b = flexibility.load(&vec![0.0; 3 * n], &f_ext);
+        let gap0 = |c: usize| 0.02 * (c + 1) as f64 - 0.05;
+        let floor =
+            |u: &[f64]| -> Vec<f64> { (0..n - 1).map(|c| gap0(c) + u[3 * c + 5]).collect() };
+        let mut history = Vec::new();
+        let (_, lambda) = flexibility
+            .solve_increment(&b, &floor, 1e-14, &mut history)
+            .unwrap();
+        let deepest = (0..n - 1)
+            .max_by(|&a, &b| lambda[a].total_cmp(&lambda[b]))
+            .unwrap();
+        assert!(lambda[deepest] > 1e-3, "some node closes");
+        let mut emptied = columns;
+        emptied[deepest].entries.clear();
+        flexibility.replace_columns(emptied).unwrap();
+        let gaps = |u: &[f64]| -> Vec<f64> {
+            let mut g = floor(u);
+            g[deepest] = 0.01;
+            g
+        };
+        let (u, lambda) = flexibility
+            .solve_increment(&b, &gaps, 1e-14, &mut history)
+            .unwrap();
+        assert_eq!(lambda[deepest], 0.0);
+        let g = gaps(&u);
+        assert!(lambda.iter().any(|&l| l > 1e-3), "the others close");
+        for c in 0..n - 1 {
+            assert!(
+                g[c] >= -1e-12 && lambda[c] >= 0.0,
+                "node {c}: {} {}",
+                g[c],
+                lambda[c]
+            );
+            assert!((g[c] * lambda[c]).abs() < 1e-12, "node {c}");
         }
     }
 

@@ -31,6 +31,7 @@ use super::pattern::SparsityPattern;
 use super::scatter_map::ScatterMap;
 use super::triangle::LowerTriangle;
 use crate::mesh::{Element, ElementKind};
+use std::borrow::Cow;
 use std::sync::{Arc, Mutex, PoisonError};
 
 /// `K` on the pattern it was assembled for.
@@ -60,8 +61,9 @@ impl StiffnessCache {
 }
 
 /// The lower triangle `lower` of Hooke's `K = Σ_e K_e`, `K_e` in closed
-/// form ([`hooke_stiffness`]) from each element's reference `geometry`
-/// and Lamé parameters `lame(e)`, over the elements `owned` admits, added
+/// form ([`hooke_stiffness`]) from each element's reference geometry
+/// `geometry(e)` (kept, or made again: [`super::Model::geometry_of`]) and
+/// Lamé parameters `lame(e)`, over the elements `owned` admits, added
 /// through the scatter map `map` into `lower` ([`ScatterMap::lower`]).
 /// `None` if an element is not a Tet4 or a Hex8 (the other kinds go
 /// through the general kernel).
@@ -72,9 +74,9 @@ impl StiffnessCache {
 /// the whole mesh); every entry is summed in mesh order, the same on any
 /// number of threads. Its caller runs it beside the fill-reducing
 /// ordering, on the other thread.
-pub fn assemble_hooke_lower(
+pub fn assemble_hooke_lower<'g>(
     elements: &[Element],
-    geometry: &[Vec<PointGeometry>],
+    geometry: impl Fn(usize) -> Cow<'g, [PointGeometry]>,
     lame: impl Fn(usize) -> (f64, f64),
     owned: impl Fn(usize) -> bool,
     lower: &LowerTriangle,
@@ -85,10 +87,11 @@ pub fn assemble_hooke_lower(
         return None;
     }
     let mut k = vec![0.0; lower.nnz()];
-    for (e, (element, g)) in elements.iter().zip(geometry).enumerate() {
+    for (e, element) in elements.iter().enumerate() {
         if !owned(e) {
             continue;
         }
+        let g = &*geometry(e);
         let (lambda, mu) = lame(e);
         let mut add = |blocks: &[[f64; 9]]| {
             add_upper_blocks(&mut k, lower, map.element(e), &element.nodes, blocks)

@@ -327,14 +327,14 @@ impl Model {
     /// law on every element, in closed form
     /// ([`constant_stiffness::assemble_hooke_lower`]).
     pub fn constant_stiffness(&self) -> Option<Arc<Vec<f64>>> {
-        self.constant.as_ref()?.get_or_build(&self.pattern, || {
+        let k = self.constant.as_ref()?.get_or_build(&self.pattern, || {
             let hooke: Option<Vec<(f64, f64)>> =
                 self.materials.iter().map(|m| m.hooke_lame()).collect();
             if let Some(lame) = hooke {
                 let (lower, map) = self.lower_triangle_and_map();
                 let closed_form = constant_stiffness::assemble_hooke_lower(
                     &self.mesh.elements,
-                    &self.geometry,
+                    |e| self.geometry_of(e),
                     |e| lame[self.element_material[e]],
                     |e| self.share.as_ref().is_none_or(|s| s.owned[e]),
                     &lower,
@@ -351,7 +351,18 @@ impl Model {
             self.assemble_elements(&zero, &mut force, Some((&mut k, Storage::Lower)))
                 .ok()?;
             Some(k)
-        })
+        });
+        // the scatter map into the lower triangle served only to build `K`
+        // (every later assembly multiplies the cached `K`): a position per
+        // pair of each element's nodes, a third of the cached `K`'s memory,
+        // given back (made again if a new pattern asks for a new `K`)
+        if k.is_some() {
+            *self
+                .lower_map
+                .lock()
+                .unwrap_or_else(PoisonError::into_inner) = None;
+        }
+        k
     }
 
     /// The lower triangle of the current pattern (built at the first call
@@ -510,7 +521,7 @@ impl Model {
         let mut ke = [[[[0.0; 3]; M]; 3]; M];
         let ke = ke.as_flattened_mut().as_flattened_mut().as_flattened_mut();
         kernel::internal_force_and_tangent_into(
-            &self.geometry[e],
+            &self.geometry_of(e),
             &displacements[..n],
             self.materials[self.element_material[e]].as_ref(),
             &mut fe[..dofs],

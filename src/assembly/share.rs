@@ -3,7 +3,8 @@
 //! processes assemble apart.
 //!
 //! Every process holds the whole mesh and the unknowns; it evaluates only
-//! its own elements, keeps the reference geometry of those only
+//! its own elements, keeps the reference geometry of those only, and none
+//! when the stiffness is constant (a cached `K`, built once per pattern)
 //! ([`Model::geometry_of`] makes the others' again where output asks),
 //! and its sparsity pattern holds only their entries
 //! ([`Model::set_share_with_local_rows`]): the rows of its own nodes and of
@@ -99,9 +100,12 @@ impl Model {
         self.pattern = SparsityPattern::from_graph(&graph);
         // the other processes' elements keep no reference geometry (the
         // shape-function gradients of every quadrature point, ~2 kB a
-        // Hex8): made again where asked for ([`Model::geometry_of`])
+        // Hex8): made again where asked for ([`Model::geometry_of`]); nor
+        // do this process's when the stiffness is constant, read only to
+        // build the cached `K` once per pattern
+        let constant = self.constant.is_some();
         for (g, &own) in self.geometry.iter_mut().zip(&share.owned) {
-            if !own {
+            if !own || constant {
                 *g = Vec::new();
             }
         }

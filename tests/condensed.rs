@@ -757,9 +757,7 @@ fn two_spheres_condensed_equals_monolithic() {
         let mut state = PairState::default();
         let options = RunOptions {
             threads: Some(2),
-            output: None,
-            cancel: None,
-            restart: None,
+            ..Default::default()
         };
         let outcome = simulation.run(&options, &mut state).unwrap();
         (outcome, state)

@@ -419,12 +419,12 @@ fn press_pull_friction_example() {
 /// - steady sliding (after a slide of 0.2, t ≥ 1.2): every node slips, the
 ///   friction force is μ times the normal force (1e-9); the reaction ratio
 ///   `F_x / F_z` on the die stays within 10 % of μ and its mean within 5 %
-///   (measured 0.2955–0.3245, mean 0.309: the curved contact adds a
+///   (measured 0.2942–0.3222, mean 0.306: the curved contact adds a
 ///   ploughing component of the normal pressure);
 /// - smoothness: the normal reaction stays within 1 % of its mean (measured
-///   0.23 %), and between consecutive increments (slide 0.02) neither
+///   0.24 %), and between consecutive increments (slide 0.02) neither
 ///   component jumps by more than 3 % of the normal reaction (measured
-///   2.6 % for F_x, 0.26 % for F_z); no increment needs more than 2 cuts
+///   2.3 % for F_x, 0.30 % for F_z); no increment needs more than 2 cuts
 ///   and the run at most 5 (measured none);
 /// - penetration below 0.02 (penalty: t_N/ε with ε ≈ 16; measured 0.016;
 ///   8.1e-4 with ε = 1000);

@@ -139,9 +139,10 @@ fn condensed_equals_monolithic_on_frictionless_hertz() {
 /// elastic, Coulomb friction against a rigid plane, the block held in x by
 /// friction alone) and says why; it takes the monolithic one for a
 /// finite-strain material and for press-pull on a sphere (held only by
-/// contact), naming the reason; the monolithic one for two linear elastic
-/// bodies, with or without friction (examples/two-spheres,
-/// cattaneo-mindlin: condensed only by name); `condensed` asked for where it does not apply
+/// contact), naming the reason; the condensed one for two linear elastic
+/// bodies without friction (examples/two-spheres), the monolithic one with
+/// Coulomb friction (cattaneo-mindlin: condensed only by name);
+/// `condensed` asked for where it does not apply
 /// is an error naming the reason.
 #[test]
 fn auto_takes_the_condensed_path_exactly_where_it_applies() {
@@ -176,21 +177,29 @@ fn auto_takes_the_condensed_path_exactly_where_it_applies() {
     let curved = press_pull_problem(&press_pull_sphere());
     let why = signorini::problem::condensed::not_applicable(curved.problem()).unwrap();
     assert!(why.contains("held only by contact"), "{why}");
-    // two linear elastic bodies in contact, frictionless
-    // (examples/two-spheres) and with Coulomb friction
-    // (examples/cattaneo-mindlin/coarse.toml): `auto` keeps Newton's
-    // path, naming the reason
+    // two linear elastic bodies in contact: frictionless
+    // (examples/two-spheres) `auto` takes the condensed path, saying so;
+    // with Coulomb friction (examples/cattaneo-mindlin/coarse.toml) it
+    // keeps Newton's path, naming the reason
     let root = Path::new(env!("CARGO_MANIFEST_DIR"));
-    for example in ["two-spheres/case.toml", "cattaneo-mindlin/coarse.toml"] {
-        let pair = Simulation::from_file(&root.join("examples").join(example)).unwrap();
-        let why = signorini::problem::condensed::not_applicable(pair.problem()).unwrap();
-        assert!(
-            why.contains("two bodies") && why.contains("strategy = \"condensed\""),
-            "{example}: {why}"
-        );
-        let choice = signorini::problem::condensed::choose(pair.problem()).unwrap();
-        assert_eq!(choice.path.name(), "monolithic", "{example}");
-    }
+    let example = |name: &str| Simulation::from_file(&root.join("examples").join(name)).unwrap();
+    let frictionless = example("two-spheres/case.toml");
+    assert_eq!(
+        signorini::problem::condensed::not_applicable(frictionless.problem()),
+        None
+    );
+    let choice = signorini::problem::condensed::choose(frictionless.problem()).unwrap();
+    assert_eq!(choice.path.name(), "condensed");
+    assert!(choice.reason.contains("two bodies"), "{}", choice.reason);
+    let frictional = example("cattaneo-mindlin/coarse.toml");
+    let why = signorini::problem::condensed::not_applicable(frictional.problem()).unwrap();
+    assert!(
+        why.contains("two bodies with Coulomb friction")
+            && why.contains("strategy = \"condensed\""),
+        "{why}"
+    );
+    let choice = signorini::problem::condensed::choose(frictional.problem()).unwrap();
+    assert_eq!(choice.path.name(), "monolithic");
     // (a sphere is condensed since issue 32 item 3: a finite-strain
     // material names the reason instead)
     let Err(e) = run_case("press-pull", &neo, "strategy = \"condensed\"") else {
@@ -680,7 +689,7 @@ fn pushed_blocks(contact: &str, solver: &str) -> (RunOutcome, PairState) {
 /// factorisation, and at every increment the displacements, nodal contact
 /// forces, pressures and gaps of monolithic Newton (residual tolerance
 /// 1e-11) to 1e-8 relative (the gaps against the largest displacement);
-/// `auto` keeps Newton's path there (between bodies: condensed only by name).
+/// `auto` takes the condensed path there (frictionless between bodies).
 #[test]
 fn bodies_in_contact_condensed_equal_monolithic() {
     for contact in [
@@ -725,8 +734,44 @@ fn bodies_in_contact_condensed_equal_monolithic() {
             .count();
         assert!(closed > 4, "the blocks touch over several nodes: {closed}");
         let (auto, _) = pushed_blocks(contact, "strategy = \"auto\"");
-        assert_eq!(auto.summary.strategy, "monolithic");
+        assert_eq!(auto.summary.strategy, "condensed");
     }
+}
+
+/// examples/two-spheres as it ships (matching Tet4 caps, frictionless,
+/// Rockafellar; every secondary node over a primary vertex, where the
+/// facet choice decides): `auto` takes the condensed path, and its
+/// displacements, nodal contact forces and pressures equal monolithic
+/// Newton's (residual tolerance 1e-11) to 1e-8 relative (measured 1.1e-14,
+/// 1.5e-13, 4.5e-13: the rounds and Newton end on the same triangles,
+/// `contact::primary`, "Facet choice";
+/// the displacements differed by 1.9e-4 under the last iterate's triangle).
+#[test]
+fn two_spheres_condensed_equals_monolithic() {
+    let run = |solver: &str| {
+        let folder = Path::new(env!("CARGO_MANIFEST_DIR")).join("examples/two-spheres");
+        let mut text = std::fs::read_to_string(folder.join("case.toml")).unwrap();
+        assert!(!text.contains("[solver]"));
+        text.push_str(&format!("\n[solver]\n{solver}\n"));
+        let mut simulation = Simulation::from_toml(&text, &folder).unwrap();
+        let mut state = PairState::default();
+        let options = RunOptions {
+            threads: Some(2),
+            ..Default::default()
+        };
+        let outcome = simulation.run(&options, &mut state).unwrap();
+        (outcome, state)
+    };
+    let (auto, a) = run("strategy = \"auto\"");
+    let (mono, m) = run("strategy = \"monolithic\"\nresidual_tolerance = 1e-11");
+    assert_eq!(auto.summary.strategy, "condensed");
+    assert_eq!(mono.summary.strategy, "monolithic");
+    let last = |v: &Vec<Vec<f64>>| v.last().unwrap().clone();
+    let du = relative_difference(&last(&a.displacements), &last(&m.displacements));
+    let df = relative_difference(&last(&a.forces), &last(&m.forces));
+    let dp = relative_difference(&last(&a.pressures), &last(&m.pressures));
+    eprintln!("two-spheres: u {du:.1e}, forces {df:.1e}, pressures {dp:.1e}");
+    assert!(du < 1e-8 && df < 1e-8 && dp < 1e-8);
 }
 
 /// A closed secondary node whose `|t_T|/(μ t_N)` (μ = 0.3) is within this

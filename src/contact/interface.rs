@@ -539,6 +539,7 @@ impl ContactInterface {
                 let mut state = NodeContactState::initial(&self.law_at(node.index), g);
                 if let Some(k) = &k {
                     state.normal_axis = k.normal.iamax();
+                    state.commit_facet(k.facet);
                 }
                 state.friction = FrictionHistory::at(p.relative_position(node));
                 state.friction.material_point = p.anchor(node, k.as_ref(), &Vector3::zeros());
@@ -671,7 +672,7 @@ impl ContactInterface {
             });
         });
         for (state, (facet, gap, history)) in states.iter_mut().zip(committed) {
-            state.facet = facet;
+            state.commit_facet(facet);
             state.gap = gap;
             state.friction = history;
         }
@@ -751,7 +752,7 @@ impl ContactInterface {
                     advanced.push((facet, None));
                     return;
                 }
-                state.facet = facet;
+                state.move_to_facet(facet);
                 let area = k.as_ref().and_then(|k| k.area).unwrap_or(self.areas[i]);
                 let (g, dg) = k.map_or((p.open_gap(), 0.0), |k| (k.gap, k.gap_increment(dx)));
                 let dlambda = self.multiplier(ctx, i).map_or(0.0, |m| dx[m]);
@@ -761,7 +762,10 @@ impl ContactInterface {
             });
         });
         for (state, (facet, new)) in states.iter_mut().zip(advanced) {
-            *state = new.unwrap_or(NodeContactState { facet, ..*state });
+            match new {
+                Some(new) => *state = new,
+                None => state.move_to_facet(facet),
+            }
         }
     }
 

@@ -20,7 +20,8 @@
 //!   surface.
 //! - [`primary`]: a primary surface of a deformable body as triangles, and
 //!   the per-increment search (an R*-tree of boxes) pairing secondary nodes
-//!   with them.
+//!   with them; [`facet_walk`]: what a node's choice among them
+//!   remembers within an increment.
 //! - [`dimension`]: the size of a node's unknowns, fixed (`Const<N>`) or
 //!   at run time (`Dyn`), and the allocator bound that goes with it.
 //! - [`friction`]: Coulomb friction by return mapping, its consistent
@@ -52,6 +53,7 @@
 
 pub mod compensated;
 pub mod dimension;
+pub mod facet_walk;
 pub mod friction;
 pub mod gap;
 pub mod hertz;

@@ -25,25 +25,41 @@
 //! ## Facet choice
 //! A node over an edge or a vertex of the primary surface is over several
 //! triangles, whose plane gaps and normals differ on a curved surface, so
-//! the answer depends on which one it takes:
-//! 1. the triangle it was projected on at the last iteration (or round, or
-//!    converged increment), while it is among the node's candidates and
-//!    the node is over it within [`STICKY_BAND`];
+//! the answer depends on which one it takes. The choice reads the node's
+//! position and its [`FacetWalk`](super::facet_walk::FacetWalk) (the
+//! triangle at the last converged increment, and whether the node has
+//! flipped back to a triangle it had left within the increment):
+//! 1. the *kept* triangle while it is among the node's candidates and the
+//!    node is over it within [`STICKY_BAND`]: the committed triangle (the
+//!    last converged increment's), or once the node has flipped back
+//!    (`A → B → A`, or onto its committed triangle after an excursion) the
+//!    last iterate's;
 //! 2. else the nearest candidate by [`best_triangle`]: the smallest
 //!    closest-point distance, ties (within [`TIE_TOLERANCE`] of the
 //!    triangle's size) to the triangle whose normal is most aligned with the
 //!    direction to the node, then to the smallest index: a function of the
 //!    geometry, not of the candidates' order or of round-off.
 //!
-//! The band (1) makes the converged answer depend on the path. Keeping the
-//! last converged increment's triangle first instead (a function of the
-//! configuration and the last converged state) made Newton and the
-//! condensed rounds agree to 1e-14 on examples/two-spheres, but left three
-//! sliding tests of tests/deformable.rs without a fixed point (a node whose
-//! answer on its old triangle leaves that triangle's band while its answer
-//! on the new one lies inside it flips at every iteration); keeping the
-//! last iterate's first and the committed one second let Newton's first
-//! iterates move the nodes onto other triangles for good (1.9e-4 apart).
+//! Why committed first: Newton's iterates and the condensed rounds reach an
+//! increment's answer along different iterates. Against the last iterate's
+//! triangle (the rule before), a node that Newton's first iterates carried
+//! off its triangle stayed on another one within the band, and on
+//! examples/two-spheres (matching meshes: every secondary node over a
+//! primary vertex, within the band of all the triangles around it) the two
+//! paths' answers differed by 1.9e-4 of the displacements, both converged.
+//! Against the committed triangle, a node whose iterates never flip back
+//! ends on a function of the committed state and its position alone,
+//! whichever iterates led there (two-spheres: the paths agree to
+//! round-off; DESIGN.md, "The condensed contact path").
+//!
+//! Why the flip back: committed first alone leaves a node sliding over a
+//! crease without a fixed point (three sliding tests of tests/deformable.rs
+//! did not converge): on its committed triangle `A` its answer lies beyond
+//! `A` by more than the band, so it takes `B`, where its answer lies over
+//! `A` again. A node that comes back to a triangle it had left keeps its
+//! last iterate's triangle from then on within the increment (the band's
+//! hysteresis), so it settles on `B`. Only such nodes' answers depend on
+//! the path.
 //!
 //! Quadrangle facets (Hex8 faces) are split into two triangles
 //! (`(q0, q1, q2)`, `(q0, q2, q3)`), so the projection is exact and the gap
@@ -67,11 +83,10 @@ use rstar::RTree;
 /// flipped between the two triangles at every Newton iteration and never
 /// converged (the stacked-blocks patch test, nodes on the diagonals). The
 /// band makes the choice hysteretic: a node changes triangle once it is 5 %
-/// of the triangle beyond it. The price: the converged state depends on
-/// the path (module docs, facet choice; measured: ~5e-4 relative in the
-/// patch test's pressures between Uzawa and Rockafellar, 1.9e-4 of the
-/// displacements on examples/two-spheres between Newton and the condensed
-/// rounds).
+/// of the triangle beyond it. Kept is the committed triangle, or after a
+/// flip back the last iterate's (module docs, "Facet choice"), so that
+/// only a node that flips back has a converged state that depends on the
+/// path.
 pub(crate) const STICKY_BAND: f64 = 0.05;
 
 /// A surface of the mesh as primary triangles, with the current candidates.
@@ -169,9 +184,10 @@ impl PrimarySurface {
     }
 
     /// Secondary node `node` at `x_s` against its primary triangle: `kept`
-    /// (the triangle it was projected on before) while it is still among
-    /// the node's candidates and the node stays over it within
-    /// [`STICKY_BAND`], else the nearest candidate ([`nearest_gap`](Self::nearest_gap)).
+    /// (the facet choice's, [`FacetWalk::kept`](super::facet_walk::FacetWalk::kept))
+    /// while it is still among the node's candidates and the node stays
+    /// over it within [`STICKY_BAND`], else the nearest candidate
+    /// ([`nearest_gap`](Self::nearest_gap)).
     /// `None` without a usable candidate, or beyond the primary surface's
     /// edge (the node is open: its extended plane would otherwise push it,
     /// with negative weights on the primary nodes).

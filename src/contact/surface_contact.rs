@@ -87,15 +87,19 @@ impl SurfaceGap<'_> {
 impl GapProducer<Const<Q>> for SurfaceGap<'_> {
     type Point = TriangleGap;
 
-    /// Against the triangle the node was on (`state.facet`) while it stays
-    /// over it, else its nearest candidate ([`PrimarySurface::projection`]);
+    /// Against the triangle the facet choice keeps (`state.facet_walk`: the
+    /// committed one, or after a flip back the last iterate's) while the
+    /// node stays over it, else its nearest candidate
+    /// ([`PrimarySurface::projection`]);
     /// `None` without a usable candidate or beyond the surface's edge.
     fn kinematics(
         &self,
         node: &SecondaryNode,
         state: &NodeContactState,
     ) -> Option<GapKinematics<Const<Q>, TriangleGap>> {
-        let (t, gap) = self.primary.projection(node, state.facet)?;
+        let (t, gap) = self
+            .primary
+            .projection(node, state.facet_walk.kept(state.facet))?;
         let [a, b, c] = self.primary.triangles[t];
         Some(GapKinematics {
             nodes: smallvec::smallvec![node.mesh_node, a, b, c],

@@ -107,6 +107,11 @@ pub struct NodeContactState {
     /// a shared edge does not flip between two triangles from one Newton
     /// iteration to the next.
     pub facet: Option<usize>,
+    /// The triangle at the last converged increment and the node's walk
+    /// since: what the facet choice reads besides the position
+    /// ([`FacetWalk`](crate::contact::facet_walk::FacetWalk)).
+    #[serde(default)]
+    pub facet_walk: crate::contact::facet_walk::FacetWalk,
     /// Signed gap at the last converged increment (at the start: the
     /// initial gap): where a node that was open finds its first contact
     /// ([`friction::first_contact`](crate::contact::friction::first_contact)).
@@ -140,9 +145,23 @@ impl NodeContactState {
             slack,
             friction: Default::default(),
             facet: None,
+            facet_walk: Default::default(),
             gap: signed_gap,
             normal_axis: z_axis(),
         }
+    }
+
+    /// An iterate (a Newton iteration, a condensed round) projected the
+    /// node on `facet`: recorded, and the walk stepped.
+    pub fn move_to_facet(&mut self, facet: Option<usize>) {
+        self.facet_walk.step(facet);
+        self.facet = facet;
+    }
+
+    /// An increment converged (or the run starts) with the node on `facet`.
+    pub fn commit_facet(&mut self, facet: Option<usize>) {
+        self.facet = facet;
+        self.facet_walk = crate::contact::facet_walk::FacetWalk::committed_on(facet);
     }
 
     /// Whether every number of the state is finite (`λ`, the slack

@@ -64,7 +64,7 @@ impl Linearisation {
                 let rows = c.constraint_rows(reference, t, x, Some(states));
                 for (state, row) in states.iter_mut().zip(&rows) {
                     if let Some(row) = row {
-                        state.facet = row.facet;
+                        state.move_to_facet(row.facet);
                     }
                 }
                 rows

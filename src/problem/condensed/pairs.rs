@@ -81,7 +81,7 @@ fn rows_at(
             let rows = c.constraint_rows(reference, t, u, Some(states));
             for (state, row) in states.iter_mut().zip(&rows) {
                 if let Some(row) = row {
-                    state.facet = row.facet;
+                    state.move_to_facet(row.facet);
                 }
             }
             rows

@@ -916,6 +916,22 @@ fn assert_partial_slip(run: &RunOutcome, name: &str, what: &str) {
     );
 }
 
+/// The coarse Hertz hemisphere with `extra` on both paths: `auto`, which
+/// must take the condensed path with one factorisation and no increment
+/// retried on Newton's, and monolithic Newton at residual tolerance 1e-11.
+/// Returns (condensed, monolithic).
+fn hertz_on_both_paths(extra: &[(&str, String)]) -> ((RunOutcome, Forces), (RunOutcome, Forces)) {
+    let mono = hertz(
+        "strategy = \"monolithic\"\nresidual_tolerance = 1e-11",
+        extra,
+    );
+    let cond = hertz("strategy = \"auto\"", extra);
+    assert_eq!(cond.0.summary.strategy, "condensed");
+    assert_eq!(cond.0.summary.fallback_increments, 0);
+    assert_eq!(cond.0.summary.factorisations, 1);
+    (cond, mono)
+}
+
 /// The largest differences of two runs over their increments (issue 32
 /// item 3's measures): displacements over the largest displacement,
 /// nodal contact forces over the total contact force `|F|` of interface
@@ -965,16 +981,9 @@ fn frictionless_condensed_against_curved_obstacles_equals_monolithic() {
     ];
     for (name, shape) in shapes {
         let curved = [(plane, shape.to_string())];
-        let mono = hertz(
-            "strategy = \"monolithic\"\nresidual_tolerance = 1e-11",
-            &curved,
-        );
-        let cond = hertz("strategy = \"auto\"", &curved);
-        assert_eq!(cond.0.summary.strategy, "condensed");
-        assert_eq!(cond.0.summary.fallback_increments, 0);
+        let (cond, mono) = hertz_on_both_paths(&curved);
         let reason = &cond.0.summary.strategy_reason;
         assert!(reason.contains("curved"), "{reason}");
-        assert_eq!(cond.0.summary.factorisations, 1);
         let (du, df, dt) = curved_differences("pole", &cond, &mono);
         eprintln!("hertz on a {name}: displacements {du:.1e}, forces {df:.1e}, tractions {dt:.1e}");
         assert!(du < 1e-8, "{name}: displacements differ by {du:e}");
@@ -1155,14 +1164,7 @@ fn frictionless_condensed_against_triangulated_obstacles_equals_monolithic() {
     write_stl_grid(&cap, sphere, [-0.6, 0.6], [-0.6, 0.6], 16);
     let plane = "shape = \"plane\"\npoint = [0.0, 0.0, 0.0]\nnormal = [0.0, 0.0, 1.0]";
     let shape = [(plane, stl_obstacle(&flat))];
-    let mono = hertz(
-        "strategy = \"monolithic\"\nresidual_tolerance = 1e-11",
-        &shape,
-    );
-    let cond = hertz("strategy = \"auto\"", &shape);
-    assert_eq!(cond.0.summary.strategy, "condensed");
-    assert_eq!(cond.0.summary.fallback_increments, 0);
-    assert_eq!(cond.0.summary.factorisations, 1);
+    let (cond, mono) = hertz_on_both_paths(&shape);
     let (du, df, dt) = curved_differences("pole", &cond, &mono);
     eprintln!("hertz on a triangulated plane: displacements {du:.1e}, forces {df:.1e}, tractions {dt:.1e}");
     assert!(du < 1e-8 && df < 1e-8 && dt < 1e-8, "{du:e} {df:e} {dt:e}");

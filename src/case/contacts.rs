@@ -13,6 +13,18 @@ use crate::mesh::Mesh;
 use crate::problem::Problem;
 use crate::{Error, Result};
 use nalgebra::Vector3;
+use std::collections::HashSet;
+
+/// What the secondary nodes of a `[[contact]]` touch.
+enum Target<'a> {
+    /// The `[[obstacle]]` at this index.
+    Obstacle(usize),
+    /// The surface set of another body.
+    Surface(&'a str),
+}
+
+/// The words a reverse pass's errors add to the contact's key.
+const REVERSE_PASS: &str = " (two_pass: the reverse pass)";
 
 impl Case {
     /// The `[[obstacle]]` at index `i`, validated.
@@ -47,325 +59,397 @@ impl Case {
     }
 
     /// The `[[contact]]` interfaces, validated against the mesh and the
-    /// obstacles, with automatic parameters where none are given.
+    /// obstacles, with automatic parameters where none are given. The
+    /// checks run in the order a user reads the table: the surfaces, the
+    /// passes, the enforcement's keys, the pairing, then each pass's
+    /// set-up and its reference gaps.
     pub(super) fn contacts(&self, problem: &Problem) -> Result<Vec<ContactInterface>> {
-        let spec = &self.spec;
-        let mesh = &self.mesh;
-        // Young's modulus of the body under a surface set: of the stiffest
-        // material among the elements that hold one of its nodes (of the
-        // stiffest material of all without such elements)
-        let youngs_of = |surface: &str| -> f64 {
-            let model = &problem.model;
-            let stiffest = |e: &mut dyn Iterator<Item = usize>| {
-                e.map(|m| model.materials[m].reference_youngs_modulus())
-                    .fold(0.0f64, f64::max)
-            };
-            let on_surface = mesh.surface(surface).map(|set| {
-                let nodes: std::collections::HashSet<usize> = set
-                    .facets
-                    .iter()
-                    .flat_map(|f| f.nodes.iter().copied())
-                    .collect();
-                stiffest(
-                    &mut mesh
-                        .elements
-                        .iter()
-                        .zip(&model.element_material)
-                        .filter(|(e, _)| e.nodes.iter().any(|n| nodes.contains(n)))
-                        .map(|(_, &m)| m),
-                )
-            });
-            match on_surface {
-                Some(e) if e > 0.0 => e,
-                _ => stiffest(&mut (0..model.materials.len())),
-            }
-        };
         let mut out = Vec::new();
-        for (i, c) in spec.contact.iter().enumerate() {
+        for (i, c) in self.spec.contact.iter().enumerate() {
             let key = format!("contact[{i}]");
             self.surface(&format!("{key}.surface"), &c.surface)?;
-            // what the secondary nodes touch
-            enum Target<'a> {
-                Obstacle(usize),
-                Surface(&'a str),
-            }
-            let target = match (&c.obstacle, &c.primary) {
-                (Some(name), None) => {
-                    let index = spec
-                        .obstacle
-                        .iter()
-                        .position(|o| &o.name == name)
-                        .ok_or_else(|| {
-                            let have: Vec<&str> =
-                                spec.obstacle.iter().map(|o| o.name.as_str()).collect();
-                            self.err(format!(
-                                "{key}.obstacle: no [[obstacle]] named '{name}'; {}",
-                                crate::error::suggest::listing(name, &have, "none")
-                            ))
-                        })?;
-                    Target::Obstacle(index)
-                }
-                (None, Some(name)) => {
-                    self.surface(&format!("{key}.primary"), name)?;
-                    if name == &c.surface {
-                        return Err(self.err(format!(
-                            "{key}.primary = '{name}' is the secondary surface itself; name the surface of the other body"
-                        )));
-                    }
-                    // validated as a primary surface (triangles) here, built by the constructors
-                    self.primary_surface(&format!("{key}.primary"), name)?;
-                    Target::Surface(name)
-                }
-                _ => {
-                    return Err(self.err(format!(
-                        "{key}: give either `obstacle` (a rigid [[obstacle]] name) or `primary` (a surface set of another body), not {}",
-                        if c.obstacle.is_some() { "both" } else { "neither" }
-                    )))
-                }
-            };
-            // the passes: one, or with `two_pass` also the primary surface's
-            // nodes against the secondary surface's triangles, each pass on
-            // half of every node's tributary area
-            if c.two_pass && !matches!(target, Target::Surface(_)) {
-                return Err(self.err(format!(
-                    "{key}.two_pass applies to contact between deformable bodies only (with `primary`); \
-                     remove it, or name the other body's surface with `primary` instead of `obstacle`"
-                )));
-            }
-            // two passes constrain the same motion twice (at least where
-            // nodes coincide: the stacked blocks' 41 constraints have rank
-            // 37), and a multiplier unknown per constraint makes the saddle
-            // system singular (`tests/two_pass.rs`): only the methods
-            // without multiplier unknowns
-            if c.two_pass && matches!(c.method, ContactMethod::Rockafellar | ContactMethod::Slack) {
-                return Err(self.err(format!(
-                    "{key}.two_pass needs method = \"uzawa\" or \"penalty\" (method is \"{}\"): the two passes \
-                     constrain the same motion twice, which makes the multiplier system of rockafellar and slack \
-                     singular; uzawa reaches the same Lagrangian solution without multiplier unknowns",
-                    if matches!(c.method, ContactMethod::Slack) {
-                        "slack"
-                    } else {
-                        "rockafellar"
-                    }
-                )));
-            }
+            let target = self.contact_target(&key, c)?;
             let name = c.name.clone().unwrap_or_else(|| c.surface.clone());
-            let reverse = format!("{name}.reverse");
-            if c.two_pass {
-                if let Some(j) = spec
-                    .contact
-                    .iter()
-                    .position(|o| o.name.as_deref().unwrap_or(&o.surface) == reverse)
-                {
-                    return Err(self.err(format!(
-                        "{key}.two_pass names its reverse pass '{reverse}', which is the name of contact[{j}]; rename one of them"
-                    )));
-                }
+            self.check_two_pass(&key, c, &target, &name)?;
+            let enforcement = self.enforcement(&key, c, &target, problem)?;
+            if let Target::Surface(primary) = target {
+                self.check_not_self_paired(&key, c, primary)?;
             }
-            let positive = |v: Option<f64>, name: &str| -> Result<Option<f64>> {
-                match v {
-                    Some(x) if !(x > 0.0 && x.is_finite()) => {
-                        Err(self.err(not_positive(&format!("{key}.{name}"), x)))
-                    }
-                    v => Ok(v),
-                }
-            };
-            let friction_coefficient = match (c.friction_coefficient, c.tangential_penalty) {
-                (None, Some(_)) => {
-                    return Err(self.err(format!(
-                        "{key}.tangential_penalty is given without {key}.friction_coefficient; \
-                         add the friction coefficient or remove the tangential penalty"
-                    )))
-                }
-                (Some(mu), _) if !(mu >= 0.0 && mu.is_finite()) => {
-                    return Err(self.err(super::not_non_negative(
-                        &format!("{key}.friction_coefficient"),
-                        mu,
-                        "",
-                    )))
-                }
-                (mu, _) => mu,
-            };
-            let mortar = c.discretisation == Some(DiscretisationSpec::Mortar);
-            if mortar {
-                self.mortar_supported(&key, c, matches!(target, Target::Obstacle(_)))?;
-            }
-            let enforcement = Enforcement {
-                method: match c.method {
-                    ContactMethod::Penalty => Method::Penalty,
-                    ContactMethod::Uzawa => Method::Uzawa,
-                    ContactMethod::Rockafellar => Method::Rockafellar,
-                    ContactMethod::Slack => Method::Slack,
-                },
-                penalty: positive(c.penalty, "penalty")?,
-                scaling: positive(c.scaling, "scaling")?,
-                youngs_modulus: youngs_of(&c.surface),
-                primary_youngs_modulus: match &target {
-                    Target::Surface(primary) => Some(youngs_of(primary)),
-                    Target::Obstacle(_) => None,
-                },
-                friction_coefficient,
-                tangential_penalty: positive(c.tangential_penalty, "tangential_penalty")?,
-                exact_stick: exact_stick(c),
-                friction_multiplier: match (c.friction_multiplier, c.method) {
-                    (Some(FrictionMultiplierSpec::Newton), _) => FrictionMultiplier::Newton,
-                    (None, ContactMethod::Rockafellar | ContactMethod::Slack) => {
-                        FrictionMultiplier::Newton
-                    }
-                    _ => FrictionMultiplier::Outer,
-                },
-            };
-            if let Some(spec) = c.friction_multiplier {
-                let why = if !exact_stick(c) {
-                    Some(if c.exact_stick == Some(false) {
-                        "it applies to exact stick only: remove exact_stick = false or this key"
-                    } else {
-                        "it applies to exact stick only, which needs friction and method rockafellar, slack or uzawa: give friction_coefficient, or remove this key"
-                    })
-                } else if spec == FrictionMultiplierSpec::Newton
-                    && !matches!(c.method, ContactMethod::Rockafellar | ContactMethod::Slack)
-                {
-                    Some("the tangential multipliers are unknowns of Newton beside the normal ones, which this method does not have: use friction_multiplier = \"outer\" or method = \"rockafellar\" or \"slack\"")
-                } else {
-                    None
-                };
-                if let Some(why) = why {
-                    return Err(self.err(format!("{key}.friction_multiplier: {why}")));
-                }
-            }
-            if c.exact_stick == Some(true) {
-                let why = if friction_coefficient.is_none() {
-                    Some("it needs friction: give friction_coefficient")
-                } else if matches!(c.method, ContactMethod::Penalty) {
-                    Some("the penalty method keeps the regularised law: use method = \"rockafellar\", \"slack\" or \"uzawa\"")
-                } else {
-                    None
-                };
-                if let Some(why) = why {
-                    return Err(self.err(format!("{key}.exact_stick = true: {why}")));
-                }
-            }
-            // the passes: one, or with `two_pass` also the primary surface's
-            // nodes against the secondary surface's triangles, each pass on
-            // half of every node's tributary area
-            let reverse_pass = " (two_pass: the reverse pass)";
-            let setup = |e: SetupError| {
-                let s = e.surface();
-                let pass = if *s == c.surface { "" } else { reverse_pass };
-                self.err(match e {
-                    SetupError::NoArea(_) => format!("{key}{pass}: surface '{s}' has no area"),
-                    SetupError::Degenerate { element_size, .. } => format!(
-                        "{key}{pass}: surface '{s}' has the element size {} (the square root of its \
-                         mean area per node), not a positive finite length; check the mesh's coordinates",
-                        crate::input::number(element_size)
-                    ),
-                    SetupError::UnknownSurface(_) => {
-                        format!("{key}{pass}: the mesh has no surface set '{s}'")
-                    }
-                    SetupError::QuadraticSurface(_) => {
-                        format!("{key}: {}", SetupError::quadratic_surface_message(s))
-                    }
-                    // the reference gaps are checked per pass, below
-                    _ => format!("{key}{pass}: {e}"),
-                })
-            };
-            // the same surface under another name (or one holding it); after
-            // the checks of the keys, which name the case file's mistake first
-            if let Target::Surface(name) = &target {
-                let nodes_of = |surface: &str| -> std::collections::HashSet<usize> {
-                    mesh.surface(surface)
-                        .map(|set| {
-                            set.facets
-                                .iter()
-                                .flat_map(|f| f.nodes.iter().copied())
-                                .collect()
-                        })
-                        .unwrap_or_default()
-                };
-                let (secondary, primary) = (nodes_of(&c.surface), nodes_of(name));
-                if !secondary.is_empty() && secondary.is_subset(&primary) {
-                    return Err(self.err(format!(
-                        "{key}: self-paired surface: every node of the secondary surface '{}' is also on the \
-                         primary surface '{name}' (the same surface under another name, or one holding it), \
-                         so each node would contact its own facets; name as primary the surface of the other \
-                         body",
-                        c.surface
-                    )));
-                }
-            }
-            let passes = match target {
-                Target::Obstacle(index) => {
-                    let o = &spec.obstacle[index];
-                    let motion = o.motion.map(Vector3::from).unwrap_or_else(Vector3::zeros);
-                    let amplitude =
-                        self.amplitude(&format!("obstacle[{index}].amplitude"), &o.amplitude)?;
-                    let obstacle = self.obstacle(index)?;
-                    let interface = if mortar {
-                        ContactInterface::mortar_rigid(mesh, &c.surface, obstacle, &enforcement)
-                    } else {
-                        ContactInterface::rigid(mesh, &c.surface, obstacle, &enforcement)
-                    };
-                    let interface = interface.map_err(setup)?;
-                    vec![(
-                        interface.named(&name).moving(motion, amplitude),
-                        "",
-                        format!("obstacle '{}'", o.name),
-                    )]
-                }
-                Target::Surface(primary) if c.two_pass => {
-                    let [forward, back] =
-                        ContactInterface::two_pass(mesh, &c.surface, primary, &enforcement)
-                            .map_err(setup)?;
-                    vec![
-                        (
-                            forward.named(&name),
-                            "",
-                            format!("primary surface '{primary}'"),
-                        ),
-                        (
-                            back.named(&reverse),
-                            reverse_pass,
-                            format!("primary surface '{}'", c.surface),
-                        ),
-                    ]
-                }
-                Target::Surface(primary) => {
-                    let interface = if mortar {
-                        ContactInterface::mortar(mesh, &c.surface, primary, &enforcement)
-                    } else {
-                        ContactInterface::between_bodies(mesh, &c.surface, primary, &enforcement)
-                    };
-                    let interface = interface.map_err(setup)?;
-                    vec![(
-                        interface.named(&name),
-                        "",
-                        format!("primary surface '{primary}'"),
-                    )]
-                }
-            };
-            for (interface, pass, against) in passes {
-                // a surface that starts inside the obstacle is a set-up error
-                let tolerance = c
-                    .initial_penetration_tolerance
-                    .unwrap_or_else(|| interface.default_penetration_tolerance());
-                if !(tolerance >= 0.0 && tolerance.is_finite()) {
-                    return Err(self.err(super::not_non_negative(
-                        &format!("{key}.initial_penetration_tolerance"),
-                        tolerance,
-                        " (the largest initial penetration accepted, a length)",
-                    )));
-                }
-                let plane = match &target {
-                    Target::Obstacle(index) => Some(&spec.obstacle[*index]),
-                    Target::Surface(_) => None,
-                };
-                interface
-                    .check_reference_gaps(mesh, tolerance)
-                    .map_err(|e| self.reference_gap_error(e, &key, pass, &against, plane))?;
+            for (interface, pass, against) in self.passes(&key, c, &target, &name, &enforcement)? {
+                self.check_initial_gaps(&key, c, &target, &interface, pass, &against)?;
                 out.push(interface);
             }
         }
         Ok(out)
+    }
+
+    /// Young's modulus of the body under surface set `surface`: of the
+    /// stiffest material among the elements that hold one of its nodes (of
+    /// the stiffest material of all without such elements).
+    fn youngs_of(&self, problem: &Problem, surface: &str) -> f64 {
+        let model = &problem.model;
+        let stiffest = |e: &mut dyn Iterator<Item = usize>| {
+            e.map(|m| model.materials[m].reference_youngs_modulus())
+                .fold(0.0f64, f64::max)
+        };
+        let on_surface = self.surface_nodes(surface).map(|nodes| {
+            stiffest(
+                &mut self
+                    .mesh
+                    .elements
+                    .iter()
+                    .zip(&model.element_material)
+                    .filter(|(e, _)| e.nodes.iter().any(|n| nodes.contains(n)))
+                    .map(|(_, &m)| m),
+            )
+        });
+        match on_surface {
+            Some(e) if e > 0.0 => e,
+            _ => stiffest(&mut (0..model.materials.len())),
+        }
+    }
+
+    /// The nodes of surface set `surface` (`None` where the mesh has none).
+    fn surface_nodes(&self, surface: &str) -> Option<HashSet<usize>> {
+        self.mesh.surface(surface).map(|set| {
+            set.facets
+                .iter()
+                .flat_map(|f| f.nodes.iter().copied())
+                .collect()
+        })
+    }
+
+    /// What the secondary nodes of `[[contact]]` `key` touch: the
+    /// `[[obstacle]]` it names, or the primary surface of another body.
+    fn contact_target<'a>(&self, key: &str, c: &'a ContactSpec) -> Result<Target<'a>> {
+        let spec = &self.spec;
+        match (&c.obstacle, &c.primary) {
+            (Some(name), None) => {
+                let index = spec
+                    .obstacle
+                    .iter()
+                    .position(|o| &o.name == name)
+                    .ok_or_else(|| {
+                        let have: Vec<&str> = spec.obstacle.iter().map(|o| o.name.as_str()).collect();
+                        self.err(format!(
+                            "{key}.obstacle: no [[obstacle]] named '{name}'; {}",
+                            crate::error::suggest::listing(name, &have, "none")
+                        ))
+                    })?;
+                Ok(Target::Obstacle(index))
+            }
+            (None, Some(name)) => {
+                self.surface(&format!("{key}.primary"), name)?;
+                if name == &c.surface {
+                    return Err(self.err(format!(
+                        "{key}.primary = '{name}' is the secondary surface itself; name the surface of the other body"
+                    )));
+                }
+                // validated as a primary surface (triangles) here, built by the constructors
+                self.primary_surface(&format!("{key}.primary"), name)?;
+                Ok(Target::Surface(name))
+            }
+            _ => Err(self.err(format!(
+                "{key}: give either `obstacle` (a rigid [[obstacle]] name) or `primary` (a surface set of another body), not {}",
+                if c.obstacle.is_some() { "both" } else { "neither" }
+            ))),
+        }
+    }
+
+    /// `two_pass` (the primary surface's nodes also against the secondary
+    /// surface's triangles, each pass on half of every node's tributary
+    /// area): between bodies only, with a method without multiplier
+    /// unknowns, and with a reverse pass `name.reverse` no other contact
+    /// is called.
+    fn check_two_pass(
+        &self,
+        key: &str,
+        c: &ContactSpec,
+        target: &Target,
+        name: &str,
+    ) -> Result<()> {
+        if !c.two_pass {
+            return Ok(());
+        }
+        if !matches!(target, Target::Surface(_)) {
+            return Err(self.err(format!(
+                "{key}.two_pass applies to contact between deformable bodies only (with `primary`); \
+                 remove it, or name the other body's surface with `primary` instead of `obstacle`"
+            )));
+        }
+        // two passes constrain the same motion twice (at least where
+        // nodes coincide: the stacked blocks' 41 constraints have rank
+        // 37), and a multiplier unknown per constraint makes the saddle
+        // system singular (`tests/two_pass.rs`): only the methods
+        // without multiplier unknowns
+        if matches!(c.method, ContactMethod::Rockafellar | ContactMethod::Slack) {
+            return Err(self.err(format!(
+                "{key}.two_pass needs method = \"uzawa\" or \"penalty\" (method is \"{}\"): the two passes \
+                 constrain the same motion twice, which makes the multiplier system of rockafellar and slack \
+                 singular; uzawa reaches the same Lagrangian solution without multiplier unknowns",
+                if matches!(c.method, ContactMethod::Slack) {
+                    "slack"
+                } else {
+                    "rockafellar"
+                }
+            )));
+        }
+        let reverse = format!("{name}.reverse");
+        match self
+            .spec
+            .contact
+            .iter()
+            .position(|o| o.name.as_deref().unwrap_or(&o.surface) == reverse)
+        {
+            Some(j) => Err(self.err(format!(
+                "{key}.two_pass names its reverse pass '{reverse}', which is the name of contact[{j}]; rename one of them"
+            ))),
+            None => Ok(()),
+        }
+    }
+
+    /// The enforcement of `[[contact]]` `key`: its method, penalties and
+    /// friction keys, each checked (positive, finite, and given together
+    /// where one needs another), with the bodies' Young's moduli for the
+    /// automatic penalties.
+    fn enforcement(
+        &self,
+        key: &str,
+        c: &ContactSpec,
+        target: &Target,
+        problem: &Problem,
+    ) -> Result<Enforcement> {
+        let positive = |v: Option<f64>, name: &str| -> Result<Option<f64>> {
+            match v {
+                Some(x) if !(x > 0.0 && x.is_finite()) => {
+                    Err(self.err(not_positive(&format!("{key}.{name}"), x)))
+                }
+                v => Ok(v),
+            }
+        };
+        let friction_coefficient = self.friction_coefficient(key, c)?;
+        if c.discretisation == Some(DiscretisationSpec::Mortar) {
+            self.mortar_supported(key, c, matches!(target, Target::Obstacle(_)))?;
+        }
+        let enforcement = Enforcement {
+            method: match c.method {
+                ContactMethod::Penalty => Method::Penalty,
+                ContactMethod::Uzawa => Method::Uzawa,
+                ContactMethod::Rockafellar => Method::Rockafellar,
+                ContactMethod::Slack => Method::Slack,
+            },
+            penalty: positive(c.penalty, "penalty")?,
+            scaling: positive(c.scaling, "scaling")?,
+            youngs_modulus: self.youngs_of(problem, &c.surface),
+            primary_youngs_modulus: match target {
+                Target::Surface(primary) => Some(self.youngs_of(problem, primary)),
+                Target::Obstacle(_) => None,
+            },
+            friction_coefficient,
+            tangential_penalty: positive(c.tangential_penalty, "tangential_penalty")?,
+            exact_stick: exact_stick(c),
+            friction_multiplier: match (c.friction_multiplier, c.method) {
+                (Some(FrictionMultiplierSpec::Newton), _) => FrictionMultiplier::Newton,
+                (None, ContactMethod::Rockafellar | ContactMethod::Slack) => {
+                    FrictionMultiplier::Newton
+                }
+                _ => FrictionMultiplier::Outer,
+            },
+        };
+        self.check_stick_keys(key, c)?;
+        Ok(enforcement)
+    }
+
+    /// `friction_coefficient` of `[[contact]]` `key`: non-negative and
+    /// finite, and given wherever `tangential_penalty` is.
+    fn friction_coefficient(&self, key: &str, c: &ContactSpec) -> Result<Option<f64>> {
+        match (c.friction_coefficient, c.tangential_penalty) {
+            (None, Some(_)) => Err(self.err(format!(
+                "{key}.tangential_penalty is given without {key}.friction_coefficient; \
+                 add the friction coefficient or remove the tangential penalty"
+            ))),
+            (Some(mu), _) if !(mu >= 0.0 && mu.is_finite()) => Err(self.err(
+                super::not_non_negative(&format!("{key}.friction_coefficient"), mu, ""),
+            )),
+            (mu, _) => Ok(mu),
+        }
+    }
+
+    /// `friction_multiplier` and `exact_stick = true` of `[[contact]]`
+    /// `key`: only where exact stick applies (friction, and a method with
+    /// multipliers to augment), and `"newton"` only with the methods whose
+    /// normal multipliers are unknowns of Newton.
+    fn check_stick_keys(&self, key: &str, c: &ContactSpec) -> Result<()> {
+        if let Some(spec) = c.friction_multiplier {
+            let why = if !exact_stick(c) {
+                Some(if c.exact_stick == Some(false) {
+                    "it applies to exact stick only: remove exact_stick = false or this key"
+                } else {
+                    "it applies to exact stick only, which needs friction and method rockafellar, slack or uzawa: give friction_coefficient, or remove this key"
+                })
+            } else if spec == FrictionMultiplierSpec::Newton
+                && !matches!(c.method, ContactMethod::Rockafellar | ContactMethod::Slack)
+            {
+                Some("the tangential multipliers are unknowns of Newton beside the normal ones, which this method does not have: use friction_multiplier = \"outer\" or method = \"rockafellar\" or \"slack\"")
+            } else {
+                None
+            };
+            if let Some(why) = why {
+                return Err(self.err(format!("{key}.friction_multiplier: {why}")));
+            }
+        }
+        if c.exact_stick == Some(true) {
+            let why = if c.friction_coefficient.is_none() {
+                Some("it needs friction: give friction_coefficient")
+            } else if matches!(c.method, ContactMethod::Penalty) {
+                Some("the penalty method keeps the regularised law: use method = \"rockafellar\", \"slack\" or \"uzawa\"")
+            } else {
+                None
+            };
+            if let Some(why) = why {
+                return Err(self.err(format!("{key}.exact_stick = true: {why}")));
+            }
+        }
+        Ok(())
+    }
+
+    /// The same surface under another name (or one holding it) as the
+    /// primary of `[[contact]]` `key`: refused, after the checks of the
+    /// keys, which name the case file's mistake first.
+    fn check_not_self_paired(&self, key: &str, c: &ContactSpec, primary: &str) -> Result<()> {
+        let secondary = self.surface_nodes(&c.surface).unwrap_or_default();
+        let primary_nodes = self.surface_nodes(primary).unwrap_or_default();
+        if !secondary.is_empty() && secondary.is_subset(&primary_nodes) {
+            return Err(self.err(format!(
+                "{key}: self-paired surface: every node of the secondary surface '{}' is also on the \
+                 primary surface '{primary}' (the same surface under another name, or one holding it), \
+                 so each node would contact its own facets; name as primary the surface of the other \
+                 body",
+                c.surface
+            )));
+        }
+        Ok(())
+    }
+
+    /// The interfaces of `[[contact]]` `key`, each with the words its
+    /// errors add (`""`, or the reverse pass's) and what it touches: one
+    /// pass, or with `two_pass` also the primary surface's nodes against
+    /// the secondary surface's triangles.
+    fn passes(
+        &self,
+        key: &str,
+        c: &ContactSpec,
+        target: &Target,
+        name: &str,
+        enforcement: &Enforcement,
+    ) -> Result<Vec<(ContactInterface, &'static str, String)>> {
+        let mesh = &self.mesh;
+        let mortar = c.discretisation == Some(DiscretisationSpec::Mortar);
+        let setup = |e: SetupError| self.setup_error(key, c, e);
+        Ok(match *target {
+            Target::Obstacle(index) => {
+                let o = &self.spec.obstacle[index];
+                let motion = o.motion.map(Vector3::from).unwrap_or_else(Vector3::zeros);
+                let amplitude =
+                    self.amplitude(&format!("obstacle[{index}].amplitude"), &o.amplitude)?;
+                let obstacle = self.obstacle(index)?;
+                let interface = if mortar {
+                    ContactInterface::mortar_rigid(mesh, &c.surface, obstacle, enforcement)
+                } else {
+                    ContactInterface::rigid(mesh, &c.surface, obstacle, enforcement)
+                };
+                let interface = interface.map_err(setup)?;
+                vec![(
+                    interface.named(name).moving(motion, amplitude),
+                    "",
+                    format!("obstacle '{}'", o.name),
+                )]
+            }
+            Target::Surface(primary) if c.two_pass => {
+                let [forward, back] =
+                    ContactInterface::two_pass(mesh, &c.surface, primary, enforcement)
+                        .map_err(setup)?;
+                vec![
+                    (
+                        forward.named(name),
+                        "",
+                        format!("primary surface '{primary}'"),
+                    ),
+                    (
+                        back.named(&format!("{name}.reverse")),
+                        REVERSE_PASS,
+                        format!("primary surface '{}'", c.surface),
+                    ),
+                ]
+            }
+            Target::Surface(primary) => {
+                let interface = if mortar {
+                    ContactInterface::mortar(mesh, &c.surface, primary, enforcement)
+                } else {
+                    ContactInterface::between_bodies(mesh, &c.surface, primary, enforcement)
+                };
+                let interface = interface.map_err(setup)?;
+                vec![(
+                    interface.named(name),
+                    "",
+                    format!("primary surface '{primary}'"),
+                )]
+            }
+        })
+    }
+
+    /// A set-up error of `[[contact]]` `key` in the case file's words,
+    /// naming the pass where it is the reverse one.
+    fn setup_error(&self, key: &str, c: &ContactSpec, e: SetupError) -> Error {
+        let s = e.surface();
+        let pass = if *s == c.surface { "" } else { REVERSE_PASS };
+        self.err(match e {
+            SetupError::NoArea(_) => format!("{key}{pass}: surface '{s}' has no area"),
+            SetupError::Degenerate { element_size, .. } => format!(
+                "{key}{pass}: surface '{s}' has the element size {} (the square root of its \
+                 mean area per node), not a positive finite length; check the mesh's coordinates",
+                crate::input::number(element_size)
+            ),
+            SetupError::UnknownSurface(_) => {
+                format!("{key}{pass}: the mesh has no surface set '{s}'")
+            }
+            SetupError::QuadraticSurface(_) => {
+                format!("{key}: {}", SetupError::quadratic_surface_message(s))
+            }
+            // the reference gaps are checked per pass, below
+            _ => format!("{key}{pass}: {e}"),
+        })
+    }
+
+    /// A surface that starts inside what it touches (beyond
+    /// `initial_penetration_tolerance`, by default the interface's) is a
+    /// set-up error of `[[contact]]` `key`'s pass `pass`.
+    fn check_initial_gaps(
+        &self,
+        key: &str,
+        c: &ContactSpec,
+        target: &Target,
+        interface: &ContactInterface,
+        pass: &str,
+        against: &str,
+    ) -> Result<()> {
+        let tolerance = c
+            .initial_penetration_tolerance
+            .unwrap_or_else(|| interface.default_penetration_tolerance());
+        if !(tolerance >= 0.0 && tolerance.is_finite()) {
+            return Err(self.err(super::not_non_negative(
+                &format!("{key}.initial_penetration_tolerance"),
+                tolerance,
+                " (the largest initial penetration accepted, a length)",
+            )));
+        }
+        let plane = match target {
+            Target::Obstacle(index) => Some(&self.spec.obstacle[*index]),
+            Target::Surface(_) => None,
+        };
+        interface
+            .check_reference_gaps(&self.mesh, tolerance)
+            .map_err(|e| self.reference_gap_error(e, key, pass, against, plane))
     }
 
     /// The message of a failed [`check_reference_gaps`](ContactInterface::check_reference_gaps)

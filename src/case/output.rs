@@ -2,7 +2,7 @@
 //! points, interfaces and segments checked against the problem, and the
 //! nodes they read resolved once.
 
-use super::schema::HistoryQuantitySpec;
+use super::schema::{HistoryQuantitySpec, HistorySpec, ProfileSpec};
 use super::Case;
 use crate::output::history::{History, HistoryQuantity};
 use crate::output::profile::{file_part, nodes_in_band, Profile, ProfileNode};
@@ -189,235 +189,262 @@ impl Case {
     /// Validate `[[output.history]]` and `[[output.profile]]` against the
     /// problem and resolve their nodes.
     pub fn output_requests(&self, problem: &Problem) -> Result<OutputRequests> {
-        let mesh = &problem.model.mesh;
         let mut taken = Vec::new();
         let mut out = OutputRequests::default();
         let units = self.units()?;
         for (i, h) in self.spec.output.history.iter().enumerate() {
             let key = format!("output.history[{i}]");
             self.output_file_stem(&key, &h.name, &mut taken)?;
-            // (whether a moment, which component)
-            let reaction = match h.quantity {
-                HistoryQuantitySpec::ReactionForce => Some((false, None)),
-                HistoryQuantitySpec::ReactionForceX => Some((false, Some(0))),
-                HistoryQuantitySpec::ReactionForceY => Some((false, Some(1))),
-                HistoryQuantitySpec::ReactionForceZ => Some((false, Some(2))),
-                HistoryQuantitySpec::ReactionMoment => Some((true, None)),
-                HistoryQuantitySpec::ReactionMomentX => Some((true, Some(0))),
-                HistoryQuantitySpec::ReactionMomentY => Some((true, Some(1))),
-                HistoryQuantitySpec::ReactionMomentZ => Some((true, Some(2))),
-                _ => None,
+            let history = match reaction_of(h.quantity) {
+                Some((moment, component)) => {
+                    self.reaction_history(&key, h, moment, component, problem, &units)?
+                }
+                None => self.point_history(&key, h, problem, &units)?,
             };
-            if let Some((moment, component)) = reaction {
-                let quantity = h.quantity.name();
-                let (name, nodes) = match (&h.surface, &h.nodes) {
-                    (Some(name), None) => {
-                        let surface = self.surface(&format!("{key}.surface"), name)?;
-                        (name, mesh.surface_nodes(surface))
-                    }
-                    (None, Some(name)) => {
-                        let set = self.node_set(&format!("{key}.nodes"), name)?;
-                        (name, set.nodes.clone())
-                    }
-                    (None, None) => {
-                        return Err(self.err(format!(
-                            "{key}.surface is required for quantity {quantity}: give a surface set name (or `nodes`, a node set)"
-                        )))
-                    }
-                    (Some(_), Some(_)) => {
-                        return Err(self.err(format!(
-                            "{key}: give either `surface` (a surface set) or `nodes` (a node set), not both"
-                        )))
-                    }
-                };
-                for (given, what) in [
-                    (h.point.is_some() && !moment, "point"),
-                    (h.interface.is_some(), "interface"),
-                ] {
-                    if given {
-                        return Err(self.err(format!(
-                            "{key}.{what} does not apply to reaction_force (the sum over `surface`); remove it"
-                        )));
-                    }
-                }
-                let &first = nodes.first().ok_or_else(|| {
-                    self.err(format!(
-                        "{key}.surface = '{name}' has no nodes; name a surface set with facets"
-                    ))
-                })?;
-                let (set, quantity) = (name.clone(), quantity.to_string());
-                if h.point.is_some_and(|p| p.iter().any(|v| !v.is_finite())) {
-                    return Err(self.err(format!("{key}.point must be finite")));
-                }
-                let history = match (moment, component) {
-                    (true, component) => HistoryQuantity::ReactionMoment {
-                        set,
-                        reference: nodes.iter().map(|&n| mesh.nodes[n]).collect(),
-                        nodes,
-                        centre: h.point,
-                        component,
-                    },
-                    (false, None) => HistoryQuantity::ReactionForce {
-                        surface: set,
-                        nodes,
-                    },
-                    (false, Some(component)) => HistoryQuantity::ReactionComponent {
-                        set,
-                        nodes,
-                        component,
-                    },
-                };
-                out.histories.push(
-                    History::new(
-                        h.name.clone(),
-                        first,
-                        mesh.node_ids[first],
-                        history,
-                        quantity,
-                    )
-                    .with_units(units.clone()),
-                );
-                continue;
-            }
-            for (given, what) in [
-                (h.surface.is_some(), "surface"),
-                (h.nodes.is_some(), "nodes"),
-            ] {
-                if given {
-                    return Err(self.err(format!(
-                        "{key}.{what} applies to reaction_force only (and its components reaction_force_x, _y, _z, and reaction_moment and its components); remove it"
-                    )));
-                }
-            }
-            let point = h.point.ok_or_else(|| {
-                self.err(format!(
-                    "{key}.point is required for quantity \"{}\": the node nearest it is recorded",
-                    h.quantity.name()
-                ))
-            })?;
-            if point.iter().any(|v| !v.is_finite()) {
-                return Err(self.err(format!("{key}.point must be finite")));
-            }
-            let component = match h.quantity {
-                HistoryQuantitySpec::DisplacementX => Some(0),
-                HistoryQuantitySpec::DisplacementY => Some(1),
-                HistoryQuantitySpec::DisplacementZ => Some(2),
-                HistoryQuantitySpec::Gap | HistoryQuantitySpec::ContactPressure => None,
-                HistoryQuantitySpec::ReactionForce
-                | HistoryQuantitySpec::ReactionForceX
-                | HistoryQuantitySpec::ReactionForceY
-                | HistoryQuantitySpec::ReactionForceZ
-                | HistoryQuantitySpec::ReactionMoment
-                | HistoryQuantitySpec::ReactionMomentX
-                | HistoryQuantitySpec::ReactionMomentY
-                | HistoryQuantitySpec::ReactionMomentZ => unreachable!("handled above"),
-            };
-            let (node, quantity, label) = match (component, &h.interface) {
-                (Some(c), None) => {
-                    let node = nearest(&mesh.nodes, 0..mesh.num_nodes(), point)
-                        .ok_or_else(|| self.err(format!("{key}: the mesh has no node")))?;
-                    let label = ["displacement_x", "displacement_y", "displacement_z"][c];
-                    (node, HistoryQuantity::Displacement(c), label)
-                }
-                (Some(_), Some(_)) => {
-                    return Err(self.err(format!(
-                        "{key}.interface applies to gap and contact_pressure only; remove it"
-                    )))
-                }
-                (None, None) => {
-                    return Err(self.err(format!(
-                        "{key}.interface is required for quantity {:?}: give a [[contact]] name",
-                        h.quantity
-                    )))
-                }
-                (None, Some(name)) => {
-                    let interface =
-                        self.interface_index(problem, &format!("{key}.interface"), name)?;
-                    let nodes = &problem.contacts.interface(interface).nodes;
-                    let index = nearest(
-                        &nodes.iter().map(|&n| mesh.nodes[n]).collect::<Vec<_>>(),
-                        0..nodes.len(),
-                        point,
-                    )
-                    .ok_or_else(|| self.err(format!("{key}: interface '{name}' has no node")))?;
-                    let (quantity, label) = if h.quantity == HistoryQuantitySpec::Gap {
-                        (HistoryQuantity::Gap { interface, index }, "gap")
-                    } else {
-                        (
-                            HistoryQuantity::ContactPressure { interface, index },
-                            "contact_pressure",
-                        )
-                    };
-                    (nodes[index], quantity, label)
-                }
-            };
-            out.histories.push(
-                History::new(
-                    h.name.clone(),
-                    node,
-                    mesh.node_ids[node],
-                    quantity,
-                    label.to_string(),
-                )
-                .with_units(units.clone()),
-            );
+            out.histories.push(history);
         }
         self.history_axes(&mut out.histories)?;
         for (i, p) in self.spec.output.profile.iter().enumerate() {
             let key = format!("output.profile[{i}]");
             self.output_file_stem(&key, &p.name, &mut taken)?;
-            let interface =
-                self.interface_index(problem, &format!("{key}.interface"), &p.interface)?;
-            if p.from.iter().chain(&p.to).any(|v| !v.is_finite()) {
-                return Err(self.err(format!("{key}.from and .to must be finite")));
-            }
-            let length = (0..3)
-                .map(|d| (p.to[d] - p.from[d]).powi(2))
-                .sum::<f64>()
-                .sqrt();
-            if !(length > 0.0) {
-                return Err(self.err(format!(
-                    "{key}: from and to are the same point ({:?}); give a segment of positive length",
-                    p.from
-                )));
-            }
-            if !(p.width > 0.0) || !p.width.is_finite() {
-                return Err(self.err(super::not_positive(&format!("{key}.width"), p.width)));
-            }
-            let contact = problem.contacts.interface(interface);
-            let positions: Vec<[f64; 3]> = contact.nodes.iter().map(|&n| mesh.nodes[n]).collect();
-            let nodes: Vec<ProfileNode> = nodes_in_band(&positions, p.from, p.to, p.width)
-                .into_iter()
-                .map(|(index, abscissa)| ProfileNode {
-                    index,
-                    node_id: mesh.node_ids[contact.nodes[index]],
-                    abscissa,
-                })
-                .collect();
-            if nodes.is_empty() {
-                return Err(self.err(format!(
-                    "{key}: no secondary node of interface '{}' lies within width = {} of the segment {:?} → {:?}; widen the band or move the segment onto the surface '{}'",
-                    p.interface, p.width, p.from, p.to, contact.surface
-                )));
-            }
-            out.profiles.push(Profile {
-                name: p.name.clone(),
-                interface,
-                interface_name: p.interface.clone(),
-                direction: {
-                    let d: Vec<f64> = (0..3).map(|i| p.to[i] - p.from[i]).collect();
-                    let l = (d[0] * d[0] + d[1] * d[1] + d[2] * d[2]).sqrt();
-                    [d[0] / l, d[1] / l, d[2] / l]
-                },
-                friction_coefficient: contact.friction.map(|f| f.coefficient),
-                nodes,
-                steps: Vec::new(),
-                units: units.clone(),
-            });
+            out.profiles.push(self.profile(&key, p, problem, &units)?);
         }
         self.profile_files_collide(problem, &out)?;
         self.output_files_fit(problem, &out)?;
         Ok(out)
+    }
+
+    /// The reaction history `[[output.history]]` `key` asks (`moment`: a
+    /// moment about `point`; `component`: one axis, or the vector): the
+    /// sum over the nodes of `surface` or of the node set `nodes`.
+    fn reaction_history(
+        &self,
+        key: &str,
+        h: &HistorySpec,
+        moment: bool,
+        component: Option<usize>,
+        problem: &Problem,
+        units: &Units,
+    ) -> Result<History> {
+        let mesh = &problem.model.mesh;
+        let quantity = h.quantity.name();
+        let (name, nodes) = match (&h.surface, &h.nodes) {
+            (Some(name), None) => {
+                let surface = self.surface(&format!("{key}.surface"), name)?;
+                (name, mesh.surface_nodes(surface))
+            }
+            (None, Some(name)) => {
+                let set = self.node_set(&format!("{key}.nodes"), name)?;
+                (name, set.nodes.clone())
+            }
+            (None, None) => {
+                return Err(self.err(format!(
+                    "{key}.surface is required for quantity {quantity}: give a surface set name (or `nodes`, a node set)"
+                )))
+            }
+            (Some(_), Some(_)) => {
+                return Err(self.err(format!(
+                    "{key}: give either `surface` (a surface set) or `nodes` (a node set), not both"
+                )))
+            }
+        };
+        for (given, what) in [
+            (h.point.is_some() && !moment, "point"),
+            (h.interface.is_some(), "interface"),
+        ] {
+            if given {
+                return Err(self.err(format!(
+                    "{key}.{what} does not apply to reaction_force (the sum over `surface`); remove it"
+                )));
+            }
+        }
+        let &first = nodes.first().ok_or_else(|| {
+            self.err(format!(
+                "{key}.surface = '{name}' has no nodes; name a surface set with facets"
+            ))
+        })?;
+        let (set, quantity) = (name.clone(), quantity.to_string());
+        if h.point.is_some_and(|p| p.iter().any(|v| !v.is_finite())) {
+            return Err(self.err(format!("{key}.point must be finite")));
+        }
+        let history = match (moment, component) {
+            (true, component) => HistoryQuantity::ReactionMoment {
+                set,
+                reference: nodes.iter().map(|&n| mesh.nodes[n]).collect(),
+                nodes,
+                centre: h.point,
+                component,
+            },
+            (false, None) => HistoryQuantity::ReactionForce {
+                surface: set,
+                nodes,
+            },
+            (false, Some(component)) => HistoryQuantity::ReactionComponent {
+                set,
+                nodes,
+                component,
+            },
+        };
+        Ok(History::new(
+            h.name.clone(),
+            first,
+            mesh.node_ids[first],
+            history,
+            quantity,
+        )
+        .with_units(units.clone()))
+    }
+
+    /// The history `[[output.history]]` `key` asks at the node nearest
+    /// `point`: a displacement component, or an interface's gap or
+    /// contact pressure.
+    fn point_history(
+        &self,
+        key: &str,
+        h: &HistorySpec,
+        problem: &Problem,
+        units: &Units,
+    ) -> Result<History> {
+        let mesh = &problem.model.mesh;
+        for (given, what) in [
+            (h.surface.is_some(), "surface"),
+            (h.nodes.is_some(), "nodes"),
+        ] {
+            if given {
+                return Err(self.err(format!(
+                    "{key}.{what} applies to reaction_force only (and its components reaction_force_x, _y, _z, and reaction_moment and its components); remove it"
+                )));
+            }
+        }
+        let point = h.point.ok_or_else(|| {
+            self.err(format!(
+                "{key}.point is required for quantity \"{}\": the node nearest it is recorded",
+                h.quantity.name()
+            ))
+        })?;
+        if point.iter().any(|v| !v.is_finite()) {
+            return Err(self.err(format!("{key}.point must be finite")));
+        }
+        let component = match h.quantity {
+            HistoryQuantitySpec::DisplacementX => Some(0),
+            HistoryQuantitySpec::DisplacementY => Some(1),
+            HistoryQuantitySpec::DisplacementZ => Some(2),
+            HistoryQuantitySpec::Gap | HistoryQuantitySpec::ContactPressure => None,
+            HistoryQuantitySpec::ReactionForce
+            | HistoryQuantitySpec::ReactionForceX
+            | HistoryQuantitySpec::ReactionForceY
+            | HistoryQuantitySpec::ReactionForceZ
+            | HistoryQuantitySpec::ReactionMoment
+            | HistoryQuantitySpec::ReactionMomentX
+            | HistoryQuantitySpec::ReactionMomentY
+            | HistoryQuantitySpec::ReactionMomentZ => unreachable!("handled above"),
+        };
+        let (node, quantity, label) = match (component, &h.interface) {
+            (Some(c), None) => {
+                let node = nearest(&mesh.nodes, 0..mesh.num_nodes(), point)
+                    .ok_or_else(|| self.err(format!("{key}: the mesh has no node")))?;
+                let label = ["displacement_x", "displacement_y", "displacement_z"][c];
+                (node, HistoryQuantity::Displacement(c), label)
+            }
+            (Some(_), Some(_)) => {
+                return Err(self.err(format!(
+                    "{key}.interface applies to gap and contact_pressure only; remove it"
+                )))
+            }
+            (None, None) => {
+                return Err(self.err(format!(
+                    "{key}.interface is required for quantity {:?}: give a [[contact]] name",
+                    h.quantity
+                )))
+            }
+            (None, Some(name)) => {
+                let interface = self.interface_index(problem, &format!("{key}.interface"), name)?;
+                let nodes = &problem.contacts.interface(interface).nodes;
+                let index = nearest(
+                    &nodes.iter().map(|&n| mesh.nodes[n]).collect::<Vec<_>>(),
+                    0..nodes.len(),
+                    point,
+                )
+                .ok_or_else(|| self.err(format!("{key}: interface '{name}' has no node")))?;
+                let (quantity, label) = if h.quantity == HistoryQuantitySpec::Gap {
+                    (HistoryQuantity::Gap { interface, index }, "gap")
+                } else {
+                    (
+                        HistoryQuantity::ContactPressure { interface, index },
+                        "contact_pressure",
+                    )
+                };
+                (nodes[index], quantity, label)
+            }
+        };
+        Ok(History::new(
+            h.name.clone(),
+            node,
+            mesh.node_ids[node],
+            quantity,
+            label.to_string(),
+        )
+        .with_units(units.clone()))
+    }
+
+    /// The profile `[[output.profile]]` `key` asks: the secondary nodes of
+    /// its interface within `width` of the segment `from → to`, with their
+    /// abscissae along it.
+    fn profile(
+        &self,
+        key: &str,
+        p: &ProfileSpec,
+        problem: &Problem,
+        units: &Units,
+    ) -> Result<Profile> {
+        let mesh = &problem.model.mesh;
+        let interface = self.interface_index(problem, &format!("{key}.interface"), &p.interface)?;
+        if p.from.iter().chain(&p.to).any(|v| !v.is_finite()) {
+            return Err(self.err(format!("{key}.from and .to must be finite")));
+        }
+        let length = (0..3)
+            .map(|d| (p.to[d] - p.from[d]).powi(2))
+            .sum::<f64>()
+            .sqrt();
+        if !(length > 0.0) {
+            return Err(self.err(format!(
+                "{key}: from and to are the same point ({:?}); give a segment of positive length",
+                p.from
+            )));
+        }
+        if !(p.width > 0.0) || !p.width.is_finite() {
+            return Err(self.err(super::not_positive(&format!("{key}.width"), p.width)));
+        }
+        let contact = problem.contacts.interface(interface);
+        let positions: Vec<[f64; 3]> = contact.nodes.iter().map(|&n| mesh.nodes[n]).collect();
+        let nodes: Vec<ProfileNode> = nodes_in_band(&positions, p.from, p.to, p.width)
+            .into_iter()
+            .map(|(index, abscissa)| ProfileNode {
+                index,
+                node_id: mesh.node_ids[contact.nodes[index]],
+                abscissa,
+            })
+            .collect();
+        if nodes.is_empty() {
+            return Err(self.err(format!(
+                "{key}: no secondary node of interface '{}' lies within width = {} of the segment {:?} → {:?}; widen the band or move the segment onto the surface '{}'",
+                p.interface, p.width, p.from, p.to, contact.surface
+            )));
+        }
+        Ok(Profile {
+            name: p.name.clone(),
+            interface,
+            interface_name: p.interface.clone(),
+            direction: {
+                let d: Vec<f64> = (0..3).map(|i| p.to[i] - p.from[i]).collect();
+                let l = (d[0] * d[0] + d[1] * d[1] + d[2] * d[2]).sqrt();
+                [d[0] / l, d[1] / l, d[2] / l]
+            },
+            friction_coefficient: contact.friction.map(|f| f.coefficient),
+            nodes,
+            steps: Vec::new(),
+            units: units.clone(),
+        })
     }
 
     /// What the run would otherwise find only when it writes (issue 31
@@ -482,3 +509,21 @@ impl Case {
 /// `.STEM_NNNNNNN.vtu.PID-N.tmp`, 46 bytes more than its stem with a
 /// 10-digit process id and a 20-digit counter.
 pub const MAX_FILE_STEM: usize = 200;
+
+/// Whether history `quantity` is a reaction, and which: `(moment,
+/// component)` (`component`: one axis, or `None` for the vector); `None`
+/// for the point quantities.
+fn reaction_of(quantity: HistoryQuantitySpec) -> Option<(bool, Option<usize>)> {
+    use HistoryQuantitySpec as Q;
+    match quantity {
+        Q::ReactionForce => Some((false, None)),
+        Q::ReactionForceX => Some((false, Some(0))),
+        Q::ReactionForceY => Some((false, Some(1))),
+        Q::ReactionForceZ => Some((false, Some(2))),
+        Q::ReactionMoment => Some((true, None)),
+        Q::ReactionMomentX => Some((true, Some(0))),
+        Q::ReactionMomentY => Some((true, Some(1))),
+        Q::ReactionMomentZ => Some((true, Some(2))),
+        _ => None,
+    }
+}

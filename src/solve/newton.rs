@@ -6,12 +6,13 @@
 //! pattern (and its symbolic factorisation) never changes.
 
 use super::backend::mixed_precision;
-use super::failure::{closed_contact, largest_motion, IncrementFailure};
+use super::chattering::Chatter;
+use super::failure::{closed_contact, largest_motion, ClosedContact, IncrementFailure};
 use super::gmres::{dot, norm};
 use super::josephy::{HeldTangent, Josephy, JosephyStep};
 use super::linear_solver::{LinearFigures, LinearSolver, LinearSystem};
 use super::nonlinear::{Evaluation, NonlinearProblem};
-use super::settings::Predictor;
+use super::settings::{Predictor, SolverSettings};
 
 pub use super::record::IterationRecord;
 
@@ -88,24 +89,15 @@ impl<P: NonlinearProblem> Newton<'_, P> {
         // the largest force the prescribed jump set up in this increment
         // (`‖K d‖` at the first iteration), kept as a scale for the later ones
         let mut jump_scale = 0.0f64;
-        let nonsymmetric = problem.has_nonsymmetric_tangent();
         let signs = (blocks.dimension() > problem.num_dofs()).then(|| blocks.pivot_signs());
         let mut chatter = super::chattering::ChatterDetector::default();
         // the line search's trial that was taken, evaluated with its tangent
         // (the full step, or a shorter step of the contact predictor): the
         // next iteration's evaluation
         let mut ahead: Option<Evaluation<P::Report>> = None;
-        for iteration in 0..=settings.max_iterations {
-            // the prescribed values still to be reached (all of the jump at first)
-            let jump: Vec<f64> = (0..u.len())
-                .map(|i| {
-                    if constrained[i] {
-                        target[i] - u[i]
-                    } else {
-                        0.0
-                    }
-                })
-                .collect();
+        let mut iteration = 0;
+        loop {
+            let jump = remaining_jump(&target, u, constrained);
             let at_target = jump.iter().all(|&d| d == 0.0);
             // the force alone first where it may show convergence (the first
             // evaluation, or after a residual already near the tolerance): the
@@ -113,7 +105,7 @@ impl<P: NonlinearProblem> Newton<'_, P> {
             let may_converge = records
                 .last()
                 .is_none_or(|r| r.residual < 1e3 * settings.residual_tolerance);
-            let mut have_tangent = !(at_target && may_converge);
+            let have_tangent = !(at_target && may_converge);
             let evaluation = match ahead.take() {
                 Some(e) if have_tangent => e,
                 _ => match problem.evaluate(t, u, state, have_tangent.then_some(&mut k_values[..]))
@@ -123,40 +115,22 @@ impl<P: NonlinearProblem> Newton<'_, P> {
                 },
             };
             // every contact node open (status 0 mod 4): nothing but supports holds the body
-            let all_open =
-                !evaluation.statuses.is_empty() && evaluation.statuses.iter().all(|s| s % 4 == 0);
+            let all_open = evaluation.statuses.iter().all(|s| s % 4 == 0);
+            let all_open = all_open && !evaluation.statuses.is_empty();
             let closed = closed_contact(&evaluation.statuses, problem.has_friction());
             let (switched, chattering) = chatter.observe(evaluation.statuses.clone());
             let mut r = evaluation.residual.clone();
             zero_constrained(&mut r, constrained);
-            // the out-of-balance force, with the linearised effect of the
-            // prescribed values still to be reached: r_f + K_fc d
-            if have_tangent {
-                if at_target {
-                    // nothing to multiply once the prescribed values are reached
-                    kd.iter_mut().for_each(|x| *x = 0.0);
-                } else {
-                    super::linear::multiply(blocks.symbolic(), &k_values, &jump, &mut kd);
-                }
-                // distributed: K_fc d from every process's part of K
-                problem.sum_over_processes(&mut kd);
-            } else {
-                kd.iter_mut().for_each(|x| *x = 0.0);
-            }
-            let out_of_balance: Vec<f64> = (0..u.len())
-                .map(|i| if constrained[i] { 0.0 } else { r[i] + kd[i] })
-                .collect();
+            let known = have_tangent.then_some(&k_values[..]);
+            let out_of_balance = self.out_of_balance(&r, known, &jump, at_target, &mut kd);
             // the force scale: internal and external forces, those of earlier
             // increments, and the forces the prescribed jump sets up (all there
-            // is at the first iteration of a displacement-driven run)
-            // (kept over the increment: a prescribed rigid motion, e.g. a
-            // rotation, converges to a state with no force at all)
+            // is at the first iteration of a displacement-driven run), kept
+            // over the increment: a prescribed rigid motion, e.g. a rotation,
+            // converges to a state with no force at all
             jump_scale = jump_scale.max(norm(&kd));
-            let scale = evaluation
-                .force_scale()
-                .max(self.force_scale)
-                .max(jump_scale)
-                .max(f64::MIN_POSITIVE);
+            let scale = [evaluation.force_scale(), self.force_scale, jump_scale];
+            let scale = scale.into_iter().fold(f64::MIN_POSITIVE, f64::max);
             let relative = norm(&out_of_balance) / scale;
             records.push(IterationRecord {
                 residual: relative,
@@ -165,128 +139,30 @@ impl<P: NonlinearProblem> Newton<'_, P> {
                 switched,
                 linear: LinearFigures::default(),
             });
-            if !relative.is_finite() {
-                return (Err(IncrementFailure::NotFinite), records);
-            }
-            // converged: prescribed values reached, a small residual, and a small
-            // last correction; or a residual so far below its tolerance that the
-            // next correction would be negligible (a linear problem converges in
-            // one solve)
-            let small_residual = relative <= settings.residual_tolerance || norm(&r) == 0.0;
-            let negligible = relative <= 1e-3 * settings.residual_tolerance;
-            if at_target
-                && switched == 0
-                && small_residual
-                && (iteration == 0
-                    || negligible
-                    || last_correction <= settings.displacement_tolerance)
-            {
-                return (Ok(evaluation), records);
-            }
-            if iteration == settings.max_iterations {
-                break;
-            }
-            if let Some(c) = chattering {
-                return (Err(IncrementFailure::Chattering(c)), records);
-            }
-            // diverging: far above the residual after the predictor (the first
-            // residual may be ~0 when only prescribed displacements change)
-            let reference = records[0].residual.max(records[1.min(iteration)].residual);
-            if iteration >= 3 && relative > 1e3 * reference.max(settings.residual_tolerance) {
-                return (Err(IncrementFailure::Diverging { relative }), records);
-            }
-            // the first correction as a Josephy–Newton step where asked for
-            // and where the problem linearises its constraints
-            let contact_step = (iteration == 0 && self.predictor == Predictor::Contact)
-                .then(|| self.josephy_correction(&jump, u, state))
-                .flatten();
-            let predictor = contact_step.is_some();
-            let mut du = match contact_step {
-                Some(step) => {
-                    if let Some(rec) = records.last_mut() {
-                        rec.linear = step.figures;
-                    }
-                    step.correction
-                }
-                None => {
-                    if !have_tangent {
-                        if let Err(f) = problem.evaluate(t, u, state, Some(&mut k_values[..])) {
-                            return (Err(f), records);
-                        }
-                        have_tangent = true;
-                    }
-                    debug_assert!(have_tangent);
-                    // the preconditioner of a nonsymmetric solve: the symmetric part,
-                    // with friction's slip blocks replaced by stick blocks
-                    let neighbour =
-                        (nonsymmetric && self.solver.reads_symmetric_neighbour()).then(|| {
-                            let mut p = blocks.symmetric_part(&k_values);
-                            problem.symmetric_neighbour(t, u, state, constrained, &mut p);
-                            apply_identity_rows(problem, constrained, &mut p);
-                            p
-                        });
-                    // rhs: −(r_f + K_fc d) on the free dofs, (diagonal scale) · d on the prescribed ones
-                    let diagonal = apply_identity_rows(problem, constrained, &mut k_values);
-                    let rhs: Vec<f64> = (0..u.len())
-                        .map(|i| {
-                            if constrained[i] {
-                                diagonal * jump[i]
-                            } else {
-                                -out_of_balance[i]
-                            }
-                        })
-                        .collect();
-                    let mut du = rhs.clone();
-                    let system = LinearSystem {
-                        pattern: blocks.symbolic(),
-                        matrix: &k_values,
-                        symmetric_neighbour: neighbour.as_deref(),
-                        pivot_signs: signs.as_deref(),
-                    };
-                    let before = self.solver.statistics();
-                    let solved = self.solver.solve(&system, &rhs, &mut du);
-                    if let Some(rec) = records.last_mut() {
-                        rec.linear = self.solver.statistics().since(&before);
-                    }
-                    if let Err(reason) = solved {
-                        return (Err(IncrementFailure::LinearSolve(reason)), records);
-                    }
-                    du
-                }
+            let verdict = Verdict {
+                iteration,
+                at_target,
+                switched,
+                relative,
+                balanced: norm(&r) == 0.0,
+                last_correction,
             };
-            for (i, d) in du.iter_mut().enumerate() {
-                if constrained[i] {
-                    *d = jump[i];
-                }
+            if let Some(end) = verdict.ends(settings, &records, chattering) {
+                return (end.map(|()| evaluation), records);
             }
-            // a correction far larger than the body: a rigid-body mode that the
-            // saddle system's regularisation let through (the body lost contact,
-            // slides as a whole, or supports are missing), or without contact a
-            // near-singular tangent (an element near inversion, a huge load)
-            let (largest, prescribed) = du[..problem.num_dofs()].iter().zip(constrained).fold(
-                (0.0f64, false),
-                |m, (d, &c)| {
-                    if d.abs() > m.0 {
-                        (d.abs(), c)
-                    } else {
-                        m
-                    }
-                },
-            );
-            if largest > 10.0 * problem.size() {
-                let size = problem.size();
-                return (
-                    Err(IncrementFailure::RigidBodyMode {
-                        largest,
-                        size,
-                        contact: problem.has_contact(),
-                        prescribed,
-                        open: all_open,
-                        direction: largest_motion(&du[..problem.num_dofs()]),
-                        closed,
-                    }),
-                    records,
-                );
+            let solve = TangentSolve {
+                jump: &jump,
+                out_of_balance: &out_of_balance,
+                signs: signs.as_deref(),
+                have_tangent,
+            };
+            let (du, predictor) =
+                match self.correction(iteration, solve, u, state, &mut k_values, &mut records) {
+                    Ok(c) => c,
+                    Err(f) => return (Err(f), records),
+                };
+            if let Some(f) = rigid_body_mode(problem, &du, constrained, all_open, closed) {
+                return (Err(f), records);
             }
             let line = NewtonStep {
                 u,
@@ -297,21 +173,7 @@ impl<P: NonlinearProblem> Newton<'_, P> {
             let (step_length, taken) =
                 self.line_search(line, &out_of_balance, relative, state, &mut k_values);
             ahead = taken;
-            let scaled: Vec<f64> = du.iter().map(|d| step_length * d).collect();
-            problem.advance_state(t, u, &scaled, state);
-            for (ui, di) in u.iter_mut().zip(&scaled) {
-                *ui += di;
-            }
-            if step_length == 1.0 {
-                // land exactly on the prescribed values
-                for i in 0..u.len() {
-                    if constrained[i] {
-                        u[i] = target[i];
-                    }
-                }
-            }
-            let total: Vec<f64> = u.iter().zip(increment_start).map(|(a, b)| a - b).collect();
-            last_correction = step_length * norm(&du) / norm(&total).max(f64::MIN_POSITIVE);
+            last_correction = self.advance(u, &du, step_length, state, &target, increment_start);
             if let Some(rec) = records.last_mut() {
                 rec.correction = last_correction;
                 rec.step_length = step_length;
@@ -321,16 +183,156 @@ impl<P: NonlinearProblem> Newton<'_, P> {
                     }
                 }
             }
+            iteration += 1;
         }
-        let relative = records.last().map(|r| r.residual).unwrap_or(f64::NAN);
-        let iterations = settings.max_iterations;
-        (
-            Err(IncrementFailure::MaxIterations {
-                iterations,
-                relative,
-            }),
-            records,
-        )
+    }
+
+    /// This iteration's correction and whether it is the contact
+    /// predictor's: the first correction as a Josephy–Newton step where
+    /// asked for and where the problem linearises its constraints, else
+    /// Newton's step from the tangent; the prescribed dofs take their jump.
+    fn correction(
+        &mut self,
+        iteration: usize,
+        solve: TangentSolve<'_>,
+        u: &[f64],
+        state: &P::State,
+        k: &mut [f64],
+        records: &mut [IterationRecord],
+    ) -> Result<(Vec<f64>, bool), IncrementFailure> {
+        let contact_step = (iteration == 0 && self.predictor == Predictor::Contact)
+            .then(|| self.josephy_correction(solve.jump, u, state))
+            .flatten();
+        let predictor = contact_step.is_some();
+        let mut du = match contact_step {
+            Some(step) => {
+                if let Some(rec) = records.last_mut() {
+                    rec.linear = step.figures;
+                }
+                step.correction
+            }
+            None => self.tangent_correction(solve, u, state, k, records)?,
+        };
+        for (d, (&c, &j)) in du.iter_mut().zip(self.constrained.iter().zip(solve.jump)) {
+            if c {
+                *d = j;
+            }
+        }
+        Ok((du, predictor))
+    }
+
+    /// The out-of-balance force on the free dofs, with the linearised
+    /// effect of the prescribed values still to be reached: `r_f + K_fc d`
+    /// (`k`: the tangent where it was evaluated; without it, or with
+    /// `at_target`, `K_fc d = 0`). `kd` is scratch of `u`'s length.
+    fn out_of_balance(
+        &self,
+        r: &[f64],
+        k: Option<&[f64]>,
+        jump: &[f64],
+        at_target: bool,
+        kd: &mut [f64],
+    ) -> Vec<f64> {
+        let problem = self.problem;
+        kd.iter_mut().for_each(|x| *x = 0.0);
+        if let Some(k) = k {
+            if !at_target {
+                super::linear::multiply(problem.pattern().symbolic(), k, jump, kd);
+            }
+            // distributed: K_fc d from every process's part of K
+            problem.sum_over_processes(kd);
+        }
+        (0..r.len())
+            .map(|i| {
+                if self.constrained[i] {
+                    0.0
+                } else {
+                    r[i] + kd[i]
+                }
+            })
+            .collect()
+    }
+
+    /// Newton's correction from the tangent `k` (evaluated first unless
+    /// `have_tangent`): `K_ff δu_f = −(r_f + K_fc d)`, with the prescribed
+    /// rows a scaled identity on the jump `d`, and for a nonsymmetric
+    /// tangent the symmetric neighbour the solver's preconditioner reads
+    /// (friction's slip blocks replaced by stick blocks). The linear
+    /// solver's figures go into the last of `records`.
+    fn tangent_correction(
+        &mut self,
+        solve: TangentSolve<'_>,
+        u: &[f64],
+        state: &P::State,
+        k: &mut [f64],
+        records: &mut [IterationRecord],
+    ) -> Result<Vec<f64>, IncrementFailure> {
+        let (problem, constrained, t) = (self.problem, self.constrained, self.t);
+        let blocks = problem.pattern();
+        if !solve.have_tangent {
+            problem.evaluate(t, u, state, Some(&mut *k))?;
+        }
+        let nonsymmetric = problem.has_nonsymmetric_tangent();
+        let neighbour = (nonsymmetric && self.solver.reads_symmetric_neighbour()).then(|| {
+            let mut p = blocks.symmetric_part(k);
+            problem.symmetric_neighbour(t, u, state, constrained, &mut p);
+            apply_identity_rows(problem, constrained, &mut p);
+            p
+        });
+        // rhs: −(r_f + K_fc d) on the free dofs, (diagonal scale) · d on the prescribed ones
+        let diagonal = apply_identity_rows(problem, constrained, k);
+        let rhs: Vec<f64> = (0..u.len())
+            .map(|i| {
+                if constrained[i] {
+                    diagonal * solve.jump[i]
+                } else {
+                    -solve.out_of_balance[i]
+                }
+            })
+            .collect();
+        let mut du = rhs.clone();
+        let system = LinearSystem {
+            pattern: blocks.symbolic(),
+            matrix: k,
+            symmetric_neighbour: neighbour.as_deref(),
+            pivot_signs: solve.signs,
+        };
+        let before = self.solver.statistics();
+        let solved = self.solver.solve(&system, &rhs, &mut du);
+        if let Some(record) = records.last_mut() {
+            record.linear = self.solver.statistics().since(&before);
+        }
+        solved.map_err(IncrementFailure::LinearSolve)?;
+        Ok(du)
+    }
+
+    /// Take `step_length` of the correction `du` from `u` (and the local
+    /// contact unknowns in `state` with it), landing exactly on the
+    /// prescribed `target` after a full step; returns the correction's
+    /// size relative to the change since `increment_start`.
+    fn advance(
+        &self,
+        u: &mut [f64],
+        du: &[f64],
+        step_length: f64,
+        state: &mut P::State,
+        target: &[f64],
+        increment_start: &[f64],
+    ) -> f64 {
+        let scaled: Vec<f64> = du.iter().map(|d| step_length * d).collect();
+        self.problem.advance_state(self.t, u, &scaled, state);
+        for (ui, di) in u.iter_mut().zip(&scaled) {
+            *ui += di;
+        }
+        if step_length == 1.0 {
+            for i in 0..u.len() {
+                if self.constrained[i] {
+                    u[i] = target[i];
+                }
+            }
+        }
+        let total: Vec<f64> = u.iter().zip(increment_start).map(|(a, b)| a - b).collect();
+        step_length * norm(du) / norm(&total).max(f64::MIN_POSITIVE)
     }
 
     /// The first correction of an increment as a Josephy–Newton step
@@ -504,6 +506,124 @@ struct NewtonStep<'a> {
     du: &'a [f64],
     target: &'a [f64],
     predictor: bool,
+}
+
+/// What decides whether an increment ends at an iterate: its index, the
+/// prescribed values reached, the status switches, the relative residual
+/// (and whether the residual is exactly zero), and the last correction.
+struct Verdict {
+    iteration: usize,
+    at_target: bool,
+    switched: usize,
+    relative: f64,
+    balanced: bool,
+    last_correction: f64,
+}
+
+impl Verdict {
+    /// `Some(Ok(()))`: converged (prescribed values reached, no switch, a
+    /// small residual and a small last correction; or a residual so far
+    /// below its tolerance that the next correction would be negligible: a
+    /// linear problem converges in one solve). `Some(Err(_))`: a residual
+    /// not finite, the iteration limit, chattering, or divergence (far
+    /// above the residual after the predictor; the first residual may be
+    /// ~0 when only prescribed displacements change). `None`: go on.
+    fn ends(
+        &self,
+        settings: &SolverSettings,
+        records: &[IterationRecord],
+        chattering: Option<Chatter>,
+    ) -> Option<Result<(), IncrementFailure>> {
+        let Verdict {
+            iteration,
+            relative,
+            ..
+        } = *self;
+        if !relative.is_finite() {
+            return Some(Err(IncrementFailure::NotFinite));
+        }
+        let small_residual = relative <= settings.residual_tolerance || self.balanced;
+        let negligible = relative <= 1e-3 * settings.residual_tolerance;
+        if self.at_target
+            && self.switched == 0
+            && small_residual
+            && (iteration == 0
+                || negligible
+                || self.last_correction <= settings.displacement_tolerance)
+        {
+            return Some(Ok(()));
+        }
+        if iteration == settings.max_iterations {
+            let iterations = settings.max_iterations;
+            return Some(Err(IncrementFailure::MaxIterations {
+                iterations,
+                relative,
+            }));
+        }
+        if let Some(c) = chattering {
+            return Some(Err(IncrementFailure::Chattering(c)));
+        }
+        let reference = records[0].residual.max(records[1.min(iteration)].residual);
+        if iteration >= 3 && relative > 1e3 * reference.max(settings.residual_tolerance) {
+            return Some(Err(IncrementFailure::Diverging { relative }));
+        }
+        None
+    }
+}
+
+/// What a tangent solve of [`Newton::tangent_correction`] reads besides
+/// the tangent: the prescribed values still to be reached (`jump`), the
+/// out-of-balance force, the saddle system's pivot signs, and whether the
+/// tangent was evaluated at this iterate.
+#[derive(Clone, Copy)]
+struct TangentSolve<'a> {
+    jump: &'a [f64],
+    out_of_balance: &'a [f64],
+    signs: Option<&'a [i8]>,
+    have_tangent: bool,
+}
+
+/// A correction `du` far larger than the body (`10 ×` its size): a
+/// rigid-body mode that the saddle system's regularisation let through
+/// (the body lost contact, slides as a whole, or supports are missing),
+/// or without contact a near-singular tangent (an element near
+/// inversion, a huge load); `None` otherwise.
+fn rigid_body_mode<P: NonlinearProblem>(
+    problem: &P,
+    du: &[f64],
+    constrained: &[bool],
+    open: bool,
+    closed: ClosedContact,
+) -> Option<IncrementFailure> {
+    let dofs = problem.num_dofs();
+    let (largest, prescribed) =
+        du[..dofs]
+            .iter()
+            .zip(constrained)
+            .fold((0.0f64, false), |m, (d, &c)| {
+                if d.abs() > m.0 {
+                    (d.abs(), c)
+                } else {
+                    m
+                }
+            });
+    (largest > 10.0 * problem.size()).then(|| IncrementFailure::RigidBodyMode {
+        largest,
+        size: problem.size(),
+        contact: problem.has_contact(),
+        prescribed,
+        open,
+        direction: largest_motion(&du[..dofs]),
+        closed,
+    })
+}
+
+/// The prescribed values still to be reached from `u` (all of the jump
+/// at first): `target − u` on the prescribed dofs, zero elsewhere.
+fn remaining_jump(target: &[f64], u: &[f64], constrained: &[bool]) -> Vec<f64> {
+    (target.iter().zip(u).zip(constrained))
+        .map(|((&t, &x), &c)| if c { t - x } else { 0.0 })
+        .collect()
 }
 
 fn zero_constrained(v: &mut [f64], constrained: &[bool]) {

@@ -12,7 +12,7 @@ use super::method::{Increment, IncrementMethod, Monolithic, WarmStart};
 use super::nonlinear::{Evaluation, NonlinearProblem};
 pub(crate) use super::record::converged_well;
 use super::record::IterationRecord;
-use super::settings::Step;
+use super::settings::{SolverSettings, Step};
 use crate::{Error, Result};
 use std::path::PathBuf;
 
@@ -232,47 +232,23 @@ pub fn resume_steps<P: NonlinearProblem>(
                 secant: secant.as_ref(),
             };
             let mut trial_state = state.clone();
-            let (mut outcome, mut iterations) = attempt(
+            let Tried {
+                outcome,
+                iterations,
+                solved_by,
+                retried,
+            } = attempt_with_fallback(
                 problem,
-                method,
+                (method, &mut fallback),
                 &increment,
-                &u,
+                (&u, &state),
                 &mut trial_state,
                 &mut trial,
                 observer,
             );
-            let mut solved_by = method.name();
-            let mut retried = None;
-            if let (Err(failure), Some(f)) = (&outcome, fallback.as_deref_mut()) {
-                if *failure != IncrementFailure::Cancelled {
-                    observer.on_fallback(&step.name, t_new, f.name(), failure);
-                    retried = Some(failure.to_string());
-                    trial_state = state.clone();
-                    (outcome, iterations) = attempt(
-                        problem,
-                        f,
-                        &increment,
-                        &u,
-                        &mut trial_state,
-                        &mut trial,
-                        observer,
-                    );
-                    solved_by = f.name();
-                }
-            }
             match outcome {
                 Ok(evaluation) => {
-                    let moved = problem
-                        .moving_coupled_nodes()
-                        .into_iter()
-                        .map(|n| {
-                            (0..3)
-                                .map(|d| (trial[3 * n + d] - u[3 * n + d]).powi(2))
-                                .sum::<f64>()
-                                .sqrt()
-                        })
-                        .fold(0.0f64, f64::max);
-                    last_motion = Some((moved, t_new - t));
+                    last_motion = Some((coupled_motion(problem, &trial, &u), t_new - t));
                     let change = trial.iter().zip(&u).map(|(a, b)| a - b).collect();
                     secant = Some((change, t_new - t));
                     std::mem::swap(&mut u, &mut trial);
@@ -298,15 +274,7 @@ pub fn resume_steps<P: NonlinearProblem>(
                     };
                     lu_solves += record.lu_solves;
                     t = t_new;
-                    let settings = problem.settings();
-                    let grows = if solved_by == method.name() {
-                        method.grows(&record.newton, settings.easy_iterations)
-                    } else {
-                        converged_well(&record.newton, settings.easy_iterations)
-                    };
-                    if cuts == 0 && grows {
-                        dt = (dt * settings.growth_factor).min(step.max_increment);
-                    }
+                    dt = grown(method, &record, problem.settings(), dt, step);
                     cuts = 0;
                     let stepping = Stepping {
                         step: s,
@@ -345,6 +313,96 @@ pub fn resume_steps<P: NonlinearProblem>(
         }
     }
     Ok(u)
+}
+
+/// The next increment's size after the converged `record` of size `dt`:
+/// grown by the growth factor (up to the step's largest increment) where
+/// it needed no cut and the method that solved it found it easy (the
+/// fallback by Newton's measure), else `dt`.
+fn grown<P: NonlinearProblem>(
+    method: &dyn IncrementMethod<P>,
+    record: &IncrementRecord,
+    settings: &SolverSettings,
+    dt: f64,
+    step: &Step,
+) -> f64 {
+    let grows = if record.method == method.name() {
+        method.grows(&record.newton, settings.easy_iterations)
+    } else {
+        converged_well(&record.newton, settings.easy_iterations)
+    };
+    if record.cuts == 0 && grows {
+        (dt * settings.growth_factor).min(step.max_increment)
+    } else {
+        dt
+    }
+}
+
+/// What an increment's attempts gave: the outcome and iterations of the
+/// last attempt, the name of the method that made it, and the failure
+/// that sent the increment to the fallback (`None`: no retry).
+struct Tried<R> {
+    outcome: Result<Evaluation<R>, IncrementFailure>,
+    iterations: Vec<IterationRecord>,
+    solved_by: &'static str,
+    retried: Option<String>,
+}
+
+/// [`attempt`] by the first of `methods`, and where it fails (but for a
+/// cancel) once more by the second, the fallback, from the converged
+/// `start` (unknowns and state) again; the observer is told of the retry.
+#[allow(clippy::too_many_arguments)]
+fn attempt_with_fallback<P: NonlinearProblem>(
+    problem: &P,
+    methods: (
+        &mut dyn IncrementMethod<P>,
+        &mut Option<&mut dyn IncrementMethod<P>>,
+    ),
+    increment: &Increment<'_>,
+    start: (&[f64], &P::State),
+    trial_state: &mut P::State,
+    trial: &mut Vec<f64>,
+    observer: &mut dyn StepObserver<P>,
+) -> Tried<P::Report> {
+    let (method, fallback) = methods;
+    let (u, state) = start;
+    let (outcome, iterations) =
+        attempt(problem, method, increment, u, trial_state, trial, observer);
+    let first = Tried {
+        outcome,
+        iterations,
+        solved_by: method.name(),
+        retried: None,
+    };
+    let (Err(failure), Some(f)) = (&first.outcome, fallback.as_deref_mut()) else {
+        return first;
+    };
+    if *failure == IncrementFailure::Cancelled {
+        return first;
+    }
+    let (step, time) = (&increment.step.name, increment.time);
+    observer.on_fallback(step, time, f.name(), failure);
+    *trial_state = state.clone();
+    let (outcome, iterations) = attempt(problem, f, increment, u, trial_state, trial, observer);
+    Tried {
+        outcome,
+        iterations,
+        solved_by: f.name(),
+        retried: Some(failure.to_string()),
+    }
+}
+
+/// The largest displacement over an increment, from `u` to `trial`, of
+/// the nodes whose couplings (contact pairs) move with them.
+fn coupled_motion<P: NonlinearProblem>(problem: &P, trial: &[f64], u: &[f64]) -> f64 {
+    (problem.moving_coupled_nodes().into_iter())
+        .map(|n| {
+            (0..3)
+                .map(|d| (trial[3 * n + d] - u[3 * n + d]).powi(2))
+                .sum::<f64>()
+                .sqrt()
+        })
+        .fold(0.0f64, f64::max)
 }
 
 /// One attempt at `increment` by `method`, its iterations told to

@@ -31,11 +31,13 @@ pub use crate::assembly::amplitude::Amplitude;
 /// Whether a run orders its elements' node graph by nested dissection,
 /// from what is known before the problem is built (its solver settings,
 /// `num_dofs` displacement unknowns, and of each contact whether it is
-/// against a rigid obstacle): then [`Problem::dissection`] is started as
+/// against a rigid obstacle, or between bodies where `auto` is expected
+/// to condense it: the case's `condensed_pair`): then
+/// [`Problem::dissection`] is started as
 /// soon as that graph exists. So it is with contacts all against rigid
 /// obstacles (the condensed path's trailing ordering, and a saddle system,
 /// at any size) or more than [`AMD_DOFS`] unknowns; with contact between
-/// bodies only when the condensed path is asked for (its factor drops the
+/// bodies only when the condensed path is asked for or expected (its factor drops the
 /// contact couplings and is ordered on the elements' graph,
 /// [`crate::solve::ordering::element_dissection`]; Newton's pattern with
 /// those couplings is another graph); not for PETSc

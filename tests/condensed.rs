@@ -216,8 +216,10 @@ fn auto_takes_the_condensed_path_exactly_where_it_applies() {
 /// (`signorini::problem::dissects_element_graph`) is of the graph the run orders: on the
 /// condensed Hertz and frictional press-pull (after their patterns were
 /// rebuilt with the multipliers) and on press-pull against a sphere
-/// (monolithic, a saddle system); none is started for two deformable
-/// bodies (their contact couples the graph).
+/// (monolithic, a saddle system); for two deformable bodies under `auto`
+/// (condensed) it is of their elements' graph, which the condensed path's
+/// factor is ordered on, and monolithic starts none (their contact
+/// couples Newton's graph).
 #[test]
 fn the_early_dissection_fits_the_pattern_the_run_orders() {
     let fits = |s: &Simulation| {
@@ -229,8 +231,18 @@ fn the_early_dissection_fits_the_pattern_the_run_orders() {
     assert_eq!(fits(&hertz), Some(true));
     assert_eq!(fits(&press_pull_problem(&[])), Some(true));
     assert_eq!(fits(&press_pull_problem(&press_pull_sphere())), Some(true));
-    let pair = Simulation::from_file(&root.join("examples/two-spheres/case.toml")).unwrap();
-    assert_eq!(fits(&pair), None);
+    let folder = root.join("examples/two-spheres");
+    let pair = Simulation::from_file(&folder.join("case.toml")).unwrap();
+    let p = pair.problem();
+    let elements = p
+        .dissection
+        .as_ref()
+        .map(|d| d.fits_elements(&p.model.pattern));
+    assert_eq!(elements, Some(true));
+    let mut text = std::fs::read_to_string(folder.join("case.toml")).unwrap();
+    text.push_str("\n[solver]\nstrategy = \"monolithic\"\n");
+    let monolithic = Simulation::from_toml(&text, &folder).unwrap();
+    assert_eq!(fits(&monolithic), None);
 }
 
 /// The frictionless condensed answer does not depend on the increments:

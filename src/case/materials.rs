@@ -1,19 +1,40 @@
 //! The `[[material]]` tables: one material model per element, and the
 //! [`Model`] they make with the mesh.
 
-use super::schema::MaterialModel;
+use super::schema::{ContactMethod, ContactSpec, DiscretisationSpec, MaterialModel};
 use super::Case;
 use crate::assembly::kernel::KernelFailure;
 use crate::assembly::pattern::NodeGraph;
 use crate::assembly::Model;
-use crate::material::{self, Material};
+use crate::material::{self, Kinematics, Material};
 use crate::problem::SolverSettings;
 use crate::solve::ordering::EarlyDissection;
+use crate::solve::settings::Strategy;
 use crate::{Error, Result};
 use std::sync::Arc;
 
 /// The materials, and the index into them of each element's.
 type ElementMaterials = (Vec<Arc<dyn Material>>, Vec<usize>);
+
+/// Whether `[[contact]]` `c` between two bodies takes the condensed path
+/// under `strategy = "auto"` as far as the case file tells before the
+/// problem is built ([`crate::problem::condensed::not_applicable`]): every
+/// material small-strain, frictionless node-to-surface (given, or by
+/// default on a mesh of linear elements: on quadratic faces the default
+/// may be mortar, which `auto` leaves to Newton), not uzawa; then its factor is ordered on the elements' graph,
+/// and the dissection of that graph starts early
+/// ([`crate::problem::dissects_element_graph`]). A wrong guess costs
+/// the unused dissection on the idle core (and Newton's own dissection of
+/// the coupled pattern waits for METIS's lock if that one still runs).
+fn condensed_pair(c: &ContactSpec, small_strain: bool, quadratic: bool) -> bool {
+    let frictionless = c.friction_coefficient.is_none_or(|mu| mu == 0.0);
+    let node_to_surface = match c.discretisation {
+        Some(d) => d == DiscretisationSpec::NodeToSurface,
+        None => !quadratic,
+    };
+    let law = c.method != ContactMethod::Uzawa;
+    c.primary.is_some() && small_strain && frictionless && node_to_surface && law
+}
 
 impl Case {
     /// The material model of `[[material]]` `i`, validated.
@@ -102,11 +123,17 @@ impl Case {
         let spec = &self.spec;
         let mesh = &self.mesh;
         let defaults = SolverSettings::default();
+        let small_strain = (materials.iter()).all(|m| m.kinematics() == Kinematics::SmallStrain);
+        let strategy = spec.solver.strategy.unwrap_or(defaults.strategy);
+        let auto = strategy == Strategy::Auto;
+        let quadratic = mesh.elements.iter().any(|e| e.kind.is_quadratic());
         let dissect = crate::problem::dissects_element_graph(
             spec.solver.linear.unwrap_or(defaults.linear),
-            spec.solver.strategy.unwrap_or(defaults.strategy),
+            strategy,
             3 * mesh.num_nodes(),
-            spec.contact.iter().map(|c| c.obstacle.is_some()),
+            (spec.contact.iter()).map(|c| {
+                c.obstacle.is_some() || auto && condensed_pair(c, small_strain, quadratic)
+            }),
         );
         let mut dissection = None;
         let on_graph = |graph: &NodeGraph| {
@@ -145,5 +172,39 @@ impl Case {
             }
         })?;
         Ok((model, dissection))
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    /// examples/two-spheres (frictionless node-to-surface between two
+    /// linear elastic bodies) starts the dissection of its elements' graph
+    /// under `auto`, which condenses it (`tests/condensed.rs`), and not
+    /// under `monolithic`, nor with friction or dual mortar (which `auto`
+    /// leaves to Newton, whose pattern with the contact couplings is
+    /// another graph).
+    #[test]
+    fn auto_dissects_early_for_bodies_it_condenses() {
+        let folder = std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("examples/two-spheres");
+        let text = std::fs::read_to_string(folder.join("case.toml")).unwrap();
+        let early = |text: &str| {
+            let case = crate::case::from_toml(text, &folder).unwrap();
+            case.build_problem().unwrap().dissection.is_some()
+        };
+        assert!(early(&text));
+        assert!(!early(&format!(
+            "{text}\n[solver]\nstrategy = \"monolithic\"\n"
+        )));
+        let frictional = text.replace(
+            "penalty = 1000.0",
+            "penalty = 1000.0\nfriction_coefficient = 0.3",
+        );
+        assert_ne!(frictional, text);
+        assert!(!early(&frictional));
+        let mortar = text.replace(
+            "penalty = 1000.0",
+            "penalty = 1000.0\ndiscretisation = \"mortar\"",
+        );
+        assert!(!early(&mortar));
     }
 }

@@ -128,6 +128,13 @@ impl EarlyDissection {
         self.graph.is(&pattern.graph())
     }
 
+    /// Whether `pattern`'s elements' graph (without its contact
+    /// couplings) is the one it dissects: the graph that the condensed
+    /// path's factor is ordered on ([`element_dissection`]).
+    pub fn fits_elements(&self, pattern: &SparsityPattern) -> bool {
+        self.graph.is(&pattern.element_graph())
+    }
+
     /// The node ordering, when `pattern`'s node graph is the one it
     /// dissects (waiting for the task if it is running, computing it if
     /// the task has not started).
@@ -222,15 +229,14 @@ pub fn element_dissection(
     pattern: &SparsityPattern,
     early: Option<&EarlyDissection>,
 ) -> Result<Vec<usize>> {
-    let graph = pattern.element_graph();
-    if let Some(early) = early.filter(|e| e.graph.is(&graph)) {
+    if let Some(early) = early.filter(|e| e.fits_elements(pattern)) {
         return early
             .nodes
             .get_or_init(|| dissect(&early.graph))
             .clone()
             .map_err(Error::LinearSolver);
     }
-    dissect(&graph).map_err(Error::LinearSolver)
+    dissect(&pattern.element_graph()).map_err(Error::LinearSolver)
 }
 
 /// AMD for small problems, METIS nested dissection above [`AMD_DOFS`]

@@ -189,8 +189,10 @@ fn assert_newton_iterations(increments: &[IncrementSummary]) {
 /// Newton's iterates as the run takes them ([`Monolithic`]), stopped in
 /// the slide (from `from`) at the first iteration whose line search
 /// shortens the step (or, if none does, at iteration `fallback` of the
-/// slide's first increment): the iterate `x` there, its trial history
-/// and the increment's time.
+/// slide's first increment; with `IRONING_STOP_AT=k`, at its iteration
+/// `k` whatever the step): the iterate `x` there, its trial history and
+/// the increment's time. Each slide iteration's relative residual, step,
+/// status switches and correction `‖α δu‖/‖Δu‖` are printed.
 struct StopInSlide<'a> {
     newton: Monolithic<'a>,
     from: f64,
@@ -226,10 +228,14 @@ impl IncrementMethod<Problem> for StopInSlide<'_> {
         let mut stop = |r: &IterationRecord| {
             count += 1;
             println!(
-                "t = {:.3} iteration {count}: residual {:.2e} step {:.3} switched {}",
-                increment.time, r.residual, r.step_length, r.switched
+                "t = {:.3} iteration {count}: residual {:.2e} step {:.3} switched {} correction {:.2e}",
+                increment.time, r.residual, r.step_length, r.switched, r.correction
             );
-            stopped = r.step_length < 1.0 || (first && count == fallback);
+            stopped = if let Ok(at) = std::env::var("IRONING_STOP_AT") {
+                first && count == at.parse::<usize>().unwrap()
+            } else {
+                r.step_length < 1.0 || (first && count == fallback)
+            };
             on_iteration(r) && !stopped
         };
         let outcome = self

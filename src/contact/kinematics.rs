@@ -20,6 +20,8 @@
 //! K_qλ = (∂f/∂λ) b                K_λq = (∂r_λ/∂g) ∇gᵀ = (∂f/∂λ) ∇gᵀ
 //! ∂t_N/∂q = (∂t_N/∂g) ∇g
 //! ```
+//! plus `(r_λ/A_s) ∇A_s` in `K_λq` where the area follows the nodes
+//! (dual mortar's `D_j`: [`GapKinematics::area_gradient`]).
 //! Node-to-surface and rigid obstacles take `b = ∇g` (the force is the
 //! gradient of the law's potential, `∂b/∂q = ∇²g`, symmetric): against a
 //! rigid obstacle `q = x_s`, `∇g = n`, `∇²g = H`; against a primary
@@ -114,6 +116,10 @@ where
     /// The node's area `A_s` where the producer integrates it (dual mortar:
     /// `D_j`); `None`: the interface's tributary area.
     pub area: Option<f64>,
+    /// `∂A_s/∂q` where the producer's area follows the nodes (dual mortar:
+    /// `∇D_j`); `None`: a constant area. The multiplier row takes it in
+    /// ([`normal_response`](Self::normal_response)).
+    pub area_gradient: Option<OVector<f64, Q>>,
     /// Unit normal `n` of the tangent plane.
     pub normal: Vector3<f64>,
     /// `∂n/∂q`.
@@ -166,7 +172,7 @@ where
             residual: f * lever,
             stiffness: df_dg * lever * grad.transpose() + f * &self.hessian,
             multiplier_column: df_dlambda * lever,
-            multiplier_row: df_dlambda * grad,
+            multiplier_row: self.multiplier_row(df_dlambda, c.r_lambda, area),
             r_lambda: c.r_lambda,
             k_lambdalambda: c.k_lambdalambda,
             pressure: NormalPressure {
@@ -176,6 +182,23 @@ where
             },
             active: c.active,
         }
+    }
+
+    /// `∂r_λ/∂q` of a law whose multiplier row is `r_λ = A_s c(g, λ)`
+    /// (every law: `∂(A_s Φ)/∂λ`, `Φ` per unit area), at `∂r_λ/∂g =
+    /// ∂f/∂λ`:
+    /// ```text
+    /// ∂r_λ/∂q = (∂f/∂λ) ∇g + (r_λ / A_s) ∇A_s
+    /// ```
+    /// the second term where the area follows the nodes
+    /// ([`area_gradient`](Self::area_gradient): dual mortar's `D_j`,
+    /// whose multiplier row is then `−k g̃_j` when active).
+    fn multiplier_row(&self, df_dlambda: f64, r_lambda: f64, area: f64) -> OVector<f64, Q> {
+        let mut row = df_dlambda * &self.gradient;
+        if let Some(area_gradient) = &self.area_gradient {
+            row.axpy(r_lambda / area, area_gradient, 1.0);
+        }
+        row
     }
 }
 

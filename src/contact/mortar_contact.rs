@@ -25,8 +25,10 @@
 //! `D`, `M`, `n` and the segmentation: Popp, Gitterle, Gee & Wall 2010).
 //! The area's own change drops out of the residual's derivative exactly:
 //! `∂(A t_N lever) = A (∂t_N/∂g) lever ∇gᵀ − t_N ∂b_j/∂x`, since
-//! `A lever = −b_j`. Newton's tangent is complete, up to the multiplier
-//! row's `∂r_λ/∂A ∇D_j`, which vanishes with `r_λ` at a converged state.
+//! `A lever = −b_j`. The multiplier row `r_λ = A c(g, λ)` takes the
+//! area's change too, `∂r_λ/∂q = (∂r_λ/∂g) ∇g + (r_λ/A) ∇D_j`
+//! ([`GapKinematics::area_gradient`]; active, `r_λ = −k g̃_j`), so
+//! Newton's tangent is complete.
 
 //! ## Search
 //! Candidate face pairs from a bounding-box search (an R*-tree, the `rstar`
@@ -754,6 +756,7 @@ impl<'a> MortarGap<'a> {
             lever: Some(lever),
             hessian,
             area: Some(d),
+            area_gradient: Some(row.d_gradient.select_rows(&dofs)),
             normal: -row.normal,
             normal_gradient: OMatrix::<f64, U3, Dyn>::from_iterator_generic(
                 U3,
@@ -891,6 +894,9 @@ mod tests {
     /// large constant where the clip polygon has slivers (the blocks'
     /// outer edges nearly coincide): about 1e-7 at `h = 1e-6`, falling 100×
     /// per 10× smaller step; a missing term would be off by its own size.
+    /// With a multiplier (Rockafellar's and the slack law, at `λ ≠ 0` off
+    /// the solution, so `r_λ ≠ 0`), the multiplier row `∂r_λ/∂q`, whose
+    /// `(r_λ/A) ∇D_j` the rows took in late (it vanishes with `r_λ`).
     #[test]
     fn driver_terms_match_finite_differences() {
         for kind in [ElementKind::Hex8, ElementKind::Hex20] {
@@ -950,5 +956,56 @@ mod tests {
             }
             assert!(checked >= 2, "{kind:?}: {checked} nodes checked");
         }
+    }
+
+    /// `∂r_λ/∂q` of a mortar node (see
+    /// [`driver_terms_match_finite_differences`]) against central
+    /// differences of `r_λ`, for the laws with a multiplier, active and
+    /// inactive; to 1e-6 of the row's size.
+    #[test]
+    fn multiplier_row_matches_finite_differences() {
+        let (mesh, surfaces, nodes) = pair(ElementKind::Hex8);
+        let x = state(&mesh, &nodes);
+        let laws = [
+            NormalLaw::Rockafellar { p: 300.0, k: 200.0 },
+            NormalLaw::Slack { p: 300.0, k: 200.0 },
+        ];
+        let p0 = MortarGap::at(&surfaces, &mesh.nodes, &x);
+        let mut checked = 0;
+        for &j in nodes.iter().skip(nodes.len() / 2).take(3) {
+            let Some(row) = p0.node_row(j) else {
+                continue;
+            };
+            let k0 = p0.row_kinematics(j, row);
+            // λ above and far below the law's switch at this gap
+            for (law, lambda) in laws.iter().flat_map(|l| [(l, 0.7), (l, -5.0)]) {
+                let mut st = NodeContactState::initial(law, k0.gap);
+                st.lambda = lambda;
+                let r0 = k0.normal_response(law, k0.area.unwrap(), &st);
+                assert!(r0.r_lambda.abs() > 1e-6, "{law:?}: r_λ {}", r0.r_lambda);
+                let scale = r0.multiplier_row.amax();
+                for (a, &node) in k0.nodes.iter().enumerate() {
+                    for d in 0..3 {
+                        let h = 1e-6;
+                        let r_lambda = |s: f64| {
+                            let mut y = x.clone();
+                            y[3 * node + d] += s * h;
+                            let p = MortarGap::at(&surfaces, &mesh.nodes, &y);
+                            let k = p.row_kinematics(j, p.node_row(j).unwrap());
+                            k.normal_response(law, k.area.unwrap(), &st).r_lambda
+                        };
+                        let fd = (r_lambda(1.0) - r_lambda(-1.0)) / (2.0 * h);
+                        let exact = r0.multiplier_row[3 * a + d];
+                        assert!(
+                            (fd - exact).abs() <= 1e-6 * scale,
+                            "{law:?} λ {lambda} node {j} q{}: fd {fd:e} exact {exact:e}",
+                            3 * a + d
+                        );
+                    }
+                }
+            }
+            checked += 1;
+        }
+        assert!(checked >= 2, "{checked} nodes checked");
     }
 }

@@ -172,6 +172,7 @@ impl MortarGap<'_> {
         GapKinematics {
             gradient: k.gradient.resize_vertically(q, 0.0),
             lever: k.lever.map(|b| b.resize_vertically(q, 0.0)),
+            area_gradient: k.area_gradient.map(|a| a.resize_vertically(q, 0.0)),
             hessian: k.hessian.resize(q, q, 0.0),
             normal_gradient: k.normal_gradient.resize_horizontally(q, 0.0),
             ..k

@@ -35,6 +35,7 @@ impl GapProducer<U3> for RigidGap<'_> {
             lever: None,
             hessian: p.curvature,
             area: None,
+            area_gradient: None,
             normal: p.normal,
             normal_gradient: p.curvature,
             facet: None,

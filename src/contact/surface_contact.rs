@@ -108,6 +108,7 @@ impl GapProducer<Const<Q>> for SurfaceGap<'_> {
             lever: None,
             hessian: padded(&gap.hessian),
             area: None,
+            area_gradient: None,
             normal: gap.normal,
             normal_gradient: padded(&gap.normal_gradient),
             facet: Some(t),

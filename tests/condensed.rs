@@ -1164,9 +1164,14 @@ fn stl_obstacle(path: &Path) -> String {
 /// settle) equals monolithic Newton (residual tolerance 1e-11) to 1e-8:
 /// displacements over the largest, nodal contact forces over |F|,
 /// tractions over the peak, at every increment; one factorisation; `auto`
-/// takes it. A curved STL surface (a cap of the sphere of radius 2, 16 × 16
-/// squares) is not condensed by `auto` (the paths differ there: 1.9e-5 of
-/// the displacements, 2 % of the peak traction).
+/// takes it. The same on a curved STL surface (a cap of the sphere of
+/// radius 2, 16 × 16 squares over [−0.6, 0.6]², its top vertex under the
+/// pole, the hemisphere's nodes on its edges and vertices): each node keeps
+/// the triangle of the last converged increment while it is over it within
+/// the sticky band and has not slid inside another face
+/// (`TriangulatedSurface::project_keeping`), so both paths
+/// read the same face at the answer (1.9e-5 of the displacements and 2 % of
+/// the peak traction apart under the closest point's feature).
 #[test]
 fn frictionless_condensed_against_triangulated_obstacles_equals_monolithic() {
     let dir = tempfile::tempdir().unwrap();
@@ -1183,10 +1188,16 @@ fn frictionless_condensed_against_triangulated_obstacles_equals_monolithic() {
     let closed = |r: &RunOutcome| r.summary.increments.last().unwrap().contact["pole"].closed_nodes;
     assert_eq!(closed(&cond.0), closed(&mono.0));
     assert!(closed(&cond.0) > 3, "{} closed nodes", closed(&cond.0));
-    let (capped, _) = hertz("strategy = \"auto\"", &[(plane, stl_obstacle(&cap))]);
-    assert_eq!(capped.summary.strategy, "monolithic");
-    let reason = &capped.summary.strategy_reason;
-    assert!(reason.contains("triangulated surface"), "{reason}");
+    let (cond, mono) = hertz_on_both_paths(&[(plane, stl_obstacle(&cap))]);
+    let reason = &cond.0.summary.strategy_reason;
+    assert!(reason.contains("triangulated"), "{reason}");
+    let (du, df, dt) = curved_differences("pole", &cond, &mono);
+    eprintln!(
+        "hertz on a triangulated cap: displacements {du:.1e}, forces {df:.1e}, tractions {dt:.1e}"
+    );
+    assert!(du < 1e-8 && df < 1e-8 && dt < 1e-8, "{du:e} {df:e} {dt:e}");
+    assert_eq!(closed(&cond.0), closed(&mono.0));
+    assert!(closed(&cond.0) > 3, "{} closed nodes", closed(&cond.0));
 }
 
 /// Coulomb friction against a triangulated rigid obstacle (issue 32 item
@@ -1228,4 +1239,49 @@ fn frictional_condensed_against_a_triangulated_obstacle_equals_monolithic() {
     assert!(du < 1e-8 && df < 1e-8 && dt < 1e-8, "{du:e} {df:e} {dt:e}");
     assert!(cond.1 .2 == mono.1 .2, "the stick/slip status differs");
     assert_partial_slip(&cond.0, "base", "triangulated plane");
+}
+
+/// Coulomb friction against a curved triangulated rigid obstacle (issue
+/// 32 item 3): [`frictional_condensed_against_a_sphere_equals_monolithic`]'s
+/// case with the regularised law (ε_T = 100) on an STL cap of its sphere
+/// (R = 100, its top 1e-9 into the block at x = 2; 10 × 10 squares over
+/// [−1, 5] × [−1, 1.5], so that the block's faces y = 0 and y = 0.5 lie
+/// on the cap's edges). The condensed path (each node on the face the facet
+/// choice keeps, `TriangulatedSurface::project_keeping`) equals monolithic
+/// Newton (residual 1e-12) at every increment: displacements over the
+/// largest, nodal contact forces over |F| and tractions over the peak to
+/// 1e-8, the same stick/slip status; `auto` takes it.
+#[test]
+fn frictional_condensed_against_a_curved_triangulated_obstacle_equals_monolithic() {
+    let dir = tempfile::tempdir().unwrap();
+    let cap = dir.path().join("cap.stl");
+    let top = -99.999999999;
+    let sphere = |x: f64, y: f64| top + (1e4 - (x - 2.0) * (x - 2.0) - y * y).sqrt();
+    write_stl_grid(&cap, sphere, [-1.0, 5.0], [-1.0, 1.5], 10);
+    let plane = "shape = \"plane\"\npoint = [0.0, 0.0, 0.0]\nnormal = [0.0, 0.0, 1.0]";
+    let held = (
+        "# plane strain\n",
+        "[[displacement]]\nsurface = \"left\"\nx = 0.0\n\n# plane strain\n".to_string(),
+    );
+    let extra = [
+        (plane, stl_obstacle(&cap)),
+        (
+            "exact_stick = true",
+            "exact_stick = false\ntangential_penalty = 100.0".to_string(),
+        ),
+        held,
+    ];
+    let mono = press_pull(
+        "strategy = \"monolithic\"\nresidual_tolerance = 1e-12",
+        &extra,
+    );
+    let cond = press_pull("strategy = \"auto\"", &extra);
+    assert_eq!(cond.0.summary.strategy, "condensed");
+    assert_eq!(cond.0.summary.fallback_increments, 0);
+    assert_eq!(cond.0.summary.factorisations, 1);
+    let (du, df, dt) = curved_differences("base", &cond, &mono);
+    eprintln!("press-pull on a triangulated cap: displacements {du:.1e}, forces {df:.1e}, tractions {dt:.1e}");
+    assert!(du < 1e-8 && df < 1e-8 && dt < 1e-8, "{du:e} {df:e} {dt:e}");
+    assert!(cond.1 .2 == mono.1 .2, "the stick/slip status differs");
+    assert_partial_slip(&cond.0, "base", "triangulated cap");
 }

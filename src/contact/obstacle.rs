@@ -143,6 +143,24 @@ impl RigidObstacle {
         moved
     }
 
+    /// [`project`](Self::project) for a contact node that keeps the
+    /// triangle `kept` of a triangulated obstacle (the facet choice of
+    /// [`TriangulatedSurface::project_keeping`]), with the triangle it is
+    /// on (`None` for the other shapes, which have no facets).
+    pub fn project_keeping(
+        &self,
+        x: &Vector3<f64>,
+        kept: Option<usize>,
+    ) -> (Option<usize>, Projection) {
+        match self {
+            RigidObstacle::Triangulated(surface) => {
+                let (t, p) = surface.project_keeping(x, kept);
+                (Some(t), p)
+            }
+            _ => (None, self.project(x)),
+        }
+    }
+
     /// Projects the spatial point `x` onto the obstacle (see the module
     /// documentation for the formulas).
     pub fn project(&self, x: &Vector3<f64>) -> Projection {

@@ -25,9 +25,12 @@ impl GapProducer<U3> for RigidGap<'_> {
     fn kinematics(
         &self,
         node: &SecondaryNode,
-        _state: &NodeContactState,
+        state: &NodeContactState,
     ) -> Option<GapKinematics<U3>> {
-        let p = self.obstacle.project(&self.relative_position(node));
+        // a triangulated obstacle's facet choice: the triangle the node's
+        // walk keeps ([`crate::contact::facet_walk`]) while it is over it
+        let kept = state.facet_walk.kept(state.facet);
+        let (facet, p) = (self.obstacle).project_keeping(&self.relative_position(node), kept);
         Some(GapKinematics {
             nodes: smallvec::smallvec![node.mesh_node],
             gap: p.gap,
@@ -38,7 +41,7 @@ impl GapProducer<U3> for RigidGap<'_> {
             area_gradient: None,
             normal: p.normal,
             normal_gradient: p.curvature,
-            facet: None,
+            facet,
             primary: PrimaryWeights::new(),
             point: (),
         })

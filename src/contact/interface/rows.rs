@@ -264,22 +264,23 @@ impl ContactInterface {
     /// until they settle): between bodies ([`Self::projected_gap`]), and
     /// against a rigid sphere or cylinder, whose normal `n(x_s)` turns
     /// with the node's position (`∇g = n` on the secondary node alone, the
-    /// lever `B = I`), and against a flat triangulated surface, whose
-    /// normal turns beyond its edges (its nearest facet by the facet choice
-    /// of [`crate::contact::primary`], a function of the position alone).
-    /// A curved triangulated surface is not among them: on an STL cap of a
-    /// sphere the two paths differed by 1.9e-5 of the displacements and 2 %
-    /// of the peak traction (nodes on its edges and vertices, where the
-    /// face normal and the pseudo-normal meet).
+    /// lever `B = I`), and against a triangulated surface, flat or curved,
+    /// whose normal turns from facet to facet: each node on the triangle
+    /// the facet choice keeps
+    /// ([`TriangulatedSurface::project_keeping`](crate::contact::triangulated::TriangulatedSurface::project_keeping):
+    /// the last converged increment's while the node is over it within the
+    /// sticky band, as on a deformable primary surface), so that Newton's
+    /// iterates and the rounds read the same face at the answer.
     pub fn rows_move(&self) -> bool {
         self.projected_gap()
-            || match &self.primary {
-                Primary::Rigid(RigidObstacle::Sphere { .. } | RigidObstacle::Cylinder { .. }) => {
-                    true
-                }
-                Primary::Rigid(RigidObstacle::Triangulated(s)) => s.is_flat(),
-                _ => false,
-            }
+            || matches!(
+                &self.primary,
+                Primary::Rigid(
+                    RigidObstacle::Sphere { .. }
+                        | RigidObstacle::Cylinder { .. }
+                        | RigidObstacle::Triangulated(_)
+                )
+            )
     }
 
     /// Whether every node's area is the fixed tributary `A_s` (`false`:

@@ -48,7 +48,7 @@ pub fn choose(problem: &Problem) -> std::result::Result<Choice, String> {
                 .into()
         } else if has_friction(problem) && super::has_moving_rows(problem) {
             "the stiffness is constant and every contact is against a rigid obstacle with \
-             Coulomb friction, some curved or triangulated (a sphere, a cylinder, a flat STL or \
+             Coulomb friction, some curved or triangulated (a sphere, a cylinder, an STL or \
              Gmsh surface): one factorisation per run, the frictional contact problem solved on the \
              contact nodes by a dense semismooth Newton method at the current normals until \
              they settle (monolithic Newton would \
@@ -62,7 +62,7 @@ pub fn choose(problem: &Problem) -> std::result::Result<Choice, String> {
                 .into()
         } else if super::has_moving_rows(problem) && !super::has_pairs(problem) {
             "the stiffness is constant and every contact is frictionless against a rigid \
-             obstacle, some curved or triangulated (a sphere, a cylinder, a flat STL or \
+             obstacle, some curved or triangulated (a sphere, a cylinder, an STL or \
              Gmsh surface): one factorisation per run with the contact surfaces ordered last, the contact problem solved on the contact nodes at \
              the current normals until they settle (monolithic Newton would factorise at every \
              iteration)"
@@ -127,7 +127,7 @@ pub fn not_applicable(problem: &Problem) -> Option<String> {
         // converged state is exact or a penalty (not an outer loop's)
         let why = match c.affine_gap() {
             Ok(()) => None,
-            // a rigid sphere, cylinder or flat triangulated surface: the
+            // a rigid sphere, cylinder or triangulated surface: the
             // rows at the current normals, in rounds as between bodies
             Err(_) if c.rows_move() && !c.projected_gap() => None,
             // between bodies: the rows at the current projections

@@ -308,6 +308,70 @@ initial_increment = 0.5
         assert_same_forces(&faer, &gamg, "pole", 1e-8, "paraboloid penalty, GAMG");
     }
 
+    /// Rockafellar's saddle point (a multiplier per contact node) by
+    /// fieldsplit's Schur complement, the case's options reaching the
+    /// sub-solvers. With LU on the displacement block and the Schur
+    /// complement solved to 1e-14 the factorisation is exact, so FGMRES
+    /// converges in one or two iterations per solve (the sub-solvers'
+    /// defaults, ILU and GMRES to 1e-5, would need more); with GAMG on the
+    /// displacement block that block has block size 3 and the rigid-body
+    /// near-null space (its KSPView, written by the sub-solver's own
+    /// option). Both give faer's answer to 1e-8, no penetration.
+    #[test]
+    fn fieldsplit_sub_solvers_take_the_case_options_and_the_rigid_body_modes() {
+        let dir = tempfile::tempdir().unwrap();
+        let case = paraboloid_case(dir.path(), "");
+        let faer = run_with(&case, &dir.path().join("faer"), FAER_MONOLITHIC);
+        let schur = "-ksp_type fgmres -ksp_rtol 1e-12 -ksp_max_it 200 -pc_type fieldsplit \
+                     -pc_fieldsplit_type schur -pc_fieldsplit_schur_fact_type full \
+                     -pc_fieldsplit_schur_precondition selfp";
+        let exact = run_with(
+            &case,
+            &dir.path().join("exact"),
+            &format!(
+                "linear = \"petsc\"\npetsc = {{ options = \"{schur} -fieldsplit_0_ksp_type preonly \
+                 -fieldsplit_0_pc_type lu -fieldsplit_1_ksp_type gmres -fieldsplit_1_ksp_rtol 1e-14 \
+                 -fieldsplit_1_pc_type lu\" }}"
+            ),
+        );
+        let (solves, iterations) = (exact.summary.krylov_solves, exact.summary.krylov_iterations);
+        assert!(
+            solves > 0 && iterations <= 2 * solves,
+            "exact sub-solvers: {iterations} FGMRES iterations in {solves} solves"
+        );
+        let view = dir.path().join("split0.txt");
+        let gamg = run_with(
+            &case,
+            &dir.path().join("gamg"),
+            &format!(
+                "linear = \"petsc\"\npetsc = {{ options = \"{schur} -fieldsplit_0_ksp_type preonly \
+                 -fieldsplit_0_pc_type gamg -fieldsplit_1_ksp_type gmres -fieldsplit_1_pc_type jacobi \
+                 -fieldsplit_0_ksp_view ascii:{}\" }}",
+                view.display()
+            ),
+        );
+        let text = std::fs::read_to_string(&view).expect("the displacement block's KSPView");
+        assert!(text.contains("type: gamg"), "{text}");
+        assert!(text.contains("bs=3"), "block size 3: {text}");
+        assert!(text.contains("near null space"), "rigid-body modes: {text}");
+        for (run, what) in [(&exact, "fieldsplit, LU"), (&gamg, "fieldsplit, GAMG")] {
+            assert_same(&faer, run, 1e-8, what);
+            assert_same_forces(&faer, run, "pole", 1e-8, what);
+            let last = &run.summary.increments.last().unwrap().contact["pole"];
+            assert!(
+                last.closed_nodes > 3,
+                "{what}: {} closed",
+                last.closed_nodes
+            );
+            // h = 1/8, the mesh's element size: exact below 1e-8 h
+            assert!(
+                last.largest_penetration < 1e-8 / 8.0,
+                "{what}: {}",
+                last.largest_penetration
+            );
+        }
+    }
+
     #[test]
     fn mumps_and_gamg_give_the_faer_answer_with_penalty_contact() {
         let dir = tempfile::tempdir().unwrap();

@@ -19,7 +19,10 @@
 # EXACT_STICK=false (or true) sets the contact's `exact_stick` (with uzawa
 # the default is true: exact stick by a second, tangential, outer loop;
 # false keeps the penalty run's regularised stick, so that only the normal
-# enforcement differs from it).
+# enforcement differs from it). With uzawa GAMG is rebuilt at every solve
+# (UZAWA_PETSC, default "-ksp_reuse_preconditioner 0", put before
+# PETSC_EXTRA): the GAMG of the first, contact-free, tangent does not
+# precondition contact rows 100 times the penalty's (README.md).
 # Distributed (a `petsc` build with helper "mpi"'s `mpirun` support):
 #     LAUNCH="mpirun -np 2 --allow-run-as-root --oversubscribe" THREADS=1 \
 #         sh benches/million/run.sh 45
@@ -32,7 +35,11 @@ signorini=${SIGNORINI:-$root/target/release/signorini}
 work=${WORK:-$root/target/million}/n$n
 mkdir -p "$work"
 gmsh -3 "$here/block.geo" -setnumber n "$n" -format msh41 -bin -o "$work/block.msh" > "$work/gmsh.log"
-sed -e "/^options = /s|\"\$| ${PETSC_EXTRA:-}\"|" \
+case ${METHOD:-penalty} in
+uzawa) method_options=${UZAWA_PETSC--ksp_reuse_preconditioner 0} ;;
+*) method_options= ;;
+esac
+sed -e "/^options = /s|\"\$| $method_options ${PETSC_EXTRA:-}\"|" \
     -e "/^method = /s|\"penalty\"|\"${METHOD:-penalty}\"|" \
     -e "/^method = /s|\$|${EXACT_STICK:+\\nexact_stick = $EXACT_STICK}|" "$here/case.toml" > "$work/case.toml"
 rm -rf "$work/results"

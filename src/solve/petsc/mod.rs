@@ -18,9 +18,15 @@
 //! once per pattern by PETSc's `MATPREALLOCATOR`): PETSc holds the one
 //! compressed-row copy of it, and no map from our entries to its.
 //!
-//! Each solver has an options database of its own (the environment's
-//! `PETSC_OPTIONS`, then the case's options), so two runs in one process
-//! do not share options. PETSc is initialised once per process (MPI as a singleton when the
+//! Each solver reads its options (the environment's `PETSC_OPTIONS`, then
+//! the case's) under a prefix of its own, `sg<k>_`, in PETSc's global
+//! options database, so two runs in one process do not share options and
+//! the solvers PETSc makes inside a solver (fieldsplit's, multigrid's)
+//! read them too. With `-pc_type fieldsplit` and contact multipliers the
+//! C layer gives fieldsplit two fields, the displacements ("0", block size
+//! 3, the rigid-body near-null space) and the multipliers ("1").
+//!
+//! PETSc is initialised once per process (MPI as a singleton when the
 //! program was not started by `mpirun`) and finalised at exit. Calls into
 //! it are serialised by a lock: PETSc is not thread-safe.
 
@@ -109,6 +115,7 @@ struct SystemArguments {
     same_pattern: c_int,
     block_size: c_int,
     coordinates: *const f64,
+    displacements: c_int,
     b: *const f64,
     x: *mut f64,
     iterations: *mut c_int,
@@ -271,6 +278,22 @@ impl PetscSolver {
     }
 }
 
+impl PetscSolver {
+    /// How a system of `n` unknowns is laid out for PETSc: block size 3
+    /// with the coordinates (GAMG's rigid-body modes) when every unknown
+    /// is a displacement; block size 1, the coordinates and the number of
+    /// displacement unknowns (3 per node, numbered first, the contact
+    /// multipliers after them: `Pattern::pivot_signs`) when there are
+    /// multipliers too, for fieldsplit's two fields; else nothing.
+    fn layout(&self, n: usize) -> (c_int, *const f64, c_int) {
+        match &self.coordinates {
+            Some(c) if c.len() == n => (3, c.as_ptr(), 0),
+            Some(c) if c.len() < n => (1, c.as_ptr(), c.len() as c_int),
+            _ => (1, std::ptr::null(), 0),
+        }
+    }
+}
+
 /// The C layer's constructor, destructor and description of a solver.
 type MakeFn = unsafe extern "C" fn(*mut *mut c_void, *const c_char, *mut c_char, usize) -> c_int;
 type FreeFn = unsafe extern "C" fn(*mut c_void);
@@ -340,12 +363,7 @@ impl LinearSolver for PetscSolver {
             check_indices(system.pattern, true).map_err(|e| e.to_string())?;
         }
         self.fingerprint = Some(fingerprint);
-        let displacement_only = self.coordinates.as_ref().is_some_and(|c| c.len() == n);
-        let coordinates = match (&self.coordinates, displacement_only) {
-            (Some(c), true) => c.as_ptr(),
-            _ => std::ptr::null(),
-        };
-        let block_size = if displacement_only { 3 } else { 1 };
+        let (block_size, coordinates, displacements) = self.layout(n);
         let mut iterations: c_int = 0;
         let mut err = [0 as c_char; MESSAGE];
         let _lock = PETSC.lock().unwrap_or_else(|e| e.into_inner());
@@ -356,6 +374,7 @@ impl LinearSolver for PetscSolver {
             same_pattern: same_pattern as c_int,
             block_size,
             coordinates,
+            displacements,
             b: rhs.as_ptr(),
             x: x.as_mut_ptr(),
             iterations: &mut iterations,

@@ -60,31 +60,51 @@ int sg_petsc_initialise(char *version, size_t version_len, char *err,
   return 0;
 }
 
+/* The options prefix of one solver: "sg<k>_". */
+#define PREFIX_LEN 32
+
 typedef struct {
-  PetscOptions options;
+  char prefix[PREFIX_LEN];
   Mat matrix;
   Vec rhs, solution;
   KSP ksp;
   PetscInt n, nnz;
+  /* the displacement unknowns fieldsplit's fields were given for (0:
+   * none given) */
+  PetscInt split;
 } Solver;
 
-/* A KSP on `comm` whose PC it reads an options database of its own:
- * PETSC_OPTIONS from the environment, then `text` (so the case file
- * wins), so that two solvers in one process do not share options. The
- * default is a direct solve by MUMPS (LU, so saddle-point systems of the
- * Lagrangian contact methods are fine); the options database overrides. */
-static int make_ksp(MPI_Comm comm, const char *text, PetscOptions *options,
-                    KSP *ksp, char *err, size_t err_len) {
-  CHECK(PetscOptionsCreate(options));
+/* Insert PETSC_OPTIONS from the environment, then `text` (so the case
+ * file wins), into PETSc's global options database under `prefix`
+ * ("-pc_type gamg" becomes "-<prefix>pc_type gamg"). */
+static int insert_options(const char *prefix, const char *text, char *err,
+                          size_t err_len) {
+  CHECK(PetscOptionsPrefixPush(NULL, prefix));
+  PetscErrorCode failed = 0;
   const char *environment = getenv("PETSC_OPTIONS");
   if (environment && environment[0]) {
-    CHECK(PetscOptionsInsertString(*options, environment));
+    failed = PetscOptionsInsertString(NULL, environment);
   }
-  if (text && text[0]) {
-    CHECK(PetscOptionsInsertString(*options, text));
+  if (!failed && text && text[0]) failed = PetscOptionsInsertString(NULL, text);
+  CHECK(PetscOptionsPrefixPop(NULL));
+  if (failed) {
+    const char *text_ = NULL;
+    PetscErrorMessage(failed, &text_, NULL);
+    snprintf(err, err_len, "PETSc error %d in the options \"%s\": %s", (int)failed,
+             text ? text : "", text_ ? text_ : "(no text)");
+    return (int)failed;
   }
+  return 0;
+}
+
+/* A KSP on `comm` with the options prefix `prefix`, set from PETSc's
+ * global options database. The default is a direct solve by MUMPS (LU, so
+ * saddle-point systems of the Lagrangian contact methods are fine); the
+ * options database overrides. */
+static int new_ksp(MPI_Comm comm, const char *prefix, KSP *ksp, char *err,
+                   size_t err_len) {
   CHECK(KSPCreate(comm, ksp));
-  CHECK(PetscObjectSetOptions((PetscObject)*ksp, *options));
+  CHECK(KSPSetOptionsPrefix(*ksp, prefix));
   PC pc;
   CHECK(KSPSetType(*ksp, KSPPREONLY));
   CHECK(KSPGetPC(*ksp, &pc));
@@ -94,8 +114,26 @@ static int make_ksp(MPI_Comm comm, const char *text, PetscOptions *options,
   return 0;
 }
 
-/* A solver whose KSP and PC read an options database of their own
- * (make_ksp) on one process. */
+/* A KSP on `comm` whose options are its own: they go into PETSc's global
+ * database under a prefix of this solver's, "sg<k>_" (k counts the
+ * solvers made in this process, in the same order on every process of a
+ * run), written into `prefix` (PREFIX_LEN), and the KSP reads them under
+ * it. So two solvers in one process do not share options, and every
+ * solver PETSc makes inside this one (fieldsplit's sub-solvers, the
+ * multigrid levels' smoothers), whose prefixes extend their parent's,
+ * reads the case's options too. The options stay in the database until
+ * the process ends (a few strings per solver). */
+static int make_ksp(MPI_Comm comm, const char *text, char *prefix, KSP *ksp,
+                    char *err, size_t err_len) {
+  static int solvers = 0;
+  snprintf(prefix, PREFIX_LEN, "sg%d_", ++solvers);
+  int failed = insert_options(prefix, text, err, err_len);
+  if (failed) return failed;
+  return new_ksp(comm, prefix, ksp, err, err_len);
+}
+
+/* A solver whose KSP and PC read options of their own (make_ksp) on one
+ * process. */
 int sg_petsc_solver_new(void **out, const char *options, char *err,
                         size_t err_len) {
   Solver *s = calloc(1, sizeof(Solver));
@@ -104,7 +142,7 @@ int sg_petsc_solver_new(void **out, const char *options, char *err,
     return 1;
   }
   *out = s;
-  return make_ksp(PETSC_COMM_SELF, options, &s->options, &s->ksp, err, err_len);
+  return make_ksp(PETSC_COMM_SELF, options, s->prefix, &s->ksp, err, err_len);
 }
 
 void sg_petsc_solver_free(void *handle) {
@@ -114,7 +152,6 @@ void sg_petsc_solver_free(void *handle) {
   if (s->matrix) MatDestroy(&s->matrix);
   if (s->rhs) VecDestroy(&s->rhs);
   if (s->solution) VecDestroy(&s->solution);
-  if (s->options) PetscOptionsDestroy(&s->options);
   free(s);
 }
 
@@ -160,24 +197,76 @@ static int solve_ksp(KSP ksp, Vec b, Vec x, int *iterations, char *err,
   return 0;
 }
 
-/* Attach the rigid-body modes of the nodes at `coordinates` (3 per
- * node, `local` of `global` values on this process) to `matrix` as its
- * near-null space (GAMG's). */
-static int attach_rigid_body_modes(Mat matrix, MPI_Comm comm, PetscInt local,
-                                   PetscInt global, const double *coordinates,
-                                   char *err, size_t err_len) {
+/* The rigid-body modes of the nodes at `coordinates` (3 per node,
+ * `local` of `global` values on this process) into `rigid`. */
+static int rigid_body_modes(MPI_Comm comm, PetscInt local, PetscInt global,
+                            const double *coordinates, MatNullSpace *rigid,
+                            char *err, size_t err_len) {
   Vec coords;
-  MatNullSpace rigid;
   CHECK(VecCreateMPI(comm, local, global, &coords));
   CHECK(VecSetBlockSize(coords, 3));
   PetscScalar *c;
   CHECK(VecGetArray(coords, &c));
   memcpy(c, coordinates, sizeof(double) * (size_t)local);
   CHECK(VecRestoreArray(coords, &c));
-  CHECK(MatNullSpaceCreateRigidBody(coords, &rigid));
+  CHECK(MatNullSpaceCreateRigidBody(coords, rigid));
+  CHECK(VecDestroy(&coords));
+  return 0;
+}
+
+/* Attach the rigid-body modes of the nodes at `coordinates` (3 per
+ * node, `local` of `global` values on this process) to `matrix` as its
+ * near-null space (GAMG's). */
+static int attach_rigid_body_modes(Mat matrix, MPI_Comm comm, PetscInt local,
+                                   PetscInt global, const double *coordinates,
+                                   char *err, size_t err_len) {
+  MatNullSpace rigid;
+  int failed = rigid_body_modes(comm, local, global, coordinates, &rigid, err, err_len);
+  if (failed) return failed;
   CHECK(MatSetNearNullSpace(matrix, rigid));
   CHECK(MatNullSpaceDestroy(&rigid));
-  CHECK(VecDestroy(&coords));
+  return 0;
+}
+
+/* Give a fieldsplit PC (`-pc_type fieldsplit`) the two fields of a
+ * Lagrangian contact tangent of `n` unknowns: [0, displacements) the
+ * nodal displacements, the rest the contact multipliers, as fields "0"
+ * and "1" (the names -pc_fieldsplit_detect_saddle_point gives, so that
+ * the options -fieldsplit_0_... and -fieldsplit_1_... address them). The
+ * displacements' index set has block size 3 and carries the rigid-body
+ * modes of `coordinates` (3 per node) as its "nearnullspace", which
+ * fieldsplit attaches to the displacement block's matrix: GAMG on that
+ * block is then elasticity's (6 modes per aggregate), not a scalar AMG.
+ * Fields given for an earlier pattern are dropped with the KSP (a fresh
+ * one from the same options). Nothing for another PC. */
+static int split_fields(Solver *s, PetscInt n, PetscInt displacements,
+                        const double *coordinates, char *err, size_t err_len) {
+  PC pc;
+  PetscBool fieldsplit;
+  CHECK(KSPGetPC(s->ksp, &pc));
+  CHECK(PetscObjectTypeCompare((PetscObject)pc, PCFIELDSPLIT, &fieldsplit));
+  if (!fieldsplit) return 0;
+  if (s->split) {
+    CHECK(KSPDestroy(&s->ksp));
+    int failed = new_ksp(PETSC_COMM_SELF, s->prefix, &s->ksp, err, err_len);
+    if (failed) return failed;
+    CHECK(KSPGetPC(s->ksp, &pc));
+  }
+  IS u, lambda;
+  MatNullSpace rigid;
+  CHECK(ISCreateStride(PETSC_COMM_SELF, displacements, 0, 1, &u));
+  CHECK(ISSetBlockSize(u, 3));
+  CHECK(ISCreateStride(PETSC_COMM_SELF, n - displacements, displacements, 1, &lambda));
+  int failed = rigid_body_modes(PETSC_COMM_SELF, displacements, displacements,
+                                coordinates, &rigid, err, err_len);
+  if (failed) return failed;
+  CHECK(PetscObjectCompose((PetscObject)u, "nearnullspace", (PetscObject)rigid));
+  CHECK(PCFieldSplitSetIS(pc, "0", u));
+  CHECK(PCFieldSplitSetIS(pc, "1", lambda));
+  CHECK(MatNullSpaceDestroy(&rigid));
+  CHECK(ISDestroy(&u));
+  CHECK(ISDestroy(&lambda));
+  s->split = displacements;
   return 0;
 }
 
@@ -261,6 +350,7 @@ typedef struct {
   int same_pattern;
   int block_size;
   const double *coordinates;
+  int displacements;
   const double *b;
   double *x;
   int *iterations;
@@ -272,8 +362,10 @@ typedef struct {
  * straight from the caller's array: PETSc holds the one compressed-row
  * copy of the tangent and no map to it). `block_size` 3 when the
  * unknowns are nodal displacements only (then `coordinates`, 3 per node,
- * if not NULL, give GAMG the rigid-body near-null space). Returns the
- * Krylov iterations in `iterations`. */
+ * if not NULL, give GAMG the rigid-body near-null space); with contact
+ * multipliers after the displacements, `displacements` (> 0) of them
+ * with `coordinates`, fieldsplit gets the two fields (split_fields).
+ * Returns the Krylov iterations in `iterations`. */
 int sg_petsc_solve(void *handle, const SystemArguments *system, char *err,
                    size_t err_len) {
   Solver *s = handle;
@@ -284,7 +376,7 @@ int sg_petsc_solve(void *handle, const SystemArguments *system, char *err,
     if (s->rhs) VecDestroy(&s->rhs);
     if (s->solution) VecDestroy(&s->solution);
     CHECK(MatCreate(PETSC_COMM_SELF, &s->matrix));
-    CHECK(PetscObjectSetOptions((PetscObject)s->matrix, s->options));
+    CHECK(MatSetOptionsPrefix(s->matrix, s->prefix));
     CHECK(MatSetSizes(s->matrix, n, n, n, n));
     CHECK(MatSetType(s->matrix, MATSEQAIJ));
     if (block_size > 1) CHECK(MatSetBlockSize(s->matrix, block_size));
@@ -294,8 +386,14 @@ int sg_petsc_solve(void *handle, const SystemArguments *system, char *err,
     s->n = n;
     s->nnz = nnz;
     if (system->coordinates && block_size == 3) {
-      CHECK(attach_rigid_body_modes(s->matrix, PETSC_COMM_SELF, n, n,
-                                    system->coordinates, err, err_len));
+      failed = attach_rigid_body_modes(s->matrix, PETSC_COMM_SELF, n, n,
+                                       system->coordinates, err, err_len);
+      if (failed) return failed;
+    }
+    int d = system->displacements;
+    if (system->coordinates && d > 0 && d < n && d % 3 == 0) {
+      failed = split_fields(s, n, d, system->coordinates, err, err_len);
+      if (failed) return failed;
     }
   }
   int failed = set_columns(s->matrix, &system->columns, system->values,
@@ -365,7 +463,7 @@ int sg_mpi_sum(double *v, size_t n, char *err, size_t err_len) {
 }
 
 typedef struct {
-  PetscOptions options;
+  char prefix[PREFIX_LEN];
   Mat matrix;
   Vec rhs, solution, everywhere;
   VecScatter to_all;
@@ -381,7 +479,7 @@ int sg_petsc_mpi_solver_new(void **out, const char *options, char *err,
     return 1;
   }
   *out = s;
-  return make_ksp(PETSC_COMM_WORLD, options, &s->options, &s->ksp, err, err_len);
+  return make_ksp(PETSC_COMM_WORLD, options, s->prefix, &s->ksp, err, err_len);
 }
 
 static void distributed_free_system(DistributedSolver *s) {
@@ -397,7 +495,6 @@ void sg_petsc_mpi_solver_free(void *handle) {
   if (!s) return;
   distributed_free_system(s);
   if (s->ksp) KSPDestroy(&s->ksp);
-  if (s->options) PetscOptionsDestroy(&s->options);
   free(s);
 }
 
@@ -432,7 +529,7 @@ int sg_petsc_mpi_layout(void *handle, const DistributedLayout *layout,
   DistributedSolver *s = handle;
   distributed_free_system(s);
   CHECK(MatCreate(PETSC_COMM_WORLD, &s->matrix));
-  CHECK(PetscObjectSetOptions((PetscObject)s->matrix, s->options));
+  CHECK(MatSetOptionsPrefix(s->matrix, s->prefix));
   CHECK(MatSetSizes(s->matrix, layout->local, layout->local, layout->global,
                     layout->global));
   CHECK(MatSetType(s->matrix, MATMPIAIJ));

@@ -491,78 +491,19 @@ pub fn first_contact<K: Dim>(
 
 /// [`first_contact`] where the normal constraint is exact at the solution
 /// (`g = 0` at every converged closed node: a normal multiplier in
-/// Newton, the exact normal equation of the condensed path): `α = 1`,
-/// `d' = 0`, `∂d'/∂q = 0`, the value [`first_contact`] takes there, in
-/// every iteration, and the old traction of the trial (exact stick's
-/// multiplier `λ_T`) held at the open node's zero:
-/// ```text
-/// t_T* = T·0 − ε_T·0 = 0   ⇒   t_T = 0,   ∂t_T/∂q = 0
-/// ```
-/// A closing node then carries no tangential traction in the increment it
-/// closes (as at the converged state of [`first_contact`]), without the
-/// fraction's kink at `g = 0`: `∂d'/∂q` jumps there by `d ⊗ ∇g / g_n`
-/// (zero for `g ≥ 0`), a tangential stiffness `ε_T |d| / g_n` on one side
-/// only, exactly where the converged state lies. Newton's converged `g`
-/// is zero only to its tolerance (`|g| ≈ 1e-13` on
-/// examples/cattaneo-mindlin at 1e-8, either sign), so the fraction left a
-/// traction `ε_T (−g/g_n) T d` at some closing nodes, of either sign,
-/// that the condensed path (whose `g` is zero to rounding) does not have.
+/// Newton): `α = 1`, `d' = 0`, `∂d'/∂q = 0`, the value [`first_contact`]
+/// takes there, in every iteration. A closing node then carries no
+/// tangential traction in the increment it closes (as at the converged
+/// state of [`first_contact`]), without the fraction's kink at `g = 0`:
+/// `∂d'/∂q` jumps there by `d ⊗ ∇g / g_n` (zero for `g ≥ 0`), a tangential
+/// stiffness `ε_T |d| / g_n` on one side only, exactly where the converged
+/// state lies.
 pub fn first_contact_at_solution<K: Dim>(kinematics: &mut SlipKinematics<K>)
 where
     DefaultAllocator: QAllocator<K>,
 {
-    kinematics.traction = Vector3::zeros();
-    kinematics.traction_gradient.fill(0.0);
     kinematics.offset = Vector3::zeros();
     kinematics.offset_gradient.fill(0.0);
-}
-
-/// How a node that was open at the last commit (committed gap `g_n > 0`)
-/// counts its slip in the increment in which it closes: the one rule of
-/// both paths (Newton's node driver and the condensed cone), chosen by
-/// whether the normal law is exact at convergence.
-#[derive(Clone, Copy, Debug, PartialEq, Eq)]
-pub enum FirstContact {
-    /// Exact normal constraint (a normal multiplier: Rockafellar, slack;
-    /// the condensed path's exact normal equation): `g = 0` at the
-    /// solution, so `α = 1` and `t_T = 0` ([`first_contact_at_solution`]).
-    AtSolution,
-    /// A penalty (or Uzawa's, exact only after its outer loop): `g < 0` at
-    /// the solution, the slip beyond the surface `(1 − α) T d`
-    /// ([`first_contact`]).
-    Fraction,
-}
-
-impl FirstContact {
-    /// The rule of a normal law that is (`exact`) or is not exact at
-    /// convergence.
-    pub fn of(exact: bool) -> Self {
-        if exact {
-            Self::AtSolution
-        } else {
-            Self::Fraction
-        }
-    }
-
-    /// Anchor `kinematics` of a node closing from the committed gap
-    /// `committed_gap` at the current gap `gap` (gradient `gap_gradient`)
-    /// by this rule; nothing for a node that touched at the last commit
-    /// (`g_n ≤ 0`).
-    pub fn anchor<K: Dim>(
-        self,
-        kinematics: &mut SlipKinematics<K>,
-        committed_gap: f64,
-        gap: f64,
-        gap_gradient: &OVector<f64, K>,
-    ) where
-        DefaultAllocator: QAllocator<K>,
-    {
-        match self {
-            _ if !(committed_gap > 0.0) => {}
-            Self::AtSolution => first_contact_at_solution(kinematics),
-            Self::Fraction => first_contact(kinematics, committed_gap, gap, gap_gradient),
-        }
-    }
 }
 
 /// The history with its tangential multiplier augmented (Simo–Laursen's
@@ -1328,48 +1269,6 @@ mod tests {
         let again = return_map(&law(), &committed, &x, &g, &p);
         assert!((again.traction - r.traction).norm() < 1e-15);
         assert_eq!(again.status, ContactStatus::Stick);
-    }
-
-    /// The first-contact rule of both paths on a plane `n = e_z`: a node
-    /// open at `g_n = 1e-3`, now at `g = −1e-4`, offset `d` from where it
-    /// was. Under an exact law (`AtSolution`) it carries `t_T = 0` with a
-    /// zero gradient whatever its trial's old traction (exact stick's
-    /// multiplier, held at zero); under a penalty (`Fraction`) it sticks
-    /// with `t_T = −ε_T (1 − α) T d`, `1 − α = −g/(g_n − g) = 1/11`; a node
-    /// that touched at the commit (`g_n ≤ 0`) keeps `d` under both.
-    #[test]
-    fn a_closing_node_is_anchored_by_its_laws_rule() {
-        let n = Vector3::z();
-        let d = Vector3::new(2e-3, -1e-3, -1.1e-3);
-        let kinematics = |traction: Vector3<f64>| SlipKinematics::<U3> {
-            traction,
-            traction_gradient: Matrix3::zeros(),
-            offset: d,
-            offset_gradient: Matrix3::identity(),
-            normal: n,
-            normal_gradient: Matrix3::zeros(),
-        };
-        let p = pressure_at(&plane(&Vector3::new(0.0, 0.0, -1e-4)), 1.0);
-        let (g_n, g) = (1e-3, -1e-4);
-        assert_eq!(FirstContact::of(true), FirstContact::AtSolution);
-        assert_eq!(FirstContact::of(false), FirstContact::Fraction);
-        let mut exact = kinematics(Vector3::new(3.0, 4.0, 0.0));
-        FirstContact::AtSolution.anchor(&mut exact, g_n, g, &n);
-        let t = return_map_on(&law(), &exact, &p);
-        assert_eq!(t.traction, Vector3::zeros());
-        assert_eq!(t.traction_gradient, Matrix3::zeros());
-        assert_eq!(t.status, ContactStatus::Stick);
-        let mut penalty = kinematics(Vector3::zeros());
-        FirstContact::Fraction.anchor(&mut penalty, g_n, g, &n);
-        let t = return_map_on(&law(), &penalty, &p);
-        let expected = -EPS_T / 11.0 * Vector3::new(d.x, d.y, 0.0);
-        assert!((t.traction - expected).norm() < 1e-15 * EPS_T, "{t:?}");
-        assert_eq!(t.status, ContactStatus::Stick);
-        for rule in [FirstContact::AtSolution, FirstContact::Fraction] {
-            let mut touching = kinematics(Vector3::zeros());
-            rule.anchor(&mut touching, 0.0, g, &n);
-            assert_eq!(touching.offset, d);
-        }
     }
 
     #[test]

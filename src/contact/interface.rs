@@ -446,9 +446,12 @@ impl ContactInterface {
                     k.traction_gradient.fill(0.0);
                 }
                 if self.first_contact_pending(state) {
-                    let (g, grad) = (kinematics.gap, &kinematics.gradient);
-                    let rule = friction::FirstContact::of(self.closes_exactly());
-                    rule.anchor(&mut frame.kinematics, state.gap, g, grad);
+                    if self.closes_exactly() {
+                        friction::first_contact_at_solution(&mut frame.kinematics);
+                    } else {
+                        let (g, grad) = (kinematics.gap, &kinematics.gradient);
+                        friction::first_contact(&mut frame.kinematics, state.gap, g, grad);
+                    }
                 }
                 let t = friction::return_map_on(&coulomb, &frame.kinematics, &response.pressure);
                 let lever_t = frame.lever.transpose();
@@ -780,21 +783,18 @@ impl ContactInterface {
     /// flat faces read ±2e-16) is touching, not open: the first-contact
     /// fraction `α = g_n/(g_n − g)` would jump from 1 to 0 as `g` crosses
     /// `−g_n`, and Newton hunt around the exact constraint `g = 0`.
-    pub fn first_contact_pending(&self, state: &NodeContactState) -> bool {
+    fn first_contact_pending(&self, state: &NodeContactState) -> bool {
         state.friction.status == ContactStatus::Open && state.gap > 1e-12 * self.element_size
     }
 
     /// Whether a closing node's first-contact fraction is taken at its
-    /// value at the solution, `α = 1` ([`friction::FirstContact::AtSolution`]):
-    /// a normal multiplier in Newton (Rockafellar, slack), whose constraint
-    /// `g = 0` holds exactly at every converged closed node, node to
-    /// surface and dual mortar alike (see
-    /// [`mortar_friction`](super::mortar_friction), "A node that closes in
-    /// the increment"); the condensed path's exact normal equation takes
-    /// the same rule. A penalty, and Uzawa within its Newton solves, keep
-    /// the fraction.
-    pub fn closes_exactly(&self) -> bool {
-        self.law.has_multiplier_dof()
+    /// value at the solution, `α = 1` ([`friction::first_contact_at_solution`]):
+    /// dual mortar between bodies with a normal multiplier in Newton, whose
+    /// constraint `g_j = 0` holds exactly at every converged closed node
+    /// (see [`mortar_friction`](super::mortar_friction), "A node that
+    /// closes in the increment").
+    fn closes_exactly(&self) -> bool {
+        matches!(self.primary, Primary::Mortar(_)) && self.law.has_multiplier_dof()
     }
 }
 

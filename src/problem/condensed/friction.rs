@@ -57,7 +57,7 @@
 
 use super::linearisation::Linearisation;
 use super::{constraint_rows, Condensation, ContactNode, ContactState, IncrementSolver, Problem};
-use crate::contact::friction::Coulomb;
+use crate::contact::friction::{ContactStatus, Coulomb};
 use crate::contact::interface::ConstraintRow;
 use crate::solve::condensed::cone::{
     solve_cone, ConeNode, ConeProblem, ConeSolution, Flexibility, TangentialLaw,
@@ -339,7 +339,7 @@ impl FrictionalCondensation {
             gap_at_rest,
             offset_at_rest,
             committed_gap: committed.gap,
-            was_open: interface.first_contact_pending(committed),
+            was_open: committed.friction.status == ContactStatus::Open,
             prescribed: self.prescribed_axes(c),
         })
     }

@@ -116,10 +116,9 @@ pub struct ConeNode {
     pub gap_at_rest: f64,
     /// `d` at `u_a = 0` (`d = d⁰ + u_a`).
     pub offset_at_rest: Vector3<f64>,
-    /// The gap at the last commit, and whether the node was open then, at
-    /// a positive gap ([`ContactInterface::first_contact_pending`](crate::contact::interface::ContactInterface::first_contact_pending)):
-    /// it may close in this increment, anchored by the rule of both paths
-    /// ([`friction::FirstContact`]).
+    /// The gap at the last commit, and whether the node was open then
+    /// (its first contact is anchored where its path meets the surface:
+    /// [`friction::first_contact`]).
     pub committed_gap: f64,
     pub was_open: bool,
     /// The node's prescribed components: along a prescribed axis near the
@@ -205,10 +204,8 @@ fn stick_multiplier(node: &ConeNode, tangential: Vector3<f64>) -> (Vector3<f64>,
 /// The equations of node `node` at displacement `u` and traction `t`
 /// (see the module docs): the normal one ([`normal_equation`]) and, in a
 /// basis `(e₁, e₂)` of the tangent plane, the tangential ones, `t_T = 0`
-/// where the node is open, else `T t − P_{μp}(trial)` by the monolithic
-/// return mapping with the first-contact rule of both paths
-/// ([`friction::FirstContact`]: `t_T = 0` for a node closing under an
-/// exact law).
+/// where the node is open or closing under an exact law, else
+/// `T t − P_{μp}(trial)` by the monolithic return mapping.
 pub fn node_law(node: &ConeNode, u: &Vector3<f64>, t: &Vector3<f64>) -> NodeLaw {
     let n = node.normal;
     let basis = tangent_basis(&n);
@@ -221,22 +218,22 @@ pub fn node_law(node: &ConeNode, u: &Vector3<f64>, t: &Vector3<f64>) -> NodeLaw 
         multiplier: t - n * n.dot(t),
     };
     let closed = normal_equation(node, g, n.dot(t), &mut law);
-    let Some((p, dp_du, dp_dt)) = closed else {
-        // open: t_T = 0
+    let exact_normal = matches!(node.normal_law, NormalEnforcement::Exact { .. });
+    let closing = exact_normal && node.was_open && node.committed_gap > 0.0;
+    let Some((p, dp_du, dp_dt)) = closed.filter(|_| !closing) else {
+        // open, or closing under an exact law: t_T = 0
         for (k, e) in basis.iter().enumerate() {
             law.residual[k + 1] = e.dot(t);
             law.traction_derivative.set_row(k + 1, &e.transpose());
+        }
+        if closed.is_some() {
+            law.status = ContactStatus::Stick;
         }
         return law;
     };
     let projector = Matrix3::identity() - n * n.transpose();
     let tangential = projector * t;
-    let exact_normal = matches!(node.normal_law, NormalEnforcement::Exact { .. });
-    let rule = friction::FirstContact::of(exact_normal);
-    // exact stick's multiplier is T t, but a node closing under an exact
-    // law holds it at zero (the rule's t_T = 0, as Newton's node driver)
-    let at_solution = node.was_open && rule == friction::FirstContact::AtSolution;
-    let exact_stick = node.tangential_law == TangentialLaw::ExactStick && !at_solution;
+    let exact_stick = node.tangential_law == TangentialLaw::ExactStick;
     let (multiplier, free) = stick_multiplier(node, tangential);
     let mut kinematics = SlipKinematics {
         traction: if exact_stick {
@@ -251,7 +248,7 @@ pub fn node_law(node: &ConeNode, u: &Vector3<f64>, t: &Vector3<f64>) -> NodeLaw 
         normal_gradient: Matrix3::zeros(),
     };
     if node.was_open {
-        rule.anchor(&mut kinematics, node.committed_gap, g, &n);
+        friction::first_contact(&mut kinematics, node.committed_gap, g, &n);
     }
     let pressure = NormalPressure {
         value: p,

@@ -9,23 +9,13 @@
 //! not counted. A new long function fails this test, naming the file, the
 //! line and the length: split it, or add it to the table with its reason.
 
+mod common;
+use common::rust_files;
 use std::collections::BTreeSet;
-use std::path::{Path, PathBuf};
+use std::path::Path;
 
 /// Functions longer than this many lines must be listed.
 const LIMIT: usize = 100;
-
-/// Every `.rs` file under `dir`.
-fn rust_files(dir: &Path, out: &mut Vec<PathBuf>) {
-    for entry in std::fs::read_dir(dir).unwrap() {
-        let path = entry.unwrap().path();
-        if path.is_dir() {
-            rust_files(&path, out);
-        } else if path.extension().is_some_and(|e| e == "rs") {
-            out.push(path);
-        }
-    }
-}
 
 /// `line` without string and character literals and without a `//`
 /// comment, so that its braces are the code's.

@@ -838,3 +838,16 @@ pub fn cube_case() -> String {
     let data = Path::new(env!("CARGO_MANIFEST_DIR")).join("tests/data");
     std::fs::read_to_string(data.join("cube_case.toml")).unwrap()
 }
+
+/// Every `.rs` file under `dir` (the guards of the source layout read
+/// `src/` with it).
+pub fn rust_files(dir: &std::path::Path, out: &mut Vec<std::path::PathBuf>) {
+    for entry in std::fs::read_dir(dir).unwrap() {
+        let path = entry.unwrap().path();
+        if path.is_dir() {
+            rust_files(&path, out);
+        } else if path.extension().is_some_and(|e| e == "rs") {
+            out.push(path);
+        }
+    }
+}

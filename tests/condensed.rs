@@ -916,6 +916,28 @@ fn bodies_in_contact_with_friction_condensed_equal_monolithic() {
     assert_partial_slip(&cond.0, "poles", "Cattaneo-Mindlin");
 }
 
+/// The checks of a press-pull run under `auto` (`cond`) against its
+/// monolithic twin (`mono`) on an obstacle described by `what`: the
+/// condensed path with one factorisation and no fallback, displacements,
+/// nodal forces and tractions within 1e-8, the same stick/slip status,
+/// and partial slip at the end.
+fn assert_press_pull_paths_agree(
+    cond: &(RunOutcome, Forces),
+    mono: &(RunOutcome, Forces),
+    what: &str,
+) {
+    assert_eq!(cond.0.summary.strategy, "condensed");
+    assert_eq!(cond.0.summary.fallback_increments, 0);
+    assert_eq!(cond.0.summary.factorisations, 1);
+    let (du, df, dt) = curved_differences("base", cond, mono);
+    eprintln!(
+        "press-pull on a {what}: displacements {du:.1e}, forces {df:.1e}, tractions {dt:.1e}"
+    );
+    assert!(du < 1e-8 && df < 1e-8 && dt < 1e-8, "{du:e} {df:e} {dt:e}");
+    assert!(cond.1 .2 == mono.1 .2, "the stick/slip status differs");
+    assert_partial_slip(&cond.0, "base", what);
+}
+
 /// Contact `name`'s last increment in `run` has both slipping and
 /// sticking nodes (partial slip: both branches of the law are compared).
 fn assert_partial_slip(run: &RunOutcome, name: &str, what: &str) {
@@ -1231,14 +1253,7 @@ fn frictional_condensed_against_a_triangulated_obstacle_equals_monolithic() {
         tighter,
     );
     let cond = press_pull("strategy = \"auto\"", &extra);
-    assert_eq!(cond.0.summary.strategy, "condensed");
-    assert_eq!(cond.0.summary.fallback_increments, 0);
-    assert_eq!(cond.0.summary.factorisations, 1);
-    let (du, df, dt) = curved_differences("base", &cond, &mono);
-    eprintln!("press-pull on a triangulated plane: displacements {du:.1e}, forces {df:.1e}, tractions {dt:.1e}");
-    assert!(du < 1e-8 && df < 1e-8 && dt < 1e-8, "{du:e} {df:e} {dt:e}");
-    assert!(cond.1 .2 == mono.1 .2, "the stick/slip status differs");
-    assert_partial_slip(&cond.0, "base", "triangulated plane");
+    assert_press_pull_paths_agree(&cond, &mono, "triangulated plane");
 }
 
 /// Coulomb friction against a curved triangulated rigid obstacle (issue
@@ -1276,12 +1291,5 @@ fn frictional_condensed_against_a_curved_triangulated_obstacle_equals_monolithic
         &extra,
     );
     let cond = press_pull("strategy = \"auto\"", &extra);
-    assert_eq!(cond.0.summary.strategy, "condensed");
-    assert_eq!(cond.0.summary.fallback_increments, 0);
-    assert_eq!(cond.0.summary.factorisations, 1);
-    let (du, df, dt) = curved_differences("base", &cond, &mono);
-    eprintln!("press-pull on a triangulated cap: displacements {du:.1e}, forces {df:.1e}, tractions {dt:.1e}");
-    assert!(du < 1e-8 && df < 1e-8 && dt < 1e-8, "{du:e} {df:e} {dt:e}");
-    assert!(cond.1 .2 == mono.1 .2, "the stick/slip status differs");
-    assert_partial_slip(&cond.0, "base", "triangulated cap");
+    assert_press_pull_paths_agree(&cond, &mono, "triangulated cap");
 }

@@ -281,17 +281,6 @@ impl TriangulatedSurface {
         &self.triangles
     }
 
-    /// Whether every triangle lies in one plane: all unit normals within
-    /// 1e-12 of the first's, and every vertex within 1e-12 `L` of its
-    /// plane (`L` the bounding box's diagonal).
-    pub fn is_flat(&self) -> bool {
-        let n = self.face_normals[0];
-        let origin = self.vertices[self.triangles[0][0]];
-        let scale = self.tiny / DIRECTION_TOLERANCE;
-        self.face_normals.iter().all(|m| (m - n).norm() <= 1e-12)
-            && (self.vertices.iter()).all(|v| (v - origin).dot(&n).abs() <= 1e-12 * scale)
-    }
-
     /// Unit right-hand normal of triangle `t`.
     pub fn face_normal(&self, t: usize) -> Vector3<f64> {
         self.face_normals[t]

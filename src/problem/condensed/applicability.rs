@@ -138,8 +138,8 @@ pub fn not_applicable(problem: &Problem) -> Option<String> {
             // answers agree to 1.6e-14 of the displacements (they differed
             // by 1.9e-4 under the last iterate's triangle). With Coulomb
             // friction under `auto` too: examples/cattaneo-mindlin's
-            // tractions equal Newton's at 1e-11 node by node to 1e-10 of
-            // the peak (BENCHMARKS.md, session 20). Dual mortar between
+            // tractions equal Newton's at 1e-11 node by node to 5.7e-10
+            // of the peak (BENCHMARKS.md, session 20). Dual mortar between
             // bodies: the same rounds, at the
             // current segmentation (frictionless; its answer is Newton's
             // where the rounds settle, as node-to-surface's), by name.

@@ -19,7 +19,8 @@ type ElementMaterials = (Vec<Arc<dyn Material>>, Vec<usize>);
 /// Whether `[[contact]]` `c` between two bodies takes the condensed path
 /// under `strategy = "auto"` as far as the case file tells before the
 /// problem is built ([`crate::problem::condensed::not_applicable`]): every
-/// material small-strain, frictionless node-to-surface (given, or by
+/// material small-strain, node-to-surface, frictionless or with Coulomb
+/// friction (given, or by
 /// default on a mesh of linear elements: on quadratic faces the default
 /// may be mortar, which `auto` leaves to Newton), not uzawa; then its factor is ordered on the elements' graph,
 /// and the dissection of that graph starts early
@@ -27,13 +28,12 @@ type ElementMaterials = (Vec<Arc<dyn Material>>, Vec<usize>);
 /// the unused dissection on the idle core (and Newton's own dissection of
 /// the coupled pattern waits for METIS's lock if that one still runs).
 fn condensed_pair(c: &ContactSpec, small_strain: bool, quadratic: bool) -> bool {
-    let frictionless = c.friction_coefficient.is_none_or(|mu| mu == 0.0);
     let node_to_surface = match c.discretisation {
         Some(d) => d == DiscretisationSpec::NodeToSurface,
         None => !quadratic,
     };
     let law = c.method != ContactMethod::Uzawa;
-    c.primary.is_some() && small_strain && frictionless && node_to_surface && law
+    c.primary.is_some() && small_strain && node_to_surface && law
 }
 
 impl Case {

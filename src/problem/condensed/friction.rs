@@ -15,7 +15,12 @@
 //! rigid plane; between bodies at the last answer `x̂`, the increment
 //! solved again at its answer (with `W` formed anew from `(K̃⁻¹)_SS`, the
 //! surfaces' dofs ordered last, [`super::pairs::surface_trailing`]) until
-//! the answer is the point it was linearised at. That fixed point is the
+//! the answer is the point it was linearised at. A component prescribed
+//! on the secondary node has no column, but between bodies its lever
+//! reaches primary dofs that are free (a node on a symmetry plane over a
+//! vertex off it): that reaction is carried as a load, at the last
+//! round's tractions, until it settles too
+//! ([`FrictionalCondensation::uncolumned_force`]). That fixed point is the
 //! monolithic node-to-surface problem with Coulomb friction, which the
 //! problem's evaluation then checks. Bodies held only by contact are not
 //! condensed between bodies (no shift).
@@ -372,15 +377,28 @@ impl FrictionalCondensation {
         let length = ROUND_TOLERANCE * problem.model.size();
         for _ in 0..MAX_ROUNDS {
             self.replace_columns(&lin)?;
+            // the reaction no column carries, at the last answer's tractions
+            let lagged = self.uncolumned_force(&lin);
+            let with_lagged;
+            let round_load = match &lagged {
+                Some(force) => {
+                    with_lagged = load.plus(force, &mut self.base)?;
+                    &with_lagged
+                }
+                None => &load,
+            };
             let (u, traction) =
-                self.solve_linearised(problem, &load, state, kept, &lin, history)?;
+                self.solve_linearised(problem, round_load, state, kept, &lin, history)?;
             let next = Linearisation::at(problem, t, &u, kept);
             let nodes = (self.candidates.iter()).map(|&a| {
                 let c = &self.contact[a];
                 (c.interface, c.index, traction[a] != Vector3::zeros())
             });
             let defect = lin.defect(&next, &u, nodes);
-            if defect.is_some_and(|(geometry, l)| geometry <= ROUND_TOLERANCE && l <= length) {
+            let lag = self.force_change(lagged.as_deref(), &next);
+            if defect.is_some_and(|(geometry, l)| geometry <= ROUND_TOLERANCE && l <= length)
+                && lag <= ROUND_TOLERANCE
+            {
                 self.take_normals(&next);
                 return Ok((u, traction));
             }
@@ -411,6 +429,57 @@ impl FrictionalCondensation {
         self.base.flexibility.replace_columns(columns)?;
         self.factor = None;
         Ok(())
+    }
+
+    /// The force `Σ_d A t_d B_dᵀ` of the candidates' components without a
+    /// column (prescribed on the secondary node) on the free dofs of their
+    /// lever, at the rows of `lin` and the last answer's tractions; `None`
+    /// where it is zero. Between bodies a secondary node on a symmetry
+    /// plane projects on a triangle with a vertex off the plane: its
+    /// reaction along the plane's normal acts on that vertex (weighted by
+    /// `−w_i`, as the monolithic residual has it), and no column of `E`
+    /// carries it, so the rounds carry it as a load, lagged by one round
+    /// until it settles ([`Self::force_change`]).
+    fn uncolumned_force(&self, lin: &Linearisation) -> Option<Vec<f64>> {
+        let constrained = &self.base.flexibility.constrained;
+        let mut force: Option<Vec<f64>> = None;
+        for &a in &self.candidates {
+            let c = &self.contact[a];
+            let Some(row) = &lin.rows[c.interface][c.index] else {
+                continue;
+            };
+            for d in (0..3).filter(|&d| constrained[3 * c.node + d]) {
+                let nodal = row.area * self.traction[a][d];
+                for (i, w) in row.lever_row(d) {
+                    if !constrained[i] && w * nodal != 0.0 {
+                        let f = force.get_or_insert_with(|| vec![0.0; constrained.len()]);
+                        f[i] += w * nodal;
+                    }
+                }
+            }
+        }
+        force
+    }
+
+    /// How far the force [`Self::uncolumned_force`] at the rows of `next`
+    /// and the tractions just solved is from the `lagged` one the round
+    /// was solved with: the largest change of an entry, relative to the
+    /// largest nodal contact force `A |t|∞` of the candidates.
+    fn force_change(&self, lagged: Option<&[f64]>, next: &Linearisation) -> f64 {
+        let now = self.uncolumned_force(next);
+        let change = match (lagged, now.as_deref()) {
+            (None, None) => return 0.0,
+            (Some(f), None) | (None, Some(f)) => f.iter().fold(0.0f64, |m, v| m.max(v.abs())),
+            (Some(a), Some(b)) => (a.iter().zip(b)).fold(0.0f64, |m, (x, y)| m.max((x - y).abs())),
+        };
+        let scale = (self.candidates.iter())
+            .filter_map(|&a| {
+                let c = &self.contact[a];
+                let row = next.rows[c.interface][c.index].as_ref()?;
+                Some(row.area * self.traction[a].amax())
+            })
+            .fold(f64::MIN_POSITIVE, f64::max);
+        change / scale
     }
 
     /// Each contact node's normal from the rows of `lin` (where it has one).
@@ -586,6 +655,20 @@ struct Load {
 }
 
 impl Load {
+    /// This load with `force` added to `b`, its answer without contact
+    /// solved anew.
+    fn plus(&self, force: &[f64], base: &mut Condensation) -> Result<Self> {
+        let b: Vec<f64> = self.b.iter().zip(force).map(|(b, f)| b + f).collect();
+        let mut free = b.clone();
+        base.flexibility.solve(&mut free)?;
+        Ok(Load {
+            time: self.time,
+            b,
+            free,
+            prescribed: self.prescribed.clone(),
+        })
+    }
+
     fn at(problem: &Problem, t: f64, base: &mut Condensation) -> Result<Self> {
         let b = base.load(problem, t);
         let mut free = b.clone();

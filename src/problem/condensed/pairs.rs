@@ -78,7 +78,7 @@ fn rows_at(
     (problem.contacts.iter().enumerate())
         .map(|(ci, c)| {
             let states = &mut kept.interfaces[ci];
-            let rows = c.constraint_rows(reference, t, u, Some(states));
+            let rows = c.constraint_row_values(reference, t, u, Some(states));
             for (state, row) in states.iter_mut().zip(&rows) {
                 if let Some(row) = row {
                     state.move_to_facet(row.facet);
@@ -174,7 +174,7 @@ pub(super) fn surface_trailing(problem: &Problem) -> Vec<usize> {
     let reference = &problem.model.mesh.nodes;
     let kept = problem.contacts.initial_state(reference, &zero);
     let rows: Vec<_> = (problem.contacts.iter().enumerate())
-        .map(|(ci, c)| c.constraint_rows(reference, 0.0, &zero, Some(&kept.interfaces[ci])))
+        .map(|(ci, c)| c.constraint_row_values(reference, 0.0, &zero, Some(&kept.interfaces[ci])))
         .collect();
     trailing_of_rows(problem, &rows)
 }
@@ -349,7 +349,7 @@ impl IncrementSolver for PairCondensation {
         let mut pressures = zero_per_node(problem);
         let reference = &problem.model.mesh.nodes;
         let rows: Vec<_> = (problem.contacts.iter().enumerate())
-            .map(|(ci, c)| c.constraint_rows(reference, t, &u, Some(&trial.interfaces[ci])))
+            .map(|(ci, c)| c.constraint_row_values(reference, t, &u, Some(&trial.interfaces[ci])))
             .collect();
         for (a, c) in self.base.nodes.iter().enumerate() {
             if let Some(row) = &rows[c.interface][c.index] {

@@ -144,7 +144,7 @@ fn set_multipliers(
 /// interface at time `t` and unknowns `x` (the contact's linearisation, the
 /// one thing the condensed path reads of the obstacles), dual mortar's
 /// with `derivatives` or without
-/// ([`ContactInterface::constraint_row_values`](crate::contact::interface::ContactInterface::constraint_row_values):
+/// ([`ContactInterface::constraint_rows_with`](crate::contact::interface::ContactInterface::constraint_rows_with):
 /// what the frictionless path reads).
 fn constraint_rows(
     problem: &Problem,
@@ -153,9 +153,6 @@ fn constraint_rows(
     derivatives: Derivatives,
 ) -> Vec<Vec<Option<ConstraintRow>>> {
     let reference = &problem.model.mesh.nodes;
-    let rows = |c: &ContactInterface| match derivatives {
-        Derivatives::With => c.constraint_rows(reference, t, x, None),
-        Derivatives::Without => c.constraint_row_values(reference, t, x, None),
-    };
+    let rows = |c: &ContactInterface| c.constraint_rows_with(reference, t, x, None, derivatives);
     problem.contacts.iter().map(rows).collect()
 }

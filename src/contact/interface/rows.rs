@@ -50,7 +50,7 @@ pub struct ConstraintRow {
     /// below 1e-13 of the largest (the integrals' round-off where
     /// biorthogonality makes them zero) left out; empty in dual mortar's
     /// rows without derivatives
-    /// ([`ContactInterface::constraint_row_values`]).
+    /// ([`ContactInterface::constraint_rows_with`]).
     pub node_gradients: Vec<(usize, Vector3<f64>)>,
     /// The node's position in the frame its friction anchor is kept in
     /// ([`GapProducer::relative_position`]).
@@ -242,29 +242,17 @@ impl ContactInterface {
         x: &[f64],
         states: Option<&[NodeContactState]>,
     ) -> Vec<Option<ConstraintRow>> {
-        self.rows_with(reference, t, x, states, Derivatives::With)
+        self.constraint_rows_with(reference, t, x, states, Derivatives::With)
     }
 
-    /// [`constraint_rows`](Self::constraint_rows) without what a dual
-    /// mortar producer would integrate its derivatives for: each row's
-    /// gap, normal, area `D_j`, primary weights and force direction
-    /// ([`ConstraintRow::force`]), its `node_gradients` empty (the rows
-    /// without derivatives, [`Derivatives::Without`]). What the frictionless
-    /// condensed path reads; the other producers' rows are complete (their
-    /// `∇g` is their force direction).
-    pub fn constraint_row_values(
-        &self,
-        reference: &[[f64; 3]],
-        t: f64,
-        x: &[f64],
-        states: Option<&[NodeContactState]>,
-    ) -> Vec<Option<ConstraintRow>> {
-        self.rows_with(reference, t, x, states, Derivatives::Without)
-    }
-
-    /// The rows of [`constraint_rows`](Self::constraint_rows), a dual
-    /// mortar producer's with `derivatives` or without.
-    fn rows_with(
+    /// [`constraint_rows`](Self::constraint_rows), a dual mortar
+    /// producer's rows with `derivatives` or without
+    /// ([`Derivatives::Without`]: each row's gap, normal, area `D_j`,
+    /// primary weights and force direction, [`ConstraintRow::force`], its
+    /// `node_gradients` empty). Without is what the frictionless condensed
+    /// path reads; the other producers' rows are complete either way
+    /// (their `∇g` is their force direction).
+    pub fn constraint_rows_with(
         &self,
         reference: &[[f64; 3]],
         t: f64,

@@ -24,7 +24,7 @@ use signorini::contact::kinematics::GapKinematics;
 use signorini::contact::laws::{NodeContactState, NormalLaw};
 use signorini::contact::mortar::obstacle_rows::face_obstacle_integrals;
 use signorini::contact::mortar::quadratic::nodal_transformation;
-use signorini::contact::mortar::{FaceShape, MortarFace};
+use signorini::contact::mortar::{Derivatives, FaceShape, MortarFace};
 use signorini::contact::obstacle::RigidObstacle;
 use signorini::contact::projection::Projection;
 use signorini::material::LinearElastic;
@@ -71,6 +71,8 @@ fn sphere() -> impl Fn(&Vector3<f64>) -> Projection {
 /// four shapes against a sphere (curved: `H ≠ 0`), to 1e-6 of each
 /// quantity's scale. A missing term (the dual basis's or the area
 /// element's change, the curvature) is off by its own size, ≥ 1e-2 here.
+/// Without derivatives the kernel gives the same values to the bit, and
+/// no gradient.
 #[test]
 fn face_kernel_matches_finite_differences() {
     let obstacle = sphere();
@@ -81,7 +83,11 @@ fn face_kernel_matches_finite_differences() {
         FaceShape::Quad8,
     ] {
         let face = warped_face(shape);
-        let f0 = face_obstacle_integrals(&face, &obstacle).unwrap();
+        let f0 = face_obstacle_integrals(&face, &obstacle, Derivatives::With).unwrap();
+        let values = face_obstacle_integrals(&face, &obstacle, Derivatives::Without).unwrap();
+        let same = (&values.d, &values.weighted_gap, &values.lever);
+        assert_eq!(same, (&f0.d, &f0.weighted_gap, &f0.lever), "{shape:?}");
+        assert!(values.lever_gradient.is_empty() && values.d_gradient.is_empty());
         let n = shape.node_count();
         let h = 1e-6;
         let mut worst = 0.0_f64;
@@ -89,7 +95,7 @@ fn face_kernel_matches_finite_differences() {
             let at = |s: f64| {
                 let mut g = face.clone();
                 g.coordinates[c / 3][c % 3] += s * h;
-                face_obstacle_integrals(&g, &obstacle).unwrap()
+                face_obstacle_integrals(&g, &obstacle, Derivatives::With).unwrap()
             };
             let (fp, fm) = (at(1.0), at(-1.0));
             for j in 0..n {
@@ -143,7 +149,7 @@ fn plane_integrals_are_closed_forms() {
         for x in &mut face.coordinates {
             x[2] = 0.1 + 0.3 * x[0] - 0.2 * x[1];
         }
-        let f = face_obstacle_integrals(&face, &project).unwrap();
+        let f = face_obstacle_integrals(&face, &project, Derivatives::With).unwrap();
         let area = face.area();
         let r = nodal_transformation(shape);
         for (j, rj) in r.iter().enumerate() {
@@ -414,7 +420,7 @@ fn driver_terms_match_finite_differences() {
         let law = NormalLaw::Penalty { epsilon: 300.0 };
         let st = NodeContactState::initial(&law, -1.0);
         let translation = Vector3::zeros();
-        let p0 = m.producer(&translation, &mesh.nodes, &x);
+        let p0 = m.producer(&translation, &mesh.nodes, &x, Derivatives::With);
         let mut checked = 0;
         for &j in nearest.iter().take(4) {
             let row = p0.node_row(j).expect("the corner nodes touch");
@@ -427,7 +433,7 @@ fn driver_terms_match_finite_differences() {
                     let at = |s: f64| {
                         let mut y = x.clone();
                         y[3 * node + d] += s * h;
-                        let p = m.producer(&translation, &mesh.nodes, &y);
+                        let p = m.producer(&translation, &mesh.nodes, &y, Derivatives::With);
                         let k = p.row_kinematics(j, p.node_row(j).unwrap());
                         let r = k.normal_response(&law, k.area.unwrap(), &st);
                         (k, r)

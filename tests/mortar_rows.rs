@@ -20,7 +20,8 @@ use mortar_common::{
 use nalgebra::{DVector, Vector3};
 use signorini::contact::mortar::quadratic::{mid_side_edges, mortar_values};
 use signorini::contact::mortar::{
-    all_pairs, mortar_coupling, mortar_row_values, mortar_rows, FaceShape, MortarRow, SurfaceFace,
+    all_pairs, mortar_coupling, mortar_row_values, mortar_rows, Derivatives, FaceShape, MortarRow,
+    SurfaceFace,
 };
 
 const H: f64 = 1e-6;
@@ -76,7 +77,7 @@ fn surfaces(secondary: FaceShape, primary: FaceShape, curved: bool, covered: boo
 
 fn rows(s: &Surfaces, coords: &[Vector3<f64>]) -> Vec<MortarRow> {
     let pairs = all_pairs(s.secondary.len(), s.primary.len());
-    mortar_rows(&s.secondary, &s.primary, &pairs, coords).unwrap()
+    mortar_rows(&s.secondary, &s.primary, &pairs, coords, Derivatives::With).unwrap()
 }
 
 /// The increments of a row's nodes, node-major.
@@ -89,8 +90,31 @@ fn local(row: &MortarRow, dx: &[Vector3<f64>]) -> DVector<f64> {
     )
 }
 
+/// Taken without derivatives: no gradient; the lever `b_j` on its nodes
+/// (those of `R_jk` and `M_jl`) is `row`'s there, bit for bit, and `row`'s
+/// is zero elsewhere; `D_j`, `g̃_j`, `n_j` are `row`'s (through
+/// [`mortar_row_values`], the same rows' values).
+fn assert_same_lever(what: &str, row: &MortarRow, without: &MortarRow) {
+    assert!(
+        row.has_derivatives() && !without.has_derivatives(),
+        "{what}"
+    );
+    assert_eq!(without.node, row.node, "{what}");
+    for (a, n) in row.nodes.iter().enumerate() {
+        let b = (without.nodes.iter().position(|m| m == n)).map_or(Vector3::zeros(), |w| {
+            without.lever.fixed_rows::<3>(3 * w).into()
+        });
+        assert_eq!(row.lever.fixed_rows::<3>(3 * a), b, "{what}: b on {n}");
+    }
+}
+
+/// The rows' values are the coupling's ([`mortar_coupling`]) to 1e-14, on
+/// curved non-matching surfaces of every pairing of the four shapes, and
+/// the rows without derivatives ([`Derivatives::Without`],
+/// [`mortar_row_values`]) are the rows' values to the bit.
 #[test]
 fn values_equal_the_coupling() {
+    const NO: Derivatives = Derivatives::Without;
     for s_shape in SHAPES {
         for p_shape in SHAPES {
             let s = surfaces(s_shape, p_shape, true, true);
@@ -101,8 +125,11 @@ fn values_equal_the_coupling() {
             assert_eq!(rows.len(), coupling.d.len());
             let values = mortar_row_values(&s.secondary, &s.primary, &pairs, &s.coords).unwrap();
             assert_eq!(values.len(), rows.len());
-            for (row, values) in rows.iter().zip(&values) {
+            let without = (mortar_rows(&s.secondary, &s.primary, &pairs, &s.coords, NO)).unwrap();
+            assert_eq!(without.len(), rows.len());
+            for ((row, values), without) in rows.iter().zip(&values).zip(&without) {
                 let what = format!("{s_shape:?}–{p_shape:?} node {}", row.node);
+                assert_same_lever(&what, row, without);
                 // the values-only path: the same numbers, bit for bit
                 assert_eq!(values.node, row.node, "{what}");
                 assert_eq!(values.d, row.d, "{what}: D (values only)");

@@ -29,6 +29,7 @@ use super::kinematics::{
     GapKinematics, GapProducer, NodeEvaluation, PrimaryWeights, QAllocator, SecondaryNode,
 };
 use super::laws::{NodeContactState, NormalLaw};
+use super::mortar::Derivatives;
 use super::mortar_contact::{MortarGap, MortarSurfaces};
 use super::mortar_rigid::MortarObstacle;
 use super::obstacle::RigidObstacle;
@@ -146,9 +147,15 @@ pub struct ContactContext<'a> {
 }
 
 /// Run `$body` with `$p` bound to the gap producer of `$iface` at the
-/// context `$ctx` (the one dispatch on the primary kind).
+/// context `$ctx` (the one dispatch on the primary kind); with
+/// `$derivatives` ([`Derivatives`]) what the operation reads of a dual
+/// mortar producer's rows (the other producers give their derivatives
+/// always: they cost little), by default their derivatives too.
 macro_rules! with_producer {
     ($iface:expr, $ctx:expr, $p:ident => $body:expr) => {
+        with_producer!($iface, $ctx, $crate::contact::mortar::Derivatives::With, $p => $body)
+    };
+    ($iface:expr, $ctx:expr, $derivatives:expr, $p:ident => $body:expr) => {
         match &$iface.primary {
             Primary::Rigid(obstacle) => {
                 let $p = &RigidGap {
@@ -162,12 +169,12 @@ macro_rules! with_producer {
                 $body
             }
             Primary::Mortar(surfaces) => {
-                let $p = &MortarGap::at(surfaces, $ctx.reference, $ctx.x);
+                let $p = &MortarGap::at(surfaces, $ctx.reference, $ctx.x, $derivatives);
                 $body
             }
             Primary::MortarRigid(obstacle) => {
                 let translation = $iface.translation_at($ctx.t);
-                let $p = &obstacle.producer(&translation, $ctx.reference, $ctx.x);
+                let $p = &obstacle.producer(&translation, $ctx.reference, $ctx.x, $derivatives);
                 $body
             }
         }
@@ -533,7 +540,7 @@ impl ContactInterface {
             first_multiplier: 0,
         };
         let mut states = Vec::with_capacity(self.nodes.len());
-        with_producer!(self, &ctx, p => {
+        with_producer!(self, &ctx, self.reads_derivatives(false), p => {
             let blank = |i| NodeContactState::initial(&self.law_at(i), p.open_gap());
             self.for_each_node(p, &ctx, blank, |node, _, k| {
                 let g = k.as_ref().map_or(p.open_gap(), |k| k.gap);
@@ -561,7 +568,8 @@ impl ContactInterface {
     ) -> Vec<NodeReport> {
         let mut reports = Vec::with_capacity(self.nodes.len());
         let all = |_| true;
-        with_producer!(self, ctx, p => {
+        let derivatives = self.reads_derivatives(tangent.is_some());
+        with_producer!(self, ctx, derivatives, p => {
             let state_of = |i| self.node_state(ctx, states, i);
             self.for_each_node(p, ctx, state_of, |node, state, k| {
                 let i = node.index;
@@ -658,7 +666,7 @@ impl ContactInterface {
     /// Frictionless nodes record their status only.
     pub fn commit_history(&self, ctx: &ContactContext, states: &mut [NodeContactState]) {
         let mut committed = Vec::with_capacity(self.nodes.len());
-        with_producer!(self, ctx, p => {
+        with_producer!(self, ctx, self.reads_derivatives(false), p => {
             let state_of = |i| self.node_state(ctx, states, i);
             self.for_each_node(p, ctx, state_of, |node, state, k| {
                 let facet = k.as_ref().and_then(|k| k.facet);
@@ -772,6 +780,19 @@ impl ContactInterface {
 }
 
 impl ContactInterface {
+    /// What an operation reads of a dual mortar producer's rows: their
+    /// derivatives where it assembles a `tangent`, or where friction's
+    /// slip reads them (the weighted slip, the anchor); else their values
+    /// alone (a residual, a commit, the initial states, frictionless),
+    /// which cost a fraction of the rows with derivatives.
+    fn reads_derivatives(&self, tangent: bool) -> Derivatives {
+        if tangent || self.friction.is_some() {
+            Derivatives::With
+        } else {
+            Derivatives::Without
+        }
+    }
+
     /// Whether the node was open at the last commit, at a positive gap: it
     /// may close in this increment, its slip counted from its first contact
     /// ([`friction::first_contact`]), which leaves its stick equation

@@ -60,11 +60,11 @@ use super::kinematics::{
 };
 use super::laws::NodeContactState;
 use super::mortar::{
-    mortar_row_values, mortar_rows, node_integrals, FaceShape, MortarCoupling, MortarRow,
-    RowValues, SurfaceFace,
+    mortar_row_values, mortar_rows, node_integrals, Derivatives, FaceShape, MortarCoupling,
+    MortarRow, RowValues, SurfaceFace,
 };
 use crate::mesh::{FacetKind, Mesh};
-use nalgebra::{DMatrix, Dyn, OMatrix, Vector3, U3};
+use nalgebra::{DMatrix, DVector, Dyn, OMatrix, Vector3, U3};
 use rstar::primitives::{GeomWithData, Rectangle};
 use rstar::{RTree, AABB};
 use std::collections::{BTreeMap, VecDeque};
@@ -116,19 +116,26 @@ pub type MortarRows = BTreeMap<usize, MortarRow>;
 const CACHED_CONFIGURATIONS: usize = 2;
 
 /// The producer's rows at the last [`CACHED_CONFIGURATIONS`]
-/// configurations, keyed by the coordinates of the surfaces' nodes: every
-/// driver operation at one state (the residual, its tangent, the states'
-/// advance, the commit, the gaps) segments and integrates it once. A clone
+/// configurations, keyed by the coordinates of the surfaces' nodes, each
+/// with its derivatives or without ([`Derivatives`]): every driver
+/// operation at one state (the residual, its tangent, the states'
+/// advance, the commit, the gaps) segments and integrates it once, and
+/// once more with derivatives where the first operation read values
+/// alone (rows with derivatives serve a request for values). A clone
 /// starts empty (it may refresh its candidates on its own); counts of rows
-/// asked for and integrated, and of the evaluations of values alone
-/// (gaps without derivatives), [`MortarSurfaces::row_counts`].
+/// asked for and integrated with derivatives, and of the evaluations of
+/// values alone (rows or gaps without derivatives),
+/// [`MortarSurfaces::row_counts`].
 #[derive(Default)]
 struct RowCache {
-    entries: Mutex<VecDeque<(Vec<f64>, Arc<MortarRows>)>>,
+    entries: Mutex<VecDeque<CachedRows>>,
     requested: AtomicUsize,
     integrated: AtomicUsize,
     values: AtomicUsize,
 }
+
+/// One configuration's key, whether its rows carry derivatives, the rows.
+type CachedRows = (Vec<f64>, Derivatives, Arc<MortarRows>);
 
 impl Clone for RowCache {
     fn clone(&self) -> Self {
@@ -143,9 +150,11 @@ impl std::fmt::Debug for RowCache {
 }
 
 /// How often the producer asked for the rows of a configuration, and how
-/// often it segmented and integrated them (the rest came from the cache);
-/// how often the gaps alone were evaluated, without derivatives
-/// ([`RowSource::gaps`], where the configuration's rows were not cached).
+/// often it segmented and integrated them with their derivatives (the rest
+/// came from the cache, or needed values alone); how often values alone
+/// were evaluated, without derivatives (rows taken
+/// [`Derivatives::Without`], or the gaps of [`RowSource::gaps`], where
+/// the configuration's rows were not cached).
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
 pub struct RowCounts {
     pub requested: usize,
@@ -162,31 +171,43 @@ impl RowCache {
         }
     }
 
-    /// The rows at `key`, from the cache or from `integrate` (then kept,
-    /// the oldest configuration dropped).
-    fn rows(&self, key: Vec<f64>, integrate: impl FnOnce() -> MortarRows) -> Arc<MortarRows> {
+    /// The rows at `key` with at least `derivatives`, from the cache or
+    /// from `integrate` (then kept in place of rows at `key` without
+    /// derivatives, the oldest configuration dropped).
+    fn rows(
+        &self,
+        key: Vec<f64>,
+        derivatives: Derivatives,
+        integrate: impl FnOnce() -> MortarRows,
+    ) -> Arc<MortarRows> {
         self.requested.fetch_add(1, Ordering::Relaxed);
         let mut entries = self.entries.lock().unwrap_or_else(|e| e.into_inner());
-        let found = entries.iter().position(|(k, _)| *k == key);
+        let found = entries.iter().position(|(k, _, _)| *k == key);
         if let Some(entry) = found.and_then(|at| entries.remove(at)) {
-            let rows = entry.1.clone();
-            entries.push_front(entry);
-            return rows;
+            if entry.1 == Derivatives::With || derivatives == Derivatives::Without {
+                let rows = entry.2.clone();
+                entries.push_front(entry);
+                return rows;
+            }
         }
-        self.integrated.fetch_add(1, Ordering::Relaxed);
+        let count = match derivatives {
+            Derivatives::With => &self.integrated,
+            Derivatives::Without => &self.values,
+        };
+        count.fetch_add(1, Ordering::Relaxed);
         let rows = Arc::new(integrate());
-        entries.push_front((key, rows.clone()));
+        entries.push_front((key, derivatives, rows.clone()));
         entries.truncate(CACHED_CONFIGURATIONS);
         rows
     }
 
-    /// The rows at `key` if the cache holds them, leaving the cache and
-    /// its counts as they are.
+    /// The rows at `key` (with derivatives or without) if the cache holds
+    /// them, leaving the cache and its counts as they are.
     fn peek(&self, key: &[f64]) -> Option<Arc<MortarRows>> {
         let entries = self.entries.lock().unwrap_or_else(|e| e.into_inner());
         (entries.iter())
-            .find(|(k, _)| k == key)
-            .map(|(_, rows)| rows.clone())
+            .find(|(k, _, _)| k == key)
+            .map(|(_, _, rows)| rows.clone())
     }
 
     fn clear(&self) {
@@ -502,28 +523,37 @@ impl MortarSurfaces {
     }
 
     /// The producer's rows at unknowns `x`: every covered secondary node's
-    /// [`MortarRow`] (see [`MortarGap::at`]), from the cache where this
-    /// configuration was integrated last or the one before.
+    /// [`MortarRow`] with its derivatives (see [`MortarGap::at`]), from the
+    /// cache where this configuration was integrated last or the one
+    /// before.
     pub fn rows_at(&self, reference: &[[f64; 3]], x: &[f64]) -> Arc<MortarRows> {
-        self.rows_at_coordinates(&coordinates(reference, x))
+        self.rows_at_coordinates(&coordinates(reference, x), Derivatives::With)
     }
 
-    /// [`rows_at`](Self::rows_at) at the nodes' current coordinates `xs`.
-    pub fn rows_at_coordinates(&self, xs: &[Vector3<f64>]) -> Arc<MortarRows> {
-        self.cached_rows(xs, &[], || self.covered_rows(xs))
+    /// The covered rows at the nodes' current coordinates `xs`, with their
+    /// derivatives or without (`derivatives`), through the row cache.
+    pub fn rows_at_coordinates(
+        &self,
+        xs: &[Vector3<f64>],
+        derivatives: Derivatives,
+    ) -> Arc<MortarRows> {
+        self.cached_rows(xs, &[], derivatives, || self.covered_rows(xs, derivatives))
     }
 
     /// The rows at coordinates `xs` and the further parameters `extra`
-    /// (a rigid obstacle's translation), from the row cache keyed by the
-    /// surfaces' nodes' coordinates and `extra`, or from `integrate`: the
-    /// one cache of the deformable and the rigid producers.
+    /// (a rigid obstacle's translation) with at least `derivatives`, from
+    /// the row cache keyed by the surfaces' nodes' coordinates and `extra`,
+    /// or from `integrate`: the one cache of the deformable and the rigid
+    /// producers.
     pub(crate) fn cached_rows(
         &self,
         xs: &[Vector3<f64>],
         extra: &[f64],
+        derivatives: Derivatives,
         integrate: impl FnOnce() -> MortarRows,
     ) -> Arc<MortarRows> {
-        self.cache.rows(self.cache_key(xs, extra), integrate)
+        self.cache
+            .rows(self.cache_key(xs, extra), derivatives, integrate)
     }
 
     /// The rows at coordinates `xs` and `extra` where the row cache holds
@@ -555,12 +585,13 @@ impl MortarSurfaces {
     /// its faces (see the module docs, "Search"). A face the kernels cannot
     /// integrate leaves every node open (the report warns:
     /// [`integration_failure`](Self::integration_failure)).
-    fn covered_rows(&self, coordinates: &[Vector3<f64>]) -> MortarRows {
+    fn covered_rows(&self, coordinates: &[Vector3<f64>], derivatives: Derivatives) -> MortarRows {
         let rows = mortar_rows(
             &self.secondary_faces,
             &self.primary_faces,
             &self.pairs(),
             coordinates,
+            derivatives,
         )
         .unwrap_or_default();
         let full = full_integrals(&self.secondary_faces, coordinates);
@@ -635,6 +666,10 @@ fn face_box(face: &SurfaceFace, xs: &[Vector3<f64>], margin: f64) -> ([f64; 3], 
 pub struct MortarGap<'a> {
     pub surfaces: &'a MortarSurfaces,
     source: Box<dyn RowSource + 'a>,
+    /// What the operation reads of the rows: their values alone (the
+    /// kinematics' gradients then zero: a residual without its tangent,
+    /// frictionless) or their derivatives too.
+    derivatives: Derivatives,
     rows: OnceLock<Arc<MortarRows>>,
     gaps: OnceLock<BTreeMap<usize, f64>>,
 }
@@ -643,9 +678,9 @@ pub struct MortarGap<'a> {
 /// deformable primary surface ([`SurfaceRows`]) or a rigid obstacle
 /// ([`MortarObstacle`](super::mortar_rigid::MortarObstacle)'s source).
 pub(crate) trait RowSource {
-    /// The rows with their derivatives, from the surfaces' row cache or
-    /// integrated (then kept there).
-    fn rows(&self) -> Arc<MortarRows>;
+    /// The rows with their derivatives or without, from the surfaces' row
+    /// cache or integrated (then kept there).
+    fn rows(&self, derivatives: Derivatives) -> Arc<MortarRows>;
 
     /// The normalised gap `g̃_j / D_j` of every node with a row (mesh node
     /// to gap), from the same sums as [`rows`](Self::rows)' values without
@@ -671,8 +706,8 @@ struct SurfaceRows<'a> {
 }
 
 impl RowSource for SurfaceRows<'_> {
-    fn rows(&self) -> Arc<MortarRows> {
-        self.surfaces.rows_at_coordinates(&self.xs)
+    fn rows(&self, derivatives: Derivatives) -> Arc<MortarRows> {
+        self.surfaces.rows_at_coordinates(&self.xs, derivatives)
     }
 
     /// [`MortarSurfaces::covered_gaps`] over the candidate pairs: the
@@ -689,23 +724,32 @@ impl RowSource for SurfaceRows<'_> {
 }
 
 impl<'a> MortarGap<'a> {
-    /// The producer at unknowns `x`. A face the kernels cannot integrate
-    /// (degenerate, or a projection that fails) leaves every node open in
-    /// this evaluation; the element assembly reports such a face's
-    /// element.
-    pub fn at(surfaces: &'a MortarSurfaces, reference: &[[f64; 3]], x: &[f64]) -> Self {
+    /// The producer at unknowns `x`, reading the rows with `derivatives`
+    /// or without. A face the kernels cannot integrate (degenerate, or a
+    /// projection that fails) leaves every node open in this evaluation;
+    /// the element assembly reports such a face's element.
+    pub fn at(
+        surfaces: &'a MortarSurfaces,
+        reference: &[[f64; 3]],
+        x: &[f64],
+        derivatives: Derivatives,
+    ) -> Self {
         let xs = coordinates(reference, x);
-        Self::from_source(surfaces, Box::new(SurfaceRows { surfaces, xs }))
+        let source = Box::new(SurfaceRows { surfaces, xs });
+        Self::from_source(surfaces, source, derivatives)
     }
 
-    /// The producer over `surfaces` reading `source`.
+    /// The producer over `surfaces` reading `source`, with `derivatives`
+    /// or without.
     pub(crate) fn from_source(
         surfaces: &'a MortarSurfaces,
         source: Box<dyn RowSource + 'a>,
+        derivatives: Derivatives,
     ) -> Self {
         Self {
             surfaces,
             source,
+            derivatives,
             rows: OnceLock::new(),
             gaps: OnceLock::new(),
         }
@@ -713,7 +757,7 @@ impl<'a> MortarGap<'a> {
 
     /// The rows of this configuration (taken at the first call).
     pub fn rows(&self) -> &MortarRows {
-        self.rows.get_or_init(|| self.source.rows())
+        self.rows.get_or_init(|| self.source.rows(self.derivatives))
     }
 
     /// Mesh node `j`'s row: the one place that gathers it; `None` where
@@ -724,7 +768,9 @@ impl<'a> MortarGap<'a> {
     }
 
     /// The node's kinematics from its `row` (see the module docs): `q`
-    /// over the node first, then the other coupled nodes in `row`'s order.
+    /// over the node first, then the other coupled nodes in `row`'s order;
+    /// every gradient zero where the row has no derivatives
+    /// ([`MortarRow::has_derivatives`]).
     pub fn row_kinematics(&self, j: usize, row: &MortarRow) -> GapKinematics<Dyn> {
         let me = row.nodes.iter().position(|&n| n == j).unwrap_or(0);
         // q's order: j first, then row.nodes without j
@@ -738,12 +784,26 @@ impl<'a> MortarGap<'a> {
         let nodes: CoupledNodes = order.iter().map(|&a| row.nodes[a]).collect();
         let d = row.d;
         let gap = row.weighted_gap / d;
-        // ∇g = (∇g̃ − g ∇D)/D, lever −b/D, ∂lever at constant area −∂b/D
-        let full = (&row.weighted_gap_gradient - gap * &row.d_gradient) / d;
-        let gradient = full.select_rows(&dofs);
         let lever = -row.lever.select_rows(&dofs) / d;
-        let hessian = -row.lever_gradient.select_rows(&dofs).select_columns(&dofs) / d;
-        let normal_gradient = -row.normal_gradient.select_columns(&dofs);
+        let q = dofs.len();
+        let (gradient, hessian, area_gradient, normal_gradient) = if row.has_derivatives() {
+            // ∇g = (∇g̃ − g ∇D)/D, ∂lever at constant area −∂b/D
+            let full = (&row.weighted_gap_gradient - gap * &row.d_gradient) / d;
+            (
+                full.select_rows(&dofs),
+                -row.lever_gradient.select_rows(&dofs).select_columns(&dofs) / d,
+                row.d_gradient.select_rows(&dofs),
+                -row.normal_gradient.select_columns(&dofs),
+            )
+        } else {
+            let zero = DVector::zeros(q);
+            (
+                zero.clone(),
+                DMatrix::zeros(q, q),
+                zero,
+                DMatrix::zeros(3, q),
+            )
+        };
         GapKinematics {
             primary: row
                 .m
@@ -756,7 +816,7 @@ impl<'a> MortarGap<'a> {
             lever: Some(lever),
             hessian,
             area: Some(d),
-            area_gradient: Some(row.d_gradient.select_rows(&dofs)),
+            area_gradient: Some(area_gradient),
             normal: -row.normal,
             normal_gradient: OMatrix::<f64, U3, Dyn>::from_iterator_generic(
                 U3,
@@ -906,7 +966,7 @@ mod tests {
             let st = NodeContactState::initial(&law, -1.0);
             let mut checked = 0;
             for &j in nodes.iter().skip(nodes.len() / 2).take(3) {
-                let p0 = MortarGap::at(&surfaces, &mesh.nodes, &x);
+                let p0 = MortarGap::at(&surfaces, &mesh.nodes, &x, Derivatives::With);
                 let Some(row) = p0.node_row(j) else {
                     continue;
                 };
@@ -920,7 +980,7 @@ mod tests {
                         let at = |s: f64| {
                             let mut y = x.clone();
                             y[3 * node + d] += s * h;
-                            let p = MortarGap::at(&surfaces, &mesh.nodes, &y);
+                            let p = MortarGap::at(&surfaces, &mesh.nodes, &y, Derivatives::With);
                             let k = p.row_kinematics(j, p.node_row(j).unwrap());
                             assert_eq!(k.nodes, k0.nodes);
                             let r = k.normal_response(&law, k.area.unwrap(), &st);
@@ -970,7 +1030,7 @@ mod tests {
             NormalLaw::Rockafellar { p: 300.0, k: 200.0 },
             NormalLaw::Slack { p: 300.0, k: 200.0 },
         ];
-        let p0 = MortarGap::at(&surfaces, &mesh.nodes, &x);
+        let p0 = MortarGap::at(&surfaces, &mesh.nodes, &x, Derivatives::With);
         let mut checked = 0;
         for &j in nodes.iter().skip(nodes.len() / 2).take(3) {
             let Some(row) = p0.node_row(j) else {
@@ -990,7 +1050,7 @@ mod tests {
                         let r_lambda = |s: f64| {
                             let mut y = x.clone();
                             y[3 * node + d] += s * h;
-                            let p = MortarGap::at(&surfaces, &mesh.nodes, &y);
+                            let p = MortarGap::at(&surfaces, &mesh.nodes, &y, Derivatives::With);
                             let k = p.row_kinematics(j, p.node_row(j).unwrap());
                             k.normal_response(law, k.area.unwrap(), &st).r_lambda
                         };

@@ -59,6 +59,7 @@
 use super::friction::{Coulomb, FrictionHistory, SlipKinematics, TangentialResponse};
 use super::kinematics::{current_position, GapKinematics, SecondaryNode, SlipFrame};
 use super::mortar::weighted_slip::{committed_row, weighted_slip};
+use super::mortar::Derivatives;
 use super::mortar::{MortarCoupling, MortarRow};
 use super::mortar_contact::{MortarGap, MortarRows, MortarSurfaces};
 use nalgebra::{DMatrix, Dyn, Matrix3, OMatrix, Vector3, U3};
@@ -83,7 +84,7 @@ impl MortarSurfaces {
     /// position.
     pub fn commit_coupling(&mut self, xs: &[Vector3<f64>]) {
         if self.committed.is_some() {
-            let rows = self.rows_at_coordinates(xs);
+            let rows = self.rows_at_coordinates(xs, Derivatives::With);
             self.committed = Some(committed_coupling(&rows));
         }
     }

@@ -21,7 +21,8 @@
 //! integrated only for the nodes that are near: a node's row is complete
 //! because every face that holds a near node is integrated.
 
-use super::mortar::obstacle_rows::{obstacle_row_values, obstacle_rows, transformed_point};
+use super::mortar::obstacle_rows::{obstacle_rows, transformed_point};
+use super::mortar::Derivatives;
 use super::mortar_contact::{coordinates, face_size, full_integrals, node_faces, surface_faces};
 use super::mortar_contact::{
     row_gaps, MortarGap, MortarRows, MortarSurfaces, RowCounts, RowSource,
@@ -101,16 +102,22 @@ impl MortarObstacle {
 
     /// The rows of the near nodes (module docs) at the nodes' current
     /// coordinates `xs` with the obstacle translated by `translation`:
-    /// every node's `D_j`, `g̃_j`, lever and normal with their derivatives,
-    /// keyed by mesh node. A face the kernels cannot integrate (degenerate)
-    /// leaves every node open in this evaluation; the element assembly
-    /// reports such a face's element.
-    pub fn rows(&self, translation: &Vector3<f64>, xs: &[Vector3<f64>]) -> MortarRows {
+    /// every node's `D_j`, `g̃_j`, lever and normal, with their derivatives
+    /// or without ([`Derivatives`]), keyed by mesh node. A face the kernels
+    /// cannot integrate (degenerate) leaves every node open in this
+    /// evaluation; the element assembly reports such a face's element.
+    pub fn rows(
+        &self,
+        translation: &Vector3<f64>,
+        xs: &[Vector3<f64>],
+        derivatives: Derivatives,
+    ) -> MortarRows {
         let project = |p: &Vector3<f64>| self.obstacle.project(&(p - translation));
         let near = self.near(xs, &project);
         let selected = self.faces_of(&near);
-        let mut rows = obstacle_rows(&self.surfaces.secondary_faces, &selected, xs, &project)
-            .unwrap_or_default();
+        let faces = &self.surfaces.secondary_faces;
+        let mut rows =
+            obstacle_rows(faces, &selected, xs, &project, derivatives).unwrap_or_default();
         let near_nodes: std::collections::BTreeSet<usize> =
             near.iter().map(|&i| self.nodes[i]).collect();
         rows.retain(|n, _| near_nodes.contains(n));
@@ -146,18 +153,18 @@ impl MortarObstacle {
     /// [`rows`](Self::rows) without their derivatives, for a solve that
     /// reads only gaps. On a plane in closed form, `g_j = g(x̃_j)`
     /// ([`transformed_point`]: biorthogonality, exact to round-off), on a
-    /// curved obstacle by the rows' own sums ([`obstacle_row_values`], to
-    /// the bit). A face the kernels cannot integrate leaves every node
-    /// open, as the rows do.
+    /// curved obstacle from the rows without derivatives (to the bit). A
+    /// face the kernels cannot integrate leaves every node open, as the
+    /// rows do.
     pub fn gap_values(
         &self,
         translation: &Vector3<f64>,
         xs: &[Vector3<f64>],
     ) -> BTreeMap<usize, f64> {
-        let project = |p: &Vector3<f64>| self.obstacle.project(&(p - translation));
-        let near = self.near(xs, &project);
-        let faces = &self.surfaces.secondary_faces;
         if let RigidObstacle::Plane { .. } = self.obstacle {
+            let project = |p: &Vector3<f64>| self.obstacle.project(&(p - translation));
+            let near = self.near(xs, &project);
+            let faces = &self.surfaces.secondary_faces;
             let gap = |i: usize| {
                 let &e = self.surfaces.node_faces[i].first()?;
                 let point = transformed_point(&faces[e], self.nodes[i], xs);
@@ -165,35 +172,29 @@ impl MortarObstacle {
             };
             return near.into_iter().filter_map(gap).collect();
         }
-        let selected = self.faces_of(&near);
-        let Ok(values) = obstacle_row_values(faces, &selected, xs, &project) else {
-            return BTreeMap::new();
-        };
-        let value = |i: usize| {
-            let v = values.get(&self.nodes[i]).filter(|v| v.d > 0.0)?;
-            Some((self.nodes[i], v.weighted_gap / v.d))
-        };
-        near.into_iter().filter_map(value).collect()
+        row_gaps(&self.rows(translation, xs, Derivatives::Without))
     }
 
     /// The gap producer at unknowns `x`, the obstacle translated by
-    /// `translation`: a [`MortarGap`] over [`rows`](Self::rows) (from the
-    /// surfaces' row cache, keyed by the secondary nodes' coordinates and
-    /// the translation, where this configuration was integrated last or
-    /// the one before), its gaps alone over
+    /// `translation`: a [`MortarGap`] over [`rows`](Self::rows) with their
+    /// derivatives or without (what the operation reads, [`Derivatives`];
+    /// from the surfaces' row cache, keyed by the secondary nodes'
+    /// coordinates and the translation, where this configuration was
+    /// integrated last or the one before), its gaps alone over
     /// [`gap_values`](Self::gap_values).
     pub fn producer(
         &self,
         translation: &Vector3<f64>,
         reference: &[[f64; 3]],
         x: &[f64],
+        derivatives: Derivatives,
     ) -> MortarGap<'_> {
         let source = ObstacleRows {
             obstacle: self,
             translation: *translation,
             xs: coordinates(reference, x),
         };
-        MortarGap::from_source(&self.surfaces, Box::new(source))
+        MortarGap::from_source(&self.surfaces, Box::new(source), derivatives)
     }
 
     /// How often the producer asked for rows and how often it integrated
@@ -220,10 +221,10 @@ impl ObstacleRows<'_> {
 }
 
 impl RowSource for ObstacleRows<'_> {
-    fn rows(&self) -> Arc<MortarRows> {
+    fn rows(&self, derivatives: Derivatives) -> Arc<MortarRows> {
         let surfaces = &self.obstacle.surfaces;
-        let integrate = || self.obstacle.rows(&self.translation, &self.xs);
-        surfaces.cached_rows(&self.xs, &self.extra(), integrate)
+        let integrate = || self.obstacle.rows(&self.translation, &self.xs, derivatives);
+        surfaces.cached_rows(&self.xs, &self.extra(), derivatives, integrate)
     }
 
     fn gaps(&self) -> BTreeMap<usize, f64> {

@@ -68,7 +68,8 @@
 //! at the current normals (`ContactInterface::rows_move`).
 
 use super::{ContactState, Problem};
-use crate::contact::interface::ConstraintRow;
+use crate::contact::interface::{ConstraintRow, ContactInterface};
+use crate::contact::mortar::Derivatives;
 
 mod applicability;
 mod capacity;
@@ -141,12 +142,17 @@ fn set_multipliers(
 
 /// The node driver's [`ConstraintRow`] of every secondary node of every
 /// interface at time `t` and unknowns `x` (the contact's linearisation, the
-/// one thing the condensed path reads of the obstacles).
-fn constraint_rows(problem: &Problem, t: f64, x: &[f64]) -> Vec<Vec<Option<ConstraintRow>>> {
+/// one thing the condensed path reads of the obstacles), dual mortar's
+/// with `derivatives` or without
+/// ([`ContactInterface::constraint_rows_with`](crate::contact::interface::ContactInterface::constraint_rows_with):
+/// what the frictionless path reads).
+fn constraint_rows(
+    problem: &Problem,
+    t: f64,
+    x: &[f64],
+    derivatives: Derivatives,
+) -> Vec<Vec<Option<ConstraintRow>>> {
     let reference = &problem.model.mesh.nodes;
-    problem
-        .contacts
-        .iter()
-        .map(|c| c.constraint_rows(reference, t, x, None))
-        .collect()
+    let rows = |c: &ContactInterface| c.constraint_rows_with(reference, t, x, None, derivatives);
+    problem.contacts.iter().map(rows).collect()
 }

@@ -24,10 +24,11 @@
 
 use super::{ContactContext, ContactInterface, MortarGap, Primary, RigidGap, SurfaceGap};
 use crate::contact::friction::TangentialResponse;
-use crate::contact::kinematics::{GapProducer, PrimaryWeights};
+use crate::contact::kinematics::{GapKinematics, GapProducer, PrimaryWeights, QAllocator};
 use crate::contact::laws::NodeContactState;
+use crate::contact::mortar::Derivatives;
 use crate::contact::obstacle::RigidObstacle;
-use nalgebra::Vector3;
+use nalgebra::{DefaultAllocator, Dim, Vector3};
 
 /// One secondary node's gap linearised at the unknowns (module docs).
 #[derive(Clone, Debug, PartialEq)]
@@ -47,7 +48,9 @@ pub struct ConstraintRow {
     /// (module docs): `n` on it and `−w_i n` on the primary nodes
     /// node-to-surface, `R_jk n` of dual mortar on a rigid plane; entries
     /// below 1e-13 of the largest (the integrals' round-off where
-    /// biorthogonality makes them zero) left out.
+    /// biorthogonality makes them zero) left out; empty in dual mortar's
+    /// rows without derivatives
+    /// ([`ContactInterface::constraint_rows_with`]).
     pub node_gradients: Vec<(usize, Vector3<f64>)>,
     /// The node's position in the frame its friction anchor is kept in
     /// ([`GapProducer::relative_position`]).
@@ -126,6 +129,22 @@ fn node_gradients(nodes: &[usize], gradient: &[f64]) -> Vec<(usize, Vector3<f64>
         .map(|(a, &k)| (k, at(a)))
         .filter(|(_, v)| v.amax() >= 1e-13 * largest)
         .collect()
+}
+
+/// [`ConstraintRow::node_gradients`] from a node's kinematics `k`: empty
+/// where its force is apart from `∇g` (dual mortar's lever) and the rows
+/// were taken without derivatives.
+fn row_gradients<Q: Dim, P>(
+    k: &GapKinematics<Q, P>,
+    derivatives: Derivatives,
+) -> Vec<(usize, Vector3<f64>)>
+where
+    DefaultAllocator: QAllocator<Q>,
+{
+    match (&k.lever, derivatives) {
+        (Some(_), Derivatives::Without) => Vec::new(),
+        _ => node_gradients(&k.nodes, k.gradient.as_slice()),
+    }
 }
 
 /// One secondary node's slip from its committed friction history at the
@@ -223,6 +242,24 @@ impl ContactInterface {
         x: &[f64],
         states: Option<&[NodeContactState]>,
     ) -> Vec<Option<ConstraintRow>> {
+        self.constraint_rows_with(reference, t, x, states, Derivatives::With)
+    }
+
+    /// [`constraint_rows`](Self::constraint_rows), a dual mortar
+    /// producer's rows with `derivatives` or without
+    /// ([`Derivatives::Without`]: each row's gap, normal, area `D_j`,
+    /// primary weights and force direction, [`ConstraintRow::force`], its
+    /// `node_gradients` empty). Without is what the frictionless condensed
+    /// path reads; the other producers' rows are complete either way
+    /// (their `∇g` is their force direction).
+    pub fn constraint_rows_with(
+        &self,
+        reference: &[[f64; 3]],
+        t: f64,
+        x: &[f64],
+        states: Option<&[NodeContactState]>,
+        derivatives: Derivatives,
+    ) -> Vec<Option<ConstraintRow>> {
         let ctx = ContactContext {
             reference,
             t,
@@ -230,7 +267,7 @@ impl ContactInterface {
             first_multiplier: 0,
         };
         let mut rows = Vec::with_capacity(self.nodes.len());
-        with_producer!(self, &ctx, p => {
+        with_producer!(self, &ctx, derivatives, p => {
             let state_of = |i| {
                 states.map_or_else(|| NodeContactState::initial(&self.law_at(i), p.open_gap()), |s| s[i])
             };
@@ -241,7 +278,7 @@ impl ContactInterface {
                     area: k.area.unwrap_or(self.areas[node.index]),
                     node: node.mesh_node,
                     primary: k.primary.clone(),
-                    node_gradients: node_gradients(&k.nodes, k.gradient.as_slice()),
+                    node_gradients: row_gradients(&k, derivatives),
                     relative_position: p.relative_position(node),
                     facet: k.facet,
                     force: k.lever.as_ref().map(|b| force_vectors(&k.nodes, b.as_slice())),

@@ -52,6 +52,18 @@ pub use rows::{mortar_row_values, mortar_rows, MortarRow, RowValues};
 pub use segment::{integrate_pair, overlap, Overlap, SegmentIntegrals};
 pub use weighted_gap::{all_pairs, mortar_coupling, MortarCoupling};
 
+/// What a row producer ([`mortar_rows`], [`obstacle_rows::obstacle_rows`])
+/// integrates: the values alone (`g̃_j`, `D_j`, `M_jl`, `n_j` and the lever
+/// `b_j`), what a residual or a condensed solve reads, or those with
+/// their complete first derivatives, what a tangent reads.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum Derivatives {
+    /// The values alone: every gradient of the row left empty.
+    Without,
+    /// The values and their complete first derivatives.
+    With,
+}
+
 /// What went wrong in a mortar kernel, in the words of the face's data.
 #[derive(Clone, Debug, PartialEq, thiserror::Error)]
 pub enum MortarError {

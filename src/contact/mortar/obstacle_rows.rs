@@ -41,11 +41,12 @@ use super::face::{MortarFace, SurfaceFace};
 use super::normals::unit_derivative;
 use super::quadratic::mortar_values;
 use super::rows::MortarRow;
-use super::MortarError;
+use super::{Derivatives, MortarError};
 use crate::contact::projection::Projection;
 
 /// One secondary face's contributions (local node order, gradients over
-/// the face's `3n` coordinates, node-major): see the module doc.
+/// the face's `3n` coordinates, node-major): see the module doc. Taken
+/// [`Derivatives::Without`], the gradients are empty.
 #[derive(Clone, Debug, PartialEq)]
 pub struct FaceObstacleIntegrals {
     /// `∫_e Ñ_j dA` and its gradient (`n × 3n`).
@@ -62,33 +63,44 @@ pub struct FaceObstacleIntegrals {
 
 /// The face's integrals against the obstacle `obstacle` (the projection of
 /// a spatial point: `g`, `n`, `H`), on the face rule
-/// ([`FaceShape::quadrature`](super::FaceShape::quadrature)).
+/// ([`FaceShape::quadrature`](super::FaceShape::quadrature)), with their
+/// gradients or without ([`Derivatives::Without`]: the values by the same
+/// sums, without the `3n` derivatives of the dual basis).
 pub fn face_obstacle_integrals(
     face: &MortarFace,
     obstacle: &impl Fn(&Vector3<f64>) -> Projection,
+    derivatives: Derivatives,
 ) -> Result<FaceObstacleIntegrals, MortarError> {
     let n = face.shape.node_count();
     let size = 3 * n;
     let dual = DualBasis::of_face(face)?;
+    let with = derivatives == Derivatives::With;
+    let columns = if with { size } else { 0 };
+    let mut out = FaceObstacleIntegrals {
+        d: vec![0.0; n],
+        d_gradient: DMatrix::zeros(n, columns),
+        weighted_gap: vec![0.0; n],
+        weighted_gap_gradient: DMatrix::zeros(n, columns),
+        lever: DMatrix::zeros(n, size),
+        lever_gradient: vec![DMatrix::zeros(size, size); if with { n } else { 0 }],
+    };
     // ∂A_e along each unit increment c = 3m + d
-    let coefficient_derivatives = (0..size)
+    let coefficient_derivatives = (0..columns)
         .map(|c| {
             let mut dx = vec![Vector3::zeros(); n];
             dx[c / 3][c % 3] = 1.0;
             dual.derivative(face, &dx)
         })
         .collect::<Result<Vec<_>, _>>()?;
-    let mut out = FaceObstacleIntegrals {
-        d: vec![0.0; n],
-        d_gradient: DMatrix::zeros(n, size),
-        weighted_gap: vec![0.0; n],
-        weighted_gap_gradient: DMatrix::zeros(n, size),
-        lever: DMatrix::zeros(n, size),
-        lever_gradient: vec![DMatrix::zeros(size, size); n],
-    };
     let (points, weights) = face.shape.quadrature();
     for (xi, w) in points.iter().zip(&weights) {
         let point = FacePoint::at(face, *xi, &dual, obstacle);
+        for j in 0..n {
+            point.add_values_to(&mut out, j, *w);
+        }
+        if !with {
+            continue;
+        }
         let dj = point.area_element_gradient(face);
         for j in 0..n {
             // δ(Φ_j |a|) along each c
@@ -100,7 +112,7 @@ pub fn face_obstacle_integrals(
                     d_phi * point.da + point.phi[j] * dj[c]
                 })
                 .collect();
-            point.add_to(&mut out, j, *w, &dj, &d_phi_da);
+            point.add_derivatives_to(&mut out, j, *w, &dj, &d_phi_da);
         }
     }
     Ok(out)
@@ -158,17 +170,23 @@ impl FacePoint {
     }
 
     /// Node `j`'s values at this point, weight `w`: `w Ñ_j |a|` to `d`,
-    /// `w Φ_j g |a|` to `weighted_gap` (the one place that sums them, so
-    /// that [`obstacle_row_values`] are [`obstacle_rows`]' to the bit).
-    fn add_values_to(&self, d: &mut [f64], weighted_gap: &mut [f64], j: usize, w: f64) {
-        let da = self.da;
-        d[j] += w * self.mortar[j] * da;
-        weighted_gap[j] += w * self.phi[j] * self.obstacle.gap * da;
+    /// `w Φ_j g |a|` to `weighted_gap`, `w Φ_j N_k n |a|` to the lever (the
+    /// one place that sums them, so that the rows without derivatives are
+    /// those with, to the bit).
+    fn add_values_to(&self, out: &mut FaceObstacleIntegrals, j: usize, w: f64) {
+        let (phi, da, n) = (self.phi[j], self.da, self.obstacle.normal);
+        out.d[j] += w * self.mortar[j] * da;
+        out.weighted_gap[j] += w * phi * self.obstacle.gap * da;
+        for (k, nk) in self.lagrange.iter().enumerate() {
+            for r in 0..3 {
+                out.lever[(j, 3 * k + r)] += w * phi * nk * n[r] * da;
+            }
+        }
     }
 
-    /// Node `j`'s terms at this point, weight `w`, with `∂|a|` (`dj`) and
-    /// `∂(Φ_j |a|)` (`d_phi_da`) along every coordinate.
-    fn add_to(
+    /// Node `j`'s derivative terms at this point, weight `w`, with `∂|a|`
+    /// (`dj`) and `∂(Φ_j |a|)` (`d_phi_da`) along every coordinate.
+    fn add_derivatives_to(
         &self,
         out: &mut FaceObstacleIntegrals,
         j: usize,
@@ -182,7 +200,6 @@ impl FacePoint {
             self.obstacle.curvature,
         );
         let (phi, da) = (self.phi[j], self.da);
-        self.add_values_to(&mut out.d, &mut out.weighted_gap, j, w);
         let size = dj.len();
         for c in 0..size {
             let (m, d) = (c / 3, c % 3);
@@ -193,7 +210,6 @@ impl FacePoint {
         let lever_gradient = &mut out.lever_gradient[j];
         for (k, nk) in self.lagrange.iter().enumerate() {
             for r in 0..3 {
-                out.lever[(j, 3 * k + r)] += w * phi * nk * n[r] * da;
                 for c in 0..size {
                     let (m, d) = (c / 3, c % 3);
                     lever_gradient[(3 * k + r, c)] += w
@@ -208,12 +224,14 @@ impl FacePoint {
 /// `faces`) against `obstacle`, at the nodes' current `coordinates`: each
 /// node's sums over the selected faces that hold it (complete where all
 /// its faces are selected), as [`MortarRow`]s with no primary nodes (see
-/// the module doc), keyed by mesh node.
+/// the module doc), keyed by mesh node; with their gradients or without
+/// ([`Derivatives`]: the same values to the bit).
 pub fn obstacle_rows(
     faces: &[SurfaceFace],
     selected: &[usize],
     coordinates: &[Vector3<f64>],
     obstacle: &impl Fn(&Vector3<f64>) -> Projection,
+    derivatives: Derivatives,
 ) -> Result<BTreeMap<usize, MortarRow>, MortarError> {
     // each node's coupled nodes: those of its selected faces, sorted
     let mut coupled: BTreeMap<usize, (usize, Vec<usize>)> = BTreeMap::new();
@@ -228,15 +246,14 @@ pub fn obstacle_rows(
         .map(|(j, (e, mut nodes))| {
             nodes.sort_unstable();
             nodes.dedup();
-            (
-                j,
-                empty_row(j, nodes, super::rows::transformation(&faces[e], j)),
-            )
+            let transformation = super::rows::transformation(&faces[e], j);
+            (j, empty_row(j, nodes, transformation, derivatives))
         })
         .collect();
     for &e in selected {
         let face = &faces[e];
-        let integrals = face_obstacle_integrals(&face.with_coordinates(coordinates)?, obstacle)?;
+        let geometry = face.with_coordinates(coordinates)?;
+        let integrals = face_obstacle_integrals(&geometry, obstacle, derivatives)?;
         for (j, &node) in face.nodes.iter().enumerate() {
             if let Some(row) = rows.get_mut(&node) {
                 scatter(row, &face.nodes, &integrals, j);
@@ -250,22 +267,33 @@ pub fn obstacle_rows(
 }
 
 /// A row of `node` over `nodes` with every sum zero, `x̃_j`'s
-/// `transformation` from a face holding it.
-fn empty_row(node: usize, nodes: Vec<usize>, transformation: Vec<(usize, f64)>) -> MortarRow {
+/// `transformation` from a face holding it; its gradients empty
+/// [`Derivatives::Without`].
+fn empty_row(
+    node: usize,
+    nodes: Vec<usize>,
+    transformation: Vec<(usize, f64)>,
+    derivatives: Derivatives,
+) -> MortarRow {
     let size = 3 * nodes.len();
+    let columns = if derivatives == Derivatives::With {
+        size
+    } else {
+        0
+    };
     MortarRow {
         node,
         nodes,
         weighted_gap: 0.0,
-        weighted_gap_gradient: DVector::zeros(size),
+        weighted_gap_gradient: DVector::zeros(columns),
         d: 0.0,
-        d_gradient: DVector::zeros(size),
+        d_gradient: DVector::zeros(columns),
         m: Vec::new(),
         m_gradients: Vec::new(),
         normal: Vector3::zeros(),
-        normal_gradient: DMatrix::zeros(3, size),
+        normal_gradient: DMatrix::zeros(3, columns),
         lever: DVector::zeros(size),
-        lever_gradient: DMatrix::zeros(size, size),
+        lever_gradient: DMatrix::zeros(columns, columns),
         transformation,
     }
 }
@@ -278,12 +306,16 @@ fn scatter(row: &mut MortarRow, face_nodes: &[usize], f: &FaceObstacleIntegrals,
         .collect();
     row.d += f.d[j];
     row.weighted_gap += f.weighted_gap[j];
+    let with = !f.lever_gradient.is_empty();
     for (a, &ra) in at.iter().enumerate() {
         for r in 0..3 {
             let fa = 3 * a + r;
+            row.lever[ra + r] -= f.lever[(j, fa)];
+            if !with {
+                continue;
+            }
             row.d_gradient[ra + r] += f.d_gradient[(j, fa)];
             row.weighted_gap_gradient[ra + r] += f.weighted_gap_gradient[(j, fa)];
-            row.lever[ra + r] -= f.lever[(j, fa)];
             for (b, &rb) in at.iter().enumerate() {
                 for s in 0..3 {
                     row.lever_gradient[(ra + r, rb + s)] -= f.lever_gradient[j][(fa, 3 * b + s)];
@@ -294,15 +326,16 @@ fn scatter(row: &mut MortarRow, face_nodes: &[usize], f: &FaceObstacleIntegrals,
 }
 
 /// `n_j = −w_j/|w_j|` from the summed lever (`w_j = Σ_k L_jk = −Σ_k b_jk`)
-/// and `∂n_j = −(I − n̄ n̄ᵀ) ∂w_j / |w_j|`.
+/// and, where the row has derivatives, `∂n_j = −(I − n̄ n̄ᵀ) ∂w_j / |w_j|`.
 fn finish_normal(row: &mut MortarRow) {
     let size = row.lever.len();
+    let columns = row.normal_gradient.ncols();
     let mut w = Vector3::zeros();
-    let mut dw = DMatrix::zeros(3, size);
+    let mut dw = DMatrix::zeros(3, columns);
     for a in 0..size / 3 {
         for r in 0..3 {
             w[r] -= row.lever[3 * a + r];
-            for c in 0..size {
+            for c in 0..columns {
                 dw[(r, c)] -= row.lever_gradient[(3 * a + r, c)];
             }
         }
@@ -311,64 +344,10 @@ fn finish_normal(row: &mut MortarRow) {
         return;
     }
     row.normal = -w.normalize();
-    for c in 0..size {
+    for c in 0..columns {
         let dn = unit_derivative(&w, &Vector3::new(dw[(0, c)], dw[(1, c)], dw[(2, c)]));
         row.normal_gradient.set_column(c, &(-dn));
     }
-}
-
-/// One secondary node's row without derivatives: `D_j` and the weighted
-/// gap `g̃_j` (the values of its [`MortarRow`] at the same coordinates).
-#[derive(Clone, Copy, Debug, PartialEq)]
-pub struct ObstacleRowValues {
-    pub d: f64,
-    pub weighted_gap: f64,
-}
-
-/// The face's `∫_e Ñ_j dA` and `∫_e Φ_j g dA` alone, on the face rule: the
-/// values of [`face_obstacle_integrals`] without the `3n` derivatives of
-/// the dual basis (what the gap of a solve that reads only values costs).
-fn face_obstacle_values(
-    face: &MortarFace,
-    obstacle: &impl Fn(&Vector3<f64>) -> Projection,
-) -> Result<(Vec<f64>, Vec<f64>), MortarError> {
-    let n = face.shape.node_count();
-    let dual = DualBasis::of_face(face)?;
-    let (mut d, mut weighted_gap) = (vec![0.0; n], vec![0.0; n]);
-    let (points, weights) = face.shape.quadrature();
-    for (xi, w) in points.iter().zip(&weights) {
-        let point = FacePoint::at(face, *xi, &dual, obstacle);
-        for j in 0..n {
-            point.add_values_to(&mut d, &mut weighted_gap, j, *w);
-        }
-    }
-    Ok((d, weighted_gap))
-}
-
-/// `D_j` and `g̃_j` of every node of the faces `selected` against
-/// `obstacle` at `coordinates`: the values of [`obstacle_rows`] to the bit
-/// (the same sums in the same order), without derivatives.
-pub fn obstacle_row_values(
-    faces: &[SurfaceFace],
-    selected: &[usize],
-    coordinates: &[Vector3<f64>],
-    obstacle: &impl Fn(&Vector3<f64>) -> Projection,
-) -> Result<BTreeMap<usize, ObstacleRowValues>, MortarError> {
-    let mut rows: BTreeMap<usize, ObstacleRowValues> = BTreeMap::new();
-    for &e in selected {
-        let face = &faces[e];
-        let (d, weighted_gap) =
-            face_obstacle_values(&face.with_coordinates(coordinates)?, obstacle)?;
-        for (j, &node) in face.nodes.iter().enumerate() {
-            let row = rows.entry(node).or_insert(ObstacleRowValues {
-                d: 0.0,
-                weighted_gap: 0.0,
-            });
-            row.d += d[j];
-            row.weighted_gap += weighted_gap[j];
-        }
-    }
-    Ok(rows)
 }
 
 /// The transformed point `x̃_j = Σ_k R_jk x_k` of `node` on `face` (which

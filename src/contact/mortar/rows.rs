@@ -18,11 +18,12 @@
 //! n_j = 0`. Gradients are node-major over [`MortarRow::nodes`]: entry
 //! `3a + i` is coordinate `i` of `nodes[a]`.
 //!
-//! [`mortar_row_values`] gives the same `g̃_j`, `D_j`, `M_jl` and `n_j`
-//! without any derivative, from the same pair loop with the segment
-//! integration alone ([`integrate_pair`] instead of [`linearise_pair`], which
-//! adds one directional derivative of the segmentation per coordinate of
-//! the pair: `3 (n_s + n_m)` of them, the bulk of a row's cost).
+//! Without derivatives ([`Derivatives::Without`]) the same pair loop
+//! gives the same `g̃_j`, `D_j`, `M_jl`, `n_j` and `b_j`, bit for bit, with
+//! the segment integration alone ([`integrate_pair`] instead of
+//! [`linearise_pair`], which adds one directional derivative of the
+//! segmentation per coordinate of the pair: `3 (n_s + n_m)` of them, the
+//! bulk of a row's cost); [`mortar_row_values`] is that row's values.
 
 use std::collections::BTreeMap;
 
@@ -35,13 +36,16 @@ use super::normals::{nodal_normal_gradient, NodalNormalGradient};
 use super::pair_linearisation::linearise_pair;
 use super::quadratic;
 use super::segment::integrate_pair;
-use super::MortarError;
+use super::{Derivatives, MortarError};
 
-/// One secondary node's mortar row (see the module doc).
+/// One secondary node's mortar row (see the module doc); taken
+/// [`Derivatives::Without`], every gradient is empty
+/// ([`has_derivatives`](Self::has_derivatives)).
 #[derive(Clone, Debug, PartialEq)]
 pub struct MortarRow {
     pub node: usize,
-    /// The coupled mesh nodes, sorted.
+    /// The coupled mesh nodes, sorted: every node the gradients reach, or
+    /// without derivatives the nodes of the lever (`R_jk`, `M_jl`).
     pub nodes: Vec<usize>,
     pub weighted_gap: f64,
     pub weighted_gap_gradient: DVector<f64>,
@@ -59,6 +63,13 @@ pub struct MortarRow {
     pub lever_gradient: DMatrix<f64>,
     /// `(k, R_jk)` of `x̃_j = Σ_k R_jk x_k` (`(j, 1)` on linear faces).
     pub transformation: Vec<(usize, f64)>,
+}
+
+impl MortarRow {
+    /// Whether the row carries its gradients ([`Derivatives::With`]).
+    pub fn has_derivatives(&self) -> bool {
+        self.d_gradient.len() == 3 * self.nodes.len()
+    }
 }
 
 /// One secondary node's row without derivatives: `g̃_j`, `D_j`, `M_jl`
@@ -88,59 +99,56 @@ struct Accumulated {
 }
 
 /// The mortar rows of every secondary node that a segment touches, from
-/// the candidate face `pairs` (secondary index, primary index).
+/// the candidate face `pairs` (secondary index, primary index), with their
+/// gradients or without ([`Derivatives`]).
 pub fn mortar_rows(
     secondary: &[SurfaceFace],
     primary: &[SurfaceFace],
     pairs: &[(usize, usize)],
     coordinates: &[Vector3<f64>],
+    derivatives: Derivatives,
 ) -> Result<Vec<MortarRow>, MortarError> {
-    let accumulated = accumulate_pairs(secondary, primary, pairs, coordinates, true)?;
+    let with = derivatives == Derivatives::With;
+    let accumulated = accumulate_pairs(secondary, primary, pairs, coordinates, with)?;
     let holding = holding_faces(secondary);
+    let normals = if with {
+        BTreeMap::new()
+    } else {
+        nodal_normals(secondary, coordinates)?
+    };
     accumulated
         .into_iter()
         .map(|(node, acc)| {
             let faces = &holding[&node];
+            let r = transformation(faces[0], node);
+            if !with {
+                return Ok(value_row(node, acc, normals[&node], r, coordinates));
+            }
             let normal = nodal_normal_gradient(faces, coordinates, node)?;
-            Ok(assemble_row(
-                node,
-                acc,
-                normal,
-                transformation(faces[0], node),
-                coordinates,
-            ))
+            Ok(assemble_row(node, acc, normal, r, coordinates))
         })
         .collect()
 }
 
 /// The values of [`mortar_rows`] (`g̃_j`, `D_j`, `M_jl`, `n_j`) without
-/// their derivatives: the same pair loop with the segment integration
-/// alone, for what needs no tangent.
+/// their derivatives ([`Derivatives::Without`]), for what needs no tangent.
 pub fn mortar_row_values(
     secondary: &[SurfaceFace],
     primary: &[SurfaceFace],
     pairs: &[(usize, usize)],
     coordinates: &[Vector3<f64>],
 ) -> Result<Vec<RowValues>, MortarError> {
-    let accumulated = accumulate_pairs(secondary, primary, pairs, coordinates, false)?;
-    let holding = holding_faces(secondary);
-    accumulated
+    let rows = mortar_rows(secondary, primary, pairs, coordinates, Derivatives::Without)?;
+    Ok(rows
         .into_iter()
-        .map(|(node, acc)| {
-            let faces: Vec<SurfaceFace> = holding[&node].iter().map(|&f| f.clone()).collect();
-            let normal = nodal_normals(&faces, coordinates)?[&node];
-            let m: Vec<(usize, f64)> = acc.m.iter().map(|(l, s)| (*l, s.value)).collect();
-            let r = transformation(holding[&node][0], node);
-            let v = gap_vector(&m, acc.d.value, &r, coordinates);
-            Ok(RowValues {
-                node,
-                weighted_gap: normal.dot(&v),
-                d: acc.d.value,
-                m,
-                normal,
-            })
+        .map(|row| RowValues {
+            node: row.node,
+            weighted_gap: row.weighted_gap,
+            d: row.d,
+            m: row.m,
+            normal: row.normal,
         })
-        .collect()
+        .collect())
 }
 
 /// The secondary faces that hold each node.
@@ -309,6 +317,55 @@ fn assemble_row(
     }
 }
 
+/// One row without derivatives from its accumulated `D`, `M`, its normal
+/// `n` and `R_jk`: the values of [`assemble_row`], by the same operations.
+fn value_row(
+    node: usize,
+    acc: Accumulated,
+    n: Vector3<f64>,
+    r: Vec<(usize, f64)>,
+    coordinates: &[Vector3<f64>],
+) -> MortarRow {
+    let m: Vec<(usize, f64)> = acc.m.iter().map(|(l, s)| (*l, s.value)).collect();
+    let mut nodes: Vec<usize> = (r.iter().chain(&m)).map(|(k, _)| *k).collect();
+    nodes.sort_unstable();
+    nodes.dedup();
+    let index: BTreeMap<usize, usize> = nodes.iter().enumerate().map(|(a, &n)| (n, a)).collect();
+    let v = gap_vector(&m, acc.d.value, &r, coordinates);
+    MortarRow {
+        node,
+        weighted_gap: n.dot(&v),
+        weighted_gap_gradient: DVector::zeros(0),
+        d: acc.d.value,
+        d_gradient: DVector::zeros(0),
+        lever: lever_values(&index, acc.d.value, &m, &n, &r),
+        m,
+        m_gradients: Vec::new(),
+        normal: n,
+        normal_gradient: DMatrix::zeros(3, 0),
+        lever_gradient: DMatrix::zeros(0, 0),
+        transformation: r,
+        nodes,
+    }
+}
+
+/// `b_j` over the nodes of `index` (see the module doc).
+fn lever_values(
+    index: &BTreeMap<usize, usize>,
+    d: f64,
+    m: &[(usize, f64)],
+    n: &Vector3<f64>,
+    r: &[(usize, f64)],
+) -> DVector<f64> {
+    let mut b = DVector::zeros(3 * index.len());
+    let terms = (r.iter().map(|&(k, rk)| (k, rk * d))).chain(m.iter().map(|&(l, ml)| (l, -ml)));
+    for (node, scaled) in terms {
+        let mut rows = b.fixed_rows_mut::<3>(3 * index[&node]);
+        rows += n * scaled;
+    }
+    b
+}
+
 /// `b_j` and `∂b_j/∂x` (see the module doc).
 fn lever(
     index: &BTreeMap<usize, usize>,
@@ -318,11 +375,10 @@ fn lever(
     r: &[(usize, f64)],
 ) -> (DVector<f64>, DMatrix<f64>) {
     let size = 3 * index.len();
-    let (mut b, mut db) = (DVector::zeros(size), DMatrix::zeros(size, size));
+    let b = lever_values(index, d, m, n, r);
+    let mut db = DMatrix::zeros(size, size);
     let mut add = |node: usize, scale: f64, value: f64, gradient: &DVector<f64>| {
         let at = 3 * index[&node];
-        let mut rows = b.fixed_rows_mut::<3>(at);
-        rows += n * (scale * value);
         let block = (n * gradient.transpose() + n_gradient * value) * scale;
         let mut rows = db.rows_mut(at, 3);
         rows += block;

@@ -126,7 +126,7 @@ mod tests {
     use super::*;
     use crate::contact::mortar::rows::mortar_rows;
     use crate::contact::mortar::weighted_gap::{all_pairs, mortar_coupling};
-    use crate::contact::mortar::{FaceShape, SurfaceFace};
+    use crate::contact::mortar::{Derivatives, FaceShape, SurfaceFace};
     use crate::mesh::structured::box_mesh;
     use crate::mesh::{ElementKind, FacetKind, Mesh};
     use nalgebra::Rotation3;
@@ -197,7 +197,7 @@ mod tests {
         j: usize,
     ) -> Option<(MortarRow, WeightedSlip)> {
         let pairs = all_pairs(secondary.len(), primary.len());
-        let rows = mortar_rows(secondary, primary, &pairs, xs).unwrap();
+        let rows = mortar_rows(secondary, primary, &pairs, xs, Derivatives::With).unwrap();
         let row = rows.into_iter().find(|r| r.node == j)?;
         let (d_n, m_n) = committed_row(committed, j)?;
         let slip = weighted_slip(&row, (d_n, &m_n), |n| xs[n]);

@@ -6,6 +6,7 @@
 use super::{constraint_rows, ContactState, Problem};
 use crate::contact::interface::ConstraintRow;
 use crate::contact::laws::NormalEnforcement;
+use crate::contact::mortar::Derivatives;
 use crate::solve::condensed::flexibility::{Column, Flexibility, Stiffness};
 use crate::solve::linear::Precision;
 use crate::solve::newton::IterationRecord;
@@ -73,7 +74,8 @@ impl Condensation {
     pub(super) fn new(problem: &Problem) -> Result<Self> {
         let (mut nodes, mut columns) = (Vec::new(), Vec::new());
         let zero = vec![0.0; problem.num_unknowns()];
-        for (ci, rows) in constraint_rows(problem, 0.0, &zero).iter().enumerate() {
+        let rows = constraint_rows(problem, 0.0, &zero, Derivatives::Without);
+        for (ci, rows) in rows.iter().enumerate() {
             let c = problem.contacts.interface(ci);
             for (i, row) in rows.iter().enumerate() {
                 let Some(row) = row else { continue };

@@ -64,6 +64,7 @@ use super::linearisation::Linearisation;
 use super::{constraint_rows, Condensation, ContactNode, ContactState, IncrementSolver, Problem};
 use crate::contact::friction::{ContactStatus, Coulomb};
 use crate::contact::interface::ConstraintRow;
+use crate::contact::mortar::Derivatives;
 use crate::solve::condensed::cone::{
     solve_cone, ConeNode, ConeProblem, ConeSolution, Flexibility, TangentialLaw,
 };
@@ -236,7 +237,7 @@ impl FrictionalCondensation {
             let mut kept = problem.contacts.initial_state(reference, &zero);
             Linearisation::at(problem, 0.0, &zero, &mut kept).rows
         } else {
-            constraint_rows(problem, 0.0, &zero)
+            constraint_rows(problem, 0.0, &zero, Derivatives::With)
         };
         let all = ContactColumns::of(problem, &rows);
         // shift only where the prescribed displacements do not hold a body

@@ -17,6 +17,7 @@
 
 use super::{ContactState, Problem};
 use crate::contact::interface::{ConstraintRow, SlipRow};
+use crate::contact::mortar::Derivatives;
 use nalgebra::Vector3;
 
 /// The contact linearised at a point (module docs).
@@ -44,7 +45,7 @@ impl Linearisation {
     /// the committed histories in `states`).
     pub(super) fn at_rest(problem: &Problem, t: f64, states: &ContactState) -> Self {
         let zero = vec![0.0; problem.num_unknowns()];
-        let rows = super::constraint_rows(problem, t, &zero);
+        let rows = super::constraint_rows(problem, t, &zero, Derivatives::With);
         let slips = Self::slips(problem, t, &zero, states);
         Linearisation {
             rows,

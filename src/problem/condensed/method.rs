@@ -5,6 +5,7 @@
 use super::{friction, has_friction, has_moving_rows, pairs, set_multipliers, zero_per_node};
 use super::{Condensation, ContactState, Path, Problem};
 use crate::contact::interface::NodeReport;
+use crate::contact::mortar::Derivatives;
 use crate::solve::failure::IncrementFailure;
 use crate::solve::linear_solver::SolverStatistics;
 use crate::solve::method::{Increment, IncrementMethod, WarmStart};
@@ -72,7 +73,7 @@ impl IncrementSolver for Condensation {
         let (u, forces) = self.solve_increment(problem, t, None, history)?;
         let mut pressures = zero_per_node(problem);
         // the nodes' areas at `u` (dual mortar's `D_j` follows the surface)
-        let rows = super::constraint_rows(problem, t, &u);
+        let rows = super::constraint_rows(problem, t, &u, Derivatives::Without);
         for (a, c) in self.nodes.iter().enumerate() {
             let area = rows[c.interface][c.index].as_ref().map(|r| r.area);
             let area = area.unwrap_or(problem.contacts.interface(c.interface).areas[c.index]);

@@ -29,6 +29,7 @@ use super::condensation::normal_column;
 use super::{set_multipliers, zero_per_node};
 use super::{Condensation, ContactNode, ContactState, IncrementSolver, Problem};
 use crate::contact::interface::ConstraintRow;
+use crate::contact::mortar::Derivatives;
 use crate::solve::condensed::anderson::Anderson;
 use crate::solve::condensed::flexibility::{take_trailing, Column, MAX_TRAILING};
 use crate::solve::linear_solver::SolverStatistics;
@@ -78,7 +79,7 @@ fn rows_at(
     (problem.contacts.iter().enumerate())
         .map(|(ci, c)| {
             let states = &mut kept.interfaces[ci];
-            let rows = c.constraint_rows(reference, t, u, Some(states));
+            let rows = c.constraint_rows_with(reference, t, u, Some(states), Derivatives::Without);
             for (state, row) in states.iter_mut().zip(&rows) {
                 if let Some(row) = row {
                     state.move_to_facet(row.facet);
@@ -174,7 +175,15 @@ pub(super) fn surface_trailing(problem: &Problem) -> Vec<usize> {
     let reference = &problem.model.mesh.nodes;
     let kept = problem.contacts.initial_state(reference, &zero);
     let rows: Vec<_> = (problem.contacts.iter().enumerate())
-        .map(|(ci, c)| c.constraint_rows(reference, 0.0, &zero, Some(&kept.interfaces[ci])))
+        .map(|(ci, c)| {
+            c.constraint_rows_with(
+                reference,
+                0.0,
+                &zero,
+                Some(&kept.interfaces[ci]),
+                Derivatives::Without,
+            )
+        })
         .collect();
     trailing_of_rows(problem, &rows)
 }
@@ -349,7 +358,15 @@ impl IncrementSolver for PairCondensation {
         let mut pressures = zero_per_node(problem);
         let reference = &problem.model.mesh.nodes;
         let rows: Vec<_> = (problem.contacts.iter().enumerate())
-            .map(|(ci, c)| c.constraint_rows(reference, t, &u, Some(&trial.interfaces[ci])))
+            .map(|(ci, c)| {
+                c.constraint_rows_with(
+                    reference,
+                    t,
+                    &u,
+                    Some(&trial.interfaces[ci]),
+                    Derivatives::Without,
+                )
+            })
             .collect();
         for (a, c) in self.base.nodes.iter().enumerate() {
             if let Some(row) = &rows[c.interface][c.index] {

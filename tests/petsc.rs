@@ -353,8 +353,8 @@ initial_increment = 0.5
             &dir.path().join("unknown"),
             &format!("{gamg} -matptap_via unknown\" }}"),
         )
-        .err()
-        .expect("an unknown PtAP algorithm is an error")
+        .map(|_| ())
+        .expect_err("an unknown PtAP algorithm is an error")
         .to_string();
         println!("{error}");
         assert!(

@@ -19,7 +19,11 @@
 //! the right-hand side of its
 //! own rows; the KSP solves distributed and the
 //! solution is scattered whole to every process (`VecScatterCreateToAll`),
-//! so every process goes on with the same unknowns.
+//! so every process goes on with the same unknowns. Without multipliers
+//! the matrix has block size 3 and the rigid-body modes of each process's
+//! own nodes; with them and `-pc_type fieldsplit`, fieldsplit's two fields
+//! are each process's own displacement rows (those modes their near-null
+//! space) and its own multiplier rows (the last process's).
 
 use super::fault::{self, Agreement};
 use super::{check_indices, make_ksp, message, Columns, Outcome, Tally, MESSAGE, PETSC};

@@ -24,7 +24,12 @@
 //! the solvers PETSc makes inside a solver (fieldsplit's, multigrid's)
 //! read them too. With `-pc_type fieldsplit` and contact multipliers the
 //! C layer gives fieldsplit two fields, the displacements ("0", block size
-//! 3, the rigid-body near-null space) and the multipliers ("1").
+//! 3, the rigid-body near-null space) and the multipliers ("1"). The
+//! matrix products' options (`-matptap_via`, …: `product_options`) are
+//! read by matrices PETSc makes with no prefix, from its global database:
+//! the C layer puts a solver's there around its set-up and solve only.
+//! Each solve's `KSPSetUp` and `KSPSolve` are timed apart
+//! (`summary.json`'s `petsc_setup` and `petsc_solve`).
 //!
 //! PETSc is initialised once per process (MPI as a singleton when the
 //! program was not started by `mpirun`) and finalised at exit. Calls into

@@ -817,6 +817,65 @@ name = "block"
         }
     }
 
+    /// Exact contact by fieldsplit on 2 processes (issue 29 item 7): the
+    /// default Rockafellar method (a multiplier unknown per contact node,
+    /// the last process's rows) with Coulomb friction (regularised stick,
+    /// `exact_stick = false`, as `benches/million`), each correction by
+    /// FGMRES on PETSc's fieldsplit Schur complement, GAMG on the
+    /// displacement block and Jacobi on `selfp`. The C layer gives
+    /// fieldsplit each process's own displacement rows and own multiplier
+    /// rows: the displacement block is all 405 displacement rows (135
+    /// nodes), with block size 3 and the rigid-body modes (its KSPView).
+    /// Largest penetration below 1e-8 of the element size `h`, and the
+    /// serial direct (faer) run's displacements and contact forces to
+    /// 1e-8 (the same discrete problem; FGMRES to 1e-12).
+    #[test]
+    fn fieldsplit_on_two_processes_gives_the_serial_exact_answer() {
+        let dir = tempfile::tempdir().unwrap();
+        let case = block_case(dir.path(), true, "exact_stick = false", "");
+        let faer = serial(&case, &dir.path().join("serial"));
+        let view = dir.path().join("split0.txt");
+        let view_option = format!("ascii:{}", view.display());
+        let fieldsplit = [
+            "--",
+            "-ksp_type",
+            "fgmres",
+            "-ksp_rtol",
+            "1e-12",
+            "-ksp_max_it",
+            "500",
+            "-pc_type",
+            "fieldsplit",
+            "-pc_fieldsplit_type",
+            "schur",
+            "-pc_fieldsplit_schur_fact_type",
+            "full",
+            "-pc_fieldsplit_schur_precondition",
+            "selfp",
+            "-fieldsplit_0_ksp_type",
+            "preonly",
+            "-fieldsplit_0_pc_type",
+            "gamg",
+            "-fieldsplit_1_ksp_type",
+            "preonly",
+            "-fieldsplit_1_pc_type",
+            "jacobi",
+            "-fieldsplit_0_ksp_view",
+            &view_option,
+        ];
+        let mpi = run_distributed(&case, &dir.path().join("mpi"), &fieldsplit);
+        assert!(mpi.log.contains("pc fieldsplit"), "{}", mpi.log);
+        let text = std::fs::read_to_string(&view).expect("the displacement block's KSPView");
+        assert!(text.contains("type: gamg"), "{text}");
+        assert!(text.contains("rows=405, cols=405, bs=3"), "{text}");
+        assert!(text.contains("near null space"), "rigid-body modes: {text}");
+        let (penetration, h) = penetration_and_size(&mpi);
+        println!("fieldsplit on 2 processes: largest penetration {penetration:.2e}, h = {h:.3e}");
+        assert!(penetration < 1e-8 * h, "{penetration} ≥ 1e-8 × {h}");
+        let what = "Rockafellar + fieldsplit on 2 processes against serial faer";
+        assert_same(&faer, &mpi, 1e-8, false, what);
+    }
+
     /// With Coulomb friction and default keys (exact stick): the serial
     /// run solves the tangential multipliers by Newton (Alart–Curnier),
     /// the distributed one updates them in the outer loop (Simo–Laursen,

@@ -22,6 +22,11 @@ mod with_petsc {
 
     /// Run `case` with `[solver]` lines `solver` added.
     fn run_with(case: &Path, dir: &Path, solver: &str) -> RunOutcome {
+        try_run_with(case, dir, solver).unwrap_or_else(|e| panic!("[solver] {solver}: {e}"))
+    }
+
+    /// [`run_with`], its error returned.
+    fn try_run_with(case: &Path, dir: &Path, solver: &str) -> signorini::Result<RunOutcome> {
         let text = std::fs::read_to_string(case).unwrap();
         let text = if text.contains("[solver]\n") {
             text.replace("[solver]\n", &format!("[solver]\n{solver}\n"))
@@ -41,7 +46,7 @@ mod with_petsc {
             },
         );
         std::fs::remove_file(&path).unwrap();
-        outcome.unwrap_or_else(|e| panic!("[solver] {solver}: {e}"))
+        outcome
     }
 
     /// Displacements equal to `tolerance` of the largest one, and the same
@@ -294,6 +299,9 @@ initial_increment = 0.5
         );
         assert_same(&faer, &mumps, 1e-8, "paraboloid, MUMPS");
         assert_same_forces(&faer, &mumps, "pole", 1e-8, "paraboloid, MUMPS");
+        assert_petsc_phases(&mumps, "paraboloid, MUMPS");
+        let t = &faer.summary.phase_times;
+        assert!(t.petsc_setup.is_none() && t.petsc_solve.is_none(), "{t:?}");
         let closed = mumps.summary.increments.last().unwrap().contact["pole"].closed_nodes;
         assert!(closed > 3, "a contact zone of {closed} nodes");
         // GAMG on the penalty method, against faer on it
@@ -306,6 +314,61 @@ initial_increment = 0.5
         );
         assert_same(&faer, &gamg, 1e-8, "paraboloid penalty, GAMG");
         assert_same_forces(&faer, &gamg, "pole", 1e-8, "paraboloid penalty, GAMG");
+    }
+
+    /// `summary.json`'s PETSc phases of a run on PETSc: its set-up
+    /// (`KSPSetUp`, MUMPS's factorisation or GAMG's set-up) and its
+    /// `KSPSolve`, both spent, are parts of `factorisation` (all of
+    /// PETSc's time, the matrix's values handed over too).
+    fn assert_petsc_phases(run: &RunOutcome, what: &str) {
+        let t = &run.summary.phase_times;
+        let (Some(setup), Some(solve)) = (t.petsc_setup, t.petsc_solve) else {
+            panic!("{what}: no PETSc phases in {t:?}");
+        };
+        println!(
+            "{what}: PETSc set-up {setup:.3} s, solve {solve:.3} s of {:.3} s",
+            t.factorisation
+        );
+        assert!(setup > 0.0 && solve > 0.0, "{what}: {t:?}");
+        assert!(setup + solve <= t.factorisation, "{what}: {t:?}");
+    }
+
+    /// A matrix product's option in the case's options reaches GAMG's
+    /// Galerkin products `PᵀAP`, matrices PETSc makes with no options
+    /// prefix, which read PETSc's global options database (the C layer
+    /// puts the solver's product options there around its set-up and solve
+    /// only): an algorithm the product does not have is PETSc's error
+    /// naming the option and its choices (before, the option never reached
+    /// the product and the run went through), and a run after it in this
+    /// process, with the option unset and another product option given,
+    /// is unaffected: faer's answer to 1e-8, its phases spent.
+    #[test]
+    fn product_options_reach_the_galerkin_products_and_stay_the_solvers() {
+        let dir = tempfile::tempdir().unwrap();
+        let case = paraboloid_case(dir.path(), "method = \"penalty\"");
+        let gamg = "linear = \"petsc\"\npetsc = { options = \"-ksp_type cg -pc_type gamg \
+                    -ksp_rtol 1e-13 -ksp_max_it 1000";
+        let error = try_run_with(
+            &case,
+            &dir.path().join("unknown"),
+            &format!("{gamg} -matptap_via unknown\" }}"),
+        )
+        .map(|_| ())
+        .expect_err("an unknown PtAP algorithm is an error")
+        .to_string();
+        println!("{error}");
+        assert!(
+            error.contains("Unknown option unknown for -matptap_via"),
+            "{error}"
+        );
+        let faer = run_with(&case, &dir.path().join("faer"), "linear = \"auto\"");
+        let after = run_with(
+            &case,
+            &dir.path().join("after"),
+            &format!("{gamg} -mat_product_clear\" }}"),
+        );
+        assert_same(&faer, &after, 1e-8, "paraboloid penalty, GAMG after");
+        assert_petsc_phases(&after, "paraboloid penalty, GAMG");
     }
 
     /// Rockafellar's saddle point (a multiplier per contact node) by

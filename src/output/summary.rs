@@ -59,10 +59,21 @@ pub struct PhaseTimes {
     pub contact: f64,
     /// Symbolic analyses.
     pub symbolic: f64,
-    /// Numeric factorisations.
+    /// Numeric factorisations; with `linear = "petsc"` all of PETSc's
+    /// time (the matrix's values put in, the set-up and the solve).
     pub factorisation: f64,
     /// Triangular solves (refinement and Krylov iterations included).
     pub solve: f64,
+    /// With `linear = "petsc"` only: of `factorisation`, PETSc's set-up
+    /// of its KSP and preconditioner (`KSPSetUp`: MUMPS's factorisation,
+    /// GAMG's or fieldsplit's set-up) and its `KSPSolve` (the Krylov
+    /// iterations, MUMPS's triangular solves); the rest of
+    /// `factorisation` is the matrix's values and the vectors handed to
+    /// PETSc. Under `mpirun`, rank 0's.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub petsc_setup: Option<f64>,
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub petsc_solve: Option<f64>,
 }
 
 /// One contact interface at the end of an increment.

@@ -199,6 +199,8 @@ fn add_earlier_totals(summary: &mut Summary, earlier: &Summary) {
     t.symbolic += e.symbolic;
     t.factorisation += e.factorisation;
     t.solve += e.solve;
+    t.petsc_setup = sum_present(t.petsc_setup, e.petsc_setup);
+    t.petsc_solve = sum_present(t.petsc_solve, e.petsc_solve);
     summary.krylov_solves += earlier.krylov_solves;
     summary.krylov_iterations += earlier.krylov_iterations;
     summary.lu_solves += earlier.lu_solves;
@@ -207,6 +209,11 @@ fn add_earlier_totals(summary: &mut Summary, earlier: &Summary) {
     summary.refinement_steps += earlier.refinement_steps;
     summary.mixed_precision_fallbacks += earlier.mixed_precision_fallbacks;
     summary.wall_time += earlier.wall_time;
+}
+
+/// The sum of the times present (`None` when neither is).
+fn sum_present(a: Option<f64>, b: Option<f64>) -> Option<f64> {
+    a.into_iter().chain(b).reduce(|a, b| a + b)
 }
 
 /// The run's totals in the summary: where the time went and what the
@@ -224,7 +231,14 @@ fn record_totals(
         symbolic: statistics.symbolic.as_secs_f64(),
         factorisation: statistics.factorisation.as_secs_f64(),
         solve: statistics.solve.as_secs_f64(),
+        petsc_setup: None,
+        petsc_solve: None,
     };
+    // PETSc's set-up and solve, in runs on PETSc only
+    if !(statistics.petsc_setup + statistics.petsc_solve).is_zero() {
+        summary.phase_times.petsc_setup = Some(statistics.petsc_setup.as_secs_f64());
+        summary.phase_times.petsc_solve = Some(statistics.petsc_solve.as_secs_f64());
+    }
     summary.factor_nnz = statistics.factor_nnz;
     summary.krylov_solves = statistics.krylov_solves;
     summary.krylov_iterations = statistics.krylov_iterations;

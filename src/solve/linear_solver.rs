@@ -53,6 +53,13 @@ pub struct SolverStatistics {
     pub krylov_iterations: usize,
     /// Solves by the sparse LU (chosen, or as a fallback).
     pub lu_solves: usize,
+    /// PETSc's share of `factorisation` (`linear = "petsc"`, zero for
+    /// another solver): its KSP's set-up (`KSPSetUp`, the preconditioner's
+    /// `PCSetUp`: MUMPS's factorisation, GAMG's or fieldsplit's set-up)
+    /// and its `KSPSolve` (the Krylov iterations, MUMPS's triangular
+    /// solves).
+    pub petsc_setup: Duration,
+    pub petsc_solve: Duration,
 }
 
 impl SolverStatistics {
@@ -89,6 +96,8 @@ impl std::ops::Add for SolverStatistics {
             krylov_solves: self.krylov_solves + o.krylov_solves,
             krylov_iterations: self.krylov_iterations + o.krylov_iterations,
             lu_solves: self.lu_solves + o.lu_solves,
+            petsc_setup: self.petsc_setup + o.petsc_setup,
+            petsc_solve: self.petsc_solve + o.petsc_solve,
         }
     }
 }

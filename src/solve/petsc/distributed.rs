@@ -19,10 +19,14 @@
 //! the right-hand side of its
 //! own rows; the KSP solves distributed and the
 //! solution is scattered whole to every process (`VecScatterCreateToAll`),
-//! so every process goes on with the same unknowns.
+//! so every process goes on with the same unknowns. Without multipliers
+//! the matrix has block size 3 and the rigid-body modes of each process's
+//! own nodes; with them and `-pc_type fieldsplit`, fieldsplit's two fields
+//! are each process's own displacement rows (those modes their near-null
+//! space) and its own multiplier rows (the last process's).
 
 use super::fault::{self, Agreement};
-use super::{check_indices, make_ksp, message, Columns, Tally, MESSAGE, PETSC};
+use super::{check_indices, make_ksp, message, Columns, Outcome, Tally, MESSAGE, PETSC};
 use crate::assembly::share::Communicator;
 use crate::solve::linear::{pattern_fingerprint, Ordering};
 use crate::solve::linear_solver::{LinearSolver, LinearSystem, SolverStatistics};
@@ -50,13 +54,6 @@ mod ffi {
             len: usize,
         ) -> c_int;
         pub fn sg_petsc_mpi_solver_free(handle: *mut c_void);
-        pub fn sg_petsc_mpi_describe(
-            handle: *mut c_void,
-            text: *mut c_char,
-            text_len: usize,
-            err: *mut c_char,
-            err_len: usize,
-        ) -> c_int;
         pub fn sg_petsc_mpi_layout(
             handle: *mut c_void,
             layout: *const super::DistributedLayout,
@@ -74,7 +71,8 @@ mod ffi {
 
 /// The matrix layout for the C layer (`DistributedLayout` in `shim.c`):
 /// the columns of the entries this process gives, rows mapped to PETSc's
-/// (negative: left out).
+/// (negative: left out); the coordinates of its own nodes, and the
+/// number of displacement unknowns (the multipliers after them).
 #[repr(C)]
 struct DistributedLayout {
     global: c_int,
@@ -83,6 +81,7 @@ struct DistributedLayout {
     block_size: c_int,
     columns: Columns,
     coordinates: *const f64,
+    displacements: c_int,
 }
 
 /// This process's part of a system for the C layer (`DistributedSystem`):
@@ -94,6 +93,7 @@ struct DistributedSystem {
     b: *const f64,
     x: *mut f64,
     iterations: *mut c_int,
+    seconds: *mut f64,
 }
 
 /// MPI's world, as PETSc initialised it.
@@ -292,7 +292,7 @@ impl DistributedPetscSolver {
             options,
             ffi::sg_petsc_mpi_solver_new,
             ffi::sg_petsc_mpi_solver_free,
-            ffi::sg_petsc_mpi_describe,
+            super::ffi::sg_petsc_describe,
         )?;
         let parts = partition.parts;
         Ok(DistributedPetscSolver {
@@ -326,28 +326,25 @@ impl DistributedPetscSolver {
             return Err("no numbering".into());
         };
         check_indices(pattern, false).map_err(|e| e.to_string())?;
+        let displacements = 3 * self.partition.node_part.len();
         let layout = RowLayout::new(pattern, numbering, self.partition.node_part.len());
-        let displacement_only = 3 * self.partition.node_part.len() == unknowns;
-        let coordinates: Vec<f64> = if displacement_only {
-            numbering
-                .owned
-                .iter()
-                .map(|&old| self.coordinates[old])
-                .collect()
-        } else {
-            Vec::new()
-        };
+        let displacement_only = displacements == unknowns;
+        // the coordinates of this process's own nodes: its displacement
+        // rows come first among its rows, its multipliers' (if last) after
+        let coordinates: Vec<f64> = numbering
+            .owned
+            .iter()
+            .filter(|&&old| old < displacements)
+            .map(|&old| self.coordinates[old])
+            .collect();
         let arguments = DistributedLayout {
             global: unknowns as c_int,
             first: numbering.first as c_int,
             local: numbering.owned.len() as c_int,
             block_size: if displacement_only { 3 } else { 1 },
             columns: Columns::of(pattern, &layout.rows, &numbering.columns),
-            coordinates: if displacement_only {
-                coordinates.as_ptr()
-            } else {
-                std::ptr::null()
-            },
+            coordinates: coordinates.as_ptr(),
+            displacements: displacements as c_int,
         };
         let mut err = [0 as c_char; MESSAGE];
         let _lock = PETSC.lock().unwrap_or_else(|e| e.into_inner());
@@ -442,13 +439,14 @@ impl DistributedPetscSolver {
         let n = rhs.len();
         let b: Vec<f64> = numbering.owned.iter().map(|&old| rhs[old]).collect();
         let mut solution = vec![0.0; n];
-        let mut iterations: c_int = 0;
+        let mut outcome = Outcome::default();
         let arguments = DistributedSystem {
             columns: Columns::of(system.pattern, &layout.rows, &numbering.columns),
             values: system.matrix.as_ptr(),
             b: b.as_ptr(),
             x: solution.as_mut_ptr(),
-            iterations: &mut iterations,
+            iterations: &mut outcome.iterations,
+            seconds: outcome.seconds.as_mut_ptr(),
         };
         let mut err = [0 as c_char; MESSAGE];
         let code = {
@@ -461,7 +459,7 @@ impl DistributedPetscSolver {
         for (old, xi) in x.iter_mut().enumerate() {
             *xi = solution[numbering.global[old]];
         }
-        self.tally.record(start, iterations, code, &err, x)
+        self.tally.record(start, &outcome, code, &err, x)
     }
 }
 

@@ -24,7 +24,12 @@
 //! the solvers PETSc makes inside a solver (fieldsplit's, multigrid's)
 //! read them too. With `-pc_type fieldsplit` and contact multipliers the
 //! C layer gives fieldsplit two fields, the displacements ("0", block size
-//! 3, the rigid-body near-null space) and the multipliers ("1").
+//! 3, the rigid-body near-null space) and the multipliers ("1"). The
+//! matrix products' options (`-matptap_via`, …: `product_options`) are
+//! read by matrices PETSc makes with no prefix, from its global database:
+//! the C layer puts a solver's there around its set-up and solve only.
+//! Each solve's `KSPSetUp` and `KSPSolve` are timed apart
+//! (`summary.json`'s `petsc_setup` and `petsc_solve`).
 //!
 //! PETSc is initialised once per process (MPI as a singleton when the
 //! program was not started by `mpirun`) and finalised at exit. Calls into
@@ -64,6 +69,13 @@ mod ffi {
         pub fn sg_petsc_solve(
             handle: *mut c_void,
             system: *const super::SystemArguments,
+            err: *mut c_char,
+            err_len: usize,
+        ) -> c_int;
+        pub fn sg_petsc_global_option(
+            handle: *mut c_void,
+            name: *const c_char,
+            value: *const c_char,
             err: *mut c_char,
             err_len: usize,
         ) -> c_int;
@@ -119,6 +131,7 @@ struct SystemArguments {
     b: *const f64,
     x: *mut f64,
     iterations: *mut c_int,
+    seconds: *mut f64,
 }
 
 /// Serialises every call into PETSc.
@@ -197,29 +210,43 @@ fn with_command_line(options: &str) -> Result<CString> {
         .map_err(|_| Error::LinearSolver("the PETSc options contain a NUL character".into()))
 }
 
-/// What a PETSc solver did: its time, solves and Krylov iterations.
+/// What a PETSc solver did: its time (all of it, and of it the KSP's
+/// set-up and solve), solves and Krylov iterations.
 #[derive(Default)]
 struct Tally {
     total: Duration,
+    setup: Duration,
+    solve: Duration,
     solves: usize,
     iterations: usize,
 }
 
+/// What the C layer writes back from one solve: the Krylov iterations and
+/// the seconds of `KSPSetUp` and of `KSPSolve`.
+#[derive(Default)]
+struct Outcome {
+    iterations: c_int,
+    seconds: [f64; 2],
+}
+
 impl Tally {
-    /// One solve begun at `start` with `iterations` Krylov iterations and
-    /// the C layer's return `code`; `x` the solution. Why it failed, if it
-    /// did (the C layer's message, or a solution that is not finite).
+    /// One solve begun at `start` with its `outcome` and the C layer's
+    /// return `code`; `x` the solution. Why it failed, if it did (the C
+    /// layer's message, or a solution that is not finite).
     fn record(
         &mut self,
         start: Instant,
-        iterations: c_int,
+        outcome: &Outcome,
         code: c_int,
         err: &[c_char],
         x: &[f64],
     ) -> std::result::Result<(), String> {
         self.solves += 1;
-        self.iterations += iterations.max(0) as usize;
+        self.iterations += outcome.iterations.max(0) as usize;
         self.total += start.elapsed();
+        let [setup, solve] = outcome.seconds.map(|s| Duration::from_secs_f64(s.max(0.0)));
+        self.setup += setup;
+        self.solve += solve;
         if code != 0 {
             return Err(message(err));
         }
@@ -232,6 +259,8 @@ impl Tally {
     fn statistics(&self) -> SolverStatistics {
         SolverStatistics {
             factorisation: self.total,
+            petsc_setup: self.setup,
+            petsc_solve: self.solve,
             krylov_solves: self.solves,
             krylov_iterations: self.iterations,
             ..Default::default()
@@ -316,6 +345,11 @@ fn make_ksp(
     let mut handle = std::ptr::null_mut();
     // SAFETY: out-pointer, NUL-terminated options and buffer valid
     let code = unsafe { make(&mut handle, options.as_ptr(), err.as_mut_ptr(), err.len()) };
+    let code = if code == 0 {
+        add_global_options(handle, &options.to_string_lossy(), &mut err)
+    } else {
+        code
+    };
     if code != 0 {
         // SAFETY: the C layer sets `handle` before anything can fail
         unsafe { free(handle) };
@@ -334,6 +368,64 @@ fn make_ksp(
     };
     let solver_text = message(if code == 0 { &text } else { &err });
     Ok((handle, format!("{version}, {solver_text}")))
+}
+
+/// The options of `text` that PETSc reads without a prefix, each with its
+/// value (`None`: none given), in order: those of its matrix products,
+/// `-mat<product>_via` (`-matptap_via`, `-matmatmult_via`,
+/// `-mattransposematmult_via`, …) and `-mat_product_…` (`-mat_product_clear`,
+/// `-mat_product_algorithm`). GAMG's Galerkin products `PᵀAP` and
+/// fieldsplit's Schur complement are matrices PETSc makes with no options
+/// prefix, so they read these from PETSc's global options database, not
+/// under the solver's prefix.
+fn product_options(text: &str) -> Vec<(String, Option<String>)> {
+    let is_product = |name: &str| {
+        name.starts_with("mat_product_")
+            || name
+                .strip_prefix("mat")
+                .and_then(|n| n.strip_suffix("_via"))
+                .is_some_and(|p| !p.is_empty() && p.chars().all(|c| c.is_ascii_lowercase()))
+    };
+    let tokens: Vec<&str> = text.split_whitespace().collect();
+    tokens
+        .iter()
+        .enumerate()
+        .filter(|(_, t)| t.strip_prefix('-').is_some_and(is_product))
+        .map(|(k, t)| {
+            let value = tokens.get(k + 1).filter(|v| !v.starts_with('-'));
+            (t.to_string(), value.map(|v| v.to_string()))
+        })
+        .collect()
+}
+
+/// Give the solver at `handle` the product options of its `options`
+/// ([`product_options`]), which the C layer puts into PETSc's global
+/// database around each of its set-ups and solves only (the earlier
+/// values restored after), so that they reach the products and stay the
+/// solver's own. The C layer's code (0: done; else its message in `err`).
+fn add_global_options(handle: *mut c_void, options: &str, err: &mut [c_char]) -> c_int {
+    for (name, value) in product_options(options) {
+        // no NUL inside: they come from a C string
+        let name = CString::new(name).unwrap_or_default();
+        let value = value.map(|v| CString::new(v).unwrap_or_default());
+        let value_ptr = value.as_ref().map_or(std::ptr::null(), |v| v.as_ptr());
+        // SAFETY: a handle of either kind (both begin with the C layer's
+        // `Common`), NUL-terminated strings the C layer copies, a buffer
+        // of its length
+        let code = unsafe {
+            ffi::sg_petsc_global_option(
+                handle,
+                name.as_ptr(),
+                value_ptr,
+                err.as_mut_ptr(),
+                err.len(),
+            )
+        };
+        if code != 0 {
+            return code;
+        }
+    }
+    0
 }
 
 impl Drop for PetscSolver {
@@ -364,7 +456,7 @@ impl LinearSolver for PetscSolver {
         }
         self.fingerprint = Some(fingerprint);
         let (block_size, coordinates, displacements) = self.layout(n);
-        let mut iterations: c_int = 0;
+        let mut outcome = Outcome::default();
         let mut err = [0 as c_char; MESSAGE];
         let _lock = PETSC.lock().unwrap_or_else(|e| e.into_inner());
         let system = SystemArguments {
@@ -377,13 +469,14 @@ impl LinearSolver for PetscSolver {
             displacements,
             b: rhs.as_ptr(),
             x: x.as_mut_ptr(),
-            iterations: &mut iterations,
+            iterations: &mut outcome.iterations,
+            seconds: outcome.seconds.as_mut_ptr(),
         };
         // SAFETY: the pattern's arrays, the values (one per entry), b and x
         // (n each) live until the call returns
         let code =
             unsafe { ffi::sg_petsc_solve(self.handle, &system, err.as_mut_ptr(), err.len()) };
-        self.tally.record(start, iterations, code, &err, x)
+        self.tally.record(start, &outcome, code, &err, x)
     }
 
     fn description(&self) -> String {
@@ -411,6 +504,26 @@ mod tests {
             .map(|&(i, j, v)| Triplet::new(i, j, v))
             .collect();
         SparseColMat::try_new_from_triplets(n, n, &t).unwrap()
+    }
+
+    /// The matrix products' options, with their values or none, and no
+    /// other option (a KSP's, GAMG's, a matrix's own `-mat_…`).
+    #[test]
+    fn product_options_are_the_matrix_products_and_nothing_else() {
+        let text = "-ksp_type cg -pc_type gamg -matptap_via allatonce -mat_product_clear \
+                    -mat_mumps_icntl_7 5 -mattransposematmult_via scalable -pc_gamg_threshold \
+                    0.05 -mat_view -matptap_via scalable";
+        let owned = |name: &str, value: Option<&str>| (name.to_string(), value.map(String::from));
+        assert_eq!(
+            product_options(text),
+            vec![
+                owned("-matptap_via", Some("allatonce")),
+                owned("-mat_product_clear", None),
+                owned("-mattransposematmult_via", Some("scalable")),
+                owned("-matptap_via", Some("scalable")),
+            ]
+        );
+        assert!(product_options("-via x -mat_via y -matptap_vias z").is_empty());
     }
 
     #[test]

@@ -27,16 +27,30 @@ _Static_assert(sizeof(PetscScalar) == sizeof(double), "signorini needs real doub
 
 static int initialised = 0;
 
-#define CHECK(call)                                                         \
-  do {                                                                      \
-    PetscErrorCode ierr_ = (call);                                          \
-    if (ierr_) {                                                            \
-      const char *text_ = NULL;                                             \
-      PetscErrorMessage(ierr_, &text_, NULL);                               \
-      snprintf(err, err_len, "PETSc error %d in %s: %s", (int)ierr_, #call, \
-               text_ ? text_ : "(no text)");                                \
-      return (int)ierr_;                                                    \
-    }                                                                       \
+/* "PETSc error <code> in <what>: <the code's text>" into `err`, and the
+ * message PETSc's own check gave (PetscErrorMessage's specific one: an
+ * unknown option value, a wrong size) when it gave one. */
+static void describe_error(PetscErrorCode code, const char *what, char *err,
+                           size_t err_len) {
+  const char *text = NULL;
+  char *specific = NULL;
+  PetscErrorMessage(code, &text, &specific);
+  if (specific && specific[0]) {
+    snprintf(err, err_len, "PETSc error %d in %s: %s%s%s", (int)code, what,
+             text ? text : "", text ? ": " : "", specific);
+  } else {
+    snprintf(err, err_len, "PETSc error %d in %s: %s", (int)code, what,
+             text ? text : "(no text)");
+  }
+}
+
+#define CHECK(call)                             \
+  do {                                          \
+    PetscErrorCode ierr_ = (call);              \
+    if (ierr_) {                                \
+      describe_error(ierr_, #call, err, err_len); \
+      return (int)ierr_;                        \
+    }                                           \
   } while (0)
 
 static void finalise(void) {
@@ -63,15 +77,32 @@ int sg_petsc_initialise(char *version, size_t version_len, char *err,
 /* The options prefix of one solver: "sg<k>_". */
 #define PREFIX_LEN 32
 
+/* An option PETSc reads without a prefix (a matrix product's, which
+ * GAMG and fieldsplit make with no prefix of their own): put into the
+ * global database around each set-up and solve of its solver only
+ * (push_globals), the value it had there before (`saved`, `was_set`)
+ * restored after. `value` NULL: an option without a value. */
+typedef struct {
+  char *name, *value, *saved;
+  PetscBool was_set;
+} GlobalOption;
+
+/* What both solvers hold first: the options prefix (make_ksp), the KSP,
+ * the displacement unknowns fieldsplit's fields were given for (0: none
+ * given) and the solver's global options. */
 typedef struct {
   char prefix[PREFIX_LEN];
+  KSP ksp;
+  PetscInt split;
+  GlobalOption *globals;
+  int global_count;
+} Common;
+
+typedef struct {
+  Common c;
   Mat matrix;
   Vec rhs, solution;
-  KSP ksp;
   PetscInt n, nnz;
-  /* the displacement unknowns fieldsplit's fields were given for (0:
-   * none given) */
-  PetscInt split;
 } Solver;
 
 /* Insert PETSC_OPTIONS from the environment, then `text` (so the case
@@ -88,10 +119,9 @@ static int insert_options(const char *prefix, const char *text, char *err,
   if (!failed && text && text[0]) failed = PetscOptionsInsertString(NULL, text);
   CHECK(PetscOptionsPrefixPop(NULL));
   if (failed) {
-    const char *text_ = NULL;
-    PetscErrorMessage(failed, &text_, NULL);
-    snprintf(err, err_len, "PETSc error %d in the options \"%s\": %s", (int)failed,
-             text ? text : "", text_ ? text_ : "(no text)");
+    char what[256];
+    snprintf(what, sizeof what, "the options \"%s\"", text ? text : "");
+    describe_error(failed, what, err, err_len);
     return (int)failed;
   }
   return 0;
@@ -142,13 +172,78 @@ int sg_petsc_solver_new(void **out, const char *options, char *err,
     return 1;
   }
   *out = s;
-  return make_ksp(PETSC_COMM_SELF, options, s->prefix, &s->ksp, err, err_len);
+  return make_ksp(PETSC_COMM_SELF, options, s->c.prefix, &s->c.ksp, err, err_len);
+}
+
+/* The KSP and the global options of a solver (`Common`). */
+static void free_common(Common *c) {
+  if (c->ksp) KSPDestroy(&c->ksp);
+  for (int k = 0; k < c->global_count; k++) {
+    free(c->globals[k].name);
+    free(c->globals[k].value);
+    free(c->globals[k].saved);
+  }
+  free(c->globals);
+}
+
+/* Add the option `name` (with its leading dash) and its `value` (NULL:
+ * none) to the options the solver at `handle` (either kind: both begin
+ * with `Common`) puts into PETSc's global database around each set-up
+ * and solve (push_globals). */
+int sg_petsc_global_option(void *handle, const char *name, const char *value,
+                           char *err, size_t err_len) {
+  Common *c = handle;
+  GlobalOption *grown =
+      realloc(c->globals, sizeof(GlobalOption) * (size_t)(c->global_count + 1));
+  if (!grown) {
+    snprintf(err, err_len, "out of memory for the PETSc option %s", name);
+    return 1;
+  }
+  c->globals = grown;
+  GlobalOption *o = &c->globals[c->global_count++];
+  o->name = strdup(name);
+  o->value = value ? strdup(value) : NULL;
+  o->saved = NULL;
+  o->was_set = PETSC_FALSE;
+  if (!o->name || (value && !o->value)) {
+    snprintf(err, err_len, "out of memory for the PETSc option %s", name);
+    return 1;
+  }
+  return 0;
+}
+
+/* Put the solver's global options into PETSc's global database, each
+ * one's earlier value saved; `*pushed` counts those put (pop_globals
+ * restores them, also after a failure here). */
+static int push_globals(Common *c, int *pushed, char *err, size_t err_len) {
+  for (*pushed = 0; *pushed < c->global_count; (*pushed)++) {
+    GlobalOption *o = &c->globals[*pushed];
+    const char *before = NULL;
+    CHECK(PetscOptionsFindPair(NULL, NULL, o->name, &before, &o->was_set));
+    free(o->saved);
+    o->saved = o->was_set && before ? strdup(before) : NULL;
+    CHECK(PetscOptionsSetValue(NULL, o->name, o->value));
+  }
+  return 0;
+}
+
+/* Restore the `pushed` first global options' earlier values (or their
+ * absence), last first. */
+static void pop_globals(Common *c, int pushed) {
+  for (int k = pushed; k > 0; k--) {
+    GlobalOption *o = &c->globals[k - 1];
+    if (o->was_set) {
+      PetscOptionsSetValue(NULL, o->name, o->saved);
+    } else {
+      PetscOptionsClearValue(NULL, o->name);
+    }
+  }
 }
 
 void sg_petsc_solver_free(void *handle) {
   Solver *s = handle;
   if (!s) return;
-  if (s->ksp) KSPDestroy(&s->ksp);
+  free_common(&s->c);
   if (s->matrix) MatDestroy(&s->matrix);
   if (s->rhs) VecDestroy(&s->rhs);
   if (s->solution) VecDestroy(&s->solution);
@@ -176,14 +271,47 @@ static int describe_ksp(KSP ksp, char *text, size_t text_len, char *err,
 /* Describe the solver's KSP and PC into `text`. */
 int sg_petsc_describe(void *handle, char *text, size_t text_len, char *err,
                       size_t err_len) {
-  return describe_ksp(((Solver *)handle)->ksp, text, text_len, err, err_len);
+  return describe_ksp(((Common *)handle)->ksp, text, text_len, err, err_len);
 }
 
-/* KSPSolve, its iterations into `iterations`, and an error when it did
- * not converge. */
-static int solve_ksp(KSP ksp, Vec b, Vec x, int *iterations, char *err,
-                     size_t err_len) {
+/* KSPSetUp and KSPSetUpOnBlocks: the preconditioner's set-up (PCSetUp),
+ * its blocks' (block Jacobi, ASM) and, for fieldsplit, its sub-solvers'
+ * (PCFieldSplitGetSubKSP: the displacement block's GAMG, the Schur
+ * complement's preconditioner), which PETSc would otherwise set up at
+ * their first use inside KSPSolve. */
+static int set_up_ksp(KSP ksp, char *err, size_t err_len) {
+  CHECK(KSPSetUp(ksp));
+  CHECK(KSPSetUpOnBlocks(ksp));
+  PC pc;
+  PetscBool fieldsplit;
+  CHECK(KSPGetPC(ksp, &pc));
+  CHECK(PetscObjectTypeCompare((PetscObject)pc, PCFIELDSPLIT, &fieldsplit));
+  if (!fieldsplit) return 0;
+  PetscInt count;
+  KSP *sub;
+  CHECK(PCFieldSplitGetSubKSP(pc, &count, &sub));
+  int failed = 0;
+  for (PetscInt k = 0; k < count && !failed; k++) {
+    failed = set_up_ksp(sub[k], err, err_len);
+  }
+  CHECK(PetscFree(sub));
+  return failed;
+}
+
+/* The KSP's set-up (set_up_ksp), then KSPSolve, their wall times
+ * (PetscTime) into seconds[0] and seconds[1]; the iterations into
+ * `iterations`, and an error when it did not converge. */
+static int solve_ksp(KSP ksp, Vec b, Vec x, int *iterations, double *seconds,
+                     char *err, size_t err_len) {
+  PetscLogDouble start, set_up, end;
+  CHECK(PetscTime(&start));
+  int failed = set_up_ksp(ksp, err, err_len);
+  if (failed) return failed;
+  CHECK(PetscTime(&set_up));
+  seconds[0] = set_up - start;
   CHECK(KSPSolve(ksp, b, x));
+  CHECK(PetscTime(&end));
+  seconds[1] = end - set_up;
   KSPConvergedReason reason;
   CHECK(KSPGetConvergedReason(ksp, &reason));
   PetscInt its;
@@ -195,6 +323,17 @@ static int solve_ksp(KSP ksp, Vec b, Vec x, int *iterations, char *err,
     return 1;
   }
   return 0;
+}
+
+/* solve_ksp on the solver's KSP with its global options in PETSc's
+ * database (push_globals), restored whatever the outcome. */
+static int solve_with_globals(Common *c, Vec b, Vec x, int *iterations,
+                              double *seconds, char *err, size_t err_len) {
+  int pushed = 0;
+  int failed = push_globals(c, &pushed, err, err_len);
+  if (!failed) failed = solve_ksp(c->ksp, b, x, iterations, seconds, err, err_len);
+  pop_globals(c, pushed);
+  return failed;
 }
 
 /* The rigid-body modes of the nodes at `coordinates` (3 per node,
@@ -228,37 +367,50 @@ static int attach_rigid_body_modes(Mat matrix, MPI_Comm comm, PetscInt local,
   return 0;
 }
 
+/* The rows of a Lagrangian contact tangent one process owns, [first,
+ * first + local) of `global`: the nodal displacements are the rows [0,
+ * displacements), the contact multipliers the rest. */
+typedef struct {
+  PetscInt first, local, global, displacements;
+} Rows;
+
 /* Give a fieldsplit PC (`-pc_type fieldsplit`) the two fields of a
- * Lagrangian contact tangent of `n` unknowns: [0, displacements) the
- * nodal displacements, the rest the contact multipliers, as fields "0"
- * and "1" (the names -pc_fieldsplit_detect_saddle_point gives, so that
- * the options -fieldsplit_0_... and -fieldsplit_1_... address them). The
- * displacements' index set has block size 3 and carries the rigid-body
- * modes of `coordinates` (3 per node) as its "nearnullspace", which
- * fieldsplit attaches to the displacement block's matrix: GAMG on that
- * block is then elasticity's (6 modes per aggregate), not a scalar AMG.
- * Fields given for an earlier pattern are dropped with the KSP (a fresh
- * one from the same options). Nothing for another PC. */
-static int split_fields(Solver *s, PetscInt n, PetscInt displacements,
+ * Lagrangian contact tangent on `comm`, the rows `rows` of it on this
+ * process: its own displacement rows and its own multiplier rows, as
+ * fields "0" and "1" (the names -pc_fieldsplit_detect_saddle_point
+ * gives, so that the options -fieldsplit_0_... and -fieldsplit_1_...
+ * address them). The displacements' index set has block size 3 and
+ * carries the rigid-body modes of `coordinates` (3 per own node) as its
+ * "nearnullspace", which fieldsplit attaches to the displacement block's
+ * matrix: GAMG on that block is then elasticity's (6 modes per
+ * aggregate), not a scalar AMG. Fields given for an earlier pattern are
+ * dropped with the KSP (a fresh one from the same options, on every
+ * process of `comm`). Nothing for another PC. */
+static int split_fields(Common *c, MPI_Comm comm, Rows rows,
                         const double *coordinates, char *err, size_t err_len) {
   PC pc;
   PetscBool fieldsplit;
-  CHECK(KSPGetPC(s->ksp, &pc));
+  CHECK(KSPGetPC(c->ksp, &pc));
   CHECK(PetscObjectTypeCompare((PetscObject)pc, PCFIELDSPLIT, &fieldsplit));
   if (!fieldsplit) return 0;
-  if (s->split) {
-    CHECK(KSPDestroy(&s->ksp));
-    int failed = new_ksp(PETSC_COMM_SELF, s->prefix, &s->ksp, err, err_len);
+  if (c->split) {
+    CHECK(KSPDestroy(&c->ksp));
+    int failed = new_ksp(comm, c->prefix, &c->ksp, err, err_len);
     if (failed) return failed;
-    CHECK(KSPGetPC(s->ksp, &pc));
+    CHECK(KSPGetPC(c->ksp, &pc));
   }
+  PetscInt end = rows.first + rows.local;
+  PetscInt u_end = PetscMin(end, rows.displacements);
+  PetscInt u_local = PetscMax(u_end - rows.first, 0);
+  PetscInt lambda_first = PetscMax(rows.first, rows.displacements);
+  PetscInt lambda_local = PetscMax(end - lambda_first, 0);
   IS u, lambda;
   MatNullSpace rigid;
-  CHECK(ISCreateStride(PETSC_COMM_SELF, displacements, 0, 1, &u));
+  CHECK(ISCreateStride(comm, u_local, rows.first, 1, &u));
   CHECK(ISSetBlockSize(u, 3));
-  CHECK(ISCreateStride(PETSC_COMM_SELF, n - displacements, displacements, 1, &lambda));
-  int failed = rigid_body_modes(PETSC_COMM_SELF, displacements, displacements,
-                                coordinates, &rigid, err, err_len);
+  CHECK(ISCreateStride(comm, lambda_local, lambda_first, 1, &lambda));
+  int failed = rigid_body_modes(comm, u_local, rows.displacements, coordinates,
+                                &rigid, err, err_len);
   if (failed) return failed;
   CHECK(PetscObjectCompose((PetscObject)u, "nearnullspace", (PetscObject)rigid));
   CHECK(PCFieldSplitSetIS(pc, "0", u));
@@ -266,7 +418,7 @@ static int split_fields(Solver *s, PetscInt n, PetscInt displacements,
   CHECK(MatNullSpaceDestroy(&rigid));
   CHECK(ISDestroy(&u));
   CHECK(ISDestroy(&lambda));
-  s->split = displacements;
+  c->split = rows.displacements;
   return 0;
 }
 
@@ -354,6 +506,7 @@ typedef struct {
   const double *b;
   double *x;
   int *iterations;
+  double *seconds;
 } SystemArguments;
 
 /* Solve K x = b with K given by compressed columns. A new pattern
@@ -365,7 +518,8 @@ typedef struct {
  * if not NULL, give GAMG the rigid-body near-null space); with contact
  * multipliers after the displacements, `displacements` (> 0) of them
  * with `coordinates`, fieldsplit gets the two fields (split_fields).
- * Returns the Krylov iterations in `iterations`. */
+ * Returns the Krylov iterations in `iterations`, and the seconds of the
+ * preconditioner's set-up and of the solve in `seconds` (solve_ksp). */
 int sg_petsc_solve(void *handle, const SystemArguments *system, char *err,
                    size_t err_len) {
   Solver *s = handle;
@@ -376,7 +530,7 @@ int sg_petsc_solve(void *handle, const SystemArguments *system, char *err,
     if (s->rhs) VecDestroy(&s->rhs);
     if (s->solution) VecDestroy(&s->solution);
     CHECK(MatCreate(PETSC_COMM_SELF, &s->matrix));
-    CHECK(MatSetOptionsPrefix(s->matrix, s->prefix));
+    CHECK(MatSetOptionsPrefix(s->matrix, s->c.prefix));
     CHECK(MatSetSizes(s->matrix, n, n, n, n));
     CHECK(MatSetType(s->matrix, MATSEQAIJ));
     if (block_size > 1) CHECK(MatSetBlockSize(s->matrix, block_size));
@@ -392,7 +546,9 @@ int sg_petsc_solve(void *handle, const SystemArguments *system, char *err,
     }
     int d = system->displacements;
     if (system->coordinates && d > 0 && d < n && d % 3 == 0) {
-      failed = split_fields(s, n, d, system->coordinates, err, err_len);
+      Rows rows = {0, n, n, d};
+      failed = split_fields(&s->c, PETSC_COMM_SELF, rows, system->coordinates, err,
+                            err_len);
       if (failed) return failed;
     }
   }
@@ -401,13 +557,14 @@ int sg_petsc_solve(void *handle, const SystemArguments *system, char *err,
   if (failed) return failed;
   CHECK(MatAssemblyBegin(s->matrix, MAT_FINAL_ASSEMBLY));
   CHECK(MatAssemblyEnd(s->matrix, MAT_FINAL_ASSEMBLY));
-  CHECK(KSPSetOperators(s->ksp, s->matrix, s->matrix));
+  CHECK(KSPSetOperators(s->c.ksp, s->matrix, s->matrix));
 
   PetscScalar *a;
   CHECK(VecGetArray(s->rhs, &a));
   memcpy(a, system->b, sizeof(double) * (size_t)n);
   CHECK(VecRestoreArray(s->rhs, &a));
-  failed = solve_ksp(s->ksp, s->rhs, s->solution, system->iterations, err, err_len);
+  failed = solve_with_globals(&s->c, s->rhs, s->solution, system->iterations,
+                              system->seconds, err, err_len);
   if (failed) return failed;
   const PetscScalar *y;
   CHECK(VecGetArrayRead(s->solution, &y));
@@ -463,11 +620,10 @@ int sg_mpi_sum(double *v, size_t n, char *err, size_t err_len) {
 }
 
 typedef struct {
-  char prefix[PREFIX_LEN];
+  Common c;
   Mat matrix;
   Vec rhs, solution, everywhere;
   VecScatter to_all;
-  KSP ksp;
 } DistributedSolver;
 
 /* A KSP on PETSc's world (make_ksp). */
@@ -479,7 +635,7 @@ int sg_petsc_mpi_solver_new(void **out, const char *options, char *err,
     return 1;
   }
   *out = s;
-  return make_ksp(PETSC_COMM_WORLD, options, s->prefix, &s->ksp, err, err_len);
+  return make_ksp(PETSC_COMM_WORLD, options, s->c.prefix, &s->c.ksp, err, err_len);
 }
 
 static void distributed_free_system(DistributedSolver *s) {
@@ -494,14 +650,8 @@ void sg_petsc_mpi_solver_free(void *handle) {
   DistributedSolver *s = handle;
   if (!s) return;
   distributed_free_system(s);
-  if (s->ksp) KSPDestroy(&s->ksp);
+  free_common(&s->c);
   free(s);
-}
-
-int sg_petsc_mpi_describe(void *handle, char *text, size_t text_len,
-                          char *err, size_t err_len) {
-  return describe_ksp(((DistributedSolver *)handle)->ksp, text, text_len, err,
-                      err_len);
 }
 
 /* The distributed matrix's layout (`DistributedLayout` in
@@ -511,7 +661,11 @@ int sg_petsc_mpi_describe(void *handle, char *text, size_t text_len,
  * the others), every entry of its own rows and of the other processes'
  * rows its part of K touches (PETSc sends those to their owners at each
  * assembly); `coordinates` (3 per owned node, or NULL) the rigid-body
- * near-null space when block_size is 3. */
+ * near-null space: the matrix's when block_size is 3, else, with
+ * contact multipliers after the `displacements` nodal displacements
+ * (the last process owns them), the displacement field's of fieldsplit
+ * (split_fields: each process's own displacement rows and own multiplier
+ * rows). */
 typedef struct {
   int global;
   int first;
@@ -519,17 +673,18 @@ typedef struct {
   int block_size;
   Columns columns;
   const double *coordinates;
+  int displacements;
 } DistributedLayout;
 
 /* Make the matrix (MPIAIJ, preallocated for the entries every process
- * gives: `preallocate`), its vectors and the scatter of the solution to
- * every process. */
+ * gives: `preallocate`), its vectors, the scatter of the solution to
+ * every process, and the near-null space or fieldsplit's fields. */
 int sg_petsc_mpi_layout(void *handle, const DistributedLayout *layout,
                         char *err, size_t err_len) {
   DistributedSolver *s = handle;
   distributed_free_system(s);
   CHECK(MatCreate(PETSC_COMM_WORLD, &s->matrix));
-  CHECK(MatSetOptionsPrefix(s->matrix, s->prefix));
+  CHECK(MatSetOptionsPrefix(s->matrix, s->c.prefix));
   CHECK(MatSetSizes(s->matrix, layout->local, layout->local, layout->global,
                     layout->global));
   CHECK(MatSetType(s->matrix, MATMPIAIJ));
@@ -543,6 +698,14 @@ int sg_petsc_mpi_layout(void *handle, const DistributedLayout *layout,
                                   layout->global, layout->coordinates, err,
                                   err_len));
   }
+  int d = layout->displacements;
+  if (layout->coordinates && layout->block_size == 1 && d > 0 &&
+      d < layout->global && d % 3 == 0) {
+    Rows rows = {layout->first, layout->local, layout->global, d};
+    failed = split_fields(&s->c, PETSC_COMM_WORLD, rows, layout->coordinates,
+                          err, err_len);
+    if (failed) return failed;
+  }
   return 0;
 }
 
@@ -551,13 +714,15 @@ int sg_petsc_mpi_layout(void *handle, const DistributedLayout *layout,
  * `values` (its part of K), added to the other processes' parts
  * (ADD_VALUES on a zeroed matrix: PETSc sums the ghost rows' entries at
  * their owners); `b` the right-hand side of its own rows; `x` the whole
- * solution (global numbering) on return, on every process. */
+ * solution (global numbering) on return, on every process; `iterations`
+ * and `seconds` as sg_petsc_solve's. */
 typedef struct {
   Columns columns;
   const double *values;
   const double *b;
   double *x;
   int *iterations;
+  double *seconds;
 } DistributedSystem;
 
 int sg_petsc_mpi_solve(void *handle, const DistributedSystem *system,
@@ -572,15 +737,15 @@ int sg_petsc_mpi_solve(void *handle, const DistributedSystem *system,
   /* collective: every process */
   CHECK(MatAssemblyBegin(s->matrix, MAT_FINAL_ASSEMBLY));
   CHECK(MatAssemblyEnd(s->matrix, MAT_FINAL_ASSEMBLY));
-  CHECK(KSPSetOperators(s->ksp, s->matrix, s->matrix));
+  CHECK(KSPSetOperators(s->c.ksp, s->matrix, s->matrix));
   PetscInt local;
   CHECK(VecGetLocalSize(s->rhs, &local));
   PetscScalar *a;
   CHECK(VecGetArray(s->rhs, &a));
   memcpy(a, system->b, sizeof(double) * (size_t)local);
   CHECK(VecRestoreArray(s->rhs, &a));
-  failed = solve_ksp(s->ksp, s->rhs, s->solution, system->iterations, err,
-                     err_len);
+  failed = solve_with_globals(&s->c, s->rhs, s->solution, system->iterations,
+                              system->seconds, err, err_len);
   if (failed) return failed;
   CHECK(VecScatterBegin(s->to_all, s->solution, s->everywhere, INSERT_VALUES,
                         SCATTER_FORWARD));

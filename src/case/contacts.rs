@@ -92,14 +92,17 @@ impl Case {
             e.map(|m| model.materials[m].reference_youngs_modulus())
                 .fold(0.0f64, f64::max)
         };
+        // a mask, not the set: every node of every element is looked up
         let on_surface = self.surface_nodes(surface).map(|nodes| {
+            let mut marked = vec![false; self.mesh.nodes.len()];
+            (nodes.iter()).for_each(|&n| marked.get_mut(n).into_iter().for_each(|m| *m = true));
             stiffest(
                 &mut self
                     .mesh
                     .elements
                     .iter()
                     .zip(&model.element_material)
-                    .filter(|(e, _)| e.nodes.iter().any(|n| nodes.contains(n)))
+                    .filter(|(e, _)| e.nodes.iter().any(|&n| marked[n]))
                     .map(|(_, &m)| m),
             )
         });

@@ -30,4 +30,3 @@ pub mod petsc;
 pub mod record;
 pub mod settings;
 pub mod stepping;
-pub mod watchdog;

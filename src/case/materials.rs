@@ -179,10 +179,11 @@ impl Case {
 mod tests {
     /// examples/two-spheres (frictionless node-to-surface between two
     /// linear elastic bodies) starts the dissection of its elements' graph
-    /// under `auto`, which condenses it (`tests/condensed.rs`), and not
-    /// under `monolithic`, nor with friction or dual mortar (which `auto`
-    /// leaves to Newton, whose pattern with the contact couplings is
-    /// another graph).
+    /// under `auto`, which condenses it (`tests/condensed.rs`), and with
+    /// Coulomb friction too (`auto` condenses friction between bodies since
+    /// session 20), but not under `monolithic`, nor with dual mortar (which
+    /// `auto` leaves to Newton between bodies, whose pattern with the
+    /// contact couplings is another graph).
     #[test]
     fn auto_dissects_early_for_bodies_it_condenses() {
         let folder = std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("examples/two-spheres");
@@ -200,7 +201,7 @@ mod tests {
             "penalty = 1000.0\nfriction_coefficient = 0.3",
         );
         assert_ne!(frictional, text);
-        assert!(!early(&frictional));
+        assert!(early(&frictional));
         let mortar = text.replace(
             "penalty = 1000.0",
             "penalty = 1000.0\ndiscretisation = \"mortar\"",

@@ -228,7 +228,7 @@ impl OutputField {
     /// `von_mises` and `region`. The recovered nodal stresses, the
     /// principal stresses and the strains are written when named: on the
     /// Hertz example they nearly triple each VTU file (4.7 → 13.1 MB) and
-    /// add 0.18 s to a 0.65 s run (farm-bench, 10 pairs), which the race
+    /// add 0.18 s to a 0.65 s run (paired timing, 10 pairs), which the race
     /// against CalculiX would pay for arrays it does not read.
     pub fn default_set() -> impl Iterator<Item = OutputField> {
         NodalField::ALL.into_iter().map(OutputField::Nodal).chain(

@@ -208,7 +208,7 @@ fn quadratic_faces_default_to_mortar() {
 }
 
 /// The coarse Hertz hemisphere (tests/data/hemisphere_coarse.msh in
-/// examples/hertz, Tet4, Rockafellar, 4 increments) condensed with the
+/// examples/hertz, Tet4, Rockafellar, 3 increments) condensed with the
 /// `[[contact]]` lines `contact`, run in `dir`.
 fn hertz(dir: &Path, contact: &str) -> CaseRun {
     let path = hertz_case(dir, contact);
@@ -261,7 +261,7 @@ fn condensed_hertz_mortar_equals_node_to_surface() {
 /// check), and those come without derivatives
 /// ([`MortarObstacle::gap_values`]: on the plane the closed form
 /// `g(x̃_j)`; the rows taken `Derivatives::Without`): on the coarse Hertz
-/// hemisphere (Tet4, 4 increments) no row is integrated with its
+/// hemisphere (Tet4, 3 increments) no row is integrated with its
 /// derivatives, while values are evaluated at least once per increment
 /// (the free solution, the answers, the areas there). Before (session 19)
 /// the rows with their derivatives were integrated once for the columns of

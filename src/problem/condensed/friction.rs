@@ -376,10 +376,10 @@ impl FrictionalCondensation {
         }
         let mut lin = Linearisation::at(problem, t, start, kept);
         let length = ROUND_TOLERANCE * problem.model.size();
+        // the reaction no column carries, at the last answer's tractions
+        let mut lagged = self.uncolumned_force(&lin);
         for _ in 0..MAX_ROUNDS {
             self.replace_columns(&lin)?;
-            // the reaction no column carries, at the last answer's tractions
-            let lagged = self.uncolumned_force(&lin);
             let with_lagged;
             let round_load = match &lagged {
                 Some(force) => {
@@ -396,7 +396,8 @@ impl FrictionalCondensation {
                 (c.interface, c.index, traction[a] != Vector3::zeros())
             });
             let defect = lin.defect(&next, &u, nodes);
-            let lag = self.force_change(lagged.as_deref(), &next);
+            let now = self.uncolumned_force(&next);
+            let lag = self.force_change(lagged.as_deref(), now.as_deref(), &next);
             if defect.is_some_and(|(geometry, l)| geometry <= ROUND_TOLERANCE && l <= length)
                 && lag <= ROUND_TOLERANCE
             {
@@ -404,6 +405,7 @@ impl FrictionalCondensation {
                 return Ok((u, traction));
             }
             lin = next;
+            lagged = now;
         }
         Err(Error::LinearSolver(format!(
             "the projections between the bodies did not settle in {MAX_ROUNDS} condensed \
@@ -462,13 +464,18 @@ impl FrictionalCondensation {
         force
     }
 
-    /// How far the force [`Self::uncolumned_force`] at the rows of `next`
-    /// and the tractions just solved is from the `lagged` one the round
-    /// was solved with: the largest change of an entry, relative to the
-    /// largest nodal contact force `A |t|∞` of the candidates.
-    fn force_change(&self, lagged: Option<&[f64]>, next: &Linearisation) -> f64 {
-        let now = self.uncolumned_force(next);
-        let change = match (lagged, now.as_deref()) {
+    /// How far the force `now` ([`Self::uncolumned_force`] at the rows of
+    /// `next` and the tractions just solved, the next round's load) is
+    /// from the `lagged` one the round was solved with: the largest change
+    /// of an entry, relative to the largest nodal contact force `A |t|∞`
+    /// of the candidates.
+    fn force_change(
+        &self,
+        lagged: Option<&[f64]>,
+        now: Option<&[f64]>,
+        next: &Linearisation,
+    ) -> f64 {
+        let change = match (lagged, now) {
             (None, None) => return 0.0,
             (Some(f), None) | (None, Some(f)) => f.iter().fold(0.0f64, |m, v| m.max(v.abs())),
             (Some(a), Some(b)) => (a.iter().zip(b)).fold(0.0f64, |m, (x, y)| m.max((x - y).abs())),

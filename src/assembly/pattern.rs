@@ -651,9 +651,8 @@ mod tests {
     #[test]
     fn lone_nodes_are_kept_or_left_out() {
         let elements: Vec<Vec<usize>> = vec![vec![0, 1, 2], vec![1, 2, 3]];
-        let graph = NodeGraph::of_elements_and(6, elements.iter().map(|e| e.as_slice()), |a| {
-            a == 4
-        });
+        let graph =
+            NodeGraph::of_elements_and(6, elements.iter().map(|e| e.as_slice()), |a| a == 4);
         let part = SparsityPattern::from_graph(&graph);
         let whole = SparsityPattern::from_elements(6, elements.iter().map(|e| e.as_slice()));
         assert_eq!(part.dimension(), 18);

@@ -62,6 +62,19 @@ impl NodeGraph {
         num_nodes: usize,
         element_nodes: impl Iterator<Item = &'a [usize]>,
     ) -> Self {
+        Self::of_elements_and(num_nodes, element_nodes, |_| true)
+    }
+
+    /// [`Self::of_elements`] where a node that no element lists is its
+    /// own neighbour only if `alone(node)`, else has no neighbours at all
+    /// (no rows or columns in a pattern of the graph): a process's graph
+    /// of its own elements keeps its own nodes and leaves out the other
+    /// processes' nodes that its elements do not touch.
+    pub fn of_elements_and<'a>(
+        num_nodes: usize,
+        element_nodes: impl Iterator<Item = &'a [usize]>,
+        alone: impl Fn(usize) -> bool + Sync,
+    ) -> Self {
         // every element's nodes listed under each of its nodes, in one
         // flat array (counted first: no list grows), then each node's
         // list sorted and deduplicated side by side
@@ -86,6 +99,9 @@ impl NodeGraph {
         let neighbours: Vec<Vec<usize>> = (0..num_nodes)
             .into_par_iter()
             .map(|a| {
+                if start[a + 1] == start[a] && !alone(a) {
+                    return Vec::new();
+                }
                 let mut list = Vec::with_capacity(start[a + 1] - start[a] + 1);
                 list.push(a);
                 list.extend_from_slice(&flat[start[a]..start[a + 1]]);
@@ -496,18 +512,29 @@ impl SparsityPattern {
             .collect()
     }
 
-    /// Index of the diagonal entry of dof `d`.
+    /// Index of the diagonal entry of dof `d`, of a pattern that stores
+    /// every node's diagonal block (all but a process's own,
+    /// [`crate::assembly::Model::set_share_with_local_rows`]: there
+    /// [`Self::stored_diagonal`]).
     #[inline]
     pub fn diagonal_entry(&self, d: usize) -> usize {
-        let first_multiplier = 3 * self.num_nodes();
-        if d >= first_multiplier {
-            return self.multiplier_diagonal(d - first_multiplier);
-        }
         #[allow(clippy::expect_used)] // the pattern is built with every node its own neighbour
         let entry = self
-            .block_entry(d / 3, d % 3, d / 3, d % 3)
+            .stored_diagonal(d)
             .expect("every node is its own neighbour");
         entry
+    }
+
+    /// Index of the diagonal entry of dof `d`, or `None` for the dof of a
+    /// node this pattern holds no rows of (another process's node that
+    /// this process's elements do not touch).
+    #[inline]
+    pub fn stored_diagonal(&self, d: usize) -> Option<usize> {
+        let first_multiplier = 3 * self.num_nodes();
+        if d >= first_multiplier {
+            return Some(self.multiplier_diagonal(d - first_multiplier));
+        }
+        self.block_entry(d / 3, d % 3, d / 3, d % 3)
     }
 }
 
@@ -615,6 +642,29 @@ mod tests {
                 assert_eq!(sym[k], 2.0 * ri[k] as f64 * j as f64);
             }
         }
+    }
+
+    /// A process's graph ([`NodeGraph::of_elements_and`]): a node no
+    /// element lists keeps its diagonal block only if asked (an own node),
+    /// another has empty columns and no diagonal entry, and the entries
+    /// of the nodes the elements touch are the whole pattern's.
+    #[test]
+    fn lone_nodes_are_kept_or_left_out() {
+        let elements: Vec<Vec<usize>> = vec![vec![0, 1, 2], vec![1, 2, 3]];
+        let graph =
+            NodeGraph::of_elements_and(6, elements.iter().map(|e| e.as_slice()), |a| a == 4);
+        let part = SparsityPattern::from_graph(&graph);
+        let whole = SparsityPattern::from_elements(6, elements.iter().map(|e| e.as_slice()));
+        assert_eq!(part.dimension(), 18);
+        assert_eq!(part.nnz() + 9, whole.nnz());
+        assert_eq!(part.node_column_length(5), 0);
+        for d in 0..15 {
+            let k = part.stored_diagonal(d).unwrap();
+            assert_eq!(part.symbolic().row_idx()[k], d);
+            assert_eq!(k, whole.diagonal_entry(d), "dof {d}");
+        }
+        assert!((15..18).all(|d| part.stored_diagonal(d).is_none()));
+        assert!(part.block_entry(5, 0, 3, 0).is_none());
     }
 
     /// A pattern coupled from an element pattern equals the one built from

@@ -9,10 +9,12 @@
 //! and its sparsity pattern holds only their entries
 //! ([`Model::set_share_with_local_rows`]): the rows of its own nodes and of
 //! the ghost nodes its elements touch, each restricted to the columns its
-//! elements couple, plus the diagonal block of every other node (9 entries
-//! a node, so that a prescribed dof's row and the diagonal lookups stay
-//! where they are) and whatever the caller couples besides (contact,
-//! follower-load faces). The internal force is
+//! elements couple (and the diagonal block of an own node no own element
+//! touches), plus whatever the caller couples besides (contact,
+//! follower-load faces); the other processes' nodes that none of these
+//! touch have no rows or columns in it (empty columns: their prescribed
+//! dofs' identity rows are their owners', and their diagonal lookups
+//! answer `None`, [`SparsityPattern::stored_diagonal`]). The internal force is
 //! then summed over the processes, `f_int = Σ_p f_int^p`, so that every
 //! process holds the same whole force (and Newton, the stepping and the
 //! contact states stay identical on every process); the tangent stays
@@ -77,9 +79,9 @@ impl Share {
 
 impl Model {
     /// [`Model::set_share`], and the pattern restricted to this process's
-    /// rows: that of the owned elements' node graph (each node its own
-    /// neighbour, the other nodes' diagonal blocks only) with every pair of
-    /// nodes in one of `groups` coupled too (what the caller adds to the
+    /// rows: that of the owned elements' node graph (each node they touch
+    /// and each own node its own neighbour; the other nodes without rows or
+    /// columns) with every pair of nodes in one of `groups` coupled too (what the caller adds to the
     /// tangent outside the elements: the follower-load faces). A
     /// later [`SparsityPattern::coupled`] keeps both. `K^p`, its cached
     /// constant part and the scatter maps live on this pattern, which
@@ -93,9 +95,13 @@ impl Model {
             .zip(&share.owned)
             .filter(|(_, &own)| own)
             .map(|(e, _)| e.nodes.as_slice());
-        let graph = NodeGraph::of_elements(
+        // the other processes' nodes that no element or group here
+        // touches hold no rows here (their owners set a prescribed dof's
+        // identity row, and this process adds nothing to them)
+        let graph = NodeGraph::of_elements_and(
             self.mesh.num_nodes(),
             owned.chain(groups.iter().map(Vec::as_slice)),
+            |a| share.own_nodes[a],
         );
         self.pattern = SparsityPattern::from_graph(&graph);
         // the other processes' elements keep no reference geometry (the
@@ -133,8 +139,8 @@ impl Model {
     /// [`Model::restore_entries`] puts back after the contact and load
     /// contributions, which each process adds in its own rows only. Empty
     /// without a share (a serial run adds everything). One pass over the
-    /// pattern; the entries kept are the ghost rows and the other nodes'
-    /// diagonal blocks, a few per cent of the part.
+    /// pattern; the entries kept are the ghost rows, a few per cent of
+    /// the part.
     pub fn foreign_entries(&self, tangent: &[f64]) -> Vec<(usize, f64)> {
         let Some(share) = &self.share else {
             return Vec::new();

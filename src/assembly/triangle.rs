@@ -36,7 +36,7 @@ pub struct LowerTriangle {
 }
 
 impl LowerTriangle {
-    /// The lower triangle of `pattern` (which stores every diagonal entry).
+    /// The lower triangle of `pattern` (an empty column stays empty).
     pub fn of(pattern: &SparsityPattern) -> Self {
         let full = pattern.symbolic();
         let (cp, ri) = (full.col_ptr(), full.row_idx());
@@ -76,7 +76,11 @@ impl LowerTriangle {
         self.symbolic.row_idx().len()
     }
 
-    /// Index of the diagonal entry of unknown `d` (the first of its column).
+    /// Index of the diagonal entry of unknown `d` (the first of its
+    /// column), for a `d` whose diagonal the pattern stores (all of them
+    /// but on a process's pattern under `mpirun`, whose columns of the
+    /// nodes it does not touch are empty:
+    /// [`SparsityPattern::stored_diagonal`]).
     #[inline]
     pub fn diagonal_entry(&self, d: usize) -> usize {
         self.symbolic.col_ptr()[d]

@@ -788,13 +788,17 @@ fn max_abs_diagonal(pattern: &SymbolicSparseColMat<usize>, values: &[f64]) -> f6
 
 /// Make the rows and columns of the `constrained` unknowns of `values`
 /// (a symmetric matrix stored on `pattern`, whole or its lower triangle;
-/// `diagonal(d)` the index of entry `(d, d)`) a scaled identity `s I`:
-/// their diagonal `s`, their other entries 0. `s` is the mean `|K_dd|` over
-/// the free unknowns among the first `dofs` (the displacements: a
-/// multiplier's diagonal may be 0), 1 if there is none; returned.
+/// `diagonal(d)` the index of entry `(d, d)`, `None` where the pattern
+/// holds no such entry) a scaled identity `s I`: their diagonal `s`, their
+/// other entries 0. `s` is the mean `|K_dd|` over the free unknowns among
+/// the first `dofs` (the displacements: a multiplier's diagonal may be 0),
+/// an entry not stored counting as 0 (a process's pattern leaves out the
+/// nodes its elements do not touch, whose part of `K_dd` is 0: the mean
+/// is the one the whole diagonal blocks gave), 1 if there is none;
+/// returned.
 pub fn scaled_identity_rows(
     pattern: &SymbolicSparseColMat<usize>,
-    diagonal: impl Fn(usize) -> usize,
+    diagonal: impl Fn(usize) -> Option<usize>,
     dofs: usize,
     constrained: &[bool],
     values: &mut [f64],
@@ -803,7 +807,7 @@ pub fn scaled_identity_rows(
     let (mut sum, mut count) = (0.0, 0usize);
     for (d, &c) in constrained.iter().enumerate().take(dofs) {
         if !c {
-            sum += values[diagonal(d)].abs();
+            sum += diagonal(d).map_or(0.0, |k| values[k].abs());
             count += 1;
         }
     }

@@ -643,7 +643,7 @@ pub fn apply_identity_rows<P: NonlinearProblem>(
     k: &mut [f64],
 ) -> f64 {
     let blocks = problem.pattern();
-    let diagonal = |d: usize| blocks.diagonal_entry(d);
+    let diagonal = |d: usize| blocks.stored_diagonal(d);
     super::linear::scaled_identity_rows(
         blocks.symbolic(),
         diagonal,

@@ -234,7 +234,7 @@ impl Flexibility {
             || ldlt.reserve(precision),
             || {
                 let mut k_tilde = k.to_vec();
-                let diagonal = |d: usize| lower.diagonal_entry(d);
+                let diagonal = |d: usize| Some(lower.diagonal_entry(d));
                 let scale = scaled_identity_rows(
                     lower.symbolic(),
                     diagonal,

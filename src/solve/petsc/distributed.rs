@@ -210,16 +210,16 @@ impl Numbering {
 
 /// Which rows this process gives PETSc for one pattern of the tangent
 /// (rebuilt when contact pairs change it). The pattern is this process's
-/// own ([`crate::assembly::share`]): its elements' rows, the contact
-/// couplings and the diagonal block of every other node. It gives every
-/// entry of its own rows and of the rows it touches (a node coupled to
-/// another node or to a multiplier: a ghost node, a contact node). Every
-/// process adds the contact and loads in its own rows only
-/// ([`crate::assembly::Model::foreign_entries`]), so the rows left out
-/// are the diagonal blocks of nodes the process does not touch (zero, or
-/// the scaled identity of a prescribed dof, which its owner gives) and
-/// the other processes' multiplier rows (zero: the last process owns the
-/// multipliers and adds their rows).
+/// own ([`crate::assembly::share`]): its elements' rows and the contact
+/// couplings (the other processes' nodes it does not touch have empty
+/// columns). It gives every entry of its own rows and of the rows it
+/// touches (a node coupled to another node or to a multiplier: a ghost
+/// node, a contact node). Every process adds the contact and loads in its
+/// own rows only ([`crate::assembly::Model::foreign_entries`]), so the
+/// rows left out are the diagonal blocks of contact nodes it does not
+/// otherwise touch (zero, or the scaled identity of a prescribed dof,
+/// which its owner gives) and the other processes' multiplier rows (zero:
+/// the last process owns the multipliers and adds their rows).
 struct RowLayout {
     fingerprint: u64,
     /// `rows[old]`: PETSc's row of row `old` (old numbering) if this

@@ -153,13 +153,6 @@ pub fn not_applicable(problem: &Problem) -> Option<String> {
             Err(why) => Some(why),
         };
         let why = why.or_else(|| {
-            (c.projected_gap() && !c.fixed_area() && c.has_friction()).then(|| {
-                "uses discretisation = \"mortar\" with Coulomb friction between two bodies, \
-                 which the condensed path does not take (its weighted slip is not condensed)"
-                    .into()
-            })
-        });
-        let why = why.or_else(|| {
             c.law.has_outer_loop().then(|| {
                 "uses uzawa, which meets the constraint only to its outer loop's tolerance".into()
             })

@@ -498,8 +498,8 @@ fn pushed_mortar_blocks(
 /// 1e-10. With the upper block shifted by 0.3 over the lower one's edge
 /// (Hex8 5 × 5 on 4 × 4; partial contact, the pressure far from uniform,
 /// the segmentation cut at the edge) the condensed answer is Newton's to
-/// the same 1e-8. `auto` keeps Newton's path between bodies (condensed
-/// only by name, as node-to-surface).
+/// the same 1e-8. `auto` takes the condensed path there (since session
+/// 21).
 #[test]
 fn condensed_mortar_between_bodies_equals_monolithic() {
     let cases = [
@@ -529,7 +529,7 @@ fn condensed_mortar_between_bodies_equals_monolithic() {
         assert!(c.stress <= 1e-10, "{label}: stress {:e}", c.stress);
     }
     let (auto, _a) = pushed_mortar_blocks(ElementKind::Hex8, (3, 2), 0.0, "upper.zmin", "");
-    assert_eq!(auto.outcome.summary.strategy, "monolithic");
+    assert_eq!(auto.outcome.summary.strategy, "condensed");
 }
 
 /// Matching meshes (issue 28, session 18): Tet4 and Hex8 blocks of 4 × 4

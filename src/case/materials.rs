@@ -19,21 +19,24 @@ type ElementMaterials = (Vec<Arc<dyn Material>>, Vec<usize>);
 /// Whether `[[contact]]` `c` between two bodies takes the condensed path
 /// under `strategy = "auto"` as far as the case file tells before the
 /// problem is built ([`crate::problem::condensed::not_applicable`]): every
-/// material small-strain, node-to-surface, frictionless or with Coulomb
-/// friction (given, or by
-/// default on a mesh of linear elements: on quadratic faces the default
-/// may be mortar, which `auto` leaves to Newton), not uzawa; then its factor is ordered on the elements' graph,
-/// and the dissection of that graph starts early
-/// ([`crate::problem::dissects_element_graph`]). A wrong guess costs
+/// material small-strain, node-to-surface or dual mortar (given, or by
+/// default: mortar on quadratic faces), frictionless or with Coulomb
+/// friction, not uzawa, and not penalty with mortar; then its factor is
+/// ordered on the elements' graph, and the dissection of that graph starts
+/// early ([`crate::problem::dissects_element_graph`]). A wrong guess costs
 /// the unused dissection on the idle core (and Newton's own dissection of
 /// the coupled pattern waits for METIS's lock if that one still runs).
 fn condensed_pair(c: &ContactSpec, small_strain: bool, quadratic: bool) -> bool {
-    let node_to_surface = match c.discretisation {
-        Some(d) => d == DiscretisationSpec::NodeToSurface,
-        None => !quadratic,
+    let mortar = match c.discretisation {
+        Some(d) => d == DiscretisationSpec::Mortar,
+        None => quadratic,
     };
-    let law = c.method != ContactMethod::Uzawa;
-    c.primary.is_some() && small_strain && node_to_surface && law
+    let law = match c.method {
+        ContactMethod::Uzawa => false,
+        ContactMethod::Penalty => !mortar,
+        ContactMethod::Rockafellar | ContactMethod::Slack => true,
+    };
+    c.primary.is_some() && small_strain && law
 }
 
 impl Case {

@@ -885,8 +885,7 @@ impl GapProducer<Dyn> for MortarGap<'_> {
     /// `R_jk` on the secondary nodes, `−M_jl/D_j` on the primary ones
     /// ([`mortar_friction`](super::mortar_friction), "Force").
     fn lever_weights(&self, kinematics: &GapKinematics<Dyn>) -> Option<Vec<(usize, f64)>> {
-        let row = self.node_row(kinematics.nodes[0])?;
-        Some(super::mortar_friction::lever_weights(row).collect())
+        self.frictional_lever_weights(kinematics)
     }
 
     fn stick_stiffness(

@@ -126,7 +126,7 @@ fn add_columns(target: &mut OMatrix<f64, U3, Dyn>, block: &DMatrix<f64>, offsets
 
 /// The weights of `B = Σ_k w_k e_k ⊗ I` of `row`: `R_jk` on the secondary
 /// nodes `k`, `−M_jl/D_j` on the primary nodes `l`.
-pub(super) fn lever_weights(row: &MortarRow) -> impl Iterator<Item = (usize, f64)> + '_ {
+fn lever_weights(row: &MortarRow) -> impl Iterator<Item = (usize, f64)> + '_ {
     (row.transformation.iter().copied()).chain(row.m.iter().map(|(l, m)| (*l, -m / row.d)))
 }
 
@@ -226,6 +226,16 @@ impl MortarGap<'_> {
             },
             lever: row.map_or_else(zero, |row| lever(&kinematics.nodes, row)),
         }
+    }
+
+    /// The weights of the node's lever `B` (see the module docs, "Force"):
+    /// `R_jk` on the secondary nodes, `−M_jl/D_j` on the primary ones.
+    pub(super) fn frictional_lever_weights(
+        &self,
+        kinematics: &GapKinematics<Dyn>,
+    ) -> Option<Vec<(usize, f64)>> {
+        let row = self.node_row(kinematics.nodes[0])?;
+        Some(lever_weights(row).collect())
     }
 
     /// `∂(−A Bᵀ t)/∂q` at fixed `t = traction / A`, `A = D_j` (see the

@@ -121,7 +121,6 @@ pub fn not_applicable(problem: &Problem) -> Option<String> {
             p.surface
         ));
     }
-    let strategy = problem.settings.strategy;
     for c in &problem.contacts {
         // the gap from the node driver, affine in `u`; a law whose
         // converged state is exact or a penalty (not an outer loop's)
@@ -140,15 +139,12 @@ pub fn not_applicable(problem: &Problem) -> Option<String> {
             // friction under `auto` too: examples/cattaneo-mindlin's
             // tractions equal Newton's at 1e-11 node by node to 5.7e-10
             // of the peak (BENCHMARKS.md, session 20). Dual mortar between
-            // bodies: the same rounds, at the
-            // current segmentation (frictionless; its answer is Newton's
-            // where the rounds settle, as node-to-surface's), by name.
-            Err(why) if c.projected_gap() && !c.fixed_area() && strategy != Strategy::Condensed => {
-                Some(format!(
-                    "{why}, which is condensed only with strategy = \"condensed\" (dual \
-                     mortar between bodies is not yet taken by default)"
-                ))
-            }
+            // bodies, frictionless or with Coulomb friction, the same
+            // rounds at the current segmentation (since session 21 under
+            // `auto` too: tests/mortar_condensed.rs, the stacked blocks and
+            // two-spheres' mortar.toml frictionless, the sheared punch with
+            // friction, equal Newton to ≤ 4.4e-12; BENCHMARKS.md, session
+            // 21).
             Err(_) if c.projected_gap() => None,
             Err(why) => Some(why),
         };

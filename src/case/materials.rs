@@ -19,9 +19,9 @@ type ElementMaterials = (Vec<Arc<dyn Material>>, Vec<usize>);
 /// Whether `[[contact]]` `c` between two bodies takes the condensed path
 /// under `strategy = "auto"` as far as the case file tells before the
 /// problem is built ([`crate::problem::condensed::not_applicable`]): every
-/// material small-strain, node-to-surface or dual mortar (given, or by
-/// default: mortar on quadratic faces), frictionless or with Coulomb
-/// friction, not uzawa, and not penalty with mortar; then its factor is
+/// material small-strain, node-to-surface (frictionless or with Coulomb
+/// friction) or dual mortar (given, or by default on quadratic faces;
+/// frictionless), not uzawa, and not penalty with mortar; then its factor is
 /// ordered on the elements' graph, and the dissection of that graph starts
 /// early ([`crate::problem::dissects_element_graph`]). A wrong guess costs
 /// the unused dissection on the idle core (and Newton's own dissection of
@@ -36,7 +36,8 @@ fn condensed_pair(c: &ContactSpec, small_strain: bool, quadratic: bool) -> bool 
         ContactMethod::Penalty => !mortar,
         ContactMethod::Rockafellar | ContactMethod::Slack => true,
     };
-    c.primary.is_some() && small_strain && law
+    let friction = c.friction_coefficient.is_some_and(|mu| mu > 0.0);
+    c.primary.is_some() && small_strain && law && !(mortar && friction)
 }
 
 impl Case {

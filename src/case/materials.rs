@@ -185,7 +185,8 @@ mod tests {
     /// linear elastic bodies) starts the dissection of its elements' graph
     /// under `auto`, which condenses it (`tests/condensed.rs`), and with
     /// Coulomb friction too (`auto` condenses friction between bodies since
-    /// session 20), but not under `monolithic`, nor with dual mortar (which
+    /// session 20), and with frictionless dual mortar (since session 21),
+    /// but not under `monolithic`, nor with dual mortar and friction (which
     /// `auto` leaves to Newton between bodies, whose pattern with the
     /// contact couplings is another graph).
     #[test]
@@ -210,6 +211,12 @@ mod tests {
             "penalty = 1000.0",
             "penalty = 1000.0\ndiscretisation = \"mortar\"",
         );
-        assert!(!early(&mortar));
+        assert!(early(&mortar));
+        let frictional_mortar = mortar.replace(
+            "penalty = 1000.0",
+            "penalty = 1000.0\nfriction_coefficient = 0.3",
+        );
+        assert_ne!(frictional_mortar, mortar);
+        assert!(!early(&frictional_mortar));
     }
 }

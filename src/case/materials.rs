@@ -19,21 +19,25 @@ type ElementMaterials = (Vec<Arc<dyn Material>>, Vec<usize>);
 /// Whether `[[contact]]` `c` between two bodies takes the condensed path
 /// under `strategy = "auto"` as far as the case file tells before the
 /// problem is built ([`crate::problem::condensed::not_applicable`]): every
-/// material small-strain, node-to-surface, frictionless or with Coulomb
-/// friction (given, or by
-/// default on a mesh of linear elements: on quadratic faces the default
-/// may be mortar, which `auto` leaves to Newton), not uzawa; then its factor is ordered on the elements' graph,
-/// and the dissection of that graph starts early
-/// ([`crate::problem::dissects_element_graph`]). A wrong guess costs
+/// material small-strain, node-to-surface (frictionless or with Coulomb
+/// friction) or dual mortar (given, or by default on quadratic faces;
+/// frictionless), not uzawa, and not penalty with mortar; then its factor is
+/// ordered on the elements' graph, and the dissection of that graph starts
+/// early ([`crate::problem::dissects_element_graph`]). A wrong guess costs
 /// the unused dissection on the idle core (and Newton's own dissection of
 /// the coupled pattern waits for METIS's lock if that one still runs).
 fn condensed_pair(c: &ContactSpec, small_strain: bool, quadratic: bool) -> bool {
-    let node_to_surface = match c.discretisation {
-        Some(d) => d == DiscretisationSpec::NodeToSurface,
-        None => !quadratic,
+    let mortar = match c.discretisation {
+        Some(d) => d == DiscretisationSpec::Mortar,
+        None => quadratic,
     };
-    let law = c.method != ContactMethod::Uzawa;
-    c.primary.is_some() && small_strain && node_to_surface && law
+    let law = match c.method {
+        ContactMethod::Uzawa => false,
+        ContactMethod::Penalty => !mortar,
+        ContactMethod::Rockafellar | ContactMethod::Slack => true,
+    };
+    let friction = c.friction_coefficient.is_some_and(|mu| mu > 0.0);
+    c.primary.is_some() && small_strain && law && !(mortar && friction)
 }
 
 impl Case {
@@ -181,7 +185,8 @@ mod tests {
     /// linear elastic bodies) starts the dissection of its elements' graph
     /// under `auto`, which condenses it (`tests/condensed.rs`), and with
     /// Coulomb friction too (`auto` condenses friction between bodies since
-    /// session 20), but not under `monolithic`, nor with dual mortar (which
+    /// session 20), and with frictionless dual mortar (since session 21),
+    /// but not under `monolithic`, nor with dual mortar and friction (which
     /// `auto` leaves to Newton between bodies, whose pattern with the
     /// contact couplings is another graph).
     #[test]
@@ -206,6 +211,12 @@ mod tests {
             "penalty = 1000.0",
             "penalty = 1000.0\ndiscretisation = \"mortar\"",
         );
-        assert!(!early(&mortar));
+        assert!(early(&mortar));
+        let frictional_mortar = mortar.replace(
+            "penalty = 1000.0",
+            "penalty = 1000.0\nfriction_coefficient = 0.3",
+        );
+        assert_ne!(frictional_mortar, mortar);
+        assert!(!early(&frictional_mortar));
     }
 }

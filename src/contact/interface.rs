@@ -803,8 +803,10 @@ impl ContactInterface {
     /// (1e-12 of the element size: dual mortar's weighted gaps of touching
     /// flat faces read ±2e-16) is touching, not open: the first-contact
     /// fraction `α = g_n/(g_n − g)` would jump from 1 to 0 as `g` crosses
-    /// `−g_n`, and Newton hunt around the exact constraint `g = 0`.
-    fn first_contact_pending(&self, state: &NodeContactState) -> bool {
+    /// `−g_n`, and Newton hunt around the exact constraint `g = 0`. The
+    /// condensed path's node law reads the same rule
+    /// (`solve::condensed::cone::ConeNode::was_open`).
+    pub fn first_contact_pending(&self, state: &NodeContactState) -> bool {
         state.friction.status == ContactStatus::Open && state.gap > 1e-12 * self.element_size
     }
 

@@ -293,6 +293,19 @@ where
         None
     }
 
+    /// The node's lever `B = Σ_k w_k e_k ⊗ I` as its weights `(k, w_k)`,
+    /// where it is not `e_s − Σ_i w_i e_{p_i}` of
+    /// [`GapKinematics::primary`] (`None`, the default): dual mortar's
+    /// `R_jk` on the secondary nodes and `−M_jl/D_j` on the primary ones
+    /// (the quadratic basis transformation spreads it over the face).
+    fn lever_weights(
+        &self,
+        kinematics: &GapKinematics<Q, Self::Point>,
+    ) -> Option<Vec<(usize, f64)>> {
+        let _ = kinematics;
+        None
+    }
+
     /// The stick stiffness `−A_s ∂t_T/∂q` in stick, scaled by the slip
     /// ratio [`TangentialResponse::stick_scale`] in slip, that the
     /// preconditioner of the frictional solve uses for every closed node.

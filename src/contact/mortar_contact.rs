@@ -882,6 +882,12 @@ impl GapProducer<Dyn> for MortarGap<'_> {
         self.frictional_lever_stiffness(kinematics, traction)
     }
 
+    /// `R_jk` on the secondary nodes, `−M_jl/D_j` on the primary ones
+    /// ([`mortar_friction`](super::mortar_friction), "Force").
+    fn lever_weights(&self, kinematics: &GapKinematics<Dyn>) -> Option<Vec<(usize, f64)>> {
+        self.frictional_lever_weights(kinematics)
+    }
+
     fn stick_stiffness(
         &self,
         kinematics: &GapKinematics<Dyn>,

@@ -124,15 +124,16 @@ fn add_columns(target: &mut OMatrix<f64, U3, Dyn>, block: &DMatrix<f64>, offsets
     }
 }
 
+/// The weights of `B = Σ_k w_k e_k ⊗ I` of `row`: `R_jk` on the secondary
+/// nodes `k`, `−M_jl/D_j` on the primary nodes `l`.
+fn lever_weights(row: &MortarRow) -> impl Iterator<Item = (usize, f64)> + '_ {
+    (row.transformation.iter().copied()).chain(row.m.iter().map(|(l, m)| (*l, -m / row.d)))
+}
+
 /// `B = (R_jk I on k; −(M_jl/D_j) I on l)` of `row` over `q`'s `nodes`.
 fn lever(nodes: &[usize], row: &MortarRow) -> OMatrix<f64, U3, Dyn> {
     let mut lever = OMatrix::<f64, U3, Dyn>::zeros_generic(U3, Dyn(3 * nodes.len()));
-    let weights = row
-        .transformation
-        .iter()
-        .copied()
-        .chain(row.m.iter().map(|(l, m)| (*l, -m / row.d)));
-    for (n, w) in weights {
+    for (n, w) in lever_weights(row) {
         let c = offsets(nodes, &[n])[0];
         for i in 0..3 {
             lever[(i, c + i)] += w;
@@ -225,6 +226,16 @@ impl MortarGap<'_> {
             },
             lever: row.map_or_else(zero, |row| lever(&kinematics.nodes, row)),
         }
+    }
+
+    /// The weights of the node's lever `B` (see the module docs, "Force"):
+    /// `R_jk` on the secondary nodes, `−M_jl/D_j` on the primary ones.
+    pub(super) fn frictional_lever_weights(
+        &self,
+        kinematics: &GapKinematics<Dyn>,
+    ) -> Option<Vec<(usize, f64)>> {
+        let row = self.node_row(kinematics.nodes[0])?;
+        Some(lever_weights(row).collect())
     }
 
     /// `∂(−A Bᵀ t)/∂q` at fixed `t = traction / A`, `A = D_j` (see the

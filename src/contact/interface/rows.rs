@@ -66,12 +66,22 @@ pub struct ConstraintRow {
     /// round-off where a flat face or biorthogonality makes them zero, left
     /// out); `None`: `b = ∇g` (node-to-surface, rigid obstacles).
     pub force: Option<Vec<(usize, Vector3<f64>)>>,
+    /// `(k, w_k)` per coupled mesh node: the lever `B = Σ_k w_k e_k ⊗ I`
+    /// a traction of the node acts through (`A Bᵀ t`), where it is not
+    /// `e_s − Σ_i w_i e_{p_i}` of [`primary`](Self::primary)
+    /// ([`GapProducer::lever_weights`]: dual mortar's `R_jk` on the
+    /// secondary nodes, `−M_jl/D_j` on the primary ones); `None` otherwise.
+    pub lever: Option<Vec<(usize, f64)>>,
 }
 
 impl ConstraintRow {
     /// Row `d` of the lever `B` as `(dof, value)`: `+1` on `3s + d`, `−w_i`
-    /// on `3p_i + d`.
+    /// on `3p_i + d`; `w_k` on `3k + d` where the producer gives the
+    /// weights ([`lever`](Self::lever)).
     pub fn lever_row(&self, d: usize) -> Vec<(usize, f64)> {
+        if let Some(weights) = &self.lever {
+            return weights.iter().map(|&(k, w)| (3 * k + d, w)).collect();
+        }
         std::iter::once((3 * self.node + d, 1.0))
             .chain(self.primary.iter().map(|&(p, w)| (3 * p + d, -w)))
             .collect()
@@ -165,13 +175,16 @@ impl ContactInterface {
     /// Every secondary node's [`SlipRow`] at time `t` and unknowns `x`
     /// from the node `states` (their committed friction history, and the
     /// kept triangle between bodies); `None` where the node has no primary
-    /// within the search margin.
+    /// within the search margin. A dual mortar producer reads its rows
+    /// with `derivatives` or without (the weighted slip's value is the
+    /// same; only its gradient, which a row does not hold, needs them).
     pub fn slip_rows(
         &self,
         reference: &[[f64; 3]],
         t: f64,
         x: &[f64],
         states: &[NodeContactState],
+        derivatives: Derivatives,
     ) -> Vec<Option<SlipRow>> {
         let ctx = ContactContext {
             reference,
@@ -180,7 +193,7 @@ impl ContactInterface {
             first_multiplier: 0,
         };
         let mut rows = Vec::with_capacity(self.nodes.len());
-        with_producer!(self, &ctx, p => {
+        with_producer!(self, &ctx, derivatives, p => {
             self.for_each_node(p, &ctx, |i| states[i], |node, state, k| {
                 rows.push(k.map(|mut k| {
                     let frame = p.slip(node, &mut k, &state.friction);
@@ -282,6 +295,7 @@ impl ContactInterface {
                     relative_position: p.relative_position(node),
                     facet: k.facet,
                     force: k.lever.as_ref().map(|b| force_vectors(&k.nodes, b.as_slice())),
+                    lever: p.lever_weights(&k),
                 }));
             });
         });

@@ -82,11 +82,16 @@ pub fn weighted_slip(
             gradient[(i, c + i)] += scale;
         }
     };
-    for ((l, m), g) in row.m.iter().zip(&row.m_gradients) {
+    // a row without derivatives gives the value alone (its `∇D`, `∇M`
+    // empty: the gradient then misses their terms)
+    let with = row.has_derivatives();
+    for (a, (l, m)) in row.m.iter().enumerate() {
         let x = position(*l);
         value += *m * x;
-        let mut block = gradient.columns_mut(0, width);
-        block += x * g.transpose();
+        if with {
+            let mut block = gradient.columns_mut(0, width);
+            block += x * row.m_gradients[a].transpose();
+        }
         add_identity(&mut gradient, *l, *m);
     }
     for (l, m) in m_n {
@@ -96,8 +101,10 @@ pub fn weighted_slip(
     let x_tilde: Vector3<f64> = transformation.iter().map(|(k, r)| position(*k) * *r).sum();
     let change = row.d - d_n;
     value -= change * x_tilde;
-    let mut block = gradient.columns_mut(0, width);
-    block -= x_tilde * row.d_gradient.transpose();
+    if with {
+        let mut block = gradient.columns_mut(0, width);
+        block -= x_tilde * row.d_gradient.transpose();
+    }
     for (k, r) in transformation {
         add_identity(&mut gradient, *k, -change * r);
     }

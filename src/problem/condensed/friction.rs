@@ -62,7 +62,7 @@
 
 use super::linearisation::Linearisation;
 use super::{constraint_rows, Condensation, ContactNode, ContactState, IncrementSolver, Problem};
-use crate::contact::friction::{ContactStatus, Coulomb};
+use crate::contact::friction::Coulomb;
 use crate::contact::interface::ConstraintRow;
 use crate::contact::mortar::Derivatives;
 use crate::solve::condensed::cone::{
@@ -345,7 +345,7 @@ impl FrictionalCondensation {
             gap_at_rest,
             offset_at_rest,
             committed_gap: committed.gap,
-            was_open: committed.friction.status == ContactStatus::Open,
+            was_open: interface.first_contact_pending(committed),
             prescribed: self.prescribed_axes(c),
         })
     }

@@ -16,7 +16,7 @@
 //! value the node laws read is the exact one.
 
 use super::{ContactState, Problem};
-use crate::contact::interface::{ConstraintRow, SlipRow};
+use crate::contact::interface::{ConstraintRow, ContactInterface, SlipRow};
 use crate::contact::mortar::Derivatives;
 use nalgebra::Vector3;
 
@@ -46,7 +46,7 @@ impl Linearisation {
     pub(super) fn at_rest(problem: &Problem, t: f64, states: &ContactState) -> Self {
         let zero = vec![0.0; problem.num_unknowns()];
         let rows = super::constraint_rows(problem, t, &zero, Derivatives::With);
-        let slips = Self::slips(problem, t, &zero, states);
+        let slips = Self::slips(problem, t, &zero, states, Derivatives::With);
         Linearisation {
             rows,
             slips,
@@ -56,13 +56,15 @@ impl Linearisation {
 
     /// Between bodies: the rows at `x̂ = x`, time `t`, each node on the
     /// primary triangle kept in `kept` (as Newton keeps it), which takes
-    /// the row's triangle.
+    /// the row's triangle. Dual mortar's rows and weighted slips without
+    /// their derivatives (the rounds read values and levers only).
     pub(super) fn at(problem: &Problem, t: f64, x: &[f64], kept: &mut ContactState) -> Self {
         let reference = &problem.model.mesh.nodes;
+        let without = Derivatives::Without;
         let rows: Vec<Vec<Option<ConstraintRow>>> = (problem.contacts.iter().enumerate())
             .map(|(ci, c)| {
                 let states = &mut kept.interfaces[ci];
-                let rows = c.constraint_rows(reference, t, x, Some(states));
+                let rows = c.constraint_rows_with(reference, t, x, Some(states), without);
                 for (state, row) in states.iter_mut().zip(&rows) {
                     if let Some(row) = row {
                         state.move_to_facet(row.facet);
@@ -71,7 +73,7 @@ impl Linearisation {
                 rows
             })
             .collect();
-        let slips = Self::slips(problem, t, x, kept);
+        let slips = Self::slips(problem, t, x, kept, without);
         Linearisation {
             rows,
             slips,
@@ -84,11 +86,13 @@ impl Linearisation {
         t: f64,
         x: &[f64],
         states: &ContactState,
+        derivatives: Derivatives,
     ) -> Vec<Vec<Option<SlipRow>>> {
         let reference = &problem.model.mesh.nodes;
-        (problem.contacts.iter().enumerate())
-            .map(|(ci, c)| c.slip_rows(reference, t, x, &states.interfaces[ci]))
-            .collect()
+        let slips = |(ci, c): (usize, &ContactInterface)| {
+            c.slip_rows(reference, t, x, &states.interfaces[ci], derivatives)
+        };
+        problem.contacts.iter().enumerate().map(slips).collect()
     }
 
     /// `(ĝ − n̂·B̂x̂, d̂ − B̂x̂)` of node `index` of `interface`: its gap and

@@ -116,9 +116,11 @@ pub struct ConeNode {
     pub gap_at_rest: f64,
     /// `d` at `u_a = 0` (`d = d⁰ + u_a`).
     pub offset_at_rest: Vector3<f64>,
-    /// The gap at the last commit, and whether the node was open then
-    /// (its first contact is anchored where its path meets the surface:
-    /// [`friction::first_contact`]).
+    /// The gap at the last commit, and whether the node was open then, at
+    /// a gap above rounding (its first contact is anchored where its path
+    /// meets the surface: [`friction::first_contact`]; the caller applies
+    /// Newton's rule, `ContactInterface::first_contact_pending`: a
+    /// committed gap within 1e-12 of the element size is touching).
     pub committed_gap: f64,
     pub was_open: bool,
     /// The node's prescribed components: along a prescribed axis near the

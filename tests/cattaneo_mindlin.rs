@@ -49,6 +49,20 @@ impl Record {
     }
 }
 
+impl Record {
+    /// Every increment took at most `bound` iterations.
+    fn assert_iterations_at_most(&self, bound: usize) {
+        for c in &self.comparisons {
+            assert!(
+                c.iterations <= bound,
+                "t = {}: {} iterations",
+                c.time,
+                c.iterations
+            );
+        }
+    }
+}
+
 impl StepObserver for Record {
     fn on_increment(&mut self, inc: &ConvergedIncrement, _: &Summary) -> signorini::Result<()> {
         self.comparisons.push(Comparison::of(inc));
@@ -201,14 +215,7 @@ fn newton_and_the_outer_loop_end_where_the_default_path_does() {
     let (_, record) = run_pinned("coarse.toml", out.path(), Solver::Newton("newton"));
     let (_, last) = record.ends();
     let m = &last.mindlin;
-    for c in &record.comparisons {
-        assert!(
-            c.iterations <= 8,
-            "t = {}: {} iterations",
-            c.time,
-            c.iterations
-        );
-    }
+    record.assert_iterations_at_most(8);
 
     // the log's note of a sparse-LU fallback, on the increments that had one
     let log = std::fs::read_to_string(out.path().join("newton/cattaneo.log")).unwrap();
@@ -332,14 +339,7 @@ fn cattaneo_mindlin_light_press() {
 fn light_press_on_newtons_path_takes_at_most_7_iterations() {
     let out = tempfile::tempdir().unwrap();
     let (_, record) = run_pinned("light-coarse.toml", out.path(), Solver::Newton("newton"));
-    for c in &record.comparisons {
-        assert!(
-            c.iterations <= 7,
-            "t = {}: {} iterations",
-            c.time,
-            c.iterations
-        );
-    }
+    record.assert_iterations_at_most(7);
 }
 
 /// How a run of [`pinned`] solves: the default (`auto`, which takes the

@@ -752,6 +752,23 @@ name = "block"
         assert_mumps_as_serial(&case, dir.path(), what);
     }
 
+    /// Dual mortar contact (its rows: the weighted gaps of the secondary
+    /// nodes, `D` and `M` integrated over the segments) under PETSc: the
+    /// frictionless block on 2 processes with MUMPS equals the serial faer
+    /// run to 1e-8, increment for increment.
+    #[test]
+    fn two_processes_give_the_serial_answer_with_dual_mortar() {
+        let dir = tempfile::tempdir().unwrap();
+        let case = block_case(
+            dir.path(),
+            false,
+            "discretisation = \"mortar\"",
+            "predictor = \"none\"",
+        );
+        let mumps = assert_mumps_as_serial(&case, dir.path(), "dual mortar, MUMPS on 2 processes");
+        assert!(mumps.log.contains("dual mortar"), "{}", mumps.log);
+    }
+
     /// The largest penetration of interface `base` over the increments
     /// of a distributed run, and the contact element size `h` its log
     /// states.

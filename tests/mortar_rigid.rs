@@ -509,8 +509,8 @@ fn newton_converges_quadratically_on_a_sphere() {
 /// symmetry planes x = 0, y = 0: `summary.json`'s force is P × its
 /// (reference) area (1e-10), the area the whole bottom (1, to 1e-12),
 /// `contact_pressure` is `P/(1 + νP/E)²` at every bottom node (1e-10 of
-/// P: the force over the current area); friction with mortar stays
-/// refused.
+/// P: the force over the current area). With friction:
+/// `tests/mortar_obstacle_friction.rs`.
 #[test]
 fn mortar_obstacle_through_the_case_file() {
     let dir = tempfile::tempdir().unwrap();
@@ -564,14 +564,6 @@ residual_tolerance = 1e-13
             pressure[n]
         );
     }
-    common::assert_case_error(
-        dir.path(),
-        &case("friction_coefficient = 0.3"),
-        &[
-            "contact[0].discretisation = \"mortar\"",
-            "friction_coefficient",
-        ],
-    );
 }
 
 /// What a quarter-model Hertz run gives against Hertz (`R = 1`,

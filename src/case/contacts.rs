@@ -232,7 +232,7 @@ impl Case {
         };
         let friction_coefficient = self.friction_coefficient(key, c)?;
         if c.discretisation == Some(DiscretisationSpec::Mortar) {
-            self.mortar_supported(key, c, matches!(target, Target::Obstacle(_)))?;
+            self.mortar_supported(key, c)?;
         }
         let enforcement = Enforcement {
             method: match c.method {
@@ -494,34 +494,24 @@ impl Case {
         }
     }
 
-    /// `Ok` where `[[contact]]` `key` (`c`, against an obstacle when
-    /// `obstacle`) may take `discretisation = "mortar"`: between two bodies
-    /// (with or without friction) or against any rigid obstacle
-    /// (frictionless), one pass, else the error naming the key.
-    fn mortar_supported(&self, key: &str, c: &ContactSpec, obstacle: bool) -> Result<()> {
-        match mortar_refusal(c, obstacle) {
+    /// `Ok` where `[[contact]]` `key` (`c`) may take `discretisation =
+    /// "mortar"`: between two bodies or against any rigid obstacle, with or
+    /// without friction, one pass; else the error naming the key.
+    fn mortar_supported(&self, key: &str, c: &ContactSpec) -> Result<()> {
+        match mortar_refusal(c) {
             Some(why) => Err(self.err(format!("{key}.discretisation = \"mortar\" with {why}"))),
             None => Ok(()),
         }
     }
 }
 
-/// Why `[[contact]]` `c` (against an obstacle when `obstacle`) cannot take
-/// dual mortar, in the user's words; `None` where it can.
-fn mortar_refusal(c: &ContactSpec, obstacle: bool) -> Option<&'static str> {
-    if obstacle && c.friction_coefficient.is_some_and(|mu| mu > 0.0) {
-        Some(
-            "`friction_coefficient` against an obstacle: mortar friction is between two bodies \
-             for now; remove the friction coefficient or use discretisation = \"node_to_surface\"",
-        )
-    } else if c.two_pass {
-        Some(
-            "`two_pass`: mortar contact has one pass (its forces balance on both surfaces); \
-             remove two_pass",
-        )
-    } else {
-        None
-    }
+/// Why `[[contact]]` `c` cannot take dual mortar, in the user's words;
+/// `None` where it can.
+fn mortar_refusal(c: &ContactSpec) -> Option<&'static str> {
+    c.two_pass.then_some(
+        "`two_pass`: mortar contact has one pass (its forces balance on both surfaces); \
+         remove two_pass",
+    )
 }
 
 /// The default `discretisation` of every `[[contact]]` of `spec` that does
@@ -540,7 +530,7 @@ pub(crate) fn default_discretisations(spec: &mut CaseFile, mesh: &Mesh, notes: &
         }
         let quadratic = (mesh.surface(&c.surface))
             .is_some_and(|s| s.facets.iter().any(|f| f.kind.is_quadratic()));
-        let mortar = quadratic && mortar_refusal(c, c.obstacle.is_some()).is_none();
+        let mortar = quadratic && mortar_refusal(c).is_none();
         c.discretisation = Some(if mortar {
             let name = c.name.as_deref().unwrap_or(&c.surface);
             notes.push(format!(

@@ -560,7 +560,7 @@ fn face_box(face: &SurfaceFace, xs: &[Vector3<f64>], margin: f64) -> ([f64; 3], 
 /// ([`RowSource::gaps`]).
 pub struct MortarGap<'a> {
     pub surfaces: &'a MortarSurfaces,
-    source: Box<dyn RowSource + 'a>,
+    pub(super) source: Box<dyn RowSource + 'a>,
     /// What the operation reads of the rows: their values alone (the
     /// kinematics' gradients then zero: a residual without its tangent,
     /// frictionless) or their derivatives too.
@@ -583,6 +583,12 @@ pub(crate) trait RowSource {
     /// are there (not counted), else evaluated (counted as values,
     /// [`RowCounts::values`]).
     fn gaps(&self) -> BTreeMap<usize, f64>;
+
+    /// Against a rigid obstacle, its translation `c(t)` in this
+    /// configuration; `None` between bodies.
+    fn obstacle_translation(&self) -> Option<Vector3<f64>> {
+        None
+    }
 }
 
 /// The normalised gaps `g̃_j / D_j` of `rows` where `D_j > 0` (the nodes
@@ -754,8 +760,11 @@ impl GapProducer<Dyn> for MortarGap<'_> {
         self.surfaces.margin
     }
 
+    /// `x_s` between bodies, `x̃_j − c(t)` against a rigid obstacle
+    /// ([`mortar_friction`](super::mortar_friction), "Against a rigid
+    /// obstacle").
     fn relative_position(&self, node: &SecondaryNode) -> Vector3<f64> {
-        node.position()
+        self.frictional_relative_position(node)
     }
 
     /// The weighted slip, the committed traction and the mortar lever

@@ -3,7 +3,8 @@
 //! [`GapProducer`](super::kinematics::GapProducer) hands the node driver,
 //! so that the one friction law of [`friction`](super::friction) (return
 //! mapping, exact stick with tangential multipliers in Newton, the same
-//! keys) runs on mortar between deformable bodies.
+//! keys) runs on mortar between deformable bodies and against rigid
+//! obstacles.
 //!
 //! ## Slip: the frame-indifferent weighted slip (Gitterle et al. 2010)
 //! The driver's offset `d` of secondary node `j` is its weighted slip
@@ -17,6 +18,21 @@
 //! the last commit measures `d = x_s − x_s,n` from its own committed
 //! position (it is closing: the driver's first-contact rule counts its
 //! slip from where it touches).
+//!
+//! ## Against a rigid obstacle
+//! A rigid obstacle has no `M`: the slip is the node's motion relative to
+//! the obstacle, as node-to-surface measures it
+//! ([`friction`](super::friction), "Signs and kinematics"), at the
+//! transformed point the mortar lever loads,
+//! ```text
+//! d_j = (x̃_j − c(t)) − (x̃_j − c)ₙ,     x̃_j = Σ_k R_jk x_k,     ∂d_j/∂x_k = R_jk I,
+//! ```
+//! `c(t)` the obstacle's translation (`R = I` on linear faces, where this
+//! is node-to-surface's slip of the node itself). It is the weighted slip
+//! of a primary that does not deform: the obstacle's material points do
+//! not move in its own frame, and `D_j` is not a primary integral. The
+//! force is the lever's `D_j R_jk t_T` on the secondary nodes, so the
+//! tangential work is `Σ_j D_j t_T·δx̃_j`, conjugate to the slip.
 //!
 //! ## A node that closes in the increment
 //! The node driver counts the slip of a node open at the last commit from
@@ -58,6 +74,7 @@
 
 use super::friction::{Coulomb, FrictionHistory, SlipKinematics, TangentialResponse};
 use super::kinematics::{current_position, GapKinematics, SecondaryNode, SlipFrame};
+use super::mortar::obstacle_rows::transformed_position;
 use super::mortar::weighted_slip::{committed_row, weighted_slip};
 use super::mortar::Derivatives;
 use super::mortar::{MortarCoupling, MortarRow};
@@ -197,6 +214,11 @@ impl MortarGap<'_> {
         let row = self.node_row(j);
         let mut offset_gradient = zero();
         let offset = match (row, self.committed_of(j)) {
+            (Some(row), _) if self.source.obstacle_translation().is_some() => {
+                // x̃_j − c − (x̃_j − c)ₙ: ∂/∂x_k = R_jk I, the lever's weights
+                offset_gradient = lever(&kinematics.nodes, row);
+                self.frictional_relative_position(node) - history.anchor
+            }
             (Some(row), Some((d_n, m_n))) => {
                 let position = |n| current_position(node.reference, node.x, n);
                 let slip = weighted_slip(row, (d_n, &m_n), position);
@@ -226,6 +248,23 @@ impl MortarGap<'_> {
             },
             lever: row.map_or_else(zero, |row| lever(&kinematics.nodes, row)),
         }
+    }
+
+    /// The position the node's slip is measured from (see the module
+    /// docs): `x_s` between bodies; against a rigid obstacle translated by
+    /// `c(t)`, `x̃_j − c(t)` with `x̃_j = Σ_k R_jk x_k` over a face that
+    /// holds the node.
+    pub(super) fn frictional_relative_position(&self, node: &SecondaryNode) -> Vector3<f64> {
+        let Some(c) = self.source.obstacle_translation() else {
+            return node.position();
+        };
+        let faces = self.surfaces.node_faces.get(node.index);
+        let Some(&e) = faces.and_then(|f| f.first()) else {
+            return node.position() - c;
+        };
+        let face = &self.surfaces.secondary_faces[e];
+        let position = |k| current_position(node.reference, node.x, k);
+        transformed_position(face, node.mesh_node, position) - c
     }
 
     /// The weights of the node's lever `B` (see the module docs, "Force"):

@@ -235,4 +235,8 @@ impl RowSource for ObstacleRows<'_> {
         surfaces.count_values();
         self.obstacle.gap_values(&self.translation, &self.xs)
     }
+
+    fn obstacle_translation(&self) -> Option<Vector3<f64>> {
+        Some(self.translation)
+    }
 }

@@ -360,8 +360,18 @@ pub fn transformed_point(
     node: usize,
     coordinates: &[Vector3<f64>],
 ) -> Vector3<f64> {
+    transformed_position(face, node, |k| coordinates[k])
+}
+
+/// `x̃_j = Σ_k R_jk x_k` of `node` on `face` (which holds it), `position`
+/// giving `x_k` of mesh node `k`.
+pub fn transformed_position(
+    face: &SurfaceFace,
+    node: usize,
+    position: impl Fn(usize) -> Vector3<f64>,
+) -> Vector3<f64> {
     super::rows::transformation(face, node)
         .iter()
-        .map(|&(k, r)| r * coordinates[k])
+        .map(|&(k, r)| r * position(k))
         .sum()
 }

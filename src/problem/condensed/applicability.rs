@@ -163,6 +163,16 @@ pub fn not_applicable(problem: &Problem) -> Option<String> {
             Err(_) if c.projected_gap() => None,
             Err(why) => Some(why),
         };
+        // dual mortar friction against an obstacle: the slip of `x̃_j`
+        // relative to the obstacle on `D_j`, which the frictional rounds
+        // (node-to-surface's law on a plane, fixed areas) do not read
+        let why = why.or_else(|| {
+            (c.has_friction() && !c.fixed_area() && !c.projected_gap()).then(|| {
+                "uses Coulomb friction with discretisation = \"mortar\" against an obstacle, \
+                 which Newton's path takes"
+                    .into()
+            })
+        });
         let why = why.or_else(|| {
             c.law.has_outer_loop().then(|| {
                 "uses uzawa, which meets the constraint only to its outer loop's tolerance".into()

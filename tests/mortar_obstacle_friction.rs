@@ -80,13 +80,13 @@ fn floor() -> RigidObstacle {
 }
 
 /// Node `n` given `u(t)` through the points `(t, u)` of each component.
-fn prescribe(pr: &mut Problem, n: usize, values: [[f64; 3]; 2]) {
-    for d in 0..3 {
+fn prescribe(pr: &mut Problem, n: usize, [press, shear]: [[f64; 3]; 2]) {
+    for (d, (p, s)) in press.into_iter().zip(shear).enumerate() {
         pr.prescribed.push(PrescribedDisplacement {
             surface: "outer faces".into(),
             nodes: vec![n],
             components: vec![(d, 1.0)],
-            amplitude: Amplitude::new(vec![(0.0, 0.0), (1.0, values[0][d]), (2.0, values[1][d])]),
+            amplitude: Amplitude::new(vec![(0.0, 0.0), (1.0, p), (2.0, s)]),
         });
     }
 }
@@ -332,12 +332,19 @@ residual_tolerance = 1e-12
     };
     let default = run("default", "");
     let monolithic = run("monolithic", "strategy = \"monolithic\"");
-    let scale = monolithic.displacement.iter().fold(0.0_f64, |m, v| m.max(v.abs()));
+    let scale = monolithic
+        .displacement
+        .iter()
+        .fold(0.0_f64, |m, v| m.max(v.abs()));
     let difference = common::relative_difference(&default.displacement, &monolithic.displacement);
     println!("default against monolithic: {difference:.1e} of {scale:.3e}");
     assert!(difference <= 1e-8, "{difference:e}");
     let contact = &monolithic.summary.increments.last().unwrap().contact["bottom"];
-    assert!((contact.force[2] - 2.0).abs() < 1e-10 * 2.0, "{:?}", contact.force);
+    assert!(
+        (contact.force[2] - 2.0).abs() < 1e-10 * 2.0,
+        "{:?}",
+        contact.force
+    );
     let tangential = Vector3::from(contact.tangential_force).norm();
     assert!(tangential > 1e-3, "tangential force {tangential}");
 }

@@ -123,69 +123,7 @@ pub fn not_applicable(problem: &Problem) -> Option<String> {
     }
     let strategy = problem.settings.strategy;
     for c in &problem.contacts {
-        // the gap from the node driver, affine in `u`; a law whose
-        // converged state is exact or a penalty (not an outer loop's)
-        let why = match c.affine_gap() {
-            Ok(()) => None,
-            // a rigid sphere, cylinder or triangulated surface: the
-            // rows at the current normals, in rounds as between bodies
-            Err(_) if c.rows_move() && !c.projected_gap() => None,
-            // between bodies: the rows at the current projections
-            // ([`super::pairs`], [`super::friction`]). Frictionless
-            // node-to-surface under `auto` too: with the facet choice of
-            // `contact::primary` (committed triangle first) the rounds and
-            // Newton end on the same triangles, and examples/two-spheres'
-            // answers agree to 1.6e-14 of the displacements (they differed
-            // by 1.9e-4 under the last iterate's triangle). With Coulomb
-            // friction under `auto` too: examples/cattaneo-mindlin's
-            // tractions equal Newton's at 1e-11 node by node to 5.7e-10
-            // of the peak (BENCHMARKS.md, session 20). Dual mortar between
-            // bodies, frictionless or with Coulomb friction, the same
-            // rounds at the current segmentation; frictionless since
-            // session 21 under `auto` too (tests/mortar_condensed.rs: the
-            // stacked blocks and two-spheres' mortar.toml equal Newton to
-            // ≤ 1.6e-13). With friction by name only: on
-            // examples/cattaneo-mindlin/mortar-coarse.toml the paths
-            // differ on the symmetry plane (BENCHMARKS.md, session 21).
-            Err(why)
-                if c.projected_gap()
-                    && !c.fixed_area()
-                    && c.has_friction()
-                    && strategy != Strategy::Condensed =>
-            {
-                Some(format!(
-                    "{why} with Coulomb friction, which is condensed only with strategy = \
-                     \"condensed\" (on a symmetry plane with exact stick, Newton's mortar \
-                     multipliers end elsewhere in the tangential traction that the plane leaves \
-                     undetermined)"
-                ))
-            }
-            Err(_) if c.projected_gap() => None,
-            Err(why) => Some(why),
-        };
-        // dual mortar friction against an obstacle: the slip of `x̃_j`
-        // relative to the obstacle on `D_j`, which the frictional rounds
-        // (node-to-surface's law on a plane, fixed areas) do not read
-        let why = why.or_else(|| {
-            (c.has_friction() && !c.fixed_area() && !c.projected_gap()).then(|| {
-                "uses Coulomb friction with discretisation = \"mortar\" against an obstacle, \
-                 which Newton's path takes"
-                    .into()
-            })
-        });
-        let why = why.or_else(|| {
-            c.law.has_outer_loop().then(|| {
-                "uses uzawa, which meets the constraint only to its outer loop's tolerance".into()
-            })
-        });
-        let why = why.or_else(|| {
-            (!c.fixed_area() && penalty(c)).then(|| {
-                "uses penalty with discretisation = \"mortar\", whose force D_j ε ⟨−g⟩ changes \
-             with the area D_j of the current surface"
-                    .into()
-            })
-        });
-        if let Some(why) = why {
+        if let Some(why) = contact_not_applicable(c, strategy) {
             return Some(format!("contact '{}' {why}", c.name));
         }
     }
@@ -206,6 +144,73 @@ pub fn not_applicable(problem: &Problem) -> Option<String> {
         } else {
             why
         }
+    })
+}
+
+/// Why contact `c` keeps the problem off the condensed path under
+/// `strategy` (`None`: it does not).
+fn contact_not_applicable(c: &ContactInterface, strategy: Strategy) -> Option<String> {
+    // the gap from the node driver, affine in `u`; a law whose
+    // converged state is exact or a penalty (not an outer loop's)
+    let why = match c.affine_gap() {
+        Ok(()) => None,
+        // a rigid sphere, cylinder or triangulated surface: the
+        // rows at the current normals, in rounds as between bodies
+        Err(_) if c.rows_move() && !c.projected_gap() => None,
+        // between bodies: the rows at the current projections
+        // ([`super::pairs`], [`super::friction`]). Frictionless
+        // node-to-surface under `auto` too: with the facet choice of
+        // `contact::primary` (committed triangle first) the rounds and
+        // Newton end on the same triangles, and examples/two-spheres'
+        // answers agree to 1.6e-14 of the displacements (they differed
+        // by 1.9e-4 under the last iterate's triangle). With Coulomb
+        // friction under `auto` too: examples/cattaneo-mindlin's
+        // tractions equal Newton's at 1e-11 node by node to 5.7e-10
+        // of the peak (BENCHMARKS.md, session 20). Dual mortar between
+        // bodies, frictionless or with Coulomb friction, the same
+        // rounds at the current segmentation; frictionless since
+        // session 21 under `auto` too (tests/mortar_condensed.rs: the
+        // stacked blocks and two-spheres' mortar.toml equal Newton to
+        // ≤ 1.6e-13). With friction by name only: on
+        // examples/cattaneo-mindlin/mortar-coarse.toml the paths
+        // differ on the symmetry plane (BENCHMARKS.md, session 21).
+        Err(why)
+            if c.projected_gap()
+                && !c.fixed_area()
+                && c.has_friction()
+                && strategy != Strategy::Condensed =>
+        {
+            Some(format!(
+                "{why} with Coulomb friction, which is condensed only with strategy = \
+                 \"condensed\" (on a symmetry plane with exact stick, Newton's mortar \
+                 multipliers end elsewhere in the tangential traction that the plane leaves \
+                 undetermined)"
+            ))
+        }
+        Err(_) if c.projected_gap() => None,
+        Err(why) => Some(why),
+    };
+    // dual mortar friction against an obstacle: the slip of `x̃_j`
+    // relative to the obstacle on `D_j`, which the frictional rounds
+    // (node-to-surface's law on a plane, fixed areas) do not read
+    let why = why.or_else(|| {
+        (c.has_friction() && !c.fixed_area() && !c.projected_gap()).then(|| {
+            "uses Coulomb friction with discretisation = \"mortar\" against an obstacle, \
+             which Newton's path takes"
+                .into()
+        })
+    });
+    let why = why.or_else(|| {
+        c.law.has_outer_loop().then(|| {
+            "uses uzawa, which meets the constraint only to its outer loop's tolerance".into()
+        })
+    });
+    why.or_else(|| {
+        (!c.fixed_area() && penalty(c)).then(|| {
+            "uses penalty with discretisation = \"mortar\", whose force D_j ε ⟨−g⟩ changes \
+         with the area D_j of the current surface"
+                .into()
+        })
     })
 }
 

@@ -24,7 +24,6 @@ use signorini::contact::setup::Enforcement;
 use signorini::material::{cauchy_stress, Material, NeoHookean};
 use signorini::mesh::{structured::box_mesh, ElementKind, Mesh};
 use signorini::problem::{PrescribedDisplacement, Problem};
-use signorini::solve::settings::Step;
 use std::sync::Arc;
 
 const E: f64 = 100.0;
@@ -143,17 +142,7 @@ fn press_and_shear(
 ) -> Problem {
     let material = Arc::new(NeoHookean::new(E, NU, "m").unwrap());
     let mut pr = common::problem(blocks(kind, footprint), material);
-    pr.steps = ["press", "shear"]
-        .iter()
-        .enumerate()
-        .map(|(s, name)| Step {
-            name: name.to_string(),
-            end_time: s as f64 + 1.0,
-            initial_increment: 1.0,
-            min_increment: 1e-3,
-            max_increment: 1.0,
-        })
-        .collect();
+    pr.steps = common::press_then_shear_steps();
     pr.settings.residual_tolerance = newton_bounds(kind).0;
     prescribe_homogeneous(&mut pr, slide);
     pr.set_contacts(vec![frictional_mortar(
@@ -324,23 +313,7 @@ fn full_slip_is_on_the_coulomb_cone() {
         let slide = Vector3::new(0.01, 0.0, 0.0);
         let mut pr = press_and_shear(kind, Footprint::Inside, mu, slide);
         let (reports, iterations) = run_and_report(&mut pr, kind);
-        let mut worst = 0.0_f64;
-        for (i, r) in reports.iter().enumerate() {
-            assert_eq!(r.status, ContactStatus::Slip, "{kind:?} node {i}");
-            let t = Vector3::from(r.tangential_traction);
-            let error = (t.norm() - mu * r.pressure).abs() / r.pressure;
-            worst = worst.max(error);
-            assert!(
-                error <= 1e-10,
-                "{kind:?} node {i}: |t_T| {} against μ t_N {}",
-                t.norm(),
-                mu * r.pressure
-            );
-            assert!(
-                t.dot(&slide) < 0.0,
-                "{kind:?} node {i}: t_T {t:?} does not oppose the slide"
-            );
-        }
+        let worst = common::assert_slip_on_the_cone(&reports, mu, &slide, &format!("{kind:?}"));
         let (lo, hi) = reports.iter().fold((f64::MAX, 0.0_f64), |(lo, hi), r| {
             (lo.min(r.pressure), hi.max(r.pressure))
         });
@@ -394,23 +367,8 @@ fn perturbed_frictional_blocks(
 fn frictional_mortar_tangent_matches_finite_differences() {
     for (name, law) in every_method(3.0 * E) {
         let (mut pr, upper, mut x) = perturbed_frictional_blocks(name, law);
-        let mut state = pr.initial_contact_state(&x);
-        pr.refresh_contact_pairs(&x, 0.0);
-        pr.commit_contact_history(0.5, &x, &mut state);
-        let slide = |x: &mut Vec<f64>, amount: &dyn Fn(usize) -> [f64; 2]| {
-            for n in upper.clone() {
-                let [a, b] = amount(n);
-                x[3 * n] += a;
-                x[3 * n + 1] += b;
-            }
-        };
-        slide(&mut x, &|_| [0.002, 0.001]);
-        pr.refresh_contact_pairs(&x, 0.0);
-        pr.commit_contact_history(0.5, &x, &mut state);
-        slide(&mut x, &|n| {
-            let k = n as f64;
-            [0.004 * (0.9 * k).cos() * (k % 3.0), 0.004 * (0.9 * k).sin()]
-        });
+        let upper: Vec<usize> = upper.collect();
+        let state = common::slid_history(&mut pr, &mut x, &upper, 0.004);
         let (_, reports) = pr.residual_in(0.5, &x, &state, None).unwrap();
         assert_open_stick_and_slip(&reports[0], name);
         assert_displacement_rows_match_fd(&pr, 0.5, &x, &state, name);

@@ -516,38 +516,12 @@ fn mortar_obstacle_through_the_case_file() {
     let dir = tempfile::tempdir().unwrap();
     let mesh = box_mesh(ElementKind::Hex20, [3, 3, 2], [1.0, 1.0, 0.5]);
     std::fs::write(dir.path().join("block.msh"), common::msh22(&mesh)).unwrap();
-    let case = |extra: &str| {
-        let head = common::SYMMETRIC_BLOCK;
-        format!(
-            r#"{head}
-[[pressure]]
-surface = "zmax"
-value = 2.0
-
-[[obstacle]]
-name = "floor"
-shape = "plane"
-point = [0.0, 0.0, 0.0]
-normal = [0.0, 0.0, 1.0]
-
-[[contact]]
-name = "bottom"
-surface = "zmin"
-obstacle = "floor"
-discretisation = "mortar"
-{extra}
-
-[[step]]
-name = "press"
-end_time = 1.0
-
-[solver]
-residual_tolerance = 1e-13
-"#
-        )
-    };
     let path = dir.path().join("case.toml");
-    std::fs::write(&path, case("")).unwrap();
+    std::fs::write(
+        &path,
+        common::mortar_block_on_floor_case("", "residual_tolerance = 1e-13"),
+    )
+    .unwrap();
     let run = CaseRun::new(&path, &dir.path().join("out"));
     let contact = &run.outcome.summary.increments.last().unwrap().contact["bottom"];
     let stretch = (1.0 + NU * P / E).powi(2);

@@ -851,3 +851,115 @@ pub fn rust_files(dir: &std::path::Path, out: &mut Vec<std::path::PathBuf>) {
         }
     }
 }
+
+/// Every node of `reports` slips on Coulomb's cone, `|t_T| = μ t_N` to
+/// 1e-10 of `t_N`, its traction opposing the body's `slide` relative to
+/// the primary (`t_T · slide < 0`); the largest `||t_T|/t_N − μ|`.
+#[track_caller]
+pub fn assert_slip_on_the_cone(
+    reports: &[signorini::contact::interface::NodeReport],
+    mu: f64,
+    slide: &Vector3<f64>,
+    label: &str,
+) -> f64 {
+    use signorini::contact::friction::ContactStatus;
+    let mut worst = 0.0_f64;
+    for (i, r) in reports.iter().enumerate() {
+        assert_eq!(r.status, ContactStatus::Slip, "{label} node {i}");
+        let t = Vector3::from(r.tangential_traction);
+        let error = (t.norm() - mu * r.pressure).abs() / r.pressure;
+        worst = worst.max(error);
+        assert!(
+            error <= 1e-10,
+            "{label} node {i}: |t_T| {} against μ t_N {}",
+            t.norm(),
+            mu * r.pressure
+        );
+        assert!(
+            t.dot(slide) < 0.0,
+            "{label} node {i}: t_T {t:?} does not oppose the slide"
+        );
+    }
+    worst
+}
+
+/// A case file: the linear elastic block of [`SYMMETRIC_BLOCK`] under a
+/// dead pressure 2 on its top, its bottom `zmin` in dual mortar contact
+/// with the plane z = 0 (`[[contact]]` `bottom`, with the further keys
+/// `contact`), one step, and the `[solver]` keys `solver`.
+pub fn mortar_block_on_floor_case(contact: &str, solver: &str) -> String {
+    format!(
+        r#"{SYMMETRIC_BLOCK}
+[[pressure]]
+surface = "zmax"
+value = 2.0
+
+[[obstacle]]
+name = "floor"
+shape = "plane"
+point = [0.0, 0.0, 0.0]
+normal = [0.0, 0.0, 1.0]
+
+[[contact]]
+name = "bottom"
+surface = "zmin"
+obstacle = "floor"
+discretisation = "mortar"
+{contact}
+
+[[step]]
+name = "press"
+end_time = 1.0
+
+[solver]
+{solver}
+"#
+    )
+}
+
+/// A frictional history for finite-difference checks of a tangent: the
+/// contact state committed at `x`, then again after a slide of `nodes`
+/// by (0.002, 0.001), then `nodes` moved tangentially by different
+/// amounts, `scale (cos(0.9 n) (n mod 3), sin(0.9 n))`, in `x`. Returns
+/// the committed state (time 0.5).
+pub fn slid_history(
+    pr: &mut Problem,
+    x: &mut [f64],
+    nodes: &[usize],
+    scale: f64,
+) -> signorini::problem::ContactState {
+    let mut state = pr.initial_contact_state(x);
+    pr.refresh_contact_pairs(x, 0.0);
+    pr.commit_contact_history(0.5, x, &mut state);
+    let slide = |x: &mut [f64], amount: &dyn Fn(usize) -> [f64; 2]| {
+        for &n in nodes {
+            let [a, b] = amount(n);
+            x[3 * n] += a;
+            x[3 * n + 1] += b;
+        }
+    };
+    slide(x, &|_| [0.002, 0.001]);
+    pr.refresh_contact_pairs(x, 0.0);
+    pr.commit_contact_history(0.5, x, &mut state);
+    slide(x, &|n| {
+        let k = n as f64;
+        [scale * (0.9 * k).cos() * (k % 3.0), scale * (0.9 * k).sin()]
+    });
+    state
+}
+
+/// Two steps, `press` (t ∈ [0, 1]) and `shear` (t ∈ [1, 2]), one
+/// increment each, cut down to 1e-3 at most.
+pub fn press_then_shear_steps() -> Vec<signorini::solve::settings::Step> {
+    ["press", "shear"]
+        .iter()
+        .enumerate()
+        .map(|(s, name)| signorini::solve::settings::Step {
+            name: name.to_string(),
+            end_time: s as f64 + 1.0,
+            initial_increment: 1.0,
+            min_increment: 1e-3,
+            max_increment: 1.0,
+        })
+        .collect()
+}

@@ -141,23 +141,25 @@ pub fn not_applicable(problem: &Problem) -> Option<String> {
             // tractions equal Newton's at 1e-11 node by node to 5.7e-10
             // of the peak (BENCHMARKS.md, session 20). Dual mortar between
             // bodies, frictionless or with Coulomb friction, the same
-            // rounds at the current segmentation; frictionless since
-            // session 21 under `auto` too (tests/mortar_condensed.rs: the
-            // stacked blocks and two-spheres' mortar.toml equal Newton to
-            // ≤ 1.6e-13). With friction by name only: on
-            // examples/cattaneo-mindlin/mortar-coarse.toml the paths
-            // differ on the symmetry plane (BENCHMARKS.md, session 21).
+            // rounds at the current segmentation (tests/mortar_condensed.rs:
+            // equal to Newton; with friction under `auto` since session
+            // 22, when Newton's mortar multiplier rows took the rule of
+            // `friction::HeldTangent` on a symmetry plane). Not under
+            // `auto` where exact stick meets a mortar secondary node whose
+            // dofs are all prescribed: there the paths keep different
+            // equations (`ContactInterface::holds_every_component`).
             Err(why)
                 if c.projected_gap()
-                    && !c.fixed_area()
                     && c.has_friction()
+                    && c.exact_stick()
+                    && c.holds_every_component()
                     && strategy != Strategy::Condensed =>
             {
                 Some(format!(
-                    "{why} with Coulomb friction, which is condensed only with strategy = \
-                     \"condensed\" (on a symmetry plane with exact stick, Newton's mortar \
-                     multipliers end elsewhere in the tangential traction that the plane leaves \
-                     undetermined)"
+                    "{why} with Coulomb friction and exact stick at a secondary node whose \
+                     components are all prescribed, which is condensed only with strategy = \
+                     \"condensed\" (Newton keeps that node's stick rows, which move the primary \
+                     surface; the condensed path holds its committed tangential traction)"
                 ))
             }
             Err(_) if c.projected_gap() => None,

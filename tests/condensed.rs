@@ -889,7 +889,7 @@ fn bodies_in_contact_with_friction_condensed_equal_monolithic() {
 /// condensed node law does, so the same checks hold: displacements,
 /// normal nodal forces and tractions to 1e-10, `t_y` on the plane to 1e-10
 /// of the peak, the same statuses, partial slip (measured: displacements
-/// 6.9e-13, tractions 1.7e-12 of the peak, every status equal; Newton 4–5
+/// 6.9e-13, `contact_traction` 6.6e-12 of the peak, every status equal; Newton 4–5
 /// iterations per increment, where before the rule it crept at 0.84 per
 /// iteration and cut to the smallest increment at t = 0.97). Ignored
 /// (about 3 min of two runs on 2 cores under load): `cargo test --release

@@ -14,7 +14,9 @@
 
 mod common;
 
-use common::{assert_open_stick_and_slip, every_method, perturbed_state, run};
+use common::{
+    assert_open_stick_and_slip, every_method, perturbed_state, run, slide_nodes, uneven_slide,
+};
 use nalgebra::{Matrix3, Vector3};
 use signorini::assembly::amplitude::Amplitude;
 use signorini::contact::friction::{ContactStatus, STICK_SHIFT};
@@ -412,20 +414,10 @@ fn committed_frictional_blocks(
     let mut state = pr.initial_contact_state(&x);
     pr.refresh_contact_pairs(&x, 0.0);
     pr.commit_contact_history(0.5, &x, &mut state);
-    let slide = |x: &mut Vec<f64>, amount: &dyn Fn(usize) -> [f64; 2]| {
-        for n in upper.clone() {
-            let [a, b] = amount(n);
-            x[3 * n] += a;
-            x[3 * n + 1] += b;
-        }
-    };
-    slide(&mut x, &|_| [0.002, 0.001]);
+    slide_nodes(&mut x, upper.clone(), |_| [0.002, 0.001]);
     pr.refresh_contact_pairs(&x, 0.0);
     pr.commit_contact_history(0.5, &x, &mut state);
-    slide(&mut x, &|n| {
-        let k = n as f64;
-        [0.004 * (0.9 * k).cos() * (k % 3.0), 0.004 * (0.9 * k).sin()]
-    });
+    slide_nodes(&mut x, upper, uneven_slide);
     (pr, x, state)
 }
 

@@ -603,6 +603,28 @@ pub fn write_stacked_blocks_case(
     path
 }
 
+/// Move the mesh nodes `nodes` of the unknowns `x` by `amount(node)` in x
+/// and y (a tangential slide, for a frictional history).
+pub fn slide_nodes(
+    x: &mut [f64],
+    nodes: std::ops::Range<usize>,
+    amount: impl Fn(usize) -> [f64; 2],
+) {
+    for n in nodes {
+        let [a, b] = amount(n);
+        x[3 * n] += a;
+        x[3 * n + 1] += b;
+    }
+}
+
+/// An uneven slide of node `n`, `0.004 (cos(0.9 n) (n mod 3), sin(0.9 n))`:
+/// neighbouring nodes move by different amounts, so that some stick and
+/// some slip.
+pub fn uneven_slide(n: usize) -> [f64; 2] {
+    let k = n as f64;
+    [0.004 * (0.9 * k).cos() * (k % 3.0), 0.004 * (0.9 * k).sin()]
+}
+
 /// A state for finite-difference checks of a contact tangent: every
 /// unknown `amplitude · sin(0.77 i)`, except the multipliers of the slack
 /// law (`slack = true`), which start at 0 so that its local unknowns can be

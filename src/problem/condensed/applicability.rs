@@ -122,64 +122,10 @@ pub fn not_applicable(problem: &Problem) -> Option<String> {
         ));
     }
     let strategy = problem.settings.strategy;
-    for c in &problem.contacts {
-        // the gap from the node driver, affine in `u`; a law whose
-        // converged state is exact or a penalty (not an outer loop's)
-        let why = match c.affine_gap() {
-            Ok(()) => None,
-            // a rigid sphere, cylinder or triangulated surface: the
-            // rows at the current normals, in rounds as between bodies
-            Err(_) if c.rows_move() && !c.projected_gap() => None,
-            // between bodies: the rows at the current projections
-            // ([`super::pairs`], [`super::friction`]). Frictionless
-            // node-to-surface under `auto` too: with the facet choice of
-            // `contact::primary` (committed triangle first) the rounds and
-            // Newton end on the same triangles, and examples/two-spheres'
-            // answers agree to 1.6e-14 of the displacements (they differed
-            // by 1.9e-4 under the last iterate's triangle). With Coulomb
-            // friction under `auto` too: examples/cattaneo-mindlin's
-            // tractions equal Newton's at 1e-11 node by node to 5.7e-10
-            // of the peak (BENCHMARKS.md, session 20). Dual mortar between
-            // bodies, frictionless or with Coulomb friction, the same
-            // rounds at the current segmentation (tests/mortar_condensed.rs:
-            // equal to Newton; with friction under `auto` since session
-            // 22, when Newton's mortar multiplier rows took the rule of
-            // `friction::HeldTangent` on a symmetry plane). Not under
-            // `auto` where exact stick meets a mortar secondary node whose
-            // dofs are all prescribed: there the paths keep different
-            // equations (`ContactInterface::holds_every_component`).
-            Err(why)
-                if c.projected_gap()
-                    && c.has_friction()
-                    && c.exact_stick()
-                    && c.holds_every_component()
-                    && strategy != Strategy::Condensed =>
-            {
-                Some(format!(
-                    "{why} with Coulomb friction and exact stick at a secondary node whose \
-                     components are all prescribed, which is condensed only with strategy = \
-                     \"condensed\" (Newton keeps that node's stick rows, which move the primary \
-                     surface; the condensed path holds its committed tangential traction)"
-                ))
-            }
-            Err(_) if c.projected_gap() => None,
-            Err(why) => Some(why),
-        };
-        let why = why.or_else(|| {
-            c.law.has_outer_loop().then(|| {
-                "uses uzawa, which meets the constraint only to its outer loop's tolerance".into()
-            })
-        });
-        let why = why.or_else(|| {
-            (!c.fixed_area() && penalty(c)).then(|| {
-                "uses penalty with discretisation = \"mortar\", whose force D_j ε ⟨−g⟩ changes \
-             with the area D_j of the current surface"
-                    .into()
-            })
-        });
-        if let Some(why) = why {
-            return Some(format!("contact '{}' {why}", c.name));
-        }
+    if let Some((c, why)) = (problem.contacts.iter())
+        .find_map(|c| contact_not_applicable(c, strategy).map(|why| (c, why)))
+    {
+        return Some(format!("contact '{}' {why}", c.name));
     }
     let mut held = problem.constrained_dofs();
     // between bodies no dof is shifted: the prescribed displacements must
@@ -198,6 +144,65 @@ pub fn not_applicable(problem: &Problem) -> Option<String> {
         } else {
             why
         }
+    })
+}
+
+/// Why the condensed path does not apply to contact `c` under `strategy`
+/// (`None`: it does).
+fn contact_not_applicable(c: &ContactInterface, strategy: Strategy) -> Option<String> {
+    // the gap from the node driver, affine in `u`; a law whose
+    // converged state is exact or a penalty (not an outer loop's)
+    let why = match c.affine_gap() {
+        Ok(()) => None,
+        // a rigid sphere, cylinder or triangulated surface: the
+        // rows at the current normals, in rounds as between bodies
+        Err(_) if c.rows_move() && !c.projected_gap() => None,
+        // between bodies: the rows at the current projections
+        // ([`super::pairs`], [`super::friction`]). Frictionless
+        // node-to-surface under `auto` too: with the facet choice of
+        // `contact::primary` (committed triangle first) the rounds and
+        // Newton end on the same triangles, and examples/two-spheres'
+        // answers agree to 1.6e-14 of the displacements (they differed
+        // by 1.9e-4 under the last iterate's triangle). With Coulomb
+        // friction under `auto` too: examples/cattaneo-mindlin's
+        // tractions equal Newton's at 1e-11 node by node to 5.7e-10
+        // of the peak (BENCHMARKS.md, session 20). Dual mortar between
+        // bodies, frictionless or with Coulomb friction, the same
+        // rounds at the current segmentation (tests/mortar_condensed.rs:
+        // equal to Newton; with friction under `auto` since session
+        // 22, when Newton's mortar multiplier rows took the rule of
+        // `friction::HeldTangent` on a symmetry plane). Not under
+        // `auto` where exact stick meets a mortar secondary node whose
+        // dofs are all prescribed: there the paths keep different
+        // equations (`ContactInterface::holds_every_component`).
+        Err(why)
+            if c.projected_gap()
+                && c.has_friction()
+                && c.exact_stick()
+                && c.holds_every_component()
+                && strategy != Strategy::Condensed =>
+        {
+            Some(format!(
+                "{why} with Coulomb friction and exact stick at a secondary node whose \
+                 components are all prescribed, which is condensed only with strategy = \
+                 \"condensed\" (Newton keeps that node's stick rows, which move the primary \
+                 surface; the condensed path holds its committed tangential traction)"
+            ))
+        }
+        Err(_) if c.projected_gap() => None,
+        Err(why) => Some(why),
+    };
+    let why = why.or_else(|| {
+        c.law.has_outer_loop().then(|| {
+            "uses uzawa, which meets the constraint only to its outer loop's tolerance".into()
+        })
+    });
+    why.or_else(|| {
+        (!c.fixed_area() && penalty(c)).then(|| {
+            "uses penalty with discretisation = \"mortar\", whose force D_j ε ⟨−g⟩ changes \
+             with the area D_j of the current surface"
+                .into()
+        })
     })
 }
 

@@ -8,8 +8,8 @@ mod common;
 
 use common::{
     assert_case_error, assert_open_stick_and_slip, assert_quadratic, assert_tangent_matches_fd,
-    every_method, fix, frictional_blocks, problem, run, support_stacked_blocks, surface_interface,
-    two_bodies, write_stacked_blocks_case, CaseRun,
+    every_method, fix, frictional_blocks, problem, run, slide_nodes, support_stacked_blocks,
+    surface_interface, two_bodies, uneven_slide, write_stacked_blocks_case, CaseRun,
 };
 use signorini::contact::friction::{Coulomb, FrictionMultiplier};
 use signorini::contact::laws::NormalLaw;
@@ -202,19 +202,9 @@ fn frictional_deformable_tangent_matches_finite_differences() {
         let (pr, upper, mut x) = frictional_blocks(E, name, law, 2, [0.07, 0.11, 0.5]);
         let mut state = pr.initial_contact_state(&x);
         pr.commit_contact_history(0.5, &x, &mut state);
-        let slide = |x: &mut Vec<f64>, amount: &dyn Fn(usize) -> [f64; 2]| {
-            for n in upper.clone() {
-                let [a, b] = amount(n);
-                x[3 * n] += a;
-                x[3 * n + 1] += b;
-            }
-        };
-        slide(&mut x, &|_| [0.002, 0.001]);
+        slide_nodes(&mut x, upper.clone(), |_| [0.002, 0.001]);
         pr.commit_contact_history(0.5, &x, &mut state);
-        slide(&mut x, &|n| {
-            let k = n as f64;
-            [0.004 * (0.9 * k).cos() * (k % 3.0), 0.004 * (0.9 * k).sin()]
-        });
+        slide_nodes(&mut x, upper, uneven_slide);
         let (_, reports) = pr.residual_in(0.5, &x, &state, None).unwrap();
         assert_open_stick_and_slip(&reports[0], name);
         assert_tangent_matches_fd(&pr, 0.5, &x, &state, name);

@@ -8,6 +8,7 @@
 mod common;
 
 use common::{msh22, relative_difference, CaseRun};
+use signorini::contact::interface::Primary;
 use signorini::mesh::{structured::box_mesh, ElementKind};
 use std::path::Path;
 
@@ -149,9 +150,9 @@ fn condensed_mortar_is_refused_on_a_sphere() {
 /// plane without the key runs mortar (condensed, as `auto` takes it),
 /// says so in a `note:` line of its log, and equals the same case with
 /// `discretisation = "mortar"` bit for bit (displacements,
-/// `contact_pressure`). With friction against the obstacle, which mortar
-/// does not take, the default stays node-to-surface, and its refusal of
-/// the quadratic faces names the surface.
+/// `contact_pressure`). With friction against the obstacle (taken by
+/// mortar since session 22) the default is mortar too: the case builds a
+/// frictional dual mortar interface, which `auto` leaves to Newton.
 #[test]
 fn quadratic_faces_default_to_mortar() {
     let given = tempfile::tempdir().unwrap();
@@ -196,15 +197,17 @@ fn quadratic_faces_default_to_mortar() {
         "method = \"rockafellar\"\nfriction_coefficient = 0.3",
     );
     std::fs::write(dir.path().join("case.toml"), friction).unwrap();
-    let error = signorini::case::load(&dir.path().join("case.toml"))
+    let problem = signorini::case::load(&dir.path().join("case.toml"))
         .and_then(|c| c.build_problem())
-        .err()
-        .expect("node-to-surface refuses Tri6 faces")
-        .to_string();
+        .expect("mortar takes friction against the obstacle");
+    let c = problem.contacts.interface(0);
     assert!(
-        error.contains("surface 'zmin' has quadratic faces"),
-        "{error}"
+        matches!(c.primary, Primary::MortarRigid(_)) && c.has_friction(),
+        "{:?}",
+        c.name
     );
+    let why = signorini::problem::condensed::not_applicable(&problem).unwrap_or_default();
+    assert!(why.contains("against an obstacle"), "{why}");
 }
 
 /// The coarse Hertz hemisphere (tests/data/hemisphere_coarse.msh in
@@ -710,15 +713,29 @@ fn two_spheres_mortar_condensed_equals_monolithic() {
 /// so sticking and slipping nodes meet in every increment.
 fn sheared_mortar_punch(
     kind: ElementKind,
-    (lower, upper): (usize, usize),
+    cells: (usize, usize),
     exact_stick: bool,
     solver: &str,
 ) -> (CaseRun, tempfile::TempDir) {
     let dir = tempfile::tempdir().unwrap();
+    let path = sheared_mortar_punch_case(dir.path(), kind, cells, exact_stick, solver, "");
+    (CaseRun::new(&path, &dir.path().join("out")), dir)
+}
+
+/// The case file of [`sheared_mortar_punch`] written into `dir`, with
+/// `extra` (case-file tables) added.
+fn sheared_mortar_punch_case(
+    dir: &Path,
+    kind: ElementKind,
+    (lower, upper): (usize, usize),
+    exact_stick: bool,
+    solver: &str,
+    extra: &str,
+) -> std::path::PathBuf {
     let a = box_mesh(kind, [lower, lower, 2], [1.0, 1.0, 0.5]);
     let b = box_mesh(kind, [upper, upper, 2], [0.6, 0.6, 0.5]);
     let mesh = common::two_bodies(a, "lower", b, "upper", [0.2, 0.15, 0.5]);
-    std::fs::write(dir.path().join("blocks.msh"), msh22(&mesh)).unwrap();
+    std::fs::write(dir.join("blocks.msh"), msh22(&mesh)).unwrap();
     let elastic = "model = \"linear_elastic\"\nyoungs_modulus = 100.0\npoisson_ratio = 0.3";
     let text = format!(
         r#"[mesh]
@@ -776,11 +793,12 @@ max_increment = 0.5
 
 [solver]
 {solver}
-"#
+
+{extra}"#
     );
-    let path = dir.path().join("case.toml");
+    let path = dir.join("case.toml");
     std::fs::write(&path, text).unwrap();
-    (CaseRun::new(&path, &dir.path().join("out")), dir)
+    path
 }
 
 /// A point field of every increment of `run`.
@@ -819,7 +837,9 @@ fn condensed_frictional_mortar_between_bodies_equals_monolithic() {
         let label = format!("{kind:?} exact_stick = {exact_stick}");
         let run = |solver| sheared_mortar_punch(kind, (5, 3), exact_stick, solver);
         let (mono, _m) = run("strategy = \"monolithic\"\nresidual_tolerance = 1e-12");
-        let (cond, _c) = run("strategy = \"condensed\"");
+        // `auto` takes frictional mortar between bodies (no secondary
+        // node has all its components prescribed)
+        let (cond, _c) = run("strategy = \"auto\"");
         assert_eq!(cond.outcome.summary.strategy, "condensed", "{label}");
         assert_eq!(cond.outcome.summary.factorisations, 1, "{label}");
         let (ic, im) = (
@@ -864,4 +884,40 @@ fn condensed_frictional_mortar_between_bodies_equals_monolithic() {
             "{label}: partial slip"
         );
     }
+}
+
+/// `auto` leaves frictional mortar with exact stick to Newton where a
+/// secondary node has all three components prescribed: Newton keeps that
+/// node's stick rows (they move the primary surface through `M_jl`: the
+/// patch test of tests/mortar_friction.rs), while the condensed path,
+/// which has no column for its motion, holds its committed tangential
+/// traction (`ContactInterface::holds_every_component`). The sheared
+/// punch ([`sheared_mortar_punch_case`]) with its face x = 0.2 held: under
+/// `auto` the reason names it; with the regularised law (no held rule on
+/// either path) the condensed path applies.
+#[test]
+fn auto_leaves_fully_prescribed_frictional_mortar_nodes_to_newton() {
+    let dir = tempfile::tempdir().unwrap();
+    let held = "[[displacement]]\nsurface = \"upper.xmin\"\nx = 0.0\ny = 0.0\nz = 0.0\n";
+    let problem = |exact_stick| {
+        let case = sheared_mortar_punch_case(
+            dir.path(),
+            ElementKind::Tet4,
+            (5, 3),
+            exact_stick,
+            "strategy = \"auto\"",
+            held,
+        );
+        signorini::case::load(&case)
+            .unwrap()
+            .build_problem()
+            .unwrap()
+    };
+    let why = signorini::problem::condensed::not_applicable(&problem(true));
+    let why = why.expect("refused with exact stick");
+    assert!(why.contains("components are all prescribed"), "{why}");
+    assert_eq!(
+        signorini::problem::condensed::not_applicable(&problem(false)),
+        None
+    );
 }

@@ -14,7 +14,7 @@
 
 mod common;
 
-use common::{assert_open_stick_and_slip, every_method, perturbed_state, run};
+use common::{assert_open_stick_and_slip, every_method, perturbed_state, run, uneven_slide};
 use nalgebra::{Matrix3, Vector3};
 use signorini::assembly::amplitude::Amplitude;
 use signorini::contact::friction::{ContactStatus, STICK_SHIFT};
@@ -366,12 +366,65 @@ fn perturbed_frictional_blocks(
 #[test]
 fn frictional_mortar_tangent_matches_finite_differences() {
     for (name, law) in every_method(3.0 * E) {
-        let (mut pr, upper, mut x) = perturbed_frictional_blocks(name, law);
-        let upper: Vec<usize> = upper.collect();
-        let state = common::slid_history(&mut pr, &mut x, &upper, 0.004);
+        let (pr, x, state) = committed_frictional_blocks(name, law);
         let (_, reports) = pr.residual_in(0.5, &x, &state, None).unwrap();
         assert_open_stick_and_slip(&reports[0], name);
         assert_displacement_rows_match_fd(&pr, 0.5, &x, &state, name);
+    }
+}
+
+/// [`perturbed_frictional_blocks`] with a real history: committed (with
+/// `D`, `M`) at the perturbed state and again after a small slide of the
+/// upper block, then the upper block's nodes moved tangentially by
+/// different amounts; the problem, the unknowns and the contact state.
+fn committed_frictional_blocks(
+    name: &str,
+    law: NormalLaw,
+) -> (Problem, Vec<f64>, signorini::problem::ContactState) {
+    let (mut pr, upper, mut x) = perturbed_frictional_blocks(name, law);
+    let upper: Vec<usize> = upper.collect();
+    let state = common::slid_history(&mut pr, &mut x, &upper, uneven_slide);
+    (pr, x, state)
+}
+
+/// The rule of `friction::HeldTangent` on the mortar multiplier rows: at
+/// [`committed_frictional_blocks`]'s state, with every secondary node
+/// given prescribed components (by its index: `u_y` alone, the held axis
+/// `τ_y`; `u_x` and `u_y`, the whole tangent plane; none), the rows of
+/// the held directions are `P (t_T,n − λ_T)` with `P(n_j(q))`, and, for
+/// the laws with tangential multipliers (rockafellar, slack), the
+/// displacement and tangential multiplier rows of the assembled tangent
+/// are the central differences of the residual, every column, as in
+/// [`frictional_mortar_tangent_matches_finite_differences`]. The rule is
+/// seen to act where the law has tangential multipliers: the residual
+/// differs from the unheld one by more than 1e-6 of its size (and not at
+/// all without them); the nodes are open, sticking and slipping.
+#[test]
+fn held_mortar_tangent_matches_finite_differences() {
+    for (name, law) in every_method(3.0 * E) {
+        let (mut pr, x, state) = committed_frictional_blocks(name, law);
+        let label = format!("{name}, held");
+        let (free, _) = pr.residual_in(0.5, &x, &state, None).unwrap();
+        let c = pr.contacts.interface_mut(0);
+        c.prescribed_axes = (0..c.nodes.len())
+            .map(|i| match i % 3 {
+                0 => [false, true, false],
+                1 => [true, true, false],
+                _ => [false; 3],
+            })
+            .collect();
+        let (held, reports) = pr.residual_in(0.5, &x, &state, None).unwrap();
+        assert_open_stick_and_slip(&reports[0], &label);
+        let (free, held) = (free.r, held.r);
+        let change = (free.iter().zip(&held)).fold(0.0f64, |m, (a, b)| m.max((a - b).abs()));
+        if !pr.contacts.interface(0).tangential_multipliers() {
+            // no tangential multipliers (penalty, uzawa): no rule
+            assert_eq!(change, 0.0, "{label}");
+            continue;
+        }
+        let size = free.iter().fold(0.0f64, |m, v| m.max(v.abs()));
+        assert!(change > 1e-6 * size, "{label}: the rule changed nothing");
+        assert_displacement_rows_match_fd(&pr, 0.5, &x, &state, &label);
     }
 }
 

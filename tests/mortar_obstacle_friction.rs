@@ -218,7 +218,8 @@ fn frictional_mortar_on_a_sphere_matches_finite_differences() {
             let scale = if m < dofs + normal { 2e-3 } else { 2e-5 };
             *v = scale * ((m as f64) * 1.3).cos().abs();
         }
-        let state = common::slid_history(&mut pr, &mut x, &bottom, 0.02);
+        let amount = |n| common::uneven_slide(n).map(|v| 5.0 * v);
+        let state = common::slid_history(&mut pr, &mut x, &bottom, amount);
         let (_, reports) = pr.residual_in(0.5, &x, &state, None).unwrap();
         let label = format!("{kind:?}");
         assert_open_stick_and_slip(&reports[0], &label);

@@ -614,7 +614,10 @@ pub const AXIS_NEAR_PLANE: f64 = 0.5;
 /// monolithic one replaces the rows of Alart–Curnier's `ℓ`
 /// ([`multiplier_rows`]), the condensed one the multiplier inside its
 /// node law ([`held_multiplier`]). A node with no prescribed tangential
-/// axis is unchanged. The clash is the one 4C's manual names "contact and
+/// axis is unchanged. On dual mortar the node is the secondary node `j`
+/// with its normal `n_j` and its own prescribed components, except where
+/// all three are prescribed (Newton keeps its stick rows there: they move
+/// the primary; `ContactInterface::holds_tangent`). The clash is the one 4C's manual names "contact and
 /// symmetry conditions" (a contact surface touching a Dirichlet plane):
 /// it drops the contact condition at those nodes (`RemoveDBCSlaveNodes`)
 /// or flags the Dirichlet directions per node ("mortar symmetry

@@ -232,15 +232,33 @@ impl ContactInterface {
     }
 
     /// Whether exact stick's rule of [`friction::HeldTangent`] may apply
-    /// at node `i`: node-to-surface (a rigid obstacle or a primary
-    /// surface, the condensed path's node law alike; dual mortar's rows
-    /// weight several secondary nodes, so a node's own prescribed
-    /// components do not count its equations), tangential multipliers as
-    /// unknowns and a prescribed component.
+    /// at node `i`: tangential multipliers as unknowns and a prescribed
+    /// component of the node's own dofs (the held directions are those of
+    /// the node's normal and its prescribed components, as the condensed
+    /// path's node law has them), on node-to-surface and on dual mortar
+    /// alike; on dual mortar not at a node whose dofs are all prescribed
+    /// ([`holds_every_component`](Self::holds_every_component)).
     fn holds_tangent(&self, i: usize) -> bool {
-        matches!(self.primary, Primary::Rigid(_) | Primary::Surface(_))
-            && self.tangential_multipliers()
-            && (self.prescribed_axes.get(i)).is_some_and(|a| a.iter().any(|&p| p))
+        let Some(axes) = self.prescribed_axes.get(i) else {
+            return false;
+        };
+        self.tangential_multipliers()
+            && axes.iter().any(|&p| p)
+            && !(matches!(self.primary, Primary::Mortar(_)) && axes.iter().all(|&p| p))
+    }
+
+    /// Whether some secondary node of a dual mortar pair has all three
+    /// components prescribed. Its stick rows are then constraints on the
+    /// primary nodes its lever reaches through `M_jl` (the tangential
+    /// traction is determined: tests/mortar_friction.rs's patch test, whose
+    /// fully prescribed edge nodes carry the exact uniform traction), so
+    /// Newton keeps them whole; the condensed path has no column for the
+    /// node's motion and holds its committed traction there instead
+    /// ([`crate::problem::condensed::not_applicable`] leaves such pairs to
+    /// Newton under `auto`).
+    pub fn holds_every_component(&self) -> bool {
+        matches!(self.primary, Primary::Mortar(_))
+            && (self.prescribed_axes.iter()).any(|a| a.iter().all(|&p| p))
     }
 
     /// Node `i`'s held tangential directions at unit normal `n` under

@@ -60,8 +60,10 @@
 //! a body held only by contact has a rigid-body mode) or, with friction,
 //! by those and the nodes touching the plane at the start. `auto` takes it
 //! exactly then; otherwise the run is monolithic and the log and
-//! `summary.json` say why. Contact between bodies (node-to-surface, or
-//! dual mortar frictionless) is condensed when asked for by name (`strategy = "condensed"`):
+//! `summary.json` say why. Contact between bodies (node-to-surface or
+//! dual mortar, frictionless or with Coulomb friction) is condensed under
+//! `auto` too (dual mortar with exact stick at a secondary node whose
+//! components are all prescribed only by name, `strategy = "condensed"`):
 //! frictionless by [`pairs`], with Coulomb friction by [`friction`] on the
 //! rows of [`linearisation`], both at the current projections. So is
 //! contact against a rigid sphere or cylinder, under `auto` too, its rows

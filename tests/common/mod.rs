@@ -603,6 +603,28 @@ pub fn write_stacked_blocks_case(
     path
 }
 
+/// Move the mesh nodes `nodes` of the unknowns `x` by `amount(node)` in x
+/// and y (a tangential slide, for a frictional history).
+pub fn slide_nodes(
+    x: &mut [f64],
+    nodes: impl IntoIterator<Item = usize>,
+    amount: impl Fn(usize) -> [f64; 2],
+) {
+    for n in nodes {
+        let [a, b] = amount(n);
+        x[3 * n] += a;
+        x[3 * n + 1] += b;
+    }
+}
+
+/// An uneven slide of node `n`, `0.004 (cos(0.9 n) (n mod 3), sin(0.9 n))`:
+/// neighbouring nodes move by different amounts, so that some stick and
+/// some slip.
+pub fn uneven_slide(n: usize) -> [f64; 2] {
+    let k = n as f64;
+    [0.004 * (0.9 * k).cos() * (k % 3.0), 0.004 * (0.9 * k).sin()]
+}
+
 /// A state for finite-difference checks of a contact tangent: every
 /// unknown `amplitude · sin(0.77 i)`, except the multipliers of the slack
 /// law (`slack = true`), which start at 0 so that its local unknowns can be
@@ -919,32 +941,21 @@ end_time = 1.0
 
 /// A frictional history for finite-difference checks of a tangent: the
 /// contact state committed at `x`, then again after a slide of `nodes`
-/// by (0.002, 0.001), then `nodes` moved tangentially by different
-/// amounts, `scale (cos(0.9 n) (n mod 3), sin(0.9 n))`, in `x`. Returns
-/// the committed state (time 0.5).
+/// by (0.002, 0.001), then `nodes` moved tangentially by `amount` in `x`
+/// (e.g. [`uneven_slide`]). Returns the committed state (time 0.5).
 pub fn slid_history(
     pr: &mut Problem,
     x: &mut [f64],
     nodes: &[usize],
-    scale: f64,
+    amount: impl Fn(usize) -> [f64; 2],
 ) -> signorini::problem::ContactState {
     let mut state = pr.initial_contact_state(x);
     pr.refresh_contact_pairs(x, 0.0);
     pr.commit_contact_history(0.5, x, &mut state);
-    let slide = |x: &mut [f64], amount: &dyn Fn(usize) -> [f64; 2]| {
-        for &n in nodes {
-            let [a, b] = amount(n);
-            x[3 * n] += a;
-            x[3 * n + 1] += b;
-        }
-    };
-    slide(x, &|_| [0.002, 0.001]);
+    slide_nodes(x, nodes.iter().copied(), |_| [0.002, 0.001]);
     pr.refresh_contact_pairs(x, 0.0);
     pr.commit_contact_history(0.5, x, &mut state);
-    slide(x, &|n| {
-        let k = n as f64;
-        [scale * (0.9 * k).cos() * (k % 3.0), scale * (0.9 * k).sin()]
-    });
+    slide_nodes(x, nodes.iter().copied(), amount);
     state
 }
 

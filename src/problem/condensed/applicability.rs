@@ -122,10 +122,10 @@ pub fn not_applicable(problem: &Problem) -> Option<String> {
         ));
     }
     let strategy = problem.settings.strategy;
-    for c in &problem.contacts {
-        if let Some(why) = contact_not_applicable(c, strategy) {
-            return Some(format!("contact '{}' {why}", c.name));
-        }
+    if let Some((c, why)) = (problem.contacts.iter())
+        .find_map(|c| contact_not_applicable(c, strategy).map(|why| (c, why)))
+    {
+        return Some(format!("contact '{}' {why}", c.name));
     }
     let mut held = problem.constrained_dofs();
     // between bodies no dof is shifted: the prescribed displacements must
@@ -147,8 +147,8 @@ pub fn not_applicable(problem: &Problem) -> Option<String> {
     })
 }
 
-/// Why contact `c` keeps the problem off the condensed path under
-/// `strategy` (`None`: it does not).
+/// Why the condensed path does not apply to contact `c` under `strategy`
+/// (`None`: it does).
 fn contact_not_applicable(c: &ContactInterface, strategy: Strategy) -> Option<String> {
     // the gap from the node driver, affine in `u`; a law whose
     // converged state is exact or a penalty (not an outer loop's)
@@ -168,23 +168,25 @@ fn contact_not_applicable(c: &ContactInterface, strategy: Strategy) -> Option<St
         // tractions equal Newton's at 1e-11 node by node to 5.7e-10
         // of the peak (BENCHMARKS.md, session 20). Dual mortar between
         // bodies, frictionless or with Coulomb friction, the same
-        // rounds at the current segmentation; frictionless since
-        // session 21 under `auto` too (tests/mortar_condensed.rs: the
-        // stacked blocks and two-spheres' mortar.toml equal Newton to
-        // ≤ 1.6e-13). With friction by name only: on
-        // examples/cattaneo-mindlin/mortar-coarse.toml the paths
-        // differ on the symmetry plane (BENCHMARKS.md, session 21).
+        // rounds at the current segmentation (tests/mortar_condensed.rs:
+        // equal to Newton; with friction under `auto` since session
+        // 22, when Newton's mortar multiplier rows took the rule of
+        // `friction::HeldTangent` on a symmetry plane). Not under
+        // `auto` where exact stick meets a mortar secondary node whose
+        // dofs are all prescribed: there the paths keep different
+        // equations (`ContactInterface::holds_every_component`).
         Err(why)
             if c.projected_gap()
-                && !c.fixed_area()
                 && c.has_friction()
+                && c.exact_stick()
+                && c.holds_every_component()
                 && strategy != Strategy::Condensed =>
         {
             Some(format!(
-                "{why} with Coulomb friction, which is condensed only with strategy = \
-                 \"condensed\" (on a symmetry plane with exact stick, Newton's mortar \
-                 multipliers end elsewhere in the tangential traction that the plane leaves \
-                 undetermined)"
+                "{why} with Coulomb friction and exact stick at a secondary node whose \
+                 components are all prescribed, which is condensed only with strategy = \
+                 \"condensed\" (Newton keeps that node's stick rows, which move the primary \
+                 surface; the condensed path holds its committed tangential traction)"
             ))
         }
         Err(_) if c.projected_gap() => None,
@@ -208,7 +210,7 @@ fn contact_not_applicable(c: &ContactInterface, strategy: Strategy) -> Option<St
     why.or_else(|| {
         (!c.fixed_area() && penalty(c)).then(|| {
             "uses penalty with discretisation = \"mortar\", whose force D_j ε ⟨−g⟩ changes \
-         with the area D_j of the current surface"
+             with the area D_j of the current surface"
                 .into()
         })
     })

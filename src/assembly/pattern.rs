@@ -37,8 +37,14 @@ pub struct SparsityPattern {
     multiplier_nodes: Vec<Vec<usize>>,
     /// Sorted multipliers coupled to each multiplier (itself included).
     multiplier_group: Vec<Vec<usize>>,
-    /// Symbolic CSC structure, all entries (both triangles).
-    symbolic: SymbolicSparseColMat<usize>,
+    /// Where each column starts in the CSC structure (both triangles;
+    /// `nnz` last): what locating an entry reads, made with the pattern.
+    col_ptr: Vec<usize>,
+    /// The symbolic CSC structure (its row indices, as many as the
+    /// entries), made at its first use ([`Self::symbolic`]): the element
+    /// pattern a model is made with is replaced by [`Self::coupled`]'s
+    /// when the contact is set up, before anything reads its rows.
+    symbolic: OnceLock<SymbolicSparseColMat<usize>>,
     /// `mirror[k]` is the index of entry (j, i) for entry `k` = (i, j),
     /// made at its first use ([`Self::mirrors`]): the condensed path
     /// never reads it, and the pattern that the contact multipliers
@@ -261,38 +267,28 @@ impl SparsityPattern {
             list.sort_unstable();
             list.dedup();
         }
-        let first_multiplier = 3 * num_nodes;
-        let n = first_multiplier + multiplier_nodes.len();
+        let n = 3 * num_nodes + multiplier_nodes.len();
         let mut col_ptr = Vec::with_capacity(n + 1);
-        let entries = 9 * neighbours.iter().map(Vec::len).sum::<usize>()
-            + 7 * multiplier_nodes.iter().map(Vec::len).sum::<usize>()
-            + multiplier_group.iter().map(Vec::len).sum::<usize>();
-        let mut row_idx = Vec::with_capacity(entries);
         col_ptr.push(0);
+        let mut entries = 0;
         for (list, multipliers) in neighbours.iter().zip(&node_multipliers) {
             for _j in 0..3 {
-                for &a in list {
-                    row_idx.extend([3 * a, 3 * a + 1, 3 * a + 2]);
-                }
-                row_idx.extend(multipliers.iter().map(|k| first_multiplier + k));
-                col_ptr.push(row_idx.len());
+                entries += 3 * list.len() + multipliers.len();
+                col_ptr.push(entries);
             }
         }
         for (nodes, group) in multiplier_nodes.iter().zip(&multiplier_group) {
-            for &a in nodes {
-                row_idx.extend([3 * a, 3 * a + 1, 3 * a + 2]);
-            }
-            row_idx.extend(group.iter().map(|l| first_multiplier + l));
-            col_ptr.push(row_idx.len());
+            entries += 3 * nodes.len() + group.len();
+            col_ptr.push(entries);
         }
-        let symbolic = SymbolicSparseColMat::new_checked(n, n, col_ptr, None, row_idx);
         SparsityPattern {
             neighbours,
             elements,
             node_multipliers,
             multiplier_nodes,
             multiplier_group,
-            symbolic,
+            col_ptr,
+            symbolic: OnceLock::new(),
             mirror: OnceLock::new(),
             id: NEXT_PATTERN_ID.fetch_add(1, Ordering::Relaxed),
         }
@@ -310,7 +306,7 @@ impl SparsityPattern {
     /// column `3b + j`) and (row `3a + i`, column `3b + j + 1`).
     #[inline]
     pub fn node_column_length(&self, b: usize) -> usize {
-        let cp = self.symbolic.col_ptr();
+        let cp = &self.col_ptr;
         cp[3 * b + 1] - cp[3 * b]
     }
 
@@ -334,7 +330,7 @@ impl SparsityPattern {
     /// Entries coupling multiplier `k` and node `a`, or `None` if they are
     /// not coupled.
     pub fn multiplier_entries(&self, k: usize, a: usize) -> Option<MultiplierEntries> {
-        let cp = self.symbolic.col_ptr();
+        let cp = &self.col_ptr;
         let in_column = self.node_multipliers[a].binary_search(&k).ok()?;
         let in_row = self.multiplier_nodes[k].binary_search(&a).ok()?;
         let node_count = 3 * self.neighbours[a].len();
@@ -356,7 +352,7 @@ impl SparsityPattern {
         let group = &self.multiplier_group[k];
         let position = group.binary_search(&l).ok()?;
         let column = 3 * self.num_nodes() + k;
-        Some(self.symbolic.col_ptr()[column + 1] - group.len() + position)
+        Some(self.col_ptr[column + 1] - group.len() + position)
     }
 
     /// Expected signs of the LDLᵀ pivots, for faer's dynamic
@@ -415,17 +411,71 @@ impl SparsityPattern {
 
     /// Number of rows (= columns).
     pub fn dimension(&self) -> usize {
-        self.symbolic.nrows()
+        self.col_ptr.len() - 1
     }
 
     /// Number of stored entries.
     pub fn nnz(&self) -> usize {
-        self.symbolic.row_idx().len()
+        self.col_ptr[self.col_ptr.len() - 1]
     }
 
-    /// The faer symbolic structure.
+    /// The faer symbolic structure (made at the first call).
     pub fn symbolic(&self) -> &SymbolicSparseColMat<usize> {
-        &self.symbolic
+        self.symbolic.get_or_init(|| {
+            let n = self.dimension();
+            let row_idx = self.row_indices();
+            SymbolicSparseColMat::new_checked(n, n, self.col_ptr.clone(), None, row_idx)
+        })
+    }
+
+    /// The row indices of every column, in the order of [`Self::col_ptr`]:
+    /// a node's three columns each hold the three dofs of its neighbours,
+    /// then its multipliers; a multiplier's, the dofs of its nodes, then
+    /// its group. Filled node by node in parallel (the columns' slices are
+    /// known from `col_ptr`).
+    fn row_indices(&self) -> Vec<usize> {
+        let first_multiplier = 3 * self.num_nodes();
+        let mut row_idx = vec![0; self.nnz()];
+        let mut slices: Vec<&mut [usize]> = Vec::with_capacity(self.col_ptr.len() / 3 + 1);
+        let mut rest = row_idx.as_mut_slice();
+        for a in 0..self.num_nodes() {
+            let (node, after) = rest.split_at_mut(self.col_ptr[3 * a + 3] - self.col_ptr[3 * a]);
+            slices.push(node);
+            rest = after;
+        }
+        let rows_of_node = |a: usize, out: &mut [usize]| {
+            let column = (self.neighbours[a].iter())
+                .flat_map(|&b| [3 * b, 3 * b + 1, 3 * b + 2])
+                .chain(
+                    self.node_multipliers[a]
+                        .iter()
+                        .map(|k| first_multiplier + k),
+                );
+            let length = out.len() / 3;
+            for j in 0..3 {
+                for (slot, row) in out[j * length..(j + 1) * length]
+                    .iter_mut()
+                    .zip(column.clone())
+                {
+                    *slot = row;
+                }
+            }
+        };
+        slices
+            .par_iter_mut()
+            .enumerate()
+            .for_each(|(a, out)| rows_of_node(a, out));
+        let mut at = 0;
+        for (nodes, group) in self.multiplier_nodes.iter().zip(&self.multiplier_group) {
+            let column = (nodes.iter())
+                .flat_map(|&b| [3 * b, 3 * b + 1, 3 * b + 2])
+                .chain(group.iter().map(|l| first_multiplier + l));
+            for (slot, row) in rest[at..].iter_mut().zip(column) {
+                *slot = row;
+                at += 1;
+            }
+        }
+        row_idx
     }
 
     /// Index into the value array of entry (row `3a + i`, column `3b + j`),
@@ -433,7 +483,7 @@ impl SparsityPattern {
     #[inline]
     pub fn block_entry(&self, a: usize, i: usize, b: usize, j: usize) -> Option<usize> {
         let pos = self.neighbours[b].binary_search(&a).ok()?;
-        Some(self.symbolic.col_ptr()[3 * b + j] + 3 * pos + i)
+        Some(self.col_ptr[3 * b + j] + 3 * pos + i)
     }
 
     /// Indices of entries (row `3a`, column `3b + j`) for `j = 0, 1, 2`;
@@ -441,7 +491,7 @@ impl SparsityPattern {
     #[inline]
     pub fn block_columns(&self, a: usize, b: usize) -> Option<[usize; 3]> {
         let pos = self.neighbours[b].binary_search(&a).ok()?;
-        let cp = self.symbolic.col_ptr();
+        let cp = &self.col_ptr;
         Some([0, 1, 2].map(|j| cp[3 * b + j] + 3 * pos))
     }
 
@@ -477,7 +527,7 @@ impl SparsityPattern {
     /// [`Self::mirror`] of every entry (made at the first call).
     fn mirrors(&self) -> &[usize] {
         self.mirror
-            .get_or_init(|| transpose_positions(&self.symbolic))
+            .get_or_init(|| transpose_positions(self.symbolic()))
     }
 
     /// Set each entry above the diagonal of `values` to its mirror's
@@ -488,7 +538,7 @@ impl SparsityPattern {
     /// as the values): the cached constant `K` of a large run expands
     /// without them.
     pub fn mirror_lower_into_upper(&self, values: &mut [f64]) {
-        let (cp, ri) = (self.symbolic.col_ptr(), self.symbolic.row_idx());
+        let (cp, ri) = (&self.col_ptr, self.symbolic().row_idx());
         let mut cursor: Vec<usize> = cp[..self.dimension()].to_vec();
         for j in 0..self.dimension() {
             for k in cp[j]..cp[j + 1] {

@@ -81,39 +81,51 @@ impl NodeGraph {
         element_nodes: impl Iterator<Item = &'a [usize]>,
         alone: impl Fn(usize) -> bool + Sync,
     ) -> Self {
-        // every element's nodes listed under each of its nodes, in one
-        // flat array (counted first: no list grows), then each node's
-        // list sorted and deduplicated side by side
+        // each node's elements in one flat array (counted first: no list
+        // grows), then each node's neighbours gathered from its elements,
+        // a mark per node keeping each once, and sorted: the lists are
+        // made by chunks of nodes side by side, a mark array per chunk
         let elements: Vec<&[usize]> = element_nodes.collect();
         let mut start = vec![0usize; num_nodes + 1];
         for nodes in &elements {
             for &a in *nodes {
-                start[a + 1] += nodes.len();
+                start[a + 1] += 1;
             }
         }
         for a in 0..num_nodes {
             start[a + 1] += start[a];
         }
-        let mut flat = vec![0usize; start[num_nodes]];
+        let mut of_node = vec![0usize; start[num_nodes]];
         let mut next = start[..num_nodes].to_vec();
-        for nodes in &elements {
+        for (e, nodes) in elements.iter().enumerate() {
             for &a in *nodes {
-                flat[next[a]..next[a] + nodes.len()].copy_from_slice(nodes);
-                next[a] += nodes.len();
+                of_node[next[a]] = e;
+                next[a] += 1;
             }
         }
-        let neighbours: Vec<Vec<usize>> = (0..num_nodes)
+        let chunk = num_nodes.div_ceil(4 * rayon::current_num_threads()).max(1);
+        let neighbours: Vec<Vec<usize>> = (0..num_nodes.div_ceil(chunk))
             .into_par_iter()
-            .map(|a| {
-                if start[a + 1] == start[a] && !alone(a) {
-                    return Vec::new();
-                }
-                let mut list = Vec::with_capacity(start[a + 1] - start[a] + 1);
-                list.push(a);
-                list.extend_from_slice(&flat[start[a]..start[a + 1]]);
-                list.sort_unstable();
-                list.dedup();
-                list
+            .flat_map_iter(|c| {
+                let mut mark = vec![usize::MAX; num_nodes];
+                let (start, of_node, elements, alone) = (&start, &of_node, &elements, &alone);
+                (c * chunk..((c + 1) * chunk).min(num_nodes)).map(move |a| {
+                    if start[a + 1] == start[a] && !alone(a) {
+                        return Vec::new();
+                    }
+                    let mut list = vec![a];
+                    mark[a] = a;
+                    for &e in &of_node[start[a]..start[a + 1]] {
+                        for &b in elements[e] {
+                            if mark[b] != a {
+                                mark[b] = a;
+                                list.push(b);
+                            }
+                        }
+                    }
+                    list.sort_unstable();
+                    list
+                })
             })
             .collect();
         NodeGraph(Arc::new(neighbours))
@@ -691,6 +703,34 @@ mod tests {
             for k in cp[j]..cp[j + 1] {
                 assert_eq!(sym[k], 2.0 * ri[k] as f64 * j as f64);
             }
+        }
+    }
+
+    /// Each node's neighbours are the nodes of its elements, itself
+    /// included, sorted and each once (against a set per node), also with
+    /// more nodes than one chunk of the parallel gathering holds.
+    #[test]
+    fn element_graph_lists_each_neighbour_once() {
+        let n = 200;
+        let elements: Vec<Vec<usize>> = (0..300)
+            .map(|e| (0..4).map(|i| (e * 7 + i * 13 + e * e % 11) % n).collect())
+            .collect();
+        let graph = NodeGraph::of_elements(n, elements.iter().map(|e| e.as_slice()));
+        let mut expected = vec![std::collections::BTreeSet::new(); n];
+        for (a, set) in expected.iter_mut().enumerate() {
+            set.insert(a);
+        }
+        for e in &elements {
+            for &a in e {
+                expected[a].extend(e.iter().copied());
+            }
+        }
+        for (a, set) in expected.iter().enumerate() {
+            assert_eq!(
+                graph.0[a],
+                set.iter().copied().collect::<Vec<_>>(),
+                "node {a}"
+            );
         }
     }
 

@@ -221,17 +221,45 @@ impl SparsityPattern {
                 multiplier_groups,
             );
         }
-        let mut neighbours: Vec<Vec<usize>> = (*self.elements).clone();
-        let mut touched = vec![false; neighbours.len()];
+        // each node's groups (counted first), then each touched node's
+        // element neighbours joined by its groups' members, a mark per
+        // node keeping each once, and sorted
+        let num_nodes = self.elements.len();
+        let mut start = vec![0usize; num_nodes + 1];
         for nodes in groups {
             for &a in nodes {
-                neighbours[a].extend_from_slice(nodes);
-                touched[a] = true;
+                start[a + 1] += 1;
             }
         }
-        for (list, _) in neighbours.iter_mut().zip(&touched).filter(|(_, &t)| t) {
+        for a in 0..num_nodes {
+            start[a + 1] += start[a];
+        }
+        let mut of_node = vec![0usize; start[num_nodes]];
+        let mut next = start[..num_nodes].to_vec();
+        for (g, nodes) in groups.iter().enumerate() {
+            for &a in nodes {
+                of_node[next[a]] = g;
+                next[a] += 1;
+            }
+        }
+        let mut neighbours: Vec<Vec<usize>> = (*self.elements).clone();
+        let mut mark = vec![usize::MAX; num_nodes];
+        for (a, list) in neighbours.iter_mut().enumerate() {
+            if start[a + 1] == start[a] {
+                continue;
+            }
+            for &b in list.iter() {
+                mark[b] = a;
+            }
+            for &g in &of_node[start[a]..start[a + 1]] {
+                for &b in &groups[g] {
+                    if mark[b] != a {
+                        mark[b] = a;
+                        list.push(b);
+                    }
+                }
+            }
             list.sort_unstable();
-            list.dedup();
         }
         Self::from_neighbours(
             Arc::new(neighbours),
@@ -431,6 +459,13 @@ impl SparsityPattern {
         self.col_ptr[self.col_ptr.len() - 1]
     }
 
+    /// Where each column starts in [`Self::symbolic`]'s row indices (the
+    /// number of entries last), without making them.
+    #[inline]
+    pub fn col_ptr(&self) -> &[usize] {
+        &self.col_ptr
+    }
+
     /// The faer symbolic structure (made at the first call).
     pub fn symbolic(&self) -> &SymbolicSparseColMat<usize> {
         self.symbolic.get_or_init(|| {
@@ -440,13 +475,25 @@ impl SparsityPattern {
         })
     }
 
-    /// The row indices of every column, in the order of [`Self::col_ptr`]:
-    /// a node's three columns each hold the three dofs of its neighbours,
-    /// then its multipliers; a multiplier's, the dofs of its nodes, then
-    /// its group. Filled node by node in parallel (the columns' slices are
-    /// known from `col_ptr`).
-    fn row_indices(&self) -> Vec<usize> {
+    /// The rows of column `j`, increasing: a node's three columns each
+    /// hold the three dofs of its neighbours, then its multipliers; a
+    /// multiplier's, the dofs of its nodes, then its group. What
+    /// [`Self::symbolic`]'s row indices hold, without making them.
+    pub fn column_rows(&self, j: usize) -> impl Iterator<Item = usize> + '_ {
         let first_multiplier = 3 * self.num_nodes();
+        let (nodes, multipliers) = match j.checked_sub(first_multiplier) {
+            None => (&self.neighbours[j / 3], &self.node_multipliers[j / 3]),
+            Some(k) => (&self.multiplier_nodes[k], &self.multiplier_group[k]),
+        };
+        (nodes.iter())
+            .flat_map(|&b| [3 * b, 3 * b + 1, 3 * b + 2])
+            .chain(multipliers.iter().map(move |k| first_multiplier + k))
+    }
+
+    /// The row indices of every column ([`Self::column_rows`]), in the
+    /// order of [`Self::col_ptr`]: filled node by node in parallel (the
+    /// columns' slices are known from `col_ptr`).
+    fn row_indices(&self) -> Vec<usize> {
         let mut row_idx = vec![0; self.nnz()];
         let mut slices: Vec<&mut [usize]> = Vec::with_capacity(self.col_ptr.len() / 3 + 1);
         let mut rest = row_idx.as_mut_slice();
@@ -455,37 +502,19 @@ impl SparsityPattern {
             slices.push(node);
             rest = after;
         }
-        let rows_of_node = |a: usize, out: &mut [usize]| {
-            let column = (self.neighbours[a].iter())
-                .flat_map(|&b| [3 * b, 3 * b + 1, 3 * b + 2])
-                .chain(
-                    self.node_multipliers[a]
-                        .iter()
-                        .map(|k| first_multiplier + k),
-                );
+        slices.par_iter_mut().enumerate().for_each(|(a, out)| {
             let length = out.len() / 3;
-            for j in 0..3 {
-                for (slot, row) in out[j * length..(j + 1) * length]
-                    .iter_mut()
-                    .zip(column.clone())
-                {
+            for (j, column) in out.chunks_mut(length.max(1)).enumerate() {
+                for (slot, row) in column.iter_mut().zip(self.column_rows(3 * a + j)) {
                     *slot = row;
                 }
             }
-        };
-        slices
-            .par_iter_mut()
-            .enumerate()
-            .for_each(|(a, out)| rows_of_node(a, out));
-        let mut at = 0;
-        for (nodes, group) in self.multiplier_nodes.iter().zip(&self.multiplier_group) {
-            let column = (nodes.iter())
-                .flat_map(|&b| [3 * b, 3 * b + 1, 3 * b + 2])
-                .chain(group.iter().map(|l| first_multiplier + l));
-            for (slot, row) in rest[at..].iter_mut().zip(column) {
-                *slot = row;
-                at += 1;
-            }
+        });
+        let first_multiplier = 3 * self.num_nodes();
+        let multipliers = first_multiplier..self.dimension();
+        let rows = multipliers.flat_map(|j| self.column_rows(j));
+        for (slot, row) in rest.iter_mut().zip(rows) {
+            *slot = row;
         }
         row_idx
     }

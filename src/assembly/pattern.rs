@@ -86,23 +86,7 @@ impl NodeGraph {
         // a mark per node keeping each once, and sorted: the lists are
         // made by chunks of nodes side by side, a mark array per chunk
         let elements: Vec<&[usize]> = element_nodes.collect();
-        let mut start = vec![0usize; num_nodes + 1];
-        for nodes in &elements {
-            for &a in *nodes {
-                start[a + 1] += 1;
-            }
-        }
-        for a in 0..num_nodes {
-            start[a + 1] += start[a];
-        }
-        let mut of_node = vec![0usize; start[num_nodes]];
-        let mut next = start[..num_nodes].to_vec();
-        for (e, nodes) in elements.iter().enumerate() {
-            for &a in *nodes {
-                of_node[next[a]] = e;
-                next[a] += 1;
-            }
-        }
+        let (start, of_node) = lists_of_nodes(num_nodes, &elements);
         let chunk = num_nodes.div_ceil(4 * rayon::current_num_threads()).max(1);
         let neighbours: Vec<Vec<usize>> = (0..num_nodes.div_ceil(chunk))
             .into_par_iter()
@@ -225,23 +209,7 @@ impl SparsityPattern {
         // element neighbours joined by its groups' members, a mark per
         // node keeping each once, and sorted
         let num_nodes = self.elements.len();
-        let mut start = vec![0usize; num_nodes + 1];
-        for nodes in groups {
-            for &a in nodes {
-                start[a + 1] += 1;
-            }
-        }
-        for a in 0..num_nodes {
-            start[a + 1] += start[a];
-        }
-        let mut of_node = vec![0usize; start[num_nodes]];
-        let mut next = start[..num_nodes].to_vec();
-        for (g, nodes) in groups.iter().enumerate() {
-            for &a in nodes {
-                of_node[next[a]] = g;
-                next[a] += 1;
-            }
-        }
+        let (start, of_node) = lists_of_nodes(num_nodes, groups);
         let mut neighbours: Vec<Vec<usize>> = (*self.elements).clone();
         let mut mark = vec![usize::MAX; num_nodes];
         for (a, list) in neighbours.iter_mut().enumerate() {
@@ -627,6 +595,30 @@ impl SparsityPattern {
         }
         self.block_entry(d / 3, d % 3, d / 3, d % 3)
     }
+}
+
+/// The lists (elements, contact groups) each node is in: node `a`'s are
+/// `of_node[start[a]..start[a + 1]]`, in increasing list index (counted
+/// first: no list grows).
+fn lists_of_nodes<L: AsRef<[usize]>>(num_nodes: usize, lists: &[L]) -> (Vec<usize>, Vec<usize>) {
+    let mut start = vec![0usize; num_nodes + 1];
+    for nodes in lists {
+        for &a in nodes.as_ref() {
+            start[a + 1] += 1;
+        }
+    }
+    for a in 0..num_nodes {
+        start[a + 1] += start[a];
+    }
+    let mut of_node = vec![0usize; start[num_nodes]];
+    let mut next = start[..num_nodes].to_vec();
+    for (l, nodes) in lists.iter().enumerate() {
+        for &a in nodes.as_ref() {
+            of_node[next[a]] = l;
+            next[a] += 1;
+        }
+    }
+    (start, of_node)
 }
 
 /// `mirror[k]`: the position of entry `(j, i)` for entry `k = (i, j)` of a

@@ -37,8 +37,14 @@ pub struct SparsityPattern {
     multiplier_nodes: Vec<Vec<usize>>,
     /// Sorted multipliers coupled to each multiplier (itself included).
     multiplier_group: Vec<Vec<usize>>,
-    /// Symbolic CSC structure, all entries (both triangles).
-    symbolic: SymbolicSparseColMat<usize>,
+    /// Where each column starts in the CSC structure (both triangles;
+    /// `nnz` last): what locating an entry reads, made with the pattern.
+    col_ptr: Vec<usize>,
+    /// The symbolic CSC structure (its row indices, as many as the
+    /// entries), made at its first use ([`Self::symbolic`]): the element
+    /// pattern a model is made with is replaced by [`Self::coupled`]'s
+    /// when the contact is set up, before anything reads its rows.
+    symbolic: OnceLock<SymbolicSparseColMat<usize>>,
     /// `mirror[k]` is the index of entry (j, i) for entry `k` = (i, j),
     /// made at its first use ([`Self::mirrors`]): the condensed path
     /// never reads it, and the pattern that the contact multipliers
@@ -75,39 +81,35 @@ impl NodeGraph {
         element_nodes: impl Iterator<Item = &'a [usize]>,
         alone: impl Fn(usize) -> bool + Sync,
     ) -> Self {
-        // every element's nodes listed under each of its nodes, in one
-        // flat array (counted first: no list grows), then each node's
-        // list sorted and deduplicated side by side
+        // each node's elements in one flat array (counted first: no list
+        // grows), then each node's neighbours gathered from its elements,
+        // a mark per node keeping each once, and sorted: the lists are
+        // made by chunks of nodes side by side, a mark array per chunk
         let elements: Vec<&[usize]> = element_nodes.collect();
-        let mut start = vec![0usize; num_nodes + 1];
-        for nodes in &elements {
-            for &a in *nodes {
-                start[a + 1] += nodes.len();
-            }
-        }
-        for a in 0..num_nodes {
-            start[a + 1] += start[a];
-        }
-        let mut flat = vec![0usize; start[num_nodes]];
-        let mut next = start[..num_nodes].to_vec();
-        for nodes in &elements {
-            for &a in *nodes {
-                flat[next[a]..next[a] + nodes.len()].copy_from_slice(nodes);
-                next[a] += nodes.len();
-            }
-        }
-        let neighbours: Vec<Vec<usize>> = (0..num_nodes)
+        let (start, of_node) = lists_of_nodes(num_nodes, &elements);
+        let chunk = num_nodes.div_ceil(4 * rayon::current_num_threads()).max(1);
+        let neighbours: Vec<Vec<usize>> = (0..num_nodes.div_ceil(chunk))
             .into_par_iter()
-            .map(|a| {
-                if start[a + 1] == start[a] && !alone(a) {
-                    return Vec::new();
-                }
-                let mut list = Vec::with_capacity(start[a + 1] - start[a] + 1);
-                list.push(a);
-                list.extend_from_slice(&flat[start[a]..start[a + 1]]);
-                list.sort_unstable();
-                list.dedup();
-                list
+            .flat_map_iter(|c| {
+                let mut mark = vec![usize::MAX; num_nodes];
+                let (start, of_node, elements, alone) = (&start, &of_node, &elements, &alone);
+                (c * chunk..((c + 1) * chunk).min(num_nodes)).map(move |a| {
+                    if start[a + 1] == start[a] && !alone(a) {
+                        return Vec::new();
+                    }
+                    let mut list = vec![a];
+                    mark[a] = a;
+                    for &e in &of_node[start[a]..start[a + 1]] {
+                        for &b in elements[e] {
+                            if mark[b] != a {
+                                mark[b] = a;
+                                list.push(b);
+                            }
+                        }
+                    }
+                    list.sort_unstable();
+                    list
+                })
             })
             .collect();
         NodeGraph(Arc::new(neighbours))
@@ -203,17 +205,29 @@ impl SparsityPattern {
                 multiplier_groups,
             );
         }
+        // each node's groups (counted first), then each touched node's
+        // element neighbours joined by its groups' members, a mark per
+        // node keeping each once, and sorted
+        let num_nodes = self.elements.len();
+        let (start, of_node) = lists_of_nodes(num_nodes, groups);
         let mut neighbours: Vec<Vec<usize>> = (*self.elements).clone();
-        let mut touched = vec![false; neighbours.len()];
-        for nodes in groups {
-            for &a in nodes {
-                neighbours[a].extend_from_slice(nodes);
-                touched[a] = true;
+        let mut mark = vec![usize::MAX; num_nodes];
+        for (a, list) in neighbours.iter_mut().enumerate() {
+            if start[a + 1] == start[a] {
+                continue;
             }
-        }
-        for (list, _) in neighbours.iter_mut().zip(&touched).filter(|(_, &t)| t) {
+            for &b in list.iter() {
+                mark[b] = a;
+            }
+            for &g in &of_node[start[a]..start[a + 1]] {
+                for &b in &groups[g] {
+                    if mark[b] != a {
+                        mark[b] = a;
+                        list.push(b);
+                    }
+                }
+            }
             list.sort_unstable();
-            list.dedup();
         }
         Self::from_neighbours(
             Arc::new(neighbours),
@@ -261,38 +275,28 @@ impl SparsityPattern {
             list.sort_unstable();
             list.dedup();
         }
-        let first_multiplier = 3 * num_nodes;
-        let n = first_multiplier + multiplier_nodes.len();
+        let n = 3 * num_nodes + multiplier_nodes.len();
         let mut col_ptr = Vec::with_capacity(n + 1);
-        let entries = 9 * neighbours.iter().map(Vec::len).sum::<usize>()
-            + 7 * multiplier_nodes.iter().map(Vec::len).sum::<usize>()
-            + multiplier_group.iter().map(Vec::len).sum::<usize>();
-        let mut row_idx = Vec::with_capacity(entries);
         col_ptr.push(0);
+        let mut entries = 0;
         for (list, multipliers) in neighbours.iter().zip(&node_multipliers) {
             for _j in 0..3 {
-                for &a in list {
-                    row_idx.extend([3 * a, 3 * a + 1, 3 * a + 2]);
-                }
-                row_idx.extend(multipliers.iter().map(|k| first_multiplier + k));
-                col_ptr.push(row_idx.len());
+                entries += 3 * list.len() + multipliers.len();
+                col_ptr.push(entries);
             }
         }
         for (nodes, group) in multiplier_nodes.iter().zip(&multiplier_group) {
-            for &a in nodes {
-                row_idx.extend([3 * a, 3 * a + 1, 3 * a + 2]);
-            }
-            row_idx.extend(group.iter().map(|l| first_multiplier + l));
-            col_ptr.push(row_idx.len());
+            entries += 3 * nodes.len() + group.len();
+            col_ptr.push(entries);
         }
-        let symbolic = SymbolicSparseColMat::new_checked(n, n, col_ptr, None, row_idx);
         SparsityPattern {
             neighbours,
             elements,
             node_multipliers,
             multiplier_nodes,
             multiplier_group,
-            symbolic,
+            col_ptr,
+            symbolic: OnceLock::new(),
             mirror: OnceLock::new(),
             id: NEXT_PATTERN_ID.fetch_add(1, Ordering::Relaxed),
         }
@@ -310,7 +314,7 @@ impl SparsityPattern {
     /// column `3b + j`) and (row `3a + i`, column `3b + j + 1`).
     #[inline]
     pub fn node_column_length(&self, b: usize) -> usize {
-        let cp = self.symbolic.col_ptr();
+        let cp = &self.col_ptr;
         cp[3 * b + 1] - cp[3 * b]
     }
 
@@ -334,7 +338,7 @@ impl SparsityPattern {
     /// Entries coupling multiplier `k` and node `a`, or `None` if they are
     /// not coupled.
     pub fn multiplier_entries(&self, k: usize, a: usize) -> Option<MultiplierEntries> {
-        let cp = self.symbolic.col_ptr();
+        let cp = &self.col_ptr;
         let in_column = self.node_multipliers[a].binary_search(&k).ok()?;
         let in_row = self.multiplier_nodes[k].binary_search(&a).ok()?;
         let node_count = 3 * self.neighbours[a].len();
@@ -356,7 +360,7 @@ impl SparsityPattern {
         let group = &self.multiplier_group[k];
         let position = group.binary_search(&l).ok()?;
         let column = 3 * self.num_nodes() + k;
-        Some(self.symbolic.col_ptr()[column + 1] - group.len() + position)
+        Some(self.col_ptr[column + 1] - group.len() + position)
     }
 
     /// Expected signs of the LDLᵀ pivots, for faer's dynamic
@@ -415,17 +419,72 @@ impl SparsityPattern {
 
     /// Number of rows (= columns).
     pub fn dimension(&self) -> usize {
-        self.symbolic.nrows()
+        self.col_ptr.len() - 1
     }
 
     /// Number of stored entries.
     pub fn nnz(&self) -> usize {
-        self.symbolic.row_idx().len()
+        self.col_ptr[self.col_ptr.len() - 1]
     }
 
-    /// The faer symbolic structure.
+    /// Where each column starts in [`Self::symbolic`]'s row indices (the
+    /// number of entries last), without making them.
+    #[inline]
+    pub fn col_ptr(&self) -> &[usize] {
+        &self.col_ptr
+    }
+
+    /// The faer symbolic structure (made at the first call).
     pub fn symbolic(&self) -> &SymbolicSparseColMat<usize> {
-        &self.symbolic
+        self.symbolic.get_or_init(|| {
+            let n = self.dimension();
+            let row_idx = self.row_indices();
+            SymbolicSparseColMat::new_checked(n, n, self.col_ptr.clone(), None, row_idx)
+        })
+    }
+
+    /// The rows of column `j`, increasing: a node's three columns each
+    /// hold the three dofs of its neighbours, then its multipliers; a
+    /// multiplier's, the dofs of its nodes, then its group. What
+    /// [`Self::symbolic`]'s row indices hold, without making them.
+    pub fn column_rows(&self, j: usize) -> impl Iterator<Item = usize> + '_ {
+        let first_multiplier = 3 * self.num_nodes();
+        let (nodes, multipliers) = match j.checked_sub(first_multiplier) {
+            None => (&self.neighbours[j / 3], &self.node_multipliers[j / 3]),
+            Some(k) => (&self.multiplier_nodes[k], &self.multiplier_group[k]),
+        };
+        (nodes.iter())
+            .flat_map(|&b| [3 * b, 3 * b + 1, 3 * b + 2])
+            .chain(multipliers.iter().map(move |k| first_multiplier + k))
+    }
+
+    /// The row indices of every column ([`Self::column_rows`]), in the
+    /// order of [`Self::col_ptr`]: filled node by node in parallel (the
+    /// columns' slices are known from `col_ptr`).
+    fn row_indices(&self) -> Vec<usize> {
+        let mut row_idx = vec![0; self.nnz()];
+        let mut slices: Vec<&mut [usize]> = Vec::with_capacity(self.col_ptr.len() / 3 + 1);
+        let mut rest = row_idx.as_mut_slice();
+        for a in 0..self.num_nodes() {
+            let (node, after) = rest.split_at_mut(self.col_ptr[3 * a + 3] - self.col_ptr[3 * a]);
+            slices.push(node);
+            rest = after;
+        }
+        slices.par_iter_mut().enumerate().for_each(|(a, out)| {
+            let length = out.len() / 3;
+            for (j, column) in out.chunks_mut(length.max(1)).enumerate() {
+                for (slot, row) in column.iter_mut().zip(self.column_rows(3 * a + j)) {
+                    *slot = row;
+                }
+            }
+        });
+        let first_multiplier = 3 * self.num_nodes();
+        let multipliers = first_multiplier..self.dimension();
+        let rows = multipliers.flat_map(|j| self.column_rows(j));
+        for (slot, row) in rest.iter_mut().zip(rows) {
+            *slot = row;
+        }
+        row_idx
     }
 
     /// Index into the value array of entry (row `3a + i`, column `3b + j`),
@@ -433,7 +492,7 @@ impl SparsityPattern {
     #[inline]
     pub fn block_entry(&self, a: usize, i: usize, b: usize, j: usize) -> Option<usize> {
         let pos = self.neighbours[b].binary_search(&a).ok()?;
-        Some(self.symbolic.col_ptr()[3 * b + j] + 3 * pos + i)
+        Some(self.col_ptr[3 * b + j] + 3 * pos + i)
     }
 
     /// Indices of entries (row `3a`, column `3b + j`) for `j = 0, 1, 2`;
@@ -441,7 +500,7 @@ impl SparsityPattern {
     #[inline]
     pub fn block_columns(&self, a: usize, b: usize) -> Option<[usize; 3]> {
         let pos = self.neighbours[b].binary_search(&a).ok()?;
-        let cp = self.symbolic.col_ptr();
+        let cp = &self.col_ptr;
         Some([0, 1, 2].map(|j| cp[3 * b + j] + 3 * pos))
     }
 
@@ -477,7 +536,7 @@ impl SparsityPattern {
     /// [`Self::mirror`] of every entry (made at the first call).
     fn mirrors(&self) -> &[usize] {
         self.mirror
-            .get_or_init(|| transpose_positions(&self.symbolic))
+            .get_or_init(|| transpose_positions(self.symbolic()))
     }
 
     /// Set each entry above the diagonal of `values` to its mirror's
@@ -488,7 +547,7 @@ impl SparsityPattern {
     /// as the values): the cached constant `K` of a large run expands
     /// without them.
     pub fn mirror_lower_into_upper(&self, values: &mut [f64]) {
-        let (cp, ri) = (self.symbolic.col_ptr(), self.symbolic.row_idx());
+        let (cp, ri) = (&self.col_ptr, self.symbolic().row_idx());
         let mut cursor: Vec<usize> = cp[..self.dimension()].to_vec();
         for j in 0..self.dimension() {
             for k in cp[j]..cp[j + 1] {
@@ -536,6 +595,30 @@ impl SparsityPattern {
         }
         self.block_entry(d / 3, d % 3, d / 3, d % 3)
     }
+}
+
+/// The lists (elements, contact groups) each node is in: node `a`'s are
+/// `of_node[start[a]..start[a + 1]]`, in increasing list index (counted
+/// first: no list grows).
+fn lists_of_nodes<L: AsRef<[usize]>>(num_nodes: usize, lists: &[L]) -> (Vec<usize>, Vec<usize>) {
+    let mut start = vec![0usize; num_nodes + 1];
+    for nodes in lists {
+        for &a in nodes.as_ref() {
+            start[a + 1] += 1;
+        }
+    }
+    for a in 0..num_nodes {
+        start[a + 1] += start[a];
+    }
+    let mut of_node = vec![0usize; start[num_nodes]];
+    let mut next = start[..num_nodes].to_vec();
+    for (l, nodes) in lists.iter().enumerate() {
+        for &a in nodes.as_ref() {
+            of_node[next[a]] = l;
+            next[a] += 1;
+        }
+    }
+    (start, of_node)
 }
 
 /// `mirror[k]`: the position of entry `(j, i)` for entry `k = (i, j)` of a
@@ -641,6 +724,34 @@ mod tests {
             for k in cp[j]..cp[j + 1] {
                 assert_eq!(sym[k], 2.0 * ri[k] as f64 * j as f64);
             }
+        }
+    }
+
+    /// Each node's neighbours are the nodes of its elements, itself
+    /// included, sorted and each once (against a set per node), also with
+    /// more nodes than one chunk of the parallel gathering holds.
+    #[test]
+    fn element_graph_lists_each_neighbour_once() {
+        let n = 200;
+        let elements: Vec<Vec<usize>> = (0..300)
+            .map(|e| (0..4).map(|i| (e * 7 + i * 13 + e * e % 11) % n).collect())
+            .collect();
+        let graph = NodeGraph::of_elements(n, elements.iter().map(|e| e.as_slice()));
+        let mut expected = vec![std::collections::BTreeSet::new(); n];
+        for (a, set) in expected.iter_mut().enumerate() {
+            set.insert(a);
+        }
+        for e in &elements {
+            for &a in e {
+                expected[a].extend(e.iter().copied());
+            }
+        }
+        for (a, set) in expected.iter().enumerate() {
+            assert_eq!(
+                graph.0[a],
+                set.iter().copied().collect::<Vec<_>>(),
+                "node {a}"
+            );
         }
     }
 

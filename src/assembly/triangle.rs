@@ -38,18 +38,19 @@ pub struct LowerTriangle {
 impl LowerTriangle {
     /// The lower triangle of `pattern` (an empty column stays empty).
     pub fn of(pattern: &SparsityPattern) -> Self {
-        let full = pattern.symbolic();
-        let (cp, ri) = (full.col_ptr(), full.row_idx());
-        let n = full.ncols();
+        // the rows read from the pattern's adjacency
+        // ([`SparsityPattern::column_rows`]): its whole row indices are
+        // not made for this
+        let cp = pattern.col_ptr();
+        let n = pattern.dimension();
         let mut col_ptr = Vec::with_capacity(n + 1);
-        let mut row_idx = Vec::with_capacity((ri.len() + n) / 2);
+        let mut row_idx = Vec::with_capacity((pattern.nnz() + n) / 2);
         let mut above = Vec::with_capacity(n);
         col_ptr.push(0);
         for j in 0..n {
-            let rows = &ri[cp[j]..cp[j + 1]];
-            let s = rows.partition_point(|&i| i < j);
-            above.push(s);
-            row_idx.extend_from_slice(&rows[s..]);
+            let before = row_idx.len();
+            row_idx.extend(pattern.column_rows(j).skip_while(|&i| i < j));
+            above.push(cp[j + 1] - cp[j] - (row_idx.len() - before));
             col_ptr.push(row_idx.len());
         }
         // sorted tails of sorted, in-range columns
@@ -115,7 +116,7 @@ impl LowerTriangle {
     /// (which must be on or below the diagonal).
     #[inline]
     fn position(&self, pattern: &SparsityPattern, k: usize, j: usize) -> usize {
-        self.symbolic.col_ptr()[j] + (k - pattern.symbolic().col_ptr()[j] - self.above[j])
+        self.symbolic.col_ptr()[j] + (k - pattern.col_ptr()[j] - self.above[j])
     }
 
     /// The lower triangle of `full` (values on `pattern`).
@@ -135,7 +136,7 @@ impl LowerTriangle {
     /// `lower`: each column's tail copied, then each entry above the
     /// diagonal set to its mirror's.
     pub fn expand_into(&self, pattern: &SparsityPattern, lower: &[f64], full: &mut [f64]) {
-        let (cp, full_cp) = (self.symbolic.col_ptr(), pattern.symbolic().col_ptr());
+        let (cp, full_cp) = (self.symbolic.col_ptr(), pattern.col_ptr());
         for (j, &s) in self.above.iter().enumerate() {
             let start = full_cp[j] + s;
             full[start..full_cp[j + 1]].copy_from_slice(&lower[cp[j]..cp[j + 1]]);

@@ -17,13 +17,24 @@ pub struct BoundaryFace {
 /// not part of the key): a key that identifies a face whatever its
 /// orientation.
 fn face_key(nodes: &[usize]) -> [usize; 4] {
+    corner_key(nodes.len(), nodes.iter().copied())
+}
+
+/// [`face_key`] of the face of `len` nodes that `nodes` yields (corners
+/// first), without collecting them.
+fn corner_key(len: usize, nodes: impl Iterator<Item = usize>) -> [usize; 4] {
     let mut k = [usize::MAX; 4];
-    let corners = facet_kind(nodes.len()).num_corners();
-    for (slot, &n) in k.iter_mut().zip(&nodes[..corners.min(nodes.len())]) {
+    let corners = facet_kind(len).num_corners().min(len);
+    for (slot, n) in k.iter_mut().zip(nodes.take(corners)) {
         *slot = n;
     }
     k.sort_unstable();
     k
+}
+
+/// [`face_key`] of local face `local` of element `el`.
+fn element_face_key(el: &super::Element, local: &[usize]) -> [usize; 4] {
+    corner_key(local.len(), local.iter().map(|&a| el.nodes[a]))
 }
 
 fn facet_kind(n: usize) -> FacetKind {
@@ -55,10 +66,8 @@ pub fn boundary_faces(mesh: &Mesh) -> HashMap<[usize; 4], BoundaryFace> {
         .par_iter()
         .enumerate()
         .flat_map_iter(|(e, el)| {
-            el.kind.faces().iter().enumerate().map(move |(f, local)| {
-                let nodes: Vec<usize> = local.iter().map(|&a| el.nodes[a]).collect();
-                (face_key(&nodes), e as u32, f as u8)
-            })
+            (el.kind.faces().iter().enumerate())
+                .map(move |(f, local)| (element_face_key(el, local), e as u32, f as u8))
         })
         .collect();
     faces.par_sort_unstable();
@@ -89,20 +98,58 @@ pub fn boundary_faces(mesh: &Mesh) -> HashMap<[usize; 4], BoundaryFace> {
     out
 }
 
-/// Keys of all faces shared by two or more elements.
-fn interior_face_keys_of(elements: &[super::Element]) -> std::collections::HashSet<[usize; 4]> {
-    let mut count: HashMap<[usize; 4], usize> = HashMap::new();
-    for el in elements {
-        for local in el.kind.faces() {
-            let nodes: Vec<usize> = local.iter().map(|&a| el.nodes[a]).collect();
-            *count.entry(face_key(&nodes)).or_insert(0) += 1;
+/// How many element faces have a key, and the last of them (element,
+/// local face).
+#[derive(Clone, Copy, Default)]
+struct FaceCount {
+    count: usize,
+    element: usize,
+    face: usize,
+}
+
+/// For each of `keys`, the element faces with that key
+/// ([`face_key`]): one on the boundary, two or more inside the mesh
+/// (an interface between two regions), none for a facet that is no
+/// element's face. Only the faces whose corners all lie on a key are
+/// looked up, so the cost is a pass over the elements and not a sort of
+/// all their faces ([`boundary_faces`]).
+fn faces_with_keys(
+    mesh: &Mesh,
+    keys: impl Iterator<Item = [usize; 4]>,
+) -> HashMap<[usize; 4], FaceCount> {
+    use rayon::prelude::*;
+    let mut found: HashMap<[usize; 4], FaceCount> =
+        keys.map(|k| (k, FaceCount::default())).collect();
+    let mut on_key = vec![false; mesh.nodes.len()];
+    for &n in found.keys().flatten() {
+        // (usize::MAX pads a triangle's key)
+        if let Some(on) = on_key.get_mut(n) {
+            *on = true;
         }
     }
-    count
-        .into_iter()
-        .filter(|(_, c)| *c > 1)
-        .map(|(k, _)| k)
-        .collect()
+    let hits: Vec<([usize; 4], usize, usize)> = (mesh.elements.par_iter().enumerate())
+        .flat_map_iter(|(e, el)| {
+            let (found, on_key) = (&found, &on_key);
+            (el.kind.faces().iter().enumerate()).filter_map(move |(f, local)| {
+                let corners = facet_kind(local.len()).num_corners().min(local.len());
+                if !local[..corners].iter().all(|&a| on_key[el.nodes[a]]) {
+                    return None;
+                }
+                let key = element_face_key(el, local);
+                found.contains_key(&key).then_some((key, e, f))
+            })
+        })
+        .collect();
+    for (key, element, face) in hits {
+        if let Some(c) = found.get_mut(&key) {
+            *c = FaceCount {
+                count: c.count + 1,
+                element,
+                face,
+            };
+        }
+    }
+    found
 }
 
 /// Boundary faces as facets, outward-oriented.
@@ -139,34 +186,37 @@ impl Mesh {
     /// their orientation (an interface between two regions); facets that
     /// match no element face are returned.
     pub fn orient_surfaces(&mut self) -> Vec<OrphanFacet> {
-        let faces = boundary_faces(self);
-        let mut interior = None;
+        let keys = (self.surfaces.iter()).flat_map(|s| s.facets.iter().map(|f| face_key(&f.nodes)));
+        let faces = faces_with_keys(self, keys);
         let mut orphans = Vec::new();
         for surface in &mut self.surfaces {
             for facet in &mut surface.facets {
-                let key = face_key(&facet.nodes);
-                match faces.get(&key) {
-                    Some(face) => {
+                let found = faces
+                    .get(&face_key(&facet.nodes))
+                    .copied()
+                    .unwrap_or_default();
+                match found.count {
+                    1 => {
+                        let el = &self.elements[found.element];
+                        let face: Vec<usize> = (el.kind.faces()[found.face].iter())
+                            .map(|&a| el.nodes[a])
+                            .collect();
                         // keep the facet's first node, follow the face's cycle
-                        let start = face.nodes.iter().position(|&n| n == facet.nodes[0]);
+                        let start = face.iter().position(|&n| n == facet.nodes[0]);
                         if let Some(s) = start {
                             // a facet given by its corners takes the face's
                             // mid-side nodes too
-                            facet.nodes = rotated(&face.nodes, s);
+                            facet.nodes = rotated(&face, s);
                             facet.kind = facet_kind(facet.nodes.len());
                         }
                     }
-                    None => {
-                        // an interface between two regions keeps its orientation
-                        let interior =
-                            interior.get_or_insert_with(|| interior_face_keys_of(&self.elements));
-                        if !interior.contains(&key) {
-                            orphans.push(OrphanFacet {
-                                surface: surface.name.clone(),
-                                facet_id: facet.id,
-                            });
-                        }
-                    }
+                    // no element's face
+                    0 => orphans.push(OrphanFacet {
+                        surface: surface.name.clone(),
+                        facet_id: facet.id,
+                    }),
+                    // an interface between two regions keeps its orientation
+                    _ => {}
                 }
             }
         }

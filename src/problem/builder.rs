@@ -36,6 +36,7 @@ impl Problem {
                 settings: SolverSettings::default(),
                 timings: Default::default(),
                 dissection: None,
+                side_pattern: None,
             },
             contacts: Vec::new(),
         }

@@ -128,12 +128,13 @@ pub struct Problem {
     /// as it exists, while the rest of the problem is built
     /// ([`dissects_element_graph`]); `None`: each ordering computes its own.
     pub dissection: Option<EarlyDissection>,
-    /// In a distributed run: the pattern of what is not an element's
-    /// (each contact node's couplings, the follower-load faces, the
-    /// multipliers; no element couplings), where contact and loads write
-    /// their tangent when the elements' goes into a linear solver's
-    /// matrix ([`Tangent::Sink`]). Rebuilt with the model's pattern.
-    side_pattern: Option<SparsityPattern>,
+    /// The pattern of what is not an element's (each contact node's
+    /// couplings, the follower-load faces, the multipliers; no element
+    /// couplings), where contact and loads write their tangent when the
+    /// elements' goes into a linear solver's matrix ([`Tangent::Sink`]):
+    /// made at the first such evaluation, dropped with the model's
+    /// pattern ([`Problem::side_pattern`]).
+    side_pattern: std::sync::OnceLock<SparsityPattern>,
 }
 
 /// Time spent in the assembly phases (element kernels and scatter; contact
@@ -331,8 +332,8 @@ impl Problem {
     }
 
     /// The sparsity pattern of the elements, of each secondary node with the
-    /// primary nodes it may touch, and of the multipliers; in a
-    /// distributed run the side pattern too ([`Problem::side_pattern`]).
+    /// primary nodes it may touch, and of the multipliers (the side
+    /// pattern of the earlier one dropped).
     fn rebuild_pattern(&mut self) {
         let couplings = self.contacts.couplings();
         self.model.pattern = self.model.pattern.coupled(
@@ -340,26 +341,32 @@ impl Problem {
             &couplings.multipliers,
             &couplings.multiplier_groups,
         );
-        if !self.model.is_shared() {
-            return;
-        }
-        // every node contact or a follower load writes to: each contact
-        // node with the nodes it couples (itself alone against a rigid
-        // obstacle), and the faces
-        let mut groups = self.follower_faces();
-        for c in &self.contacts {
-            groups.extend((0..c.nodes.len()).map(|i| c.coupled_nodes(i)));
-        }
-        let graph = NodeGraph::of_elements_and(
-            self.model.mesh.num_nodes(),
-            groups.iter().map(Vec::as_slice),
-            |_| false,
-        );
-        self.side_pattern = Some(SparsityPattern::from_graph(&graph).coupled(
-            &[],
-            &couplings.multipliers,
-            &couplings.multiplier_groups,
-        ));
+        self.side_pattern = std::sync::OnceLock::new();
+    }
+
+    /// The pattern of every node contact or a follower load writes to,
+    /// and nothing else: each contact node with the nodes it couples
+    /// (itself alone against a rigid obstacle), every pair of nodes of a
+    /// follower face, and the multipliers; made at the first call after
+    /// the model's pattern changed.
+    fn side_pattern(&self) -> &SparsityPattern {
+        self.side_pattern.get_or_init(|| {
+            let mut groups = self.follower_faces();
+            for c in &self.contacts {
+                groups.extend((0..c.nodes.len()).map(|i| c.coupled_nodes(i)));
+            }
+            let graph = NodeGraph::of_elements_and(
+                self.model.mesh.num_nodes(),
+                groups.iter().map(Vec::as_slice),
+                |_| false,
+            );
+            let couplings = self.contacts.couplings();
+            SparsityPattern::from_graph(&graph).coupled(
+                &[],
+                &couplings.multipliers,
+                &couplings.multiplier_groups,
+            )
+        })
     }
 
     /// Pair the secondary nodes with the primary triangles they may touch
@@ -499,13 +506,15 @@ impl Problem {
         let start = std::time::Instant::now();
         // contact and loads write by position: into the tangent's values,
         // or beside a sink into values on the side pattern
-        let (sink, mut side) = match (&tangent, &self.side_pattern) {
-            (Some(Tangent::Sink(sink)), Some(side)) => (Some(*sink), vec![0.0; side.nnz()]),
-            _ => (None, Vec::new()),
+        let sink = match &tangent {
+            Some(Tangent::Sink(sink)) => Some(*sink),
+            _ => None,
         };
-        let (pattern, mut values) = match (tangent, sink, &self.side_pattern) {
-            (_, Some(_), Some(side_pattern)) => (side_pattern, Some(&mut side[..])),
-            (Some(Tangent::Values(k)), _, _) => (&self.model.pattern, Some(k)),
+        let side_pattern = sink.map(|_| self.side_pattern());
+        let mut side = side_pattern.map_or_else(Vec::new, |p| vec![0.0; p.nnz()]);
+        let (pattern, mut values) = match (tangent, side_pattern) {
+            (_, Some(side_pattern)) => (side_pattern, Some(&mut side[..])),
+            (Some(Tangent::Values(k)), None) => (&self.model.pattern, Some(k)),
             _ => (&self.model.pattern, None),
         };
         // distributed (`mpirun`): every process holds the whole internal

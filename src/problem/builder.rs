@@ -36,7 +36,7 @@ impl Problem {
                 settings: SolverSettings::default(),
                 timings: Default::default(),
                 dissection: None,
-                side_pattern: None,
+                side_pattern: Default::default(),
             },
             contacts: Vec::new(),
         }

@@ -13,9 +13,8 @@
 
 mod common;
 
-use common::{fix, perturbed_state, problem, surface_interface};
+use common::{fix, perturbed_state, press, problem, surface_interface};
 use nalgebra::Vector3;
-use signorini::assembly::amplitude::Amplitude;
 use signorini::assembly::share::{Communicator, Share};
 use signorini::assembly::sink::{Entries, Tangent, TangentSink};
 use signorini::contact::interface::ContactInterface;
@@ -23,7 +22,7 @@ use signorini::contact::laws::NormalLaw;
 use signorini::contact::obstacle::RigidObstacle;
 use signorini::material::{LinearElastic, Material, NeoHookean};
 use signorini::mesh::{structured::box_mesh, ElementKind};
-use signorini::problem::{PressureLoad, Problem};
+use signorini::problem::Problem;
 use std::collections::HashMap;
 use std::sync::{Arc, Mutex};
 
@@ -112,7 +111,10 @@ fn assert_sinks_add_up(make: impl Fn() -> Problem, a: f64, what: &str) {
     let active = reports.iter().flatten().filter(|r| r.active).count();
     assert!(active > 0, "{what}: no contact node active");
     let entries = Arc::new(Mutex::new(HashMap::new()));
-    let (elements, nodes) = (serial.model.mesh.elements.len(), serial.model.mesh.num_nodes());
+    let (elements, nodes) = (
+        serial.model.mesh.elements.len(),
+        serial.model.mesh.num_nodes(),
+    );
     let dofs = serial.model.num_dofs();
     for rank in 0..2 {
         let mut part = make();
@@ -148,7 +150,10 @@ fn assert_sinks_add_up(make: impl Fn() -> Problem, a: f64, what: &str) {
         }
     }
     let outside = entries.values().fold(0.0f64, |m, v| m.max(v.abs()));
-    assert!(outside <= 1e-12 * scale, "{what}: {outside:e} outside the pattern");
+    assert!(
+        outside <= 1e-12 * scale,
+        "{what}: {outside:e} outside the pattern"
+    );
 }
 
 /// A 4 × 3 × 2 Hex8 block of `material` on the plane z = 0, x and y held
@@ -158,14 +163,7 @@ fn block(material: Arc<dyn Material>, follower: bool) -> Problem {
     let mut pr = problem(mesh, material);
     fix(&mut pr, "xmin", &[(0, 0.0)]);
     fix(&mut pr, "ymin", &[(1, 0.0)]);
-    let facets = pr.model.mesh.surface("zmax").unwrap().facets.clone();
-    pr.pressures.push(PressureLoad {
-        surface: "zmax".into(),
-        facets,
-        pressure: 5.0,
-        follower,
-        amplitude: Amplitude::ramp(),
-    });
+    press(&mut pr, "zmax", 5.0, follower);
     pr
 }
 
@@ -192,8 +190,8 @@ fn hooke_with_mortar_contact_and_its_multipliers() {
         let material = Arc::new(LinearElastic::new(100.0, 0.3, "m").unwrap());
         let mut pr = block(material, false);
         let law = NormalLaw::Rockafellar { p: 100.0, k: 1.0 };
-        let c = ContactInterface::mortar_rigid(&pr.model.mesh, "zmin", floor(), &law.into())
-            .unwrap();
+        let c =
+            ContactInterface::mortar_rigid(&pr.model.mesh, "zmin", floor(), &law.into()).unwrap();
         pr.set_contacts(vec![c]);
         pr
     };

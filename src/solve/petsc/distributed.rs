@@ -508,9 +508,11 @@ impl DistributedPetscSolver {
             return Err("the distributed matrix was not filled before the solve".into());
         };
         if layout.fingerprint != fingerprint || !system.matrix.is_empty() {
-            return Err("the distributed solver takes the tangent through its matrix \
+            return Err(
+                "the distributed solver takes the tangent through its matrix \
                         (LinearSolver::tangent_sink), not as values"
-                .into());
+                    .into(),
+            );
         }
         let b: Vec<f64> = numbering.owned.iter().map(|&old| rhs[old]).collect();
         let mut solution = vec![0.0; rhs.len()];
@@ -519,7 +521,15 @@ impl DistributedPetscSolver {
         // SAFETY: b holds this process's rows, `solution` the n unknowns
         // PETSc writes, the outcome's fields live until the call returns
         let result = self.handle.call(|h, err, len| unsafe {
-            ffi::sg_petsc_mpi_solve(h, b.as_ptr(), solution.as_mut_ptr(), iterations, seconds, err, len)
+            ffi::sg_petsc_mpi_solve(
+                h,
+                b.as_ptr(),
+                solution.as_mut_ptr(),
+                iterations,
+                seconds,
+                err,
+                len,
+            )
         });
         numbering.to_ours(&solution, x);
         self.tally.record(start, &outcome, result, x)

@@ -474,7 +474,11 @@ impl LinearSolver for PetscSolver {
         // (n each) live until the call returns
         let code =
             unsafe { ffi::sg_petsc_solve(self.handle, &system, err.as_mut_ptr(), err.len()) };
-        let result = if code == 0 { Ok(()) } else { Err(message(&err)) };
+        let result = if code == 0 {
+            Ok(())
+        } else {
+            Err(message(&err))
+        };
         self.tally.record(start, &outcome, result, x)
     }
 

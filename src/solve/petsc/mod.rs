@@ -15,8 +15,10 @@
 //! this module owns the bookkeeping of [`LinearSolver`]. The tangent goes
 //! to PETSc column by column (`MatSetValues` of each compressed column,
 //! straight from the tangent's own arrays, into a matrix preallocated
-//! once per pattern by PETSc's `MATPREALLOCATOR`): PETSc holds the one
-//! compressed-row copy of it, and no map from our entries to its.
+//! once per pattern by PETSc's `MATPREALLOCATOR`): PETSc holds one
+//! compressed-row copy of it beside Newton's values, and no map from our
+//! entries to its. Under `mpirun` ([`distributed`]) Newton assembles into
+//! PETSc's matrix itself, which is then the only copy.
 //!
 //! Each solver reads its options (the environment's `PETSC_OPTIONS`, then
 //! the case's) under a prefix of its own, `sg<k>_`, in PETSc's global

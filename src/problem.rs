@@ -128,13 +128,6 @@ pub struct Problem {
     /// as it exists, while the rest of the problem is built
     /// ([`dissects_element_graph`]); `None`: each ordering computes its own.
     pub dissection: Option<EarlyDissection>,
-    /// The pattern of what is not an element's (each contact node's
-    /// couplings, the follower-load faces, the multipliers; no element
-    /// couplings), where contact and loads write their tangent when the
-    /// elements' goes into a linear solver's matrix ([`Tangent::Sink`]):
-    /// made at the first such evaluation, dropped with the model's
-    /// pattern ([`Problem::side_pattern`]).
-    side_pattern: std::sync::OnceLock<SparsityPattern>,
 }
 
 /// Time spent in the assembly phases (element kernels and scatter; contact
@@ -332,8 +325,7 @@ impl Problem {
     }
 
     /// The sparsity pattern of the elements, of each secondary node with the
-    /// primary nodes it may touch, and of the multipliers (the side
-    /// pattern of the earlier one dropped).
+    /// primary nodes it may touch, and of the multipliers.
     fn rebuild_pattern(&mut self) {
         let couplings = self.contacts.couplings();
         self.model.pattern = self.model.pattern.coupled(
@@ -341,16 +333,17 @@ impl Problem {
             &couplings.multipliers,
             &couplings.multiplier_groups,
         );
-        self.side_pattern = std::sync::OnceLock::new();
     }
 
-    /// The pattern of every node contact or a follower load writes to,
-    /// and nothing else: each contact node with the nodes it couples
-    /// (itself alone against a rigid obstacle), every pair of nodes of a
-    /// follower face, and the multipliers; made at the first call after
-    /// the model's pattern changed.
-    fn side_pattern(&self) -> &SparsityPattern {
-        self.side_pattern.get_or_init(|| {
+    /// The side pattern: that of every node contact or a follower load
+    /// writes to, and nothing else (each contact node with the nodes it
+    /// couples, itself alone against a rigid obstacle; every pair of nodes
+    /// of a follower face; the multipliers), where contact and loads write
+    /// their tangent when the elements' goes into a linear solver's matrix
+    /// ([`Tangent::Sink`]); made at the first call for the model's pattern
+    /// ([`Model::side_pattern`]).
+    fn side_pattern(&self) -> std::sync::Arc<SparsityPattern> {
+        self.model.side_pattern(|| {
             let mut groups = self.follower_faces();
             for c in &self.contacts {
                 groups.extend((0..c.nodes.len()).map(|i| c.coupled_nodes(i)));
@@ -511,6 +504,7 @@ impl Problem {
             _ => None,
         };
         let side_pattern = sink.map(|_| self.side_pattern());
+        let side_pattern = side_pattern.as_deref();
         let mut side = side_pattern.map_or_else(Vec::new, |p| vec![0.0; p.nnz()]);
         let (pattern, mut values) = match (tangent, side_pattern) {
             (_, Some(side_pattern)) => (side_pattern, Some(&mut side[..])),

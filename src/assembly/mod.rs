@@ -68,6 +68,9 @@ pub struct Model {
     /// scatter map into it (built at the first assembly into it).
     lower: Mutex<Option<Arc<LowerTriangle>>>,
     lower_map: Mutex<Option<Arc<ScatterMap>>>,
+    /// The side pattern of the pattern it was made for
+    /// ([`Model::side_pattern`]).
+    side: Mutex<Option<(u64, Arc<SparsityPattern>)>>,
     /// `Some` when every element's material has a constant tangent.
     constant: Option<StiffnessCache>,
     /// In a distributed run: the elements this process assembles
@@ -167,6 +170,7 @@ impl Model {
             scatter_map: Mutex::new(None),
             lower: Mutex::new(None),
             lower_map: Mutex::new(None),
+            side: Mutex::new(None),
             constant,
             share: None,
         })
@@ -418,6 +422,23 @@ impl Model {
                 ));
                 *slot = Some(Arc::clone(&map));
                 (lower, map)
+            }
+        }
+    }
+
+    /// A pattern beside the current one, made by `build` at the first call
+    /// for the current pattern and kept until it changes: the pattern of
+    /// what is not an element's, into which the problem writes contact and
+    /// loads when the elements go into a linear solver's matrix
+    /// ([`sink`]).
+    pub fn side_pattern(&self, build: impl FnOnce() -> SparsityPattern) -> Arc<SparsityPattern> {
+        let mut slot = self.side.lock().unwrap_or_else(PoisonError::into_inner);
+        match slot.as_ref() {
+            Some((id, side)) if *id == self.pattern.id() => Arc::clone(side),
+            _ => {
+                let side = Arc::new(build());
+                *slot = Some((self.pattern.id(), Arc::clone(&side)));
+                side
             }
         }
     }

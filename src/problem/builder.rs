@@ -36,7 +36,6 @@ impl Problem {
                 settings: SolverSettings::default(),
                 timings: Default::default(),
                 dissection: None,
-                side_pattern: Default::default(),
             },
             contacts: Vec::new(),
         }

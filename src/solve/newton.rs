@@ -13,7 +13,8 @@ use super::josephy::{HeldTangent, Josephy, JosephyStep};
 use super::linear_solver::{LinearFigures, LinearSolver, LinearSystem};
 use super::nonlinear::{Evaluation, NonlinearProblem};
 use super::settings::{Predictor, SolverSettings};
-use super::tangent_store::{apply_identity_rows, TangentStore};
+pub use super::tangent_store::apply_identity_rows;
+use super::tangent_store::TangentStore;
 
 pub use super::record::IterationRecord;
 

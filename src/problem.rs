@@ -6,6 +6,8 @@
 //! lists); [`crate::case`] builds it from the case file.
 
 use crate::assembly::loads::pressure_facet;
+use crate::assembly::pattern::{NodeGraph, SparsityPattern};
+use crate::assembly::sink::{Entries, Tangent};
 use crate::assembly::{ElementFailure, Model};
 use crate::contact::friction::FrictionMultiplier;
 use crate::contact::interface::{ContactContext, ContactInterface, NodeReport};
@@ -205,7 +207,18 @@ impl Problem {
 
     /// External force at time `t` and displacement `u`; if `tangent` is
     /// given, add the follower-load stiffness `−∂f_ext/∂u` (nonsymmetric).
-    pub fn external_force(&self, t: f64, u: &[f64], mut tangent: Option<&mut [f64]>) -> Vec<f64> {
+    pub fn external_force(&self, t: f64, u: &[f64], tangent: Option<&mut [f64]>) -> Vec<f64> {
+        self.external_force_on(t, u, tangent.map(|k| (&self.model.pattern, k)))
+    }
+
+    /// [`Problem::external_force`] with the follower-load stiffness added
+    /// into values on the pattern given with them.
+    fn external_force_on(
+        &self,
+        t: f64,
+        u: &[f64],
+        mut tangent: Option<(&SparsityPattern, &mut [f64])>,
+    ) -> Vec<f64> {
         let mesh = &self.model.mesh;
         let mut f = vec![0.0; self.model.num_dofs()];
         for b in &self.body_forces {
@@ -245,9 +258,9 @@ impl Problem {
                 let with_tangent = p.follower && tangent.is_some();
                 let (fe, ke) = pressure_facet(facet.kind, &coords, value, with_tangent);
                 crate::assembly::scatter::add_nodal(&mut f, &facet.nodes, |k| fe[k]);
-                if let (true, Some(k)) = (with_tangent, tangent.as_deref_mut()) {
+                if let (true, Some((pattern, k))) = (with_tangent, tangent.as_mut()) {
                     crate::assembly::scatter_block_matrix(
-                        &self.model.pattern,
+                        pattern,
                         &facet.nodes,
                         &ke,
                         3 * facet.nodes.len(),
@@ -297,12 +310,18 @@ impl Problem {
     /// the contact couplings and the faces of the follower pressures (on
     /// every process: each adds their tangent in the rows it owns).
     pub fn set_share(&mut self, share: crate::assembly::share::Share) {
-        let followers = self.pressures.iter().filter(|p| p.follower);
-        let faces: Vec<Vec<usize>> = followers
-            .flat_map(|p| p.facets.iter().map(|f| f.nodes.clone()))
-            .collect();
+        let faces = self.follower_faces();
         self.model.set_share_with_local_rows(share, &faces);
         self.rebuild_pattern();
+    }
+
+    /// The node lists of the follower-pressure faces (their tangent
+    /// couples every pair of a face's nodes).
+    fn follower_faces(&self) -> Vec<Vec<usize>> {
+        let followers = self.pressures.iter().filter(|p| p.follower);
+        followers
+            .flat_map(|p| p.facets.iter().map(|f| f.nodes.clone()))
+            .collect()
     }
 
     /// The sparsity pattern of the elements, of each secondary node with the
@@ -314,6 +333,33 @@ impl Problem {
             &couplings.multipliers,
             &couplings.multiplier_groups,
         );
+    }
+
+    /// The side pattern: that of every node contact or a follower load
+    /// writes to, and nothing else (each contact node with the nodes it
+    /// couples, itself alone against a rigid obstacle; every pair of nodes
+    /// of a follower face; the multipliers), where contact and loads write
+    /// their tangent when the elements' goes into a linear solver's matrix
+    /// ([`Tangent::Sink`]); made at the first call for the model's pattern
+    /// ([`Model::side_pattern`]).
+    fn side_pattern(&self) -> std::sync::Arc<SparsityPattern> {
+        self.model.side_pattern(|| {
+            let mut groups = self.follower_faces();
+            for c in &self.contacts {
+                groups.extend((0..c.nodes.len()).map(|i| c.coupled_nodes(i)));
+            }
+            let graph = NodeGraph::of_elements_and(
+                self.model.mesh.num_nodes(),
+                groups.iter().map(Vec::as_slice),
+                |_| false,
+            );
+            let couplings = self.contacts.couplings();
+            SparsityPattern::from_graph(&graph).coupled(
+                &[],
+                &couplings.multipliers,
+                &couplings.multiplier_groups,
+            )
+        })
     }
 
     /// Pair the secondary nodes with the primary triangles they may touch
@@ -428,31 +474,64 @@ impl Problem {
         t: f64,
         x: &[f64],
         contact: &ContactState,
-        mut tangent: Option<&mut [f64]>,
+        tangent: Option<&mut [f64]>,
+    ) -> Result<(Residual, Vec<Vec<NodeReport>>), ElementFailure> {
+        self.residual_into(t, x, contact, tangent.map(Tangent::Values))
+    }
+
+    /// [`Problem::residual_in`] with the tangent written into `tangent`:
+    /// values on the model's pattern, or a linear solver's matrix
+    /// ([`Tangent::Sink`], a distributed run), into which the elements go
+    /// straight and contact and loads through values on the side pattern
+    /// ([`Problem::side_pattern`]), their own rows only.
+    pub fn residual_into(
+        &self,
+        t: f64,
+        x: &[f64],
+        contact: &ContactState,
+        mut tangent: Option<Tangent<'_>>,
     ) -> Result<(Residual, Vec<Vec<NodeReport>>), ElementFailure> {
         let start = std::time::Instant::now();
         let mut r = vec![0.0; self.num_unknowns()];
         self.model
-            .assemble_internal(x, &mut r, tangent.as_deref_mut())?;
+            .assemble_internal_into(x, &mut r, tangent.as_mut().map(Tangent::reborrow))?;
         PhaseTimings::add(&self.timings.assembly_ns, start);
         let start = std::time::Instant::now();
-        let pattern = &self.model.pattern;
+        // contact and loads write by position: into the tangent's values,
+        // or beside a sink into values on the side pattern
+        let sink = match &tangent {
+            Some(Tangent::Sink(sink)) => Some(*sink),
+            _ => None,
+        };
+        let side_pattern = sink.map(|_| self.side_pattern());
+        let side_pattern = side_pattern.as_deref();
+        let mut side = side_pattern.map_or_else(Vec::new, |p| vec![0.0; p.nnz()]);
+        let (pattern, mut values) = match (tangent, side_pattern) {
+            (_, Some(side_pattern)) => (side_pattern, Some(&mut side[..])),
+            (Some(Tangent::Values(k)), None) => (&self.model.pattern, Some(k)),
+            _ => (&self.model.pattern, None),
+        };
         // distributed (`mpirun`): every process holds the whole internal
         // force and computes contact and loads alike, and adds their
         // tangent to its part of K in the rows it owns only
-        let foreign = tangent.as_deref().map(|k| self.model.foreign_entries(k));
+        let foreign = match (&values, sink) {
+            (Some(k), None) => Some(self.model.foreign_entries(k)),
+            _ => None,
+        };
         let reports = self.contacts.assemble(
             &self.contact_context(t, x),
             contact,
             &mut r,
-            tangent.as_deref_mut().map(|k| (pattern, k)),
+            values.as_deref_mut().map(|k| (pattern, k)),
         );
         PhaseTimings::add(&self.timings.contact_ns, start);
         let start = std::time::Instant::now();
         let internal_norm = norm(&r);
-        let f_ext = self.external_force(t, x, tangent.as_deref_mut());
-        if let (Some(k), Some(foreign)) = (tangent, foreign) {
-            self.model.restore_entries(k, &foreign);
+        let f_ext = self.external_force_on(t, x, values.as_deref_mut().map(|k| (pattern, k)));
+        match (values, foreign, sink) {
+            (Some(k), Some(foreign), _) => self.model.restore_entries(k, &foreign),
+            (Some(k), _, Some(sink)) => sink.add_columns(pattern.symbolic(), k, Entries::OwnRows),
+            _ => {}
         }
         PhaseTimings::add(&self.timings.assembly_ns, start);
         for (ri, fi) in r.iter_mut().zip(&f_ext) {

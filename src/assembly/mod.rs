@@ -33,6 +33,7 @@ pub mod pattern;
 pub mod scatter;
 pub mod scatter_map;
 pub mod share;
+pub mod sink;
 pub mod triangle;
 
 use crate::material::{Mat3, Material};
@@ -44,6 +45,7 @@ use pattern::{NodeGraph, SparsityPattern};
 use rayon::prelude::*;
 use scatter_map::ScatterMap;
 use share::Share;
+use sink::{Tangent, TangentSink};
 use std::sync::{Arc, Mutex, OnceLock, PoisonError};
 use triangle::LowerTriangle;
 
@@ -66,6 +68,9 @@ pub struct Model {
     /// scatter map into it (built at the first assembly into it).
     lower: Mutex<Option<Arc<LowerTriangle>>>,
     lower_map: Mutex<Option<Arc<ScatterMap>>>,
+    /// The side pattern of the pattern it was made for
+    /// ([`Model::side_pattern`]).
+    side: Mutex<Option<(u64, Arc<SparsityPattern>)>>,
     /// `Some` when every element's material has a constant tangent.
     constant: Option<StiffnessCache>,
     /// In a distributed run: the elements this process assembles
@@ -165,6 +170,7 @@ impl Model {
             scatter_map: Mutex::new(None),
             lower: Mutex::new(None),
             lower_map: Mutex::new(None),
+            side: Mutex::new(None),
             constant,
             share: None,
         })
@@ -276,7 +282,23 @@ impl Model {
         force: &mut [f64],
         tangent: Option<&mut [f64]>,
     ) -> Result<(), ElementFailure> {
-        self.assemble_internal_in(u, force, tangent.map(|t| (t, Storage::Full)))
+        self.assemble_internal_in(u, force, tangent.map(|t| Out::Values(t, Storage::Full)))
+    }
+
+    /// [`Model::assemble_internal`] with the tangent written into
+    /// `tangent`: values on the pattern, or a linear solver's matrix
+    /// ([`sink`]; the element part only, added to what the sink holds).
+    pub fn assemble_internal_into(
+        &self,
+        u: &[f64],
+        force: &mut [f64],
+        tangent: Option<Tangent<'_>>,
+    ) -> Result<(), ElementFailure> {
+        let out = tangent.map(|t| match t {
+            Tangent::Values(v) => Out::Values(v, Storage::Full),
+            Tangent::Sink(s) => Out::Sink(s),
+        });
+        self.assemble_internal_in(u, force, out)
     }
 
     /// [`Model::assemble_internal`] with the tangent's lower triangle alone
@@ -290,7 +312,7 @@ impl Model {
         force: &mut [f64],
         tangent: &mut [f64],
     ) -> Result<(), ElementFailure> {
-        self.assemble_internal_in(u, force, Some((tangent, Storage::Lower)))
+        self.assemble_internal_in(u, force, Some(Out::Values(tangent, Storage::Lower)))
     }
 
     /// [`Model::assemble_internal`] into a tangent stored as `Storage` says.
@@ -298,14 +320,17 @@ impl Model {
         &self,
         u: &[f64],
         force: &mut [f64],
-        tangent: Option<(&mut [f64], Storage)>,
+        tangent: Option<Out<'_>>,
     ) -> Result<(), ElementFailure> {
         let local = if let Some(k) = self.constant_stiffness() {
             let lower = self.lower_triangle();
             triangle::multiply(lower.symbolic(), &k, u, force);
             match tangent {
-                Some((t, Storage::Full)) => lower.expand_into(&self.pattern, &k, t),
-                Some((t, Storage::Lower)) => t.copy_from_slice(&k),
+                Some(Out::Values(t, Storage::Full)) => lower.expand_into(&self.pattern, &k, t),
+                Some(Out::Values(t, Storage::Lower)) => t.copy_from_slice(&k),
+                Some(Out::Sink(sink)) => {
+                    sink.add_columns(lower.symbolic(), &k, sink::Entries::LowerMirrored)
+                }
                 None => {}
             }
             Ok(())
@@ -348,7 +373,7 @@ impl Model {
             let zero = vec![0.0; self.pattern.dimension()];
             let mut force = vec![0.0; self.pattern.dimension()];
             let mut k = vec![0.0; self.lower_triangle().nnz()];
-            self.assemble_elements(&zero, &mut force, Some((&mut k, Storage::Lower)))
+            self.assemble_elements(&zero, &mut force, Some(Out::Values(&mut k, Storage::Lower)))
                 .ok()?;
             Some(k)
         });
@@ -401,6 +426,23 @@ impl Model {
         }
     }
 
+    /// A pattern beside the current one, made by `build` at the first call
+    /// for the current pattern and kept until it changes: the pattern of
+    /// what is not an element's, into which the problem writes contact and
+    /// loads when the elements go into a linear solver's matrix
+    /// ([`sink`]).
+    pub fn side_pattern(&self, build: impl FnOnce() -> SparsityPattern) -> Arc<SparsityPattern> {
+        let mut slot = self.side.lock().unwrap_or_else(PoisonError::into_inner);
+        match slot.as_ref() {
+            Some((id, side)) if *id == self.pattern.id() => Arc::clone(side),
+            _ => {
+                let side = Arc::new(build());
+                *slot = Some((self.pattern.id(), Arc::clone(&side)));
+                side
+            }
+        }
+    }
+
     /// The scatter map of the current pattern (built at the first call for it).
     fn scatter_map(&self) -> Arc<ScatterMap> {
         let mut slot = self
@@ -428,10 +470,14 @@ impl Model {
         &self,
         u: &[f64],
         force: &mut [f64],
-        tangent: Option<(&mut [f64], Storage)>,
+        tangent: Option<Out<'_>>,
     ) -> Result<(), ElementFailure> {
         force.iter_mut().for_each(|x| *x = 0.0);
-        let (tangent, storage) = tangent.unzip();
+        let (tangent, storage, sink) = match tangent {
+            Some(Out::Values(k, storage)) => (Some(k), Some(storage), None),
+            Some(Out::Sink(sink)) => (None, None, Some(sink)),
+            None => (None, None, None),
+        };
         let tangent = tangent.map(|k| {
             // the whole tangent (megabytes) zeroed on the threads too
             k.par_chunks_mut(ZERO_CHUNK).for_each(|c| c.fill(0.0));
@@ -449,11 +495,12 @@ impl Model {
         let target = tangent
             .as_ref()
             .zip(map.as_deref())
-            .map(|(values, map)| Target {
+            .map(|(values, map)| Target::Values {
                 values,
                 map,
                 lower: lower.as_deref(),
-            });
+            })
+            .or(sink.map(Target::Sink));
         let mut first_failure: Option<ElementFailure> = None;
         for colour in self.colouring().colours() {
             let owned = |e: &&usize| self.share.as_ref().is_none_or(|s| s.owned[**e]);
@@ -541,10 +588,21 @@ impl Model {
         let Some(target) = tangent else {
             return Ok(());
         };
+        let (values, map, lower) = match target {
+            Target::Values { values, map, lower } => (values, map, lower),
+            Target::Sink(sink) => {
+                let mut dofs_of = [0; 3 * MAX_NODES];
+                for (a, &na) in nodes.iter().enumerate() {
+                    dofs_of[3 * a..3 * a + 3].copy_from_slice(&[3 * na, 3 * na + 1, 3 * na + 2]);
+                }
+                sink.add_element(&dofs_of[..dofs], &ke[..dofs * dofs]);
+                return Ok(());
+            }
+        };
         // K_e is exactly symmetric: entry (3a + i, 3b + j) is read as
         // (3b + j, 3a + i), contiguous in i like the global column
-        let (values, starts) = (target.values, target.map.element(e));
-        if let Some(lower) = target.lower {
+        let starts = map.element(e);
+        if let Some(lower) = lower {
             for (a, &na) in nodes.iter().enumerate() {
                 for (b, &nb) in nodes.iter().enumerate() {
                     let start = starts[a * n + b];
@@ -656,12 +714,23 @@ enum Storage {
     Lower,
 }
 
+/// A tangent the model's assembly writes: values stored as `Storage`
+/// says, or a linear solver's matrix.
+enum Out<'a> {
+    Values(&'a mut [f64], Storage),
+    Sink(&'a dyn TangentSink),
+}
+
 /// Where the element loop adds the element stiffnesses: `values` through
-/// `map`, which points into the lower triangle `lower` if given.
-struct Target<'a> {
-    values: &'a DisjointSlice<'a>,
-    map: &'a ScatterMap,
-    lower: Option<&'a LowerTriangle>,
+/// `map`, which points into the lower triangle `lower` if given; or a
+/// sink, by global rows and columns.
+enum Target<'a> {
+    Values {
+        values: &'a DisjointSlice<'a>,
+        map: &'a ScatterMap,
+        lower: Option<&'a LowerTriangle>,
+    },
+    Sink(&'a dyn TangentSink),
 }
 
 /// Add a dense element matrix (row-major, `dofs × dofs`, node-major dofs)
@@ -828,7 +897,7 @@ mod tests {
                 let mut f = vec![0.0; f_ref.len()];
                 let mut k = vec![0.0; k_ref.len()];
                 model
-                    .assemble_elements(&u, &mut f, Some((&mut k, Storage::Full)))
+                    .assemble_elements(&u, &mut f, Some(Out::Values(&mut k, Storage::Full)))
                     .unwrap();
                 assert_close(&f, &f_ref, &format!("{what} element force"));
                 assert_close(&k, &k_ref, &format!("{what} element tangent"));
@@ -901,12 +970,12 @@ mod tests {
                 let mut f = vec![0.0; f_full.len()];
                 let mut k = vec![0.0; k_full.len()];
                 model
-                    .assemble_elements(&u, &mut f, Some((&mut k, Storage::Full)))
+                    .assemble_elements(&u, &mut f, Some(Out::Values(&mut k, Storage::Full)))
                     .unwrap();
                 assert_close(&k, &k_full, &format!("{what} element tangent"));
                 let mut k_lower = vec![0.0; lower.nnz()];
                 model
-                    .assemble_elements(&u, &mut f, Some((&mut k_lower, Storage::Lower)))
+                    .assemble_elements(&u, &mut f, Some(Out::Values(&mut k_lower, Storage::Lower)))
                     .unwrap();
                 assert_eq!(
                     k_lower,

@@ -6,7 +6,7 @@
 //!
 //! ## The equations
 //! With `K̃` the stiffness whose prescribed rows and columns are a scaled
-//! identity (as in Newton, [`crate::solve::newton::apply_identity_rows`];
+//! identity (as in Newton, [`crate::solve::tangent_store::apply_identity_rows`];
 //! the multiplier unknowns too, at zero), `E` the matrix whose column `a`
 //! is the plane's normal `n` on the free dofs of contact node `a`, and
 //! `λ_a = A_a t_N,a` the normal contact force of node `a`, equilibrium at

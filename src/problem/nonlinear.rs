@@ -58,17 +58,17 @@ impl NonlinearProblem for Problem {
     fn initial_state(&self, x: &[f64]) -> ContactState {
         self.initial_contact_state(x)
     }
-    /// [`Problem::residual_in`]; a node's status code is its
+    /// [`Problem::residual_into`]; a node's status code is its
     /// open/stick/slip code plus 4 × (1 + its primary triangle).
     fn evaluate(
         &self,
         t: f64,
         x: &[f64],
         state: &ContactState,
-        tangent: Option<&mut [f64]>,
+        tangent: Option<crate::assembly::sink::Tangent<'_>>,
     ) -> Result<Evaluation<Self::Report>, IncrementFailure> {
         let (residual, reports) = self
-            .residual_in(t, x, state, tangent)
+            .residual_into(t, x, state, tangent)
             .map_err(|f| self.element_failure(&f))?;
         let statuses = reports
             .iter()

@@ -6,7 +6,9 @@
 //! `[solver] linear` key picks one in [`super::backend::linear_solver`].
 
 use super::linear::{FactorReport, Ordering};
+use crate::assembly::sink::TangentSink;
 use faer::sparse::SymbolicSparseColMat;
+use std::sync::Arc;
 use std::time::Duration;
 
 /// One linear system `K x = b` of a Newton iteration.
@@ -14,7 +16,8 @@ pub struct LinearSystem<'a> {
     /// Full (both triangles) CSC pattern of `K`.
     pub pattern: &'a SymbolicSparseColMat<usize>,
     /// The values of `K` (prescribed rows and columns already replaced by a
-    /// scaled identity).
+    /// scaled identity); empty when the solver's own matrix holds `K`
+    /// ([`LinearSolver::tangent_sink`]).
     pub matrix: &'a [f64],
     /// For a nonsymmetric `K`: a symmetric matrix on the same pattern that
     /// differs from `K` only in a few blocks (the preconditioner's). `None`
@@ -170,5 +173,17 @@ pub trait LinearSolver {
     /// Newton a tangent-sized array and its mirror positions per solve.
     fn reads_symmetric_neighbour(&self) -> bool {
         true
+    }
+    /// The solver's own matrix as the place Newton's tangent is assembled
+    /// into ([`TangentSink`]), laid out for `pattern`, where the solver has
+    /// one (PETSc's distributed matrix): Newton then keeps no values array
+    /// and hands [`LinearSolver::solve`] an empty
+    /// [`LinearSystem::matrix`]. `None` (the default): the solver reads the
+    /// values.
+    fn tangent_sink(
+        &mut self,
+        _pattern: &SymbolicSparseColMat<usize>,
+    ) -> Result<Option<Arc<dyn TangentSink>>, String> {
+        Ok(None)
     }
 }

@@ -13,6 +13,8 @@ use super::josephy::{HeldTangent, Josephy, JosephyStep};
 use super::linear_solver::{LinearFigures, LinearSolver, LinearSystem};
 use super::nonlinear::{Evaluation, NonlinearProblem};
 use super::settings::{Predictor, SolverSettings};
+pub use super::tangent_store::apply_identity_rows;
+use super::tangent_store::TangentStore;
 
 pub use super::record::IterationRecord;
 
@@ -83,7 +85,10 @@ impl<P: NonlinearProblem> Newton<'_, P> {
         let mut target = u_start.to_vec();
         problem.apply_prescribed(t, &mut target);
         let mut records: Vec<IterationRecord> = Vec::new();
-        let mut k_values = vec![0.0; blocks.nnz()];
+        let mut tangent = match TangentStore::new(problem, &mut *self.solver) {
+            Ok(tangent) => tangent,
+            Err(f) => return (Err(f), records),
+        };
         let mut kd = vec![0.0; u.len()];
         let mut last_correction = f64::INFINITY;
         // the largest force the prescribed jump set up in this increment
@@ -108,11 +113,17 @@ impl<P: NonlinearProblem> Newton<'_, P> {
             let have_tangent = !(at_target && may_converge);
             let evaluation = match ahead.take() {
                 Some(e) if have_tangent => e,
-                _ => match problem.evaluate(t, u, state, have_tangent.then_some(&mut k_values[..]))
-                {
-                    Ok(e) => e,
-                    Err(f) => return (Err(f), records),
-                },
+                _ => {
+                    let evaluated = if have_tangent {
+                        tangent.evaluate(problem, t, u, state)
+                    } else {
+                        problem.evaluate(t, u, state, None)
+                    };
+                    match evaluated {
+                        Ok(e) => e,
+                        Err(f) => return (Err(f), records),
+                    }
+                }
             };
             // every contact node open (status 0 mod 4): nothing but supports holds the body
             let all_open = evaluation.statuses.iter().all(|s| s % 4 == 0);
@@ -121,8 +132,11 @@ impl<P: NonlinearProblem> Newton<'_, P> {
             let (switched, chattering) = chatter.observe(evaluation.statuses.clone());
             let mut r = evaluation.residual.clone();
             zero_constrained(&mut r, constrained);
-            let known = have_tangent.then_some(&k_values[..]);
-            let out_of_balance = self.out_of_balance(&r, known, &jump, at_target, &mut kd);
+            let known = have_tangent.then_some(&tangent);
+            let out_of_balance = match self.out_of_balance(&r, known, &jump, at_target, &mut kd) {
+                Ok(v) => v,
+                Err(f) => return (Err(f), records),
+            };
             // the force scale: internal and external forces, those of earlier
             // increments, and the forces the prescribed jump sets up (all there
             // is at the first iteration of a displacement-driven run), kept
@@ -157,7 +171,7 @@ impl<P: NonlinearProblem> Newton<'_, P> {
                 have_tangent,
             };
             let (du, predictor) =
-                match self.correction(iteration, solve, u, state, &mut k_values, &mut records) {
+                match self.correction(iteration, solve, u, state, &mut tangent, &mut records) {
                     Ok(c) => c,
                     Err(f) => return (Err(f), records),
                 };
@@ -171,7 +185,7 @@ impl<P: NonlinearProblem> Newton<'_, P> {
                 predictor,
             };
             let (step_length, taken) =
-                self.line_search(line, &out_of_balance, relative, state, &mut k_values);
+                self.line_search(line, &out_of_balance, relative, state, &mut tangent);
             ahead = taken;
             last_correction = self.advance(u, &du, step_length, state, &target, increment_start);
             if let Some(rec) = records.last_mut() {
@@ -197,7 +211,7 @@ impl<P: NonlinearProblem> Newton<'_, P> {
         solve: TangentSolve<'_>,
         u: &[f64],
         state: &P::State,
-        k: &mut [f64],
+        k: &mut TangentStore,
         records: &mut [IterationRecord],
     ) -> Result<(Vec<f64>, bool), IncrementFailure> {
         let contact_step = (iteration == 0 && self.predictor == Predictor::Contact)
@@ -228,21 +242,16 @@ impl<P: NonlinearProblem> Newton<'_, P> {
     fn out_of_balance(
         &self,
         r: &[f64],
-        k: Option<&[f64]>,
+        k: Option<&TangentStore>,
         jump: &[f64],
         at_target: bool,
         kd: &mut [f64],
-    ) -> Vec<f64> {
-        let problem = self.problem;
+    ) -> Result<Vec<f64>, IncrementFailure> {
         kd.iter_mut().for_each(|x| *x = 0.0);
-        if let Some(k) = k {
-            if !at_target {
-                super::linear::multiply(problem.pattern().symbolic(), k, jump, kd);
-            }
-            // distributed: K_fc d from every process's part of K
-            problem.sum_over_processes(kd);
+        if let (Some(k), false) = (k, at_target) {
+            k.multiply(self.problem, jump, kd)?;
         }
-        (0..r.len())
+        Ok((0..r.len())
             .map(|i| {
                 if self.constrained[i] {
                     0.0
@@ -250,7 +259,7 @@ impl<P: NonlinearProblem> Newton<'_, P> {
                     r[i] + kd[i]
                 }
             })
-            .collect()
+            .collect())
     }
 
     /// Newton's correction from the tangent `k` (evaluated first unless
@@ -264,23 +273,23 @@ impl<P: NonlinearProblem> Newton<'_, P> {
         solve: TangentSolve<'_>,
         u: &[f64],
         state: &P::State,
-        k: &mut [f64],
+        k: &mut TangentStore,
         records: &mut [IterationRecord],
     ) -> Result<Vec<f64>, IncrementFailure> {
         let (problem, constrained, t) = (self.problem, self.constrained, self.t);
         let blocks = problem.pattern();
         if !solve.have_tangent {
-            problem.evaluate(t, u, state, Some(&mut *k))?;
+            k.evaluate(problem, t, u, state)?;
         }
         let nonsymmetric = problem.has_nonsymmetric_tangent();
         let neighbour = (nonsymmetric && self.solver.reads_symmetric_neighbour()).then(|| {
-            let mut p = blocks.symmetric_part(k);
+            let mut p = blocks.symmetric_part(k.values());
             problem.symmetric_neighbour(t, u, state, constrained, &mut p);
             apply_identity_rows(problem, constrained, &mut p);
             p
         });
         // rhs: −(r_f + K_fc d) on the free dofs, (diagonal scale) · d on the prescribed ones
-        let diagonal = apply_identity_rows(problem, constrained, k);
+        let diagonal = k.identity_rows(problem, constrained)?;
         let rhs: Vec<f64> = (0..u.len())
             .map(|i| {
                 if constrained[i] {
@@ -293,7 +302,7 @@ impl<P: NonlinearProblem> Newton<'_, P> {
         let mut du = rhs.clone();
         let system = LinearSystem {
             pattern: blocks.symbolic(),
-            matrix: k,
+            matrix: k.values(),
             symmetric_neighbour: neighbour.as_deref(),
             pivot_signs: solve.signs,
         };
@@ -427,7 +436,7 @@ impl<P: NonlinearProblem> Newton<'_, P> {
         r: &[f64],
         relative: f64,
         state: &P::State,
-        k: &mut [f64],
+        k: &mut TangentStore,
     ) -> (f64, Option<Evaluation<P::Report>>) {
         let NewtonStep {
             u,
@@ -467,8 +476,12 @@ impl<P: NonlinearProblem> Newton<'_, P> {
             let mut trial_state = state.clone();
             problem.advance_state(t, u, &step, &mut trial_state);
             let with_tangent = full || predictor;
-            let tangent = with_tangent.then_some(&mut *k);
-            let Ok(evaluation) = problem.evaluate(t, &trial, &trial_state, tangent) else {
+            let evaluated = if with_tangent {
+                k.evaluate(problem, t, &trial, &trial_state)
+            } else {
+                problem.evaluate(t, &trial, &trial_state, None)
+            };
+            let Ok(evaluation) = evaluated else {
                 // an inverted element: shorter, and remember it in case all fail
                 if best.0 == f64::INFINITY {
                     best.1 = 0.5 * alpha;
@@ -632,23 +645,4 @@ fn zero_constrained(v: &mut [f64], constrained: &[bool]) {
             *x = 0.0;
         }
     }
-}
-
-/// Replace the rows and columns of prescribed dofs by a scaled identity
-/// (the scale is the mean absolute diagonal of the free dofs); returns the
-/// scale.
-pub fn apply_identity_rows<P: NonlinearProblem>(
-    problem: &P,
-    constrained: &[bool],
-    k: &mut [f64],
-) -> f64 {
-    let blocks = problem.pattern();
-    let diagonal = |d: usize| blocks.stored_diagonal(d);
-    super::linear::scaled_identity_rows(
-        blocks.symbolic(),
-        diagonal,
-        problem.num_dofs(),
-        constrained,
-        k,
-    )
 }

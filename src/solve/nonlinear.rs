@@ -8,6 +8,7 @@
 use super::failure::IncrementFailure;
 use super::settings::{SolverSettings, Step};
 use crate::assembly::pattern::SparsityPattern;
+use crate::assembly::sink::Tangent;
 
 /// One evaluation at time `t` and unknowns `x`: the residual
 /// `r = f_int − f_ext − f_contact` over all unknowns (displacements, then
@@ -99,14 +100,15 @@ pub trait NonlinearProblem {
     fn apply_prescribed(&self, t: f64, x: &mut [f64]);
     /// The history before the first increment, at unknowns `x`.
     fn initial_state(&self, x: &[f64]) -> Self::State;
-    /// Residual (and the tangent `K = ∂r/∂x` into `tangent`, if given) at
-    /// time `t`, unknowns `x` and history `state`.
+    /// Residual (and the tangent `K = ∂r/∂x` into `tangent`, if given:
+    /// values on [`pattern`](Self::pattern), or a linear solver's matrix)
+    /// at time `t`, unknowns `x` and history `state`.
     fn evaluate(
         &self,
         t: f64,
         x: &[f64],
         state: &Self::State,
-        tangent: Option<&mut [f64]>,
+        tangent: Option<Tangent<'_>>,
     ) -> Result<Evaluation<Self::Report>, IncrementFailure>;
     /// Turn the symmetric part `values` of a nonsymmetric tangent into the
     /// preconditioner's matrix (e.g. friction's slip blocks by stick blocks);

@@ -513,12 +513,12 @@ mod tests {
             t: f64,
             x: &[f64],
             _state: &(),
-            tangent: Option<&mut [f64]>,
+            tangent: Option<crate::assembly::sink::Tangent<'_>>,
         ) -> std::result::Result<Evaluation<()>, IncrementFailure> {
             let (k, c) = (self.k, self.c);
             let internal: Vec<f64> = x.iter().map(|&xi| k * xi + c * xi.powi(3)).collect();
             let external: Vec<f64> = self.f.iter().map(|fi| t * fi).collect();
-            if let Some(values) = tangent {
+            if let Some(crate::assembly::sink::Tangent::Values(values)) = tangent {
                 values.iter_mut().for_each(|v| *v = 0.0);
                 for (i, xi) in x.iter().enumerate() {
                     values[self.pattern.diagonal_entry(i)] = k + 3.0 * c * xi * xi;

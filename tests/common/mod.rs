@@ -56,6 +56,25 @@ pub fn fix(problem: &mut Problem, surface: &str, components: &[(usize, f64)]) {
     });
 }
 
+/// A pressure `pressure` (into the body, ramped from 0 at t = 0) on
+/// every facet of a surface, a follower load or a dead one.
+pub fn press(problem: &mut Problem, surface: &str, pressure: f64, follower: bool) {
+    let facets = problem
+        .model
+        .mesh
+        .surface(surface)
+        .expect("surface exists")
+        .facets
+        .clone();
+    problem.pressures.push(signorini::problem::PressureLoad {
+        surface: surface.into(),
+        facets,
+        pressure,
+        follower,
+        amplitude: Amplitude::ramp(),
+    });
+}
+
 /// Records every converged increment.
 #[derive(Default)]
 pub struct Recorder {

@@ -2,24 +2,26 @@
 //! MPI's world (through PETSc, initialised once) as a [`Communicator`],
 //! and a [`LinearSolver`] whose matrix is PETSc's distributed MPIAIJ.
 //!
-//! Every process holds its part `K^p` of the tangent on its own pattern
-//! (the rows of the elements it owns, [`crate::assembly::share`]). The
+//! Every process assembles its part `K^p` of the tangent (the rows of the
+//! elements it owns, [`crate::assembly::share`]) on its own pattern. The
 //! nodes are renumbered part after part (each part's nodes in mesh order,
 //! their three dofs together; contact multipliers, if any, keep their
 //! places at the end and belong to the last process), so that each
 //! process owns one contiguous block of PETSc's rows: the rows of its
-//! nodes. Each process gives PETSc every entry of the rows of its pattern
-//! it gives ([`RowLayout`]: its own, and those its elements or the contact
-//! couplings touch), column by column (`MatSetValues` of each compressed
-//! column, straight from `K^p`'s arrays, rows mapped to PETSc's), into a
-//! matrix preallocated once per pattern for what every process gives
-//! (PETSc's `MATPREALLOCATOR`) and zeroed before each solve: PETSc adds
-//! the processes' parts, sending the ghost rows' to their owners at the
-//! assembly, and keeps no map from our entries to its. Each process sets
-//! the right-hand side of its
-//! own rows; the KSP solves distributed and the
-//! solution is scattered whole to every process (`VecScatterCreateToAll`),
-//! so every process goes on with the same unknowns. Without multipliers
+//! nodes. The matrix is preallocated once per pattern for the entries
+//! every process gives (PETSc's `MATPREALLOCATOR`; [`RowLayout`]: the rows
+//! of its pattern it owns, and those its elements or the contact
+//! couplings touch) and is the tangent's one copy: Newton assembles into
+//! it through [`LinearSolver::tangent_sink`] ([`MatrixSink`]: the element
+//! blocks by `MatSetValues` with `ADD_VALUES` after `MatZeroEntries`,
+//! contact and loads in the own rows, the prescribed rows by
+//! `MatZeroRowsColumns`), and no process keeps a values array of `K^p`.
+//! PETSc adds the processes' parts, sending the ghost rows' to their
+//! owners at the assembly, and keeps no map from our entries to its. Each
+//! process sets the right-hand side of its own rows; the KSP solves
+//! distributed and the solution is scattered whole to every process
+//! (`VecScatterCreateToAll`), so every process goes on with the same
+//! unknowns. Without multipliers
 //! the matrix has block size 3 and the rigid-body modes of each process's
 //! own nodes; with them and `-pc_type fieldsplit`, fieldsplit's two fields
 //! are each process's own displacement rows (those modes their near-null
@@ -28,12 +30,14 @@
 use super::fault::{self, Agreement};
 use super::{check_indices, make_ksp, message, Columns, Outcome, Tally, MESSAGE, PETSC};
 use crate::assembly::share::Communicator;
+use crate::assembly::sink::{Entries, TangentSink};
 use crate::solve::linear::{pattern_fingerprint, Ordering};
 use crate::solve::linear_solver::{LinearSolver, LinearSystem, SolverStatistics};
 use crate::solve::partition::MeshPartition;
 use crate::{Error, Result};
 use faer::sparse::SymbolicSparseColMat;
 use std::ffi::{c_char, c_int, c_void};
+use std::sync::{Arc, Mutex, PoisonError};
 use std::time::Instant;
 
 mod ffi {
@@ -60,9 +64,47 @@ mod ffi {
             err: *mut c_char,
             len: usize,
         ) -> c_int;
+        pub fn sg_petsc_mpi_begin(handle: *mut c_void, err: *mut c_char, len: usize) -> c_int;
+        pub fn sg_petsc_mpi_add_block(
+            handle: *mut c_void,
+            n: c_int,
+            rows: *const c_int,
+            columns: *const c_int,
+            values: *const f64,
+            err: *mut c_char,
+            len: usize,
+        ) -> c_int;
+        pub fn sg_petsc_mpi_add_columns(
+            handle: *mut c_void,
+            columns: *const super::Columns,
+            values: *const f64,
+            mirrored: c_int,
+            err: *mut c_char,
+            len: usize,
+        ) -> c_int;
+        pub fn sg_petsc_mpi_finish(handle: *mut c_void, err: *mut c_char, len: usize) -> c_int;
+        pub fn sg_petsc_mpi_multiply(
+            handle: *mut c_void,
+            x: *const f64,
+            y: *mut f64,
+            err: *mut c_char,
+            len: usize,
+        ) -> c_int;
+        pub fn sg_petsc_mpi_identity_rows(
+            handle: *mut c_void,
+            n: c_int,
+            rows: *const c_int,
+            free_rows: *const c_char,
+            scale: *mut f64,
+            err: *mut c_char,
+            len: usize,
+        ) -> c_int;
         pub fn sg_petsc_mpi_solve(
             handle: *mut c_void,
-            system: *const super::DistributedSystem,
+            b: *const f64,
+            x: *mut f64,
+            iterations: *mut c_int,
+            seconds: *mut f64,
             err: *mut c_char,
             len: usize,
         ) -> c_int;
@@ -82,18 +124,6 @@ struct DistributedLayout {
     columns: Columns,
     coordinates: *const f64,
     displacements: c_int,
-}
-
-/// This process's part of a system for the C layer (`DistributedSystem`):
-/// the layout's columns and their values.
-#[repr(C)]
-struct DistributedSystem {
-    columns: Columns,
-    values: *const f64,
-    b: *const f64,
-    x: *mut f64,
-    iterations: *mut c_int,
-    seconds: *mut f64,
 }
 
 /// MPI's world, as PETSc initialised it.
@@ -262,21 +292,53 @@ impl RowLayout {
     }
 }
 
+/// The C layer's distributed solver (its KSP, matrix and vectors), freed
+/// when the solver and every sink of it are gone.
+struct Handle(*mut c_void);
+
+// SAFETY: the handle is only used under the `PETSC` lock
+unsafe impl Send for Handle {}
+// SAFETY: as above: every call through it holds the `PETSC` lock
+unsafe impl Sync for Handle {}
+
+impl Drop for Handle {
+    fn drop(&mut self) {
+        let _lock = PETSC.lock().unwrap_or_else(|e| e.into_inner());
+        // SAFETY: the handle came from sg_petsc_mpi_solver_new, freed once
+        unsafe { ffi::sg_petsc_mpi_solver_free(self.0) };
+    }
+}
+
+impl Handle {
+    /// Call the C layer's `f` with the handle and an error buffer, under
+    /// the `PETSC` lock; its message if it failed.
+    fn call(
+        &self,
+        f: impl FnOnce(*mut c_void, *mut c_char, usize) -> c_int,
+    ) -> std::result::Result<(), String> {
+        let mut err = [0 as c_char; MESSAGE];
+        let _lock = PETSC.lock().unwrap_or_else(|e| e.into_inner());
+        match f(self.0, err.as_mut_ptr(), err.len()) {
+            0 => Ok(()),
+            _ => Err(message(&err)),
+        }
+    }
+}
+
 /// PETSc's KSP and PC on the distributed tangent.
 pub struct DistributedPetscSolver {
-    handle: *mut c_void,
+    handle: Arc<Handle>,
     partition: MeshPartition,
     rank: usize,
     /// Reference coordinates (3 per node) for GAMG's near-null space.
     coordinates: Vec<f64>,
-    numbering: Option<Numbering>,
+    numbering: Option<Arc<Numbering>>,
     layout: Option<RowLayout>,
+    /// The matrix as Newton's sink, for the current layout.
+    sink: Option<Arc<MatrixSink>>,
     description: String,
     tally: Tally,
 }
-
-// SAFETY: the handle is only used under the `PETSC` lock
-unsafe impl Send for DistributedPetscSolver {}
 
 impl DistributedPetscSolver {
     /// A KSP on MPI's world set from `options` (after `PETSC_OPTIONS`,
@@ -296,12 +358,13 @@ impl DistributedPetscSolver {
         )?;
         let parts = partition.parts;
         Ok(DistributedPetscSolver {
-            handle,
+            handle: Arc::new(Handle(handle)),
             partition,
             rank,
             coordinates,
             numbering: None,
             layout: None,
+            sink: None,
             description: format!("{description}, distributed over {parts} processes"),
             tally: Tally::default(),
         })
@@ -320,7 +383,11 @@ impl DistributedPetscSolver {
             .as_ref()
             .is_none_or(|n| n.global.len() != unknowns)
         {
-            self.numbering = Some(Numbering::new(&self.partition, self.rank, unknowns));
+            self.numbering = Some(Arc::new(Numbering::new(
+                &self.partition,
+                self.rank,
+                unknowns,
+            )));
         }
         let Some(numbering) = &self.numbering else {
             return Err("no numbering".into());
@@ -346,26 +413,17 @@ impl DistributedPetscSolver {
             coordinates: coordinates.as_ptr(),
             displacements: displacements as c_int,
         };
-        let mut err = [0 as c_char; MESSAGE];
-        let _lock = PETSC.lock().unwrap_or_else(|e| e.into_inner());
         // SAFETY: the pattern's arrays and the maps (one per unknown) live
         // until the call returns; PETSc keeps none of them
-        let code = unsafe {
-            ffi::sg_petsc_mpi_layout(self.handle, &arguments, err.as_mut_ptr(), err.len())
-        };
-        if code != 0 {
-            return Err(message(&err));
-        }
+        self.handle
+            .call(|h, err, len| unsafe { ffi::sg_petsc_mpi_layout(h, &arguments, err, len) })?;
+        self.sink = Some(Arc::new(MatrixSink::new(
+            Arc::clone(&self.handle),
+            Arc::clone(numbering),
+            &layout,
+        )));
         self.layout = Some(layout);
         Ok(())
-    }
-}
-
-impl Drop for DistributedPetscSolver {
-    fn drop(&mut self) {
-        let _lock = PETSC.lock().unwrap_or_else(|e| e.into_inner());
-        // SAFETY: the handle came from sg_petsc_mpi_solver_new, freed once
-        unsafe { ffi::sg_petsc_mpi_solver_free(self.handle) };
     }
 }
 
@@ -399,6 +457,24 @@ impl LinearSolver for DistributedPetscSolver {
     fn reads_symmetric_neighbour(&self) -> bool {
         false
     }
+
+    /// The distributed matrix, laid out for `pattern` (preallocated anew
+    /// when the pattern changed): Newton assembles into it.
+    fn tangent_sink(
+        &mut self,
+        pattern: &SymbolicSparseColMat<usize>,
+    ) -> std::result::Result<Option<Arc<dyn TangentSink>>, String> {
+        let fingerprint = pattern_fingerprint(pattern);
+        if self
+            .layout
+            .as_ref()
+            .is_none_or(|l| l.fingerprint != fingerprint)
+        {
+            self.lay_out(pattern)?;
+        }
+        let sink = self.sink.as_ref().ok_or("no matrix layout")?;
+        Ok(Some(Arc::clone(sink) as Arc<dyn TangentSink>))
+    }
 }
 
 /// The outcome every process agreed on, given this process's `local` one:
@@ -417,7 +493,9 @@ fn agreed(local: std::result::Result<(), String>) -> std::result::Result<(), Str
 }
 
 impl DistributedPetscSolver {
-    /// This process's part of [`LinearSolver::solve`].
+    /// This process's part of [`LinearSolver::solve`]: the system's
+    /// matrix is the one Newton filled through the sink
+    /// ([`LinearSolver::tangent_sink`]).
     fn solve_here(
         &mut self,
         system: &LinearSystem<'_>,
@@ -426,40 +504,196 @@ impl DistributedPetscSolver {
     ) -> std::result::Result<(), String> {
         let start = Instant::now();
         let fingerprint = pattern_fingerprint(system.pattern);
-        if self
-            .layout
-            .as_ref()
-            .is_none_or(|l| l.fingerprint != fingerprint)
-        {
-            self.lay_out(system.pattern)?;
-        }
         let (Some(numbering), Some(layout)) = (&self.numbering, &self.layout) else {
-            return Err("no matrix layout".into());
+            return Err("the distributed matrix was not filled before the solve".into());
         };
-        let n = rhs.len();
-        let b: Vec<f64> = numbering.owned.iter().map(|&old| rhs[old]).collect();
-        let mut solution = vec![0.0; n];
-        let mut outcome = Outcome::default();
-        let arguments = DistributedSystem {
-            columns: Columns::of(system.pattern, &layout.rows, &numbering.columns),
-            values: system.matrix.as_ptr(),
-            b: b.as_ptr(),
-            x: solution.as_mut_ptr(),
-            iterations: &mut outcome.iterations,
-            seconds: outcome.seconds.as_mut_ptr(),
-        };
-        let mut err = [0 as c_char; MESSAGE];
-        let code = {
-            let _lock = PETSC.lock().unwrap_or_else(|e| e.into_inner());
-            // SAFETY: the pattern's arrays, the maps and the values (one
-            // per entry) live until the call returns; `solution` holds the
-            // n unknowns PETSc writes
-            unsafe { ffi::sg_petsc_mpi_solve(self.handle, &arguments, err.as_mut_ptr(), err.len()) }
-        };
-        for (old, xi) in x.iter_mut().enumerate() {
-            *xi = solution[numbering.global[old]];
+        if layout.fingerprint != fingerprint || !system.matrix.is_empty() {
+            return Err(
+                "the distributed solver takes the tangent through its matrix \
+                        (LinearSolver::tangent_sink), not as values"
+                    .into(),
+            );
         }
-        self.tally.record(start, &outcome, code, &err, x)
+        let b: Vec<f64> = numbering.owned.iter().map(|&old| rhs[old]).collect();
+        let mut solution = vec![0.0; rhs.len()];
+        let mut outcome = Outcome::default();
+        let (iterations, seconds) = (&mut outcome.iterations, outcome.seconds.as_mut_ptr());
+        // SAFETY: b holds this process's rows, `solution` the n unknowns
+        // PETSc writes, the outcome's fields live until the call returns
+        let result = self.handle.call(|h, err, len| unsafe {
+            ffi::sg_petsc_mpi_solve(
+                h,
+                b.as_ptr(),
+                solution.as_mut_ptr(),
+                iterations,
+                seconds,
+                err,
+                len,
+            )
+        });
+        numbering.to_ours(&solution, x);
+        self.tally.record(start, &outcome, result, x)
+    }
+}
+
+impl Numbering {
+    /// `ours[old] = petsc[global[old]]`: a whole vector in PETSc's
+    /// numbering into ours.
+    fn to_ours(&self, petsc: &[f64], ours: &mut [f64]) {
+        for (old, v) in ours.iter_mut().enumerate() {
+            *v = petsc[self.global[old]];
+        }
+    }
+}
+
+/// The distributed matrix as Newton's [`TangentSink`]: our unknowns mapped
+/// to PETSc's rows and columns ([`Numbering`], [`RowLayout`]), every call
+/// under the `PETSC` lock. The first failure is kept and reported by the
+/// next collective call that returns a result.
+struct MatrixSink {
+    handle: Arc<Handle>,
+    numbering: Arc<Numbering>,
+    /// PETSc's row of each of our rows this process gives (-1: none).
+    given: Vec<c_int>,
+    /// PETSc's row of each of our rows this process owns (-1: another's).
+    own: Vec<c_int>,
+    failure: Mutex<Option<String>>,
+}
+
+impl MatrixSink {
+    fn new(handle: Arc<Handle>, numbering: Arc<Numbering>, layout: &RowLayout) -> Self {
+        let end = numbering.first + numbering.owned.len();
+        let own = numbering
+            .global
+            .iter()
+            .map(|&g| {
+                if (numbering.first..end).contains(&g) {
+                    g as c_int
+                } else {
+                    -1
+                }
+            })
+            .collect();
+        MatrixSink {
+            handle,
+            numbering,
+            given: layout.rows.clone(),
+            own,
+            failure: Mutex::new(None),
+        }
+    }
+
+    /// Keep the first failure of `result`.
+    fn keep(&self, result: std::result::Result<(), String>) {
+        if let Err(e) = result {
+            let mut failure = self.failure.lock().unwrap_or_else(PoisonError::into_inner);
+            failure.get_or_insert(e);
+        }
+    }
+
+    /// The failure kept so far (taken), or `result`.
+    fn kept_or(&self, result: std::result::Result<(), String>) -> std::result::Result<(), String> {
+        let kept = self
+            .failure
+            .lock()
+            .unwrap_or_else(PoisonError::into_inner)
+            .take();
+        kept.map_or(result, Err)
+    }
+}
+
+impl TangentSink for MatrixSink {
+    fn begin(&self) {
+        // SAFETY: the handle and the buffer are valid
+        let result = self
+            .handle
+            .call(|h, err, len| unsafe { ffi::sg_petsc_mpi_begin(h, err, len) });
+        self.keep(result);
+    }
+
+    fn add_element(&self, dofs: &[usize], values: &[f64]) {
+        let mut rows = [0 as c_int; 3 * crate::assembly::kernel::MAX_NODES];
+        let mut columns = rows;
+        let n = dofs.len().min(rows.len());
+        for (k, &d) in dofs.iter().take(n).enumerate() {
+            rows[k] = self.given[d];
+            columns[k] = self.numbering.columns[d];
+        }
+        // SAFETY: n rows and columns, n² values (the caller's dense block)
+        let result = self.handle.call(|h, err, len| unsafe {
+            ffi::sg_petsc_mpi_add_block(
+                h,
+                n as c_int,
+                rows.as_ptr(),
+                columns.as_ptr(),
+                values.as_ptr(),
+                err,
+                len,
+            )
+        });
+        self.keep(result);
+    }
+
+    fn add_columns(&self, pattern: &SymbolicSparseColMat<usize>, values: &[f64], which: Entries) {
+        let rows = match which {
+            Entries::LowerMirrored => &self.given,
+            Entries::OwnRows => &self.own,
+        };
+        let columns = Columns::of(pattern, rows, &self.numbering.columns);
+        let mirrored = (which == Entries::LowerMirrored) as c_int;
+        // SAFETY: the pattern's arrays, the maps (one per unknown) and the
+        // values (one per entry) live until the call returns
+        let result = self.handle.call(|h, err, len| unsafe {
+            ffi::sg_petsc_mpi_add_columns(h, &columns, values.as_ptr(), mirrored, err, len)
+        });
+        self.keep(result);
+    }
+
+    fn finish(&self) -> std::result::Result<(), String> {
+        // SAFETY: the handle and the buffer are valid
+        let result = self
+            .handle
+            .call(|h, err, len| unsafe { ffi::sg_petsc_mpi_finish(h, err, len) });
+        self.kept_or(result)
+    }
+
+    fn multiply(&self, x: &[f64], y: &mut [f64]) -> std::result::Result<(), String> {
+        let own: Vec<f64> = self.numbering.owned.iter().map(|&old| x[old]).collect();
+        let mut whole = vec![0.0; y.len()];
+        // SAFETY: `own` holds this process's rows, `whole` every unknown
+        let result = self.handle.call(|h, err, len| unsafe {
+            ffi::sg_petsc_mpi_multiply(h, own.as_ptr(), whole.as_mut_ptr(), err, len)
+        });
+        self.numbering.to_ours(&whole, y);
+        self.kept_or(result)
+    }
+
+    fn identity_rows(&self, constrained: &[bool], dofs: usize) -> std::result::Result<f64, String> {
+        let owned = &self.numbering.owned;
+        let rows: Vec<c_int> = owned
+            .iter()
+            .filter(|&&old| constrained[old])
+            .map(|&old| self.own[old])
+            .collect();
+        let free: Vec<c_char> = owned
+            .iter()
+            .map(|&old| (old < dofs && !constrained[old]) as c_char)
+            .collect();
+        let mut scale = 1.0;
+        // SAFETY: the rows and the flags (one per own row) live until the
+        // call returns
+        let result = self.handle.call(|h, err, len| unsafe {
+            ffi::sg_petsc_mpi_identity_rows(
+                h,
+                rows.len() as c_int,
+                rows.as_ptr(),
+                free.as_ptr(),
+                &mut scale,
+                err,
+                len,
+            )
+        });
+        self.kept_or(result).map(|()| scale)
     }
 }
 

@@ -15,8 +15,10 @@
 //! this module owns the bookkeeping of [`LinearSolver`]. The tangent goes
 //! to PETSc column by column (`MatSetValues` of each compressed column,
 //! straight from the tangent's own arrays, into a matrix preallocated
-//! once per pattern by PETSc's `MATPREALLOCATOR`): PETSc holds the one
-//! compressed-row copy of it, and no map from our entries to its.
+//! once per pattern by PETSc's `MATPREALLOCATOR`): PETSc holds one
+//! compressed-row copy of it beside Newton's values, and no map from our
+//! entries to its. Under `mpirun` ([`distributed`]) Newton assembles into
+//! PETSc's matrix itself, which is then the only copy.
 //!
 //! Each solver reads its options (the environment's `PETSC_OPTIONS`, then
 //! the case's) under a prefix of its own, `sg<k>_`, in PETSc's global
@@ -231,14 +233,14 @@ struct Outcome {
 
 impl Tally {
     /// One solve begun at `start` with its `outcome` and the C layer's
-    /// return `code`; `x` the solution. Why it failed, if it did (the C
-    /// layer's message, or a solution that is not finite).
+    /// `result` (its message if it failed); `x` the solution. Why it
+    /// failed, if it did (the C layer's message, or a solution that is not
+    /// finite).
     fn record(
         &mut self,
         start: Instant,
         outcome: &Outcome,
-        code: c_int,
-        err: &[c_char],
+        result: std::result::Result<(), String>,
         x: &[f64],
     ) -> std::result::Result<(), String> {
         self.solves += 1;
@@ -247,9 +249,7 @@ impl Tally {
         let [setup, solve] = outcome.seconds.map(|s| Duration::from_secs_f64(s.max(0.0)));
         self.setup += setup;
         self.solve += solve;
-        if code != 0 {
-            return Err(message(err));
-        }
+        result?;
         if x.iter().any(|v| !v.is_finite()) {
             return Err("PETSc's solution is not finite: the tangent is singular".into());
         }
@@ -476,7 +476,12 @@ impl LinearSolver for PetscSolver {
         // (n each) live until the call returns
         let code =
             unsafe { ffi::sg_petsc_solve(self.handle, &system, err.as_mut_ptr(), err.len()) };
-        self.tally.record(start, &outcome, code, &err, x)
+        let result = if code == 0 {
+            Ok(())
+        } else {
+            Err(message(&err))
+        };
+        self.tally.record(start, &outcome, result, x)
     }
 
     fn description(&self) -> String {

@@ -440,31 +440,49 @@ typedef struct {
  * block per MatSetValues (the same in PETSc's row or column orientation),
  * with `mode`: PETSc finds each entry's place in its compressed rows, so
  * no map from the caller's positions to PETSc's is kept. Rows another
- * process owns go through PETSc's stash at the next assembly. */
-static int set_columns(Mat matrix, const Columns *c, const double *values,
-                       InsertMode mode, char *err, size_t err_len) {
+ * process owns go through PETSc's stash at the next assembly. `mirrored`:
+ * the columns hold a symmetric matrix's lower triangle, and each entry
+ * (i, j) off the diagonal goes in as (j, i) too, a 1 x m block of row j
+ * (PETSc's row of j, its columns those of the rows i). */
+static int put_columns(Mat matrix, const Columns *c, const double *values,
+                       InsertMode mode, int mirrored, char *err,
+                       size_t err_len) {
   size_t longest = 1;
   for (size_t j = 0; j < c->columns; j++) {
     size_t len = c->col_ptr[j + 1] - c->col_ptr[j];
     if (len > longest) longest = len;
   }
-  PetscInt *rows;
+  PetscInt *rows, *columns;
   PetscScalar *zeros;
   CHECK(PetscMalloc1(longest, &rows));
+  CHECK(PetscMalloc1(longest, &columns));
   CHECK(PetscCalloc1(longest, &zeros));
   for (size_t j = 0; j < c->columns; j++) {
     size_t first = c->col_ptr[j], len = c->col_ptr[j + 1] - first;
     for (size_t k = 0; k < len; k++) {
       size_t i = c->row_idx[first + k];
       rows[k] = c->row_map ? c->row_map[i] : (PetscInt)i;
+      /* the diagonal goes in once, as the column's */
+      columns[k] = i == j ? -1 : c->column_map ? c->column_map[i] : (PetscInt)i;
     }
     PetscInt column = c->column_map ? c->column_map[j] : (PetscInt)j;
-    CHECK(MatSetValues(matrix, (PetscInt)len, rows, 1, &column,
-                       values ? values + first : zeros, mode));
+    const PetscScalar *v = values ? values + first : zeros;
+    CHECK(MatSetValues(matrix, (PetscInt)len, rows, 1, &column, v, mode));
+    PetscInt row = c->row_map ? c->row_map[j] : (PetscInt)j;
+    if (mirrored && row >= 0) {
+      CHECK(MatSetValues(matrix, 1, &row, (PetscInt)len, columns, v, mode));
+    }
   }
   CHECK(PetscFree(rows));
+  CHECK(PetscFree(columns));
   CHECK(PetscFree(zeros));
   return 0;
+}
+
+/* put_columns, not mirrored. */
+static int set_columns(Mat matrix, const Columns *c, const double *values,
+                       InsertMode mode, char *err, size_t err_len) {
+  return put_columns(matrix, c, values, mode, 0, err, err_len);
 }
 
 /* Preallocate `matrix` (its type, sizes and block size set) for exactly
@@ -624,6 +642,8 @@ typedef struct {
   Mat matrix;
   Vec rhs, solution, everywhere;
   VecScatter to_all;
+  /* a fill of the matrix begun and not finished (sg_petsc_mpi_begin) */
+  int filling;
 } DistributedSolver;
 
 /* A KSP on PETSc's world (make_ksp). */
@@ -691,6 +711,11 @@ int sg_petsc_mpi_layout(void *handle, const DistributedLayout *layout,
   if (layout->block_size > 1) CHECK(MatSetBlockSize(s->matrix, layout->block_size));
   int failed = preallocate(s->matrix, &layout->columns, err, err_len);
   if (failed) return failed;
+  /* the prescribed rows and columns zeroed (sg_petsc_mpi_identity_rows)
+   * keep their entries: the next fill adds to them, and the
+   * preconditioner sees the same nonzero pattern */
+  CHECK(MatSetOption(s->matrix, MAT_KEEP_NONZERO_PATTERN, PETSC_TRUE));
+  s->filling = 0;
   CHECK(MatCreateVecs(s->matrix, &s->solution, &s->rhs));
   CHECK(VecScatterCreateToAll(s->solution, &s->to_all, &s->everywhere));
   if (layout->coordinates && layout->block_size == 3) {
@@ -709,55 +734,144 @@ int sg_petsc_mpi_layout(void *handle, const DistributedLayout *layout,
   return 0;
 }
 
-/* This process's part of one system (`DistributedSystem` in
- * distributed.rs): the layout's `columns` (the same pattern) and their
- * `values` (its part of K), added to the other processes' parts
- * (ADD_VALUES on a zeroed matrix: PETSc sums the ghost rows' entries at
- * their owners); `b` the right-hand side of its own rows; `x` the whole
- * solution (global numbering) on return, on every process; `iterations`
- * and `seconds` as sg_petsc_solve's. */
-typedef struct {
-  Columns columns;
-  const double *values;
-  const double *b;
-  double *x;
-  int *iterations;
-  double *seconds;
-} DistributedSystem;
-
-int sg_petsc_mpi_solve(void *handle, const DistributedSystem *system,
-                       char *err, size_t err_len) {
+/* The matrix's fill (collective, every process): a new one begins with
+ * every entry zero; one left unfinished (an evaluation that failed on
+ * every process after adding some entries) is assembled first, so that
+ * the entries it left in PETSc's stash for other processes' rows are not
+ * added to the next. */
+int sg_petsc_mpi_begin(void *handle, char *err, size_t err_len) {
   DistributedSolver *s = handle;
+  if (s->filling) {
+    CHECK(MatAssemblyBegin(s->matrix, MAT_FINAL_ASSEMBLY));
+    CHECK(MatAssemblyEnd(s->matrix, MAT_FINAL_ASSEMBLY));
+  }
   PetscBool assembled;
   CHECK(MatAssembled(s->matrix, &assembled));
   if (assembled) CHECK(MatZeroEntries(s->matrix));
-  int failed = set_columns(s->matrix, &system->columns, system->values,
-                           ADD_VALUES, err, err_len);
-  if (failed) return failed;
-  /* collective: every process */
+  s->filling = 1;
+  return 0;
+}
+
+/* Add a dense `n` x `n` block (row-major) at PETSc's `rows` and
+ * `columns` (a negative row: left out). */
+int sg_petsc_mpi_add_block(void *handle, int n, const int *rows,
+                           const int *columns, const double *values,
+                           char *err, size_t err_len) {
+  DistributedSolver *s = handle;
+  CHECK(MatSetValues(s->matrix, n, rows, n, columns, values, ADD_VALUES));
+  return 0;
+}
+
+/* Add `values` on `columns` (their rows and columns mapped to PETSc's,
+ * negative: left out); `mirrored`: a symmetric matrix's lower triangle
+ * (put_columns). */
+int sg_petsc_mpi_add_columns(void *handle, const Columns *columns,
+                             const double *values, int mirrored, char *err,
+                             size_t err_len) {
+  DistributedSolver *s = handle;
+  return put_columns(s->matrix, columns, values, ADD_VALUES, mirrored, err,
+                     err_len);
+}
+
+/* End the fill (collective): PETSc adds the processes' parts, sending
+ * the entries of other processes' rows to their owners. */
+int sg_petsc_mpi_finish(void *handle, char *err, size_t err_len) {
+  DistributedSolver *s = handle;
   CHECK(MatAssemblyBegin(s->matrix, MAT_FINAL_ASSEMBLY));
   CHECK(MatAssemblyEnd(s->matrix, MAT_FINAL_ASSEMBLY));
-  CHECK(KSPSetOperators(s->c.ksp, s->matrix, s->matrix));
-  PetscInt local;
-  CHECK(VecGetLocalSize(s->rhs, &local));
-  PetscScalar *a;
-  CHECK(VecGetArray(s->rhs, &a));
-  memcpy(a, system->b, sizeof(double) * (size_t)local);
-  CHECK(VecRestoreArray(s->rhs, &a));
-  failed = solve_with_globals(&s->c, s->rhs, s->solution, system->iterations,
-                              system->seconds, err, err_len);
-  if (failed) return failed;
-  CHECK(VecScatterBegin(s->to_all, s->solution, s->everywhere, INSERT_VALUES,
+  s->filling = 0;
+  return 0;
+}
+
+/* The whole of the distributed vector `v` into `whole` (PETSc's global
+ * numbering), on every process. */
+static int gather_whole(DistributedSolver *s, Vec v, double *whole, char *err,
+                        size_t err_len) {
+  CHECK(VecScatterBegin(s->to_all, v, s->everywhere, INSERT_VALUES,
                         SCATTER_FORWARD));
-  CHECK(VecScatterEnd(s->to_all, s->solution, s->everywhere, INSERT_VALUES,
+  CHECK(VecScatterEnd(s->to_all, v, s->everywhere, INSERT_VALUES,
                       SCATTER_FORWARD));
   PetscInt global;
   CHECK(VecGetSize(s->everywhere, &global));
   const PetscScalar *y;
   CHECK(VecGetArrayRead(s->everywhere, &y));
-  memcpy(system->x, y, sizeof(double) * (size_t)global);
+  memcpy(whole, y, sizeof(double) * (size_t)global);
   CHECK(VecRestoreArrayRead(s->everywhere, &y));
   return 0;
+}
+
+/* `x` (this process's rows) into the vector `v`. */
+static int set_own(Vec v, const double *x, char *err, size_t err_len) {
+  PetscInt local;
+  CHECK(VecGetLocalSize(v, &local));
+  PetscScalar *a;
+  CHECK(VecGetArray(v, &a));
+  memcpy(a, x, sizeof(double) * (size_t)local);
+  CHECK(VecRestoreArray(v, &a));
+  return 0;
+}
+
+/* y = K x (collective) with the filled matrix: `x` this process's rows,
+ * `y` the whole product (global numbering) on every process. */
+int sg_petsc_mpi_multiply(void *handle, const double *x, double *y, char *err,
+                          size_t err_len) {
+  DistributedSolver *s = handle;
+  int failed = set_own(s->rhs, x, err, err_len);
+  if (failed) return failed;
+  CHECK(MatMult(s->matrix, s->rhs, s->solution));
+  return gather_whole(s, s->solution, y, err, err_len);
+}
+
+/* Make the rows and columns `rows` (PETSc's, `n` of them, this process's
+ * own) of the filled matrix a scaled identity (collective): `*scale` the
+ * mean |K_dd| over the rows whose `free_rows` flag (one per own row) is
+ * set, summed over the processes (a reduction to process 0 and a
+ * broadcast: the same bits on every process), 1 if there is none. */
+int sg_petsc_mpi_identity_rows(void *handle, int n, const int *rows,
+                               const char *free_rows, double *scale,
+                               char *err, size_t err_len) {
+  DistributedSolver *s = handle;
+  CHECK(MatGetDiagonal(s->matrix, s->solution));
+  PetscInt local;
+  CHECK(VecGetLocalSize(s->solution, &local));
+  const PetscScalar *d;
+  CHECK(VecGetArrayRead(s->solution, &d));
+  double sums[2] = {0.0, 0.0};
+  for (PetscInt k = 0; k < local; k++) {
+    if (free_rows[k]) {
+      sums[0] += PetscAbsScalar(d[k]);
+      sums[1] += 1.0;
+    }
+  }
+  CHECK(VecRestoreArrayRead(s->solution, &d));
+  int failed = sg_mpi_sum(sums, 2, err, err_len);
+  if (failed) return failed;
+  *scale = sums[1] > 0.0 && sums[0] > 0.0 ? sums[0] / sums[1] : 1.0;
+  CHECK(MatZeroRowsColumns(s->matrix, n, rows, *scale, NULL, NULL));
+  return 0;
+}
+
+/* Solve K x = b with the filled matrix (sg_petsc_mpi_begin, the
+ * additions, sg_petsc_mpi_finish, sg_petsc_mpi_identity_rows): `b` the
+ * right-hand side of this process's rows, `x` the whole solution (global
+ * numbering) on every process on return; the Krylov iterations into
+ * `iterations` and the seconds of the set-up and the solve into
+ * `seconds` (solve_ksp). */
+int sg_petsc_mpi_solve(void *handle, const double *b, double *x,
+                       int *iterations, double *seconds, char *err,
+                       size_t err_len) {
+  DistributedSolver *s = handle;
+  if (s->filling) {
+    snprintf(err, err_len, "the distributed matrix was not filled before the solve");
+    return 1;
+  }
+  CHECK(KSPSetOperators(s->c.ksp, s->matrix, s->matrix));
+  int failed = set_own(s->rhs, b, err, err_len);
+  if (failed) return failed;
+  failed = solve_with_globals(&s->c, s->rhs, s->solution, iterations, seconds,
+                              err, err_len);
+  if (failed) return failed;
+  return gather_whole(s, s->solution, x, err, err_len);
 }
 
 /* ---- the parallel partition: src/solve/petsc/partitioning.rs ---- */

@@ -30,3 +30,4 @@ pub mod petsc;
 pub mod record;
 pub mod settings;
 pub mod stepping;
+pub mod watchdog;

@@ -5,26 +5,55 @@
 //!
 //! A monotone line search keeps a step only where `‖r‖` falls (or, in
 //! [`super::newton`], where Crisfield's energy test passes). On a
-//! residual that is only piecewise smooth — contact statuses that switch,
-//! a frictional node that turns from slip to stick — the full Newton step
-//! can cross a kink and raise `‖r‖` although the next full step from
-//! there converges: the search then shortens every step to `α < 1`, the
-//! iterate never crosses the kink, and the residual falls by about
-//! `1 − α` per iteration (node-to-surface ironing: 12–14 iterations in
-//! four increments, 6 with the watchdog; BENCHMARKS.md, "Session 20").
+//! residual that is only piecewise smooth — a contact node that changes
+//! its primary triangle, or turns from slip to stick — the full Newton
+//! step can cross a kink and raise `‖r‖` although the next full step
+//! from there converges, while every shorter step stays on the near side
+//! of the kink, where `‖r‖` cannot fall: the search *stalls*, its steps
+//! shrink to `α ≈ 10⁻²…10⁻⁴`, and the residual stays put for as many
+//! iterations as it takes a fallback to take the full step
+//! (node-to-surface ironing, t = 1.28: 3.5e-5 for 7 iterations;
+//! press-pull on a triangulated cap, t = 1.75: 8.1e-4 for 11;
+//! BENCHMARKS.md, "Session 21").
 //!
-//! The watchdog relaxes the test for a few steps. Where the full step
-//! from the iterate `u_k` fails the monotone test but switches a contact
-//! status (open/stick/slip or a primary facet: it crosses a kink), it is
-//! taken anyway and `u_k` is kept as a *checkpoint* with its correction. The relaxed
-//! steps succeed as soon as an iterate's residual is below
-//! `(1 − σ) ‖r_k‖` (`σ` = [`DECREASE`], Armijo's constant at `α = 1`);
-//! until then up to [`EXTRA_STEPS`] more full steps are taken. If none
-//! succeeds, Newton goes back to `u_k` and runs the monotone line search
-//! along `u_k`'s correction, as it would have without the watchdog, and
-//! takes no relaxed step for the rest of the increment (so a failed watch
-//! costs at most `EXTRA_STEPS + 1` iterations once per increment, and the
-//! increment then follows the monotone path).
+//! The watchdog relaxes the monotone test there, and only there: where
+//! the search stalls (its step shorter than [`STALL`]) near the answer
+//! (relative residual below [`NEAR`]) and the full step from the iterate
+//! `u_k` switches a contact status (open/stick/slip or a primary facet:
+//! it crosses a kink), that full step is taken anyway and `u_k` is kept
+//! as a *checkpoint* with its correction. The relaxed steps succeed as
+//! soon as an iterate's residual is below `(1 − σ) ‖r_k‖` (`σ` =
+//! [`DECREASE`], Armijo's constant at `α = 1`); until then up to
+//! [`EXTRA_STEPS`] more full steps are taken. If none succeeds, Newton
+//! goes back to `u_k` and takes the monotone search's step along `u_k`'s
+//! correction, as it would have without the watchdog, forgets the
+//! watched iterates (the chattering detector judges Newton's path, not
+//! the steps it went back from), and takes no relaxed step for the rest
+//! of the increment (a failed watch costs at most `EXTRA_STEPS + 1`
+//! iterations once per increment).
+//!
+//! Why not wherever the full step switches a status (session 20's rule):
+//! far from the answer that is where the monotone search does its work.
+//! Press-pull on a triangulated cap (its first increment, the block
+//! pressed from a touch) took the first full step, 220 nodes switching,
+//! instead of `α = 0.003`: Newton converged in 7 iterations instead of
+//! 12, to another converged facet choice (the nodes that flipped back
+//! keep their last triangle, `contact::facet_walk`), 6e-4 of the contact
+//! force's y component away from the condensed path's; and after each
+//! augmentation of the Simo–Laursen outer loop (press-pull, exact stick,
+//! `friction_multiplier = "outer"`) the relaxed steps cycled three nodes
+//! between stick and slip until the chattering detector cut the
+//! increment. Chamberlain et al.'s watchdog is a device for the local
+//! rate (the Maratos effect); [`NEAR`] keeps it local.
+
+/// A line search stalls where its step is shorter than this: the kink
+/// is that close along the correction, and `‖r‖` falls by about the step.
+pub const STALL: f64 = 0.1;
+
+/// The relative residual below which the watchdog may act: the iterate
+/// is near the answer (`‖r‖` at 1 % of the forces). The first iterates of
+/// an increment, which carry its load jump, keep the monotone search.
+pub const NEAR: f64 = 1e-2;
 
 /// Full steps taken after the relaxed one before the watch is judged to
 /// have failed (Chamberlain et al.'s `t`, "one or two").
@@ -43,6 +72,8 @@ pub struct Checkpoint<S> {
     pub du: Vec<f64>,
     pub out_of_balance: Vec<f64>,
     pub relative: f64,
+    /// The chattering detector's path up to `u_k`.
+    pub chatter: super::chattering::ChatterMark,
 }
 
 /// What the watchdog asks of the iteration that judges an iterate.
@@ -126,6 +157,7 @@ mod tests {
             du: vec![1.0],
             out_of_balance: vec![residual],
             relative: residual,
+            chatter: crate::solve::chattering::ChatterDetector::default().mark(),
         }
     }
 

@@ -883,111 +883,41 @@ pub fn apply_identity_rows<P: NonlinearProblem>(
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::assembly::pattern::SparsityPattern;
     use crate::solve::backend::linear_solver;
     use crate::solve::linear::Ordering;
-    use crate::solve::settings::Step;
+    use crate::solve::springs::{Spring, Springs};
 
     /// One spring that stiffens tenfold past `x = ½`: `r(x) = f(x) − 1`,
     /// `f = x` below and `½ + 10 (x − ½)` above, so that the root is
     /// `x = 0.55` while Newton's step from the soft side aims at `x = 1`,
     /// where `r = 4.5`. With `statuses`, the side is the spring's contact
     /// status (1 soft, 2 stiff), as a contact node's stick or slip. (The
-    /// pattern holds a node's three dofs; the other two are unit springs
-    /// at rest.)
-    struct Kinked {
-        settings: SolverSettings,
-        steps: Vec<Step>,
-        pattern: SparsityPattern,
-        statuses: bool,
-    }
-
-    impl NonlinearProblem for Kinked {
-        type State = ();
-        type Report = ();
-        fn settings(&self) -> &SolverSettings {
-            &self.settings
-        }
-        fn steps(&self) -> &[Step] {
-            &self.steps
-        }
-        fn pattern(&self) -> &SparsityPattern {
-            &self.pattern
-        }
-        fn num_dofs(&self) -> usize {
-            3
-        }
-        fn size(&self) -> f64 {
-            1.0
-        }
-        fn has_nonsymmetric_tangent(&self) -> bool {
-            false
-        }
-        fn constrained_dofs(&self) -> Vec<bool> {
-            vec![false; 3]
-        }
-        fn apply_prescribed(&self, _t: f64, _x: &mut [f64]) {}
-        fn initial_state(&self, _x: &[f64]) {}
-        fn evaluate(
-            &self,
-            _t: f64,
-            x: &[f64],
-            _state: &(),
-            tangent: Option<&mut [f64]>,
-        ) -> Result<Evaluation<()>, IncrementFailure> {
-            let stiff = x[0] > 0.5;
-            let (force, stiffness) = if stiff {
-                (0.5 + 10.0 * (x[0] - 0.5), 10.0)
-            } else {
-                (x[0], 1.0)
-            };
-            if let Some(values) = tangent {
-                values.iter_mut().for_each(|v| *v = 0.0);
-                for (i, k) in [stiffness, 1.0, 1.0].into_iter().enumerate() {
-                    values[self.pattern.diagonal_entry(i)] = k;
-                }
-            }
-            Ok(Evaluation {
-                residual: vec![force - 1.0, x[1], x[2]],
-                internal_norm: force.abs(),
-                external_norm: 1.0,
-                statuses: if self.statuses {
-                    vec![1 + u64::from(stiff)]
-                } else {
-                    Vec::new()
-                },
-                reports: (),
-            })
-        }
-        fn symmetric_neighbour(&self, _: f64, _: &[f64], _: &(), _: &[bool], _: &mut [f64]) {}
-        fn advance_state(&self, _: f64, _: &[f64], _: &[f64], _: &mut ()) {}
-        fn augment(&self, _: f64, _: &[f64], _: &mut ()) -> bool {
-            false
-        }
-        fn commit(&self, _: f64, _: &[f64], _: &mut ()) {}
-        fn refresh_pattern(&mut self, _: &[f64], _: f64) -> bool {
-            false
-        }
-        fn couplings_hold(&self, _: &[f64], _: &()) -> bool {
-            true
-        }
-        fn moving_coupled_nodes(&self) -> Vec<usize> {
-            Vec::new()
-        }
-    }
-
-    /// Newton on [`Kinked`] from `x = 0`: the root found and the records.
-    fn solve_kinked(statuses: bool) -> (f64, Vec<IterationRecord>) {
-        let nodes = [0usize];
-        let problem = Kinked {
-            settings: SolverSettings {
-                residual_tolerance: 1e-12,
-                ..SolverSettings::default()
-            },
-            steps: Vec::new(),
-            pattern: SparsityPattern::from_elements(1, std::iter::once(&nodes[..])),
-            statuses,
+    /// other two dofs of its node are unit springs at rest.)
+    fn kinked(statuses: bool) -> Springs {
+        let settings = SolverSettings {
+            residual_tolerance: 1e-12,
+            ..SolverSettings::default()
         };
+        let law = move |_t: f64, i: usize, x: f64| {
+            let stiff = i == 0 && x > 0.5;
+            let (internal, stiffness) = if stiff {
+                (0.5 + 10.0 * (x - 0.5), 10.0)
+            } else {
+                (x, 1.0)
+            };
+            Spring {
+                internal,
+                external: if i == 0 { 1.0 } else { 0.0 },
+                stiffness,
+                status: (i == 0 && statuses).then_some(1 + u64::from(stiff)),
+            }
+        };
+        Springs::new(settings, Vec::new(), Box::new(law))
+    }
+
+    /// Newton on [`kinked`] from `x = 0`: the root found and the records.
+    fn solve_kinked(statuses: bool) -> (f64, Vec<IterationRecord>) {
+        let problem = kinked(statuses);
         let mut solver = linear_solver(&problem.settings, Ordering::Amd, 1);
         let mut josephy = Josephy::default();
         let mut newton = Newton {

@@ -29,4 +29,7 @@ pub mod partition;
 pub mod petsc;
 pub mod record;
 pub mod settings;
+#[cfg(test)]
+pub(crate) mod springs;
 pub mod stepping;
+pub mod watchdog;

@@ -475,7 +475,19 @@ impl<P: NonlinearProblem> Newton<'_, P> {
     /// that lowers `‖r‖` is kept. A trial that inverts an element counts
     /// as too long. Skipped near the tolerance, where the full step keeps
     /// the quadratic rate. At most six trials; if none passes, the one of
-    /// least `‖r‖` below `‖r(0)‖` is taken, else the one of least `|s|`.
+    /// least `|s|` is taken: the search's best approach to the slope's
+    /// zero, which is what it sections for.
+    ///
+    /// Why not the trial of least `‖r‖` below `‖r(0)‖` (session 21's
+    /// fallback): where the search fails far from the answer, that trial
+    /// is a creep (`tests/hard_cases.rs`, the ball pressed into the block:
+    /// `α = 0.006–0.03` at `‖r‖ = 0.99 ‖r(0)‖`, relative residual 2.6e-2,
+    /// for six iterations), and the ball's press ran out of cuts at
+    /// t = 0.999 on stick/slip chattering. With the least `|s|` it runs to
+    /// the end (111 iterations against main's 147); neither ironing needs
+    /// the other fallback (ironing 275 iterations, largest 9, with this
+    /// one; ironing-mortar's first slide increment the same 7)
+    /// (BENCHMARKS.md, "Session 22").
     ///
     /// Why the slope test inside the bracket: `‖r‖` falling alone accepted
     /// the secant's first zero, far short of the slope's zero where `s` is
@@ -546,8 +558,7 @@ impl<P: NonlinearProblem> Newton<'_, P> {
         let slope = |r: &[f64]| dot(&du[..dofs], &r[..dofs]);
         let s0 = slope(r);
         let mut alpha = 1.0;
-        // the trial of least ‖r‖ below r0, else the one of least |s|
-        let mut low = (r0, f64::NAN);
+        // the trial of least |s|: the search's best approach to the slope's zero
         let mut best = (f64::INFINITY, 1.0);
         // where the slope changed sign: the secant's sectioning
         let mut bracket: Option<Bracket> = None;
@@ -587,9 +598,6 @@ impl<P: NonlinearProblem> Newton<'_, P> {
             if full && relax.is_some_and(|before| before != &evaluation.statuses[..]) {
                 switching = Some(evaluation);
             }
-            if ra < low.0 {
-                low = (ra, alpha);
-            }
             if sa.abs() < best.0 {
                 best = (sa.abs(), alpha);
             }
@@ -601,9 +609,8 @@ impl<P: NonlinearProblem> Newton<'_, P> {
                 None => 0.5 * alpha,
             };
         }
-        let length = if low.1.is_nan() { best.1 } else { low.1 };
         let step = taken.unwrap_or(LineStep {
-            length,
+            length: best.1,
             evaluation: None,
             relaxed: false,
         });

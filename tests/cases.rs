@@ -426,9 +426,9 @@ fn press_pull_friction_example() {
 ///   component jumps by more than 3 % of the normal reaction (measured
 ///   2.3 % for F_x, 0.30 % for F_z); no increment needs more than 2 cuts
 ///   and the run at most 5 (measured none);
-/// - Newton: at most 9 iterations in every increment (measured 3–9, 276
+/// - Newton: at most 9 iterations in every increment (measured 3–9, 275
 ///   in all; 14 in four increments and 296 in all before the stalled
-///   search's watchdog, `solve::watchdog`, BENCHMARKS.md "Session 21");
+///   search's watchdog, `solve::watchdog`, BENCHMARKS.md "Session 22");
 /// - penetration below 0.02 (penalty: t_N/ε with ε ≈ 16; measured 0.016;
 ///   8.1e-4 with ε = 1000);
 /// - the reaction plot and its CSV are written.

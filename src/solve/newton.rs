@@ -479,12 +479,12 @@ impl<P: NonlinearProblem> Newton<'_, P> {
     /// zero, which is what it sections for.
     ///
     /// Why not the trial of least `‖r‖` below `‖r(0)‖` (session 21's
-    /// fallback): where the search fails far from the answer, that trial
-    /// is a creep (`tests/hard_cases.rs`, the ball pressed into the block:
-    /// `α = 0.006–0.03` at `‖r‖ = 0.99 ‖r(0)‖`, relative residual 2.6e-2,
-    /// for six iterations), and the ball's press ran out of cuts at
-    /// t = 0.999 on stick/slip chattering. With the least `|s|` it runs to
-    /// the end (111 iterations against main's 147); neither ironing needs
+    /// fallback): where the search failed far from the answer, the steps
+    /// crept (`tests/hard_cases.rs`, the ball pressed into the block:
+    /// `α = 0.012–0.076` for six iterations at a relative residual of
+    /// 2.6–2.7e-2), and the ball's press ran out of cuts at t = 0.999 on
+    /// stick/slip chattering. With the least `|s|` it runs to the end
+    /// (111 iterations against main's 147; measured, not derived); neither ironing needs
     /// the other fallback (ironing 275 iterations, largest 9, with this
     /// one; ironing-mortar's first slide increment the same 7)
     /// (BENCHMARKS.md, "Session 22").

@@ -426,6 +426,9 @@ fn press_pull_friction_example() {
 ///   component jumps by more than 3 % of the normal reaction (measured
 ///   2.3 % for F_x, 0.30 % for F_z); no increment needs more than 2 cuts
 ///   and the run at most 5 (measured none);
+/// - Newton: at most 9 iterations in every increment (measured 3–9, 275
+///   in all; 14 in four increments and 296 in all before the stalled
+///   search's watchdog, `solve::watchdog`, BENCHMARKS.md "Session 22");
 /// - penetration below 0.02 (penalty: t_N/ε with ε ≈ 16; measured 0.016;
 ///   8.1e-4 with ε = 1000);
 /// - the reaction plot and its CSV are written.
@@ -437,6 +440,15 @@ fn ironing_slides_smoothly_with_friction() {
     let incs = &outcome.summary.increments;
     assert!(incs.iter().all(|i| i.cuts <= 2));
     assert!(incs.iter().map(|i| i.cuts).sum::<usize>() <= 5);
+    let slow: Vec<(f64, usize)> = incs
+        .iter()
+        .filter(|i| i.iterations > 9)
+        .map(|i| (i.time, i.iterations))
+        .collect();
+    assert!(
+        slow.is_empty(),
+        "increments over 9 Newton iterations: {slow:?}"
+    );
     for inc in incs {
         let c = &inc.contact["ironing"];
         let total: Vec<f64> = (0..3).map(|d| c.force[d] + c.tangential_force[d]).collect();

@@ -496,7 +496,12 @@ fn frictional_condensed_equals_monolithic_with_exact_stick() {
 /// `|t_T − T λ_T|/ε_T ≤ 1e-9 h`, a traction error up to `1e-9 h ε_T =
 /// 1e-8 E`, 4e-7 of the largest traction here; measured 3.4e-9 and
 /// 4.6e-7), the same stick/slip status — in far fewer Newton iterations
-/// (measured 40 against 139: 6, 2, 8, 8, 8, 8 and 26, 21, 25, 23, 21, 23).
+/// (measured 40 against 139: 6, 2, 8, 8, 8, 8 and 26, 21, 25, 23, 21, 23;
+/// the outer loop 25, 21, 25, 23, 21, 23 with session 21's line search,
+/// in a serial run of the same case). Session 20's watchdog, which took
+/// every status-switching full step, made the outer loop's steps after an
+/// augmentation cycle three nodes between stick and slip, and the run cut
+/// to 14 increments.
 #[test]
 fn exact_stick_newton_multipliers_equal_the_outer_loop() {
     let monolithic = "strategy = \"monolithic\"";

@@ -130,11 +130,52 @@ impl ChatterDetector {
         self.seen.push(statuses);
         (switched, chatter)
     }
+
+    /// Where the path stands now, to [`ChatterDetector::rewind`] to.
+    pub fn mark(&self) -> ChatterMark {
+        ChatterMark {
+            seen: self.seen.len(),
+            revisits: self.revisits,
+        }
+    }
+
+    /// Forget the iterations observed since `mark`: iterates Newton left
+    /// (the watchdog's steps it went back from) are no part of its path.
+    pub fn rewind(&mut self, mark: ChatterMark) {
+        self.seen.truncate(mark.seen);
+        self.revisits = mark.revisits;
+    }
+}
+
+/// The length of a [`ChatterDetector`]'s path and its revisits so far.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct ChatterMark {
+    seen: usize,
+    revisits: usize,
 }
 
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    /// Rewound to a mark, the detector forgets the iterates since: the
+    /// cycle those made is not counted, and later revisits count anew.
+    #[test]
+    fn a_rewound_path_forgets_its_revisits() {
+        let mut d = ChatterDetector::default();
+        let (a, b) = (vec![1, 2, 0], vec![1, 1, 1]);
+        d.observe(a.clone());
+        let mark = d.mark();
+        d.observe(b.clone());
+        d.observe(a.clone()); // revisit 1
+        d.observe(b.clone()); // revisit 2
+        d.rewind(mark);
+        assert_eq!(d.mark(), mark);
+        assert_eq!(d.observe(b.clone()), (2, None));
+        assert_eq!(d.observe(a.clone()), (2, None)); // revisit 1 again
+        assert_eq!(d.observe(b).0, 2); // revisit 2
+        assert!(d.observe(a).1.is_some()); // revisit 3: chattering
+    }
 
     #[test]
     fn a_period_two_flip_is_caught_on_its_third_return() {

@@ -29,5 +29,8 @@ pub mod partition;
 pub mod petsc;
 pub mod record;
 pub mod settings;
+#[cfg(test)]
+pub(crate) mod springs;
 pub mod stepping;
 pub mod tangent_store;
+pub mod watchdog;

@@ -1,5 +1,5 @@
-//! Newton–Raphson for one load increment, with the consistent tangent and a
-//! backtracking line search.
+//! Newton–Raphson for one load increment, with the consistent tangent, a
+//! line search and its watchdog.
 //!
 //! Prescribed displacements are imposed exactly on the iterate; their rows
 //! and columns of `K` are replaced by a scaled identity, so the sparsity
@@ -15,6 +15,7 @@ use super::nonlinear::{Evaluation, NonlinearProblem};
 use super::settings::{Predictor, SolverSettings};
 pub use super::tangent_store::apply_identity_rows;
 use super::tangent_store::TangentStore;
+use super::watchdog::{self, Checkpoint, Judgement, Watchdog};
 
 pub use super::record::IterationRecord;
 
@@ -96,6 +97,7 @@ impl<P: NonlinearProblem> Newton<'_, P> {
         let mut jump_scale = 0.0f64;
         let signs = (blocks.dimension() > problem.num_dofs()).then(|| blocks.pivot_signs());
         let mut chatter = super::chattering::ChatterDetector::default();
+        let mut watchdog = Watchdog::default();
         // the line search's trial that was taken, evaluated with its tangent
         // (the full step, or a shorter step of the contact predictor): the
         // next iteration's evaluation
@@ -161,6 +163,25 @@ impl<P: NonlinearProblem> Newton<'_, P> {
                 balanced: norm(&r) == 0.0,
                 last_correction,
             };
+            let judgement = watchdog.judge(norm(&out_of_balance));
+            let relax = match judgement {
+                Judgement::Search { relax } => relax,
+                // the watched steps did not lower ‖r‖: back to where they
+                // started (this iterate is left, not judged)
+                Judgement::Revert(back) => {
+                    // the watched iterates are no part of Newton's path
+                    chatter.rewind(back.chatter);
+                    let (du, step) = self.step_back(back, u, state, &target, &mut tangent);
+                    ahead = step.evaluation;
+                    last_correction =
+                        self.advance(u, &du, step.length, state, &target, increment_start);
+                    if !self.report(&mut records, last_correction, step.length) {
+                        return (Err(IncrementFailure::Cancelled), records);
+                    }
+                    iteration += 1;
+                    continue;
+                }
+            };
             if let Some(end) = verdict.ends(settings, &records, chattering) {
                 return (end.map(|()| evaluation), records);
             }
@@ -183,22 +204,69 @@ impl<P: NonlinearProblem> Newton<'_, P> {
                 du: &du,
                 target: &target,
                 predictor,
+                relax: relax.then_some(&evaluation.statuses[..]),
             };
-            let (step_length, taken) =
-                self.line_search(line, &out_of_balance, relative, state, &mut tangent);
-            ahead = taken;
-            last_correction = self.advance(u, &du, step_length, state, &target, increment_start);
-            if let Some(rec) = records.last_mut() {
-                rec.correction = last_correction;
-                rec.step_length = step_length;
-                if let Some(tell) = self.on_iteration.as_mut() {
-                    if !tell(rec) {
-                        return (Err(IncrementFailure::Cancelled), records);
-                    }
-                }
+            let step = self.line_search(line, &out_of_balance, relative, state, &mut tangent);
+            if step.relaxed {
+                watchdog.start(Checkpoint {
+                    u: u.clone(),
+                    state: state.clone(),
+                    du: du.clone(),
+                    out_of_balance,
+                    relative,
+                    chatter: chatter.mark(),
+                });
+            }
+            ahead = step.evaluation;
+            last_correction = self.advance(u, &du, step.length, state, &target, increment_start);
+            if !self.report(&mut records, last_correction, step.length) {
+                return (Err(IncrementFailure::Cancelled), records);
             }
             iteration += 1;
         }
+    }
+
+    /// Complete this iteration's record with the correction taken and its
+    /// step length, and tell `on_iteration`; `false`: the run is cancelled.
+    fn report(&mut self, records: &mut [IterationRecord], correction: f64, length: f64) -> bool {
+        let Some(rec) = records.last_mut() else {
+            return true;
+        };
+        rec.correction = correction;
+        rec.step_length = length;
+        self.on_iteration.as_mut().is_none_or(|tell| tell(rec))
+    }
+
+    /// Back to the watchdog's checkpoint `back` (`u` and `state` restored)
+    /// and the monotone line search along its correction, as it ran before
+    /// the relaxed steps: the correction and the step taken.
+    fn step_back(
+        &self,
+        back: Checkpoint<P::State>,
+        u: &mut Vec<f64>,
+        state: &mut P::State,
+        target: &[f64],
+        k: &mut TangentStore,
+    ) -> (Vec<f64>, LineStep<P::Report>) {
+        let Checkpoint {
+            u: start,
+            state: start_state,
+            du,
+            out_of_balance,
+            relative,
+            chatter: _,
+        } = back;
+        *state = start_state;
+        let line = NewtonStep {
+            u: &start,
+            du: &du,
+            target,
+            predictor: false,
+            relax: None,
+        };
+        let step = self.line_search(line, &out_of_balance, relative, state, k);
+        *u = start;
+        (du, step)
     }
 
     /// This iteration's correction and whether it is the contact
@@ -405,23 +473,64 @@ impl<P: NonlinearProblem> Newton<'_, P> {
     /// (free dofs), is negative at `α = 0` for a descent direction. The
     /// full step is taken if `|s(1)| ≤ ½ |s(0)|` or if the residual norm
     /// decreases (Crisfield's test, which accepts steps that raise `‖r‖`
-    /// but lower the energy, as bending under large rotations needs);
-    /// otherwise `α` moves to the zero of the secant of `s` (regula falsi,
-    /// bounded to [0.1α, 0.9α]), or is halved when the trial state inverts
-    /// an element. Skipped near the tolerance, where the full step keeps
-    /// the quadratic rate. At most six trials; the one with the smallest
-    /// `|s|` is taken if none passes.
+    /// but lower the energy, as bending under large rotations needs), or
+    /// by the watchdog (below). Otherwise, where the slope changed sign
+    /// in `(0, 1)`, the search sections that bracket by the Illinois
+    /// variant of regula falsi on `s` ([`Bracket`]; Crisfield, *Non-linear
+    /// Finite Element Analysis of Solids and Structures*, vol. 1, 1991,
+    /// §9.3) until a trial both lowers `‖r‖` and has `|s(α)| ≤ ½ |s(0)|`
+    /// (the curvature half of Wolfe's conditions, as Crisfield's slope
+    /// tolerance); where it did not change sign, `α` is halved and a trial
+    /// that lowers `‖r‖` is kept. A trial that inverts an element counts
+    /// as too long. Skipped near the tolerance, where the full step keeps
+    /// the quadratic rate. At most six trials; if none passes, the one of
+    /// least `|s|` is taken: the search's best approach to the slope's
+    /// zero, which is what it sections for.
+    ///
+    /// Why not the trial of least `‖r‖` below `‖r(0)‖` (session 21's
+    /// fallback): where the search failed far from the answer, the steps
+    /// crept (`tests/hard_cases.rs`, the ball pressed into the block:
+    /// `α = 0.012–0.076` for six iterations at a relative residual of
+    /// 2.6–2.7e-2), and the ball's press ran out of cuts at t = 0.999 on
+    /// stick/slip chattering. With the least `|s|` it runs to the end
+    /// (111 iterations against main's 147; measured, not derived); neither ironing needs
+    /// the other fallback (ironing 275 iterations, largest 9, with this
+    /// one; ironing-mortar's first slide increment the same 7)
+    /// (BENCHMARKS.md, "Session 22").
+    ///
+    /// Why the slope test inside the bracket: `‖r‖` falling alone accepted
+    /// the secant's first zero, far short of the slope's zero where `s` is
+    /// only piecewise smooth. On the Puso–Laursen ironing with mortar
+    /// (first slide increment) `‖r(α)‖` fell as `1 − α` up to `α ≈ 0.7`
+    /// and rose steeply after, so the first secant zero (0.41, then 0.28,
+    /// …, 0.10) cut `‖r‖` by only `1 − α` per iteration: 18 iterations,
+    /// 7 with the sectioning (BENCHMARKS.md, "Session 20").
+    ///
+    /// The watchdog ([`super::watchdog`]; Chamberlain, Powell, Lemaréchal
+    /// & Pedersen 1982): where `relax` holds the iterate's contact
+    /// statuses, the iterate is near the answer (`relative` below
+    /// [`watchdog::NEAR`]), the search stalls (its step below
+    /// [`watchdog::STALL`]) and the full step switches some of the
+    /// statuses (it crosses a kink of the piecewise-smooth residual: a
+    /// status, a primary facet), the full step is taken instead
+    /// ([`LineStep::relaxed`]) and Newton's loop watches the next
+    /// iterates; if none lowers `‖r‖` below the checkpoint's it goes back
+    /// and takes the search's step. On node-to-surface ironing a node at
+    /// a facet edge held `‖r‖` at 3.5e-5 for 7 iterations of steps of
+    /// 0.01 to 0.001: 12–14 iterations in four increments, 8–9 with the
+    /// watchdog (BENCHMARKS.md, "Session 21").
     ///
     /// The contact predictor's step (`predictor`: the Josephy–Newton step
     /// at the first correction, the linearised answer for the whole
-    /// increment) is taken only where it lowers `‖r‖`: a step that raises
-    /// the residual and overshoots the potential's minimum along it
-    /// (`s(1) > 0 > s(0)`, the material stiffer than its tangent at the
-    /// start) goes to the secant zero of `s` instead of being kept by the
-    /// `½` rule. On examples/ogden-plate's first increment (rest to half
-    /// the load) the full step raised `‖r‖` by 8 % with `s(1) = −0.33 s(0)`;
-    /// `α = 0.754` took that increment from 6 Newton iterations to 5
-    /// (BENCHMARKS.md, "Session 10: the plate's first increment").
+    /// increment) is taken only where it lowers `‖r‖` (never by the
+    /// watchdog): a step that raises the residual and overshoots the
+    /// potential's minimum along it (`s(1) > 0 > s(0)`, the material
+    /// stiffer than its tangent at the start) goes to the secant zero of
+    /// `s` instead of being kept by the `½` rule. On examples/ogden-plate's
+    /// first increment (rest to half the load) the full step raised `‖r‖`
+    /// by 8 % with `s(1) = −0.33 s(0)`; `α = 0.754` took that increment
+    /// from 6 Newton iterations to 5 (BENCHMARKS.md, "Session 10: the
+    /// plate's first increment").
     ///
     /// The full step is tried first and evaluated with its tangent (into
     /// `k`, the prescribed dofs on their `target`): when it is taken, that
@@ -437,88 +546,212 @@ impl<P: NonlinearProblem> Newton<'_, P> {
         relative: f64,
         state: &P::State,
         k: &mut TangentStore,
-    ) -> (f64, Option<Evaluation<P::Report>>) {
+    ) -> LineStep<P::Report> {
         let NewtonStep {
-            u,
             du,
-            target,
             predictor,
+            relax,
+            ..
         } = line;
-        let (problem, t) = (self.problem, self.t);
+        let problem = self.problem;
         let settings = problem.settings();
         if !settings.line_search || relative < 1e3 * settings.residual_tolerance {
-            return (1.0, None);
+            return LineStep::full(None);
         }
+        // the watchdog acts near the answer only, never on the predictor's step
+        let relax = relax.filter(|_| relative < watchdog::NEAR && !predictor);
         let r0 = norm(r);
         // the slope of the potential along the line, over the displacements
         // only: a saddle point is not a minimum in the multipliers
         let dofs = problem.num_dofs();
         let slope = |r: &[f64]| dot(&du[..dofs], &r[..dofs]);
         let s0 = slope(r);
-        let mut trial = u.to_vec();
         let mut alpha = 1.0;
+        // the trial of least |s|: the search's best approach to the slope's zero
         let mut best = (f64::INFINITY, 1.0);
+        // where the slope changed sign: the secant's sectioning
+        let mut bracket: Option<Bracket> = None;
+        // the full step, where it switches a status or a facet
+        let mut switching = None;
+        let mut taken = None;
         for _ in 0..6 {
-            let step: Vec<f64> = du.iter().map(|d| alpha * d).collect();
-            for ((x, u0), d) in trial.iter_mut().zip(u).zip(&step) {
-                *x = u0 + d;
-            }
             let full = alpha == 1.0;
-            if full {
-                // where Newton lands after a full step
-                for ((x, &c), v) in trial.iter_mut().zip(self.constrained).zip(target) {
-                    if c {
-                        *x = *v;
-                    }
-                }
-            }
-            // the local contact unknowns follow the trial step too
-            let mut trial_state = state.clone();
-            problem.advance_state(t, u, &step, &mut trial_state);
             let with_tangent = full || predictor;
-            let evaluated = if with_tangent {
-                k.evaluate(problem, t, &trial, &trial_state)
-            } else {
-                problem.evaluate(t, &trial, &trial_state, None)
-            };
-            let Ok(evaluation) = evaluated else {
+            let tangent = with_tangent.then_some(&mut *k);
+            let Ok(evaluation) = self.evaluate_trial(line, alpha, state, tangent) else {
                 // an inverted element: shorter, and remember it in case all fail
                 if best.0 == f64::INFINITY {
                     best.1 = 0.5 * alpha;
                 }
-                alpha *= 0.5;
+                alpha = bracket.as_mut().map_or(0.5 * alpha, |b| b.inverted(alpha));
                 continue;
             };
             let mut ra = evaluation.residual.clone();
             zero_constrained(&mut ra, self.constrained);
-            let sa = slope(&ra);
-            let energy_test = !predictor && s0 < 0.0 && sa.abs() <= 0.5 * s0.abs();
-            if norm(&ra) < r0 || energy_test {
-                return (alpha, with_tangent.then_some(evaluation));
+            let (ra, sa) = (norm(&ra), slope(&ra));
+            let falls = ra < r0;
+            let flat = s0 < 0.0 && sa.abs() <= 0.5 * s0.abs();
+            let accept = match bracket {
+                // inside the bracket: Crisfield's slope test as well
+                Some(_) => falls && flat,
+                _ => falls || (flat && !predictor),
+            };
+            if accept {
+                taken = Some(LineStep {
+                    length: alpha,
+                    evaluation: with_tangent.then_some(evaluation),
+                    relaxed: false,
+                });
+                break;
+            }
+            if full && relax.is_some_and(|before| before != &evaluation.statuses[..]) {
+                switching = Some(evaluation);
             }
             if sa.abs() < best.0 {
                 best = (sa.abs(), alpha);
             }
-            alpha = if s0 < 0.0 && sa > 0.0 {
-                // the slope changed sign in (0, α): its secant zero
-                (alpha * s0 / (s0 - sa)).clamp(0.1 * alpha, 0.9 * alpha)
-            } else {
-                0.5 * alpha
+            if s0 < 0.0 && sa > 0.0 && bracket.is_none() {
+                bracket = Some(Bracket::new(s0));
+            }
+            alpha = match bracket.as_mut() {
+                Some(b) => b.next(alpha, sa),
+                None => 0.5 * alpha,
             };
         }
-        (best.1, None)
+        let step = taken.unwrap_or(LineStep {
+            length: best.1,
+            evaluation: None,
+            relaxed: false,
+        });
+        match switching {
+            // the search stalls at a kink the full step crosses: the watchdog's step
+            Some(evaluation) if step.length < watchdog::STALL => LineStep {
+                relaxed: true,
+                ..LineStep::full(Some(evaluation))
+            },
+            _ => step,
+        }
+    }
+
+    /// The evaluation at the line search's trial `u + α δu`, with the
+    /// tangent into `k` where given: the local contact unknowns follow the
+    /// step too, and the full step puts the prescribed dofs on their
+    /// `target`, where Newton lands.
+    fn evaluate_trial(
+        &self,
+        line: NewtonStep<'_>,
+        alpha: f64,
+        state: &P::State,
+        k: Option<&mut TangentStore>,
+    ) -> Result<Evaluation<P::Report>, IncrementFailure> {
+        let NewtonStep { u, du, target, .. } = line;
+        let step: Vec<f64> = du.iter().map(|d| alpha * d).collect();
+        let mut trial: Vec<f64> = u.iter().zip(&step).map(|(u0, d)| u0 + d).collect();
+        if alpha == 1.0 {
+            for ((x, &c), v) in trial.iter_mut().zip(self.constrained).zip(target) {
+                if c {
+                    *x = *v;
+                }
+            }
+        }
+        let mut trial_state = state.clone();
+        self.problem
+            .advance_state(self.t, u, &step, &mut trial_state);
+        match k {
+            Some(k) => k.evaluate(self.problem, self.t, &trial, &trial_state),
+            None => self.problem.evaluate(self.t, &trial, &trial_state, None),
+        }
+    }
+}
+
+/// The sectioning of a line search once the slope `s(α)` has changed
+/// sign: the Illinois variant of regula falsi on `s` (Dahlquist & Björck,
+/// *Numerical Methods*, 1974, §6.2.3; Crisfield, *Non-linear Finite
+/// Element Analysis of Solids and Structures*, vol. 1, 1991, §9.3),
+/// between the last trial short of the zero (`s < 0`, from `α = 0`) and
+/// the last past it (`s > 0`).
+struct Bracket {
+    short: (f64, f64),
+    past: (f64, f64),
+    /// Which end the last trial replaced (`true`: `past`).
+    replaced_past: Option<bool>,
+}
+
+impl Bracket {
+    fn new(s0: f64) -> Self {
+        Bracket {
+            short: (0.0, s0),
+            past: (f64::NAN, 0.0),
+            replaced_past: None,
+        }
+    }
+
+    /// The next trial after `α` of slope `s`: the secant zero of `s`
+    /// between the two ends, kept off them by a tenth of the bracket
+    /// (where one end stays twice, its slope is halved: Illinois).
+    fn next(&mut self, alpha: f64, s: f64) -> f64 {
+        let past = s > 0.0;
+        if self.replaced_past == Some(past) {
+            let kept = if past {
+                &mut self.short
+            } else {
+                &mut self.past
+            };
+            kept.1 *= 0.5;
+        }
+        if past {
+            self.past = (alpha, s);
+        } else {
+            self.short = (alpha, s);
+        }
+        self.replaced_past = Some(past);
+        let ((a, sa), (b, sb)) = (self.short, self.past);
+        let width = b - a;
+        (a + width * sa / (sa - sb)).clamp(a + 0.1 * width, b - 0.1 * width)
+    }
+
+    /// After a trial at `α` that inverted an element: halfway back to the
+    /// short end, and `α` the new far end (its slope unknown: the secant
+    /// then halves).
+    fn inverted(&mut self, alpha: f64) -> f64 {
+        let a = self.short.0;
+        self.past = (alpha, f64::INFINITY);
+        a + 0.5 * (alpha - a)
+    }
+}
+
+/// The step a line search took: its length `α`, the evaluation at the
+/// trial taken where it was evaluated with its tangent, and whether it is
+/// a full step kept by the watchdog though it failed the monotone test.
+struct LineStep<R> {
+    length: f64,
+    evaluation: Option<Evaluation<R>>,
+    relaxed: bool,
+}
+
+impl<R> LineStep<R> {
+    /// The full step, with its evaluation where there is one.
+    fn full(evaluation: Option<Evaluation<R>>) -> Self {
+        LineStep {
+            length: 1.0,
+            evaluation,
+            relaxed: false,
+        }
     }
 }
 
 /// The line a line search walks: from the iterate `u` along Newton's
 /// correction `δu`; a full step puts the prescribed dofs on `target`;
-/// `predictor`: `δu` is the contact predictor's step.
+/// `predictor`: `δu` is the contact predictor's step; `relax`: the
+/// contact statuses at `u` where the watchdog allows a full step that
+/// fails the monotone test but switches some of them.
 #[derive(Clone, Copy)]
 struct NewtonStep<'a> {
     u: &'a [f64],
     du: &'a [f64],
     target: &'a [f64],
     predictor: bool,
+    relax: Option<&'a [u64]>,
 }
 
 /// What decides whether an increment ends at an iterate: its index, the
@@ -566,7 +799,7 @@ impl Verdict {
         {
             return Some(Ok(()));
         }
-        if iteration == settings.max_iterations {
+        if iteration >= settings.max_iterations {
             let iterations = settings.max_iterations;
             return Some(Err(IncrementFailure::MaxIterations {
                 iterations,
@@ -644,5 +877,89 @@ fn zero_constrained(v: &mut [f64], constrained: &[bool]) {
         if c {
             *x = 0.0;
         }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::solve::backend::linear_solver;
+    use crate::solve::linear::Ordering;
+    use crate::solve::springs::{Spring, Springs};
+
+    /// One spring that stiffens tenfold past `x = ½`: `r(x) = f(x) − 1`,
+    /// `f = x` below and `½ + 10 (x − ½)` above, so that the root is
+    /// `x = 0.55` while Newton's step from the soft side aims at `x = 1`,
+    /// where `r = 4.5`. With `statuses`, the side is the spring's contact
+    /// status (1 soft, 2 stiff), as a contact node's stick or slip. (The
+    /// other two dofs of its node are unit springs at rest.)
+    fn kinked(statuses: bool) -> Springs {
+        let settings = SolverSettings {
+            residual_tolerance: 1e-12,
+            ..SolverSettings::default()
+        };
+        let law = move |_t: f64, i: usize, x: f64| {
+            let stiff = i == 0 && x > 0.5;
+            let (internal, stiffness) = if stiff {
+                (0.5 + 10.0 * (x - 0.5), 10.0)
+            } else {
+                (x, 1.0)
+            };
+            Spring {
+                internal,
+                external: if i == 0 { 1.0 } else { 0.0 },
+                stiffness,
+                status: (i == 0 && statuses).then_some(1 + u64::from(stiff)),
+            }
+        };
+        Springs::new(settings, Vec::new(), Box::new(law))
+    }
+
+    /// Newton on [`kinked`] from `x = 0`: the root found and the records.
+    fn solve_kinked(statuses: bool) -> (f64, Vec<IterationRecord>) {
+        let problem = kinked(statuses);
+        let mut solver = linear_solver(&problem.settings, Ordering::Amd, 1);
+        let mut josephy = Josephy::default();
+        let mut newton = Newton {
+            problem: &problem,
+            solver: &mut *solver,
+            constrained: &[false; 3],
+            t: 1.0,
+            force_scale: 0.0,
+            on_iteration: None,
+            josephy: &mut josephy,
+            predictor: Predictor::None,
+        };
+        let mut u = Vec::new();
+        let (outcome, records) = newton.solve(&[0.0; 3], &[0.0; 3], &mut (), &mut u);
+        assert!(outcome.is_ok(), "{:?}", outcome.err());
+        (u[0], records)
+    }
+
+    /// Past a kink the full step raises `‖r‖` from 1 to 4.5. Sectioning
+    /// the slope's sign change (Illinois) takes a step that halves `‖r‖`
+    /// and lands past the kink: two iterations. The secant's first zero
+    /// alone, kept because `‖r‖` fell, crept towards the kink (α = 0.18,
+    /// 0.15, 0.13, 0.12, 0.10: six iterations, the rule before session 20).
+    #[test]
+    fn sectioning_crosses_a_kink_the_secant_creeps_to() {
+        let (x, records) = solve_kinked(false);
+        assert!((x - 0.55).abs() < 1e-12, "{x}");
+        assert_eq!(records.len() - 1, 2, "{records:#?}");
+        assert!(records[0].step_length < 1.0 && records[1].residual <= 0.5);
+    }
+
+    /// Far from the answer (the first iterate's relative residual is 1,
+    /// above [`watchdog::NEAR`]) the watchdog leaves the search alone
+    /// though the full step switches the spring's status: the same steps
+    /// as without statuses (session 20's rule took the full step there).
+    #[test]
+    fn the_watchdog_leaves_the_first_iterates_to_the_search() {
+        let (x, records) = solve_kinked(true);
+        let (_, plain) = solve_kinked(false);
+        assert!((x - 0.55).abs() < 1e-12, "{x}");
+        let lengths = |r: &[IterationRecord]| r.iter().map(|r| r.step_length).collect::<Vec<_>>();
+        assert_eq!(lengths(&records), lengths(&plain), "{records:#?}");
+        assert!(records[0].step_length < 1.0);
     }
 }

@@ -465,89 +465,15 @@ fn cancelled(t: f64) -> Error {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::assembly::pattern::SparsityPattern;
     use crate::solve::backend::linear_solver;
     use crate::solve::linear::Ordering;
     use crate::solve::settings::{Predictor, SolverSettings, Step};
+    use crate::solve::springs::{Spring, Springs};
 
-    /// Three uncoupled hardening springs, `r_i = k x_i + c x_i³ − t f_i`:
-    /// a [`NonlinearProblem`] that is not the finite-element `Problem`, with
-    /// no history.
-    struct Springs {
-        settings: SolverSettings,
-        steps: Vec<Step>,
-        pattern: SparsityPattern,
-        k: f64,
-        c: f64,
-        f: [f64; 3],
-    }
-
-    impl NonlinearProblem for Springs {
-        type State = ();
-        type Report = ();
-        fn settings(&self) -> &SolverSettings {
-            &self.settings
-        }
-        fn steps(&self) -> &[Step] {
-            &self.steps
-        }
-        fn pattern(&self) -> &SparsityPattern {
-            &self.pattern
-        }
-        fn num_dofs(&self) -> usize {
-            3
-        }
-        fn size(&self) -> f64 {
-            1.0
-        }
-        fn has_nonsymmetric_tangent(&self) -> bool {
-            false
-        }
-        fn constrained_dofs(&self) -> Vec<bool> {
-            vec![false; 3]
-        }
-        fn apply_prescribed(&self, _t: f64, _x: &mut [f64]) {}
-        fn initial_state(&self, _x: &[f64]) {}
-        fn evaluate(
-            &self,
-            t: f64,
-            x: &[f64],
-            _state: &(),
-            tangent: Option<crate::assembly::sink::Tangent<'_>>,
-        ) -> std::result::Result<Evaluation<()>, IncrementFailure> {
-            let (k, c) = (self.k, self.c);
-            let internal: Vec<f64> = x.iter().map(|&xi| k * xi + c * xi.powi(3)).collect();
-            let external: Vec<f64> = self.f.iter().map(|fi| t * fi).collect();
-            if let Some(crate::assembly::sink::Tangent::Values(values)) = tangent {
-                values.iter_mut().for_each(|v| *v = 0.0);
-                for (i, xi) in x.iter().enumerate() {
-                    values[self.pattern.diagonal_entry(i)] = k + 3.0 * c * xi * xi;
-                }
-            }
-            Ok(Evaluation {
-                residual: internal.iter().zip(&external).map(|(a, b)| a - b).collect(),
-                internal_norm: super::super::gmres::norm(&internal),
-                external_norm: super::super::gmres::norm(&external),
-                statuses: Vec::new(),
-                reports: (),
-            })
-        }
-        fn symmetric_neighbour(&self, _: f64, _: &[f64], _: &(), _: &[bool], _: &mut [f64]) {}
-        fn advance_state(&self, _: f64, _: &[f64], _: &[f64], _: &mut ()) {}
-        fn augment(&self, _: f64, _: &[f64], _: &mut ()) -> bool {
-            false
-        }
-        fn commit(&self, _: f64, _: &[f64], _: &mut ()) {}
-        fn refresh_pattern(&mut self, _: &[f64], _: f64) -> bool {
-            false
-        }
-        fn couplings_hold(&self, _: &[f64], _: &()) -> bool {
-            true
-        }
-        fn moving_coupled_nodes(&self) -> Vec<usize> {
-            Vec::new()
-        }
-    }
+    /// The hardening springs' constants: `r_i = K x_i + C x_i³ − t F_i`.
+    const K: f64 = 2.0;
+    const C: f64 = 5.0;
+    const F: [f64; 3] = [1.0, -3.0, 40.0];
 
     /// The converged residual of every increment.
     #[derive(Default)]
@@ -570,25 +496,25 @@ mod tests {
     /// The springs `k x + c x³ = t f` (k = 2, c = 5, f = (1, −3, 40)) in
     /// one step of increments `increment`, solved to a residual of 1e-12.
     fn springs(increment: f64, predictor: Predictor) -> Springs {
-        let nodes = [0usize];
-        Springs {
-            settings: SolverSettings {
-                residual_tolerance: 1e-12,
-                predictor,
-                ..SolverSettings::default()
-            },
-            steps: vec![Step {
-                name: "load".into(),
-                end_time: 1.0,
-                initial_increment: increment,
-                min_increment: 1e-3,
-                max_increment: increment,
-            }],
-            pattern: SparsityPattern::from_elements(1, std::iter::once(&nodes[..])),
-            k: 2.0,
-            c: 5.0,
-            f: [1.0, -3.0, 40.0],
-        }
+        let settings = SolverSettings {
+            residual_tolerance: 1e-12,
+            predictor,
+            ..SolverSettings::default()
+        };
+        let steps = vec![Step {
+            name: "load".into(),
+            end_time: 1.0,
+            initial_increment: increment,
+            min_increment: 1e-3,
+            max_increment: increment,
+        }];
+        let law = |t: f64, i: usize, x: f64| Spring {
+            internal: K * x + C * x.powi(3),
+            external: t * F[i],
+            stiffness: K + 3.0 * C * x * x,
+            status: None,
+        };
+        Springs::new(settings, steps, Box::new(law))
     }
 
     /// Newton and the stepper solve a problem that is not the finite-element
@@ -601,11 +527,11 @@ mod tests {
         let mut solver = linear_solver(&springs.settings, Ordering::Amd, 1);
         let mut residuals = Residuals::default();
         let x = run_steps(&mut springs, &mut *solver, &mut residuals, PathBuf::new()).unwrap();
-        for (xi, fi) in x.iter().zip(springs.f) {
+        for (xi, fi) in x.iter().zip(F) {
             let (mut lo, mut hi) = (-10.0f64, 10.0f64);
             while hi - lo > 1e-14 {
                 let mid = 0.5 * (lo + hi);
-                if springs.k * mid + springs.c * mid.powi(3) < fi {
+                if K * mid + C * mid.powi(3) < fi {
                     lo = mid;
                 } else {
                     hi = mid;

@@ -233,27 +233,16 @@ fn mortar_through_the_case_file() {
     }
 }
 
-/// The case file's refusals of mortar this session, each naming
-/// `contact[0]` and the key: friction against an obstacle, with
-/// `two_pass`; and an unknown discretisation (between two bodies friction
-/// is accepted, `tests/mortar_friction.rs`; an obstacle frictionless,
-/// `tests/mortar_rigid.rs`).
+/// The case file's refusals of mortar, each naming `contact[0]` and the
+/// key: `two_pass`, and an unknown discretisation (friction is accepted
+/// between two bodies, `tests/mortar_friction.rs`, and against an
+/// obstacle, `tests/mortar_obstacle_friction.rs`).
 #[test]
 fn mortar_refusals_name_the_key() {
     let dir = tempfile::tempdir().unwrap();
     write_stacked_blocks_case(dir.path(), LINEAR, "");
     let mortar = "discretisation = \"mortar\"";
     let case = |extra: &str| stacked_blocks_case(LINEAR, &format!("{mortar}\n{extra}"));
-    let obstacle = "[[obstacle]]\nname = \"floor\"\nshape = \"plane\"\npoint = [0.0, 0.0, 0.0]\nnormal = [0.0, 0.0, 1.0]\n";
-    let with_obstacle = case("friction_coefficient = 0.3")
-        .replace("primary = \"lower.zmax\"", "obstacle = \"floor\"")
-        .replace("surface = \"upper.zmin\"", "surface = \"lower.zmin\"")
-        .replace("[[step]]", &format!("{obstacle}\n[[step]]"));
-    let expect = [
-        "contact[0].discretisation = \"mortar\"",
-        "friction_coefficient",
-    ];
-    assert_case_error(dir.path(), &with_obstacle, &expect);
     let expect = ["contact[0].discretisation = \"mortar\"", "two_pass"];
     assert_case_error(
         dir.path(),

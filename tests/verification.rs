@@ -442,21 +442,43 @@ fn follower_cantilever(predictor: Predictor) -> (Vec<f64>, Vec<IncrementRecord>)
 /// A cantilever bent by a follower pressure on its top face: the load
 /// stiffness is nonsymmetric on this open surface, and Newton keeps its
 /// quadratic rate only with the exact (nonsymmetric) tangent. Measured in
-/// the residual from the converged state of the last increment
-/// ([`Predictor::None`]): the residual's quadratic constant depends on the
-/// direction of the error (along the soft bending mode a small residual
-/// hides a large error), and the secant predictor's start has another
-/// direction, checked in the corrections below.
+/// the corrections ([`assert_quadratic_corrections`]) from the converged
+/// state of the last increment ([`Predictor::None`]): the residual's
+/// quadratic constant depends on the direction of the error (along the
+/// soft bending mode a small residual hides a large error). Since session
+/// 22's line search the residuals of one increment fall 6.8e-7 → 5.9e-11
+/// (a constant of 128 in the residual, over the 100 of
+/// `common::assert_quadratic`), while the corrections keep theirs.
 #[test]
 fn follower_pressure_keeps_newton_quadratic() {
     let (_, incs) = follower_cantilever(Predictor::None);
-    assert_quadratic(&incs);
+    assert_quadratic_corrections(&incs);
+}
+
+/// Newton quadratic in the corrections, `‖δu_{k+1}‖ ≤ 100 ‖δu_k‖²`
+/// (relative to the increment) over the full steps with `‖δu_k‖` in
+/// [1e-7, 1e-2] and no status switch, at least three such pairs.
+fn assert_quadratic_corrections(incs: &[signorini::solve::stepping::IncrementRecord]) {
+    let mut checked = 0;
+    for inc in incs {
+        for w in inc.newton.windows(2) {
+            let (c0, c1) = (w[0].correction, w[1].correction);
+            let full = w[0].step_length == 1.0 && w[1].step_length == 1.0;
+            if full && w[1].switched == 0 && c1 > 0.0 && (1e-7..=1e-2).contains(&c0) {
+                assert!(
+                    c1 <= (100.0 * c0 * c0).max(1e-13),
+                    "corrections {c0:e} → {c1:e}"
+                );
+                checked += 1;
+            }
+        }
+    }
+    assert!(checked >= 3, "{checked} pairs checked");
 }
 
 /// The same cantilever from the secant predictor: the same
-/// final state, and Newton quadratic in the corrections,
-/// `‖δu_{k+1}‖ ≤ 100 ‖δu_k‖²` (relative to the increment) over the full
-/// steps with `‖δu_k‖` in [1e-7, 1e-2] and no contact. The residuals of its
+/// final state, and Newton quadratic in the corrections
+/// ([`assert_quadratic_corrections`]). The residuals of its
 /// last increment fall 3.7e-3 → 2.0e-6 → 2.0e-9 (a constant of 520 in the
 /// residual) while the corrections fall 4.1e-3 → 1.4e-4 → 1.6e-9
 /// (constants 8.5 and 0.08): the error was along the soft bending mode.
@@ -473,21 +495,7 @@ fn follower_pressure_secant_predictor_is_quadratic_in_the_corrections() {
         diff <= 1e-8 * scale,
         "secant vs none: {diff:e} of {scale:e}"
     );
-    let mut checked = 0;
-    for inc in &incs {
-        for w in inc.newton.windows(2) {
-            let (c0, c1) = (w[0].correction, w[1].correction);
-            let full = w[0].step_length == 1.0 && w[1].step_length == 1.0;
-            if full && w[1].switched == 0 && c1 > 0.0 && (1e-7..=1e-2).contains(&c0) {
-                assert!(
-                    c1 <= (100.0 * c0 * c0).max(1e-13),
-                    "corrections {c0:e} → {c1:e}"
-                );
-                checked += 1;
-            }
-        }
-    }
-    assert!(checked >= 3, "{checked} pairs checked");
+    assert_quadratic_corrections(&incs);
 }
 
 /// The whole solution (assembly, nested-dissection LDLᵀ, Newton) with 1 and

@@ -408,7 +408,8 @@ pub struct ContactSpec {
     pub two_pass: bool,
     /// `"node_to_surface"` or `"mortar"`: dual mortar between two bodies
     /// (with `primary`, with or without friction) or against a rigid
-    /// obstacle (with `obstacle`, frictionless), one pass; linear and
+    /// obstacle (with `obstacle`, with or without friction: the slip
+    /// relative to the obstacle, Newton's path), one pass; linear and
     /// quadratic faces. Default: `"mortar"` where the secondary surface
     /// has quadratic faces (Tri6/Quad8, whose corner nodes node-to-surface
     /// gives no share of a uniform pressure) and mortar takes the pairing

@@ -18,7 +18,7 @@ use common::{assert_open_stick_and_slip, every_method, perturbed_state, run, une
 use nalgebra::{Matrix3, Vector3};
 use signorini::assembly::amplitude::Amplitude;
 use signorini::contact::friction::{ContactStatus, STICK_SHIFT};
-use signorini::contact::interface::{ContactContext, ContactInterface, NodeReport};
+use signorini::contact::interface::{ContactInterface, NodeReport};
 use signorini::contact::laws::NormalLaw;
 use signorini::contact::setup::Enforcement;
 use signorini::material::{cauchy_stress, Material, NeoHookean};
@@ -188,15 +188,7 @@ fn run_and_report(pr: &mut Problem, kind: ElementKind) -> (Vec<NodeReport>, Vec<
         );
     }
     assert_newton_rate(&last.increments, newton_bounds(kind).1);
-    let ctx = ContactContext {
-        reference: &pr.model.mesh.nodes,
-        t: 2.0,
-        x: &last.x,
-        first_multiplier: pr.model.num_dofs(),
-    };
-    let mut residual = vec![0.0; pr.num_unknowns()];
-    let c = pr.contacts.interface(0);
-    let reports = c.assemble(&ctx, &last.contact.interfaces[0], &mut residual, None);
+    let reports = common::interface_reports(pr, &last, 2.0);
     (
         reports,
         last.increments.iter().map(|i| i.iterations).collect(),

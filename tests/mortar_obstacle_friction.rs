@@ -19,7 +19,7 @@ use common::{assert_open_stick_and_slip, perturbed_state, problem, run};
 use nalgebra::Vector3;
 use signorini::assembly::amplitude::Amplitude;
 use signorini::contact::friction::{ContactStatus, STICK_SHIFT};
-use signorini::contact::interface::{ContactContext, ContactInterface, NodeReport};
+use signorini::contact::interface::{ContactInterface, NodeReport};
 use signorini::contact::laws::NormalLaw;
 use signorini::contact::obstacle::RigidObstacle;
 use signorini::contact::setup::Enforcement;
@@ -84,15 +84,7 @@ fn prescribe(pr: &mut Problem, n: usize, [press, shear]: [[f64; 3]; 2]) {
 /// increment.
 fn run_and_report(pr: &mut Problem) -> (Vec<NodeReport>, Vec<usize>) {
     let last = run(pr);
-    let ctx = ContactContext {
-        reference: &pr.model.mesh.nodes,
-        t: 2.0,
-        x: &last.x,
-        first_multiplier: pr.model.num_dofs(),
-    };
-    let mut residual = vec![0.0; pr.num_unknowns()];
-    let c = pr.contacts.interface(0);
-    let reports = c.assemble(&ctx, &last.contact.interfaces[0], &mut residual, None);
+    let reports = common::interface_reports(pr, &last, 2.0);
     let iterations = last.increments.iter().map(|i| i.iterations).collect();
     (reports, iterations)
 }

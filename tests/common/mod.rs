@@ -993,3 +993,17 @@ pub fn press_then_shear_steps() -> Vec<signorini::solve::settings::Step> {
         })
         .collect()
 }
+
+/// The node reports of the first interface of `pr` at the end of run
+/// `last`, evaluated at time `t`.
+pub fn interface_reports(pr: &Problem, last: &Last, t: f64) -> Vec<NodeReport> {
+    let ctx = signorini::contact::interface::ContactContext {
+        reference: &pr.model.mesh.nodes,
+        t,
+        x: &last.x,
+        first_multiplier: pr.model.num_dofs(),
+    };
+    let mut residual = vec![0.0; pr.num_unknowns()];
+    let c = pr.contacts.interface(0);
+    c.assemble(&ctx, &last.contact.interfaces[0], &mut residual, None)
+}

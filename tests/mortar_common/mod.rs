@@ -81,7 +81,7 @@ pub fn consistent_integrals(
     faces: &[SurfaceFace],
     coords: &[Vector3<f64>],
 ) -> BTreeMap<usize, f64> {
-    nodal_integrals(faces, coords, &|shape, xi| shape.values(xi))
+    nodal_integrals(faces, coords, &|shape, xi| shape.values(xi).to_vec())
 }
 
 /// `Σ_e ∫_e f_k dA` per global node for the nodal functions `f(shape, ξ)`.

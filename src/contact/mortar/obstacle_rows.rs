@@ -37,7 +37,7 @@ use std::collections::BTreeMap;
 use nalgebra::{DMatrix, DVector, Vector3};
 
 use super::dual_basis::DualBasis;
-use super::face::{MortarFace, SurfaceFace};
+use super::face::{FaceValues, MortarFace, SurfaceFace};
 use super::normals::unit_derivative;
 use super::quadratic::mortar_values;
 use super::rows::MortarRow;
@@ -121,8 +121,8 @@ pub fn face_obstacle_integrals(
 /// What the rule needs at one point `ξ` of a face.
 struct FacePoint {
     /// The Lagrange values `N_k`, the mortar values `Ñ_i`, the dual `Φ_j`.
-    lagrange: Vec<f64>,
-    gradients: Vec<[f64; 2]>,
+    lagrange: FaceValues<f64>,
+    gradients: FaceValues<[f64; 2]>,
     mortar: Vec<f64>,
     phi: Vec<f64>,
     /// The area element `|a|`, the unit normal `a/|a|`, the tangents.

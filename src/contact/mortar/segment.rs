@@ -30,7 +30,7 @@ use nalgebra::DMatrix;
 use super::auxiliary_plane::AuxiliaryPlane;
 use super::clipping::{self, ClipTrace, Polygon};
 use super::dual_basis::DualBasis;
-use super::face::MortarFace;
+use super::face::{FaceValues, MortarFace};
 use super::projection::{project_along, FacePoint};
 use super::MortarError;
 use crate::fem::quadrature;
@@ -200,7 +200,7 @@ pub fn cell_point(cell: &clipping::Triangle, eta: [f64; 2]) -> [f64; 2] {
 }
 
 /// Adds one integration point's `Φ_j w J` to `D_j` and `Φ_j N_l w J` to `M_jl`.
-fn add_point(out: &mut SegmentIntegrals, phi: Vec<f64>, n_primary: Vec<f64>, weight: f64) {
+fn add_point(out: &mut SegmentIntegrals, phi: Vec<f64>, n_primary: FaceValues<f64>, weight: f64) {
     out.area += weight;
     for (j, phi_j) in phi.iter().enumerate() {
         out.d[j] += phi_j * weight;

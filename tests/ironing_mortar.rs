@@ -28,16 +28,19 @@ const MU: f64 = 0.3;
 /// slid 2.0 (to t = 1.5) in increments of 0.2, writing into `out`; and
 /// the example's folder (the mesh's).
 fn coarse_case(out: &Path) -> (String, PathBuf) {
-    let folder = Path::new(env!("CARGO_MANIFEST_DIR")).join("examples/ironing-mortar");
-    let text = std::fs::read_to_string(folder.join("case.toml")).unwrap();
+    let (text, folder) = example_case(out);
     if std::env::var("IRONING_FULL").is_ok() {
         // diagnostics on the example's own mesh and increments
-        let case = text.replace("every = 5", "every = 1000");
-        let case = case.replace("[output]\n", &format!("[output]\nfolder = {out:?}\n"));
-        return (case, folder);
+        return (text, folder);
     }
     let edits = [
         ("file = \"ironing.msh\"", "file = \"coarse.msh\""),
+        // the example's short first slide increments (its README): the
+        // coarse run slides from the press's end in its own increments
+        (
+            "[[step]]\nname = \"slide_start\"\nend_time = 1.025\ninitial_increment = 0.00625\nmax_increment = 0.025\n\n",
+            "",
+        ),
         (
             "end_time = 1.0\ninitial_increment = 0.1\nmax_increment = 0.1",
             "end_time = 1.0\ninitial_increment = 0.2\nmax_increment = 0.2",
@@ -46,29 +49,43 @@ fn coarse_case(out: &Path) -> (String, PathBuf) {
             "end_time = 2.0\ninitial_increment = 0.025\nmax_increment = 0.025",
             "end_time = 1.5\ninitial_increment = 0.05\nmax_increment = 0.05",
         ),
-        ("every = 5", "every = 1000"),
     ];
-    let mut case = text.clone();
+    let mut case = text;
     for (from, to) in edits {
         assert!(case.contains(from), "case.toml no longer holds {from:?}");
         case = case.replace(from, to);
     }
-    case = case.replace("[output]\n", &format!("[output]\nfolder = {out:?}\n"));
+    (case, folder)
+}
+
+/// The example's case text as committed, writing into `out` (no VTU
+/// series but the steps' ends), and the example's folder.
+fn example_case(out: &Path) -> (String, PathBuf) {
+    let folder = Path::new(env!("CARGO_MANIFEST_DIR")).join("examples/ironing-mortar");
+    let text = std::fs::read_to_string(folder.join("case.toml")).unwrap();
+    let case = text.replace("every = 5", "every = 1000");
+    let case = case.replace("[output]\n", &format!("[output]\nfolder = {out:?}\n"));
     (case, folder)
 }
 
 /// The example's case on `coarse.msh` ([`coarse_case`]), run.
 fn coarse_run() -> Vec<IncrementSummary> {
+    run_case(coarse_case).0
+}
+
+/// The case that `case` writes for an output folder, run there: its
+/// increments and the example's folder.
+fn run_case(case: fn(&Path) -> (String, PathBuf)) -> (Vec<IncrementSummary>, PathBuf) {
     let out = tempfile::tempdir().unwrap();
-    let (case, folder) = coarse_case(out.path());
+    let (case, folder) = case(out.path());
     let mut simulation = Simulation::from_toml(&case, &folder).unwrap();
     let outcome = simulation
         .run(
             &RunOptions::default(),
             &mut signorini::output::observer::Silent,
         )
-        .expect("the coarse ironing runs");
-    outcome.summary.increments
+        .expect("the ironing case runs");
+    (outcome.summary.increments, folder)
 }
 
 /// Steady sliding, from a slide of 1.6 on (t ≥ 1.4: the die's tangential
@@ -153,15 +170,59 @@ fn assert_forces_balance_the_die(increments: &[IncrementSummary]) {
     }
 }
 
+/// The example itself (`case.toml` on `ironing.msh`, 52 increments): no
+/// cut and at most 6 Newton iterations in every increment, the issue's
+/// bound (measured 2026-11-28: 3–6; the first slide increment took 7 in
+/// one increment of 0.025, 5, 4 and 4 in the short increments the case now
+/// starts the slide with, README "Newton at the stick–slip turn"); and the
+/// die's reaction after every increment equal to the committed
+/// `figures/die_reaction.csv` to 1e-8 of its largest force (the residual
+/// tolerance). About 20 minutes on a loaded 2-core machine:
+/// `cargo test --release --test ironing_mortar -- --ignored ironing_mortar_example_within_six_iterations`
+#[test]
+#[ignore = "about 20 min; run with --ignored (the example's whole run)"]
+fn ironing_mortar_example_within_six_iterations() {
+    let (increments, folder) = run_case(example_case);
+    assert_newton_iterations(&increments);
+    let csv = std::fs::read_to_string(folder.join("figures/die_reaction.csv")).unwrap();
+    let rows: Vec<Vec<f64>> = csv
+        .lines()
+        .skip(1)
+        .map(|l| l.split(',').map(|v| v.parse().unwrap()).collect())
+        .collect();
+    assert_eq!(rows.len(), increments.len(), "one row per increment");
+    let largest = rows
+        .iter()
+        .flat_map(|r| &r[1..])
+        .fold(0.0, |m: f64, v| m.max(v.abs()));
+    for (row, i) in rows.iter().zip(&increments) {
+        let reaction = i.reaction_forces["die_top"];
+        assert!(
+            (row[0] - i.time).abs() < 1e-9,
+            "t = {} against {}",
+            i.time,
+            row[0]
+        );
+        for d in 0..3 {
+            assert!(
+                (reaction[d] - row[d + 1]).abs() < 1e-8 * largest,
+                "t = {}: reaction {reaction:?}, committed {row:?}",
+                i.time
+            );
+        }
+    }
+}
+
 /// Newton per increment on the coarse run: no cut, and at most 6
 /// iterations in every increment (the issue's bound). Measured
 /// 2026-11-27: 4–6; the press's first contact (0.01 apart, then pressed
 /// 0.28) 6 with 20, 7 and 2 status switches, the slide at t = 1.3 6 with
 /// 14 and 6 (7 each before a closing node's first-contact fraction was
 /// taken at its solution value, mortar_friction.rs). On the example's own
-/// mesh the first slide increment takes 18 (see its README, "Newton at
-/// the stick–slip turn": open). Each increment's residuals and status
-/// switches are printed.
+/// mesh the first slide increment took 18, then 7, and the example now
+/// starts its slide in short increments (its README, "Newton at the
+/// stick–slip turn"; [`ironing_mortar_example_within_six_iterations`]).
+/// Each increment's residuals and status switches are printed.
 fn assert_newton_iterations(increments: &[IncrementSummary]) {
     for i in increments {
         let residuals: Vec<String> = i.residuals.iter().map(|r| format!("{r:.1e}")).collect();

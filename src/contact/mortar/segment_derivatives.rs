@@ -94,9 +94,9 @@ pub fn cell_point_derivatives(
         .map(|q| {
             let dp = cell_point(&d_cells[q.cell], q.eta);
             let dx = plane.spatial_point_derivative(d_plane, q.plane_point, dp);
-            let (n0, dn0) = (&plane.normal, &d_plane.normal);
-            let (dxi_s, _) = projection_derivative(secondary, &q.secondary, n0, dxs, &dx, dn0)?;
-            let (dxi_m, _) = projection_derivative(primary, &q.primary, n0, dxm, &dx, dn0)?;
+            let dn0 = &d_plane.normal;
+            let (dxi_s, _) = projection_derivative(secondary, &q.secondary, dxs, &dx, dn0);
+            let (dxi_m, _) = projection_derivative(primary, &q.primary, dxm, &dx, dn0);
             let d_cell = cross_derivative(cells[q.cell], d_cells[q.cell]);
             Ok(CellPointDerivative {
                 plane_point: dp,

@@ -4,8 +4,8 @@
 //! A new backend is one file implementing [`LinearSolver`] and one arm here.
 
 use super::direct::{DirectLdlt, MixedPrecision};
-use super::krylov::PreconditionedGmres;
 use super::failure::IncrementFailure;
+use super::krylov::PreconditionedGmres;
 use super::linear::Ordering;
 use super::linear_solver::{LinearSolver, LinearSystem, SolverStatistics};
 use super::lu::SparseLu;

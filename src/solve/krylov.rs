@@ -5,8 +5,8 @@
 //! sparse LU solves the tangent when that LDLᵀ breaks down or GMRES does
 //! not converge.
 
-use super::gmres::gmres;
 use super::failure::IncrementFailure;
+use super::gmres::gmres;
 use super::linear::{multiply, Ordering, SparseLdlt};
 use super::linear_solver::{LinearSolver, LinearSystem, SolverStatistics};
 use super::lu::SparseLu;

@@ -37,8 +37,8 @@
 //! program was not started by `mpirun`) and finalised at exit. Calls into
 //! it are serialised by a lock: PETSc is not thread-safe.
 
-use super::linear::{pattern_fingerprint, Ordering};
 use super::failure::IncrementFailure;
+use super::linear::{pattern_fingerprint, Ordering};
 use super::linear_solver::{LinearSolver, LinearSystem, SolverStatistics};
 use crate::{Error, Result};
 use faer::sparse::SymbolicSparseColMat;
@@ -630,5 +630,45 @@ mod tests {
             }
         }
         assert_eq!(solver.statistics().krylov_solves, 2);
+    }
+
+    /// A singular matrix is a failed solve, which a smaller increment may
+    /// mend (MUMPS' zero pivot is the PC's failed reason, not a PETSc
+    /// error code); a factorisation package PETSc lacks is a failed
+    /// set-up (PETSc error 92 at `KSPSetUp`), which ends the run, and
+    /// its message names the option.
+    #[test]
+    fn a_singular_matrix_is_a_failed_solve_and_a_missing_package_a_failed_set_up() {
+        // rank 1: [[1, 1], [1, 1]]
+        let singular = system(&[(0, 0, 1.0), (1, 0, 1.0), (0, 1, 1.0), (1, 1, 1.0)], 2);
+        let regular = system(&[(0, 0, 2.0), (1, 1, 3.0)], 2);
+        let solve = |options: &str, a: &SparseColMat<usize, f64>| {
+            let pattern = a.symbolic().to_owned().unwrap();
+            let sys = LinearSystem {
+                pattern: &pattern,
+                matrix: a.val(),
+                symmetric_neighbour: None,
+                pivot_signs: None,
+            };
+            let mut x = [0.0; 2];
+            PetscSolver::new(options, None)
+                .unwrap()
+                .solve(&sys, &[1.0, 2.0], &mut x)
+        };
+        let failed = solve("", &singular).unwrap_err();
+        assert!(
+            matches!(failed, IncrementFailure::LinearSolve(_)),
+            "{failed:?}"
+        );
+        assert!(failed.mended_by_a_cut());
+        let option = "-pc_factor_mat_solver_type no_such_package";
+        let failed = solve(option, &regular).unwrap_err();
+        let IncrementFailure::LinearSolverSetUp(message) = &failed else {
+            panic!("{failed:?}");
+        };
+        assert!(message.contains("PETSc error 92"), "{message}");
+        assert!(message.contains(option), "{message}");
+        assert!(!failed.mended_by_a_cut());
+        assert!(solve("", &regular).is_ok());
     }
 }

@@ -3,12 +3,18 @@
 
     scripts/compare_examples.py OLD_BINARY NEW_BINARY [EXAMPLE ...]
 
-EXAMPLE: a folder of examples/ (its case.toml) or a case file in one,
-such as cattaneo-mindlin/coarse.toml.
+EXAMPLE: a folder of examples/ or a case file in one, such as
+cattaneo-mindlin/coarse.toml or calculix-deck/deck_c3d10.inp. A folder
+runs its case.toml; a folder without one runs each of its other case
+files, `*.toml` and Abaqus/CalculiX `*.inp` decks (as `signorini run`
+takes them: examples/calculix-deck runs deck.inp and deck_c3d10.inp); a
+folder with neither (examples/python, a Python script) is skipped, said
+so. Without EXAMPLE: every folder of examples/, so every example the
+README lists that `signorini run` runs.
 
 A behaviour-preserving change (a refactoring, a new backend that must give
-the same numbers) is checked with it: both binaries run each
-`examples/*/case.toml` (with `--threads 1`, so that the parallel
+the same numbers) is checked with it: both binaries run each of those
+cases (with `--threads 1`, so that the parallel
 factorisation sums in one order) into temporary folders, and the script
 compares, increment by increment, what `summary.json` reports — the status,
 the increment times and sizes, Newton iterations, cuts, every interface's
@@ -128,6 +134,9 @@ def scale_of(key, pairs):
 
 def compare(old_dir, new_dir):
     diffs = []
+    missing = [str(d.name) for d in (old_dir, new_dir) if not (d / "summary.json").exists()]
+    if missing:
+        return [f"no summary.json from {' and '.join(missing)}"]
     old = json.loads((old_dir / "summary.json").read_text())
     new = json.loads((new_dir / "summary.json").read_text())
     a, b = numbers(old), numbers(new)
@@ -166,34 +175,54 @@ def compare(old_dir, new_dir):
     return diffs
 
 
+def cases(name):
+    """The case files EXAMPLE `name` runs (see the help): a case file, or a
+    folder's case.toml, else its *.toml and *.inp files; [] if none."""
+    path = ROOT / "examples" / name
+    if path.is_file():
+        return [path]
+    if (path / "case.toml").is_file():
+        return [path / "case.toml"]
+    return sorted(p for p in path.glob("*") if p.suffix in (".toml", ".inp") and p.is_file())
+
+
 def main():
-    if len(sys.argv) < 3:
+    if len(sys.argv) < 3 or sys.argv[1] in ("-h", "--help"):
         print(__doc__)
-        return 2
+        return 0 if sys.argv[1:2] in (["-h"], ["--help"]) else 2
     old_bin, new_bin = sys.argv[1], sys.argv[2]
-    names = sys.argv[3:] or sorted(
-        p.parent.name for p in (ROOT / "examples").glob("*/case.toml")
-    )
+    names = sys.argv[3:] or sorted(p.name for p in (ROOT / "examples").iterdir() if p.is_dir())
     failed = False
     with tempfile.TemporaryDirectory() as tmp:
-        for name in names:
-            # an example's folder (its case.toml) or one of its case files
-            case = ROOT / "examples" / (name if name.endswith(".toml") else f"{name}/case.toml")
-            name = name.replace("/", "-")
-            dirs = []
-            for tag, binary in (("old", old_bin), ("new", new_bin)):
-                out = pathlib.Path(tmp) / f"{name}-{tag}"
-                code, err = run(binary, case, out)
-                dirs.append(out)
-                if code != 0:
-                    print(f"{name}: {tag} binary failed ({code}): {err.strip()[:300]}")
-            diffs = compare(*dirs)
-            status = "same" if not diffs else f"{len(diffs)} differences"
-            print(f"{name}: {status}")
-            for d in diffs[:20]:
-                print(f"    {d}")
-            failed |= bool(diffs)
+        for folder in names:
+            found = cases(folder)
+            if not found:
+                print(f"{folder}: skipped, no case.toml, other .toml case or .inp deck")
+                failed |= bool(sys.argv[3:])
+            for case in found:
+                failed |= compare_case(old_bin, new_bin, case, pathlib.Path(tmp))
     return 1 if failed else 0
+
+
+def compare_case(old_bin, new_bin, case, tmp):
+    """Run `case` with both binaries into `tmp`, print the outcome; whether
+    the answers differ."""
+    # examples/NAME/case.toml is NAME; another case file NAME-FILE
+    folder = case.parent.name
+    name = folder if case.name == "case.toml" else f"{folder}-{case.name}"
+    dirs = []
+    for tag, binary in (("old", old_bin), ("new", new_bin)):
+        out = tmp / f"{name}-{tag}"
+        code, err = run(binary, case, out)
+        dirs.append(out)
+        if code != 0:
+            print(f"{name}: {tag} binary failed ({code}): {err.strip()[:300]}")
+    diffs = compare(*dirs)
+    status = "same" if not diffs else f"{len(diffs)} differences"
+    print(f"{name}: {status}")
+    for d in diffs[:20]:
+        print(f"    {d}")
+    return bool(diffs)
 
 
 if __name__ == "__main__":

@@ -412,6 +412,76 @@ name = "block"
         assert!(!ended.stderr.contains("MPI_ABORT"), "{}", ended.stderr);
     }
 
+    /// A PETSc option that the solver's set-up rejects: a factorisation
+    /// package PETSc lacks, found at the first `KSPSetUp` (PETSc error 92,
+    /// `PETSC_ERR_MISSING_FACTOR`), not when the solver is made.
+    const BAD_OPTION: [&str; 2] = ["-pc_factor_mat_solver_type", "no_such_package"];
+
+    /// A run that PETSc's set-up failed, as the user sees it
+    /// ([`assert_failed`]): exit code 1, the message names the option and
+    /// where to change it, and the increment was not cut (no "cutting" in
+    /// the log `log`).
+    fn assert_set_up_failed(ended: &Ended, log: &Path, what: &str) {
+        assert_failed(ended, &BAD_OPTION.join(" "), what);
+        assert_eq!(ended.status.code(), Some(1), "{what}: {}", ended.stderr);
+        assert!(
+            ended.stderr.contains("check the PETSc options after `--`"),
+            "{what}: {}",
+            ended.stderr
+        );
+        let log = std::fs::read_to_string(log).unwrap();
+        assert!(log.contains("PETSc error 92"), "{what}: {log}");
+        assert!(!log.contains("cutting"), "{what}: {log}");
+    }
+
+    /// A PETSc option that the solver's set-up rejects ends a serial run
+    /// at its first solve, not after `max_cuts` cuts of the increment:
+    /// no increment mends it (`IncrementFailure::LinearSolverSetUp`).
+    /// Without a predictor, so that Newton's first solve is PETSc's (the
+    /// contact predictor solves this block's increments with faer).
+    #[test]
+    fn a_rejected_petsc_option_ends_a_serial_run_without_cuts() {
+        let dir = tempfile::tempdir().unwrap();
+        let solver = "linear = \"petsc\"\npredictor = \"none\"";
+        let case = block_case(dir.path(), false, "", solver);
+        let out = dir.path().join("out");
+        let mut command = Command::new(env!("CARGO_BIN_EXE_signorini"));
+        command
+            .args(["run", case.to_str().unwrap(), "--quiet", "--output"])
+            .arg(&out)
+            .arg("--")
+            .args(BAD_OPTION);
+        let ended = bounded(command, &out, std::time::Duration::from_secs(60), |_| {});
+        assert_set_up_failed(&ended, &out.join("block.log"), "serial");
+    }
+
+    /// Under `mpirun -np 2` the same option ends both processes at their
+    /// first solve, each with the message, by their own exit (no
+    /// `MPI_Abort`), within 10 s (issue 29: a fault ends every process
+    /// within seconds).
+    #[test]
+    fn a_rejected_petsc_option_ends_every_process_without_cuts() {
+        let dir = tempfile::tempdir().unwrap();
+        let case = block_case(dir.path(), false, "", "");
+        let out = dir.path().join("out");
+        let mut command = mpirun();
+        app(&mut command, &[], &case, &out, &["--"]);
+        command.args(BAD_OPTION);
+        let start = std::time::Instant::now();
+        let ended = bounded(command, &out, std::time::Duration::from_secs(60), |_| {});
+        let after = start.elapsed();
+        println!("ended after {after:?}");
+        assert_set_up_failed(&ended, &out.join("block.log"), "mpirun -np 2");
+        assert_eq!(
+            ended.stderr.matches("check the PETSc options").count(),
+            2,
+            "{}",
+            ended.stderr
+        );
+        assert!(!ended.stderr.contains("MPI_ABORT"), "{}", ended.stderr);
+        assert!(after < std::time::Duration::from_secs(10), "{after:?}");
+    }
+
     /// The pid of rank `rank` among the processes started with `mark` in
     /// their environment (read from /proc).
     fn rank_pid(mark: &str, rank: usize) -> Option<u32> {

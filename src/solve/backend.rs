@@ -4,6 +4,7 @@
 //! A new backend is one file implementing [`LinearSolver`] and one arm here.
 
 use super::direct::{DirectLdlt, MixedPrecision};
+use super::failure::IncrementFailure;
 use super::krylov::PreconditionedGmres;
 use super::linear::Ordering;
 use super::linear_solver::{LinearSolver, LinearSystem, SolverStatistics};
@@ -85,7 +86,8 @@ fn petsc_solver(_: &SolverSettings, _: Option<Vec<f64>>) -> Result<Box<dyn Linea
     Err(crate::Error::LinearSolver(PETSC_MISSING.into()))
 }
 
-/// A backend that could not start: every solve fails with `.0`.
+/// A backend that could not start: every solve fails with `.0`, a
+/// failure no cut mends (the run ends).
 struct Unavailable(String);
 
 impl LinearSolver for Unavailable {
@@ -95,8 +97,8 @@ impl LinearSolver for Unavailable {
         _: &LinearSystem<'_>,
         _: &[f64],
         _: &mut [f64],
-    ) -> std::result::Result<(), String> {
-        Err(self.0.clone())
+    ) -> std::result::Result<(), IncrementFailure> {
+        Err(IncrementFailure::LinearSolverSetUp(self.0.clone()))
     }
     fn statistics(&self) -> SolverStatistics {
         SolverStatistics::default()
@@ -127,7 +129,7 @@ impl LinearSolver for Auto {
         system: &LinearSystem<'_>,
         rhs: &[f64],
         x: &mut [f64],
-    ) -> Result<(), String> {
+    ) -> Result<(), IncrementFailure> {
         match (system.symmetric_neighbour, self.nonsymmetric) {
             (None, _) => self.direct.solve(system, rhs, x),
             (Some(_), NonsymmetricSolver::Gmres) => self.gmres.solve(system, rhs, x),

@@ -3,6 +3,7 @@
 //! sparse LU with partial pivoting where the LDLᵀ breaks down; above a
 //! size, the LDLᵀ in f32 refined against the f64 matrix (mixed precision).
 
+use super::failure::IncrementFailure;
 use super::linear::{Ordering, SparseLdlt};
 use super::linear_solver::{LinearSolver, LinearSystem, SolverStatistics};
 use super::lu::SparseLu;
@@ -105,7 +106,7 @@ impl LinearSolver for DirectLdlt {
         system: &LinearSystem<'_>,
         rhs: &[f64],
         x: &mut [f64],
-    ) -> Result<(), String> {
+    ) -> Result<(), IncrementFailure> {
         if self.mixed.applies(rhs.len()) {
             if self.solve_mixed(system, rhs, x) {
                 return Ok(());

@@ -1,8 +1,11 @@
-//! Why an increment did not converge. Every [`IncrementFailure`] is mended,
+//! Why an increment did not converge. An [`IncrementFailure`] is mended,
 //! if at all, by a smaller increment: the stepper cuts the increment on
-//! any of them and stops after `max_cuts` consecutive cuts. Errors that no
-//! cut can mend (a failed output write, a bad ordering) are `Err` instead.
-//! `Display` gives the message of the log and of the final error.
+//! it and stops after `max_cuts` consecutive cuts. Two end the run at once
+//! instead ([`IncrementFailure::mended_by_a_cut`]): a cancelled run and a
+//! linear solver that cannot be set up as asked, which the increment
+//! finds first but no increment mends. Other errors that no cut can mend
+//! (a failed output write, a bad ordering) are `Err` instead. `Display`
+//! gives the message of the log and of the final error.
 
 use super::chattering::Chatter;
 use crate::assembly::kernel::KernelFailure;
@@ -59,8 +62,14 @@ pub enum IncrementFailure {
         direction: [f64; 3],
         closed: ClosedContact,
     },
-    /// The linear solve failed (a singular tangent); the solver's message.
+    /// The linear solve failed (a singular tangent, a Krylov method that
+    /// diverged, a solution that is not finite); the solver's message.
     LinearSolve(String),
+    /// The linear solver could not be set up as its options ask (an option
+    /// value it rejects, a factorisation package it lacks): the solver's
+    /// message, with what to check. No smaller increment mends it: the
+    /// stepper ends the run with it (not cut).
+    LinearSolverSetUp(String),
     /// No convergence in `iterations` Newton iterations.
     MaxIterations { iterations: usize, relative: f64 },
     /// A contact node slid beyond the primary triangles it was paired with
@@ -173,6 +182,7 @@ impl std::fmt::Display for IncrementFailure {
                  or a missing support"
             ),
             IncrementFailure::LinearSolve(message) => f.write_str(message),
+            IncrementFailure::LinearSolverSetUp(message) => f.write_str(message),
             IncrementFailure::MaxIterations {
                 iterations,
                 relative,
@@ -232,6 +242,17 @@ impl std::fmt::Display for IncrementFailure {
             ),
             IncrementFailure::Cancelled => write!(f, "cancelled between two Newton iterations"),
         }
+    }
+}
+
+impl IncrementFailure {
+    /// Whether a smaller increment may mend it: false for a cancelled run
+    /// and a linear solver that cannot be set up, which end the run at once.
+    pub fn mended_by_a_cut(&self) -> bool {
+        !matches!(
+            self,
+            IncrementFailure::Cancelled | IncrementFailure::LinearSolverSetUp(_)
+        )
     }
 }
 

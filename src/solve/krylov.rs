@@ -5,6 +5,7 @@
 //! sparse LU solves the tangent when that LDLᵀ breaks down or GMRES does
 //! not converge.
 
+use super::failure::IncrementFailure;
 use super::gmres::gmres;
 use super::linear::{multiply, Ordering, SparseLdlt};
 use super::linear_solver::{LinearSolver, LinearSystem, SolverStatistics};
@@ -47,7 +48,7 @@ impl LinearSolver for PreconditionedGmres {
         system: &LinearSystem<'_>,
         rhs: &[f64],
         x: &mut [f64],
-    ) -> Result<(), String> {
+    ) -> Result<(), IncrementFailure> {
         let (pattern, k) = (system.pattern, system.matrix);
         let neighbour = system.symmetric_neighbour.unwrap_or(k);
         if let Err(e) = self.ldlt.factorize(pattern, neighbour, system.pivot_signs) {
@@ -79,10 +80,10 @@ impl LinearSolver for PreconditionedGmres {
         if !(report.relative_residual <= 1e3 * KRYLOV_TOLERANCE) {
             // the preconditioner is too far from the tangent: solve directly
             return LinearSolver::solve(&mut self.lu, system, rhs, x).map_err(|e| {
-                format!(
+                IncrementFailure::LinearSolve(format!(
                     "the nonsymmetric linear solve failed (GMRES relative residual {:.1e} after {} iterations; then {e})",
                     report.relative_residual, report.iterations
-                )
+                ))
             });
         }
         Ok(())

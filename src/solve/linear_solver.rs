@@ -5,6 +5,7 @@
 //! [`super::krylov::PreconditionedGmres`], [`super::lu::SparseLu`]; the
 //! `[solver] linear` key picks one in [`super::backend::linear_solver`].
 
+use super::failure::IncrementFailure;
 use super::linear::{FactorReport, Ordering};
 use crate::assembly::sink::TangentSink;
 use faer::sparse::SymbolicSparseColMat;
@@ -153,14 +154,17 @@ pub trait LinearSolver {
     /// analysis): after the pattern changed, e.g. new contact pairs.
     fn set_ordering(&mut self, ordering: Ordering);
     /// Solve `K x = rhs` (analysing the pattern if it is new, factorising
-    /// `K` or its symmetric neighbour). The error says why it failed (a
-    /// singular tangent), for the log.
+    /// `K` or its symmetric neighbour). The error says why it failed:
+    /// [`IncrementFailure::LinearSolve`] for this matrix (a singular
+    /// tangent: the stepper cuts the increment), or
+    /// [`IncrementFailure::LinearSolverSetUp`] for the solver's own
+    /// settings (the run ends).
     fn solve(
         &mut self,
         system: &LinearSystem<'_>,
         rhs: &[f64],
         x: &mut [f64],
-    ) -> Result<(), String>;
+    ) -> Result<(), IncrementFailure>;
     /// Counts and times so far.
     fn statistics(&self) -> SolverStatistics;
     /// What the log should say of the solver beyond `[solver] linear`

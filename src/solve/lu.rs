@@ -9,6 +9,7 @@
 //! with 10 times the memory of the LDLᵀ at 150 k dofs (see BENCHMARKS.md),
 //! which is why it is not the default.
 
+use super::failure::IncrementFailure;
 use super::linear::{pattern_fingerprint, Ordering};
 use super::linear_solver::{LinearSolver, LinearSystem, SolverStatistics};
 use crate::{Error, Result};
@@ -81,8 +82,9 @@ impl SparseLu {
         system: &LinearSystem<'_>,
         rhs: &[f64],
         x: &mut [f64],
-    ) -> std::result::Result<(), String> {
-        LinearSolver::solve(self, system, rhs, x).map_err(|e| format!("{cause}; then {e}"))
+    ) -> std::result::Result<(), IncrementFailure> {
+        LinearSolver::solve(self, system, rhs, x)
+            .map_err(|e| IncrementFailure::LinearSolve(format!("{cause}; then {e}")))
     }
 }
 
@@ -95,11 +97,11 @@ impl LinearSolver for SparseLu {
         system: &LinearSystem<'_>,
         rhs: &[f64],
         x: &mut [f64],
-    ) -> std::result::Result<(), String> {
+    ) -> std::result::Result<(), IncrementFailure> {
         x.copy_from_slice(rhs);
         self.solves += 1;
         self.factor_and_solve(system.pattern, system.matrix, x)
-            .map_err(|e| e.to_string())
+            .map_err(|e| IncrementFailure::LinearSolve(e.to_string()))
     }
 
     fn statistics(&self) -> SolverStatistics {

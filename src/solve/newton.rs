@@ -379,7 +379,7 @@ impl<P: NonlinearProblem> Newton<'_, P> {
         if let Some(record) = records.last_mut() {
             record.linear = self.solver.statistics().since(&before);
         }
-        solved.map_err(IncrementFailure::LinearSolve)?;
+        solved?;
         Ok(du)
     }
 

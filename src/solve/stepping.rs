@@ -289,6 +289,9 @@ pub fn resume_steps<P: NonlinearProblem>(
                     observer.on_converged(problem, &record, &u, &evaluation, &state)?;
                 }
                 Err(IncrementFailure::Cancelled) => return Err(cancelled(t)),
+                Err(IncrementFailure::LinearSolverSetUp(message)) => {
+                    return Err(Error::LinearSolver(message))
+                }
                 Err(failure) => {
                     let at_smallest = 0.5 * dt < step.min_increment;
                     if cuts >= problem.settings().max_cuts || at_smallest {
@@ -349,7 +352,8 @@ struct Tried<R> {
 }
 
 /// [`attempt`] by the first of `methods`, and where it fails (but for a
-/// cancel) once more by the second, the fallback, from the converged
+/// failure no cut mends, [`IncrementFailure::mended_by_a_cut`]) once more
+/// by the second, the fallback, from the converged
 /// `start` (unknowns and state) again; the observer is told of the retry.
 #[allow(clippy::too_many_arguments)]
 fn attempt_with_fallback<P: NonlinearProblem>(
@@ -377,7 +381,7 @@ fn attempt_with_fallback<P: NonlinearProblem>(
     let (Err(failure), Some(f)) = (&first.outcome, fallback.as_deref_mut()) else {
         return first;
     };
-    if *failure == IncrementFailure::Cancelled {
+    if !failure.mended_by_a_cut() {
         return first;
     }
     let (step, time) = (&increment.step.name, increment.time);

@@ -28,9 +28,12 @@
 //! space) and its own multiplier rows (the last process's).
 
 use super::fault::{self, Agreement};
-use super::{check_indices, make_ksp, message, Columns, Outcome, Tally, MESSAGE, PETSC};
+use super::{
+    check_indices, make_ksp, message, solve_failure, Columns, Outcome, Tally, MESSAGE, PETSC,
+};
 use crate::assembly::share::Communicator;
 use crate::assembly::sink::{Entries, TangentSink};
+use crate::solve::failure::IncrementFailure;
 use crate::solve::linear::{pattern_fingerprint, Ordering};
 use crate::solve::linear_solver::{LinearSolver, LinearSystem, SolverStatistics};
 use crate::solve::partition::MeshPartition;
@@ -316,11 +319,19 @@ impl Handle {
         &self,
         f: impl FnOnce(*mut c_void, *mut c_char, usize) -> c_int,
     ) -> std::result::Result<(), String> {
+        self.call_coded(f).map_err(|(_, message)| message)
+    }
+
+    /// [`Handle::call`], with the C layer's return code beside the message.
+    fn call_coded(
+        &self,
+        f: impl FnOnce(*mut c_void, *mut c_char, usize) -> c_int,
+    ) -> std::result::Result<(), (c_int, String)> {
         let mut err = [0 as c_char; MESSAGE];
         let _lock = PETSC.lock().unwrap_or_else(|e| e.into_inner());
         match f(self.0, err.as_mut_ptr(), err.len()) {
             0 => Ok(()),
-            _ => Err(message(&err)),
+            code => Err((code, message(&err))),
         }
     }
 }
@@ -337,6 +348,8 @@ pub struct DistributedPetscSolver {
     /// The matrix as Newton's sink, for the current layout.
     sink: Option<Arc<MatrixSink>>,
     description: String,
+    /// The options it was made from, for the message of a failed set-up.
+    options: String,
     tally: Tally,
 }
 
@@ -350,7 +363,7 @@ impl DistributedPetscSolver {
         rank: usize,
         coordinates: Vec<f64>,
     ) -> Result<Self> {
-        let (handle, description) = make_ksp(
+        let (handle, description, options) = make_ksp(
             options,
             ffi::sg_petsc_mpi_solver_new,
             ffi::sg_petsc_mpi_solver_free,
@@ -366,6 +379,7 @@ impl DistributedPetscSolver {
             layout: None,
             sink: None,
             description: format!("{description}, distributed over {parts} processes"),
+            options,
             tally: Tally::default(),
         })
     }
@@ -434,13 +448,16 @@ impl LinearSolver for DistributedPetscSolver {
     /// `system.matrix` is this process's part `K^p`; `rhs` the whole
     /// right-hand side (the same on every process); `x` the whole solution.
     /// The processes agree on the outcome ([`fault::agree`]): a solve that
-    /// failed on one fails on every one, with its message.
+    /// failed on one fails on every one, with its message. A set-up
+    /// failure ([`IncrementFailure::LinearSolverSetUp`]) comes from the
+    /// options, the same on every process as a rule: each ends its run
+    /// with it at once.
     fn solve(
         &mut self,
         system: &LinearSystem<'_>,
         rhs: &[f64],
         x: &mut [f64],
-    ) -> std::result::Result<(), String> {
+    ) -> std::result::Result<(), IncrementFailure> {
         let local = self.solve_here(system, rhs, x);
         agreed(local)
     }
@@ -479,16 +496,22 @@ impl LinearSolver for DistributedPetscSolver {
 
 /// The outcome every process agreed on, given this process's `local` one:
 /// a failure on any process is a failure on all (this process's message,
-/// or the failed one's with its rank); a process that failed alone while
-/// another is stuck ends the run ([`fault::fault`]).
-fn agreed(local: std::result::Result<(), String>) -> std::result::Result<(), String> {
-    match fault::agree(local.as_ref().map(|_| ()).map_err(String::as_str)) {
+/// or the failed one's with its rank, cut as a failed solve); a process
+/// that failed alone while another is stuck ends the run
+/// ([`fault::fault`]).
+fn agreed(
+    local: std::result::Result<(), IncrementFailure>,
+) -> std::result::Result<(), IncrementFailure> {
+    let text = local.as_ref().err().map(ToString::to_string);
+    match fault::agree(text.as_deref().map_or(Ok(()), Err)) {
         Agreement::Succeeded => Ok(()),
         Agreement::Failed { rank, message } => match local {
             Err(mine) => Err(mine),
-            Ok(()) => Err(format!("process {rank}: {message}")),
+            Ok(()) => Err(IncrementFailure::LinearSolve(format!(
+                "process {rank}: {message}"
+            ))),
         },
-        Agreement::NoAnswer => fault::fault(local.err().as_deref().unwrap_or("no answer")),
+        Agreement::NoAnswer => fault::fault(text.as_deref().unwrap_or("no answer")),
     }
 }
 
@@ -501,18 +524,20 @@ impl DistributedPetscSolver {
         system: &LinearSystem<'_>,
         rhs: &[f64],
         x: &mut [f64],
-    ) -> std::result::Result<(), String> {
+    ) -> std::result::Result<(), IncrementFailure> {
         let start = Instant::now();
         let fingerprint = pattern_fingerprint(system.pattern);
         let (Some(numbering), Some(layout)) = (&self.numbering, &self.layout) else {
-            return Err("the distributed matrix was not filled before the solve".into());
+            return Err(IncrementFailure::LinearSolve(
+                "the distributed matrix was not filled before the solve".into(),
+            ));
         };
         if layout.fingerprint != fingerprint || !system.matrix.is_empty() {
-            return Err(
+            return Err(IncrementFailure::LinearSolve(
                 "the distributed solver takes the tangent through its matrix \
                         (LinearSolver::tangent_sink), not as values"
                     .into(),
-            );
+            ));
         }
         let b: Vec<f64> = numbering.owned.iter().map(|&old| rhs[old]).collect();
         let mut solution = vec![0.0; rhs.len()];
@@ -520,7 +545,7 @@ impl DistributedPetscSolver {
         let (iterations, seconds) = (&mut outcome.iterations, outcome.seconds.as_mut_ptr());
         // SAFETY: b holds this process's rows, `solution` the n unknowns
         // PETSc writes, the outcome's fields live until the call returns
-        let result = self.handle.call(|h, err, len| unsafe {
+        let result = self.handle.call_coded(|h, err, len| unsafe {
             ffi::sg_petsc_mpi_solve(
                 h,
                 b.as_ptr(),
@@ -532,6 +557,7 @@ impl DistributedPetscSolver {
             )
         });
         numbering.to_ours(&solution, x);
+        let result = result.map_err(|(code, m)| solve_failure(code, m, &self.options));
         self.tally.record(start, &outcome, result, x)
     }
 }

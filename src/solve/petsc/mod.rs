@@ -37,6 +37,7 @@
 //! program was not started by `mpirun`) and finalised at exit. Calls into
 //! it are serialised by a lock: PETSc is not thread-safe.
 
+use super::failure::IncrementFailure;
 use super::linear::{pattern_fingerprint, Ordering};
 use super::linear_solver::{LinearSolver, LinearSystem, SolverStatistics};
 use crate::{Error, Result};
@@ -154,6 +155,55 @@ pub(crate) fn message(buffer: &[c_char]) -> String {
         .into_owned()
 }
 
+/// PETSc's error codes of a numerical failure that a smaller increment
+/// may mend (`petscerror.h`): a zero pivot in LU and in Cholesky
+/// (`PETSC_ERR_MAT_LU_ZRPVT`, `PETSC_ERR_MAT_CH_ZRPVT`), a floating-point
+/// exception (`PETSC_ERR_FP`), a Krylov method that failed or did not
+/// converge (`PETSC_ERR_CONV_FAILED`, `PETSC_ERR_NOT_CONVERGED`).
+const NUMERICAL: [c_int; 5] = [71, 81, 72, 82, 91];
+
+/// The range of PETSc's error codes (`PETSC_ERR_MIN_VALUE` + 1 to
+/// `PETSC_ERR_MAX_VALUE` − 1).
+const PETSC_CODES: std::ops::RangeInclusive<c_int> = 55..=99;
+
+/// Why a PETSc solve failed, from the C layer's return `code` and its
+/// `message`, decided by PETSc's error code, not by the message's text:
+///
+/// - a KSP that did not converge (a negative converged reason, which the
+///   C layer returns as 1, no PETSc code) and the codes of [`NUMERICAL`]
+///   are the matrix's: [`IncrementFailure::LinearSolve`], the increment
+///   is cut. A singular tangent comes this way: with PETSc's
+///   error-if-failure flags off (their default), a zero pivot or a failed
+///   MUMPS factorisation is the PC's failed reason, so KSPSolve returns
+///   `KSP_DIVERGED_PC_FAILED`; with `-ksp_error_if_not_converged` it is a
+///   numerical code;
+/// - every other PETSc code is the solver's settings, the same at every
+///   increment: an unknown type (`PETSC_ERR_ARG_UNKNOWN_TYPE`), a value
+///   out of range or wrong, a factorisation package PETSc lacks
+///   (`PETSC_ERR_MISSING_FACTOR`, found at the first `KSPSetUp`), an
+///   operation the matrix type does not support, memory:
+///   [`IncrementFailure::LinearSolverSetUp`], PETSc's message with the
+///   `options` the solver was made from and where to change them; the
+///   run ends at once.
+///
+/// Anything else the C layer returns (its own checks) is cut as before.
+fn solve_failure(code: c_int, message: String, options: &str) -> IncrementFailure {
+    if !PETSC_CODES.contains(&code) || NUMERICAL.contains(&code) {
+        return IncrementFailure::LinearSolve(message);
+    }
+    let environment = std::env::var("PETSC_OPTIONS")
+        .ok()
+        .filter(|e| !e.trim().is_empty())
+        .map(|e| format!(" after PETSC_OPTIONS `{e}`"))
+        .unwrap_or_default();
+    IncrementFailure::LinearSolverSetUp(format!(
+        "{message}. PETSc cannot set up the linear solver with the options `{}`{environment}, \
+         and no smaller increment changes that: check the PETSc options after `--`, in \
+         [solver.petsc] options and in PETSC_OPTIONS",
+        options.trim()
+    ))
+}
+
 /// An error when `pattern`'s unknowns, or with `local` its entries (one
 /// process's compressed rows), do not fit PETSc's 32-bit indices.
 fn check_indices(pattern: &SymbolicSparseColMat<usize>, local: bool) -> Result<()> {
@@ -240,9 +290,9 @@ impl Tally {
         &mut self,
         start: Instant,
         outcome: &Outcome,
-        result: std::result::Result<(), String>,
+        result: std::result::Result<(), IncrementFailure>,
         x: &[f64],
-    ) -> std::result::Result<(), String> {
+    ) -> std::result::Result<(), IncrementFailure> {
         self.solves += 1;
         self.iterations += outcome.iterations.max(0) as usize;
         self.total += start.elapsed();
@@ -251,7 +301,9 @@ impl Tally {
         self.solve += solve;
         result?;
         if x.iter().any(|v| !v.is_finite()) {
-            return Err("PETSc's solution is not finite: the tangent is singular".into());
+            return Err(IncrementFailure::LinearSolve(
+                "PETSc's solution is not finite: the tangent is singular".into(),
+            ));
         }
         Ok(())
     }
@@ -278,6 +330,9 @@ pub struct PetscSolver {
     coordinates: Option<Vec<f64>>,
     /// PETSc's version and the KSP/PC in use, for the log.
     description: String,
+    /// The options it was made from (the case's, then the command
+    /// line's), for the message of a failed set-up.
+    options: String,
     tally: Tally,
 }
 
@@ -291,7 +346,7 @@ impl PetscSolver {
     /// `coordinates` (3 per node, reference) are attached as GAMG's
     /// rigid-body near-null space when every unknown is a displacement.
     pub fn new(options: &str, coordinates: Option<Vec<f64>>) -> Result<Self> {
-        let (handle, description) = make_ksp(
+        let (handle, description, options) = make_ksp(
             options,
             ffi::sg_petsc_solver_new,
             ffi::sg_petsc_solver_free,
@@ -302,6 +357,7 @@ impl PetscSolver {
             fingerprint: None,
             coordinates,
             description,
+            options,
             tally: Tally::default(),
         })
     }
@@ -330,14 +386,14 @@ type DescribeFn =
     unsafe extern "C" fn(*mut c_void, *mut c_char, usize, *mut c_char, usize) -> c_int;
 
 /// Initialise PETSc and make a solver with the C layer's `make` from
-/// `options` (then the command line's): its handle, and PETSc's version
-/// with the KSP and PC in words (`describe`).
+/// `options` (then the command line's): its handle, PETSc's version
+/// with the KSP and PC in words (`describe`) and the options in use.
 fn make_ksp(
     options: &str,
     make: MakeFn,
     free: FreeFn,
     describe: DescribeFn,
-) -> Result<(*mut c_void, String)> {
+) -> Result<(*mut c_void, String, String)> {
     let options = with_command_line(options)?;
     let version = initialise()?;
     let _lock = PETSC.lock().unwrap_or_else(|e| e.into_inner());
@@ -367,7 +423,8 @@ fn make_ksp(
         )
     };
     let solver_text = message(if code == 0 { &text } else { &err });
-    Ok((handle, format!("{version}, {solver_text}")))
+    let options = options.to_string_lossy().into_owned();
+    Ok((handle, format!("{version}, {solver_text}"), options))
 }
 
 /// The options of `text` that PETSc reads without a prefix, each with its
@@ -446,13 +503,14 @@ impl LinearSolver for PetscSolver {
         system: &LinearSystem<'_>,
         rhs: &[f64],
         x: &mut [f64],
-    ) -> std::result::Result<(), String> {
+    ) -> std::result::Result<(), IncrementFailure> {
         let start = Instant::now();
         let n = rhs.len();
         let fingerprint = pattern_fingerprint(system.pattern);
         let same_pattern = self.fingerprint == Some(fingerprint);
         if !same_pattern {
-            check_indices(system.pattern, true).map_err(|e| e.to_string())?;
+            check_indices(system.pattern, true)
+                .map_err(|e| IncrementFailure::LinearSolverSetUp(e.to_string()))?;
         }
         self.fingerprint = Some(fingerprint);
         let (block_size, coordinates, displacements) = self.layout(n);
@@ -479,7 +537,7 @@ impl LinearSolver for PetscSolver {
         let result = if code == 0 {
             Ok(())
         } else {
-            Err(message(&err))
+            Err(solve_failure(code, message(&err), &self.options))
         };
         self.tally.record(start, &outcome, result, x)
     }
@@ -572,5 +630,45 @@ mod tests {
             }
         }
         assert_eq!(solver.statistics().krylov_solves, 2);
+    }
+
+    /// A singular matrix is a failed solve, which a smaller increment may
+    /// mend (MUMPS' zero pivot is the PC's failed reason, not a PETSc
+    /// error code); a factorisation package PETSc lacks is a failed
+    /// set-up (PETSc error 92 at `KSPSetUp`), which ends the run, and
+    /// its message names the option.
+    #[test]
+    fn a_singular_matrix_is_a_failed_solve_and_a_missing_package_a_failed_set_up() {
+        // rank 1: [[1, 1], [1, 1]]
+        let singular = system(&[(0, 0, 1.0), (1, 0, 1.0), (0, 1, 1.0), (1, 1, 1.0)], 2);
+        let regular = system(&[(0, 0, 2.0), (1, 1, 3.0)], 2);
+        let solve = |options: &str, a: &SparseColMat<usize, f64>| {
+            let pattern = a.symbolic().to_owned().unwrap();
+            let sys = LinearSystem {
+                pattern: &pattern,
+                matrix: a.val(),
+                symmetric_neighbour: None,
+                pivot_signs: None,
+            };
+            let mut x = [0.0; 2];
+            PetscSolver::new(options, None)
+                .unwrap()
+                .solve(&sys, &[1.0, 2.0], &mut x)
+        };
+        let failed = solve("", &singular).unwrap_err();
+        assert!(
+            matches!(failed, IncrementFailure::LinearSolve(_)),
+            "{failed:?}"
+        );
+        assert!(failed.mended_by_a_cut());
+        let option = "-pc_factor_mat_solver_type no_such_package";
+        let failed = solve(option, &regular).unwrap_err();
+        let IncrementFailure::LinearSolverSetUp(message) = &failed else {
+            panic!("{failed:?}");
+        };
+        assert!(message.contains("PETSc error 92"), "{message}");
+        assert!(message.contains(option), "{message}");
+        assert!(!failed.mended_by_a_cut());
+        assert!(solve("", &regular).is_ok());
     }
 }

@@ -14,7 +14,9 @@
 
 mod common;
 
-use common::{assert_open_stick_and_slip, every_method, perturbed_state, run, uneven_slide};
+use common::{
+    assert_open_stick_and_slip, assert_uniform, every_method, perturbed_state, run, uneven_slide,
+};
 use nalgebra::{Matrix3, Vector3};
 use signorini::assembly::amplitude::Amplitude;
 use signorini::contact::friction::{ContactStatus, STICK_SHIFT};
@@ -237,33 +239,6 @@ fn assert_newton_rate(increments: &[signorini::solve::stepping::IncrementRecord]
     }
 }
 
-/// Every node closed in `status` with pressure `t_n` to 1e-10 of `t_n`
-/// and tangential traction `t_t` to 1e-9 of `t_n` (observed on Hex8 1e-11
-/// and 4.5e-10 (9.4e-10 on 2026-11-27) with ε_T = 5E, 6e-10 with ε_T = E: the tangential multipliers
-/// come out of the converged Newton solve less exactly than the normal
-/// ones); returns the largest errors.
-fn assert_uniform(
-    reports: &[NodeReport],
-    status: ContactStatus,
-    (t_n, t_t): (f64, Vector3<f64>),
-    label: &str,
-) -> f64 {
-    let mut worst = 0.0_f64;
-    for (i, r) in reports.iter().enumerate() {
-        assert_eq!(r.status, status, "{label}: node {i}");
-        let e_n = (r.pressure - t_n).abs() / t_n;
-        let e_t = (Vector3::from(r.tangential_traction) - t_t).norm() / t_n;
-        worst = worst.max(e_n).max(e_t);
-        assert!(
-            e_n <= 1e-10 && e_t <= 1e-9,
-            "{label}: node {i}: t_N {} t_T {:?} (exact {t_n}, {t_t:?})",
-            r.pressure,
-            r.tangential_traction
-        );
-    }
-    worst
-}
-
 /// Stick: the blocks pressed, then sheared together (`F` with
 /// `F_xz = 0.02`, no relative motion) under μ = 2|t_T|/t_N: every
 /// secondary node sticks and its tangential multiplier is the shear
@@ -280,7 +255,7 @@ fn stick_transmits_the_shear_traction_exactly() {
         let mut pr = press_and_shear(kind, Footprint::Same, mu, Vector3::zeros());
         let (reports, iterations) = run_and_report(&mut pr, kind);
         let worst = assert_uniform(
-            &reports,
+            reports.iter().enumerate(),
             ContactStatus::Stick,
             (t_n, t_t),
             &format!("{kind:?} stick"),

@@ -4,7 +4,7 @@
 
 use nalgebra::Vector3;
 use signorini::assembly::Model;
-use signorini::contact::friction::Coulomb;
+use signorini::contact::friction::{ContactStatus, Coulomb};
 use signorini::contact::interface::ContactInterface;
 use signorini::contact::interface::NodeReport;
 use signorini::contact::laws::NormalLaw;
@@ -1006,4 +1006,32 @@ pub fn interface_reports(pr: &Problem, last: &Last, t: f64) -> Vec<NodeReport> {
     let mut residual = vec![0.0; pr.num_unknowns()];
     let c = pr.contacts.interface(0);
     c.assemble(&ctx, &last.contact.interfaces[0], &mut residual, None)
+}
+
+/// Every node of `reports` (its index, its report) closed in `status`
+/// with pressure `t_n` to 1e-10 of `t_n` and tangential traction `t_t` to
+/// 1e-9 of `t_n` (observed on tests/mortar_friction.rs's Hex8 blocks 1e-11
+/// and 4.5e-10 (9.4e-10 on 2026-11-27) with ε_T = 5E, 6e-10 with ε_T = E:
+/// the tangential multipliers come out of the converged Newton solve less
+/// exactly than the normal ones); returns the largest error.
+pub fn assert_uniform<'a>(
+    reports: impl IntoIterator<Item = (usize, &'a NodeReport)>,
+    status: ContactStatus,
+    (t_n, t_t): (f64, Vector3<f64>),
+    label: &str,
+) -> f64 {
+    let mut worst = 0.0_f64;
+    for (i, r) in reports {
+        assert_eq!(r.status, status, "{label}: node {i}");
+        let e_n = (r.pressure - t_n).abs() / t_n;
+        let e_t = (Vector3::from(r.tangential_traction) - t_t).norm() / t_n;
+        worst = worst.max(e_n).max(e_t);
+        assert!(
+            e_n <= 1e-10 && e_t <= 1e-9,
+            "{label}: node {i}: t_N {} t_T {:?} (exact {t_n}, {t_t:?})",
+            r.pressure,
+            r.tangential_traction
+        );
+    }
+    worst
 }

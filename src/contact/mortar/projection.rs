@@ -15,14 +15,27 @@ use super::face::MortarFace;
 use super::MortarError;
 
 /// A point on a face reached along a direction: reference coordinates `ξ`
-/// and the distance `α` with `x(ξ) = X + α d`, and the projection's
-/// Jacobian there (for the derivatives: one per point, not one per
-/// derivative direction).
+/// and the distance `α` with `x(ξ) = X + α d`.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct FacePoint {
     pub xi: [f64; 2],
     pub distance: f64,
-    pub jacobian: ProjectionJacobian,
+}
+
+impl FacePoint {
+    /// The projection's Jacobian at this point of `face` along `direction`,
+    /// for its derivatives ([`projection_derivative`]): formed once per
+    /// point by the callers that differentiate (one per point, not one per
+    /// derivative direction), not by [`project_along`], whose points are
+    /// mostly integrated without derivatives (the condensed path's
+    /// rounds).
+    pub fn jacobian(
+        &self,
+        face: &MortarFace,
+        direction: &Vector3<f64>,
+    ) -> Result<ProjectionJacobian, MortarError> {
+        ProjectionJacobian::at(face, self.xi, direction)
+    }
 }
 
 /// The projection's Jacobian `A = [x_,ξ(ξ)  x_,η(ξ)  −d]` at a point, held
@@ -102,7 +115,6 @@ pub fn project_along(
             return Ok(FacePoint {
                 xi,
                 distance: alpha,
-                jacobian: ProjectionJacobian::at(face, xi, direction)?,
             });
         }
     }
@@ -116,7 +128,8 @@ pub fn project_along(
 /// The directional derivative `(δξ, δα)` of a projection `hit` for
 /// increments `dx` of the face's nodes, `d_point` of the projected point
 /// and `d_direction` of the direction (Popp et al. 2010, §5.3, by the
-/// implicit function theorem on `r = 0`):
+/// implicit function theorem on `r = 0`), `jacobian` the projection's
+/// there ([`FacePoint::jacobian`]):
 ///
 /// ```text
 /// [x_,ξ  x_,η  −d] (δξ, δη, δα) = −(Σ_a N_a(ξ) δx_a − δX − α δd).
@@ -124,6 +137,7 @@ pub fn project_along(
 pub fn projection_derivative(
     face: &MortarFace,
     hit: &FacePoint,
+    jacobian: &ProjectionJacobian,
     dx: &[Vector3<f64>],
     d_point: &Vector3<f64>,
     d_direction: &Vector3<f64>,
@@ -132,7 +146,7 @@ pub fn projection_derivative(
     let dr: Vector3<f64> = dx.iter().zip(&n).map(|(d, n)| d * *n).sum::<Vector3<f64>>()
         - d_point
         - d_direction * hit.distance;
-    let step = hit.jacobian.solve(&-dr);
+    let step = jacobian.solve(&-dr);
     ([step[0], step[1]], step[2])
 }
 

@@ -31,7 +31,7 @@ use super::auxiliary_plane::AuxiliaryPlane;
 use super::clipping::{self, ClipTrace, Polygon};
 use super::dual_basis::DualBasis;
 use super::face::{FaceValues, MortarFace};
-use super::projection::{project_along, FacePoint};
+use super::projection::{project_along, FacePoint, ProjectionJacobian};
 use super::MortarError;
 use crate::fem::quadrature;
 
@@ -151,6 +151,35 @@ pub fn cell_points(
         }
     }
     Ok(out)
+}
+
+/// The projections' Jacobians of a cell point on both faces along `n₀`,
+/// for its derivatives ([`FacePoint::jacobian`]).
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct PointJacobians {
+    pub secondary: ProjectionJacobian,
+    pub primary: ProjectionJacobian,
+}
+
+/// The [`PointJacobians`] of an overlap's integration points `points`
+/// ([`cell_points`]), formed once for all the derivative directions of a
+/// pair; an integration without derivatives forms none.
+pub fn point_jacobians(
+    overlap: &Overlap,
+    points: &[CellPoint],
+    secondary: &MortarFace,
+    primary: &MortarFace,
+) -> Result<Vec<PointJacobians>, MortarError> {
+    let n0 = overlap.plane.normal;
+    points
+        .iter()
+        .map(|q| {
+            Ok(PointJacobians {
+                secondary: q.secondary.jacobian(secondary, &n0)?,
+                primary: q.primary.jacobian(primary, &n0)?,
+            })
+        })
+        .collect()
 }
 
 /// Segments and integrates a pair (see the module doc); `None` when the

@@ -51,7 +51,9 @@
 //! After Newton converged, [`MortarSurfaces::pairs_hold`] searches again
 //! at the converged state: where the pairs it adds change a node's gap
 //! (bodies that started apart and closed within the increment), the
-//! stepper cuts the increment and the next search grows with the motion.
+//! stepper searches again with the pairs a search at that answer finds
+//! added ([`MortarSurfaces::refresh`]'s `reached`) and solves the
+//! increment again, and cuts it only if that answer leaves them too.
 
 use super::friction::{Coulomb, FrictionHistory, TangentialResponse};
 use super::kinematics::{

@@ -51,7 +51,9 @@
 //! After Newton converged, [`MortarSurfaces::pairs_hold`] searches again
 //! at the converged state: where the pairs it adds change a node's gap
 //! (bodies that started apart and closed within the increment), the
-//! stepper cuts the increment and the next search grows with the motion.
+//! stepper searches again with the pairs a search at that answer finds
+//! added ([`MortarSurfaces::refresh`]'s `reached`) and solves the
+//! increment again, and cuts it only if that answer leaves them too.
 
 use super::friction::{Coulomb, FrictionHistory, TangentialResponse};
 use super::kinematics::{
@@ -183,7 +185,7 @@ impl MortarSurfaces {
             cache: RowCache::default(),
             committed: None,
         };
-        out.refresh(&mesh.nodes, &vec![0.0; 3 * mesh.num_nodes()], 0.0);
+        out.refresh(&mesh.nodes, &vec![0.0; 3 * mesh.num_nodes()], 0.0, None);
         Some(out)
     }
 
@@ -218,10 +220,22 @@ impl MortarSurfaces {
 
     /// Recompute the candidate face pairs at configuration `x`: each
     /// primary face's box grown by `2 h_f + 2 motion` against the
-    /// secondary faces' boxes. Returns whether a pair changed.
-    pub fn refresh(&mut self, reference: &[[f64; 3]], x: &[f64], motion: f64) -> bool {
+    /// secondary faces' boxes; with `reached` (the unknowns of an answer
+    /// that left the last pairs) also the pairs a search there with no
+    /// motion finds. Returns whether a pair changed.
+    pub fn refresh(
+        &mut self,
+        reference: &[[f64; 3]],
+        x: &[f64],
+        motion: f64,
+        reached: Option<&[f64]>,
+    ) -> bool {
         let xs = coordinates(reference, x);
-        let (candidates, smallest) = self.search(&xs, motion);
+        let (mut candidates, smallest) = self.search(&xs, motion);
+        if let Some(reached) = reached {
+            let there = self.search(&coordinates(reference, reached), 0.0).0;
+            super::primary::merge_candidates(&mut candidates, there);
+        }
         let changed = candidates != self.candidates;
         if changed {
             self.cache.clear();

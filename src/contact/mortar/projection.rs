@@ -80,6 +80,9 @@ impl ProjectionJacobian {
     }
 }
 
+/// A 3 × 3 LU with partial pivoting.
+type Lu3 = nalgebra::LU<f64, nalgebra::U3, nalgebra::U3>;
+
 /// Newton iterations allowed before the projection is declared failed.
 const MAX_ITERATIONS: usize = 30;
 
@@ -103,9 +106,10 @@ pub fn project_along(
     let mut xi = face.shape.centre();
     let mut alpha = 0.0;
     let mut previous = f64::INFINITY;
+    let mut factored = None;
     for _ in 0..MAX_ITERATIONS {
         let r = face.point(xi) - point - direction * alpha;
-        let step = newton_step(face, xi, direction, &r)?;
+        let step = newton_step(face, xi, direction, &r, &mut factored)?;
         xi = [xi[0] + step[0], xi[1] + step[1]];
         alpha += step[2];
         let size = step[0].abs().max(step[1].abs());
@@ -153,19 +157,23 @@ pub fn projection_derivative(
 /// Solves `[x_,ξ(ξ)  x_,η(ξ)  −d] s = −r` by LU with pivoting (the
 /// projection itself, as before the adjugate: its gaps decide the
 /// touching nodes' ties at a zero gap); a face parallel to `d` is an
-/// error.
+/// error. `factored` is the last step's matrix and its LU, reused where
+/// the matrix is the same to the bit (an affine face, a Tri3's: its
+/// tangents do not depend on `ξ`), so the step is the one a new LU gives.
 fn newton_step(
     face: &MortarFace,
     xi: [f64; 2],
     direction: &Vector3<f64>,
     r: &Vector3<f64>,
+    factored: &mut Option<(Matrix3<f64>, Lu3)>,
 ) -> Result<Vector3<f64>, MortarError> {
     let [t1, t2] = face.tangents(xi);
     let jacobian = Matrix3::from_columns(&[t1, t2, -direction]);
-    jacobian
-        .lu()
-        .solve(&-r)
-        .ok_or_else(|| MortarError::Projection {
-            what: format!("the face is parallel to the direction {direction:?}"),
-        })
+    if factored.as_ref().is_some_and(|(last, _)| *last != jacobian) {
+        *factored = None;
+    }
+    let (_, lu) = factored.get_or_insert_with(|| (jacobian, jacobian.lu()));
+    lu.solve(&-r).ok_or_else(|| MortarError::Projection {
+        what: format!("the face is parallel to the direction {direction:?}"),
+    })
 }

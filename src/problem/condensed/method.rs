@@ -52,6 +52,15 @@ pub(super) trait IncrementSolver: Send {
         None
     }
 
+    /// Whether the last increment's answer (the first round of the rounds
+    /// on the projections, [`pairs`]) left the contact pairs searched at
+    /// its start: the increment is not finished, its unknowns are that
+    /// round's, and it fails as [`IncrementFailure::PairsMoved`] (the
+    /// stepper searches again where they reach).
+    fn left_pairs(&self) -> bool {
+        false
+    }
+
     /// Whether the next increment grows after this one (`easy`: `[solver]
     /// easy_iterations`): by default always (a frictionless increment is
     /// solved exactly, and its answer does not depend on the increments).
@@ -169,6 +178,9 @@ impl IncrementMethod<Problem> for Condensed {
             let failure = (self.solver.diagnose(problem, t))
                 .unwrap_or_else(|| IncrementFailure::Condensed(e.to_string()));
             return (Err(failure), history);
+        }
+        if self.solver.left_pairs() {
+            return (Err(IncrementFailure::PairsMoved), history);
         }
         let evaluation = match problem.evaluate(t, x, state, None) {
             Ok(e) => e,

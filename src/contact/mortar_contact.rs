@@ -290,7 +290,9 @@ impl MortarSurfaces {
     /// must hold: otherwise the stepper cuts the increment, and the next
     /// search grows with the motion. The gaps are the rows' values
     /// ([`mortar_row_values`]) with the pairs used and with those and the
-    /// fresh ones.
+    /// fresh ones, read only for the nodes of the secondary faces that have
+    /// a fresh pair (every other node's row has the same pairs either way)
+    /// and from the pairs of the faces that hold those nodes.
     pub fn pairs_hold(&self, reference: &[[f64; 3]], x: &[f64]) -> bool {
         let xs = coordinates(reference, x);
         let (fresh, _) = self.search(&xs, 0.0);
@@ -302,15 +304,25 @@ impl MortarSurfaces {
         if all.len() == used.len() {
             return true;
         }
-        let gaps = |pairs: &[(usize, usize)]| self.covered_gaps(pairs, &xs);
+        // only the nodes of the faces with a new pair can see another gap:
+        // their rows whole, from every pair of the faces that hold them
+        let affected: std::collections::BTreeSet<usize> = (all[used.len()..].iter())
+            .flat_map(|&(s, _)| self.secondary_faces[s].nodes.iter().copied())
+            .collect();
+        let near = |pairs: &[(usize, usize)]| -> Vec<(usize, usize)> {
+            (pairs.iter().copied())
+                .filter(|&(s, _)| {
+                    (self.secondary_faces[s].nodes.iter()).any(|n| affected.contains(n))
+                })
+                .collect()
+        };
+        let gaps = |pairs: &[(usize, usize)]| self.covered_gaps(&near(pairs), &xs);
         let (Some(before), Some(now)) = (gaps(&used), gaps(&all)) else {
             return false;
         };
         let tolerance = 1e-9 * self.element_size;
         let open = self.margin;
-        let nodes: std::collections::BTreeSet<usize> =
-            before.keys().chain(now.keys()).copied().collect();
-        let holds = nodes.iter().all(|n| {
+        let holds = affected.iter().all(|n| {
             let a = before.get(n).copied().unwrap_or(open);
             let b = now.get(n).copied().unwrap_or(open);
             (a - b).abs() <= tolerance || (a > 0.0 && b > 0.0)

@@ -294,8 +294,6 @@ impl PrimarySurface {
     }
 }
 
-/// For each point, the boxes (`(lo, hi)`) that contain it, in increasing
-/// box index, from an R*-tree over the boxes (the `rstar` crate).
 /// Adds `more` to `candidates`, item by item (each sorted, no repeats).
 pub(crate) fn merge_candidates(candidates: &mut [Vec<usize>], more: Vec<Vec<usize>>) {
     for (mine, theirs) in candidates.iter_mut().zip(more) {
@@ -305,6 +303,8 @@ pub(crate) fn merge_candidates(candidates: &mut [Vec<usize>], more: Vec<Vec<usiz
     }
 }
 
+/// For each point, the boxes (`(lo, hi)`) that contain it, in increasing
+/// box index, from an R*-tree over the boxes (the `rstar` crate).
 pub fn boxes_containing(
     boxes: &[(Vector3<f64>, Vector3<f64>)],
     points: &[Vector3<f64>],

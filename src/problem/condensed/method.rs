@@ -46,19 +46,11 @@ pub(super) trait IncrementSolver: Send {
     /// the same batches (so `W` is the same to the bit), the rest copied.
     fn resume(&mut self, warm: &WarmStart) -> Result<()>;
 
-    /// Why the increment at time `t` failed, measured from the problem
-    /// (its load against the friction capacity), when the solver can tell.
+    /// Why the increment at time `t` failed, when the solver can tell:
+    /// measured from the problem (its load against the friction capacity)
+    /// or from the solve (an answer that left its contact pairs).
     fn diagnose(&self, _problem: &Problem, _t: f64) -> Option<IncrementFailure> {
         None
-    }
-
-    /// Whether the last increment's answer (the first round of the rounds
-    /// on the projections, [`pairs`]) left the contact pairs searched at
-    /// its start: the increment is not finished, its unknowns are that
-    /// round's, and it fails as [`IncrementFailure::PairsMoved`] (the
-    /// stepper searches again where they reach).
-    fn left_pairs(&self) -> bool {
-        false
     }
 
     /// Whether the next increment grows after this one (`easy`: `[solver]
@@ -178,9 +170,6 @@ impl IncrementMethod<Problem> for Condensed {
             let failure = (self.solver.diagnose(problem, t))
                 .unwrap_or_else(|| IncrementFailure::Condensed(e.to_string()));
             return (Err(failure), history);
-        }
-        if self.solver.left_pairs() {
-            return (Err(IncrementFailure::PairsMoved), history);
         }
         let evaluation = match problem.evaluate(t, x, state, None) {
             Ok(e) => e,

@@ -32,6 +32,7 @@ use crate::contact::interface::ConstraintRow;
 use crate::contact::mortar::Derivatives;
 use crate::solve::condensed::anderson::Anderson;
 use crate::solve::condensed::flexibility::{take_trailing, Column, MAX_TRAILING};
+use crate::solve::failure::IncrementFailure;
 use crate::solve::linear_solver::SolverStatistics;
 use crate::solve::method::WarmStart;
 use crate::solve::newton::IterationRecord;
@@ -64,7 +65,7 @@ pub(super) struct PairCondensation {
     /// ([`crate::contact::interface::ContactInterface::open_gap`]).
     open: Vec<f64>,
     /// Whether the last increment's first round left the contact pairs
-    /// searched at its start ([`IncrementSolver::left_pairs`]).
+    /// searched at its start ([`IncrementSolver::diagnose`]).
     left_pairs: bool,
 }
 
@@ -369,9 +370,14 @@ impl IncrementSolver for PairCondensation {
         let (u, forces) = self.solve_increment(problem, t, &start, trial, history)?;
         let mut pressures = zero_per_node(problem);
         if self.left_pairs {
-            // the first round's displacements, for the stepper's search
+            // the first round's displacements, for the stepper's search;
+            // the failure's kind from `diagnose`
             set_multipliers(problem, &pressures, &u, t, x, trial);
-            return Ok(());
+            return Err(Error::LinearSolver(
+                "the first round's answer left the contact pairs searched at the increment's \
+                 start"
+                    .into(),
+            ));
         }
         let reference = &problem.model.mesh.nodes;
         let rows: Vec<_> = (problem.contacts.iter().enumerate())
@@ -394,8 +400,12 @@ impl IncrementSolver for PairCondensation {
         Ok(())
     }
 
-    fn left_pairs(&self) -> bool {
-        self.left_pairs
+    /// [`IncrementFailure::PairsMoved`] where the first round's answer
+    /// left the contact pairs searched at the increment's start: its
+    /// unknowns are that round's, and the stepper searches again where
+    /// they reach.
+    fn diagnose(&self, _problem: &Problem, _t: f64) -> Option<IncrementFailure> {
+        self.left_pairs.then_some(IncrementFailure::PairsMoved)
     }
 
     fn statistics(&self) -> (SolverStatistics, usize) {

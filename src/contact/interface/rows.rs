@@ -273,6 +273,28 @@ impl ContactInterface {
         states: Option<&[NodeContactState]>,
         derivatives: Derivatives,
     ) -> Vec<Option<ConstraintRow>> {
+        self.constraint_rows_near(reference, t, x, states, derivatives, None)
+    }
+
+    /// [`constraint_rows_with`](Self::constraint_rows_with); with `near`
+    /// (a flag per secondary node) dual mortar between bodies reads the
+    /// rows of the flagged nodes alone, each the one all the rows give,
+    /// and gives the others none (the other producers give every row).
+    pub fn constraint_rows_near(
+        &self,
+        reference: &[[f64; 3]],
+        t: f64,
+        x: &[f64],
+        states: Option<&[NodeContactState]>,
+        derivatives: Derivatives,
+        near: Option<&[bool]>,
+    ) -> Vec<Option<ConstraintRow>> {
+        let near = near.map(|flags| {
+            (self.nodes.iter().zip(flags))
+                .filter(|(_, &f)| f)
+                .map(|(&n, _)| n)
+                .collect()
+        });
         let ctx = ContactContext {
             reference,
             t,
@@ -280,7 +302,7 @@ impl ContactInterface {
             first_multiplier: 0,
         };
         let mut rows = Vec::with_capacity(self.nodes.len());
-        with_producer!(self, &ctx, derivatives, p => {
+        with_producer!(self, &ctx, derivatives, near near, p => {
             let state_of = |i| {
                 states.map_or_else(|| NodeContactState::initial(&self.law_at(i), p.open_gap()), |s| s[i])
             };

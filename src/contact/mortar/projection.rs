@@ -122,10 +122,11 @@ impl Lu3 {
             for row in &mut lu[i + 1..] {
                 row[i] *= inverse;
             }
-            for k in i + 1..3 {
-                let upper = lu[i][k];
-                for r in i + 1..3 {
-                    lu[r][k] = -upper * lu[r][i] + lu[r][k];
+            let pivot_row = lu[i];
+            for row in &mut lu[i + 1..] {
+                let multiplier = row[i];
+                for (entry, upper) in row[i + 1..].iter_mut().zip(&pivot_row[i + 1..]) {
+                    *entry += -upper * multiplier;
                 }
             }
         }
@@ -145,7 +146,7 @@ impl Lu3 {
         for i in 0..2 {
             let coefficient = x[i];
             for r in i + 1..3 {
-                x[r] = -coefficient * lu[r][i] + x[r];
+                x[r] += -coefficient * lu[r][i];
             }
         }
         for i in (0..3).rev() {
@@ -155,7 +156,7 @@ impl Lu3 {
             let coefficient = x[i] / lu[i][i];
             x[i] = coefficient;
             for r in 0..i {
-                x[r] = -coefficient * lu[r][i] + x[r];
+                x[r] += -coefficient * lu[r][i];
             }
         }
         Some(Vector3::from(x))

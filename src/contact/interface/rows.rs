@@ -255,7 +255,7 @@ impl ContactInterface {
         x: &[f64],
         states: Option<&[NodeContactState]>,
     ) -> Vec<Option<ConstraintRow>> {
-        self.constraint_rows_with(reference, t, x, states, Derivatives::With)
+        self.constraint_rows_with(reference, t, x, states, Derivatives::With, None)
     }
 
     /// [`constraint_rows`](Self::constraint_rows), a dual mortar
@@ -264,23 +264,11 @@ impl ContactInterface {
     /// primary weights and force direction, [`ConstraintRow::force`], its
     /// `node_gradients` empty). Without is what the frictionless condensed
     /// path reads; the other producers' rows are complete either way
-    /// (their `∇g` is their force direction).
+    /// (their `∇g` is their force direction). With `near` (a flag per
+    /// secondary node) dual mortar between bodies reads the rows of the
+    /// flagged nodes alone, each the one all the rows give, and gives the
+    /// others none (the other producers give every row).
     pub fn constraint_rows_with(
-        &self,
-        reference: &[[f64; 3]],
-        t: f64,
-        x: &[f64],
-        states: Option<&[NodeContactState]>,
-        derivatives: Derivatives,
-    ) -> Vec<Option<ConstraintRow>> {
-        self.constraint_rows_near(reference, t, x, states, derivatives, None)
-    }
-
-    /// [`constraint_rows_with`](Self::constraint_rows_with); with `near`
-    /// (a flag per secondary node) dual mortar between bodies reads the
-    /// rows of the flagged nodes alone, each the one all the rows give,
-    /// and gives the others none (the other producers give every row).
-    pub fn constraint_rows_near(
         &self,
         reference: &[[f64; 3]],
         t: f64,

@@ -130,7 +130,7 @@ fn rows_at(
             let states = &mut kept.interfaces[ci];
             let flags = near.as_ref().map(|n| n[ci].as_slice());
             let without = Derivatives::Without;
-            let mut rows = c.constraint_rows_near(reference, t, u, Some(states), without, flags);
+            let mut rows = c.constraint_rows_with(reference, t, u, Some(states), without, flags);
             for (state, row) in states.iter_mut().zip(&rows) {
                 if let Some(row) = row {
                     state.move_to_facet(row.facet);
@@ -246,6 +246,7 @@ pub(super) fn surface_trailing(problem: &Problem) -> Vec<usize> {
                 &zero,
                 Some(&kept.interfaces[ci]),
                 Derivatives::Without,
+                None,
             )
         })
         .collect();
@@ -451,6 +452,7 @@ impl IncrementSolver for PairCondensation {
                     &u,
                     Some(&trial.interfaces[ci]),
                     Derivatives::Without,
+                    None,
                 )
             })
             .collect();

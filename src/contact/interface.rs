@@ -150,12 +150,18 @@ pub struct ContactContext<'a> {
 /// context `$ctx` (the one dispatch on the primary kind); with
 /// `$derivatives` ([`Derivatives`]) what the operation reads of a dual
 /// mortar producer's rows (the other producers give their derivatives
-/// always: they cost little), by default their derivatives too.
+/// always: they cost little), by default their derivatives too; with
+/// `near $near` (`Option<BTreeSet<usize>>` of secondary mesh nodes) a dual
+/// mortar producer between bodies has the rows of those nodes alone
+/// ([`MortarGap::near`]), the others none.
 macro_rules! with_producer {
     ($iface:expr, $ctx:expr, $p:ident => $body:expr) => {
         with_producer!($iface, $ctx, $crate::contact::mortar::Derivatives::With, $p => $body)
     };
     ($iface:expr, $ctx:expr, $derivatives:expr, $p:ident => $body:expr) => {
+        with_producer!($iface, $ctx, $derivatives, near None, $p => $body)
+    };
+    ($iface:expr, $ctx:expr, $derivatives:expr, near $near:expr, $p:ident => $body:expr) => {
         match &$iface.primary {
             Primary::Rigid(obstacle) => {
                 let $p = &RigidGap {
@@ -169,7 +175,7 @@ macro_rules! with_producer {
                 $body
             }
             Primary::Mortar(surfaces) => {
-                let $p = &MortarGap::at(surfaces, $ctx.reference, $ctx.x, $derivatives);
+                let $p = &MortarGap::near(surfaces, $ctx.reference, $ctx.x, $derivatives, $near);
                 $body
             }
             Primary::MortarRigid(obstacle) => {

@@ -69,7 +69,7 @@ use crate::mesh::{FacetKind, Mesh};
 use nalgebra::{DMatrix, DVector, Dyn, OMatrix, Vector3, U3};
 use rstar::primitives::{GeomWithData, Rectangle};
 use rstar::{RTree, AABB};
-use std::collections::BTreeMap;
+use std::collections::{BTreeMap, BTreeSet};
 use std::sync::{Arc, OnceLock};
 
 mod row_cache;
@@ -306,17 +306,12 @@ impl MortarSurfaces {
         }
         // only the nodes of the faces with a new pair can see another gap:
         // their rows whole, from every pair of the faces that hold them
-        let affected: std::collections::BTreeSet<usize> = (all[used.len()..].iter())
+        let affected: BTreeSet<usize> = (all[used.len()..].iter())
             .flat_map(|&(s, _)| self.secondary_faces[s].nodes.iter().copied())
             .collect();
-        let near = |pairs: &[(usize, usize)]| -> Vec<(usize, usize)> {
-            (pairs.iter().copied())
-                .filter(|&(s, _)| {
-                    (self.secondary_faces[s].nodes.iter()).any(|n| affected.contains(n))
-                })
-                .collect()
+        let gaps = |pairs: &[(usize, usize)]| {
+            self.covered_gaps(&self.pairs_holding(pairs, &affected), &xs)
         };
-        let gaps = |pairs: &[(usize, usize)]| self.covered_gaps(&near(pairs), &xs);
         let (Some(before), Some(now)) = (gaps(&used), gaps(&all)) else {
             return false;
         };
@@ -328,6 +323,19 @@ impl MortarSurfaces {
             (a - b).abs() <= tolerance || (a > 0.0 && b > 0.0)
         });
         holds
+    }
+
+    /// The face `pairs` whose secondary face holds one of the mesh nodes
+    /// `nodes`, in their order: every pair of those nodes' rows, so that
+    /// each of those rows is the one all the pairs give, to the bit.
+    fn pairs_holding(
+        &self,
+        pairs: &[(usize, usize)],
+        nodes: &BTreeSet<usize>,
+    ) -> Vec<(usize, usize)> {
+        (pairs.iter().copied())
+            .filter(|&(s, _)| (self.secondary_faces[s].nodes.iter()).any(|n| nodes.contains(n)))
+            .collect()
     }
 
     /// The normalised gap `g̃_j/D_j` of every covered secondary node
@@ -507,10 +515,38 @@ impl MortarSurfaces {
     /// integrate leaves every node open (the report warns:
     /// [`integration_failure`](Self::integration_failure)).
     fn covered_rows(&self, coordinates: &[Vector3<f64>], derivatives: Derivatives) -> MortarRows {
+        self.covered_rows_of(&self.pairs(), coordinates, derivatives)
+    }
+
+    /// The covered rows of the secondary mesh nodes `near` alone at
+    /// coordinates `xs`, from the pairs of the faces that hold them
+    /// ([`pairs_holding`](Self::pairs_holding)): each the row of
+    /// [`rows_at_coordinates`](Self::rows_at_coordinates) to the bit, at
+    /// the cost of those faces' segments; not cached (a reading of the
+    /// nodes near contact, [`MortarGap::near`]).
+    pub(crate) fn rows_near(
+        &self,
+        xs: &[Vector3<f64>],
+        near: &BTreeSet<usize>,
+        derivatives: Derivatives,
+    ) -> MortarRows {
+        let pairs = self.pairs_holding(&self.pairs(), near);
+        let mut rows = self.covered_rows_of(&pairs, xs, derivatives);
+        rows.retain(|n, _| near.contains(n));
+        rows
+    }
+
+    /// [`covered_rows`](Self::covered_rows) from the face `pairs`.
+    fn covered_rows_of(
+        &self,
+        pairs: &[(usize, usize)],
+        coordinates: &[Vector3<f64>],
+        derivatives: Derivatives,
+    ) -> MortarRows {
         let rows = mortar_rows(
             &self.secondary_faces,
             &self.primary_faces,
-            &self.pairs(),
+            pairs,
             coordinates,
             derivatives,
         )
@@ -627,20 +663,29 @@ pub(crate) fn row_gaps(rows: &MortarRows) -> BTreeMap<usize, f64> {
 }
 
 /// The deformable mortar surfaces at the nodes' current coordinates.
+/// With `near`, the rows of those secondary mesh nodes alone
+/// ([`MortarSurfaces::rows_near`]).
 struct SurfaceRows<'a> {
     surfaces: &'a MortarSurfaces,
     xs: Vec<Vector3<f64>>,
+    near: Option<BTreeSet<usize>>,
 }
 
 impl RowSource for SurfaceRows<'_> {
     fn rows(&self, derivatives: Derivatives) -> Arc<MortarRows> {
-        self.surfaces.rows_at_coordinates(&self.xs, derivatives)
+        match &self.near {
+            Some(near) => Arc::new(self.surfaces.rows_near(&self.xs, near, derivatives)),
+            None => self.surfaces.rows_at_coordinates(&self.xs, derivatives),
+        }
     }
 
     /// [`MortarSurfaces::covered_gaps`] over the candidate pairs: the
     /// covered rows' values ([`mortar_row_values`], the rows' sums to the
     /// bit), none where a face cannot be integrated (as the rows).
     fn gaps(&self) -> BTreeMap<usize, f64> {
+        if self.near.is_some() {
+            return row_gaps(&self.rows(Derivatives::Without));
+        }
         if let Some(rows) = self.surfaces.cached(&self.xs, &[]) {
             return row_gaps(&rows);
         }
@@ -661,8 +706,20 @@ impl<'a> MortarGap<'a> {
         x: &[f64],
         derivatives: Derivatives,
     ) -> Self {
+        Self::near(surfaces, reference, x, derivatives, None)
+    }
+
+    /// [`at`](Self::at), with `near` the rows of those secondary mesh
+    /// nodes alone (the others have none, as nodes beyond the surface).
+    pub fn near(
+        surfaces: &'a MortarSurfaces,
+        reference: &[[f64; 3]],
+        x: &[f64],
+        derivatives: Derivatives,
+        near: Option<BTreeSet<usize>>,
+    ) -> Self {
         let xs = coordinates(reference, x);
-        let source = Box::new(SurfaceRows { surfaces, xs });
+        let source = Box::new(SurfaceRows { surfaces, xs, near });
         Self::from_source(surfaces, source, derivatives)
     }
 
@@ -1003,5 +1060,29 @@ mod tests {
             checked += 1;
         }
         assert!(checked >= 2, "{checked} nodes checked");
+    }
+
+    /// The rows of some secondary nodes alone ([`MortarSurfaces::rows_near`])
+    /// are the full reading's rows of those nodes to the bit, with and
+    /// without derivatives, on linear and quadratic faces: each near node's
+    /// every face pair is read, in the same order.
+    #[test]
+    fn rows_near_are_the_full_rows_to_the_bit() {
+        for kind in [ElementKind::Hex8, ElementKind::Hex20] {
+            let (mesh, surfaces, nodes) = pair(kind);
+            let x = state(&mesh, &nodes);
+            let xs = coordinates(&mesh.nodes, &x);
+            // two secondary nodes: some faces hold neither
+            let near: BTreeSet<usize> = nodes.iter().take(2).copied().collect();
+            for derivatives in [Derivatives::Without, Derivatives::With] {
+                let all = surfaces.rows_at_coordinates(&xs, derivatives);
+                let some = surfaces.rows_near(&xs, &near, derivatives);
+                let expected: Vec<_> = all.iter().filter(|(n, _)| near.contains(n)).collect();
+                assert_eq!(expected.len(), 2, "{kind:?}");
+                assert_eq!(some.iter().collect::<Vec<_>>(), expected, "{kind:?}");
+            }
+            let fewer = surfaces.pairs_holding(&surfaces.pairs(), &near).len();
+            assert!(fewer < surfaces.pairs().len(), "{kind:?}: every pair read");
+        }
     }
 }

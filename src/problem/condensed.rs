@@ -155,6 +155,7 @@ fn constraint_rows(
     derivatives: Derivatives,
 ) -> Vec<Vec<Option<ConstraintRow>>> {
     let reference = &problem.model.mesh.nodes;
-    let rows = |c: &ContactInterface| c.constraint_rows_with(reference, t, x, None, derivatives);
+    let rows =
+        |c: &ContactInterface| c.constraint_rows_with(reference, t, x, None, derivatives, None);
     problem.contacts.iter().map(rows).collect()
 }

@@ -255,7 +255,7 @@ impl ContactInterface {
         x: &[f64],
         states: Option<&[NodeContactState]>,
     ) -> Vec<Option<ConstraintRow>> {
-        self.constraint_rows_with(reference, t, x, states, Derivatives::With)
+        self.constraint_rows_with(reference, t, x, states, Derivatives::With, None)
     }
 
     /// [`constraint_rows`](Self::constraint_rows), a dual mortar
@@ -264,7 +264,10 @@ impl ContactInterface {
     /// primary weights and force direction, [`ConstraintRow::force`], its
     /// `node_gradients` empty). Without is what the frictionless condensed
     /// path reads; the other producers' rows are complete either way
-    /// (their `∇g` is their force direction).
+    /// (their `∇g` is their force direction). With `near` (a flag per
+    /// secondary node) dual mortar between bodies reads the rows of the
+    /// flagged nodes alone, each the one all the rows give, and gives the
+    /// others none (the other producers give every row).
     pub fn constraint_rows_with(
         &self,
         reference: &[[f64; 3]],
@@ -272,7 +275,14 @@ impl ContactInterface {
         x: &[f64],
         states: Option<&[NodeContactState]>,
         derivatives: Derivatives,
+        near: Option<&[bool]>,
     ) -> Vec<Option<ConstraintRow>> {
+        let near = near.map(|flags| {
+            (self.nodes.iter().zip(flags))
+                .filter(|(_, &f)| f)
+                .map(|(&n, _)| n)
+                .collect()
+        });
         let ctx = ContactContext {
             reference,
             t,
@@ -280,7 +290,7 @@ impl ContactInterface {
             first_multiplier: 0,
         };
         let mut rows = Vec::with_capacity(self.nodes.len());
-        with_producer!(self, &ctx, derivatives, p => {
+        with_producer!(self, &ctx, derivatives, near near, p => {
             let state_of = |i| {
                 states.map_or_else(|| NodeContactState::initial(&self.law_at(i), p.open_gap()), |s| s[i])
             };

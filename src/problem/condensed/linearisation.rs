@@ -64,7 +64,7 @@ impl Linearisation {
         let rows: Vec<Vec<Option<ConstraintRow>>> = (problem.contacts.iter().enumerate())
             .map(|(ci, c)| {
                 let states = &mut kept.interfaces[ci];
-                let rows = c.constraint_rows_with(reference, t, x, Some(states), without);
+                let rows = c.constraint_rows_with(reference, t, x, Some(states), without, None);
                 for (state, row) in states.iter_mut().zip(&rows) {
                     if let Some(row) = row {
                         state.move_to_facet(row.facet);

@@ -28,7 +28,7 @@
 use super::condensation::normal_column;
 use super::{set_multipliers, zero_per_node};
 use super::{Condensation, ContactNode, ContactState, IncrementSolver, Problem};
-use crate::contact::interface::ConstraintRow;
+use crate::contact::interface::{ConstraintRow, Primary};
 use crate::contact::mortar::Derivatives;
 use crate::solve::condensed::anderson::Anderson;
 use crate::solve::condensed::flexibility::{take_trailing, Column, MAX_TRAILING};
@@ -69,29 +69,88 @@ pub(super) struct PairCondensation {
     left_pairs: bool,
 }
 
+/// A node of dual mortar between bodies is read again in a round only
+/// where its gap at the last full reading is at most this many times the
+/// largest displacement of a contact surface's node since
+/// ([`FullReading::near`]).
+const NEAR_GAP_PER_MOTION: f64 = 4.0;
+
+/// The rows of every node at the point `at` of the last full reading:
+/// dual mortar's segments are most of a round's cost, and a node whose
+/// gap there is large against how far the surfaces moved since stays open
+/// with no force; its row is taken from here, the others' read again
+/// ([`rows_at`]).
+struct FullReading {
+    at: Vec<f64>,
+    rows: Vec<Vec<Option<ConstraintRow>>>,
+}
+
+impl FullReading {
+    /// Per interface of dual mortar between bodies, which nodes to read at
+    /// `u`: those with no row at `at` or a gap there at most
+    /// [`NEAR_GAP_PER_MOTION`] times the contact surfaces' largest
+    /// displacement from `at` to `u` (every node of the other kinds);
+    /// `None` where every node is to be read.
+    fn near(&self, problem: &Problem, u: &[f64]) -> Option<Vec<Vec<bool>>> {
+        let motion = (problem.contacts.deformable_nodes().iter())
+            .flat_map(|&n| 3 * n..3 * n + 3)
+            .map(|d| (u[d] - self.at[d]).abs())
+            .fold(0.0, f64::max);
+        let reach = NEAR_GAP_PER_MOTION * motion;
+        let near: Vec<Vec<bool>> = (problem.contacts.iter().zip(&self.rows))
+            .map(|(c, rows)| {
+                let mortar = matches!(c.primary, Primary::Mortar(_));
+                (rows.iter())
+                    .map(|row| !mortar || row.as_ref().is_none_or(|r| r.gap <= reach))
+                    .collect()
+            })
+            .collect();
+        near.iter().flatten().any(|n| !n).then_some(near)
+    }
+}
+
 /// The constraint rows of every interface at unknowns `u`, time `t`, on
 /// the primary triangles kept in `kept`, each node's triangle then kept
 /// (as Newton keeps it: a node over the kink between two triangles does
-/// not flip from one round to the next).
+/// not flip from one round to the next). With a last full reading
+/// `full`, dual mortar reads only the nodes near contact
+/// ([`FullReading::near`]) and takes the others' rows from it; a reading
+/// of every node becomes the full one.
 fn rows_at(
     problem: &Problem,
     t: f64,
     u: &[f64],
     kept: &mut ContactState,
+    full: &mut Option<FullReading>,
 ) -> Vec<Vec<Option<ConstraintRow>>> {
     let reference = &problem.model.mesh.nodes;
-    (problem.contacts.iter().enumerate())
+    let near = full.as_ref().and_then(|f| f.near(problem, u));
+    let rows: Vec<_> = (problem.contacts.iter().enumerate())
         .map(|(ci, c)| {
             let states = &mut kept.interfaces[ci];
-            let rows = c.constraint_rows_with(reference, t, u, Some(states), Derivatives::Without);
+            let flags = near.as_ref().map(|n| n[ci].as_slice());
+            let without = Derivatives::Without;
+            let mut rows = c.constraint_rows_with(reference, t, u, Some(states), without, flags);
             for (state, row) in states.iter_mut().zip(&rows) {
                 if let Some(row) = row {
                     state.move_to_facet(row.facet);
                 }
             }
+            if let (Some(flags), Some(full)) = (flags, full.as_ref()) {
+                for (i, _) in flags.iter().enumerate().filter(|(_, &f)| !f) {
+                    rows[i] = full.rows[ci][i].clone();
+                }
+            }
             rows
         })
-        .collect()
+        .collect();
+    if near.is_none() {
+        *full = Some(FullReading {
+            at: u.to_vec(),
+            rows: rows.clone(),
+        });
+    }
+    rows
 }
 
 /// Per secondary node of every interface its owner and its column of `E`
@@ -132,8 +191,9 @@ fn columns_and_gaps_at(
     u: &[f64],
     kept: &mut ContactState,
     open: &[f64],
+    full: &mut Option<FullReading>,
 ) -> (Vec<Column>, Vec<f64>) {
-    let rows = rows_at(problem, t, u, kept);
+    let rows = rows_at(problem, t, u, kept, full);
     let gaps = (rows.iter().zip(open))
         .flat_map(|(rows, &open)| rows.iter().map(move |r| r.as_ref().map_or(open, |r| r.gap)))
         .collect();
@@ -186,6 +246,7 @@ pub(super) fn surface_trailing(problem: &Problem) -> Vec<usize> {
                 &zero,
                 Some(&kept.interfaces[ci]),
                 Derivatives::Without,
+                None,
             )
         })
         .collect();
@@ -221,7 +282,7 @@ impl PairCondensation {
             .contacts
             .initial_state(&problem.model.mesh.nodes, &zero);
         // the rows at rest once: the columns and the trailing unknowns
-        let rows = rows_at(problem, 0.0, &zero, &mut initial);
+        let rows = rows_at(problem, 0.0, &zero, &mut initial, &mut None);
         let (nodes, columns) = columns_of(problem, &rows);
         let trailing = trailing_of_rows(problem, &rows);
         let constrained = problem.constrained_dofs();
@@ -269,7 +330,9 @@ impl PairCondensation {
         } else {
             None
         };
-        let (mut columns, mut gaps_at) = columns_and_gaps_at(problem, t, start, kept, &self.open);
+        let mut full = None;
+        let (mut columns, mut gaps_at) =
+            columns_and_gaps_at(problem, t, start, kept, &self.open, &mut full);
         let mut at = start.to_vec();
         let mut anderson = Anderson::new(ANDERSON_DEPTH);
         let mut support: Vec<bool> = Vec::new();
@@ -296,7 +359,7 @@ impl PairCondensation {
                 self.left_pairs = true;
                 return Ok((u, forces));
             }
-            let (next, exact) = columns_and_gaps_at(problem, t, &u, kept, &self.open);
+            let (next, exact) = columns_and_gaps_at(problem, t, &u, kept, &self.open, &mut full);
             let change = column_change(&columns, &next, &forces);
             let consistent = (exact.iter().zip(linear(&u)).zip(&forces)).all(|((g, l), f)| {
                 if *f != 0.0 {
@@ -329,7 +392,8 @@ impl PairCondensation {
             if mixed == u {
                 (at, gaps_at, columns) = (u, exact, next);
             } else {
-                (columns, gaps_at) = columns_and_gaps_at(problem, t, &mixed, kept, &self.open);
+                (columns, gaps_at) =
+                    columns_and_gaps_at(problem, t, &mixed, kept, &self.open, &mut full);
                 at = mixed;
             }
         }
@@ -388,6 +452,7 @@ impl IncrementSolver for PairCondensation {
                     &u,
                     Some(&trial.interfaces[ci]),
                     Derivatives::Without,
+                    None,
                 )
             })
             .collect();

@@ -200,9 +200,10 @@ impl Problem {
     }
 
     /// Whether the tangent is nonsymmetric (follower pressure on a
-    /// surface, Coulomb friction).
+    /// surface, Coulomb friction, dual mortar between bodies:
+    /// [`ContactSet::has_nonsymmetric_tangent`]).
     pub fn has_nonsymmetric_tangent(&self) -> bool {
-        self.pressures.iter().any(|p| p.follower) || self.contacts.has_friction()
+        self.pressures.iter().any(|p| p.follower) || self.contacts.has_nonsymmetric_tangent()
     }
 
     /// External force at time `t` and displacement `u`; if `tangent` is

@@ -351,3 +351,58 @@ fn a_face_pair_that_cannot_be_integrated_is_reported() {
     assert!((1..=4).contains(&open), "{warning}");
     assert!(folded.closed_nodes <= secondary.len() - open, "{folded:?}");
 }
+
+/// Dual mortar's tangent is nonsymmetric (Popp, Gee & Wall 2009: the force
+/// acts through the gap's gradient at fixed `D`, `M`, the constraint row
+/// keeps the whole gradient), and the problem says so, so that Newton
+/// solves it as nonsymmetric instead of factorising its lower triangle
+/// alone (which left two-spheres with mortar to the LU after every LDLᵀ).
+/// At the converged patch test on non-matching Tet4 blocks (3 and 5 cells)
+/// with the faces waved by 0.02 (a trial state), `K_uλ` and `K_λuᵀ` differ
+/// by more than 1e-3 of the largest entry of `K_λu`: the asymmetry is the
+/// formulation's, not round-off.
+#[test]
+fn mortar_between_bodies_has_a_nonsymmetric_tangent() {
+    let mesh = blocks(ElementKind::Tet4, 3, 5);
+    let mut pr = stacked(mesh, "upper.zmin", "lower.zmax", rockafellar());
+    assert!(pr.has_nonsymmetric_tangent());
+    let last = run(&mut pr);
+    let dofs = pr.model.num_dofs();
+    // the contact faces waved (a trial state of Newton): at the converged
+    // flat state the two differ by round-off only, the derivatives of `D`
+    // and `M` acting on gaps and offsets that are zero there
+    let mut x = last.x.clone();
+    for (n, p) in pr.model.mesh.nodes.iter().enumerate() {
+        x[3 * n + 2] += 0.02 * (3.0 * p[0]).sin() * (2.0 * p[1]).cos();
+    }
+    let ctx = ContactContext {
+        reference: &pr.model.mesh.nodes,
+        t: 1.0,
+        x: &x,
+        first_multiplier: dofs,
+    };
+    let pattern = &pr.model.pattern;
+    let mut residual = vec![0.0; pr.num_unknowns()];
+    let mut k = vec![0.0; pattern.nnz()];
+    let states = &last.contact.interfaces[0];
+    let c: &ContactInterface = pr.contacts.interface(0);
+    c.assemble(&ctx, states, &mut residual, Some((pattern, &mut k)));
+    let (mut asymmetry, mut scale) = (0.0f64, 0.0f64);
+    for m in 0..pattern.num_multipliers() {
+        for a in 0..pattern.num_nodes() {
+            let Some(e) = pattern.multiplier_entries(m, a) else {
+                continue;
+            };
+            for i in 0..3 {
+                let (column, row) = (k[e.node_rows[i]], k[e.multiplier_row[i]]);
+                asymmetry = asymmetry.max((column - row).abs());
+                scale = scale.max(row.abs());
+            }
+        }
+    }
+    assert!(scale > 0.0, "the multiplier rows are assembled");
+    assert!(
+        asymmetry > 1e-3 * scale,
+        "asymmetry {asymmetry:e} of {scale:e}"
+    );
+}

@@ -130,6 +130,16 @@ impl ContactSet {
         self.iter().any(|c| c.has_friction())
     }
 
+    /// Whether the interfaces' tangent is nonsymmetric: with Coulomb
+    /// friction, and with dual mortar between bodies, whose force acts
+    /// through the gap's gradient at fixed `D`, `M` while its constraint
+    /// row keeps the whole gradient (Popp, Gee & Wall 2009; the
+    /// [`kinematics`](super::kinematics) module's docs): there `K_uλ` and
+    /// `K_λuᵀ` differ by a fraction of the largest entry, not round-off.
+    pub fn has_nonsymmetric_tangent(&self) -> bool {
+        self.has_friction() || self.iter().any(|c| matches!(c.primary, Primary::Mortar(_)))
+    }
+
     /// The sparsity couplings of the interfaces.
     pub fn couplings(&self) -> Couplings {
         let mut out = Couplings::default();

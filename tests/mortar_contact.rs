@@ -17,7 +17,9 @@ use common::{
     assert_case_error, problem, run, stacked_blocks_case, support_stacked_blocks, two_bodies,
     write_stacked_blocks_case, CaseRun,
 };
-use signorini::contact::interface::{ContactContext, ContactInterface};
+use signorini::assembly::pattern::SparsityPattern;
+use signorini::contact::interface::{ContactContext, ContactInterface, NodeReport};
+use signorini::contact::laws::NodeContactState;
 use signorini::contact::laws::NormalLaw;
 use signorini::material::LinearElastic;
 use signorini::mesh::{structured::box_mesh, ElementKind, Mesh};
@@ -78,16 +80,7 @@ fn patch_test_to(
     let dofs = pr.model.num_dofs();
     let x = &last.x;
     let lambda = P / (1.0 + NU * P / E).powi(2);
-    let c = pr.contacts.interface(0);
-    let states = &last.contact.interfaces[0];
-    let ctx = signorini::contact::interface::ContactContext {
-        reference: &pr.model.mesh.nodes,
-        t: 1.0,
-        x,
-        first_multiplier: dofs,
-    };
-    let mut residual = vec![0.0; pr.num_unknowns()];
-    let reports = c.assemble(&ctx, states, &mut residual, None);
+    let reports = assemble_first(&pr, x, &last.contact.interfaces[0], None);
     let pressure_error = reports
         .iter()
         .map(|r| (r.pressure - lambda).abs() / P)
@@ -108,6 +101,26 @@ fn patch_test_to(
         .fold(0.0, f64::max);
     let iterations = last.increments.iter().map(|i| i.iterations).sum();
     (pressure_error, stress_error, iterations)
+}
+
+/// The first interface's reports at unknowns `x` (time 1) with its
+/// node `states`, its tangent added into `tangent` when given.
+fn assemble_first(
+    pr: &Problem,
+    x: &[f64],
+    states: &[NodeContactState],
+    tangent: Option<(&SparsityPattern, &mut [f64])>,
+) -> Vec<NodeReport> {
+    let ctx = ContactContext {
+        reference: &pr.model.mesh.nodes,
+        t: 1.0,
+        x,
+        first_multiplier: pr.model.num_dofs(),
+    };
+    let mut residual = vec![0.0; pr.num_unknowns()];
+    pr.contacts
+        .interface(0)
+        .assemble(&ctx, states, &mut residual, tangent)
 }
 
 /// Rockafellar (the default law) on the weighted gaps.
@@ -303,15 +316,7 @@ fn a_face_pair_that_cannot_be_integrated_is_reported() {
     };
     let totals = |x: &[f64]| {
         let state = pr.initial_contact_state(x);
-        let ctx = ContactContext {
-            reference: &mesh.nodes,
-            t: 1.0,
-            x,
-            first_multiplier: pr.model.num_dofs(),
-        };
-        let mut residual = vec![0.0; pr.num_unknowns()];
-        let interface = pr.contacts.interface(0);
-        let reports = interface.assemble(&ctx, &state.interfaces[0], &mut residual, None);
+        let reports = assemble_first(&pr, x, &state.interfaces[0], None);
         let report = pr
             .contacts
             .report(&mesh.nodes, x, &state, &state, vec![reports]);
@@ -367,7 +372,6 @@ fn mortar_between_bodies_has_a_nonsymmetric_tangent() {
     let mut pr = stacked(mesh, "upper.zmin", "lower.zmax", rockafellar());
     assert!(pr.has_nonsymmetric_tangent());
     let last = run(&mut pr);
-    let dofs = pr.model.num_dofs();
     // the contact faces waved (a trial state of Newton): at the converged
     // flat state the two differ by round-off only, the derivatives of `D`
     // and `M` acting on gaps and offsets that are zero there
@@ -375,18 +379,14 @@ fn mortar_between_bodies_has_a_nonsymmetric_tangent() {
     for (n, p) in pr.model.mesh.nodes.iter().enumerate() {
         x[3 * n + 2] += 0.02 * (3.0 * p[0]).sin() * (2.0 * p[1]).cos();
     }
-    let ctx = ContactContext {
-        reference: &pr.model.mesh.nodes,
-        t: 1.0,
-        x: &x,
-        first_multiplier: dofs,
-    };
     let pattern = &pr.model.pattern;
-    let mut residual = vec![0.0; pr.num_unknowns()];
     let mut k = vec![0.0; pattern.nnz()];
-    let states = &last.contact.interfaces[0];
-    let c: &ContactInterface = pr.contacts.interface(0);
-    c.assemble(&ctx, states, &mut residual, Some((pattern, &mut k)));
+    assemble_first(
+        &pr,
+        &x,
+        &last.contact.interfaces[0],
+        Some((pattern, &mut k)),
+    );
     let (mut asymmetry, mut scale) = (0.0f64, 0.0f64);
     for m in 0..pattern.num_multipliers() {
         for a in 0..pattern.num_nodes() {

@@ -30,6 +30,7 @@
 
 mod distributed;
 mod fallback;
+pub mod huge_pages;
 mod recorder;
 mod restart;
 

@@ -60,6 +60,15 @@ fn run_adjusted(
         assert!(text.contains(old), "{old}");
         text = text.replace(old, new);
     }
+    // node-to-surface's condensation is what these tests check (dual
+    // mortar, the default, has its own in tests/mortar_condensed.rs)
+    if !text.contains("discretisation") {
+        text = text.replacen(
+            "[[contact]]\n",
+            "[[contact]]\ndiscretisation = \"node_to_surface\"\n",
+            1,
+        );
+    }
     assert!(!text.contains("[solver]"));
     text.push_str(&format!("\n[solver]\n{solver}\n"));
     let mut simulation = Simulation::from_toml(&text, &folder)?;
@@ -681,7 +690,9 @@ fn pushed_blocks(contact: &str, solver: &str) -> (RunOutcome, PairState) {
     )
     .unwrap();
     let elastic = "model = \"linear_elastic\"\nyoungs_modulus = 100.0\npoisson_ratio = 0.3";
-    let tables = common::stacked_blocks_tables(elastic, elastic, 2.0, contact);
+    // node-to-surface named: its condensation between bodies is checked
+    let contact = format!("{contact}\ndiscretisation = \"node_to_surface\"");
+    let tables = common::stacked_blocks_tables(elastic, elastic, 2.0, &contact);
     let pressure = "[[pressure]]\nsurface = \"upper.zmax\"\nvalue = 2.0";
     assert!(tables.contains(pressure));
     let pushed = "[[displacement]]\nsurface = \"upper.zmax\"\nz = -0.01";

@@ -416,10 +416,11 @@ pub struct ContactSpec {
     /// reference area). Default: `"mortar"` wherever mortar takes the
     /// pairing and keeps the run on the path node-to-surface would take;
     /// `"node_to_surface"` with `two_pass` (mortar has one pass), and on
-    /// linear faces with Coulomb friction against an obstacle or with
-    /// `method = "penalty"`, which `strategy = "auto"` condenses with
-    /// node-to-surface (one factorisation per run) but leaves to Newton with
-    /// mortar (the log says so in a note). Quadratic faces (Tri6/Quad8,
+    /// linear faces against a curved or triangulated obstacle, with Coulomb
+    /// friction against an obstacle or with `method = "penalty"`, which
+    /// `strategy = "auto"` condenses with node-to-surface (one
+    /// factorisation per run) but leaves to Newton with mortar (the log
+    /// says so in a note). Quadratic faces (Tri6/Quad8,
     /// whose corner nodes node-to-surface gives no share of a uniform
     /// pressure) take mortar wherever mortar takes the pairing.
     pub discretisation: Option<DiscretisationSpec>,

@@ -910,3 +910,67 @@ fn auto_leaves_fully_prescribed_frictional_mortar_nodes_to_newton() {
         None
     );
 }
+
+/// The default discretisation keeps the path node-to-surface would take
+/// (`case::contacts::default_discretisations`): on the coarse Hertz
+/// hemisphere (Tet4, linear faces) a `[[contact]]` without the key takes
+/// dual mortar against the frictionless plane, and the condensed path
+/// applies to it; against a sphere, with friction on the plane and with
+/// penalty it takes node-to-surface, a `note:` says why, the condensed
+/// path applies to that default, and with `discretisation = "mortar"`
+/// given it does not (the reason names what mortar leaves to Newton).
+#[test]
+fn the_default_discretisation_keeps_the_condensed_path() {
+    use signorini::case::schema::DiscretisationSpec;
+    use signorini::problem::condensed::not_applicable;
+    let plane = "shape = \"plane\"\npoint = [0.0, 0.0, 0.0]\nnormal = [0.0, 0.0, 1.0]";
+    let sphere = "shape = \"sphere\"\ncenter = [0.0, 0.0, -2.0]\nradius = 2.0";
+    let cases = [
+        ("plane", plane, "", None),
+        ("sphere", sphere, "", Some("sphere")),
+        ("friction", plane, "friction_coefficient = 0.3", Some("obstacle")),
+        ("penalty", plane, "method = \"penalty\"", Some("penalty")),
+    ];
+    let dir = tempfile::tempdir().unwrap();
+    for (label, obstacle, contact, nts) in cases {
+        let path = hertz_case(dir.path(), "");
+        let text = std::fs::read_to_string(&path).unwrap();
+        let text = text.replace(plane, obstacle);
+        let text = match contact.starts_with("method") {
+            true => text.replace("method = \"rockafellar\"", contact),
+            false => text.replace(
+                "method = \"rockafellar\"",
+                &format!("method = \"rockafellar\"\n{contact}"),
+            ),
+        };
+        std::fs::write(&path, &text).unwrap();
+        let case = signorini::case::load(&path).unwrap();
+        let default = case.spec.contact[0].discretisation;
+        let noted = (case.notes.iter())
+            .any(|n| n.contains("'pole' takes discretisation = \"node_to_surface\""));
+        let problem = case.build_problem().unwrap();
+        let why = not_applicable(&problem);
+        assert_eq!(why, None, "{label}: the default is condensed: {why:?}");
+        match nts {
+            None => {
+                assert_eq!(default, Some(DiscretisationSpec::Mortar), "{label}");
+                assert!(!noted, "{label}: {:?}", case.notes);
+            }
+            Some(reason) => {
+                assert_eq!(default, Some(DiscretisationSpec::NodeToSurface), "{label}");
+                assert!(noted, "{label}: {:?}", case.notes);
+                let mortar = text.replace(
+                    "\nobstacle = \"floor\"",
+                    "\nobstacle = \"floor\"\ndiscretisation = \"mortar\"",
+                );
+                assert_ne!(mortar, text);
+                std::fs::write(&path, &mortar).unwrap();
+                let problem = signorini::case::load(&path)
+                    .and_then(|c| c.build_problem())
+                    .unwrap();
+                let why = not_applicable(&problem).unwrap_or_default();
+                assert!(why.contains(reason), "{label}: {why}");
+            }
+        }
+    }
+}

@@ -928,7 +928,12 @@ fn the_default_discretisation_keeps_the_condensed_path() {
     let cases = [
         ("plane", plane, "", None),
         ("sphere", sphere, "", Some("sphere")),
-        ("friction", plane, "friction_coefficient = 0.3", Some("obstacle")),
+        (
+            "friction",
+            plane,
+            "friction_coefficient = 0.3",
+            Some("obstacle"),
+        ),
         ("penalty", plane, "method = \"penalty\"", Some("penalty")),
     ];
     let dir = tempfile::tempdir().unwrap();

@@ -20,17 +20,15 @@ type ElementMaterials = (Vec<Arc<dyn Material>>, Vec<usize>);
 /// under `strategy = "auto"` as far as the case file tells before the
 /// problem is built ([`crate::problem::condensed::not_applicable`]): every
 /// material small-strain, node-to-surface (frictionless or with Coulomb
-/// friction) or dual mortar (given, or by default on quadratic faces;
-/// frictionless), not uzawa, and not penalty with mortar; then its factor is
-/// ordered on the elements' graph, and the dissection of that graph starts
-/// early ([`crate::problem::dissects_element_graph`]). A wrong guess costs
+/// friction) or dual mortar (frictionless), not uzawa, and not penalty
+/// with mortar (`discretisation` is set on reading the case, its default
+/// included); then its factor is ordered on the elements' graph, and the
+/// dissection of that graph starts early
+/// ([`crate::problem::dissects_element_graph`]). A wrong guess costs
 /// the unused dissection on the idle core (and Newton's own dissection of
 /// the coupled pattern waits for METIS's lock if that one still runs).
-fn condensed_pair(c: &ContactSpec, small_strain: bool, quadratic: bool) -> bool {
-    let mortar = match c.discretisation {
-        Some(d) => d == DiscretisationSpec::Mortar,
-        None => quadratic,
-    };
+fn condensed_pair(c: &ContactSpec, small_strain: bool) -> bool {
+    let mortar = c.discretisation == Some(DiscretisationSpec::Mortar);
     let law = match c.method {
         ContactMethod::Uzawa => false,
         ContactMethod::Penalty => !mortar,
@@ -130,14 +128,12 @@ impl Case {
         let small_strain = (materials.iter()).all(|m| m.kinematics() == Kinematics::SmallStrain);
         let strategy = spec.solver.strategy.unwrap_or(defaults.strategy);
         let auto = strategy == Strategy::Auto;
-        let quadratic = mesh.elements.iter().any(|e| e.kind.is_quadratic());
         let dissect = crate::problem::dissects_element_graph(
             spec.solver.linear.unwrap_or(defaults.linear),
             strategy,
             3 * mesh.num_nodes(),
-            (spec.contact.iter()).map(|c| {
-                c.obstacle.is_some() || auto && condensed_pair(c, small_strain, quadratic)
-            }),
+            (spec.contact.iter())
+                .map(|c| c.obstacle.is_some() || auto && condensed_pair(c, small_strain)),
         );
         let mut dissection = None;
         let on_graph = |graph: &NodeGraph| {
@@ -182,7 +178,7 @@ impl Case {
 #[cfg(test)]
 mod tests {
     /// examples/two-spheres (frictionless node-to-surface between two
-    /// linear elastic bodies) starts the dissection of its elements' graph
+    /// linear elastic bodies, named in the case) starts the dissection of its elements' graph
     /// under `auto`, which condenses it (`tests/condensed.rs`), and with
     /// Coulomb friction too (`auto` condenses friction between bodies since
     /// session 20), and with frictionless dual mortar (since session 21),
@@ -208,10 +204,14 @@ mod tests {
         assert_ne!(frictional, text);
         assert!(early(&frictional));
         let mortar = text.replace(
-            "penalty = 1000.0",
-            "penalty = 1000.0\ndiscretisation = \"mortar\"",
+            "discretisation = \"node_to_surface\"",
+            "discretisation = \"mortar\"",
         );
+        assert_ne!(mortar, text);
         assert!(early(&mortar));
+        // without the key: mortar, the default between bodies
+        let default = text.replace("discretisation = \"node_to_surface\"", "");
+        assert!(early(&default));
         let frictional_mortar = mortar.replace(
             "penalty = 1000.0",
             "penalty = 1000.0\nfriction_coefficient = 0.3",

@@ -140,19 +140,21 @@ impl ContactSet {
                 .resize(first + c.num_multipliers(), Vec::new());
             out.multiplier_groups
                 .resize(first + c.num_multipliers(), Vec::new());
-            for (i, nodes) in groups.clone().enumerate() {
+            for (i, nodes) in groups.enumerate() {
                 let own = c.node_multipliers(i);
                 for &k in &own {
                     out.multipliers[first + k] = nodes.clone();
                     out.multiplier_groups[first + k] = own.iter().map(|l| first + l).collect();
                 }
             }
-            // a mortar node couples the nodes of all its faces
+            // a mortar node couples the nodes of its faces (with each
+            // other unless its lever lies on itself against a plane)
             if matches!(
                 c.primary,
                 Primary::Surface(_) | Primary::Mortar(_) | Primary::MortarRigid(_)
             ) {
-                out.groups.extend(groups);
+                out.groups
+                    .extend((0..c.nodes.len()).flat_map(|i| c.coupled_groups(i)));
             }
         }
         out

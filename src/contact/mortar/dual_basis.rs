@@ -32,12 +32,7 @@ impl DualBasis {
     /// a non-positive `∫ Ñ_j`) is an error.
     pub fn of_face(face: &MortarFace) -> Result<DualBasis, MortarError> {
         let (mass, integrals) = face_matrices(face, area_element(face));
-        let area: f64 = integrals.iter().sum();
-        if integrals.iter().any(|i| *i <= 1e-12 * area.abs()) {
-            return Err(MortarError::DegenerateFace {
-                what: format!("∫ Ñ_j dA = {integrals:?} must all be positive"),
-            });
-        }
+        let area = positive_integrals(&integrals)?;
         let inverse = mass
             .try_inverse()
             .ok_or_else(|| MortarError::DegenerateFace {
@@ -97,6 +92,19 @@ impl DualBasis {
 /// a node's `D_j` where the primary surface covers all of its faces.
 pub fn node_integrals(face: &MortarFace) -> Vec<f64> {
     face_matrices(face, area_element(face)).1
+}
+
+/// The face's area `Σ_j ∫ Ñ_j dA` from its nodes' `integrals`, each of
+/// which must be positive (beyond 1e-12 of the area): else the face is
+/// degenerate.
+pub fn positive_integrals(integrals: &[f64]) -> Result<f64, MortarError> {
+    let area: f64 = integrals.iter().sum();
+    if integrals.iter().any(|i| *i <= 1e-12 * area.abs()) {
+        return Err(MortarError::DegenerateFace {
+            what: format!("∫ Ñ_j dA = {integrals:?} must all be positive"),
+        });
+    }
+    Ok(area)
 }
 
 /// The area element `|a(ξ)|` of a face.

@@ -25,7 +25,11 @@ of the run). Numbers must agree within 1e-10
 relative to the largest magnitude of that quantity in the run (of any
 component for a force, of any set's reaction for a reaction, of the final
 displacement for the largest penetration: a penetration of 1e-27 against
-1e-26 is the same zero); counts must be equal. Exit status 1 lists every difference.
+1e-26 is the same zero); counts must be equal. Where the two runs'
+increments part (another number of increments, or other times: a
+different growth of the increment), that is said first, with the times
+on both sides, and the runs are compared up to there, the displacement
+at the last increment they share. Exit status 1 lists every difference.
 
 Only the standard library is needed (the VTU reader decodes the inline
 base64 arrays that `src/output/vtu.rs` writes, compressed or not).
@@ -132,6 +136,26 @@ def scale_of(key, pairs):
     )
 
 
+def parted_increments(old, new):
+    """Where the two runs' increments part (a different number of
+    increments, or times apart by more than RELATIVE of the run's end): the
+    number of increments they share from the start, and the difference
+    said as such; (None, None) if they go alike."""
+    ta = [float(inc["time"]) for inc in old["increments"]]
+    tb = [float(inc["time"]) for inc in new["increments"]]
+    close = RELATIVE * max(map(abs, ta + tb), default=0.0)
+    apart = (k for k, (x, y) in enumerate(zip(ta, tb)) if abs(x - y) > close)
+    same = next(apart, min(len(ta), len(tb)))
+    if len(ta) == len(tb) == same:
+        return None, None
+    shown = lambda ts: ", ".join(f"{t:.6g}" for t in ts[same : same + 4]) or "none"
+    through = f"the same through t = {ta[same - 1]:.6g}" if same else "apart from the first"
+    return same, (
+        f"increments part: {len(ta)} vs {len(tb)}, {through}, then t = "
+        f"{shown(ta)} vs {shown(tb)} (compared up to there)"
+    )
+
+
 def compare(old_dir, new_dir):
     diffs = []
     missing = [str(d.name) for d in (old_dir, new_dir) if not (d / "summary.json").exists()]
@@ -139,6 +163,12 @@ def compare(old_dir, new_dir):
         return [f"no summary.json from {' and '.join(missing)}"]
     old = json.loads((old_dir / "summary.json").read_text())
     new = json.loads((new_dir / "summary.json").read_text())
+    same, parted = parted_increments(old, new)
+    if parted:
+        # the increments both runs reach alike, and the displacement at the
+        # last of them
+        diffs.append(parted)
+        old["increments"], new["increments"] = old["increments"][:same], new["increments"][:same]
     a, b = numbers(old), numbers(new)
     if [k for k, _ in a] != [k for k, _ in b]:
         only = sorted(set(k for k, _ in a) ^ set(k for k, _ in b))
@@ -168,10 +198,11 @@ def compare(old_dir, new_dir):
             diffs.append(f"{key}: {x!r} vs {y!r}")
     if old["increments"] and new["increments"]:
         if u0 is None or u1 is None:
-            return diffs + ["no displacement field in the last VTU"]
+            return diffs + ["no displacement field in the last VTU compared"]
         worst = max((abs(p - q) for p, q in zip(u0, u1)), default=0.0)
         if len(u0) != len(u1) or worst > RELATIVE * length:
-            diffs.append(f"final displacement differs by {worst:.3e} (largest {length:.3e})")
+            at = "final" if not parted else f"t = {float(old['increments'][-1]['time']):.6g}"
+            diffs.append(f"{at} displacement differs by {worst:.3e} (largest {length:.3e})")
     return diffs
 
 

@@ -367,9 +367,21 @@ impl Problem {
     /// displacement expected in the coming increment) and rebuild the
     /// sparsity pattern if a pairing changed. Returns whether it did.
     pub fn refresh_contact_pairs(&mut self, x: &[f64], motion: f64) -> bool {
+        self.search_contact_pairs(x, motion, None)
+    }
+
+    /// [`refresh_contact_pairs`](Self::refresh_contact_pairs), and with
+    /// `reached` the pairs a search at those unknowns (an answer that left
+    /// the last pairs) finds too.
+    pub fn search_contact_pairs(
+        &mut self,
+        x: &[f64],
+        motion: f64,
+        reached: Option<&[f64]>,
+    ) -> bool {
         let changed = self
             .contacts
-            .refresh_pairs(&self.model.mesh.nodes, x, motion);
+            .refresh_pairs(&self.model.mesh.nodes, x, motion, reached);
         if changed {
             self.rebuild_pattern();
         }

@@ -93,7 +93,8 @@ fn projection_derivative_matches_central_differences() {
     let dx = increments(8, 4.2);
     let (dp, dd) = (v(0.3, -0.5, 0.2), v(-0.2, 0.1, 0.05));
     let hit = project_along(&face, &point, &direction).unwrap();
-    let (dxi, dalpha) = projection_derivative(&face, &hit, &dx, &dp, &dd);
+    let jacobian = hit.jacobian(&face, &direction).unwrap();
+    let (dxi, dalpha) = projection_derivative(&face, &hit, &jacobian, &dx, &dp, &dd);
     let at = |h: f64| {
         let f = MortarFace::new(FaceShape::Quad8, shifted(&face.coordinates, &dx, h)).unwrap();
         project_along(&f, &(point + dp * h), &(direction + dd * h)).unwrap()

@@ -14,7 +14,7 @@ use nalgebra::{Rotation3, Vector3};
 use signorini::contact::mortar::auxiliary_plane::AuxiliaryPlane;
 use signorini::contact::mortar::clipping::VertexOrigin;
 use signorini::contact::mortar::pair_linearisation::linearise_pair;
-use signorini::contact::mortar::segment::cell_points;
+use signorini::contact::mortar::segment::{cell_points, point_jacobians};
 use signorini::contact::mortar::segment_derivatives::{
     cell_point_derivatives, integrals_derivative,
 };
@@ -184,8 +184,10 @@ fn gauss_point_derivatives_match_central_differences() {
         let what = format!("{:?}–{:?}", s.shape, p.shape);
         let o = overlap(&s, &p);
         let points = cell_points(&o, &s, &p).unwrap();
+        let jacobians = point_jacobians(&o, &points, &s, &p).unwrap();
         let d_overlap = o.derivative(&s, &p, &dxs, &dxm);
-        let d = cell_point_derivatives(&o, &d_overlap, &points, (&s, &p), (&dxs, &dxm)).unwrap();
+        let linearised = (points.as_slice(), jacobians.as_slice());
+        let d = cell_point_derivatives(&o, &d_overlap, linearised, (&s, &p), (&dxs, &dxm)).unwrap();
         let at = |h: f64| {
             let (sh, ph) = moved(&s, &p, &dxs, &dxm, h);
             cell_points(&overlap(&sh, &ph), &sh, &ph).unwrap()
@@ -238,7 +240,9 @@ fn mortar_integral_derivatives_match_central_differences() {
         let dual = DualBasis::of_face(&s).unwrap();
         let o = overlap(&s, &p);
         let points = cell_points(&o, &s, &p).unwrap();
-        let (dd, dm) = integrals_derivative(&o, &points, (&s, &dual, &p), (&dxs, &dxm)).unwrap();
+        let jacobians = point_jacobians(&o, &points, &s, &p).unwrap();
+        let linearised = (points.as_slice(), jacobians.as_slice());
+        let (dd, dm) = integrals_derivative(&o, linearised, (&s, &dual, &p), (&dxs, &dxm)).unwrap();
         let at = |h: f64| {
             let (sh, ph) = moved(&s, &p, &dxs, &dxm, h);
             integrate_pair(&sh, &DualBasis::of_face(&sh).unwrap(), &ph)

@@ -490,6 +490,35 @@ name = "block"
         assert!(after < std::time::Duration::from_secs(10), "{after:?}");
     }
 
+    /// When only rank 1's set-up fails (only it sees the option, in its
+    /// own `PETSC_OPTIONS`), the run ends within seconds and no process
+    /// cuts the increment (issue 29 item 6). Rank 0 is then inside MUMPS'
+    /// factorisation, a collective rank 1 never joins, so rank 1 ends the
+    /// run after `FAILED_WAIT` (`MPI_Abort`); when both reach the
+    /// agreement, its kind of failure travels with its message and ends
+    /// rank 0's run too (the unit tests of `fault` and of the distributed
+    /// solver's `settled`). Both exit non-zero, `summary.json` says failed
+    /// with rank 1's message, and the log (rank 0's) has no cut.
+    #[test]
+    fn a_set_up_that_fails_on_one_process_ends_the_run_without_cuts() {
+        let dir = tempfile::tempdir().unwrap();
+        let case = block_case(dir.path(), false, "", "");
+        let out = dir.path().join("out");
+        let one = format!("PETSC_OPTIONS={}", BAD_OPTION.join(" "));
+        let command = mpirun_apart(&case, &out, &[], &["env", &one]);
+        let start = std::time::Instant::now();
+        let ended = bounded(command, &out, std::time::Duration::from_secs(60), |_| {});
+        println!("ended after {:?}", start.elapsed());
+        assert_failed(&ended, &BAD_OPTION.join(" "), "rank 1's set-up");
+        assert!(
+            ended.stderr.contains("process 1 of 2") && ended.stderr.contains("PETSc error 92"),
+            "{}",
+            ended.stderr
+        );
+        let log = std::fs::read_to_string(out.join("block.log")).unwrap();
+        assert!(!log.contains("cutting"), "{log}");
+    }
+
     /// The pid of rank `rank` among the processes started with `mark` in
     /// their environment (read from /proc).
     fn rank_pid(mark: &str, rank: usize) -> Option<u32> {

@@ -5,8 +5,8 @@
 //! where every unknown is a displacement, block size 3 and the rigid-body
 //! near-null space) on the stacked blocks, on press-pull with penalty
 //! contact and friction, and on a Hertz-like paraboloid pressed on a plane
-//! (where `strategy = "auto"` takes monolithic Newton for PETSc, and faer
-//! the condensed path). GAMG cannot take the zero diagonal blocks of the
+//! (where `strategy = "auto"` takes monolithic Newton for PETSc, with the
+//! contact predictor's step in faer, and faer the condensed path). GAMG cannot take the zero diagonal blocks of the
 //! contact multipliers, so its cases use the penalty method, which has no
 //! multiplier unknowns. Without the feature, asking for PETSc is a case
 //! error that says how to get it.
@@ -294,6 +294,9 @@ initial_increment = 0.5
         assert_eq!(faer.summary.strategy, "condensed");
         let mumps = run_with(&case, &dir.path().join("mumps"), "linear = \"petsc\"");
         assert_eq!(mumps.summary.strategy, "monolithic");
+        // its first corrections the contact predictor's, factorised in faer
+        // whatever the linear solver (src/solve/josephy.rs)
+        assert_eq!(mumps.summary.predictor, "contact");
         assert!(
             mumps.summary.strategy_reason.contains("linear = \"petsc\""),
             "{}",

@@ -19,14 +19,17 @@ type ElementMaterials = (Vec<Arc<dyn Material>>, Vec<usize>);
 /// Whether `[[contact]]` `c` between two bodies takes the condensed path
 /// under `strategy = "auto"` as far as the case file tells before the
 /// problem is built ([`crate::problem::condensed::not_applicable`]): every
-/// material small-strain, node-to-surface (frictionless or with Coulomb
-/// friction) or dual mortar (frictionless), not uzawa, and not penalty
-/// with mortar (`discretisation` is set on reading the case, its default
-/// included); then its factor is ordered on the elements' graph, and the
-/// dissection of that graph starts early
-/// ([`crate::problem::dissects_element_graph`]). A wrong guess costs
-/// the unused dissection on the idle core (and Newton's own dissection of
-/// the coupled pattern waits for METIS's lock if that one still runs).
+/// material small-strain, node-to-surface or dual mortar, frictionless or
+/// with Coulomb friction (mortar's since session 22), not uzawa, and not
+/// penalty with mortar (`discretisation` is set on reading the case, its
+/// default included); then its factor is ordered on the elements' graph,
+/// and the dissection of that graph starts early
+/// ([`crate::problem::dissects_element_graph`]). Not told here: a body no
+/// prescribed displacement holds, a follower pressure, and mortar's exact
+/// stick at a secondary node whose components are all prescribed (left to
+/// Newton under `auto`). A wrong guess costs the unused dissection on the
+/// idle core (and Newton's own dissection of the coupled pattern waits for
+/// METIS's lock if that one still runs).
 fn condensed_pair(c: &ContactSpec, small_strain: bool) -> bool {
     let mortar = c.discretisation == Some(DiscretisationSpec::Mortar);
     let law = match c.method {
@@ -34,8 +37,7 @@ fn condensed_pair(c: &ContactSpec, small_strain: bool) -> bool {
         ContactMethod::Penalty => !mortar,
         ContactMethod::Rockafellar | ContactMethod::Slack => true,
     };
-    let friction = c.friction_coefficient.is_some_and(|mu| mu > 0.0);
-    c.primary.is_some() && small_strain && law && !(mortar && friction)
+    c.primary.is_some() && small_strain && law
 }
 
 impl Case {
@@ -177,46 +179,53 @@ impl Case {
 
 #[cfg(test)]
 mod tests {
-    /// examples/two-spheres (frictionless node-to-surface between two
-    /// linear elastic bodies, named in the case) starts the dissection of its elements' graph
-    /// under `auto`, which condenses it (`tests/condensed.rs`), and with
-    /// Coulomb friction too (`auto` condenses friction between bodies since
-    /// session 20), and with frictionless dual mortar (since session 21),
-    /// but not under `monolithic`, nor with dual mortar and friction (which
-    /// `auto` leaves to Newton between bodies, whose pattern with the
-    /// contact couplings is another graph).
+    use crate::problem::condensed::{choose, Path};
+
+    /// The early dissection is started exactly where the run takes the
+    /// condensed path ([`choose`]), on examples/two-spheres (two linear
+    /// elastic bodies): node-to-surface frictionless and with Coulomb
+    /// friction (condensed under `auto` since session 20), dual mortar
+    /// frictionless (session 21) and with friction (session 22; the guess
+    /// said Newton until session 24), none of them under `monolithic`
+    /// (whose pattern with the contact couplings is another graph).
     #[test]
     fn auto_dissects_early_for_bodies_it_condenses() {
         let folder = std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("examples/two-spheres");
         let text = std::fs::read_to_string(folder.join("case.toml")).unwrap();
+        // whether the dissection started early, and whether the run
+        // takes the condensed path: the guess must be the path
         let early = |text: &str| {
             let case = crate::case::from_toml(text, &folder).unwrap();
-            case.build_problem().unwrap().dissection.is_some()
+            let problem = case.build_problem().unwrap();
+            let path = choose(&problem).unwrap().path;
+            let started = problem.dissection.is_some();
+            assert_eq!(started, path == Path::Condensed, "{text}");
+            started
         };
-        assert!(early(&text));
-        assert!(!early(&format!(
-            "{text}\n[solver]\nstrategy = \"monolithic\"\n"
-        )));
-        let frictional = text.replace(
-            "penalty = 1000.0",
-            "penalty = 1000.0\nfriction_coefficient = 0.3",
-        );
-        assert_ne!(frictional, text);
-        assert!(early(&frictional));
+        let monolithic = |text: &str| format!("{text}\n[solver]\nstrategy = \"monolithic\"\n");
+        let frictional = |text: &str| {
+            let with = text.replace(
+                "penalty = 1000.0",
+                "penalty = 1000.0\nfriction_coefficient = 0.3",
+            );
+            assert_ne!(with, text);
+            with
+        };
         let mortar = text.replace(
             "discretisation = \"node_to_surface\"",
             "discretisation = \"mortar\"",
         );
         assert_ne!(mortar, text);
-        assert!(early(&mortar));
-        // without the key: mortar, the default between bodies
-        let default = text.replace("discretisation = \"node_to_surface\"", "");
-        assert!(early(&default));
-        let frictional_mortar = mortar.replace(
-            "penalty = 1000.0",
-            "penalty = 1000.0\nfriction_coefficient = 0.3",
-        );
-        assert_ne!(frictional_mortar, mortar);
-        assert!(!early(&frictional_mortar));
+        for variant in [
+            text.clone(),
+            frictional(&text),
+            mortar.clone(),
+            frictional(&mortar),
+            // without the key: mortar, the default between bodies
+            text.replace("discretisation = \"node_to_surface\"", ""),
+        ] {
+            assert!(early(&variant), "{variant}");
+            assert!(!early(&monolithic(&variant)), "{variant}");
+        }
     }
 }

@@ -736,12 +736,13 @@ impl ContactInterface {
 
 impl ContactInterface {
     /// What an operation reads of a dual mortar producer's rows: their
-    /// derivatives where it assembles a `tangent`, or where friction's
-    /// slip reads them (the weighted slip, the anchor); else their values
-    /// alone (a residual, a commit, the initial states, frictionless),
-    /// which cost a fraction of the rows with derivatives.
+    /// derivatives where it assembles a `tangent`; else their values alone
+    /// (a residual, a commit, the initial states, friction's weighted slip
+    /// and anchor, whose values need no `∇D`, `∇M`: the frictional
+    /// condensed path's evaluations read them so, bit for bit the values
+    /// of the rows with derivatives), which cost a fraction of those.
     fn reads_derivatives(&self, tangent: bool) -> Derivatives {
-        if tangent || self.friction.is_some() {
+        if tangent {
             Derivatives::With
         } else {
             Derivatives::Without

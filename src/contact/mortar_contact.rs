@@ -51,7 +51,9 @@
 //! After Newton converged, [`MortarSurfaces::pairs_hold`] searches again
 //! at the converged state: where the pairs it adds change a node's gap
 //! (bodies that started apart and closed within the increment), the
-//! stepper cuts the increment and the next search grows with the motion.
+//! stepper searches again with the pairs a search at that answer finds
+//! added ([`MortarSurfaces::refresh`]'s `reached`) and solves the
+//! increment again, and cuts it only if that answer leaves them too.
 
 use super::friction::{Coulomb, FrictionHistory, TangentialResponse};
 use super::kinematics::{
@@ -183,7 +185,7 @@ impl MortarSurfaces {
             cache: RowCache::default(),
             committed: None,
         };
-        out.refresh(&mesh.nodes, &vec![0.0; 3 * mesh.num_nodes()], 0.0);
+        out.refresh(&mesh.nodes, &vec![0.0; 3 * mesh.num_nodes()], 0.0, None);
         Some(out)
     }
 
@@ -218,10 +220,22 @@ impl MortarSurfaces {
 
     /// Recompute the candidate face pairs at configuration `x`: each
     /// primary face's box grown by `2 h_f + 2 motion` against the
-    /// secondary faces' boxes. Returns whether a pair changed.
-    pub fn refresh(&mut self, reference: &[[f64; 3]], x: &[f64], motion: f64) -> bool {
+    /// secondary faces' boxes; with `reached` (the unknowns of an answer
+    /// that left the last pairs) also the pairs a search there with no
+    /// motion finds. Returns whether a pair changed.
+    pub fn refresh(
+        &mut self,
+        reference: &[[f64; 3]],
+        x: &[f64],
+        motion: f64,
+        reached: Option<&[f64]>,
+    ) -> bool {
         let xs = coordinates(reference, x);
-        let (candidates, smallest) = self.search(&xs, motion);
+        let (mut candidates, smallest) = self.search(&xs, motion);
+        if let Some(reached) = reached {
+            let there = self.search(&coordinates(reference, reached), 0.0).0;
+            super::primary::merge_candidates(&mut candidates, there);
+        }
         let changed = candidates != self.candidates;
         if changed {
             self.cache.clear();
@@ -276,7 +290,9 @@ impl MortarSurfaces {
     /// must hold: otherwise the stepper cuts the increment, and the next
     /// search grows with the motion. The gaps are the rows' values
     /// ([`mortar_row_values`]) with the pairs used and with those and the
-    /// fresh ones.
+    /// fresh ones, read only for the nodes of the secondary faces that have
+    /// a fresh pair (every other node's row has the same pairs either way)
+    /// and from the pairs of the faces that hold those nodes.
     pub fn pairs_hold(&self, reference: &[[f64; 3]], x: &[f64]) -> bool {
         let xs = coordinates(reference, x);
         let (fresh, _) = self.search(&xs, 0.0);
@@ -288,15 +304,25 @@ impl MortarSurfaces {
         if all.len() == used.len() {
             return true;
         }
-        let gaps = |pairs: &[(usize, usize)]| self.covered_gaps(pairs, &xs);
+        // only the nodes of the faces with a new pair can see another gap:
+        // their rows whole, from every pair of the faces that hold them
+        let affected: std::collections::BTreeSet<usize> = (all[used.len()..].iter())
+            .flat_map(|&(s, _)| self.secondary_faces[s].nodes.iter().copied())
+            .collect();
+        let near = |pairs: &[(usize, usize)]| -> Vec<(usize, usize)> {
+            (pairs.iter().copied())
+                .filter(|&(s, _)| {
+                    (self.secondary_faces[s].nodes.iter()).any(|n| affected.contains(n))
+                })
+                .collect()
+        };
+        let gaps = |pairs: &[(usize, usize)]| self.covered_gaps(&near(pairs), &xs);
         let (Some(before), Some(now)) = (gaps(&used), gaps(&all)) else {
             return false;
         };
         let tolerance = 1e-9 * self.element_size;
         let open = self.margin;
-        let nodes: std::collections::BTreeSet<usize> =
-            before.keys().chain(now.keys()).copied().collect();
-        let holds = nodes.iter().all(|n| {
+        let holds = affected.iter().all(|n| {
             let a = before.get(n).copied().unwrap_or(open);
             let b = now.get(n).copied().unwrap_or(open);
             (a - b).abs() <= tolerance || (a > 0.0 && b > 0.0)

@@ -92,16 +92,16 @@ impl MortarSurfaces {
 
     /// Keep `D`, `M` at the converged coordinates `xs` where slip is
     /// tracked ([`track_slip`](Self::track_slip)): the covered rows there
-    /// ([`rows_at_coordinates`](Self::rows_at_coordinates)), from the row
-    /// cache's converged entry while the candidate pairs hold (integrated
-    /// once more where they changed, which the increment's first iterate
-    /// then reads from the cache). A node without a covered row (a face the
+    /// ([`rows_at_coordinates`](Self::rows_at_coordinates), their values:
+    /// the coupling reads no derivative), from the row cache's converged
+    /// entry while the candidate pairs hold (integrated once more, values
+    /// alone, where they changed). A node without a covered row (a face the
     /// kernels cannot integrate; less than half covered, whose `D_j,n`,
     /// `M_jl,n` are as unreliable as its gap) slips from its own committed
     /// position.
     pub fn commit_coupling(&mut self, xs: &[Vector3<f64>]) {
         if self.committed.is_some() {
-            let rows = self.rows_at_coordinates(xs, Derivatives::With);
+            let rows = self.rows_at_coordinates(xs, Derivatives::Without);
             self.committed = Some(committed_coupling(&rows));
         }
     }
@@ -278,14 +278,15 @@ impl MortarGap<'_> {
     }
 
     /// `∂(−A Bᵀ t)/∂q` at fixed `t = traction / A`, `A = D_j` (see the
-    /// module docs).
+    /// module docs); `None` where the row was taken without its
+    /// derivatives (a residual alone, which reads no stiffness).
     pub(super) fn frictional_lever_stiffness(
         &self,
         kinematics: &GapKinematics<Dyn>,
         traction: &Vector3<f64>,
     ) -> Option<DMatrix<f64>> {
         let j = kinematics.nodes[0];
-        let row = self.node_row(j)?;
+        let row = self.node_row(j).filter(|row| row.has_derivatives())?;
         let t = traction / row.d;
         let q = kinematics.gradient.len();
         let columns = offsets(&kinematics.nodes, &row.nodes);

@@ -12,7 +12,12 @@
 //! and `d` the largest displacement of a contact node over the previous
 //! increment scaled to the new increment's length: the pairs hold while no
 //! node slides more than a couple of the local elements within one
-//! increment, and a cut increment shrinks `d`. The margin is local so that
+//! increment. Where an increment's answer leaves them (the stepper's
+//! check, [`IncrementFailure::PairsMoved`](crate::solve::failure::IncrementFailure::PairsMoved)),
+//! the same increment is searched again once, the candidates of a search
+//! at that answer with no motion added, and solved again before any cut
+//! (bodies that start apart and close within one increment: at the first
+//! increment `d = 0`). The margin is local so that
 //! a graded surface (fine where the bodies touch, coarse elsewhere) does
 //! not pair the fine region's nodes with hundreds of triangles (a mean size
 //! did: 7.8 M matrix entries for 26 k dofs in the two-spheres example
@@ -145,14 +150,41 @@ impl PrimarySurface {
 
     /// Recompute every secondary node's candidates at configuration `x`,
     /// each triangle's box grown by `δ_t = 2 h_t + 2 motion` (see the
-    /// module's search rule). Returns whether any candidate list changed.
+    /// module's search rule); with `reached` (the unknowns of an answer
+    /// that left the last candidates) also those a search there with no
+    /// motion finds. Returns whether any candidate list changed.
     pub fn refresh(
         &mut self,
         reference: &[[f64; 3]],
         x: &[f64],
         secondary: &[usize],
         motion: f64,
+        reached: Option<&[f64]>,
     ) -> bool {
+        let (mut candidates, smallest) = self.search(reference, x, secondary, motion);
+        if let Some(reached) = reached {
+            let there = self.search(reference, reached, secondary, 0.0).0;
+            merge_candidates(&mut candidates, there);
+        }
+        let changed = candidates != self.candidates;
+        self.candidates = candidates;
+        // the gap reported for a node without candidates (it is at least
+        // this far): positive, also with degenerate triangles and no motion
+        if smallest.is_finite() {
+            self.margin = smallest.max(1e-3 * self.element_size);
+        }
+        changed
+    }
+
+    /// Each secondary node's candidates at configuration `x` with the
+    /// margins `2 h_t + 2 motion`, and the smallest margin.
+    fn search(
+        &self,
+        reference: &[[f64; 3]],
+        x: &[f64],
+        secondary: &[usize],
+        motion: f64,
+    ) -> (Vec<Vec<usize>>, f64) {
         let mut smallest = f64::INFINITY;
         let boxes: Vec<(Vector3<f64>, Vector3<f64>)> = (0..self.triangles.len())
             .map(|t| {
@@ -172,15 +204,7 @@ impl PrimarySurface {
             .iter()
             .map(|&s| current_position(reference, x, s))
             .collect();
-        let candidates = boxes_containing(&boxes, &points);
-        let changed = candidates != self.candidates;
-        self.candidates = candidates;
-        // the gap reported for a node without candidates (it is at least
-        // this far): positive, also with degenerate triangles and no motion
-        if smallest.is_finite() {
-            self.margin = smallest.max(1e-3 * self.element_size);
-        }
-        changed
+        (boxes_containing(&boxes, &points), smallest)
     }
 
     /// Secondary node `node` at `x_s` against its primary triangle: `kept`
@@ -267,6 +291,15 @@ impl PrimarySurface {
         nodes.sort_unstable();
         nodes.dedup();
         nodes
+    }
+}
+
+/// Adds `more` to `candidates`, item by item (each sorted, no repeats).
+pub(crate) fn merge_candidates(candidates: &mut [Vec<usize>], more: Vec<Vec<usize>>) {
+    for (mine, theirs) in candidates.iter_mut().zip(more) {
+        mine.extend(theirs);
+        mine.sort_unstable();
+        mine.dedup();
     }
 }
 

@@ -352,7 +352,7 @@ impl ContactInterface {
             return Vec::new();
         };
         let mut reverse = surface.clone();
-        reverse.refresh(reference, x, &primary.nodes, 0.0);
+        reverse.refresh(reference, x, &primary.nodes, 0.0, None);
         let gap = |(k, &n)| {
             let here = SecondaryNode {
                 reference,

@@ -162,14 +162,24 @@ impl ContactSet {
 
     /// Pair the secondary nodes of every deformable interface with the
     /// primary triangles they may touch at unknowns `x`, with search margins
-    /// `2h_t + 2 motion` (`src/contact/primary.rs`, search rule). Returns
-    /// whether a pairing changed (then the couplings did).
-    pub fn refresh_pairs(&mut self, reference: &[[f64; 3]], x: &[f64], motion: f64) -> bool {
+    /// `2h_t + 2 motion` (`src/contact/primary.rs`, search rule), and with
+    /// `reached` (the unknowns of an answer that left the last pairs) the
+    /// pairs a search there with no motion finds. Returns whether a pairing
+    /// changed (then the couplings did).
+    pub fn refresh_pairs(
+        &mut self,
+        reference: &[[f64; 3]],
+        x: &[f64],
+        motion: f64,
+        reached: Option<&[f64]>,
+    ) -> bool {
         let mut changed = false;
         for c in &mut self.interfaces {
             match &mut c.primary {
-                Primary::Surface(p) => changed |= p.refresh(reference, x, &c.nodes, motion),
-                Primary::Mortar(m) => changed |= m.refresh(reference, x, motion),
+                Primary::Surface(p) => {
+                    changed |= p.refresh(reference, x, &c.nodes, motion, reached)
+                }
+                Primary::Mortar(m) => changed |= m.refresh(reference, x, motion, reached),
                 Primary::Rigid(_) | Primary::MortarRigid(_) => {}
             }
         }
@@ -203,7 +213,7 @@ impl ContactSet {
                 _ => return true,
             };
             let mut fresh = p.clone();
-            fresh.refresh(reference, x, &c.nodes, 0.0);
+            fresh.refresh(reference, x, &c.nodes, 0.0, None);
             let mut with_fresh = c.clone();
             with_fresh.primary = Primary::Surface(fresh);
             let (used, now) = (

@@ -349,7 +349,7 @@ impl ContactInterface {
         enforcement.apply(&mut c);
         if let Primary::Surface(p) = &mut c.primary {
             let zero = vec![0.0; 3 * mesh.num_nodes()];
-            p.refresh(&mesh.nodes, &zero, &c.nodes, 0.0);
+            p.refresh(&mesh.nodes, &zero, &c.nodes, 0.0, None);
         }
         Ok(c)
     }

@@ -102,8 +102,8 @@ impl NonlinearProblem for Problem {
     fn commit(&self, t: f64, x: &[f64], state: &mut ContactState) {
         self.commit_contact_history(t, x, state)
     }
-    fn refresh_pattern(&mut self, x: &[f64], motion: f64) -> bool {
-        self.refresh_contact_pairs(x, motion)
+    fn refresh_pattern(&mut self, x: &[f64], motion: f64, reached: Option<&[f64]>) -> bool {
+        self.search_contact_pairs(x, motion, reached)
     }
     fn couplings_hold(&self, x: &[f64], state: &ContactState) -> bool {
         self.contact_pairs_hold(x, state)

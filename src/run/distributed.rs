@@ -183,11 +183,12 @@ impl Distribution {
         self.ended.store(true, Ordering::Relaxed);
         #[cfg(feature = "petsc")]
         {
-            use crate::solve::petsc::fault::{agree, fault, Agreement};
+            use crate::solve::petsc::fault::{agree, fault, Agreement, Severity};
             let local = result.as_ref().map(|_| ()).map_err(|e| e.to_string());
-            match agree(local.as_ref().map(|_| ()).map_err(String::as_str)) {
+            let failed = local.as_ref().map(|_| ());
+            match agree(failed.map_err(|m| (Severity::Final, m.as_str()))) {
                 Agreement::Succeeded => result,
-                Agreement::Failed { rank, message } => result.and_then(|_| {
+                Agreement::Failed { rank, message, .. } => result.and_then(|_| {
                     let message = format!("process {rank} of {}: {message}", self.partition.parts);
                     if let (true, Some(path)) = (self.is_lead(), &self.summary) {
                         mark_failed(path, &message);

@@ -344,6 +344,14 @@ impl stepping::StepObserver<Problem> for Recorder<'_> {
         ));
     }
 
+    fn on_search_again(&mut self, step: &str, time: f64) {
+        self.observers.on_message(&format!(
+            "step '{step}'  t = {time:.6}: {}; searching the contact pairs again where its \
+             answer reached and solving it again",
+            IncrementFailure::PairsMoved
+        ));
+    }
+
     fn on_cut(&mut self, step: &str, time: f64, increment: f64, reason: &IncrementFailure) {
         self.observers.on_cut(&Cut {
             step,

@@ -39,6 +39,22 @@
 //! each multiplier takes the node's force, `λ_a = f_a / (A_a k)`. One
 //! factorisation of `K̂` and two solves, as much as a plain step, plus the
 //! dense `c³/3` of `Ŝ`.
+//!
+//! ## Its own factor, whatever the run's linear solver
+//! The step factorises `K̂` with faer's sparse LDLᵀ ([`SparseLdlt`]) also
+//! when the run's linear solver is PETSc (`linear = "petsc"`, serial: a
+//! distributed run takes no contact predictor) or `linear = "lu"`.
+//! It needs `Ŝ`, read off the trailing block of a factor whose ordering
+//! puts `T` last, which a [`super::linear_solver::LinearSolver`] (solves
+//! only) does not give; `K̂` is not Newton's tangent (the multipliers'
+//! rows a scaled identity, shifted on `T`), so no factor of the run's solver could be reused for
+//! it either, faer's own included. Taking `Ŝ` from PETSc would need MUMPS'
+//! Schur complement (`MatFactorSetSchurIS`), a second Schur path beside
+//! [`trailing_schur`] for one backend. So a serial run on PETSc takes the
+//! predictor's step in faer, its PETSc options not applying to it, and
+//! Newton's steps after it in PETSc; the answer is Newton's, to its
+//! tolerances (`tests/petsc.rs`, the Hertz-like contact: MUMPS with the
+//! contact predictor against faer's condensed path, to 1e-8).
 
 use super::condensed::complementarity::solve_lcp;
 use super::condensed::schur::{trailing_ordering, trailing_schur};

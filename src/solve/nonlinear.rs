@@ -130,8 +130,10 @@ pub trait NonlinearProblem {
     /// Commit the history once an increment converged at `t`, `x`.
     fn commit(&self, t: f64, x: &[f64], state: &mut Self::State);
     /// Update couplings (contact pairs) at `x` for an increment expected to
-    /// move nodes by up to `motion`; `true` if the pattern changed.
-    fn refresh_pattern(&mut self, x: &[f64], motion: f64) -> bool;
+    /// move nodes by up to `motion`, and (`reached`) those the unknowns of
+    /// an answer that left the last ones reach; `true` if the pattern
+    /// changed.
+    fn refresh_pattern(&mut self, x: &[f64], motion: f64, reached: Option<&[f64]>) -> bool;
     /// Whether the couplings used for the increment still hold at the
     /// converged `x` (else the increment is cut).
     fn couplings_hold(&self, x: &[f64], state: &Self::State) -> bool;

@@ -103,7 +103,7 @@ impl NonlinearProblem for Springs {
         false
     }
     fn commit(&self, _: f64, _: &[f64], _: &mut ()) {}
-    fn refresh_pattern(&mut self, _: &[f64], _: f64) -> bool {
+    fn refresh_pattern(&mut self, _: &[f64], _: f64, _: Option<&[f64]>) -> bool {
         false
     }
     fn couplings_hold(&self, _: &[f64], _: &()) -> bool {

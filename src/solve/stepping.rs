@@ -116,6 +116,11 @@ pub trait StepObserver<P: NonlinearProblem> {
     /// The run's method failed the increment aiming at `time` for
     /// `reason`, and method `by` solves it again before any cut.
     fn on_fallback(&mut self, _step: &str, _time: f64, _by: &str, _reason: &IncrementFailure) {}
+    /// The increment aiming at `time` left the contact pairs it was
+    /// searched with ([`IncrementFailure::PairsMoved`]): they are searched
+    /// again, with those its answer reaches, and the same increment is
+    /// solved again, before any cut.
+    fn on_search_again(&mut self, _step: &str, _time: f64) {}
     /// An increment failed and is cut.
     fn on_cut(&mut self, _step: &str, _time: f64, _increment: f64, _reason: &IncrementFailure) {}
     /// A Newton iteration of the increment aiming at `time` took its
@@ -210,11 +215,14 @@ pub fn resume_steps<P: NonlinearProblem>(
         let mut cuts = 0;
         // every cut of the step (summary.json's steps[].cuts)
         let mut step_cuts = 0u32;
+        // an answer that left its pairs, the increment's pairs then
+        // searched again with those it reaches ([`search_again`])
+        let mut reached: Option<Vec<f64>> = None;
         while t < step.end_time - 1e-12 * step.end_time.abs().max(1.0) {
             let t_new;
             (dt, t_new) = next_increment(step, t, dt);
             let motion = last_motion.map_or(0.0, |(m, last_dt)| m * (t_new - t) / last_dt);
-            if problem.refresh_pattern(&u, motion) {
+            if problem.refresh_pattern(&u, motion, reached.as_deref()) {
                 method.pattern_changed(problem)?;
                 if let Some(f) = fallback.as_deref_mut() {
                     f.pattern_changed(problem)?;
@@ -248,6 +256,7 @@ pub fn resume_steps<P: NonlinearProblem>(
             );
             match outcome {
                 Ok(evaluation) => {
+                    reached = None;
                     last_motion = Some((coupled_motion(problem, &trial, &u), t_new - t));
                     let change = trial.iter().zip(&u).map(|(a, b)| a - b).collect();
                     secant = Some((change, t_new - t));
@@ -293,6 +302,12 @@ pub fn resume_steps<P: NonlinearProblem>(
                     return Err(Error::LinearSolver(message))
                 }
                 Err(failure) => {
+                    if reached.is_none() && search_again(&failure, &trial) {
+                        reached = Some(trial.clone());
+                        observer.on_search_again(&step.name, t_new);
+                        continue;
+                    }
+                    reached = None;
                     let at_smallest = 0.5 * dt < step.min_increment;
                     if cuts >= problem.settings().max_cuts || at_smallest {
                         return Err(Error::NoConvergence {
@@ -381,7 +396,8 @@ fn attempt_with_fallback<P: NonlinearProblem>(
     let (Err(failure), Some(f)) = (&first.outcome, fallback.as_deref_mut()) else {
         return first;
     };
-    if !failure.mended_by_a_cut() {
+    // the fallback would solve it on the same pairs
+    if !failure.mended_by_a_cut() || matches!(failure, IncrementFailure::PairsMoved) {
         return first;
     }
     let (step, time) = (&increment.step.name, increment.time);
@@ -394,6 +410,17 @@ fn attempt_with_fallback<P: NonlinearProblem>(
         solved_by: f.name(),
         retried: Some(failure.to_string()),
     }
+}
+
+/// Whether the increment whose answer `trial` failed by `failure` is
+/// solved again before any cut, on the pairs of its start and those a
+/// search at `trial` finds: where the answer left the pairs it was
+/// searched with ([`IncrementFailure::PairsMoved`]: a node reached faces
+/// the search at the start did not pair it with, bodies that start apart
+/// and close within the increment). Once per increment (the caller):
+/// where the answer on those pairs leaves them too, the increment is cut.
+fn search_again(failure: &IncrementFailure, trial: &[f64]) -> bool {
+    matches!(failure, IncrementFailure::PairsMoved) && trial.iter().all(|x| x.is_finite())
 }
 
 /// The largest displacement over an increment, from `u` to `trial`, of

@@ -229,7 +229,7 @@ impl ContactInterface {
             first_multiplier: 0,
         };
         let mut histories = Vec::with_capacity(self.nodes.len());
-        with_producer!(self, &ctx, p => {
+        with_producer!(self, &ctx, self.reads_derivatives(false), p => {
             self.for_each_node(p, &ctx, |i| states[i], |node, state, _| {
                 let (traction, normal) = &tractions[node.index];
                 let response = TangentialResponse {

@@ -11,7 +11,7 @@ use nalgebra::{DMatrix, Vector3};
 
 use super::dual_basis::DualBasis;
 use super::face::MortarFace;
-use super::segment::{cell_points, integrate_points, overlap, SegmentIntegrals};
+use super::segment::{cell_points, integrate_points, overlap, point_jacobians, SegmentIntegrals};
 use super::segment_derivatives::integrals_derivative;
 use super::MortarError;
 
@@ -37,6 +37,7 @@ pub fn linearise_pair(
         return Ok(None);
     }
     let points = cell_points(&overlap, secondary, primary)?;
+    let jacobians = point_jacobians(&overlap, &points, secondary, primary)?;
     let (ns, nm) = (secondary.shape.node_count(), primary.shape.node_count());
     let columns = 3 * (ns + nm);
     let mut out = PairLinearisation {
@@ -49,7 +50,7 @@ pub fn linearise_pair(
         let mut dx = vec![Vector3::zeros(); ns + nm];
         dx[column / 3][column % 3] = 1.0;
         let (dxs, dxm) = dx.split_at(ns);
-        let (dd, dm) = integrals_derivative(&overlap, &points, faces, (dxs, dxm))?;
+        let (dd, dm) = integrals_derivative(&overlap, (&points, &jacobians), faces, (dxs, dxm))?;
         for j in 0..ns {
             out.d_gradient[(j, column)] = dd[j];
             for l in 0..nm {

@@ -15,14 +15,27 @@ use super::face::MortarFace;
 use super::MortarError;
 
 /// A point on a face reached along a direction: reference coordinates `ξ`
-/// and the distance `α` with `x(ξ) = X + α d`, and the projection's
-/// Jacobian there (for the derivatives: one per point, not one per
-/// derivative direction).
+/// and the distance `α` with `x(ξ) = X + α d`.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct FacePoint {
     pub xi: [f64; 2],
     pub distance: f64,
-    pub jacobian: ProjectionJacobian,
+}
+
+impl FacePoint {
+    /// The projection's Jacobian at this point of `face` along `direction`,
+    /// for its derivatives ([`projection_derivative`]): formed once per
+    /// point by the callers that differentiate (one per point, not one per
+    /// derivative direction), not by [`project_along`], whose points are
+    /// mostly integrated without derivatives (the condensed path's
+    /// rounds).
+    pub fn jacobian(
+        &self,
+        face: &MortarFace,
+        direction: &Vector3<f64>,
+    ) -> Result<ProjectionJacobian, MortarError> {
+        ProjectionJacobian::at(face, self.xi, direction)
+    }
 }
 
 /// The projection's Jacobian `A = [x_,ξ(ξ)  x_,η(ξ)  −d]` at a point, held
@@ -67,6 +80,9 @@ impl ProjectionJacobian {
     }
 }
 
+/// A 3 × 3 LU with partial pivoting.
+type Lu3 = nalgebra::LU<f64, nalgebra::U3, nalgebra::U3>;
+
 /// Newton iterations allowed before the projection is declared failed.
 const MAX_ITERATIONS: usize = 30;
 
@@ -90,9 +106,10 @@ pub fn project_along(
     let mut xi = face.shape.centre();
     let mut alpha = 0.0;
     let mut previous = f64::INFINITY;
+    let mut factored = None;
     for _ in 0..MAX_ITERATIONS {
         let r = face.point(xi) - point - direction * alpha;
-        let step = newton_step(face, xi, direction, &r)?;
+        let step = newton_step(face, xi, direction, &r, &mut factored)?;
         xi = [xi[0] + step[0], xi[1] + step[1]];
         alpha += step[2];
         let size = step[0].abs().max(step[1].abs());
@@ -102,7 +119,6 @@ pub fn project_along(
             return Ok(FacePoint {
                 xi,
                 distance: alpha,
-                jacobian: ProjectionJacobian::at(face, xi, direction)?,
             });
         }
     }
@@ -116,7 +132,8 @@ pub fn project_along(
 /// The directional derivative `(δξ, δα)` of a projection `hit` for
 /// increments `dx` of the face's nodes, `d_point` of the projected point
 /// and `d_direction` of the direction (Popp et al. 2010, §5.3, by the
-/// implicit function theorem on `r = 0`):
+/// implicit function theorem on `r = 0`), `jacobian` the projection's
+/// there ([`FacePoint::jacobian`]):
 ///
 /// ```text
 /// [x_,ξ  x_,η  −d] (δξ, δη, δα) = −(Σ_a N_a(ξ) δx_a − δX − α δd).
@@ -124,6 +141,7 @@ pub fn project_along(
 pub fn projection_derivative(
     face: &MortarFace,
     hit: &FacePoint,
+    jacobian: &ProjectionJacobian,
     dx: &[Vector3<f64>],
     d_point: &Vector3<f64>,
     d_direction: &Vector3<f64>,
@@ -132,26 +150,30 @@ pub fn projection_derivative(
     let dr: Vector3<f64> = dx.iter().zip(&n).map(|(d, n)| d * *n).sum::<Vector3<f64>>()
         - d_point
         - d_direction * hit.distance;
-    let step = hit.jacobian.solve(&-dr);
+    let step = jacobian.solve(&-dr);
     ([step[0], step[1]], step[2])
 }
 
 /// Solves `[x_,ξ(ξ)  x_,η(ξ)  −d] s = −r` by LU with pivoting (the
 /// projection itself, as before the adjugate: its gaps decide the
 /// touching nodes' ties at a zero gap); a face parallel to `d` is an
-/// error.
+/// error. `factored` is the last step's matrix and its LU, reused where
+/// the matrix is the same to the bit (an affine face, a Tri3's: its
+/// tangents do not depend on `ξ`), so the step is the one a new LU gives.
 fn newton_step(
     face: &MortarFace,
     xi: [f64; 2],
     direction: &Vector3<f64>,
     r: &Vector3<f64>,
+    factored: &mut Option<(Matrix3<f64>, Lu3)>,
 ) -> Result<Vector3<f64>, MortarError> {
     let [t1, t2] = face.tangents(xi);
     let jacobian = Matrix3::from_columns(&[t1, t2, -direction]);
-    jacobian
-        .lu()
-        .solve(&-r)
-        .ok_or_else(|| MortarError::Projection {
-            what: format!("the face is parallel to the direction {direction:?}"),
-        })
+    if factored.as_ref().is_some_and(|(last, _)| *last != jacobian) {
+        *factored = None;
+    }
+    let (_, lu) = factored.get_or_insert_with(|| (jacobian, jacobian.lu()));
+    lu.solve(&-r).ok_or_else(|| MortarError::Projection {
+        what: format!("the face is parallel to the direction {direction:?}"),
+    })
 }

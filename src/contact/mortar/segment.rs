@@ -30,8 +30,8 @@ use nalgebra::DMatrix;
 use super::auxiliary_plane::AuxiliaryPlane;
 use super::clipping::{self, ClipTrace, Polygon};
 use super::dual_basis::DualBasis;
-use super::face::{FaceValues, MortarFace};
-use super::projection::{project_along, FacePoint};
+use super::face::{FaceShape, FaceValues, MortarFace};
+use super::projection::{project_along, FacePoint, ProjectionJacobian};
 use super::MortarError;
 use crate::fem::quadrature;
 
@@ -39,6 +39,27 @@ use crate::fem::quadrature;
 /// degree 6 (the product `Φ_j N_l` of two Quad8 functions on flat
 /// rectangular faces).
 const CELL_RULE_POINTS: usize = 4;
+
+/// Points per direction of the cells' collapsed rule between two Tri3
+/// faces: 2, exact for total degree 2. Both faces are flat, so a point of
+/// the plane reaches each along `n₀` by an affine map, `J_q` is constant
+/// on a cell and `Φ_j N_l` is of degree 2 in the plane's coordinates: the
+/// integrals are those of the 4-point rule to round-off, with a quarter of
+/// the projections (which were half of a condensed mortar run's samples).
+const LINEAR_CELL_RULE_POINTS: usize = 2;
+
+/// The cells' rule for a face pair: [`LINEAR_CELL_RULE_POINTS`] between
+/// two Tri3 faces, else [`CELL_RULE_POINTS`]; each computed once.
+fn cell_rule(secondary: FaceShape, primary: FaceShape) -> (Vec<[f64; 2]>, Vec<f64>) {
+    type Rule = (Vec<[f64; 2]>, Vec<f64>);
+    static LINEAR: std::sync::OnceLock<Rule> = std::sync::OnceLock::new();
+    static GENERAL: std::sync::OnceLock<Rule> = std::sync::OnceLock::new();
+    if secondary == FaceShape::Tri3 && primary == FaceShape::Tri3 {
+        (LINEAR.get_or_init(|| quadrature::triangle_collapsed(LINEAR_CELL_RULE_POINTS))).clone()
+    } else {
+        (GENERAL.get_or_init(|| quadrature::triangle_collapsed(CELL_RULE_POINTS))).clone()
+    }
+}
 
 /// The overlap of a face pair in the secondary face's auxiliary plane.
 #[derive(Clone, Debug, PartialEq)]
@@ -125,7 +146,7 @@ pub fn cell_points(
     secondary: &MortarFace,
     primary: &MortarFace,
 ) -> Result<Vec<CellPoint>, MortarError> {
-    let (points, weights) = quadrature::triangle_collapsed(CELL_RULE_POINTS);
+    let (points, weights) = cell_rule(secondary.shape, primary.shape);
     let n0 = overlap.plane.normal;
     let mut out = Vec::new();
     for (cell, triangle) in clipping::centroid_triangles(&overlap.polygon)
@@ -151,6 +172,35 @@ pub fn cell_points(
         }
     }
     Ok(out)
+}
+
+/// The projections' Jacobians of a cell point on both faces along `n₀`,
+/// for its derivatives ([`FacePoint::jacobian`]).
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct PointJacobians {
+    pub secondary: ProjectionJacobian,
+    pub primary: ProjectionJacobian,
+}
+
+/// The [`PointJacobians`] of an overlap's integration points `points`
+/// ([`cell_points`]), formed once for all the derivative directions of a
+/// pair; an integration without derivatives forms none.
+pub fn point_jacobians(
+    overlap: &Overlap,
+    points: &[CellPoint],
+    secondary: &MortarFace,
+    primary: &MortarFace,
+) -> Result<Vec<PointJacobians>, MortarError> {
+    let n0 = overlap.plane.normal;
+    points
+        .iter()
+        .map(|q| {
+            Ok(PointJacobians {
+                secondary: q.secondary.jacobian(secondary, &n0)?,
+                primary: q.primary.jacobian(primary, &n0)?,
+            })
+        })
+        .collect()
 }
 
 /// Segments and integrates a pair (see the module doc); `None` when the

@@ -29,7 +29,7 @@ use super::dual_basis::DualBasis;
 use super::face::MortarFace;
 use super::projection::projection_derivative;
 use super::quadratic;
-use super::segment::{cell_point, CellPoint, Overlap};
+use super::segment::{cell_point, CellPoint, Overlap, PointJacobians};
 use super::MortarError;
 
 /// The derivative of an [`Overlap`]: its plane's, and its clip polygon's
@@ -78,25 +78,37 @@ pub struct CellPointDerivative {
     pub jacobian: f64,
 }
 
-/// Steps 4–5 of the module doc for every integration point.
+/// Steps 4–5 of the module doc for every integration point, `jacobians`
+/// their projections' ([`super::segment::point_jacobians`]).
 pub fn cell_point_derivatives(
     overlap: &Overlap,
     d_overlap: &OverlapDerivative,
-    points: &[CellPoint],
+    (points, jacobians): (&[CellPoint], &[PointJacobians]),
     (secondary, primary): (&MortarFace, &MortarFace),
     (dxs, dxm): (&[Vector3<f64>], &[Vector3<f64>]),
 ) -> Result<Vec<CellPointDerivative>, MortarError> {
     let cells = clipping::centroid_triangles(&overlap.polygon);
     let d_cells = clipping::centroid_triangles(&d_overlap.polygon);
     let (plane, d_plane) = (&overlap.plane, &d_overlap.plane);
+    if jacobians.len() != points.len() {
+        return Err(MortarError::Projection {
+            what: format!(
+                "the derivatives were given {} projection Jacobians for {} integration points",
+                jacobians.len(),
+                points.len()
+            ),
+        });
+    }
     points
         .iter()
-        .map(|q| {
+        .zip(jacobians)
+        .map(|(q, a)| {
             let dp = cell_point(&d_cells[q.cell], q.eta);
             let dx = plane.spatial_point_derivative(d_plane, q.plane_point, dp);
             let dn0 = &d_plane.normal;
-            let (dxi_s, _) = projection_derivative(secondary, &q.secondary, dxs, &dx, dn0);
-            let (dxi_m, _) = projection_derivative(primary, &q.primary, dxm, &dx, dn0);
+            let (dxi_s, _) =
+                projection_derivative(secondary, &q.secondary, &a.secondary, dxs, &dx, dn0);
+            let (dxi_m, _) = projection_derivative(primary, &q.primary, &a.primary, dxm, &dx, dn0);
             let d_cell = cross_derivative(cells[q.cell], d_cells[q.cell]);
             Ok(CellPointDerivative {
                 plane_point: dp,
@@ -130,16 +142,17 @@ fn jacobian_derivative(
 }
 
 /// `(δD_j, δM_jl)` of a pair (step 6–7 of the module doc) from its overlap
-/// and integration points.
+/// and integration points (with their projections' Jacobians).
 pub fn integrals_derivative(
     overlap: &Overlap,
-    points: &[CellPoint],
+    (points, jacobians): (&[CellPoint], &[PointJacobians]),
     (secondary, dual, primary): (&MortarFace, &DualBasis, &MortarFace),
     (dxs, dxm): (&[Vector3<f64>], &[Vector3<f64>]),
 ) -> Result<(Vec<f64>, DMatrix<f64>), MortarError> {
     let d_overlap = overlap.derivative(secondary, primary, dxs, dxm);
     let faces = (secondary, primary);
-    let dq = cell_point_derivatives(overlap, &d_overlap, points, faces, (dxs, dxm))?;
+    let linearised = (points, jacobians);
+    let dq = cell_point_derivatives(overlap, &d_overlap, linearised, faces, (dxs, dxm))?;
     let d_coefficients = dual.derivative(secondary, dxs)?;
     let (ns, nm) = (secondary.shape.node_count(), primary.shape.node_count());
     let (mut dd, mut dm) = (vec![0.0; ns], DMatrix::zeros(ns, nm));

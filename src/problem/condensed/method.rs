@@ -46,8 +46,9 @@ pub(super) trait IncrementSolver: Send {
     /// the same batches (so `W` is the same to the bit), the rest copied.
     fn resume(&mut self, warm: &WarmStart) -> Result<()>;
 
-    /// Why the increment at time `t` failed, measured from the problem
-    /// (its load against the friction capacity), when the solver can tell.
+    /// Why the increment at time `t` failed, when the solver can tell:
+    /// measured from the problem (its load against the friction capacity)
+    /// or from the solve (an answer that left its contact pairs).
     fn diagnose(&self, _problem: &Problem, _t: f64) -> Option<IncrementFailure> {
         None
     }

@@ -32,6 +32,7 @@ use crate::contact::interface::ConstraintRow;
 use crate::contact::mortar::Derivatives;
 use crate::solve::condensed::anderson::Anderson;
 use crate::solve::condensed::flexibility::{take_trailing, Column, MAX_TRAILING};
+use crate::solve::failure::IncrementFailure;
 use crate::solve::linear_solver::SolverStatistics;
 use crate::solve::method::WarmStart;
 use crate::solve::newton::IterationRecord;
@@ -63,6 +64,9 @@ pub(super) struct PairCondensation {
     /// Per interface the gap of a node without a row
     /// ([`crate::contact::interface::ContactInterface::open_gap`]).
     open: Vec<f64>,
+    /// Whether the last increment's first round left the contact pairs
+    /// searched at its start ([`IncrementSolver::diagnose`]).
+    left_pairs: bool,
 }
 
 /// The constraint rows of every interface at unknowns `u`, time `t`, on
@@ -236,6 +240,7 @@ impl PairCondensation {
             on_block,
             rounds: 0,
             open,
+            left_pairs: false,
         })
     }
 
@@ -284,6 +289,13 @@ impl PairCondensation {
                 Some(u_b) => flexibility.solve_on_block(u_b, &linear, tolerance, history)?,
                 None => flexibility.solve_increment(&b, &linear, tolerance, history)?,
             };
+            // the first round's answer is the increment's to the rounds'
+            // change of the projections: where it leaves the pairs, the
+            // rounds would end on an answer the stepper cuts
+            if round == 0 && !problem.contact_pairs_hold(&u, kept) {
+                self.left_pairs = true;
+                return Ok((u, forces));
+            }
             let (next, exact) = columns_and_gaps_at(problem, t, &u, kept, &self.open);
             let change = column_change(&columns, &next, &forces);
             let consistent = (exact.iter().zip(linear(&u)).zip(&forces)).all(|((g, l), f)| {
@@ -354,8 +366,19 @@ impl IncrementSolver for PairCondensation {
         history: &mut Vec<IterationRecord>,
     ) -> Result<()> {
         let start = x.to_vec();
+        self.left_pairs = false;
         let (u, forces) = self.solve_increment(problem, t, &start, trial, history)?;
         let mut pressures = zero_per_node(problem);
+        if self.left_pairs {
+            // the first round's displacements, for the stepper's search;
+            // the failure's kind from `diagnose`
+            set_multipliers(problem, &pressures, &u, t, x, trial);
+            return Err(Error::LinearSolver(
+                "the first round's answer left the contact pairs searched at the increment's \
+                 start"
+                    .into(),
+            ));
+        }
         let reference = &problem.model.mesh.nodes;
         let rows: Vec<_> = (problem.contacts.iter().enumerate())
             .map(|(ci, c)| {
@@ -375,6 +398,14 @@ impl IncrementSolver for PairCondensation {
         }
         set_multipliers(problem, &pressures, &u, t, x, trial);
         Ok(())
+    }
+
+    /// [`IncrementFailure::PairsMoved`] where the first round's answer
+    /// left the contact pairs searched at the increment's start: its
+    /// unknowns are that round's, and the stepper searches again where
+    /// they reach.
+    fn diagnose(&self, _problem: &Problem, _t: f64) -> Option<IncrementFailure> {
+        self.left_pairs.then_some(IncrementFailure::PairsMoved)
     }
 
     fn statistics(&self) -> (SolverStatistics, usize) {

@@ -27,7 +27,7 @@
 //! are each process's own displacement rows (those modes their near-null
 //! space) and its own multiplier rows (the last process's).
 
-use super::fault::{self, Agreement};
+use super::fault::{self, Agreement, Severity};
 use super::{
     check_indices, make_ksp, message, solve_failure, Columns, Outcome, Tally, MESSAGE, PETSC,
 };
@@ -448,10 +448,10 @@ impl LinearSolver for DistributedPetscSolver {
     /// `system.matrix` is this process's part `K^p`; `rhs` the whole
     /// right-hand side (the same on every process); `x` the whole solution.
     /// The processes agree on the outcome ([`fault::agree`]): a solve that
-    /// failed on one fails on every one, with its message. A set-up
-    /// failure ([`IncrementFailure::LinearSolverSetUp`]) comes from the
-    /// options, the same on every process as a rule: each ends its run
-    /// with it at once.
+    /// failed on one fails on every one, with its message and its kind,
+    /// the most severe winning ([`settled`]). A set-up failure
+    /// ([`IncrementFailure::LinearSolverSetUp`]) on any process ends the
+    /// run on every one at once.
     fn solve(
         &mut self,
         system: &LinearSystem<'_>,
@@ -494,24 +494,56 @@ impl LinearSolver for DistributedPetscSolver {
     }
 }
 
-/// The outcome every process agreed on, given this process's `local` one:
-/// a failure on any process is a failure on all (this process's message,
-/// or the failed one's with its rank, cut as a failed solve); a process
-/// that failed alone while another is stuck ends the run
-/// ([`fault::fault`]).
+/// The outcome every process agreed on, given this process's `local` one
+/// ([`settled`]); a process that failed alone while another is stuck ends
+/// the run ([`fault::fault`]).
 fn agreed(
     local: std::result::Result<(), IncrementFailure>,
 ) -> std::result::Result<(), IncrementFailure> {
-    let text = local.as_ref().err().map(ToString::to_string);
-    match fault::agree(text.as_deref().map_or(Ok(()), Err)) {
-        Agreement::Succeeded => Ok(()),
-        Agreement::Failed { rank, message } => match local {
-            Err(mine) => Err(mine),
-            Ok(()) => Err(IncrementFailure::LinearSolve(format!(
-                "process {rank}: {message}"
-            ))),
-        },
-        Agreement::NoAnswer => fault::fault(text.as_deref().unwrap_or("no answer")),
+    let text = local.as_ref().err().map(|f| (severity(f), f.to_string()));
+    let agreement = fault::agree(text.as_ref().map_or(Ok(()), |(s, m)| Err((*s, m.as_str()))));
+    if agreement == Agreement::NoAnswer {
+        fault::fault(text.as_ref().map_or("no answer", |(_, m)| m.as_str()));
+    }
+    settled(local, agreement)
+}
+
+/// How severe a failed solve is at the agreement: final when no cut
+/// mends it ([`IncrementFailure::mended_by_a_cut`]).
+fn severity(failure: &IncrementFailure) -> Severity {
+    if failure.mended_by_a_cut() {
+        Severity::Mendable
+    } else {
+        Severity::Final
+    }
+}
+
+/// A failure on any process is a failure on all, of the most severe kind
+/// any process met: this process's own when it is that severe, else the
+/// failed process's message with its rank, a failed solve (cut) or a
+/// linear solver that cannot be set up (the run ends: issue 29 item 6, a
+/// set-up that failed on one process only).
+fn settled(
+    local: std::result::Result<(), IncrementFailure>,
+    agreement: Agreement,
+) -> std::result::Result<(), IncrementFailure> {
+    let Agreement::Failed {
+        rank,
+        severity: agreed,
+        message,
+    } = agreement
+    else {
+        return local;
+    };
+    match local {
+        Err(mine) if severity(&mine) >= agreed => Err(mine),
+        _ => {
+            let message = format!("process {rank}: {message}");
+            Err(match agreed {
+                Severity::Mendable => IncrementFailure::LinearSolve(message),
+                Severity::Final => IncrementFailure::LinearSolverSetUp(message),
+            })
+        }
     }
 }
 
@@ -726,6 +758,46 @@ impl TangentSink for MatrixSink {
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    /// The outcome a process acts on after an agreement: a set-up that
+    /// failed on another process ends this one's run too, even when its
+    /// own solve succeeded or failed in a way a cut mends (issue 29 item
+    /// 6: it used to cut); a mendable failure elsewhere is a failed solve
+    /// here; this process's own failure stands when it is that severe.
+    #[test]
+    fn the_most_severe_failure_of_any_process_is_this_ones() {
+        let failed = |severity, message: &str| Agreement::Failed {
+            rank: 1,
+            severity,
+            message: message.into(),
+        };
+        let set_up = || failed(Severity::Final, "PETSc error 92");
+        let diverged = || IncrementFailure::LinearSolve("diverged".into());
+        for local in [Ok(()), Err(diverged())] {
+            let outcome = settled(local, set_up());
+            let Err(IncrementFailure::LinearSolverSetUp(message)) = &outcome else {
+                panic!("{outcome:?}");
+            };
+            assert_eq!(message, "process 1: PETSc error 92");
+        }
+        let outcome = settled(Ok(()), failed(Severity::Mendable, "diverged"));
+        assert!(
+            matches!(&outcome, Err(IncrementFailure::LinearSolve(m)) if m == "process 1: diverged"),
+            "{outcome:?}"
+        );
+        let mine = IncrementFailure::LinearSolverSetUp("mine".into());
+        let outcome = settled(Err(mine), set_up());
+        assert!(
+            matches!(&outcome, Err(IncrementFailure::LinearSolverSetUp(m)) if m == "mine"),
+            "{outcome:?}"
+        );
+        let outcome = settled(Err(diverged()), failed(Severity::Mendable, "other"));
+        assert!(
+            matches!(&outcome, Err(IncrementFailure::LinearSolve(m)) if m == "diverged"),
+            "{outcome:?}"
+        );
+        assert!(settled(Ok(()), Agreement::Succeeded).is_ok());
+    }
 
     /// Process `rank` of two (nodes 0 and 1 part 0's, 2 to 4 part 1's)
     /// on its own pattern: its element couples nodes 1 and 2 (node 2 a

@@ -3,12 +3,14 @@
 //!
 //! A process that fails (a bad input found late, a failed solve, a write
 //! that fails) tells the others at the next *agreement* ([`agree`]): every
-//! process gives its outcome, a flag and a message, in a non-blocking
+//! process gives its outcome, a flag (its failure's [`Severity`]) and a
+//! message, in a non-blocking
 //! gather on a communicator of its own (a duplicate of MPI's world, so
 //! that it never matches the collectives of a process still inside a
-//! solve). When every process arrives, they all know who failed and why,
-//! and go on alike (a linear solve that failed on one process fails on
-//! all; a run ends with the same error on all, `summary.json` written by
+//! solve). When every process arrives, they all know who failed, how
+//! severely and why, and go on alike (a linear solve that failed on one
+//! process fails on all, cut or ending the run as the most severe failure
+//! says; a run ends with the same error on all, `summary.json` written by
 //! rank 0). A failed process waits at most [`FAILED_WAIT`]: if another
 //! process does not arrive, it is stuck in a collective that the failed
 //! one left, and the failed process ends the run ([`fault`]: the message
@@ -28,6 +30,7 @@ mod ffi {
     extern "C" {
         pub fn sg_mpi_fault_init(err: *mut c_char, len: usize) -> c_int;
         pub fn sg_mpi_agree(
+            severity: c_int,
             message: *const c_char,
             records: *mut c_char,
             record: usize,
@@ -46,8 +49,8 @@ mod ffi {
 /// that agree arrive within milliseconds of each other).
 pub const FAILED_WAIT: Duration = Duration::from_secs(5);
 
-/// The bytes of one process's record at an agreement: a flag and its
-/// message (cut to fit).
+/// The bytes of one process's record at an agreement: a flag (0, or its
+/// failure's [`Severity`]) and its message (cut to fit).
 const RECORD: usize = 1024;
 
 /// This process's rank and the number of processes.
@@ -67,25 +70,55 @@ pub(super) fn initialise(rank: usize, size: usize) -> Result<()> {
     Ok(())
 }
 
+/// How severe one process's failure is; at an agreement the most severe
+/// wins, so that every process acts on it alike.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, PartialOrd, Ord)]
+pub enum Severity {
+    /// A smaller increment may mend it (a failed linear solve: the
+    /// increment is cut).
+    Mendable = 1,
+    /// It ends the run (a linear solver that cannot be set up, a failed
+    /// run).
+    Final = 2,
+}
+
+impl Severity {
+    /// The severity a record's flag byte says (a flag this build does not
+    /// know is taken as final).
+    fn of_flag(flag: c_char) -> Severity {
+        if flag == Severity::Mendable as c_char {
+            Severity::Mendable
+        } else {
+            Severity::Final
+        }
+    }
+}
+
 /// What the processes agreed on.
 #[derive(Debug, PartialEq)]
 pub enum Agreement {
     /// Every process succeeded.
     Succeeded,
-    /// A process failed: the first failing rank and its message.
-    Failed { rank: usize, message: String },
+    /// A process failed: the most severe failure, the first rank with it
+    /// and its message.
+    Failed {
+        rank: usize,
+        severity: Severity,
+        message: String,
+    },
     /// This process failed and another did not arrive within
     /// [`FAILED_WAIT`].
     NoAnswer,
 }
 
 /// Agree with every other process on an outcome: `local` this process's
-/// (its error's message). A process that succeeded waits as long as it
-/// takes; one that failed waits [`FAILED_WAIT`] at most.
-pub fn agree(local: std::result::Result<(), &str>) -> Agreement {
+/// (its error's severity and message). A process that succeeded waits as
+/// long as it takes; one that failed waits [`FAILED_WAIT`] at most.
+pub fn agree(local: std::result::Result<(), (Severity, &str)>) -> Agreement {
+    let severity = local.map_or_else(|(s, _)| s as c_int, |_| 0);
     let text = local
         .err()
-        .map(|m| CString::new(m.replace('\0', " ")).unwrap_or_default());
+        .map(|(_, m)| CString::new(m.replace('\0', " ")).unwrap_or_default());
     let size = {
         let (_, size) = world();
         size
@@ -104,6 +137,7 @@ pub fn agree(local: std::result::Result<(), &str>) -> Agreement {
         // NUL-terminated, the buffers have the lengths given
         unsafe {
             ffi::sg_mpi_agree(
+                severity,
                 text.as_ref().map_or(std::ptr::null(), |t| t.as_ptr()),
                 records.as_mut_ptr(),
                 RECORD,
@@ -120,17 +154,23 @@ pub fn agree(local: std::result::Result<(), &str>) -> Agreement {
     if done == 0 {
         return Agreement::NoAnswer;
     }
-    first_failure(&records)
+    most_severe_failure(&records)
 }
 
-/// The first failed process's rank and message in the gathered records.
-fn first_failure(records: &[c_char]) -> Agreement {
-    records
+/// The most severe failure in the gathered records: its severity, the
+/// first rank with it and its message.
+fn most_severe_failure(records: &[c_char]) -> Agreement {
+    let failed = records
         .chunks_exact(RECORD)
         .enumerate()
-        .find(|(_, r)| r[0] != 0)
+        .filter(|(_, r)| r[0] != 0);
+    // the first of the most severe: max_by_key keeps the last of equals
+    failed
+        .rev()
+        .max_by_key(|(_, r)| Severity::of_flag(r[0]))
         .map_or(Agreement::Succeeded, |(rank, r)| Agreement::Failed {
             rank,
+            severity: Severity::of_flag(r[0]),
             message: message(&r[1..]),
         })
 }
@@ -179,9 +219,9 @@ pub fn exit_now(code: i32) -> ! {
 mod tests {
     use super::*;
 
-    fn record(failed: bool, text: &str) -> Vec<c_char> {
+    fn record(flag: u8, text: &str) -> Vec<c_char> {
         let mut r = vec![0 as c_char; RECORD];
-        r[0] = failed as c_char;
+        r[0] = flag as c_char;
         for (k, b) in text.bytes().enumerate() {
             r[1 + k] = b as c_char;
         }
@@ -190,16 +230,45 @@ mod tests {
 
     #[test]
     fn the_first_failed_process_is_reported() {
-        let mut records = record(false, "");
-        records.extend(record(true, "write failed"));
-        records.extend(record(true, "other"));
+        let mut records = record(0, "");
+        records.extend(record(2, "write failed"));
+        records.extend(record(2, "other"));
         assert_eq!(
-            first_failure(&records),
+            most_severe_failure(&records),
             Agreement::Failed {
                 rank: 1,
+                severity: Severity::Final,
                 message: "write failed".into()
             }
         );
-        assert_eq!(first_failure(&record(false, "")), Agreement::Succeeded);
+        assert_eq!(most_severe_failure(&record(0, "")), Agreement::Succeeded);
+    }
+
+    /// A process whose failure ends the run wins over an earlier rank's
+    /// failure that a cut would mend (issue 29 item 6: the other process
+    /// cut while this one ended its run).
+    #[test]
+    fn the_most_severe_failure_wins() {
+        let mut records = record(Severity::Mendable as u8, "did not converge");
+        records.extend(record(0, ""));
+        records.extend(record(Severity::Final as u8, "PETSc error 92"));
+        records.extend(record(Severity::Final as u8, "later"));
+        assert_eq!(
+            most_severe_failure(&records),
+            Agreement::Failed {
+                rank: 2,
+                severity: Severity::Final,
+                message: "PETSc error 92".into()
+            }
+        );
+        let mendable = [record(0, ""), record(1, "a"), record(1, "b")].concat();
+        assert_eq!(
+            most_severe_failure(&mendable),
+            Agreement::Failed {
+                rank: 1,
+                severity: Severity::Mendable,
+                message: "a".into()
+            }
+        );
     }
 }

@@ -966,13 +966,15 @@ int sg_mpi_fault_init(char *err, size_t err_len) {
   return 0;
 }
 
-/* Every process's record of `record` bytes (a flag byte, 1 when it
- * failed, then its message) gathered into `records` (size × record)
+/* Every process's record of `record` bytes (a flag byte, 0 when it
+ * succeeded, else its failure's `severity` (fault.rs: 1 a cut may mend
+ * it, 2 it ends the run), then its message) gathered into `records` (size × record)
  * with a non-blocking gather on the fault communicator, polled. A process
  * gives up after `timeout` seconds (none when `timeout` <= 0): `*done` 0
  * then, and the gather stays pending (the caller ends the run). */
-int sg_mpi_agree(const char *message, char *records, size_t record,
-                 double timeout, int *done, char *err, size_t err_len) {
+int sg_mpi_agree(int severity, const char *message, char *records,
+                 size_t record, double timeout, int *done, char *err,
+                 size_t err_len) {
   /* kept alive while the gather may still read it (one per call site's
    * lifetime; a pending gather only precedes MPI_Abort) */
   char *mine = calloc(record, 1);
@@ -981,7 +983,7 @@ int sg_mpi_agree(const char *message, char *records, size_t record,
     return 1;
   }
   if (message) {
-    mine[0] = 1;
+    mine[0] = (char)(severity > 0 ? severity : 1);
     strncpy(mine + 1, message, record - 2);
   }
   MPI_Request request;

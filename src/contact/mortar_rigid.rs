@@ -25,7 +25,8 @@ use super::mortar::obstacle_rows::{
     obstacle_rows, plane_rows, transformed_point, transforms_to_itself,
 };
 use super::mortar::Derivatives;
-use super::mortar_contact::{coordinates, face_size, full_integrals, node_faces, surface_faces};
+use super::mortar::FaceIntegrals;
+use super::mortar_contact::{coordinates, face_size, node_faces, surface_faces};
 use super::mortar_contact::{
     row_gaps, MortarGap, MortarRows, MortarSurfaces, RowCounts, RowSource,
 };
@@ -76,7 +77,8 @@ impl MortarObstacle {
             .filter(|m| *m > 0.0)
             .fold(f64::INFINITY, f64::min);
         let margin = if margin.is_finite() { margin } else { mean };
-        let surfaces = MortarSurfaces::secondary_only(faces, node_faces, mean, margin);
+        let integrals = FaceIntegrals::of(&faces, &reference);
+        let surfaces = MortarSurfaces::secondary_only(faces, node_faces, integrals, mean, margin);
         Some(Self {
             obstacle,
             surfaces,
@@ -86,10 +88,11 @@ impl MortarObstacle {
     }
 
     /// `D_j = ∫ Ñ_j dA` of every secondary node in the reference
-    /// configuration of `mesh` (the nodes' areas `A_j`).
+    /// configuration of `mesh` (the nodes' areas `A_j`; the faces'
+    /// integrals taken when the surfaces were made).
     pub fn reference_areas(&self, mesh: &Mesh) -> Vec<f64> {
         let xs = coordinates(&mesh.nodes, &vec![0.0; 3 * mesh.num_nodes()]);
-        let d = full_integrals(&self.surfaces.secondary_faces, &xs);
+        let d = self.surfaces.full_integrals(&xs);
         self.nodes
             .iter()
             .map(|n| d.get(n).copied().unwrap_or(0.0))
@@ -143,7 +146,10 @@ impl MortarObstacle {
         let faces = &self.surfaces.secondary_faces;
         let plane = matches!(self.obstacle, RigidObstacle::Plane { .. });
         let mut rows = match (plane, derivatives) {
-            (true, Derivatives::Without) => plane_rows(faces, &selected, xs, &project),
+            (true, Derivatives::Without) => {
+                let integrals = &self.surfaces.face_integrals;
+                plane_rows(faces, integrals, &selected, xs, &project)
+            }
             _ => obstacle_rows(faces, &selected, xs, &project, derivatives),
         }
         .unwrap_or_default();

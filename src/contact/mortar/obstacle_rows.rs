@@ -36,7 +36,7 @@ use std::collections::BTreeMap;
 
 use nalgebra::{DMatrix, DVector, Vector3};
 
-use super::dual_basis::{node_integrals, positive_integrals, DualBasis};
+use super::dual_basis::{positive_integrals, DualBasis, FaceIntegrals};
 use super::face::{FaceValues, MortarFace, SurfaceFace};
 use super::normals::unit_derivative;
 use super::quadratic::mortar_values;
@@ -254,13 +254,15 @@ pub fn obstacle_rows(
 /// plane, in closed form: on a flat obstacle `∫ Φ_j N_k dA = D_j R_jk`
 /// (module doc), so `g̃_j = D_j g(x̃_j)` and `L_jk = D_j R_jk n`, with
 /// `D_j` the sum of the selected faces' `∫ Ñ_j dA`
-/// ([`node_integrals`]); no dual basis and no projection per face point.
+/// ([`node_integrals`](super::dual_basis::node_integrals), read from `integrals` where a face is where they
+/// were taken); no dual basis and no projection per face point.
 /// The same rows as the integrated ones to round-off (the lever's entries
 /// off `R_j`, round-off there, are zero here); `plane` the plane's
 /// projection (`g` affine, `n` constant). A degenerate face is the
 /// error [`DualBasis::of_face`] gives.
 pub fn plane_rows(
     faces: &[SurfaceFace],
+    integrals: &FaceIntegrals,
     selected: &[usize],
     coordinates: &[Vector3<f64>],
     plane: &impl Fn(&Vector3<f64>) -> Projection,
@@ -268,7 +270,7 @@ pub fn plane_rows(
     let mut rows = empty_rows(faces, selected, Derivatives::Without);
     for &e in selected {
         let face = &faces[e];
-        let integrals = node_integrals(&face.with_coordinates(coordinates)?);
+        let integrals = integrals.at(faces, e, coordinates)?;
         positive_integrals(&integrals)?;
         for (&node, d) in face.nodes.iter().zip(integrals) {
             if let Some(row) = rows.get_mut(&node) {

@@ -979,3 +979,98 @@ fn the_default_discretisation_keeps_the_condensed_path() {
         }
     }
 }
+
+/// A method that fails every increment, so that each goes to the
+/// fallback.
+struct Fails;
+
+impl signorini::solve::method::IncrementMethod<signorini::problem::Problem> for Fails {
+    fn name(&self) -> &'static str {
+        "condensed"
+    }
+    fn solve(
+        &mut self,
+        _: &signorini::problem::Problem,
+        _: &signorini::solve::method::Increment<'_>,
+        _: &[f64],
+        _: &mut signorini::problem::ContactState,
+        _: &mut Vec<f64>,
+        _: &mut dyn FnMut(&signorini::solve::record::IterationRecord) -> bool,
+    ) -> signorini::solve::newton::NewtonOutcome<Vec<Vec<signorini::contact::interface::NodeReport>>>
+    {
+        (
+            Err(signorini::solve::failure::IncrementFailure::NotFinite),
+            Vec::new(),
+        )
+    }
+    fn statistics(&self) -> signorini::solve::linear_solver::SolverStatistics {
+        Default::default()
+    }
+}
+
+/// The condensed path's pattern (a run's until it has chosen its path)
+/// holds each multiplier with its own node alone: on the coarse Hertz
+/// hemisphere with dual mortar (the default) its entries are the
+/// elements' plus 7 per multiplier (3 in its node's columns, 3 in its
+/// own, its diagonal), fewer than Newton's (the multipliers with their
+/// faces' nodes). Newton's is built when Newton first solves: with a
+/// method that fails every increment, each goes to the Newton fallback,
+/// which then runs on Newton's pattern, and its answer is Newton's on a
+/// problem built with that pattern from the start (the same ordering):
+/// equal to 1e-12 of the largest displacement.
+#[test]
+fn newton_builds_its_couplings_when_it_first_solves() {
+    use signorini::problem::ContactPattern;
+    use signorini::solve::ordering::fill_reducing_ordering;
+    let dir = tempfile::tempdir().unwrap();
+    let case = signorini::case::load(&hertz_case(dir.path(), "")).unwrap();
+    let mut condensed = case.build_problem_with(ContactPattern::Condensed).unwrap();
+    let mut newton = case.build_problem().unwrap();
+    let pattern = &condensed.model.pattern;
+    let multipliers = condensed.num_unknowns() - condensed.model.num_dofs();
+    let elements: usize = pattern
+        .element_neighbours()
+        .iter()
+        .map(|n| 9 * n.len())
+        .sum();
+    assert!(multipliers > 0);
+    assert_eq!(pattern.nnz(), elements + 7 * multipliers);
+    assert!(newton.model.pattern.nnz() > pattern.nnz());
+    let ordered = |p: &signorini::problem::Problem| {
+        let dofs = p.model.num_dofs();
+        let ordering = fill_reducing_ordering(&p.model.pattern, dofs, None).unwrap();
+        signorini::solve::backend::linear_solver(&p.settings, ordering, 1)
+    };
+    let mut solver = ordered(&condensed);
+    let mut josephy = signorini::solve::josephy::Josephy::default();
+    let mut fallback =
+        signorini::solve::method::Monolithic::new(&condensed, &mut *solver, &mut josephy);
+    let mut recorder = common::Recorder::default();
+    let u = signorini::solve::stepping::resume_steps(
+        &mut condensed,
+        &mut Fails,
+        Some(&mut fallback),
+        &mut recorder,
+        dir.path().join("out"),
+        None,
+    )
+    .unwrap();
+    assert_eq!(condensed.contacts.pattern(), ContactPattern::Newton);
+    assert_eq!(condensed.model.pattern.nnz(), newton.model.pattern.nnz());
+    assert!(!recorder.increments.is_empty());
+    for record in &recorder.increments {
+        assert_eq!(record.method, "monolithic");
+        assert!(record.retried.is_some());
+    }
+    let mut solver = ordered(&newton);
+    let mut reference = common::Recorder::default();
+    let v = signorini::solve::stepping::run_steps(
+        &mut newton,
+        &mut *solver,
+        &mut reference,
+        dir.path().join("reference"),
+    )
+    .unwrap();
+    let difference = relative_difference(&u, &v);
+    assert!(difference <= 1e-12, "{difference:e}");
+}

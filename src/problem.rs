@@ -26,7 +26,7 @@ mod rotation;
 
 pub use rotation::{rotation_displacement, rotation_matrix, PrescribedRotation};
 
-pub use crate::contact::set::ContactState;
+pub use crate::contact::set::{ContactPattern, ContactState};
 
 pub use crate::assembly::amplitude::Amplitude;
 
@@ -306,6 +306,24 @@ impl Problem {
         self.rebuild_pattern();
     }
 
+    /// Newton's pattern ([`ContactPattern::Newton`], the default) where
+    /// the problem has the condensed path's (a run builds that one until
+    /// it has chosen its path, `crate::run::problem_as_run`: mortar's
+    /// multipliers with their faces' nodes are 3 % of the entries on the
+    /// race's one-increment case, and the condensed factor reads none):
+    /// called before Newton's path first solves (the run going on
+    /// Newton's path, the fallback of `auto`). Returns whether the
+    /// pattern changed (a linear solver ordered on the old one orders
+    /// again).
+    pub fn newton_pattern(&mut self) -> bool {
+        let changed = self.contacts.pattern() != ContactPattern::Newton;
+        if changed {
+            self.contacts.set_pattern(ContactPattern::Newton);
+            self.rebuild_pattern();
+        }
+        changed
+    }
+
     /// A distributed run: assemble only `share`'s elements, on a pattern
     /// of this process's rows ([`Model::set_share_with_local_rows`]) with
     /// the contact couplings and the faces of the follower pressures (on
@@ -326,7 +344,8 @@ impl Problem {
     }
 
     /// The sparsity pattern of the elements, of each secondary node with the
-    /// primary nodes it may touch, and of the multipliers.
+    /// primary nodes it may touch, and of the multipliers (the contact
+    /// couplings of [`ContactSet::pattern`]).
     fn rebuild_pattern(&mut self) {
         let couplings = self.contacts.couplings();
         self.model.pattern = self.model.pattern.coupled(

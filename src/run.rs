@@ -47,7 +47,7 @@ use crate::output::summary::Summary;
 use crate::output::vtu::VtuOptions;
 use crate::output::writer::{MeshEncoding, Restored, ResultWriter, SeriesContent};
 use crate::problem::condensed::{self, Path as SolvePath};
-use crate::problem::{ContactState, Problem};
+use crate::problem::{ContactPattern, ContactState, Problem};
 use crate::solve::backend::try_linear_solver;
 use crate::solve::josephy::Josephy;
 use crate::solve::linear_solver::SolverStatistics;
@@ -154,8 +154,10 @@ fn problem_as_run_noted(
     case: &Case,
     whole_pattern: bool,
 ) -> Result<(Problem, condensed::Choice, Vec<String>)> {
+    // the condensed path's pattern until the path is chosen: Newton's
+    // contact couplings are built for Newton's path alone
     let mut problem = if whole_pattern {
-        case.build_problem()?
+        case.build_problem_with(ContactPattern::Condensed)?
     } else {
         case.build_distributed_problem()?
     };
@@ -166,6 +168,8 @@ fn problem_as_run_noted(
     let strategy = distributed::strategy_for_petsc(&problem, strategy);
     if strategy.path == SolvePath::Condensed {
         problem.keep_friction_multipliers_in_history();
+    } else {
+        problem.newton_pattern();
     }
     let notes = distributed::friction_multipliers_for_petsc(&mut problem, case);
     Ok((problem, strategy, notes.into_iter().collect()))
@@ -355,6 +359,7 @@ impl Simulation {
         output: &Path,
         distribution: Option<&Distribution>,
     ) -> Result<(Result<Vec<f64>>, SolverStatistics)> {
+        self.problem.newton_pattern();
         let mut solver = match distribution {
             Some(d) => d.linear_solver(&self.problem)?,
             None => {

@@ -288,7 +288,9 @@ fn c3d10_deck_press_then_pull_with_friction() {
 /// its `*FRICTION`): `MORTAR` and its variants become mortar (the
 /// variants with a note that they are read as `MORTAR`), `NODE TO
 /// SURFACE`, `SURFACE TO SURFACE` and no `TYPE=` node-to-surface; the
-/// converted case says `discretisation = "mortar"` exactly for the first.
+/// converted case says `discretisation = "mortar"` for the first and
+/// `"node_to_surface"` for the others (written: the case file's default is
+/// mortar).
 #[test]
 fn calculix_pair_types_map_to_the_discretisation() {
     use signorini::case::schema::DiscretisationSpec::{Mortar, NodeToSurface};
@@ -319,6 +321,10 @@ fn calculix_pair_types_map_to_the_discretisation() {
         assert_eq!(
             toml.contains("discretisation = \"mortar\""),
             expected == Mortar
+        );
+        assert_eq!(
+            toml.contains("discretisation = \"node_to_surface\""),
+            expected == NodeToSurface
         );
         let note = translated
             .notes

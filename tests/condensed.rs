@@ -60,6 +60,15 @@ fn run_adjusted(
         assert!(text.contains(old), "{old}");
         text = text.replace(old, new);
     }
+    // node-to-surface's condensation is what these tests check (dual
+    // mortar, the default, has its own in tests/mortar_condensed.rs)
+    if !text.contains("discretisation") {
+        text = text.replacen(
+            "[[contact]]\n",
+            "[[contact]]\ndiscretisation = \"node_to_surface\"\n",
+            1,
+        );
+    }
     assert!(!text.contains("[solver]"));
     text.push_str(&format!("\n[solver]\n{solver}\n"));
     let mut simulation = Simulation::from_toml(&text, &folder)?;
@@ -217,7 +226,8 @@ fn auto_takes_the_condensed_path_exactly_where_it_applies() {
 
 /// The nested dissection started while the problem is built
 /// (`signorini::problem::dissects_element_graph`) is of the graph the run orders: on the
-/// condensed Hertz and frictional press-pull (after their patterns were
+/// condensed Hertz (dual mortar: the elements' graph, which its factor is
+/// ordered on) and frictional press-pull (after their patterns were
 /// rebuilt with the multipliers) and on press-pull against a sphere
 /// (monolithic, a saddle system); for two deformable bodies under `auto`
 /// (condensed) it is of their elements' graph, which the condensed path's
@@ -229,9 +239,22 @@ fn the_early_dissection_fits_the_pattern_the_run_orders() {
         let p = s.problem();
         p.dissection.as_ref().map(|d| d.fits(&p.model.pattern))
     };
+    let fits_elements = |s: &Simulation| {
+        let p = s.problem();
+        (p.dissection.as_ref()).map(|d| d.fits_elements(&p.model.pattern))
+    };
     let root = Path::new(env!("CARGO_MANIFEST_DIR"));
+    // hertz takes dual mortar, the default: condensed, its factor ordered
+    // on the elements' graph, which is its pattern's node graph too (the
+    // condensed path's pattern couples each multiplier with its own node
+    // alone; Newton's, with the mortar rows' faces' nodes, is another
+    // graph)
     let hertz = Simulation::from_file(&root.join("examples/hertz/case.toml")).unwrap();
+    assert_eq!(fits_elements(&hertz), Some(true));
     assert_eq!(fits(&hertz), Some(true));
+    let mut newton = Simulation::from_file(&root.join("examples/hertz/case.toml")).unwrap();
+    newton.problem_mut().newton_pattern();
+    assert_eq!(fits(&newton), Some(false));
     assert_eq!(fits(&press_pull_problem(&[])), Some(true));
     assert_eq!(fits(&press_pull_problem(&press_pull_sphere())), Some(true));
     let folder = root.join("examples/two-spheres");
@@ -681,7 +704,9 @@ fn pushed_blocks(contact: &str, solver: &str) -> (RunOutcome, PairState) {
     )
     .unwrap();
     let elastic = "model = \"linear_elastic\"\nyoungs_modulus = 100.0\npoisson_ratio = 0.3";
-    let tables = common::stacked_blocks_tables(elastic, elastic, 2.0, contact);
+    // node-to-surface named: its condensation between bodies is checked
+    let contact = format!("{contact}\ndiscretisation = \"node_to_surface\"");
+    let tables = common::stacked_blocks_tables(elastic, elastic, 2.0, &contact);
     let pressure = "[[pressure]]\nsurface = \"upper.zmax\"\nvalue = 2.0";
     assert!(tables.contains(pressure));
     let pushed = "[[displacement]]\nsurface = \"upper.zmax\"\nz = -0.01";

@@ -399,10 +399,15 @@ fn stacked_blocks_through_the_case_file() {
     assert!(interface.primary_force.is_some());
     // with friction (the softer upper block spreads more than the lower
     // one, friction holds it back): action and reaction in summary.json,
-    // normal and tangential, in every converged increment (1e-8)
+    // normal and tangential, in every converged increment (1e-8);
+    // node-to-surface named: its output fields on the primary surface's
+    // nodes are checked below (dual mortar, the default, writes none there)
     let friction_dir = tempfile::tempdir().unwrap();
-    let frictional =
-        CaseRun::stacked_blocks(friction_dir.path(), upper, "friction_coefficient = 0.3");
+    let frictional = CaseRun::stacked_blocks(
+        friction_dir.path(),
+        upper,
+        "friction_coefficient = 0.3\ndiscretisation = \"node_to_surface\"",
+    );
     let outcome = &frictional.outcome;
     // the output fields on the primary surface's nodes (the last increment)
     let mesh = &frictional.problem.model.mesh;

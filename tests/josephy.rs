@@ -67,21 +67,29 @@ fn predictor_line(predictor: &str) -> String {
 }
 
 /// The coarse Hertz hemisphere (2.4 k dofs, Rockafellar, frictionless,
-/// linear elastic), monolithic, with `predictor` and the first increment
-/// `first`.
+/// linear elastic, node-to-surface named: the contact predictor is
+/// node-to-surface's, and the example takes dual mortar by default),
+/// monolithic, with `predictor` and the first increment `first`.
 fn hertz(predictor: &str, first: &str) -> RunOutcome {
     hertz_with(predictor, &[("initial_increment = 0.25", first)])
 }
 
 /// [`hertz`] with the case's `replacements` made.
 fn hertz_with(predictor: &str, replacements: &[(&str, &str)]) -> RunOutcome {
+    let node_to_surface = (
+        "method = \"rockafellar\"",
+        "method = \"rockafellar\"\ndiscretisation = \"node_to_surface\"",
+    );
+    let replacements: Vec<(&str, &str)> = std::iter::once(node_to_surface)
+        .chain(replacements.iter().copied())
+        .collect();
     run(
         "hertz",
         (
             "file = \"hemisphere.msh\"",
             "tests/data/hemisphere_coarse.msh",
         ),
-        replacements,
+        &replacements,
         &format!("strategy = \"monolithic\"\n{}", predictor_line(predictor)),
     )
 }

@@ -12,7 +12,12 @@ const UPPER: &str = "model = \"neo_hookean\"\nyoungs_modulus = 50.0\npoisson_rat
 /// Run the frictional stacked blocks with `[solver] linear = method`.
 fn run(method: &str) -> signorini::run::RunOutcome {
     let dir = tempfile::tempdir().unwrap();
-    let path = write_stacked_blocks_case(dir.path(), UPPER, "friction_coefficient = 0.3");
+    // node-to-surface named (its counts below; mortar is the default)
+    let path = write_stacked_blocks_case(
+        dir.path(),
+        UPPER,
+        "friction_coefficient = 0.3\ndiscretisation = \"node_to_surface\"",
+    );
     let text = std::fs::read_to_string(&path).unwrap();
     let text = text.replace("[solver]\n", &format!("[solver]\nlinear = \"{method}\"\n"));
     std::fs::write(&path, text).unwrap();

@@ -147,8 +147,8 @@ fn condensed_mortar_is_refused_on_a_sphere() {
 /// A `[[contact]]` without `discretisation` on quadratic faces takes dual
 /// mortar (node-to-surface would give the Tri6 corners no share of a
 /// uniform pressure): the Tet10 block of [`block_case`] on the oblique
-/// plane without the key runs mortar (condensed, as `auto` takes it),
-/// says so in a `note:` line of its log, and equals the same case with
+/// plane without the key runs mortar (condensed, as `auto` takes it)
+/// and equals the same case with
 /// `discretisation = "mortar"` bit for bit (displacements,
 /// `contact_pressure`). With friction against the obstacle (taken by
 /// mortar since session 22) the default is mortar too: the case builds a
@@ -179,18 +179,6 @@ fn quadratic_faces_default_to_mortar() {
     assert_eq!(
         default.last_field("contact_pressure"),
         with_key.last_field("contact_pressure")
-    );
-    let log = std::fs::read_dir(dir.path().join("out"))
-        .unwrap()
-        .map(|e| e.unwrap().path())
-        .find(|p| p.extension().is_some_and(|e| e == "log"))
-        .unwrap();
-    let log = std::fs::read_to_string(log).unwrap();
-    assert!(
-        log.lines()
-            .any(|l| l.starts_with("note: ")
-                && l.contains("'bottom' takes discretisation = \"mortar\"")),
-        "{log}"
     );
     let friction = without.replace(
         "method = \"rockafellar\"",
@@ -361,9 +349,10 @@ fn hertz_examples_condensed() {
     let force = |r: &CaseRun| r.outcome.summary.increments.last().unwrap().contact["pole"].force;
     let method = "method = \"rockafellar\"";
     let mortar = format!("{method}\ndiscretisation = \"mortar\"");
+    let nts = format!("{method}\ndiscretisation = \"node_to_surface\"");
     let condensed = "strategy = \"condensed\"";
     let (m, _a) = run("case.toml", method, &mortar, condensed);
-    let (n, _b) = run("case.toml", method, method, condensed);
+    let (n, _b) = run("case.toml", method, &nts, condensed);
     let du = relative_difference(displacements(&m), displacements(&n));
     let df = relative_difference(&force(&m), &force(&n));
     println!(
@@ -920,4 +909,168 @@ fn auto_leaves_fully_prescribed_frictional_mortar_nodes_to_newton() {
         signorini::problem::condensed::not_applicable(&problem(false)),
         None
     );
+}
+
+/// The default discretisation keeps the path node-to-surface would take
+/// (`case::contacts::default_discretisations`): on the coarse Hertz
+/// hemisphere (Tet4, linear faces) a `[[contact]]` without the key takes
+/// dual mortar against the frictionless plane, and the condensed path
+/// applies to it; against a sphere, with friction on the plane and with
+/// penalty it takes node-to-surface, a `note:` says why, the condensed
+/// path applies to that default, and with `discretisation = "mortar"`
+/// given it does not (the reason names what mortar leaves to Newton).
+#[test]
+fn the_default_discretisation_keeps_the_condensed_path() {
+    use signorini::case::schema::DiscretisationSpec;
+    use signorini::problem::condensed::not_applicable;
+    let plane = "shape = \"plane\"\npoint = [0.0, 0.0, 0.0]\nnormal = [0.0, 0.0, 1.0]";
+    let sphere = "shape = \"sphere\"\ncenter = [0.0, 0.0, -2.0]\nradius = 2.0";
+    let cases = [
+        ("plane", plane, "", None),
+        ("sphere", sphere, "", Some("sphere")),
+        (
+            "friction",
+            plane,
+            "friction_coefficient = 0.3",
+            Some("obstacle"),
+        ),
+        ("penalty", plane, "method = \"penalty\"", Some("penalty")),
+    ];
+    let dir = tempfile::tempdir().unwrap();
+    for (label, obstacle, contact, nts) in cases {
+        let path = hertz_case(dir.path(), "");
+        let text = std::fs::read_to_string(&path).unwrap();
+        let text = text.replace(plane, obstacle);
+        let text = match contact.starts_with("method") {
+            true => text.replace("method = \"rockafellar\"", contact),
+            false => text.replace(
+                "method = \"rockafellar\"",
+                &format!("method = \"rockafellar\"\n{contact}"),
+            ),
+        };
+        std::fs::write(&path, &text).unwrap();
+        let case = signorini::case::load(&path).unwrap();
+        let default = case.spec.contact[0].discretisation;
+        let noted = (case.notes.iter())
+            .any(|n| n.contains("'pole' takes discretisation = \"node_to_surface\""));
+        let problem = case.build_problem().unwrap();
+        let why = not_applicable(&problem);
+        assert_eq!(why, None, "{label}: the default is condensed: {why:?}");
+        match nts {
+            None => {
+                assert_eq!(default, Some(DiscretisationSpec::Mortar), "{label}");
+                assert!(!noted, "{label}: {:?}", case.notes);
+            }
+            Some(reason) => {
+                assert_eq!(default, Some(DiscretisationSpec::NodeToSurface), "{label}");
+                assert!(noted, "{label}: {:?}", case.notes);
+                let mortar = text.replace(
+                    "\nobstacle = \"floor\"",
+                    "\nobstacle = \"floor\"\ndiscretisation = \"mortar\"",
+                );
+                assert_ne!(mortar, text);
+                std::fs::write(&path, &mortar).unwrap();
+                let problem = signorini::case::load(&path)
+                    .and_then(|c| c.build_problem())
+                    .unwrap();
+                let why = not_applicable(&problem).unwrap_or_default();
+                assert!(why.contains(reason), "{label}: {why}");
+            }
+        }
+    }
+}
+
+/// A method that fails every increment, so that each goes to the
+/// fallback.
+struct Fails;
+
+impl signorini::solve::method::IncrementMethod<signorini::problem::Problem> for Fails {
+    fn name(&self) -> &'static str {
+        "condensed"
+    }
+    fn solve(
+        &mut self,
+        _: &signorini::problem::Problem,
+        _: &signorini::solve::method::Increment<'_>,
+        _: &[f64],
+        _: &mut signorini::problem::ContactState,
+        _: &mut Vec<f64>,
+        _: &mut dyn FnMut(&signorini::solve::record::IterationRecord) -> bool,
+    ) -> signorini::solve::newton::NewtonOutcome<Vec<Vec<signorini::contact::interface::NodeReport>>>
+    {
+        (
+            Err(signorini::solve::failure::IncrementFailure::NotFinite),
+            Vec::new(),
+        )
+    }
+    fn statistics(&self) -> signorini::solve::linear_solver::SolverStatistics {
+        Default::default()
+    }
+}
+
+/// The condensed path's pattern (a run's until it has chosen its path)
+/// holds each multiplier with its own node alone: on the coarse Hertz
+/// hemisphere with dual mortar (the default) its entries are the
+/// elements' plus 7 per multiplier (3 in its node's columns, 3 in its
+/// own, its diagonal), fewer than Newton's (the multipliers with their
+/// faces' nodes). Newton's is built when Newton first solves: with a
+/// method that fails every increment, each goes to the Newton fallback,
+/// which then runs on Newton's pattern, and its answer is Newton's on a
+/// problem built with that pattern from the start (the same ordering):
+/// equal to 1e-12 of the largest displacement.
+#[test]
+fn newton_builds_its_couplings_when_it_first_solves() {
+    use signorini::problem::ContactPattern;
+    use signorini::solve::ordering::fill_reducing_ordering;
+    let dir = tempfile::tempdir().unwrap();
+    let case = signorini::case::load(&hertz_case(dir.path(), "")).unwrap();
+    let mut condensed = case.build_problem_with(ContactPattern::Condensed).unwrap();
+    let mut newton = case.build_problem().unwrap();
+    let pattern = &condensed.model.pattern;
+    let multipliers = condensed.num_unknowns() - condensed.model.num_dofs();
+    let elements: usize = pattern
+        .element_neighbours()
+        .iter()
+        .map(|n| 9 * n.len())
+        .sum();
+    assert!(multipliers > 0);
+    assert_eq!(pattern.nnz(), elements + 7 * multipliers);
+    assert!(newton.model.pattern.nnz() > pattern.nnz());
+    let ordered = |p: &signorini::problem::Problem| {
+        let dofs = p.model.num_dofs();
+        let ordering = fill_reducing_ordering(&p.model.pattern, dofs, None).unwrap();
+        signorini::solve::backend::linear_solver(&p.settings, ordering, 1)
+    };
+    let mut solver = ordered(&condensed);
+    let mut josephy = signorini::solve::josephy::Josephy::default();
+    let mut fallback =
+        signorini::solve::method::Monolithic::new(&condensed, &mut *solver, &mut josephy);
+    let mut recorder = common::Recorder::default();
+    let u = signorini::solve::stepping::resume_steps(
+        &mut condensed,
+        &mut Fails,
+        Some(&mut fallback),
+        &mut recorder,
+        dir.path().join("out"),
+        None,
+    )
+    .unwrap();
+    assert_eq!(condensed.contacts.pattern(), ContactPattern::Newton);
+    assert_eq!(condensed.model.pattern.nnz(), newton.model.pattern.nnz());
+    assert!(!recorder.increments.is_empty());
+    for record in &recorder.increments {
+        assert_eq!(record.method, "monolithic");
+        assert!(record.retried.is_some());
+    }
+    let mut solver = ordered(&newton);
+    let mut reference = common::Recorder::default();
+    let v = signorini::solve::stepping::run_steps(
+        &mut newton,
+        &mut *solver,
+        &mut reference,
+        dir.path().join("reference"),
+    )
+    .unwrap();
+    let difference = relative_difference(&u, &v);
+    assert!(difference <= 1e-12, "{difference:e}");
 }

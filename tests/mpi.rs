@@ -25,6 +25,9 @@ mod with_petsc {
     /// plane z = 0, pressed by 10 on its top; `friction`: μ = 0.3 and a
     /// second step pulling its right side by 3 (1.5 in all, a quarter of μN), y held on both
     /// sides; without: x and y held on the symmetry planes x = 0, y = 0.
+    /// Node-to-surface contact unless `contact` names the discretisation
+    /// (named: these tests check the distributed backend against the
+    /// serial run, with the counts of node-to-surface's rows).
     fn block_case(dir: &Path, friction: bool, contact: &str, solver: &str) -> std::path::PathBuf {
         let mesh = box_mesh(ElementKind::Hex8, [8, 4, 2], [2.0, 1.0, 0.5]);
         std::fs::write(dir.join("block.msh"), common::msh22(&mesh)).unwrap();
@@ -45,6 +48,11 @@ mod with_petsc {
                 "",
                 "",
             )
+        };
+        // node-to-surface unless `contact` names the discretisation
+        let discretisation = match contact.contains("discretisation") {
+            true => "",
+            false => "discretisation = \"node_to_surface\"\n",
         };
         let text = format!(
             r#"[mesh]
@@ -76,7 +84,7 @@ normal = [0.0, 0.0, 1.0]
 name = "base"
 surface = "zmin"
 obstacle = "floor"
-{friction_keys}{contact}
+{discretisation}{friction_keys}{contact}
 
 [[step]]
 name = "press"

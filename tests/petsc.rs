@@ -226,7 +226,8 @@ mod with_petsc {
     /// A Hertz-like contact in `dir`: a quarter of a 1 × 1 × 1 block
     /// (8 × 8 × 4 Hex8, E = 1000, ν = 0.3) whose bottom is the paraboloid
     /// z = (x² + y²)/(2R), R = 2, touching the plane z = 0 at the origin,
-    /// its top pushed down by 0.05 in two increments; frictionless, with
+    /// its top pushed down by 0.05 in two increments; frictionless,
+    /// node-to-surface (named: these tests check the PETSc backend), with
     /// the `[[contact]]` keys `contact`.
     fn paraboloid_case(dir: &Path, contact: &str) -> std::path::PathBuf {
         let mut mesh = box_mesh(ElementKind::Hex8, [8, 8, 4], [1.0, 1.0, 1.0]);
@@ -269,6 +270,7 @@ normal = [0.0, 0.0, 1.0]
 name = "pole"
 surface = "zmin"
 obstacle = "floor"
+discretisation = "node_to_surface"
 {contact}
 
 [[step]]

@@ -7,7 +7,7 @@ Usage (after `cargo run --release -- run examples/hertz/case.toml`):
     python3 examples/hertz/plot_pressure.py [results folder]
 
 Writes `pressure.png` in the results folder: every secondary node's
-pressure against its distance from the axis, and Hertz's
+nominal pressure (force over reference area) against its distance from the axis, and Hertz's
 p(r) = p0 sqrt(1 - r²/a²) with a and p0 from the computed total force.
 """
 import json
@@ -36,7 +36,10 @@ mesh = meshio.read(folder / last["file"])
 x = mesh.points + mesh.point_data["displacement"]
 secondary = ~np.isnan(mesh.point_data["gap"])
 r = np.hypot(x[:, 0], x[:, 1])[secondary]
-p = mesh.point_data["contact_pressure"][secondary]
+# the nominal pressure, the node's force over its reference area (Hertz's
+# theory is small-strain): contact_traction's normal component on the plane
+# z = 0; contact_pressure is the dual mortar multiplier, per current area
+p = np.abs(mesh.point_data["contact_traction"][secondary][:, 2])
 
 rr = np.linspace(0.0, 1.3 * a, 200)
 plt.figure(figsize=(6, 4))

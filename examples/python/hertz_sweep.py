@@ -4,7 +4,8 @@
 1. Hertz (examples/hertz): the hemisphere pressed on the rigid plane by
    five prescribed displacements of its flat face; the contact radius a
    (least-squares fit of p² = p0²(1 − r²/a²) over the nodes with
-   p > 0.2 p0, as in examples/hertz/README.md) against the total force F,
+   p > 0.2 p0, p the nominal pressure, force over reference area, as in
+   examples/hertz/README.md) against the total force F,
    with Hertz's a = (3FR / 4E*)^(1/3), E* = E / (1 − ν²).
 2. Friction (examples/press-pull): the block pressed by 20 and pulled by
    4.8 for five friction coefficients μ (capacity μN from 5 to 20): the
@@ -47,7 +48,10 @@ def hertz_sweep(depths=(0.005, 0.0065, 0.008, 0.0095, 0.0115)):
         force = 4.0 * result.contact["pole"]["force"][2]  # quarter model
         a_hertz = (3.0 * force * R / (4.0 * E_STAR)) ** (1.0 / 3.0)
         p0 = 3.0 * force / (2.0 * math.pi * a_hertz**2)
-        a_fit = signorini.contact_radius(case, result.last, 0.2 * p0)
+        # the nominal pressure: contact_traction's normal (z) component on the
+        # plane; contact_pressure (dual mortar's multiplier) is per current area
+        nominal = np.abs(result.last.contact_traction[:, 2])
+        a_fit = signorini.contact_radius(case, result.last, 0.2 * p0, pressure=nominal)
         rows.append((depth, force, a_fit, a_hertz))
         print(f"depth {depth:.4f}: F = {force:.4f}, a = {a_fit:.5f}, Hertz {a_hertz:.5f} "
               f"({100 * (a_fit / a_hertz - 1):+.2f} %)")

@@ -514,35 +514,80 @@ fn mortar_refusal(c: &ContactSpec) -> Option<&'static str> {
     )
 }
 
+/// Why the default of `[[contact]]` `c` on linear faces is node-to-surface
+/// rather than dual mortar, in the user's words; `None` where it is mortar.
+/// `curved` tells whether `c`'s obstacle (if any) is not a plane. Mortar is
+/// the default wherever it takes the pairing and keeps the run on the path
+/// node-to-surface would take under `strategy = "auto"`
+/// ([`crate::problem::condensed::not_applicable`]); node-to-surface where
+/// mortar refuses the pairing (`two_pass`) or would leave the condensed
+/// path for Newton's, which factorises at every iteration: against a
+/// curved or triangulated obstacle (mortar's weighted gap is not affine
+/// there), with Coulomb friction against an obstacle (mortar's slip
+/// relative to the obstacle is Newton's path only) and with penalty
+/// (mortar's force `D_j ε ⟨−g⟩` changes with the current area `D_j`).
+fn node_to_surface_default(c: &ContactSpec, curved: bool) -> Option<&'static str> {
+    let friction = c.friction_coefficient.is_some_and(|mu| mu > 0.0);
+    if c.two_pass {
+        Some("`two_pass` (mortar contact has one pass: its forces balance on both surfaces)")
+    } else if curved {
+        Some(
+            "a curved or triangulated obstacle on the condensed path (mortar's weighted gap is \
+             not affine there: Newton's path; node-to-surface's is condensed, one factorisation \
+             per run)",
+        )
+    } else if c.obstacle.is_some() && friction {
+        Some(
+            "Coulomb friction against an obstacle on the condensed path (mortar's is Newton's \
+             path only; node-to-surface's is condensed, one factorisation per run)",
+        )
+    } else if c.method == ContactMethod::Penalty {
+        Some(
+            "`method = \"penalty\"` on the condensed path (mortar's penalty force changes with \
+             the current area: Newton's path; node-to-surface's is condensed, one factorisation \
+             per run)",
+        )
+    } else {
+        None
+    }
+}
+
 /// The default `discretisation` of every `[[contact]]` of `spec` that does
-/// not give one, on `mesh`: `"mortar"` where its secondary surface has
-/// quadratic faces (Tri6/Quad8: node-to-surface gives their corner nodes
-/// no share of a uniform pressure, and refuses them) and mortar takes the
-/// pairing ([`mortar_refusal`]), with a note for the log; else
-/// `"node_to_surface"` (on quadratic faces its refusal then says what to
-/// change). Linear faces keep node-to-surface: mortar's
-/// `contact_pressure` is the force over the current `D_j`, not over the
-/// reference tributary area.
+/// not give one, on `mesh`: `"mortar"` (dual mortar) on linear faces
+/// wherever mortar takes the pairing and keeps the run's path
+/// ([`node_to_surface_default`]), and on quadratic faces (Tri6/Quad8:
+/// node-to-surface gives their corner nodes no share of a uniform
+/// pressure, and refuses them) wherever mortar takes the pairing
+/// ([`mortar_refusal`]); else `"node_to_surface"`, with a note for the log
+/// saying why (on quadratic faces node-to-surface's refusal then says what
+/// to change). An explicit `discretisation` is kept as given.
 pub(crate) fn default_discretisations(spec: &mut CaseFile, mesh: &Mesh, notes: &mut Vec<String>) {
+    let curved: HashSet<String> = (spec.obstacle.iter())
+        .filter(|o| !matches!(o.shape, ObstacleShape::Plane { .. }))
+        .map(|o| o.name.clone())
+        .collect();
     for (i, c) in spec.contact.iter_mut().enumerate() {
         if c.discretisation.is_some() {
             continue;
         }
         let quadratic = (mesh.surface(&c.surface))
             .is_some_and(|s| s.facets.iter().any(|f| f.kind.is_quadratic()));
-        let mortar = quadratic && mortar_refusal(c).is_none();
-        c.discretisation = Some(if mortar {
-            let name = c.name.as_deref().unwrap_or(&c.surface);
-            notes.push(format!(
-                "contact[{i}] '{name}' takes discretisation = \"mortar\" (dual mortar): its \
-                 surface '{}' has quadratic faces (Tri6/Quad8), whose corner nodes \
-                 node-to-surface contact gives no share of a uniform pressure; give \
-                 discretisation to choose",
-                c.surface
-            ));
-            DiscretisationSpec::Mortar
-        } else {
-            DiscretisationSpec::NodeToSurface
+        let why = match quadratic {
+            true => mortar_refusal(c).map(|_| "`two_pass`"),
+            false => {
+                node_to_surface_default(c, c.obstacle.as_ref().is_some_and(|o| curved.contains(o)))
+            }
+        };
+        c.discretisation = Some(match why {
+            None => DiscretisationSpec::Mortar,
+            Some(why) => {
+                let name = c.name.as_deref().unwrap_or(&c.surface);
+                notes.push(format!(
+                    "contact[{i}] '{name}' takes discretisation = \"node_to_surface\": the \
+                     default, dual mortar, does not take {why}; give discretisation to choose"
+                ));
+                DiscretisationSpec::NodeToSurface
+            }
         });
     }
 }

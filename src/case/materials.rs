@@ -19,22 +19,19 @@ type ElementMaterials = (Vec<Arc<dyn Material>>, Vec<usize>);
 /// Whether `[[contact]]` `c` between two bodies takes the condensed path
 /// under `strategy = "auto"` as far as the case file tells before the
 /// problem is built ([`crate::problem::condensed::not_applicable`]): every
-/// material small-strain, node-to-surface or dual mortar (given, or by
-/// default on quadratic faces), frictionless or with Coulomb friction
-/// (mortar's since session 22), not uzawa, and not penalty with mortar;
-/// then its factor is ordered on the elements' graph, and the dissection
-/// of that graph starts early ([`crate::problem::dissects_element_graph`]).
-/// Not told here: a body no prescribed displacement holds, a follower
-/// pressure, and mortar's exact stick at a secondary node whose
-/// components are all prescribed (left to Newton under `auto`). A wrong
-/// guess costs the unused dissection on the idle core (and Newton's own
-/// dissection of the coupled pattern waits for METIS's lock if that one
-/// still runs).
-fn condensed_pair(c: &ContactSpec, small_strain: bool, quadratic: bool) -> bool {
-    let mortar = match c.discretisation {
-        Some(d) => d == DiscretisationSpec::Mortar,
-        None => quadratic,
-    };
+/// material small-strain, node-to-surface or dual mortar, frictionless or
+/// with Coulomb friction (mortar's since session 22), not uzawa, and not
+/// penalty with mortar (`discretisation` is set on reading the case, its
+/// default included); then its factor is ordered on the elements' graph,
+/// and the dissection of that graph starts early
+/// ([`crate::problem::dissects_element_graph`]). Not told here: a body no
+/// prescribed displacement holds, a follower pressure, and mortar's exact
+/// stick at a secondary node whose components are all prescribed (left to
+/// Newton under `auto`). A wrong guess costs the unused dissection on the
+/// idle core (and Newton's own dissection of the coupled pattern waits for
+/// METIS's lock if that one still runs).
+fn condensed_pair(c: &ContactSpec, small_strain: bool) -> bool {
+    let mortar = c.discretisation == Some(DiscretisationSpec::Mortar);
     let law = match c.method {
         ContactMethod::Uzawa => false,
         ContactMethod::Penalty => !mortar,
@@ -133,14 +130,12 @@ impl Case {
         let small_strain = (materials.iter()).all(|m| m.kinematics() == Kinematics::SmallStrain);
         let strategy = spec.solver.strategy.unwrap_or(defaults.strategy);
         let auto = strategy == Strategy::Auto;
-        let quadratic = mesh.elements.iter().any(|e| e.kind.is_quadratic());
         let dissect = crate::problem::dissects_element_graph(
             spec.solver.linear.unwrap_or(defaults.linear),
             strategy,
             3 * mesh.num_nodes(),
-            (spec.contact.iter()).map(|c| {
-                c.obstacle.is_some() || auto && condensed_pair(c, small_strain, quadratic)
-            }),
+            (spec.contact.iter())
+                .map(|c| c.obstacle.is_some() || auto && condensed_pair(c, small_strain)),
         );
         let mut dissection = None;
         let on_graph = |graph: &NodeGraph| {
@@ -217,8 +212,8 @@ mod tests {
             with
         };
         let mortar = text.replace(
-            "penalty = 1000.0",
-            "penalty = 1000.0\ndiscretisation = \"mortar\"",
+            "discretisation = \"node_to_surface\"",
+            "discretisation = \"mortar\"",
         );
         assert_ne!(mortar, text);
         for variant in [
@@ -226,6 +221,8 @@ mod tests {
             frictional(&text),
             mortar.clone(),
             frictional(&mortar),
+            // without the key: mortar, the default between bodies
+            text.replace("discretisation = \"node_to_surface\"", ""),
         ] {
             assert!(early(&variant), "{variant}");
             assert!(!early(&monolithic(&variant)), "{variant}");

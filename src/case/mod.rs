@@ -21,7 +21,7 @@ mod steps;
 mod tagged;
 
 use crate::mesh::Mesh;
-use crate::problem::Problem;
+use crate::problem::{ContactPattern, Problem};
 use crate::{Error, Result};
 use read::{case_error, line_of};
 use schema::{AmplitudeRef, CaseFile};
@@ -279,7 +279,14 @@ impl Case {
     /// solver settings, then the contacts (which read the model's
     /// materials for their automatic parameters).
     pub fn build_problem(&self) -> Result<Problem> {
-        self.problem_with(true)
+        self.problem_with(true, ContactPattern::Newton)
+    }
+
+    /// [`Case::build_problem`] with the contact couplings of `pattern` in
+    /// its sparsity pattern: a run builds the condensed path's until it
+    /// has chosen its path (`crate::run::problem_as_run`).
+    pub fn build_problem_with(&self, pattern: ContactPattern) -> Result<Problem> {
+        self.problem_with(true, pattern)
     }
 
     /// [`Case::build_problem`] for a process of a distributed run
@@ -288,11 +295,12 @@ impl Case {
     /// share of the elements and the pattern of their rows
     /// (`Problem::set_share`), so that no process builds the whole one.
     pub fn build_distributed_problem(&self) -> Result<Problem> {
-        self.problem_with(false)
+        self.problem_with(false, ContactPattern::Newton)
     }
 
-    /// [`Case::build_problem`], with the whole pattern or not.
-    fn problem_with(&self, whole_pattern: bool) -> Result<Problem> {
+    /// [`Case::build_problem`], with the whole pattern or not, and the
+    /// contact couplings of `pattern`.
+    fn problem_with(&self, whole_pattern: bool, pattern: ContactPattern) -> Result<Problem> {
         self.check_names()?;
         for name in self.spec.amplitudes.keys() {
             self.amplitude(
@@ -319,6 +327,7 @@ impl Case {
             .build()
             .map_err(|e| self.err(e.to_string()))?;
         let contacts = self.contacts(&problem)?;
+        problem.contacts.set_pattern(pattern);
         if !contacts.is_empty() {
             problem.set_contacts(contacts);
         }

@@ -341,12 +341,13 @@ pub enum FrictionMultiplierSpec {
 #[serde(rename_all = "snake_case")]
 pub enum DiscretisationSpec {
     /// Each secondary node against the primary triangle it projects on.
-    #[default]
     NodeToSurface,
     /// Dual mortar (segment-to-segment): weighted gaps and one multiplier
     /// per secondary node (between two bodies, with Coulomb friction on the
-    /// frame-indifferent weighted slip, or against a rigid obstacle,
-    /// frictionless; one pass).
+    /// frame-indifferent weighted slip, or against a rigid obstacle, with
+    /// or without friction; one pass): the default where it takes the
+    /// pairing and keeps the run's path (`ContactSpec::discretisation`).
+    #[default]
     Mortar,
 }
 
@@ -410,10 +411,18 @@ pub struct ContactSpec {
     /// (with `primary`, with or without friction) or against a rigid
     /// obstacle (with `obstacle`, with or without friction: the slip
     /// relative to the obstacle, Newton's path), one pass; linear and
-    /// quadratic faces. Default: `"mortar"` where the secondary surface
-    /// has quadratic faces (Tri6/Quad8, whose corner nodes node-to-surface
-    /// gives no share of a uniform pressure) and mortar takes the pairing
-    /// (the log says so in a note), else `"node_to_surface"`.
+    /// quadratic faces; `contact_pressure` is then the multiplier `λ_j`,
+    /// the force over the node's current area (`contact_traction`: per
+    /// reference area). Default: `"mortar"` wherever mortar takes the
+    /// pairing and keeps the run on the path node-to-surface would take;
+    /// `"node_to_surface"` with `two_pass` (mortar has one pass), and on
+    /// linear faces against a curved or triangulated obstacle, with Coulomb
+    /// friction against an obstacle or with `method = "penalty"`, which
+    /// `strategy = "auto"` condenses with node-to-surface (one
+    /// factorisation per run) but leaves to Newton with mortar (the log
+    /// says so in a note). Quadratic faces (Tri6/Quad8,
+    /// whose corner nodes node-to-surface gives no share of a uniform
+    /// pressure) take mortar wherever mortar takes the pairing.
     pub discretisation: Option<DiscretisationSpec>,
 }
 

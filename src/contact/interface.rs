@@ -235,6 +235,22 @@ impl ContactInterface {
         nodes
     }
 
+    /// The groups of nodes whose displacements secondary node `i`'s
+    /// contact tangent couples with each other, each one clique of the
+    /// sparsity pattern: [`coupled_nodes`](Self::coupled_nodes) as one
+    /// group, but frictionless dual mortar against a plane gives the node
+    /// paired with each node of its faces where its lever lies on itself
+    /// ([`MortarObstacle::coupled_groups`](super::mortar_rigid::MortarObstacle::coupled_groups)).
+    /// Not with friction: the weighted slip's tangent reaches further
+    /// (with the pairs, tests/mortar_obstacle_friction.rs's stick on Tet10
+    /// faces chattered).
+    pub fn coupled_groups(&self, i: usize) -> Vec<Vec<usize>> {
+        match &self.primary {
+            Primary::MortarRigid(m) if self.friction.is_none() => m.coupled_groups(i),
+            _ => vec![self.coupled_nodes(i)],
+        }
+    }
+
     /// The obstacle's rigid translation at pseudo-time `t`.
     pub fn translation_at(&self, t: f64) -> Vector3<f64> {
         self.motion * self.amplitude.value(t)

@@ -62,7 +62,7 @@ use super::kinematics::{
 };
 use super::laws::NodeContactState;
 use super::mortar::{
-    mortar_row_values, mortar_rows, node_integrals, Derivatives, FaceShape, MortarCoupling,
+    mortar_row_values, mortar_rows, Derivatives, FaceIntegrals, FaceShape, MortarCoupling,
     MortarRow, RowValues, SurfaceFace,
 };
 use crate::mesh::{FacetKind, Mesh};
@@ -104,6 +104,10 @@ pub struct MortarSurfaces {
     surface_nodes: Vec<usize>,
     /// The rows of the last configurations ([`RowCache`]).
     cache: RowCache,
+    /// The secondary faces' `∫ Ñ_j dA` in the reference configuration
+    /// ([`FaceIntegrals`]: the nodes' areas at set-up, read again where a
+    /// face has not moved).
+    pub(crate) face_integrals: FaceIntegrals,
     /// With friction, `D` and `M` at the last converged configuration
     /// (the covered rows there, taken at each [`refresh`](Self::refresh)),
     /// which the weighted slip is measured against
@@ -172,6 +176,7 @@ impl MortarSurfaces {
             .collect();
         surface_nodes.sort_unstable();
         surface_nodes.dedup();
+        let face_integrals = FaceIntegrals::of(&secondary_faces, &reference);
         let mut out = Self {
             primary_surface: primary.to_string(),
             secondary_faces,
@@ -183,6 +188,7 @@ impl MortarSurfaces {
             margin: 2.0 * element_size,
             surface_nodes,
             cache: RowCache::default(),
+            face_integrals,
             committed: None,
         };
         out.refresh(&mesh.nodes, &vec![0.0; 3 * mesh.num_nodes()], 0.0, None);
@@ -195,6 +201,7 @@ impl MortarSurfaces {
     pub(crate) fn secondary_only(
         secondary_faces: Vec<SurfaceFace>,
         node_faces: Vec<Vec<usize>>,
+        face_integrals: FaceIntegrals,
         element_size: f64,
         margin: f64,
     ) -> Self {
@@ -214,6 +221,7 @@ impl MortarSurfaces {
             margin,
             surface_nodes,
             cache: RowCache::default(),
+            face_integrals,
             committed: None,
         }
     }
@@ -348,7 +356,7 @@ impl MortarSurfaces {
     ) -> Option<BTreeMap<usize, f64>> {
         let values =
             mortar_row_values(&self.secondary_faces, &self.primary_faces, pairs, xs).ok()?;
-        let full = full_integrals(&self.secondary_faces, xs);
+        let full = self.full_integrals(xs);
         Some(
             values
                 .into_iter()
@@ -418,14 +426,14 @@ impl MortarSurfaces {
 
     /// The areas `A_j` of the secondary `nodes` in the reference
     /// configuration of `mesh`: `∫ Ñ_j dA` over each node's faces, the
-    /// `D_j` of a fully covered node ([`node_integrals`], as the coverage
+    /// `D_j` of a fully covered node ([`node_integrals`](super::mortar::node_integrals), as the coverage
     /// test reads it; 0 at a node on no face). Not the reference `D_j`
     /// itself: where the bodies start apart, the first search pairs only
     /// the faces within its margin, and the two spheres' contact edge read
     /// 6 % too little area that way.
     pub fn reference_areas(&self, mesh: &Mesh, nodes: &[usize]) -> Option<Vec<f64>> {
         let xs = coordinates(&mesh.nodes, &vec![0.0; 3 * mesh.num_nodes()]);
-        let full = full_integrals(&self.secondary_faces, &xs);
+        let full = self.full_integrals(&xs);
         Some(
             nodes
                 .iter()
@@ -551,11 +559,30 @@ impl MortarSurfaces {
             derivatives,
         )
         .unwrap_or_default();
-        let full = full_integrals(&self.secondary_faces, coordinates);
+        let full = self.full_integrals(coordinates);
         rows.into_iter()
             .filter(|r| covered(r.d, full.get(&r.node)))
             .map(|r| (r.node, r))
             .collect()
+    }
+
+    /// `∫ Ñ_j dA` over all secondary faces of every node `j` (a fully
+    /// covered node's `D_j`, [`node_integrals`](super::mortar::node_integrals)) at the current
+    /// `coordinates` (a face where the reference integrals were taken read
+    /// from them, [`FaceIntegrals`]); a face that cannot be formed adds
+    /// nothing.
+    pub(crate) fn full_integrals(&self, coordinates: &[Vector3<f64>]) -> BTreeMap<usize, f64> {
+        let faces = &self.secondary_faces;
+        let mut out = BTreeMap::new();
+        for (e, face) in faces.iter().enumerate() {
+            let Ok(integrals) = self.face_integrals.at(faces, e, coordinates) else {
+                continue;
+            };
+            for (&n, v) in face.nodes.iter().zip(integrals) {
+                *out.entry(n).or_insert(0.0) += v;
+            }
+        }
+        out
     }
 }
 
@@ -563,25 +590,6 @@ impl MortarSurfaces {
 /// faces (`full`; see the module docs, "Search").
 fn covered(d: f64, full: Option<&f64>) -> bool {
     d >= 0.5 * full.copied().unwrap_or(0.0)
-}
-
-/// `∫ Ñ_j dA` over all secondary faces of every node `j` (a fully covered
-/// node's `D_j`, [`node_integrals`]) at the current `coordinates`; a face
-/// that cannot be formed adds nothing.
-pub(crate) fn full_integrals(
-    faces: &[SurfaceFace],
-    coordinates: &[Vector3<f64>],
-) -> BTreeMap<usize, f64> {
-    let mut out = BTreeMap::new();
-    for face in faces {
-        let Ok(geometry) = face.with_coordinates(coordinates) else {
-            continue;
-        };
-        for (&n, v) in face.nodes.iter().zip(node_integrals(&geometry)) {
-            *out.entry(n).or_insert(0.0) += v;
-        }
-    }
-    out
 }
 
 /// Current positions `X + u` of every mesh node.

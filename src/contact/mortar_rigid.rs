@@ -21,9 +21,12 @@
 //! integrated only for the nodes that are near: a node's row is complete
 //! because every face that holds a near node is integrated.
 
-use super::mortar::obstacle_rows::{obstacle_rows, transformed_point};
+use super::mortar::obstacle_rows::{
+    obstacle_rows, plane_rows, transformed_point, transforms_to_itself,
+};
 use super::mortar::Derivatives;
-use super::mortar_contact::{coordinates, face_size, full_integrals, node_faces, surface_faces};
+use super::mortar::FaceIntegrals;
+use super::mortar_contact::{coordinates, face_size, node_faces, surface_faces};
 use super::mortar_contact::{
     row_gaps, MortarGap, MortarRows, MortarSurfaces, RowCounts, RowSource,
 };
@@ -74,7 +77,8 @@ impl MortarObstacle {
             .filter(|m| *m > 0.0)
             .fold(f64::INFINITY, f64::min);
         let margin = if margin.is_finite() { margin } else { mean };
-        let surfaces = MortarSurfaces::secondary_only(faces, node_faces, mean, margin);
+        let integrals = FaceIntegrals::of(&faces, &reference);
+        let surfaces = MortarSurfaces::secondary_only(faces, node_faces, integrals, mean, margin);
         Some(Self {
             obstacle,
             surfaces,
@@ -84,10 +88,11 @@ impl MortarObstacle {
     }
 
     /// `D_j = ∫ Ñ_j dA` of every secondary node in the reference
-    /// configuration of `mesh` (the nodes' areas `A_j`).
+    /// configuration of `mesh` (the nodes' areas `A_j`; the faces'
+    /// integrals taken when the surfaces were made).
     pub fn reference_areas(&self, mesh: &Mesh) -> Vec<f64> {
         let xs = coordinates(&mesh.nodes, &vec![0.0; 3 * mesh.num_nodes()]);
-        let d = full_integrals(&self.surfaces.secondary_faces, &xs);
+        let d = self.surfaces.full_integrals(&xs);
         self.nodes
             .iter()
             .map(|n| d.get(n).copied().unwrap_or(0.0))
@@ -100,10 +105,33 @@ impl MortarObstacle {
         self.surfaces.coupled_nodes(i, self.nodes[i])
     }
 
+    /// The groups of mesh nodes whose displacements secondary node `i`'s
+    /// tangent couples with each other (each group one clique of the
+    /// sparsity pattern). Against a plane at a node with `x̃_j = x_j`
+    /// ([`transforms_to_itself`]) the lever is `L_jk = D_j δ_jk n` in
+    /// every configuration (biorthogonality), so the tangent couples the
+    /// node with each node of its faces and no two others: one pair each
+    /// (the elements' couplings already, where the elements are all
+    /// assembled here). Otherwise `∂L_jk/∂x_m` couples every two nodes of
+    /// its faces: [`coupled_nodes`](Self::coupled_nodes), one group.
+    pub fn coupled_groups(&self, i: usize) -> Vec<Vec<usize>> {
+        let nodes = self.coupled_nodes(i);
+        let faces = &self.surfaces.secondary_faces;
+        let on_itself = (self.surfaces.node_faces[i].first())
+            .is_some_and(|&e| transforms_to_itself(&faces[e], self.nodes[i]));
+        match (&self.obstacle, on_itself) {
+            (RigidObstacle::Plane { .. }, true) => {
+                nodes[1..].iter().map(|&m| vec![nodes[0], m]).collect()
+            }
+            _ => vec![nodes],
+        }
+    }
+
     /// The rows of the near nodes (module docs) at the nodes' current
     /// coordinates `xs` with the obstacle translated by `translation`:
     /// every node's `D_j`, `g̃_j`, lever and normal, with their derivatives
-    /// or without ([`Derivatives`]), keyed by mesh node. A face the kernels
+    /// or without ([`Derivatives`]; without, against a plane, in closed
+    /// form, [`plane_rows`]), keyed by mesh node. A face the kernels
     /// cannot integrate (degenerate) leaves every node open in this
     /// evaluation; the element assembly reports such a face's element.
     pub fn rows(
@@ -116,8 +144,15 @@ impl MortarObstacle {
         let near = self.near(xs, &project);
         let selected = self.faces_of(&near);
         let faces = &self.surfaces.secondary_faces;
-        let mut rows =
-            obstacle_rows(faces, &selected, xs, &project, derivatives).unwrap_or_default();
+        let plane = matches!(self.obstacle, RigidObstacle::Plane { .. });
+        let mut rows = match (plane, derivatives) {
+            (true, Derivatives::Without) => {
+                let integrals = &self.surfaces.face_integrals;
+                plane_rows(faces, integrals, &selected, xs, &project)
+            }
+            _ => obstacle_rows(faces, &selected, xs, &project, derivatives),
+        }
+        .unwrap_or_default();
         let near_nodes: std::collections::BTreeSet<usize> =
             near.iter().map(|&i| self.nodes[i]).collect();
         rows.retain(|n, _| near_nodes.contains(n));

@@ -46,6 +46,27 @@ impl ContactState {
 #[derive(Clone, Debug, Default)]
 pub struct ContactSet {
     pub(super) interfaces: Vec<ContactInterface>,
+    /// Which couplings [`couplings`](Self::couplings) gives the pattern.
+    pattern: ContactPattern,
+}
+
+/// Which contact couplings the sparsity pattern holds
+/// ([`ContactSet::couplings`]).
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+pub enum ContactPattern {
+    /// Newton's: every coupling its contact tangent fills, each secondary
+    /// node's groups ([`ContactInterface::coupled_groups`]) and each
+    /// multiplier with the nodes its row reads
+    /// ([`ContactInterface::coupled_nodes`]).
+    #[default]
+    Newton,
+    /// The condensed path's: each multiplier with its own node alone (so
+    /// that it is ordered right after it, as node-to-surface's against
+    /// an obstacle), no node groups. Its factor is of the elements'
+    /// stiffness and reads no contact entry; a run builds this pattern
+    /// until it has chosen its path, and Newton's couplings when Newton
+    /// first runs ([`crate::problem::Problem::newton_pattern`]).
+    Condensed,
 }
 
 impl<'a> IntoIterator for &'a ContactSet {
@@ -140,29 +161,48 @@ impl ContactSet {
         self.has_friction() || self.iter().any(|c| matches!(c.primary, Primary::Mortar(_)))
     }
 
-    /// The sparsity couplings of the interfaces.
+    /// Which couplings the pattern is built with.
+    pub fn pattern(&self) -> ContactPattern {
+        self.pattern
+    }
+
+    /// Build the pattern with `pattern`'s couplings from now on (the
+    /// caller rebuilds it).
+    pub fn set_pattern(&mut self, pattern: ContactPattern) {
+        self.pattern = pattern;
+    }
+
+    /// The sparsity couplings of the interfaces ([`ContactPattern`]).
     pub fn couplings(&self) -> Couplings {
+        let newton = self.pattern == ContactPattern::Newton;
         let mut out = Couplings::default();
         for c in self.iter() {
-            let groups = (0..c.nodes.len()).map(|i| c.coupled_nodes(i));
+            let groups = (0..c.nodes.len()).map(|i| match newton {
+                true => c.coupled_nodes(i),
+                false => vec![c.nodes[i]],
+            });
             let first = out.multipliers.len();
             out.multipliers
                 .resize(first + c.num_multipliers(), Vec::new());
             out.multiplier_groups
                 .resize(first + c.num_multipliers(), Vec::new());
-            for (i, nodes) in groups.clone().enumerate() {
+            for (i, nodes) in groups.enumerate() {
                 let own = c.node_multipliers(i);
                 for &k in &own {
                     out.multipliers[first + k] = nodes.clone();
                     out.multiplier_groups[first + k] = own.iter().map(|l| first + l).collect();
                 }
             }
-            // a mortar node couples the nodes of all its faces
-            if matches!(
-                c.primary,
-                Primary::Surface(_) | Primary::Mortar(_) | Primary::MortarRigid(_)
-            ) {
-                out.groups.extend(groups);
+            // a mortar node couples the nodes of its faces (with each
+            // other unless its lever lies on itself against a plane)
+            if newton
+                && matches!(
+                    c.primary,
+                    Primary::Surface(_) | Primary::Mortar(_) | Primary::MortarRigid(_)
+                )
+            {
+                out.groups
+                    .extend((0..c.nodes.len()).flat_map(|i| c.coupled_groups(i)));
             }
         }
         out

@@ -140,7 +140,9 @@ pub struct Summary {
     /// Symbolic analyses of the tangent's pattern (1 on a fixed mesh).
     pub symbolic_analyses: usize,
     /// Stored entries of the tangent (at the last converged increment: new
-    /// deformable contact pairs change the pattern) and of its LDLᵀ factor.
+    /// deformable contact pairs change the pattern; on the condensed path
+    /// without the contact couplings only Newton's tangent fills, until
+    /// Newton first solves) and of its LDLᵀ factor.
     /// Under `mpirun` each process keeps only its own rows' pattern, and
     /// `matrix_nnz` is rank 0's (the log's `rows:` lines give every
     /// process's).

@@ -105,6 +105,10 @@ impl NonlinearProblem for Problem {
     fn refresh_pattern(&mut self, x: &[f64], motion: f64, reached: Option<&[f64]>) -> bool {
         self.search_contact_pairs(x, motion, reached)
     }
+    /// [`Problem::newton_pattern`].
+    fn newton_pattern(&mut self) -> bool {
+        Problem::newton_pattern(self)
+    }
     fn couplings_hold(&self, x: &[f64], state: &ContactState) -> bool {
         self.contact_pairs_hold(x, state)
     }

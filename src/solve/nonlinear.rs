@@ -134,6 +134,13 @@ pub trait NonlinearProblem {
     /// an answer that left the last ones reach; `true` if the pattern
     /// changed.
     fn refresh_pattern(&mut self, x: &[f64], motion: f64, reached: Option<&[f64]>) -> bool;
+    /// Make the pattern Newton's tangent needs where it was made for
+    /// another path (the condensed path's leaves out the contact couplings
+    /// its factor does not read), before Newton first solves; `true` if
+    /// the pattern changed. By default the pattern is Newton's.
+    fn newton_pattern(&mut self) -> bool {
+        false
+    }
     /// Whether the couplings used for the increment still hold at the
     /// converged `x` (else the increment is cut).
     fn couplings_hold(&self, x: &[f64], state: &Self::State) -> bool;

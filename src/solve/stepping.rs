@@ -150,7 +150,11 @@ pub fn run_steps<P: NonlinearProblem>(
     output: PathBuf,
 ) -> Result<Vec<f64>> {
     let mut josephy = Josephy::default();
+    let repatterned = problem.newton_pattern();
     let mut newton = Monolithic::new(problem, solver, &mut josephy);
+    if repatterned {
+        newton.pattern_changed(problem)?;
+    }
     resume_steps(problem, &mut newton, None, observer, output, None)
 }
 
@@ -228,7 +232,6 @@ pub fn resume_steps<P: NonlinearProblem>(
                     f.pattern_changed(problem)?;
                 }
             }
-            let problem: &P = problem;
             if observer.cancelled() {
                 return Err(cancelled(t));
             }
@@ -254,6 +257,7 @@ pub fn resume_steps<P: NonlinearProblem>(
                 &mut trial,
                 observer,
             );
+            let problem: &P = problem;
             match outcome {
                 Ok(evaluation) => {
                     reached = None;
@@ -369,10 +373,12 @@ struct Tried<R> {
 /// [`attempt`] by the first of `methods`, and where it fails (but for a
 /// failure no cut mends, [`IncrementFailure::mended_by_a_cut`]) once more
 /// by the second, the fallback, from the converged
-/// `start` (unknowns and state) again; the observer is told of the retry.
+/// `start` (unknowns and state) again, on Newton's pattern
+/// ([`NonlinearProblem::newton_pattern`]); the observer is told of the
+/// retry.
 #[allow(clippy::too_many_arguments)]
 fn attempt_with_fallback<P: NonlinearProblem>(
-    problem: &P,
+    problem: &mut P,
     methods: (
         &mut dyn IncrementMethod<P>,
         &mut Option<&mut dyn IncrementMethod<P>>,
@@ -402,13 +408,25 @@ fn attempt_with_fallback<P: NonlinearProblem>(
     }
     let (step, time) = (&increment.step.name, increment.time);
     observer.on_fallback(step, time, f.name(), failure);
+    let retried = Some(failure.to_string());
+    if problem.newton_pattern() {
+        let ordered = (method.pattern_changed(problem)).and_then(|()| f.pattern_changed(problem));
+        if let Err(e) = ordered {
+            let outcome = Err(IncrementFailure::LinearSolverSetUp(e.to_string()));
+            return Tried {
+                outcome,
+                retried,
+                ..first
+            };
+        }
+    }
     *trial_state = state.clone();
     let (outcome, iterations) = attempt(problem, f, increment, u, trial_state, trial, observer);
     Tried {
         outcome,
         iterations,
         solved_by: f.name(),
-        retried: Some(failure.to_string()),
+        retried,
     }
 }
 

@@ -95,9 +95,13 @@ fn contact(out: &mut String, c: &ContactSpec) {
         ContactMethod::Slack => "slack",
     };
     let _ = writeln!(out, "method = \"{method}\"");
-    if c.discretisation == Some(DiscretisationSpec::Mortar) {
-        let _ = writeln!(out, "discretisation = \"mortar\"");
-    }
+    // always written: the deck's node-to-surface pairs stay node-to-surface
+    // when the case is read back (the case file's default is mortar)
+    let discretisation = match c.discretisation {
+        Some(DiscretisationSpec::Mortar) => "mortar",
+        Some(DiscretisationSpec::NodeToSurface) | None => "node_to_surface",
+    };
+    let _ = writeln!(out, "discretisation = \"{discretisation}\"");
     opt(out, "penalty", c.penalty);
     opt(out, "scaling", c.scaling);
     opt(out, "friction_coefficient", c.friction_coefficient);

@@ -45,7 +45,7 @@ pub mod segment_derivatives;
 pub mod weighted_gap;
 pub mod weighted_slip;
 
-pub use dual_basis::{node_integrals, DualBasis};
+pub use dual_basis::{node_integrals, DualBasis, FaceIntegrals};
 pub use face::{FaceShape, MortarFace, SurfaceFace};
 pub use normals::{nodal_normal_derivatives, nodal_normal_gradient, nodal_normals};
 pub use rows::{mortar_row_values, mortar_rows, MortarRow, RowValues};

@@ -36,7 +36,7 @@ use std::collections::BTreeMap;
 
 use nalgebra::{DMatrix, DVector, Vector3};
 
-use super::dual_basis::DualBasis;
+use super::dual_basis::{positive_integrals, DualBasis, FaceIntegrals};
 use super::face::{FaceValues, MortarFace, SurfaceFace};
 use super::normals::unit_derivative;
 use super::quadratic::mortar_values;
@@ -233,23 +233,7 @@ pub fn obstacle_rows(
     obstacle: &impl Fn(&Vector3<f64>) -> Projection,
     derivatives: Derivatives,
 ) -> Result<BTreeMap<usize, MortarRow>, MortarError> {
-    // each node's coupled nodes: those of its selected faces, sorted
-    let mut coupled: BTreeMap<usize, (usize, Vec<usize>)> = BTreeMap::new();
-    for &e in selected {
-        for &j in &faces[e].nodes {
-            let entry = coupled.entry(j).or_insert((e, Vec::new()));
-            entry.1.extend(&faces[e].nodes);
-        }
-    }
-    let mut rows: BTreeMap<usize, MortarRow> = coupled
-        .into_iter()
-        .map(|(j, (e, mut nodes))| {
-            nodes.sort_unstable();
-            nodes.dedup();
-            let transformation = super::rows::transformation(&faces[e], j);
-            (j, empty_row(j, nodes, transformation, derivatives))
-        })
-        .collect();
+    let mut rows = empty_rows(faces, selected, derivatives);
     for &e in selected {
         let face = &faces[e];
         let geometry = face.with_coordinates(coordinates)?;
@@ -264,6 +248,79 @@ pub fn obstacle_rows(
         finish_normal(row);
     }
     Ok(rows)
+}
+
+/// The rows of [`obstacle_rows`] without their gradients against a
+/// plane, in closed form: on a flat obstacle `∫ Φ_j N_k dA = D_j R_jk`
+/// (module doc), so `g̃_j = D_j g(x̃_j)` and `L_jk = D_j R_jk n`, with
+/// `D_j` the sum of the selected faces' `∫ Ñ_j dA`
+/// ([`node_integrals`](super::dual_basis::node_integrals), read from `integrals` where a face is where they
+/// were taken); no dual basis and no projection per face point.
+/// The same rows as the integrated ones to round-off (the lever's entries
+/// off `R_j`, round-off there, are zero here); `plane` the plane's
+/// projection (`g` affine, `n` constant). A degenerate face is the
+/// error [`DualBasis::of_face`] gives.
+pub fn plane_rows(
+    faces: &[SurfaceFace],
+    integrals: &FaceIntegrals,
+    selected: &[usize],
+    coordinates: &[Vector3<f64>],
+    plane: &impl Fn(&Vector3<f64>) -> Projection,
+) -> Result<BTreeMap<usize, MortarRow>, MortarError> {
+    let mut rows = empty_rows(faces, selected, Derivatives::Without);
+    for &e in selected {
+        let face = &faces[e];
+        let integrals = integrals.at(faces, e, coordinates)?;
+        positive_integrals(&integrals)?;
+        for (&node, d) in face.nodes.iter().zip(integrals) {
+            if let Some(row) = rows.get_mut(&node) {
+                row.d += d;
+            }
+        }
+    }
+    for row in rows.values_mut() {
+        let x = row
+            .transformation
+            .iter()
+            .map(|&(k, r)| r * coordinates[k])
+            .sum();
+        let at = plane(&x);
+        row.weighted_gap = row.d * at.gap;
+        for &(k, r) in &row.transformation {
+            let a = 3 * row.nodes.partition_point(|m| *m < k);
+            for i in 0..3 {
+                row.lever[a + i] -= row.d * r * at.normal[i];
+            }
+        }
+        finish_normal(row);
+    }
+    Ok(rows)
+}
+
+/// Every node of the faces `selected` with its row over the nodes of its
+/// selected faces (sorted), every sum zero, `x̃_j`'s transformation from
+/// the first selected face that holds it ([`empty_row`]).
+fn empty_rows(
+    faces: &[SurfaceFace],
+    selected: &[usize],
+    derivatives: Derivatives,
+) -> BTreeMap<usize, MortarRow> {
+    let mut coupled: BTreeMap<usize, (usize, Vec<usize>)> = BTreeMap::new();
+    for &e in selected {
+        for &j in &faces[e].nodes {
+            let entry = coupled.entry(j).or_insert((e, Vec::new()));
+            entry.1.extend(&faces[e].nodes);
+        }
+    }
+    coupled
+        .into_iter()
+        .map(|(j, (e, mut nodes))| {
+            nodes.sort_unstable();
+            nodes.dedup();
+            let transformation = super::rows::transformation(&faces[e], j);
+            (j, empty_row(j, nodes, transformation, derivatives))
+        })
+        .collect()
 }
 
 /// A row of `node` over `nodes` with every sum zero, `x̃_j`'s
@@ -348,6 +405,14 @@ fn finish_normal(row: &mut MortarRow) {
         let dn = unit_derivative(&w, &Vector3::new(dw[(0, c)], dw[(1, c)], dw[(2, c)]));
         row.normal_gradient.set_column(c, &(-dn));
     }
+}
+
+/// Whether `node`'s transformed point on `face` (which holds it) is the
+/// node itself, `x̃_j = x_j` (linear faces, the corners of quadratic
+/// ones): then against a plane its lever `L_jk = D_j R_jk n` lies on the
+/// node alone in every configuration.
+pub fn transforms_to_itself(face: &SurfaceFace, node: usize) -> bool {
+    super::rows::transformation(face, node) == [(node, 1.0)]
 }
 
 /// The transformed point `x̃_j = Σ_k R_jk x_k` of `node` on `face` (which

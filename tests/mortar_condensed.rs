@@ -1074,3 +1074,47 @@ fn newton_builds_its_couplings_when_it_first_solves() {
     let difference = relative_difference(&u, &v);
     assert!(difference <= 1e-12, "{difference:e}");
 }
+
+/// Against a plane where the run is on Newton's path anyway (a
+/// finite-strain material, or `strategy = "monolithic"`) a `[[contact]]`
+/// without the key takes node-to-surface, with a note naming Newton's
+/// path (`case::contacts::default_discretisations`): there mortar's
+/// conditions on linear faces are node-to-surface's and Newton on its rows
+/// costs about twice as much. The same case on the condensed path (as
+/// shipped, linear elastic) takes mortar.
+#[test]
+fn the_default_discretisation_on_newtons_path_against_a_plane_is_node_to_surface() {
+    use signorini::case::schema::DiscretisationSpec;
+    let dir = tempfile::tempdir().unwrap();
+    let condensed = std::fs::read_to_string(hertz_case(dir.path(), "")).unwrap();
+    let monolithic = condensed.replace("strategy = \"condensed\"", "strategy = \"monolithic\"");
+    let finite = condensed
+        .replace(
+            "model = \"linear_elastic\"",
+            "model = \"saint_venant_kirchhoff\"",
+        )
+        .replace("strategy = \"condensed\"", "strategy = \"auto\"");
+    let cases = [
+        ("condensed", &condensed, DiscretisationSpec::Mortar),
+        ("monolithic", &monolithic, DiscretisationSpec::NodeToSurface),
+        ("finite strain", &finite, DiscretisationSpec::NodeToSurface),
+    ];
+    for (label, text, expected) in cases {
+        assert!(label == "condensed" || text != &condensed, "{label}");
+        let path = dir.path().join("case.toml");
+        std::fs::write(&path, text).unwrap();
+        let case = signorini::case::load(&path).unwrap();
+        assert_eq!(
+            case.spec.contact[0].discretisation,
+            Some(expected),
+            "{label}"
+        );
+        let noted = (case.notes.iter()).any(|n| n.contains("a plane on Newton's path"));
+        assert_eq!(
+            noted,
+            expected == DiscretisationSpec::NodeToSurface,
+            "{label}: {:?}",
+            case.notes
+        );
+    }
+}

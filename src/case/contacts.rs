@@ -2,7 +2,8 @@
 //! obstacles and contact interfaces.
 
 use super::schema::{
-    CaseFile, ContactMethod, ContactSpec, DiscretisationSpec, FrictionMultiplierSpec, ObstacleShape,
+    CaseFile, ContactMethod, ContactSpec, DiscretisationSpec, FrictionMultiplierSpec,
+    MaterialModel, ObstacleShape,
 };
 use super::{not_positive, Case};
 use crate::contact::friction::FrictionMultiplier;
@@ -11,6 +12,7 @@ use crate::contact::setup::{Enforcement, Method, SetupError};
 use crate::contact::{RigidObstacle, TriangulatedSurface};
 use crate::mesh::Mesh;
 use crate::problem::Problem;
+use crate::solve::settings::Strategy;
 use crate::{Error, Result};
 use nalgebra::Vector3;
 use std::collections::HashSet;
@@ -526,7 +528,13 @@ fn mortar_refusal(c: &ContactSpec) -> Option<&'static str> {
 /// there), with Coulomb friction against an obstacle (mortar's slip
 /// relative to the obstacle is Newton's path only) and with penalty
 /// (mortar's force `D_j ε ⟨−g⟩` changes with the current area `D_j`).
-fn node_to_surface_default(c: &ContactSpec, curved: bool) -> Option<&'static str> {
+/// Also node-to-surface against a plane where the run is on Newton's path
+/// anyway (`newton`: a finite-strain material, or `strategy =
+/// "monolithic"`): there mortar's conditions are node-to-surface's (on a
+/// plane with linear faces `g̃_j = D_j g(x_j)`), and Newton on its rows,
+/// which carry their derivatives, took 2.3× the CPU of node-to-surface on
+/// examples/ogden-plate (session 26, one run each).
+fn node_to_surface_default(c: &ContactSpec, curved: bool, newton: bool) -> Option<&'static str> {
     let friction = c.friction_coefficient.is_some_and(|mu| mu > 0.0);
     if c.two_pass {
         Some("`two_pass` (mortar contact has one pass: its forces balance on both surfaces)")
@@ -547,6 +555,12 @@ fn node_to_surface_default(c: &ContactSpec, curved: bool) -> Option<&'static str
              the current area: Newton's path; node-to-surface's is condensed, one factorisation \
              per run)",
         )
+    } else if c.obstacle.is_some() && newton {
+        Some(
+            "a plane on Newton's path (a finite-strain material or strategy = \"monolithic\": \
+             there mortar's conditions on linear faces are node-to-surface's, and Newton on its \
+             rows, which carry their derivatives, costs about twice as much)",
+        )
     } else {
         None
     }
@@ -566,6 +580,8 @@ pub(crate) fn default_discretisations(spec: &mut CaseFile, mesh: &Mesh, notes: &
         .filter(|o| !matches!(o.shape, ObstacleShape::Plane { .. }))
         .map(|o| o.name.clone())
         .collect();
+    let newton = spec.solver.strategy == Some(Strategy::Monolithic)
+        || !(spec.material.iter()).all(|m| matches!(m.model, MaterialModel::LinearElastic(_)));
     for (i, c) in spec.contact.iter_mut().enumerate() {
         if c.discretisation.is_some() {
             continue;
@@ -575,7 +591,8 @@ pub(crate) fn default_discretisations(spec: &mut CaseFile, mesh: &Mesh, notes: &
         let why = match quadratic {
             true => mortar_refusal(c).map(|_| "`two_pass`"),
             false => {
-                node_to_surface_default(c, c.obstacle.as_ref().is_some_and(|o| curved.contains(o)))
+                let curved = c.obstacle.as_ref().is_some_and(|o| curved.contains(o));
+                node_to_surface_default(c, curved, newton)
             }
         };
         c.discretisation = Some(match why {

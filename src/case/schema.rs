@@ -420,7 +420,10 @@ pub struct ContactSpec {
     /// friction against an obstacle or with `method = "penalty"`, which
     /// `strategy = "auto"` condenses with node-to-surface (one
     /// factorisation per run) but leaves to Newton with mortar (the log
-    /// says so in a note). Quadratic faces (Tri6/Quad8,
+    /// says so in a note), and against a plane where the run is on Newton's
+    /// path anyway (a finite-strain material or `strategy = "monolithic"`:
+    /// there mortar's conditions on linear faces are node-to-surface's, at
+    /// about twice the cost). Quadratic faces (Tri6/Quad8,
     /// whose corner nodes node-to-surface gives no share of a uniform
     /// pressure) take mortar wherever mortar takes the pairing.
     pub discretisation: Option<DiscretisationSpec>,

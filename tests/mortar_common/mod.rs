@@ -94,7 +94,7 @@ pub fn nodal_integrals(
     for sf in faces {
         let face: MortarFace = sf.with_coordinates(coords).unwrap();
         let (points, weights) = sf.shape.quadrature();
-        for (xi, w) in points.iter().zip(&weights) {
+        for (xi, w) in points.iter().zip(weights) {
             let da = w * face.area_normal(*xi).norm();
             for (node, n) in sf.nodes.iter().zip(f(sf.shape, *xi)) {
                 *out.entry(*node).or_insert(0.0) += n * da;

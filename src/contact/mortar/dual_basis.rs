@@ -175,7 +175,7 @@ fn face_matrices(
     let (points, weights) = face.shape.quadrature();
     let mut mass = DMatrix::<f64>::zeros(n, n);
     let mut integrals = vec![0.0; n];
-    for (xi, w) in points.iter().zip(&weights) {
+    for (xi, w) in points.iter().zip(weights) {
         let da = w * area_element(*xi);
         let nt = quadratic::mortar_values(face.shape, *xi);
         for j in 0..n {

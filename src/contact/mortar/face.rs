@@ -125,15 +125,15 @@ impl FaceShape {
     /// The face rule: points and weights on the reference cell, computed
     /// once per cell shape (the Gauss–Legendre roots by Newton's method
     /// were 4 % of a condensed mortar run's samples, asked for per face
-    /// and per dual-basis derivative).
-    pub fn quadrature(self) -> (Vec<[f64; 2]>, Vec<f64>) {
+    /// and per dual-basis derivative), lent, not copied.
+    pub fn quadrature(self) -> &'static (Vec<[f64; 2]>, Vec<f64>) {
         type Rule = (Vec<[f64; 2]>, Vec<f64>);
         static TRIANGLE: std::sync::OnceLock<Rule> = std::sync::OnceLock::new();
         static QUADRILATERAL: std::sync::OnceLock<Rule> = std::sync::OnceLock::new();
         if self.is_triangle() {
-            (TRIANGLE.get_or_init(|| quadrature::triangle_collapsed(FACE_RULE_POINTS))).clone()
+            TRIANGLE.get_or_init(|| quadrature::triangle_collapsed(FACE_RULE_POINTS))
         } else {
-            (QUADRILATERAL.get_or_init(|| quadrature::quadrilateral_any(FACE_RULE_POINTS))).clone()
+            QUADRILATERAL.get_or_init(|| quadrature::quadrilateral_any(FACE_RULE_POINTS))
         }
     }
 
@@ -248,7 +248,7 @@ impl MortarFace {
         let (points, weights) = self.shape.quadrature();
         points
             .iter()
-            .zip(&weights)
+            .zip(weights)
             .map(|(xi, w)| w * self.area_normal(*xi).norm())
             .sum()
     }

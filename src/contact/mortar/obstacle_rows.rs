@@ -93,7 +93,7 @@ pub fn face_obstacle_integrals(
         })
         .collect::<Result<Vec<_>, _>>()?;
     let (points, weights) = face.shape.quadrature();
-    for (xi, w) in points.iter().zip(&weights) {
+    for (xi, w) in points.iter().zip(weights) {
         let point = FacePoint::at(face, *xi, &dual, obstacle);
         for j in 0..n {
             point.add_values_to(&mut out, j, *w);

@@ -356,8 +356,9 @@ impl Problem {
     }
 
     /// The side pattern: that of every node contact or a follower load
-    /// writes to, and nothing else (each contact node with the nodes it
-    /// couples, itself alone against a rigid obstacle; every pair of nodes
+    /// writes to, and nothing else (each contact node's groups of coupled
+    /// nodes, as in the model's pattern, itself alone against a rigid
+    /// obstacle; every pair of nodes
     /// of a follower face; the multipliers), where contact and loads write
     /// their tangent when the elements' goes into a linear solver's matrix
     /// ([`Tangent::Sink`]); made at the first call for the model's pattern
@@ -365,8 +366,12 @@ impl Problem {
     fn side_pattern(&self) -> std::sync::Arc<SparsityPattern> {
         self.model.side_pattern(|| {
             let mut groups = self.follower_faces();
+            // the main pattern's groups (pairs, not a clique, for a node
+            // against a plane whose lever lies on itself): an entry here
+            // outside the pattern is one the linear solver's matrix has
+            // no room for
             for c in &self.contacts {
-                groups.extend((0..c.nodes.len()).map(|i| c.coupled_nodes(i)));
+                groups.extend((0..c.nodes.len()).flat_map(|i| c.coupled_groups(i)));
             }
             let graph = NodeGraph::of_elements_and(
                 self.model.mesh.num_nodes(),

@@ -520,9 +520,8 @@ impl ContactInterface {
                 let i = node.index;
                 let multiplier = self.multiplier(ctx, i);
                 let Some(k) = k else {
-                    // no primary within the search margin (or no mortar
-                    // support): inactive by definition, at a gap of the
-                    // margin, whatever its multiplier
+                    // no primary within the search margin (no mortar support):
+                    // inactive whatever its multiplier, at a gap of the margin
                     let open = self.law_at(i).contribution(
                         Support::Unsupported,
                         self.areas[i],

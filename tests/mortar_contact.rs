@@ -20,7 +20,7 @@ use common::{
 use signorini::assembly::pattern::SparsityPattern;
 use signorini::contact::interface::{ContactContext, ContactInterface, NodeReport};
 use signorini::contact::laws::NodeContactState;
-use signorini::contact::laws::NormalLaw;
+use signorini::contact::laws::{NormalLaw, SlackState};
 use signorini::material::LinearElastic;
 use signorini::mesh::{structured::box_mesh, ElementKind, Mesh};
 use signorini::problem::Problem;
@@ -111,6 +111,16 @@ fn assemble_first(
     states: &[NodeContactState],
     tangent: Option<(&SparsityPattern, &mut [f64])>,
 ) -> Vec<NodeReport> {
+    assemble_first_residual(pr, x, states, tangent).0
+}
+
+/// [`assemble_first`], with the contact residual (over every unknown).
+fn assemble_first_residual(
+    pr: &Problem,
+    x: &[f64],
+    states: &[NodeContactState],
+    tangent: Option<(&SparsityPattern, &mut [f64])>,
+) -> (Vec<NodeReport>, Vec<f64>) {
     let ctx = ContactContext {
         reference: &pr.model.mesh.nodes,
         t: 1.0,
@@ -118,9 +128,8 @@ fn assemble_first(
         first_multiplier: pr.model.num_dofs(),
     };
     let mut residual = vec![0.0; pr.num_unknowns()];
-    pr.contacts
-        .interface(0)
-        .assemble(&ctx, states, &mut residual, tangent)
+    let reports = (pr.contacts.interface(0)).assemble(&ctx, states, &mut residual, tangent);
+    (reports, residual)
 }
 
 /// Rockafellar (the default law) on the weighted gaps.
@@ -405,4 +414,84 @@ fn mortar_between_bodies_has_a_nonsymmetric_tangent() {
         asymmetry > 1e-3 * scale,
         "asymmetry {asymmetry:e} of {scale:e}"
     );
+}
+
+/// A secondary node without mortar support (no segment with the primary
+/// surface, or `D_j ≤ 0`) is inactive by definition (Hüeber & Wohlmuth
+/// 2005; Popp, Gee & Wall 2009), whatever its multiplier: its multiplier
+/// row is the inactive one, `r_λ = −A k²λ/p` and `K_λλ = −A k²/p` with
+/// nothing on the displacements (Newton's step then sets `λ` to 0), to
+/// 1e-12, for Rockafellar's law and the slack law (its local unknowns
+/// clamped). The upper block's bottom (Hex8, 2 × 2 cells over 3 × 3) slid
+/// by 0.75 in x: its 6 nodes at x ≥ 0.5 have no primary face under them
+/// (x ≥ 1.25) or only the far half of one face (`D_j < 0`). With `λ = 1`,
+/// `kλ = 400` is above `p` times the open gap (the search margin, 2/3),
+/// where the law's switch alone calls the node active: its row was then
+/// `r_λ = −A k g` with `K_λλ = 0` and no `∂r_λ/∂q`, a zero row (the
+/// singular tangent two-spheres with mortar met on Newton's path).
+#[test]
+fn a_node_without_mortar_support_is_inactive() {
+    let slack = NormalLaw::Slack {
+        p: E / 0.25,
+        k: E / 0.25,
+    };
+    for law in [rockafellar(), slack] {
+        let (NormalLaw::Rockafellar { p, k } | NormalLaw::Slack { p, k }) = law else {
+            unreachable!("a law with a multiplier");
+        };
+        let pr = stacked(
+            blocks(ElementKind::Hex8, 3, 2),
+            "upper.zmin",
+            "lower.zmax",
+            law,
+        );
+        let mesh = &pr.model.mesh;
+        let interface = pr.contacts.interface(0);
+        let dofs = pr.model.num_dofs();
+        let mut x = vec![0.0; pr.num_unknowns()];
+        for &n in &interface.nodes {
+            x[3 * n] = 0.75;
+        }
+        let lambda = 1.0;
+        x[dofs..dofs + interface.nodes.len()].fill(lambda);
+        let mut states = pr.initial_contact_state(&x).interfaces[0].clone();
+        states.iter_mut().for_each(|s| {
+            s.slack = SlackState {
+                s: 0.0,
+                lambda1: 1.0,
+            }
+        });
+        let pattern = &pr.model.pattern;
+        let mut tangent = vec![0.0; pattern.nnz()];
+        let (reports, residual) =
+            assemble_first_residual(&pr, &x, &states, Some((pattern, &mut tangent)));
+        let mut unsupported = 0;
+        for (i, &n) in interface.nodes.iter().enumerate() {
+            if mesh.nodes[n][0] < 0.5 {
+                continue;
+            }
+            unsupported += 1;
+            assert!(!reports[i].active, "{law:?} node {n}: {:?}", reports[i]);
+            let area = interface.areas[i];
+            let diagonal = tangent[pattern.multiplier_diagonal(i)];
+            let expected = -area * k * k / p;
+            assert!(
+                (diagonal - expected).abs() <= 1e-12 * expected.abs(),
+                "{law:?} node {n}: K_λλ {diagonal:e}, inactive {expected:e}"
+            );
+            let r = residual[dofs + i];
+            assert!(
+                (r - expected * lambda).abs() <= 1e-12 * expected.abs(),
+                "{law:?} node {n}: r_λ {r:e}, inactive {:e}",
+                expected * lambda
+            );
+            let row = (0..pattern.num_nodes())
+                .filter_map(|a| pattern.multiplier_entries(i, a))
+                .flat_map(|e| e.multiplier_row)
+                .map(|e| tangent[e].abs())
+                .fold(0.0, f64::max);
+            assert_eq!(row, 0.0, "{law:?} node {n}: ∂r_λ/∂q");
+        }
+        assert_eq!(unsupported, 6, "{law:?}");
+    }
 }

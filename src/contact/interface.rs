@@ -28,7 +28,7 @@ use super::gap::GapGeometry;
 use super::kinematics::{
     GapKinematics, GapProducer, NodeEvaluation, PrimaryWeights, QAllocator, SecondaryNode,
 };
-use super::laws::{NodeContactState, NormalLaw};
+use super::laws::{NodeContactState, NormalLaw, Support};
 use super::mortar::Derivatives;
 use super::mortar_contact::{MortarGap, MortarSurfaces};
 use super::mortar_rigid::MortarObstacle;
@@ -536,9 +536,10 @@ impl ContactInterface {
                 let i = node.index;
                 let multiplier = self.multiplier(ctx, i);
                 let Some(k) = k else {
-                    // no primary within the search margin: open, at a gap
-                    // of the margin (an inactive multiplier row)
+                    // no primary within the search margin (no mortar support):
+                    // inactive whatever its multiplier, at a gap of the margin
                     let open = self.law_at(i).contribution(
+                        Support::Unsupported,
                         self.areas[i],
                         &GapGeometry::scalar(p.open_gap()),
                         &state,
@@ -724,10 +725,12 @@ impl ContactInterface {
                 }
                 state.move_to_facet(facet);
                 let area = k.as_ref().and_then(|k| k.area).unwrap_or(self.areas[i]);
+                let support = if k.is_some() { Support::Supported } else { Support::Unsupported };
                 let (g, dg) = k.map_or((p.open_gap(), 0.0), |k| (k.gap, k.gap_increment(dx)));
                 let dlambda = self.multiplier(ctx, i).map_or(0.0, |m| dx[m]);
                 let du = Vector3::new(dg, 0.0, 0.0);
-                law.apply_increment(area, &GapGeometry::scalar(g), &mut state, &du, dlambda);
+                let geometry = GapGeometry::scalar(g);
+                law.apply_increment(area, &geometry, support, &mut state, &du, dlambda);
                 advanced.push((facet, Some(state)));
             });
         });

@@ -47,7 +47,7 @@ use super::friction::{
     TangentialResponse,
 };
 use super::gap::GapGeometry;
-use super::laws::{NodeContactState, NormalLaw};
+use super::laws::{NodeContactState, NormalLaw, Support};
 use nalgebra::{DefaultAllocator, Dim, OMatrix, OVector, Vector3, U3};
 use smallvec::SmallVec;
 
@@ -164,7 +164,12 @@ where
         area: f64,
         state: &NodeContactState,
     ) -> NormalResponse<Q> {
-        let c = law.contribution(area, &GapGeometry::scalar(self.gap), state);
+        let c = law.contribution(
+            Support::Supported,
+            area,
+            &GapGeometry::scalar(self.gap),
+            state,
+        );
         let (f, df_dg, df_dlambda) = (c.r_u[0], c.k_uu[(0, 0)], c.k_ulambda[0]);
         let grad = &self.gradient;
         let lever = self.lever.as_ref().unwrap_or(grad);

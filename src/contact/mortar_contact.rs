@@ -47,6 +47,10 @@
 //! contact cap read −1e-2 for a true gap of +1e-3). The threshold is our
 //! choice, not Popp et al.'s; a consistent dual basis on the covered part
 //! (Cichosz & Bischoff 2011) is the published remedy, not done yet.
+//! Either way the node has no row, and a node without support is inactive
+//! whatever its multiplier (Hüeber & Wohlmuth 2005: the law's inactive
+//! branch, [`Support::Unsupported`](super::laws::Support)), not active at
+//! the margin with a zero multiplier row.
 //!
 //! After Newton converged, [`MortarSurfaces::pairs_hold`] searches again
 //! at the converged state: where the pairs it adds change a node's gap

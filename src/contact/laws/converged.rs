@@ -64,6 +64,7 @@ impl NormalLaw {
 mod tests {
     use super::*;
     use crate::contact::gap::GapGeometry;
+    use crate::contact::laws::Support;
 
     /// The state written for a pressure is the law's own converged state:
     /// its contribution at that gap reports the pressure back and leaves
@@ -80,7 +81,8 @@ mod tests {
                 let mut state = NodeContactState::initial(&law, gap);
                 let lambda = law.set_converged_pressure(pressure, gap, &mut state);
                 assert_eq!(lambda, Some(pressure / 2.0));
-                let c = law.contribution(0.5, &GapGeometry::scalar(gap), &state);
+                let c =
+                    law.contribution(Support::Supported, 0.5, &GapGeometry::scalar(gap), &state);
                 assert!(
                     (c.pressure - pressure).abs() < 1e-12,
                     "{law:?}: {}",

@@ -242,29 +242,49 @@ impl NormalLaw {
         }
     }
 
-    /// The node's residual and tangent contribution in the current state.
+    /// The node's residual and tangent contribution in the current state,
+    /// with `support` a primary to be in contact with ([`Support`]). A node
+    /// without one (no primary within the search margin, or, in dual
+    /// mortar, no mortar support: `D_j ≤ 0`, or less than half of
+    /// `∫ Ñ_j dA` covered) is inactive by definition (Hüeber & Wohlmuth
+    /// 2005; Popp, Gee & Wall 2009), whatever its state says: the law's
+    /// inactive branch at `gap` (the search margin), for the multiplier
+    /// laws `r_λ = −A k²λ/p`, `K_λλ = −A k²/p`, which sends `λ` to 0 in
+    /// one step; no force for the others. The switch alone would keep a
+    /// node that lost its support with its pressure (`kλ ≥ p g`) active,
+    /// and the active row `r_λ = −A k g` has `∂r_λ/∂λ = 0` and no
+    /// `∂r_λ/∂q` without the gap's gradient: a zero row, a singular
+    /// tangent.
     pub fn contribution(
         &self,
+        support: Support,
         area: f64,
         gap: &GapGeometry,
         state: &NodeContactState,
     ) -> NodeContribution {
+        let (lambda, supported) = (state.lambda, support == Support::Supported);
         match *self {
+            Self::Penalty { .. } | Self::Uzawa { .. } if !supported => NodeContribution::zero(),
             Self::Penalty { epsilon } => penalty::contribution(area, gap, epsilon),
-            Self::Uzawa { epsilon } => uzawa::contribution(area, gap, state.lambda, epsilon),
-            Self::Rockafellar { p, k } => rockafellar::contribution(area, gap, state.lambda, p, k),
-            Self::Slack { p, k } => state.slack.condense(area, gap, state.lambda, p, k).0,
+            Self::Uzawa { epsilon } => uzawa::contribution(area, gap, lambda, epsilon),
+            Self::Rockafellar { p, k } => {
+                let active = supported && rockafellar::is_active(gap.signed_gap, lambda, p, k);
+                rockafellar::branch_contribution(area, gap, lambda, p, k, active)
+            }
+            Self::Slack { p, k } => slack_condensed(area, gap, state, p, k, support).0,
         }
     }
 
     /// Apply a Newton increment `(Δu_s, Δλ)` to the node's own unknowns:
     /// `λ += Δλ` for the multiplier laws, plus the back-substitution of the
     /// condensed slack unknowns `(s, λ₁)`. `gap` must be the geometry the
-    /// contribution was assembled with (the previous iterate).
+    /// contribution was assembled with (the previous iterate), and
+    /// `support` the node's then ([`contribution`](Self::contribution)).
     pub fn apply_increment(
         &self,
         area: f64,
         gap: &GapGeometry,
+        support: Support,
         state: &mut NodeContactState,
         du: &Vector3<f64>,
         dlambda: f64,
@@ -273,12 +293,37 @@ impl NormalLaw {
             Self::Penalty { .. } | Self::Uzawa { .. } => {}
             Self::Rockafellar { .. } => state.lambda += dlambda,
             Self::Slack { p, k } => {
-                let (_, recovery) = state.slack.condense(area, gap, state.lambda, p, k);
+                let (_, recovery) = slack_condensed(area, gap, state, p, k, support);
                 state.slack = recovery.apply(&state.slack, du, dlambda);
                 state.lambda += dlambda;
             }
         }
     }
+}
+
+/// Whether a node has a primary to be in contact with
+/// ([`NormalLaw::contribution`]).
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum Support {
+    /// Gap kinematics there: the law's switch decides.
+    Supported,
+    /// No primary within the search margin, or no mortar support: inactive.
+    Unsupported,
+}
+
+/// The slack law condensed in the branch its consistent switch gives, or
+/// free without `support`.
+fn slack_condensed(
+    area: f64,
+    gap: &GapGeometry,
+    state: &NodeContactState,
+    p: f64,
+    k: f64,
+    support: Support,
+) -> (NodeContribution, slack::SlackRecovery) {
+    let clamped = support == Support::Supported
+        && slack::SlackSwitch::Consistent.is_clamped(&state.slack, p, k);
+    (state.slack).condense_in_branch(area, gap, state.lambda, p, k, clamped)
 }
 
 /// Default penalty `p` and scaling `k` for the Rockafellar laws from the
@@ -342,16 +387,31 @@ mod tests {
             ..NodeContactState::initial(&slack_law, gap.signed_gap)
         };
         let area = 2.0;
-        let pen = NormalLaw::Penalty { epsilon: 100.0 }.contribution(area, &gap, &state);
+        let pen = NormalLaw::Penalty { epsilon: 100.0 }.contribution(
+            Support::Supported,
+            area,
+            &gap,
+            &state,
+        );
         assert_eq!(pen, penalty::contribution(area, &gap, 100.0));
-        let uz = NormalLaw::Uzawa { epsilon: 100.0 }.contribution(area, &gap, &state);
+        let uz = NormalLaw::Uzawa { epsilon: 100.0 }.contribution(
+            Support::Supported,
+            area,
+            &gap,
+            &state,
+        );
         assert_eq!(uz, uzawa::contribution(area, &gap, 0.5, 100.0));
-        let rock = NormalLaw::Rockafellar { p: 100.0, k: 50.0 }.contribution(area, &gap, &state);
+        let rock = NormalLaw::Rockafellar { p: 100.0, k: 50.0 }.contribution(
+            Support::Supported,
+            area,
+            &gap,
+            &state,
+        );
         assert_eq!(
             rock,
             rockafellar::contribution(area, &gap, 0.5, 100.0, 50.0)
         );
-        let sl = slack_law.contribution(area, &gap, &state);
+        let sl = slack_law.contribution(Support::Supported, area, &gap, &state);
         assert_eq!(sl, state.slack.condense(area, &gap, 0.5, 100.0, 50.0).0);
         assert!(!NormalLaw::Penalty { epsilon: 1.0 }.has_multiplier_dof());
         assert!(!NormalLaw::Uzawa { epsilon: 1.0 }.has_multiplier_dof());

@@ -33,7 +33,8 @@
 //! ## Search
 //! Candidate face pairs from a bounding-box search (an R*-tree, the `rstar`
 //! crate): each primary face's box grown by `2 h_f + 2 d` (`h_f` its size,
-//! `d` the largest motion over the last increment, as
+//! `d` the largest motion over the last increment, at the run's first
+//! on Newton's path the largest prescribed motion, as
 //! [`primary`](super::primary)'s rule), paired with every secondary face
 //! whose box it meets; refreshed at the start of each increment, so the
 //! sparsity pattern holds through it.

@@ -12,12 +12,20 @@
 //! and `d` the largest displacement of a contact node over the previous
 //! increment scaled to the new increment's length: the pairs hold while no
 //! node slides more than a couple of the local elements within one
-//! increment. Where an increment's answer leaves them (the stepper's
+//! increment. Before any increment has measured a motion (the run's first),
+//! on Newton's path `d` is the largest change of a prescribed displacement
+//! over the increment (the condensed path's rounds take `d = 0`: they read
+//! every candidate, and wider pairs cost two-spheres' run two rounds):
+//! bodies that start apart and close within it are paired at
+//! its start (examples/two-spheres with mortar on Newton's path: the first
+//! search at `d = 0` missed the contact edge's faces, 0.0117 apart
+//! against a margin of 0.0075, and Newton's 17 iterations on those pairs
+//! were thrown away; BENCHMARKS.md, "Session 26: mortar Newton, the first
+//! search"). Where an increment's answer leaves them (the stepper's
 //! check, [`IncrementFailure::PairsMoved`](crate::solve::failure::IncrementFailure::PairsMoved)),
 //! the same increment is searched again once, the candidates of a search
 //! at that answer with no motion added, and solved again before any cut
-//! (bodies that start apart and close within one increment: at the first
-//! increment `d = 0`). The margin is local so that
+//! (bodies closed by a load rather than a prescribed motion). The margin is local so that
 //! a graded surface (fine where the bodies touch, coarse elsewhere) does
 //! not pair the fine region's nodes with hundreds of triangles (a mean size
 //! did: 7.8 M matrix entries for 26 k dofs in the two-spheres example

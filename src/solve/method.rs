@@ -87,6 +87,17 @@ pub trait IncrementMethod<P: NonlinearProblem> {
         super::record::converged_well(records, easy)
     }
 
+    /// Whether the run's first search (before any increment measured a
+    /// motion) covers the increment's prescribed motion: Newton's, which
+    /// loses a whole solve where its answer leaves the pairs (two-spheres
+    /// with mortar: 17 iterations). Not the condensed path's, whose
+    /// rounds read every candidate: two-spheres' node-to-surface run took
+    /// 21 rounds on the wider pairs against 19, 1.11× the CPU
+    /// (BENCHMARKS.md, "Session 26: mortar Newton, the first search").
+    fn first_search_covers_prescribed_motion(&self) -> bool {
+        false
+    }
+
     /// Counts and times of the method's factorisations and solves so far.
     fn statistics(&self) -> SolverStatistics;
 
@@ -134,6 +145,10 @@ impl<'a> Monolithic<'a> {
 impl<P: NonlinearProblem> IncrementMethod<P> for Monolithic<'_> {
     fn name(&self) -> &'static str {
         "monolithic"
+    }
+
+    fn first_search_covers_prescribed_motion(&self) -> bool {
+        true
     }
 
     fn pattern_changed(&mut self, problem: &P) -> Result<()> {

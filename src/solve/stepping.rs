@@ -225,7 +225,13 @@ pub fn resume_steps<P: NonlinearProblem>(
         while t < step.end_time - 1e-12 * step.end_time.abs().max(1.0) {
             let t_new;
             (dt, t_new) = next_increment(step, t, dt);
-            let motion = last_motion.map_or(0.0, |(m, last_dt)| m * (t_new - t) / last_dt);
+            let motion = match last_motion {
+                Some((m, last_dt)) => m * (t_new - t) / last_dt,
+                None if method.first_search_covers_prescribed_motion() => {
+                    prescribed_motion(problem, t_new, &u)
+                }
+                None => 0.0,
+            };
             if problem.refresh_pattern(&u, motion, reached.as_deref()) {
                 method.pattern_changed(problem)?;
                 if let Some(f) = fallback.as_deref_mut() {
@@ -439,6 +445,20 @@ fn attempt_with_fallback<P: NonlinearProblem>(
 /// where the answer on those pairs leaves them too, the increment is cut.
 fn search_again(failure: &IncrementFailure, trial: &[f64]) -> bool {
     matches!(failure, IncrementFailure::PairsMoved) && trial.iter().all(|x| x.is_finite())
+}
+
+/// The largest change of a prescribed displacement over the increment
+/// from `u` to time `t_new`: the motion the run's first search covers on
+/// Newton's path, before any increment has measured one
+/// ([`IncrementMethod::first_search_covers_prescribed_motion`]).
+fn prescribed_motion<P: NonlinearProblem>(problem: &P, t_new: f64, u: &[f64]) -> f64 {
+    let mut target = u.to_vec();
+    problem.apply_prescribed(t_new, &mut target);
+    let dofs = problem.num_dofs();
+    (target[..dofs].chunks(3).zip(u[..dofs].chunks(3)))
+        .map(|(a, b)| a.iter().zip(b).map(|(p, q)| (p - q).powi(2)).sum::<f64>())
+        .fold(0.0f64, f64::max)
+        .sqrt()
 }
 
 /// The largest displacement over an increment, from `u` to `trial`, of

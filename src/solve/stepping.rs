@@ -225,13 +225,7 @@ pub fn resume_steps<P: NonlinearProblem>(
         while t < step.end_time - 1e-12 * step.end_time.abs().max(1.0) {
             let t_new;
             (dt, t_new) = next_increment(step, t, dt);
-            let motion = match last_motion {
-                Some((m, last_dt)) => m * (t_new - t) / last_dt,
-                None if method.first_search_covers_prescribed_motion() => {
-                    prescribed_motion(problem, t_new, &u)
-                }
-                None => 0.0,
-            };
+            let motion = search_motion(problem, &*method, last_motion, (t, t_new), &u);
             if problem.refresh_pattern(&u, motion, reached.as_deref()) {
                 method.pattern_changed(problem)?;
                 if let Some(f) = fallback.as_deref_mut() {
@@ -445,6 +439,26 @@ fn attempt_with_fallback<P: NonlinearProblem>(
 /// where the answer on those pairs leaves them too, the increment is cut.
 fn search_again(failure: &IncrementFailure, trial: &[f64]) -> bool {
     matches!(failure, IncrementFailure::PairsMoved) && trial.iter().all(|x| x.is_finite())
+}
+
+/// The motion `d` the search at the start of the increment `(t, t_new)`
+/// from `u` covers (`src/contact/primary.rs`, search rule): the last
+/// converged increment's `(motion, length)` scaled to this one, else, on
+/// Newton's path, the increment's prescribed motion ([`prescribed_motion`]).
+fn search_motion<P: NonlinearProblem>(
+    problem: &P,
+    method: &dyn IncrementMethod<P>,
+    last_motion: Option<(f64, f64)>,
+    (t, t_new): (f64, f64),
+    u: &[f64],
+) -> f64 {
+    match last_motion {
+        Some((m, last_dt)) => m * (t_new - t) / last_dt,
+        None if method.first_search_covers_prescribed_motion() => {
+            prescribed_motion(problem, t_new, u)
+        }
+        None => 0.0,
+    }
 }
 
 /// The largest change of a prescribed displacement over the increment

@@ -51,7 +51,7 @@ impl std::fmt::Debug for RowCache {
 /// often it segmented and integrated them with their derivatives (the rest
 /// came from the cache, or needed values alone); how often values alone
 /// were evaluated, without derivatives (rows taken
-/// [`Derivatives::Without`], or the gaps of [`RowSource::gaps`], where
+/// [`Derivatives::Without`], or the gaps of [`RowSource::gaps`](super::RowSource::gaps), where
 /// the configuration's rows were not cached).
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
 pub struct RowCounts {

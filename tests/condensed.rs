@@ -735,13 +735,21 @@ fn pushed_blocks(contact: &str, solver: &str) -> (RunOutcome, PairState) {
 /// forces, pressures and gaps of monolithic Newton (residual tolerance
 /// 1e-11) to 1e-8 relative (the gaps against the largest displacement);
 /// `auto` takes the condensed path there (frictionless between bodies).
+/// The same on an f32 factor (`linear = "mixed"`), whose block response
+/// the rounds correct (`pairs::PairCondensation::corrected`): still one
+/// factorisation, in f32.
 #[test]
 fn bodies_in_contact_condensed_equal_monolithic() {
-    for contact in [
+    let contacts = [
         "method = \"rockafellar\"\npenalty = 100.0",
         "method = \"penalty\"\npenalty = 1000.0",
-    ] {
-        let (cond, c) = pushed_blocks(contact, "strategy = \"condensed\"");
+    ];
+    let linear = ["ldlt", "mixed"];
+    for (contact, linear) in contacts.iter().flat_map(|c| linear.map(|l| (c, l))) {
+        let condensed = format!("strategy = \"condensed\"\nlinear = \"{linear}\"");
+        let (cond, c) = pushed_blocks(contact, &condensed);
+        let single = usize::from(linear == "mixed");
+        assert_eq!(cond.summary.single_factorisations, single, "{linear}");
         let (mono, m) = pushed_blocks(
             contact,
             "strategy = \"monolithic\"\nresidual_tolerance = 1e-11",
@@ -764,7 +772,7 @@ fn bodies_in_contact_condensed_equal_monolithic() {
                 .filter(|(a, b)| a.is_finite() && b.is_finite())
                 .fold(0.0f64, |d, (a, b)| d.max((a - b).abs()))
                 / scale;
-            eprintln!("{contact}: increment {i}: u {du:.1e}, forces {df:.1e}, pressures {dp:.1e}, gaps {dg:.1e}");
+            eprintln!("{contact}, {linear}: increment {i}: u {du:.1e}, forces {df:.1e}, pressures {dp:.1e}, gaps {dg:.1e}");
             assert!(
                 du < 1e-8 && df < 1e-8 && dp < 1e-8 && dg < 1e-8,
                 "increment {i}"
@@ -785,7 +793,8 @@ fn bodies_in_contact_condensed_equal_monolithic() {
 
 /// examples/two-spheres as it ships (matching Tet4 caps, frictionless,
 /// Rockafellar; every secondary node over a primary vertex, where the
-/// facet choice decides): `auto` takes the condensed path, and its
+/// facet choice decides): `auto` takes the condensed path (on an f32
+/// factor), and its
 /// displacements, nodal contact forces and pressures equal monolithic
 /// Newton's (residual tolerance 1e-11) to 1e-8 relative (measured 1.1e-14,
 /// 1.5e-13, 4.5e-13: the rounds and Newton end on the same triangles,
@@ -811,6 +820,8 @@ fn two_spheres_condensed_equals_monolithic() {
     let (mono, m) = run("strategy = \"monolithic\"\nresidual_tolerance = 1e-11");
     assert_eq!(auto.summary.strategy, "condensed");
     assert_eq!(mono.summary.strategy, "monolithic");
+    // 20 931 unknowns: `auto` factorises in f32, the rounds corrected
+    assert_eq!(auto.summary.single_factorisations, 1);
     let last = |v: &Vec<Vec<f64>>| v.last().unwrap().clone();
     let du = relative_difference(&last(&a.displacements), &last(&m.displacements));
     let df = relative_difference(&last(&a.forces), &last(&m.forces));

@@ -414,3 +414,32 @@ fn on_a_flat_covered_patch_d_sees_only_the_secondary_surface() {
         }
     }
 }
+
+/// The pairs are integrated side by side on the run's threads and added
+/// in the pairs' order: the rows, with their gradients and without, are
+/// the same bit for bit on 1 and 3 threads (curved non-matching surfaces,
+/// every pairing of the four shapes).
+#[test]
+fn rows_are_the_same_on_any_number_of_threads() {
+    for s_shape in SHAPES {
+        for p_shape in SHAPES {
+            let s = surfaces(s_shape, p_shape, true, true);
+            let pairs = all_pairs(s.secondary.len(), s.primary.len());
+            let on = |threads: usize, derivatives: Derivatives| {
+                rayon::ThreadPoolBuilder::new()
+                    .num_threads(threads)
+                    .build()
+                    .unwrap()
+                    .install(|| {
+                        mortar_rows(&s.secondary, &s.primary, &pairs, &s.coords, derivatives)
+                    })
+                    .unwrap()
+            };
+            for derivatives in [Derivatives::With, Derivatives::Without] {
+                let one = on(1, derivatives);
+                assert!(!one.is_empty());
+                assert_eq!(one, on(3, derivatives), "{s_shape:?}–{p_shape:?}");
+            }
+        }
+    }
+}

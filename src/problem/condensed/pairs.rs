@@ -18,7 +18,14 @@
 //! `g(û) + Eᵀ(u − û)` (one solve with the factor, and its refinement),
 //! the rows read again at the answer, until the columns of the nodes that
 //! carry a force change by less than [`COLUMN_TOLERANCE`] and the exact
-//! gaps equal the linearised ones to the gap tolerance. While the active
+//! gaps equal the linearised ones to the gap tolerance. On an f32 factor
+//! (`[solver] linear = "auto"` from 10 000 unknowns, or `"mixed"`) the
+//! block's response is that of the f32 factor's Schur complement, off by
+//! its round-off: the settled rounds' forces are then solved with the
+//! refined factor, the free solution shifted on the block by the
+//! difference, and the rounds go on until the two agree to the gap
+//! tolerance (a defect correction; one more pass on
+//! examples/two-spheres). While the active
 //! set holds, the next linearisation point is Anderson's mix of the last
 //! rounds ([`Anderson`]) instead of the last answer. At the fixed point `K̃u = b + E(u)λ` and
 //! `g(u) ⊥ λ`: the equations of the monolithic node-to-surface problem
@@ -52,9 +59,23 @@ const ANDERSON_DEPTH: usize = 3;
 /// normal component times a weight, at most 1) changes by more than this.
 const COLUMN_TOLERANCE: f64 = 1e-12;
 
+/// Passes of the defect correction of an f32 factor's block (module
+/// docs) at most.
+const MAX_CORRECTIONS: usize = 10;
+
+/// On an f32 factor the first correction of the block's response comes at
+/// the first round whose columns change by at most this, each next one
+/// once the change has fallen by [`CORRECTION_GAIN`] since.
+const FIRST_CORRECTION: f64 = 1e-3;
+
+/// See [`FIRST_CORRECTION`].
+const CORRECTION_GAIN: f64 = 1e-4;
+
 /// The frictionless condensation of bodies in contact with each other.
 pub(super) struct PairCondensation {
     base: Condensation,
+    /// The free dofs of the contact surfaces' nodes.
+    surface: Vec<usize>,
     /// Whether every free dof of the contact surfaces is on the trailing
     /// block: then a round needs no solve with the factor
     /// ([`crate::solve::condensed::flexibility::Flexibility::solve_on_block`]), one per increment at its end.
@@ -274,8 +295,9 @@ fn trailing_of_rows(problem: &Problem, rows: &[Vec<Option<ConstraintRow>>]) -> V
 }
 
 impl PairCondensation {
-    /// The columns at `u = 0`, and `K̃` factorised once in f64 with every
-    /// free dof of the contact surfaces' nodes ordered last.
+    /// The columns at `u = 0`, and `K̃` factorised once (in f32 where
+    /// [`Condensation::factorise_on`] takes it) with every free dof of the
+    /// contact surfaces' nodes ordered last.
     pub(super) fn new(problem: &Problem) -> Result<Self> {
         let zero = vec![0.0; problem.num_unknowns()];
         let mut initial = problem
@@ -286,18 +308,19 @@ impl PairCondensation {
         let (nodes, columns) = columns_of(problem, &rows);
         let trailing = trailing_of_rows(problem, &rows);
         let constrained = problem.constrained_dofs();
-        let surface_dofs = (problem.contacts.deformable_nodes().iter())
+        let surface: Vec<usize> = (problem.contacts.deformable_nodes().iter())
             .flat_map(|&n| 3 * n..3 * n + 3)
             .filter(|&d| !constrained[d])
-            .count();
-        let on_block = trailing.len() == surface_dofs;
-        let base = Condensation::factorise_on(problem, nodes, columns, &[], trailing, false)?;
+            .collect();
+        let on_block = trailing.len() == surface.len();
+        let base = Condensation::factorise_on(problem, nodes, columns, &[], trailing, true)?;
         let reference = &problem.model.mesh.nodes;
         let open = (problem.contacts.iter())
             .map(|c| c.open_gap(reference, &zero))
             .collect();
         Ok(PairCondensation {
             base,
+            surface,
             on_block,
             rounds: 0,
             open,
@@ -323,7 +346,7 @@ impl PairCondensation {
     ) -> Result<(Vec<f64>, Vec<f64>)> {
         let tolerance = 1e-12 * problem.model.size();
         let b = self.base.load(problem, t);
-        let free = if self.on_block {
+        let mut free = if self.on_block {
             let mut u_b = b.clone();
             self.base.flexibility.solve(&mut u_b)?;
             Some(u_b)
@@ -336,7 +359,9 @@ impl PairCondensation {
         let mut at = start.to_vec();
         let mut anderson = Anderson::new(ANDERSON_DEPTH);
         let mut support: Vec<bool> = Vec::new();
-        for round in 0..MAX_ROUNDS {
+        let mut corrections = 0;
+        let mut next_correction = FIRST_CORRECTION;
+        for round in 0..MAX_ROUNDS + MAX_CORRECTIONS {
             self.rounds += 1;
             // anew at an increment's first round (as a restart makes it),
             // then only where the columns changed
@@ -361,25 +386,33 @@ impl PairCondensation {
             }
             let (next, exact) = columns_and_gaps_at(problem, t, &u, kept, &self.open, &mut full);
             let change = column_change(&columns, &next, &forces);
-            let consistent = (exact.iter().zip(linear(&u)).zip(&forces)).all(|((g, l), f)| {
-                if *f != 0.0 {
-                    (g - l).abs() <= tolerance
-                } else {
-                    *g >= -tolerance
-                }
-            });
-            if change <= COLUMN_TOLERANCE && consistent {
-                if free.is_none() {
-                    return Ok((u, forces));
-                }
-                // the displacements off the surfaces: one solve
-                let flexibility = &mut self.base.flexibility;
-                let mut u = b;
-                for (a, &force) in forces.iter().enumerate() {
-                    flexibility.add_column(a, force, &mut u);
-                }
-                flexibility.solve(&mut u)?;
+            let settled =
+                change <= COLUMN_TOLERANCE && consistent(&exact, &linear(&u), &forces, tolerance);
+            if settled && free.is_none() {
                 return Ok((u, forces));
+            }
+            // on the block: at the end, the displacements off the surfaces
+            // (one solve); on an f32 factor also the block's response
+            // corrected once the rounds have gained enough since the last
+            let single = self.base.flexibility.is_single();
+            let correct = settled || single && change <= next_correction;
+            if let Some(u_b) = free.as_mut().filter(|_| correct) {
+                let (solved, defect) = self.corrected(&b, &forces, &u, u_b)?;
+                if settled && defect <= tolerance {
+                    return Ok((solved, forces));
+                }
+                next_correction = change * CORRECTION_GAIN;
+                anderson.reset();
+                if settled {
+                    corrections += 1;
+                    if corrections > MAX_CORRECTIONS {
+                        break;
+                    }
+                    (columns, gaps_at) =
+                        columns_and_gaps_at(problem, t, &solved, kept, &self.open, &mut full);
+                    at = solved;
+                    continue;
+                }
             }
             // the next linearisation point: Anderson's mix of the rounds
             // since the active set last changed (the map is smooth there)
@@ -399,9 +432,51 @@ impl PairCondensation {
         }
         Err(Error::LinearSolver(format!(
             "the projections between the bodies did not settle in {MAX_ROUNDS} condensed \
-             solves at time {t}; run with [solver] strategy = \"monolithic\""
+             solves (and {corrections} corrections of the f32 factor) at time {t}; run with \
+             [solver] strategy = \"monolithic\""
         )))
     }
+}
+
+impl PairCondensation {
+    /// The displacements `K̃⁻¹(b + Σ_a λ_a e_a)` at the contact forces
+    /// `forces` (one solve with the refined factor) and their largest
+    /// difference from the block's `u` on the surfaces, `u_b` (the free
+    /// solution) shifted there by that difference: the defect of an f32
+    /// factor's block (module docs).
+    fn corrected(
+        &mut self,
+        b: &[f64],
+        forces: &[f64],
+        u: &[f64],
+        u_b: &mut [f64],
+    ) -> Result<(Vec<f64>, f64)> {
+        let flexibility = &mut self.base.flexibility;
+        let mut solved = b.to_vec();
+        for (a, &force) in forces.iter().enumerate() {
+            flexibility.add_column(a, force, &mut solved);
+        }
+        flexibility.solve(&mut solved)?;
+        let mut defect = 0.0f64;
+        for &d in &self.surface {
+            defect = defect.max((solved[d] - u[d]).abs());
+            u_b[d] += solved[d] - u[d];
+        }
+        Ok((solved, defect))
+    }
+}
+
+/// Whether the exact gaps at a round's answer are its linearised ones to
+/// `tolerance` where a node carries a force, and at least `−tolerance`
+/// where it does not.
+fn consistent(exact: &[f64], linear: &[f64], forces: &[f64], tolerance: f64) -> bool {
+    (exact.iter().zip(linear).zip(forces)).all(|((g, l), f)| {
+        if *f != 0.0 {
+            (g - l).abs() <= tolerance
+        } else {
+            *g >= -tolerance
+        }
+    })
 }
 
 /// The gaps linearised at `û`: `g_a(u) = g_a(û) + e_aᵀ(u − û)` for every

@@ -399,6 +399,12 @@ impl Flexibility {
             .collect()
     }
 
+    /// Whether the factor is in f32 (its block's response then off by the
+    /// f32 Schur complement's round-off).
+    pub fn is_single(&self) -> bool {
+        self.ldlt.precision() == Precision::Single
+    }
+
     /// `K̃ u = rhs`, refined ([`Self::solve_from`] the factor's solution).
     pub fn solve(&mut self, rhs: &mut [f64]) -> Result<()> {
         let b = rhs.to_vec();
@@ -412,7 +418,7 @@ impl Flexibility {
     /// `K̃` factorised again in f64 (and `W` made again from it) and
     /// solved with that.
     pub fn solve_from(&mut self, b: &[f64], x: &mut [f64]) -> Result<()> {
-        let single = self.ldlt.precision() == Precision::Single;
+        let single = self.is_single();
         let refinements = if single { MIXED_REFINEMENTS } else { 3 };
         let (lower, k_tilde) = (&self.lower, &self.k_tilde);
         let product =

@@ -465,19 +465,21 @@ impl Problem {
     }
 
     /// The preconditioner of a nonsymmetric solve from the symmetric part
-    /// `values` of the tangent ([`ContactSet::precondition`]).
+    /// `values` of the tangent `tangent` ([`ContactSet::precondition`]).
     pub fn stick_preconditioner(
         &self,
         t: f64,
         x: &[f64],
         contact: &ContactState,
         constrained: &[bool],
+        tangent: &[f64],
         values: &mut [f64],
     ) {
         let ctx = self.contact_context(t, x);
         let pattern = &self.model.pattern;
+        let matrices = (tangent, values);
         self.contacts
-            .precondition(&ctx, contact, constrained, pattern, values);
+            .precondition(&ctx, contact, constrained, pattern, matrices);
     }
 
     /// Carry the contact states along a Newton step `dx` from `x`.

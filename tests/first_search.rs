@@ -9,10 +9,9 @@
 
 mod common;
 
-use common::{fix, problem, two_bodies};
-use signorini::contact::interface::{ContactInterface, NodeReport};
+use common::{mortar_blocks, two_bodies};
+use signorini::contact::interface::NodeReport;
 use signorini::contact::laws::NormalLaw;
-use signorini::material::LinearElastic;
 use signorini::mesh::{structured::box_mesh, ElementKind};
 use signorini::problem::{ContactState, Problem};
 use signorini::solve::backend::linear_solver;
@@ -20,7 +19,6 @@ use signorini::solve::linear::Ordering;
 use signorini::solve::nonlinear::Evaluation;
 use signorini::solve::record::IterationRecord;
 use signorini::solve::stepping::{run_steps, IncrementRecord, StepObserver};
-use std::sync::Arc;
 
 const E: f64 = 100.0;
 /// The open gap between the blocks at the start: more than the margin
@@ -77,18 +75,10 @@ fn blocks_that_close_in_the_first_increment_are_solved_once() {
     let lower = box_mesh(ElementKind::Hex8, [4, 4, 2], [1.0, 1.0, 0.5]);
     let upper = box_mesh(ElementKind::Hex8, [3, 3, 2], [1.0, 1.0, 0.5]);
     let mesh = two_bodies(lower, "lower", upper, "upper", [0.0, 0.0, 0.5 + GAP]);
-    let mut pr = problem(mesh, Arc::new(LinearElastic::new(E, 0.3, "m").unwrap()));
-    fix(&mut pr, "lower.zmin", &[(2, 0.0)]);
-    fix(&mut pr, "upper.zmax", &[(2, -(GAP + SQUEEZE))]);
-    for body in ["lower", "upper"] {
-        fix(&mut pr, &format!("{body}.xmin"), &[(0, 0.0)]);
-        fix(&mut pr, &format!("{body}.ymin"), &[(1, 0.0)]);
-    }
     let law = NormalLaw::Rockafellar { p: E, k: E };
+    let mut pr = mortar_blocks(mesh, E, -(GAP + SQUEEZE), law);
     let mesh = &pr.model.mesh;
-    let c = ContactInterface::mortar(mesh, "upper.zmin", "lower.zmax", &law.into()).unwrap();
     let bottom = mesh.surface_nodes(mesh.surface("lower.zmin").unwrap());
-    pr.set_contacts(vec![c]);
     let mut count = Count {
         bottom,
         ..Count::default()

@@ -562,6 +562,23 @@ impl SparsityPattern {
         }
     }
 
+    /// Set the couplings of multiplier `k` in `values` to its column of
+    /// `tangent` on both sides: entries `(3a + i, 3N + k)` and
+    /// `(3N + k, 3a + i)` of every node `a` it couples take `tangent`'s
+    /// entry `(3a + i, 3N + k)`, `∂r_u/∂λ_k` (a symmetric matrix whose
+    /// coupling is the tangent's column where the tangent's row differs
+    /// from it: `ContactInterface::couple_multipliers_by_force`).
+    pub fn couple_multiplier_by_column(&self, k: usize, tangent: &[f64], values: &mut [f64]) {
+        for &a in &self.multiplier_nodes[k] {
+            if let Some(e) = self.multiplier_entries(k, a) {
+                for (&column, &row) in e.node_rows.iter().zip(&e.multiplier_row) {
+                    values[column] = tangent[column];
+                    values[row] = tangent[column];
+                }
+            }
+        }
+    }
+
     /// The symmetric part `½ (A + Aᵀ)` of values on this pattern.
     pub fn symmetric_part(&self, values: &[f64]) -> Vec<f64> {
         self.mirrors()

@@ -8,7 +8,8 @@
 //!    couplings ([`ContactSet::couplings`]) for the increment;
 //! 3. **initial states** ([`ContactSet::initial_state`]);
 //! 4. per Newton iteration: **assemble** ([`ContactSet::assemble`]),
-//!    **precondition** ([`ContactSet::precondition`], friction in stick),
+//!    **precondition** ([`ContactSet::precondition`], friction in stick,
+//!    dual mortar's multiplier couplings by the force columns),
 //!    **advance** ([`ContactSet::advance`], the slack law's local unknowns);
 //! 5. after Newton converged: **check pairs** ([`ContactSet::pairs_hold`]),
 //!    **augment** ([`ContactSet::augment`], the outer loop of a law that
@@ -320,18 +321,22 @@ impl ContactSet {
         again
     }
 
-    /// The stick preconditioner's shift of every interface
-    /// ([`ContactInterface::shift_to_stick_preconditioner`]).
+    /// The preconditioner from the symmetric part `values` of the tangent
+    /// `tangent`: every interface's stick preconditioner's shift
+    /// ([`ContactInterface::shift_to_stick_preconditioner`]) and dual
+    /// mortar's multiplier couplings from the tangent's force columns
+    /// ([`ContactInterface::couple_multipliers_by_force`]).
     pub fn precondition(
         &self,
         ctx: &ContactContext,
         contact: &ContactState,
         constrained: &[bool],
         pattern: &SparsityPattern,
-        values: &mut [f64],
+        (tangent, values): (&[f64], &mut [f64]),
     ) {
         for (c, states) in self.iter().zip(&contact.interfaces) {
             c.shift_to_stick_preconditioner(ctx, states, constrained, pattern, values);
+            c.couple_multipliers_by_force(ctx, pattern, tangent, values);
         }
     }
 

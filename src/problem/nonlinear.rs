@@ -89,9 +89,10 @@ impl NonlinearProblem for Problem {
         x: &[f64],
         state: &ContactState,
         constrained: &[bool],
+        tangent: &[f64],
         values: &mut [f64],
     ) {
-        self.stick_preconditioner(t, x, state, constrained, values)
+        self.stick_preconditioner(t, x, state, constrained, tangent, values)
     }
     fn advance_state(&self, t: f64, x: &[f64], dx: &[f64], state: &mut ContactState) {
         self.advance_contact_states(t, x, dx, state)

@@ -352,7 +352,7 @@ impl<P: NonlinearProblem> Newton<'_, P> {
         let nonsymmetric = problem.has_nonsymmetric_tangent();
         let neighbour = (nonsymmetric && self.solver.reads_symmetric_neighbour()).then(|| {
             let mut p = blocks.symmetric_part(k.values());
-            problem.symmetric_neighbour(t, u, state, constrained, &mut p);
+            problem.symmetric_neighbour(t, u, state, constrained, k.values(), &mut p);
             apply_identity_rows(problem, constrained, &mut p);
             p
         });

@@ -110,15 +110,18 @@ pub trait NonlinearProblem {
         state: &Self::State,
         tangent: Option<Tangent<'_>>,
     ) -> Result<Evaluation<Self::Report>, IncrementFailure>;
-    /// Turn the symmetric part `values` of a nonsymmetric tangent into the
-    /// preconditioner's matrix (e.g. friction's slip blocks by stick blocks);
-    /// entries of `constrained` unknowns are skipped.
+    /// Turn the symmetric part `values` of a nonsymmetric tangent
+    /// `tangent` into the preconditioner's matrix (e.g. friction's slip
+    /// blocks by stick blocks, dual mortar's multiplier couplings by the
+    /// tangent's force columns); entries of `constrained` unknowns are
+    /// skipped.
     fn symmetric_neighbour(
         &self,
         t: f64,
         x: &[f64],
         state: &Self::State,
         constrained: &[bool],
+        tangent: &[f64],
         values: &mut [f64],
     );
     /// Carry `state` along a Newton step `dx` from `x`.

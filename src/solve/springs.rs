@@ -97,7 +97,8 @@ impl NonlinearProblem for Springs {
             reports: (),
         })
     }
-    fn symmetric_neighbour(&self, _: f64, _: &[f64], _: &(), _: &[bool], _: &mut [f64]) {}
+    fn symmetric_neighbour(&self, _: f64, _: &[f64], _: &(), _: &[bool], _: &[f64], _: &mut [f64]) {
+    }
     fn advance_state(&self, _: f64, _: &[f64], _: &[f64], _: &mut ()) {}
     fn augment(&self, _: f64, _: &[f64], _: &mut ()) -> bool {
         false

@@ -9,7 +9,7 @@ use signorini::contact::interface::ContactInterface;
 use signorini::contact::interface::NodeReport;
 use signorini::contact::laws::NormalLaw;
 use signorini::contact::RigidObstacle;
-use signorini::material::{Material, NeoHookean};
+use signorini::material::{LinearElastic, Material, NeoHookean};
 use signorini::mesh::structured::box_mesh;
 use signorini::mesh::ElementKind;
 use signorini::mesh::Mesh;
@@ -505,6 +505,24 @@ pub fn two_bodies(a: Mesh, a_name: &str, b: Mesh, b_name: &str, offset: [f64; 3]
         });
     }
     m
+}
+
+/// Two bodies of [`two_bodies`] named `lower` and `upper` (box meshes),
+/// linear elastic (`e`, ν = 0.3), symmetry planes x = 0 and y = 0 on
+/// both, the lower bottom held in z and the upper top moved by `top` in
+/// z; dual mortar under `law`, the upper bottom secondary, installed.
+pub fn mortar_blocks(mesh: Mesh, e: f64, top: f64, law: NormalLaw) -> Problem {
+    let mut pr = problem(mesh, Arc::new(LinearElastic::new(e, 0.3, "m").unwrap()));
+    fix(&mut pr, "lower.zmin", &[(2, 0.0)]);
+    fix(&mut pr, "upper.zmax", &[(2, top)]);
+    for body in ["lower", "upper"] {
+        fix(&mut pr, &format!("{body}.xmin"), &[(0, 0.0)]);
+        fix(&mut pr, &format!("{body}.ymin"), &[(1, 0.0)]);
+    }
+    let mesh = &pr.model.mesh;
+    let c = ContactInterface::mortar(mesh, "upper.zmin", "lower.zmax", &law.into()).unwrap();
+    pr.set_contacts(vec![c]);
+    pr
 }
 
 /// A deformable interface: the nodes of surface `secondary` against the

@@ -220,10 +220,11 @@ type PairIntegrals = (SegmentIntegrals, Option<(DMatrix<f64>, DMatrix<f64>)>);
 
 /// Pairs integrated side by side on the run's threads at once, before
 /// their integrals are added in the pairs' order (so that the sums are
-/// the same bit for bit on any number of threads): with gradients about
-/// 12 kB a pair of Tri6 faces held, 24 MB. Fewer pairs at once cost the
-/// threads' waits: on two-spheres with mortar (2 threads) 128 at once
-/// took 1.13 of the serial loop's CPU, 2 048 1.07, all at once 1.06.
+/// the same bit for bit on any number of threads): with gradients a pair
+/// of Tri6 faces holds about 12 kB, of Quad8 faces 28 kB, so at most
+/// 56 MB at once. Fewer pairs at once cost the threads' waits: on
+/// two-spheres with mortar (2 threads) 128 at once took 1.13 of the
+/// serial loop's CPU, 2 048 1.07, all at once 1.06.
 const PAIRS_PER_CHUNK: usize = 2048;
 
 /// Adds one pair's integrals (and gradients) to its secondary nodes' `D_j`

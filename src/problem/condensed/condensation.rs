@@ -103,7 +103,9 @@ impl Condensation {
     /// done before ([`Problem::dissection`]). In f32 (from
     /// [`MIXED_PRECISION_UNKNOWNS`], or `linear = "mixed"`) only where
     /// `single_allowed`: the frictionless solve corrects the contact
-    /// forces for the f32 `W̃` ([`Flexibility::solve_increment`]); the
+    /// forces for the f32 `W̃` ([`Flexibility::solve_increment`]; between
+    /// bodies on the block, the rounds correct the block's response,
+    /// `pairs::PairCondensation::corrected`); the
     /// frictional one has no such correction and factorises in f64 (on a
     /// 10 k-dof floating block the f32 `Ŵ` left a residual of 5.7e-7).
     pub(super) fn factorise(

@@ -59,12 +59,12 @@ const ANDERSON_DEPTH: usize = 3;
 /// normal component times a weight, at most 1) changes by more than this.
 const COLUMN_TOLERANCE: f64 = 1e-12;
 
-/// Passes of the defect correction of an f32 factor's block (module
-/// docs) at most.
+/// Passes of the defect correction of an f32 factor's block at the
+/// rounds' end (module docs) at most.
 const MAX_CORRECTIONS: usize = 10;
 
 /// On an f32 factor the first correction of the block's response comes at
-/// the first round whose columns change by at most this, each next one
+/// the first round whose columns change by less than this, each next one
 /// once the change has fallen by [`CORRECTION_GAIN`] since.
 const FIRST_CORRECTION: f64 = 1e-3;
 
@@ -74,7 +74,9 @@ const CORRECTION_GAIN: f64 = 1e-4;
 /// The frictionless condensation of bodies in contact with each other.
 pub(super) struct PairCondensation {
     base: Condensation,
-    /// The free dofs of the contact surfaces' nodes.
+    /// The free dofs of the contact surfaces' nodes: the trailing block's
+    /// where [`Self::on_block`] (the trailing unknowns are surface dofs,
+    /// as many as these).
     surface: Vec<usize>,
     /// Whether every free dof of the contact surfaces is on the trailing
     /// block: then a round needs no solve with the factor
@@ -359,9 +361,15 @@ impl PairCondensation {
         let mut at = start.to_vec();
         let mut anderson = Anderson::new(ANDERSON_DEPTH);
         let mut support: Vec<bool> = Vec::new();
-        let mut corrections = 0;
-        let mut next_correction = FIRST_CORRECTION;
-        for round in 0..MAX_ROUNDS + MAX_CORRECTIONS {
+        let mut corrections = Corrections {
+            passes: 0,
+            below: FIRST_CORRECTION,
+            tolerance,
+        };
+        // the corrections' passes at the end take a round each
+        let single = self.on_block && self.base.flexibility.is_single();
+        let limit = MAX_ROUNDS + if single { MAX_CORRECTIONS } else { 0 };
+        for round in 0..limit {
             self.rounds += 1;
             // anew at an increment's first round (as a restart makes it),
             // then only where the columns changed
@@ -391,27 +399,19 @@ impl PairCondensation {
             if settled && free.is_none() {
                 return Ok((u, forces));
             }
-            // on the block: at the end, the displacements off the surfaces
-            // (one solve); on an f32 factor also the block's response
-            // corrected once the rounds have gained enough since the last
-            let single = self.base.flexibility.is_single();
-            let correct = settled || single && change <= next_correction;
-            if let Some(u_b) = free.as_mut().filter(|_| correct) {
-                let (solved, defect) = self.corrected(&b, &forces, &u, u_b)?;
-                if settled && defect <= tolerance {
-                    return Ok((solved, forces));
-                }
-                next_correction = change * CORRECTION_GAIN;
-                anderson.reset();
-                if settled {
-                    corrections += 1;
-                    if corrections > MAX_CORRECTIONS {
-                        break;
+            if let Some(u_b) = free.as_mut() {
+                let round = (forces.as_slice(), u.as_slice());
+                match self.round_end(&b, round, u_b, (settled, change), &mut corrections)? {
+                    RoundEnd::Answer(solved) => return Ok((solved, forces)),
+                    RoundEnd::Corrected(solved) => {
+                        anderson.reset();
+                        (columns, gaps_at) =
+                            columns_and_gaps_at(problem, t, &solved, kept, &self.open, &mut full);
+                        at = solved;
+                        continue;
                     }
-                    (columns, gaps_at) =
-                        columns_and_gaps_at(problem, t, &solved, kept, &self.open, &mut full);
-                    at = solved;
-                    continue;
+                    RoundEnd::Shifted => anderson.reset(),
+                    RoundEnd::Next => {}
                 }
             }
             // the next linearisation point: Anderson's mix of the rounds
@@ -431,14 +431,77 @@ impl PairCondensation {
             }
         }
         Err(Error::LinearSolver(format!(
-            "the projections between the bodies did not settle in {MAX_ROUNDS} condensed \
-             solves (and {corrections} corrections of the f32 factor) at time {t}; run with \
-             [solver] strategy = \"monolithic\""
+            "the projections between the bodies did not settle in {limit} condensed solves at \
+             time {t}; run with [solver] strategy = \"monolithic\""
         )))
     }
 }
 
+/// The defect corrections of an f32 factor's block in an increment: the
+/// passes at the rounds' end so far, the column change below which the
+/// next early one comes, and the gap tolerance the block's displacements
+/// must meet.
+struct Corrections {
+    passes: usize,
+    below: f64,
+    tolerance: f64,
+}
+
+/// What the end of a round on the block gives
+/// ([`PairCondensation::round_end`]).
+enum RoundEnd {
+    /// The increment's displacements.
+    Answer(Vec<f64>),
+    /// The corrected displacements, where the rounds go on from.
+    Corrected(Vec<f64>),
+    /// The block's response corrected: the rounds go on from the round's
+    /// answer on the shifted free solution.
+    Shifted,
+    /// Nothing done.
+    Next,
+}
+
 impl PairCondensation {
+    /// The end of a round on the block, its `(forces, u)` in `round`,
+    /// `(settled, change)` its test: where the rounds settled, the
+    /// displacements off the surfaces (one solve, [`Self::corrected`]),
+    /// the increment's answer on an f64 factor or where they agree with
+    /// the block's to the gap tolerance, else the corrected ones to go on
+    /// from (an error after [`MAX_CORRECTIONS`] such passes); on an f32
+    /// factor the block's response also corrected once the column change
+    /// has fallen below `corrections.below`, which then falls by
+    /// [`CORRECTION_GAIN`].
+    fn round_end(
+        &mut self,
+        b: &[f64],
+        (forces, u): (&[f64], &[f64]),
+        u_b: &mut [f64],
+        (settled, change): (bool, f64),
+        corrections: &mut Corrections,
+    ) -> Result<RoundEnd> {
+        let single = self.base.flexibility.is_single();
+        if !(settled || single && change < corrections.below) {
+            return Ok(RoundEnd::Next);
+        }
+        let (solved, defect) = self.corrected(b, forces, u, u_b)?;
+        if settled && (!single || defect <= corrections.tolerance) {
+            return Ok(RoundEnd::Answer(solved));
+        }
+        corrections.below = change * CORRECTION_GAIN;
+        if !settled {
+            return Ok(RoundEnd::Shifted);
+        }
+        corrections.passes += 1;
+        if corrections.passes >= MAX_CORRECTIONS {
+            return Err(Error::LinearSolver(format!(
+                "the condensed displacements between the bodies did not meet the f32 factor's \
+                 in {MAX_CORRECTIONS} corrections (largest difference {defect:.1e}); run with \
+                 [solver] linear = \"ldlt\""
+            )));
+        }
+        Ok(RoundEnd::Corrected(solved))
+    }
+
     /// The displacements `K̃⁻¹(b + Σ_a λ_a e_a)` at the contact forces
     /// `forces` (one solve with the refined factor) and their largest
     /// difference from the block's `u` on the surfaces, `u_b` (the free

@@ -321,7 +321,8 @@ fn tiny_cattaneo_case(folder: &Path, changes: &[(&str, &str)]) -> std::path::Pat
 /// stick) and frictionless, stopped after half their increments and
 /// resumed: bit for bit the uninterrupted run (the candidates replayed in
 /// their batches, `W` formed anew at the checkpoint's projections as at
-/// every increment's start).
+/// every increment's start); frictionless also on an f32 factor (each
+/// increment's corrections of the block start afresh).
 #[test]
 fn bodies_in_contact_on_the_condensed_path_resume_bitwise() {
     let dir = tempfile::tempdir().unwrap();
@@ -340,4 +341,11 @@ fn bodies_in_contact_on_the_condensed_path_resume_bitwise() {
     );
     let summary = resumes_bitwise_at(&frictionless, "frictionless pair");
     assert_eq!(summary.strategy, "condensed");
+    // the same on an f32 factor, whose block response the rounds correct
+    let mut text = std::fs::read_to_string(&frictionless).unwrap();
+    text.push_str("linear = \"mixed\"\n");
+    std::fs::write(&frictionless, text).unwrap();
+    let summary = resumes_bitwise_at(&frictionless, "frictionless pair on an f32 factor");
+    assert_eq!(summary.strategy, "condensed");
+    assert_eq!(summary.single_factorisations, 1);
 }

@@ -468,10 +468,16 @@ fn search_motion<P: NonlinearProblem>(
 fn prescribed_motion<P: NonlinearProblem>(problem: &P, t_new: f64, u: &[f64]) -> f64 {
     let mut target = u.to_vec();
     problem.apply_prescribed(t_new, &mut target);
-    let dofs = problem.num_dofs();
-    (target[..dofs].chunks(3).zip(u[..dofs].chunks(3)))
-        .map(|(a, b)| a.iter().zip(b).map(|(p, q)| (p - q).powi(2)).sum::<f64>())
+    (0..problem.num_dofs() / 3)
+        .map(|n| node_motion(&target, u, n))
         .fold(0.0f64, f64::max)
+}
+
+/// `|a_n − b_n|`: how far node `n` moves from `b` to `a`.
+fn node_motion(a: &[f64], b: &[f64], n: usize) -> f64 {
+    (0..3)
+        .map(|d| (a[3 * n + d] - b[3 * n + d]).powi(2))
+        .sum::<f64>()
         .sqrt()
 }
 
@@ -479,12 +485,7 @@ fn prescribed_motion<P: NonlinearProblem>(problem: &P, t_new: f64, u: &[f64]) ->
 /// the nodes whose couplings (contact pairs) move with them.
 fn coupled_motion<P: NonlinearProblem>(problem: &P, trial: &[f64], u: &[f64]) -> f64 {
     (problem.moving_coupled_nodes().into_iter())
-        .map(|n| {
-            (0..3)
-                .map(|d| (trial[3 * n + d] - u[3 * n + d]).powi(2))
-                .sum::<f64>()
-                .sqrt()
-        })
+        .map(|n| node_motion(trial, u, n))
         .fold(0.0f64, f64::max)
 }
 

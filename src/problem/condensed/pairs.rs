@@ -74,10 +74,6 @@ const CORRECTION_GAIN: f64 = 1e-4;
 /// The frictionless condensation of bodies in contact with each other.
 pub(super) struct PairCondensation {
     base: Condensation,
-    /// The free dofs of the contact surfaces' nodes: the trailing block's
-    /// where [`Self::on_block`] (the trailing unknowns are surface dofs,
-    /// as many as these).
-    surface: Vec<usize>,
     /// Whether every free dof of the contact surfaces is on the trailing
     /// block: then a round needs no solve with the factor
     /// ([`crate::solve::condensed::flexibility::Flexibility::solve_on_block`]), one per increment at its end.
@@ -310,11 +306,11 @@ impl PairCondensation {
         let (nodes, columns) = columns_of(problem, &rows);
         let trailing = trailing_of_rows(problem, &rows);
         let constrained = problem.constrained_dofs();
-        let surface: Vec<usize> = (problem.contacts.deformable_nodes().iter())
+        let surface_dofs = (problem.contacts.deformable_nodes().iter())
             .flat_map(|&n| 3 * n..3 * n + 3)
             .filter(|&d| !constrained[d])
-            .collect();
-        let on_block = trailing.len() == surface.len();
+            .count();
+        let on_block = trailing.len() == surface_dofs;
         let base = Condensation::factorise_on(problem, nodes, columns, &[], trailing, true)?;
         let reference = &problem.model.mesh.nodes;
         let open = (problem.contacts.iter())
@@ -322,7 +318,6 @@ impl PairCondensation {
             .collect();
         Ok(PairCondensation {
             base,
-            surface,
             on_block,
             rounds: 0,
             open,
@@ -504,9 +499,10 @@ impl PairCondensation {
 
     /// The displacements `K̃⁻¹(b + Σ_a λ_a e_a)` at the contact forces
     /// `forces` (one solve with the refined factor) and their largest
-    /// difference from the block's `u` on the surfaces, `u_b` (the free
-    /// solution) shifted there by that difference: the defect of an f32
-    /// factor's block (module docs).
+    /// difference from the block's `u` on its trailing unknowns (every
+    /// free surface dof, [`Self::on_block`]), `u_b` (the free solution)
+    /// shifted there by that difference: the defect of an f32 factor's
+    /// block (module docs).
     fn corrected(
         &mut self,
         b: &[f64],
@@ -521,7 +517,7 @@ impl PairCondensation {
         }
         flexibility.solve(&mut solved)?;
         let mut defect = 0.0f64;
-        for &d in &self.surface {
+        for &d in &flexibility.trailing_dofs {
             defect = defect.max((solved[d] - u[d]).abs());
             u_b[d] += solved[d] - u[d];
         }

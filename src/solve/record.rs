@@ -8,7 +8,9 @@ use super::linear_solver::LinearFigures;
 /// One Newton iteration as reported to the user.
 #[derive(Clone, Debug, PartialEq, serde::Serialize)]
 pub struct IterationRecord {
-    /// `‖r_free‖ / max(‖f_ext‖, ‖f_int‖)` at the start of the iteration.
+    /// `‖r_free‖ / max(‖f_ext‖, ‖f_int‖)` at the start of the iteration
+    /// (Newton's; the condensed path's steps report their own measure,
+    /// DESIGN.md "The condensed contact path").
     pub residual: f64,
     /// `‖α δu‖ / ‖Δu‖` of the correction taken in this iteration (0 on the
     /// last, converged, evaluation).

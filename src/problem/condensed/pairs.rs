@@ -246,6 +246,50 @@ fn column_change(old: &[Column], new: &[Column], forces: &[f64]) -> f64 {
         .fold(0.0, f64::max)
 }
 
+/// The record of a round whose answer `u` solved the equations
+/// linearised at `û` (`at`), from the increment's `start`: as its
+/// residual the force residual of the monolithic equations at `u`,
+/// `r = K̃u − b − E(u)λ = (E(û) − E(u))λ` (the round solved
+/// `K̃u = b + E(û)λ`; an f32 factor's round-off aside, which the defect
+/// correction takes up), on the free unknowns (`constrained` false),
+/// relative to the contact force `‖E(u)λ‖`; as its correction
+/// `‖u − û‖ / ‖u − start‖`. The old columns `E(û)`, the new `E(u)`.
+fn round_record(
+    old: &[Column],
+    new: &[Column],
+    forces: &[f64],
+    constrained: &[bool],
+    (at, u, start): (&[f64], &[f64], &[f64]),
+) -> IterationRecord {
+    let (mut residual, mut force) = (vec![0.0; u.len()], vec![0.0; u.len()]);
+    for ((a, b), &lambda) in old.iter().zip(new).zip(forces) {
+        for &(i, e) in &a.entries {
+            residual[i] += lambda * e;
+        }
+        for &(i, e) in &b.entries {
+            residual[i] -= lambda * e;
+            force[i] += lambda * e;
+        }
+    }
+    let free_norm = |v: &[f64]| {
+        (v.iter().zip(constrained))
+            .filter(|(_, &c)| !c)
+            .map(|(x, _)| x * x)
+            .sum::<f64>()
+            .sqrt()
+    };
+    let norm = |v: &mut dyn Iterator<Item = f64>| v.map(|x| x * x).sum::<f64>().sqrt();
+    let step = norm(&mut u.iter().zip(at).map(|(x, y)| x - y));
+    let total = norm(&mut u.iter().zip(start).map(|(x, y)| x - y));
+    IterationRecord {
+        residual: free_norm(&residual) / norm(&mut force.iter().copied()).max(f64::MIN_POSITIVE),
+        correction: step / total.max(f64::MIN_POSITIVE),
+        step_length: 1.0,
+        switched: 0,
+        linear: Default::default(),
+    }
+}
+
 /// The free dofs of every contact surface's nodes (secondary and
 /// primary), ordered last in the factorisation so that `(K̃⁻¹)_SS` is read
 /// off its trailing block: the secondary nodes nearest to contact first
@@ -343,6 +387,7 @@ impl PairCondensation {
     ) -> Result<(Vec<f64>, Vec<f64>)> {
         let tolerance = 1e-12 * problem.model.size();
         let b = self.base.load(problem, t);
+        let constrained = problem.constrained_dofs();
         let mut free = if self.on_block {
             let mut u_b = b.clone();
             self.base.flexibility.solve(&mut u_b)?;
@@ -376,19 +421,27 @@ impl PairCondensation {
             }
             let linear = |u: &[f64]| linearised_gaps(&columns, &gaps_at, &at, u);
             let flexibility = &mut self.base.flexibility;
+            let mut steps = Vec::new();
             let (u, forces) = match &free {
-                Some(u_b) => flexibility.solve_on_block(u_b, &linear, tolerance, history)?,
-                None => flexibility.solve_increment(&b, &linear, tolerance, history)?,
+                Some(u_b) => flexibility.solve_on_block(u_b, &linear, tolerance, &mut steps)?,
+                None => flexibility.solve_increment(&b, &linear, tolerance, &mut steps)?,
             };
             // the first round's answer is the increment's to the rounds'
             // change of the projections: where it leaves the pairs, the
             // rounds would end on an answer the stepper cuts
             if round == 0 && !problem.contact_pairs_hold(&u, kept) {
                 self.left_pairs = true;
+                history.extend(steps);
                 return Ok((u, forces));
             }
             let (next, exact) = columns_and_gaps_at(problem, t, &u, kept, &self.open, &mut full);
             let change = column_change(&columns, &next, &forces);
+            // the active-set steps, the last (the complementarity problem
+            // solved: no residual) told as the round's own record
+            steps.pop();
+            history.extend(steps);
+            let points = (at.as_slice(), u.as_slice(), start);
+            history.push(round_record(&columns, &next, &forces, &constrained, points));
             let settled =
                 change <= COLUMN_TOLERANCE && consistent(&exact, &linear(&u), &forces, tolerance);
             if settled && free.is_none() {

@@ -80,6 +80,13 @@ impl FaceShape {
         self.corner_count() == 3
     }
 
+    /// Whether `x(ξ) = Σ_a N_a(ξ) x_a` is affine in `ξ` whatever the
+    /// nodes (Tri3): its gradients `N_a,ξ` are constants, so the tangents
+    /// are the same at every `ξ`, to the bit.
+    pub fn is_affine(self) -> bool {
+        self == FaceShape::Tri3
+    }
+
     /// The reference coordinates of the nodes, in node order.
     pub fn reference_nodes(self) -> &'static [[f64; 2]] {
         let n = self.node_count();

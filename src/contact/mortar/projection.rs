@@ -169,44 +169,72 @@ const MAX_ITERATIONS: usize = 30;
 /// Steps in `ξ` below this are at round-off when they stop shrinking.
 const ROUND_OFF_STEP: f64 = 1e-11;
 
-/// Projects `point` onto `face` along `direction` (see the module doc).
-/// The start is the face's reference centre; the iteration stops when the
-/// step is below `1e-14` in `ξ`, or below [`ROUND_OFF_STEP`] and no less
-/// than half the step before: Newton's quadratic rate would have cut it
-/// far more, so the iteration sits at its round-off floor (a face steeply
-/// inclined to `direction`, far from the origin: the die's arc of
-/// `examples/ironing-mortar` at 60°, coordinates ≈ 5, hovered at
-/// 2e-14). A face parallel to `direction` or a non-converging iteration is
-/// an error.
+/// Projects `point` onto `face` along `direction` (see the module doc):
+/// [`Projector::project`] for a single point.
 pub fn project_along(
     face: &MortarFace,
     point: &Vector3<f64>,
     direction: &Vector3<f64>,
 ) -> Result<FacePoint, MortarError> {
-    let mut xi = face.shape.centre();
-    let mut alpha = 0.0;
-    let mut previous = f64::INFINITY;
-    let mut factored = None;
-    for _ in 0..MAX_ITERATIONS {
-        let r = face.point(xi) - point - direction * alpha;
-        let step = newton_step(face, xi, direction, &r, &mut factored)?;
-        xi = [xi[0] + step[0], xi[1] + step[1]];
-        alpha += step[2];
-        let size = step[0].abs().max(step[1].abs());
-        let floor = size < ROUND_OFF_STEP && size >= 0.5 * previous;
-        previous = size;
-        if size < 1e-14 || floor {
-            return Ok(FacePoint {
-                xi,
-                distance: alpha,
-            });
+    Projector::new(face, direction).project(point)
+}
+
+/// Projections of points onto one face along one direction (a cell's
+/// integration points onto either face along `n₀`), the Newton matrix
+/// `[x_,ξ  x_,η  −d]` and its LU kept from step to step and point to
+/// point where the matrix is the same to the bit: on an affine face
+/// (Tri3, [`crate::contact::mortar::face::FaceShape::is_affine`]) it is
+/// formed and factorised once for all the points, and each point's steps
+/// are the ones a new LU gives.
+pub struct Projector<'a> {
+    face: &'a MortarFace,
+    direction: Vector3<f64>,
+    factored: Option<(Matrix3<f64>, Lu3)>,
+}
+
+impl<'a> Projector<'a> {
+    pub fn new(face: &'a MortarFace, direction: &Vector3<f64>) -> Self {
+        Projector {
+            face,
+            direction: *direction,
+            factored: None,
         }
     }
-    Err(MortarError::Projection {
-        what: format!(
-            "Newton did not converge in {MAX_ITERATIONS} iterations projecting {point:?}"
-        ),
-    })
+
+    /// Projects `point`. The start is the face's reference centre; the
+    /// iteration stops when the step is below `1e-14` in `ξ`, or below
+    /// [`ROUND_OFF_STEP`] and no less than half the step before: Newton's
+    /// quadratic rate would have cut it far more, so the iteration sits at
+    /// its round-off floor (a face steeply inclined to the direction, far
+    /// from the origin: the die's arc of `examples/ironing-mortar` at 60°,
+    /// coordinates ≈ 5, hovered at 2e-14). A face parallel to the
+    /// direction or a non-converging iteration is an error.
+    pub fn project(&mut self, point: &Vector3<f64>) -> Result<FacePoint, MortarError> {
+        let (face, direction) = (self.face, self.direction);
+        let mut xi = face.shape.centre();
+        let mut alpha = 0.0;
+        let mut previous = f64::INFINITY;
+        for _ in 0..MAX_ITERATIONS {
+            let r = face.point(xi) - point - direction * alpha;
+            let step = newton_step(face, xi, &direction, &r, &mut self.factored)?;
+            xi = [xi[0] + step[0], xi[1] + step[1]];
+            alpha += step[2];
+            let size = step[0].abs().max(step[1].abs());
+            let floor = size < ROUND_OFF_STEP && size >= 0.5 * previous;
+            previous = size;
+            if size < 1e-14 || floor {
+                return Ok(FacePoint {
+                    xi,
+                    distance: alpha,
+                });
+            }
+        }
+        Err(MortarError::Projection {
+            what: format!(
+                "Newton did not converge in {MAX_ITERATIONS} iterations projecting {point:?}"
+            ),
+        })
+    }
 }
 
 /// The directional derivative `(δξ, δα)` of a projection `hit` for
@@ -239,7 +267,8 @@ pub fn projection_derivative(
 /// touching nodes' ties at a zero gap); a face parallel to `d` is an
 /// error. `factored` is the last step's matrix and its LU, reused where
 /// the matrix is the same to the bit (an affine face, a Tri3's: its
-/// tangents do not depend on `ξ`), so the step is the one a new LU gives.
+/// tangents do not depend on `ξ`, and are not formed again), so the step
+/// is the one a new LU gives.
 fn newton_step(
     face: &MortarFace,
     xi: [f64; 2],
@@ -247,12 +276,17 @@ fn newton_step(
     r: &Vector3<f64>,
     factored: &mut Option<(Matrix3<f64>, Lu3)>,
 ) -> Result<Vector3<f64>, MortarError> {
-    let [t1, t2] = face.tangents(xi);
-    let jacobian = Matrix3::from_columns(&[t1, t2, -direction]);
-    if factored.as_ref().is_some_and(|(last, _)| *last != jacobian) {
-        *factored = None;
+    let matrix = || {
+        let [t1, t2] = face.tangents(xi);
+        Matrix3::from_columns(&[t1, t2, -direction])
+    };
+    if !(face.shape.is_affine() && factored.is_some()) {
+        let jacobian = matrix();
+        if factored.as_ref().is_none_or(|(last, _)| *last != jacobian) {
+            *factored = Some((jacobian, Lu3::new(&jacobian)));
+        }
     }
-    let (_, lu) = factored.get_or_insert_with(|| (jacobian, Lu3::new(&jacobian)));
+    let (_, lu) = factored.get_or_insert_with(|| (matrix(), Lu3::new(&matrix())));
     lu.solve(&-r).ok_or_else(|| MortarError::Projection {
         what: format!("the face is parallel to the direction {direction:?}"),
     })

@@ -7,7 +7,7 @@
 //!    (Sutherland–Hodgman, [`clipping`]);
 //! 3. the clip polygon is split into triangles about its centroid;
 //! 4. each triangle carries a collapsed Gauss rule whose points go back
-//!    along `n₀` to both faces ([`project_along`]), and
+//!    along `n₀` to both faces ([`Projector`]), and
 //!
 //! ```text
 //! D_j  += Σ_q w_q Φ_j(ξ_s) J_q,            (lumped: ∫_cells Φ_j Σ_k Ñ_k dA)
@@ -31,7 +31,7 @@ use super::auxiliary_plane::AuxiliaryPlane;
 use super::clipping::{self, ClipTrace, Polygon};
 use super::dual_basis::DualBasis;
 use super::face::{FaceShape, FaceValues, MortarFace};
-use super::projection::{project_along, FacePoint, ProjectionJacobian};
+use super::projection::{FacePoint, ProjectionJacobian, Projector};
 use super::MortarError;
 use crate::fem::quadrature;
 
@@ -148,6 +148,8 @@ pub fn cell_points(
 ) -> Result<Vec<CellPoint>, MortarError> {
     let (points, weights) = cell_rule(secondary.shape, primary.shape);
     let n0 = overlap.plane.normal;
+    let (mut onto_secondary, mut onto_primary) =
+        (Projector::new(secondary, &n0), Projector::new(primary, &n0));
     let mut out = Vec::new();
     for (cell, triangle) in clipping::centroid_triangles(&overlap.polygon)
         .iter()
@@ -157,7 +159,7 @@ pub fn cell_points(
         for (eta, w) in points.iter().zip(&weights) {
             let p = cell_point(triangle, *eta);
             let x = overlap.plane.spatial_point(p);
-            let hit_s = project_along(secondary, &x, &n0)?;
+            let hit_s = onto_secondary.project(&x)?;
             let a_s = secondary.area_normal(hit_s.xi);
             out.push(CellPoint {
                 cell,
@@ -165,7 +167,7 @@ pub fn cell_points(
                 weight: *w,
                 plane_point: p,
                 secondary: hit_s,
-                primary: project_along(primary, &x, &n0)?,
+                primary: onto_primary.project(&x)?,
                 cell_jacobian,
                 jacobian: cell_jacobian * a_s.norm() / n0.dot(&a_s).abs(),
             });

@@ -118,6 +118,21 @@ impl Model {
         self.set_share(share);
     }
 
+    /// Let go of the connectivity of every element not in `keep` (a mask
+    /// over the elements: this process's own, the ghost layer of its rows
+    /// and what its output reads; [`Mesh::release_elements`]): the mesh is
+    /// no longer whole on this process. The colouring is made first, on
+    /// the whole mesh, so that this process's elements keep the colours,
+    /// and so the order of summation, that they have in a whole mesh
+    /// (bit for bit the same sums). The mesh is copied if something else
+    /// holds it (then nothing is freed).
+    ///
+    /// [`Mesh::release_elements`]: crate::mesh::Mesh::release_elements
+    pub fn hold_elements(&mut self, keep: &[bool]) {
+        self.colouring();
+        Arc::make_mut(&mut self.mesh).release_elements(keep);
+    }
+
     /// The reference geometry of element `e` (its quadrature points'
     /// `∂N_a/∂X` and `dV₀ = det J₀ w_q`): the one kept, or for an element
     /// of another process ([`Model::set_share_with_local_rows`]) the same

@@ -2,7 +2,10 @@
 //! elements it owns, and the communicator that completes what the
 //! processes assemble apart.
 //!
-//! Every process holds the whole mesh and the unknowns; it evaluates only
+//! Every process holds the whole unknowns and the mesh's nodes, but the
+//! connectivity only of the elements it reads ([`Model::hold_elements`]:
+//! its own, the ghost layer of its rows, its output's recovery patches);
+//! it evaluates only
 //! its own elements, keeps the reference geometry of those only, and none
 //! when the stiffness is constant (a cached `K`, built once per pattern)
 //! ([`Model::geometry_of`] makes the others' again where output asks),

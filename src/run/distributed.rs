@@ -5,8 +5,9 @@
 //! A distributed run reads the case and mesh on every process and cuts
 //! the elements into N parts in parallel by PETSc's partitioner, or
 //! serial METIS where it has none ([`MeshPartition`],
-//! `crate::solve::petsc::partitioning`); each process
-//! assembles its own elements ([`Share`]) on a pattern of their rows
+//! `crate::solve::petsc::partitioning`), after which each process lets
+//! go of the elements it does not read ([`Distribution::hold`]); each
+//! process assembles its own elements ([`Share`]) on a pattern of their rows
 //! ([`Problem::set_share`]), the internal force is summed
 //! over the processes, and the contact surfaces, contact states, Newton
 //! and the stepping are replicated: every process computes them alike

@@ -443,7 +443,7 @@ impl Distribution {
         let meshes = (0..self.partition.parts).map(|p| {
             format!(
                 "mesh: rank {p}: holds the connectivity of {} of {elements} elements \
-                 (its own, the ghost layer of its rows, the patches of its output's nodes)",
+                 (its own, the ghost layer of its rows and the patches its recovered fields read)",
                 held[COUNTS * p + 5] as usize
             )
         });

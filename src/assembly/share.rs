@@ -127,13 +127,16 @@ impl Model {
     /// no longer whole on this process. The colouring is made first, on
     /// the whole mesh, so that this process's elements keep the colours,
     /// and so the order of summation, that they have in a whole mesh
-    /// (bit for bit the same sums). The mesh is copied if something else
-    /// holds it (then nothing is freed).
+    /// (bit for bit the same sums). Where something else holds the mesh
+    /// too (a `Case` kept by a library caller) it stays whole: a thinned
+    /// copy beside it would only add memory.
     ///
     /// [`Mesh::release_elements`]: crate::mesh::Mesh::release_elements
     pub fn hold_elements(&mut self, keep: &[bool]) {
         self.colouring();
-        Arc::make_mut(&mut self.mesh).release_elements(keep);
+        if let Some(mesh) = Arc::get_mut(&mut self.mesh) {
+            mesh.release_elements(keep);
+        }
     }
 
     /// The reference geometry of element `e` (its quadrature points'

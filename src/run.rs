@@ -42,7 +42,7 @@ use crate::output::lock::FolderLock;
 use crate::output::log::LogWriter;
 use crate::output::observer::{Observers, StepObserver};
 use crate::output::provenance::RunHeader;
-use crate::output::pvtu::{PieceWriter, Pieces};
+use crate::output::pvtu::PieceWriter;
 use crate::output::summary::Summary;
 use crate::output::vtu::VtuOptions;
 use crate::output::writer::{MeshEncoding, Restored, ResultWriter, SeriesContent};
@@ -266,7 +266,9 @@ impl Simulation {
     ) -> Result<RunOutcome> {
         // under mpirun: this process's elements, its rank's share of the
         // files, and the processes agree on how the run ended
-        let distribution = Distribution::start(&mut self.problem, &self.case_label, options)?;
+        let recovered = self.nodal_fields.iter().any(|f| f.is_recovered());
+        let distribution =
+            Distribution::start(&mut self.problem, &self.case_label, options, recovered)?;
         let result = self.run_with(options, observer, distribution.as_ref());
         match &distribution {
             Some(d) => d.conclude(result),
@@ -440,11 +442,7 @@ impl Simulation {
         let Some(dir) = &options.output else {
             return Ok((None, None, None));
         };
-        let pieces = distribution.map(|d| Pieces {
-            rank: d.rank,
-            parts: d.partition.parts,
-            elements: d.owned_elements(),
-        });
+        let pieces = distribution.map(Distribution::pieces);
         if let Some(pieces) = pieces
             .clone()
             .filter(|_| distribution.is_some_and(|d| !d.is_lead()))
@@ -611,6 +609,9 @@ pub fn run_observed(
         .then(|| MeshEncoding::start(Arc::clone(&case.mesh), VtuOptions { compress }));
     let mut simulation = Simulation::from_case(&case)?;
     simulation.mesh_encoding = encoding;
+    // the model holds the mesh alone from here (under mpirun each process
+    // then lets go of the elements it does not read)
+    drop(case);
     // a restart goes on in the folder it resumes from
     let folder = options
         .restart

@@ -787,6 +787,16 @@ name = "block"
         // the nodes the partition cuts through are one side's ghosts
         assert!(rows[0][5] + rows[1][5] > 0, "{rows:?}");
         assert_eq!(rows[0][3] + rows[1][3], 135);
+        // the mesh: its own elements and the ghost layer of its rows (the
+        // other part's elements at one of its nodes; none for a part that
+        // owns none of the nodes between the parts), not the whole 64
+        let (held, owned) = (elements_held(log), elements_owned(log));
+        assert_eq!(held.len(), 2, "{log}");
+        for (&(held, whole), own) in held.iter().zip(owned) {
+            println!("holds the connectivity of {held} of {whole} elements, owns {own}");
+            assert!(own <= held && held < whole, "{held} of {whole}, {own} own");
+        }
+        assert!(held[0].0 + held[1].0 > 64, "no ghost layer: {held:?}");
         // summary.json's and the log's matrix entries: rank 0's
         assert!(
             log.contains(&format!("{} matrix entries", rows[0][0])),
@@ -874,6 +884,115 @@ name = "block"
         );
         let mumps = assert_mumps_as_serial(&case, dir.path(), "dual mortar, MUMPS on 2 processes");
         assert!(mumps.log.contains("dual mortar"), "{}", mumps.log);
+    }
+
+    /// The log's `mesh:` lines (issue 29 item 3): the elements whose
+    /// connectivity each rank holds, and the mesh's.
+    fn elements_held(log: &str) -> Vec<(usize, usize)> {
+        log.lines()
+            .filter_map(|l| {
+                let rest = l.strip_prefix("mesh: rank ")?;
+                let numbers: Vec<usize> = rest
+                    .split(|c: char| !c.is_ascii_digit())
+                    .filter_map(|w| w.parse().ok())
+                    .collect();
+                Some((numbers[1], numbers[2]))
+            })
+            .collect()
+    }
+
+    /// The elements each rank owns, from the log's `partition:` lines.
+    fn elements_owned(log: &str) -> Vec<usize> {
+        log.lines()
+            .filter_map(|l| {
+                let rest = l.split("partition: rank ").nth(1)?;
+                rest.split(": ").nth(1)?.split(' ').next()?.parse().ok()
+            })
+            .collect()
+    }
+
+    /// Point array `name` of the last data set's pieces of a distributed
+    /// run in `out`, each node through `global_node` (NaN where no piece
+    /// has the node).
+    fn merged_point_field(out: &Path, summary: &serde_json::Value, name: &str) -> Vec<f64> {
+        let last = summary["increments"].as_array().unwrap().last().unwrap();
+        let file = last["file"].as_str().unwrap();
+        let mut whole = Vec::new();
+        for rank in 0..2 {
+            let piece = out.join(format!("{}_p{rank}.vtu", file.trim_end_matches(".pvtu")));
+            let nodes = read_point_field(&piece, "global_node").unwrap();
+            let values = read_point_field(&piece, name).unwrap();
+            let c = values.len() / nodes.len();
+            for (k, &n) in nodes.iter().enumerate() {
+                let n = n as usize;
+                if whole.len() < c * (n + 1) {
+                    whole.resize(c * (n + 1), f64::NAN);
+                }
+                whole[c * n..c * (n + 1)].copy_from_slice(&values[c * k..c * (k + 1)]);
+            }
+        }
+        whole
+    }
+
+    /// Issue 29 item 3, first part: each process of a 2-process run
+    /// holds the connectivity of its own elements, the ghost layer of its
+    /// rows and the patches its recovered stresses read, not the whole
+    /// mesh, and its output is the serial run's: on a 16 × 4 × 2 block
+    /// (128 Hex8) pressed on a plane, MUMPS on 2 processes gives the
+    /// serial displacements and contact forces to 1e-8 (as above) and
+    /// the recovered von Mises stress and Cauchy stress of every node
+    /// (Zienkiewicz–Zhu patches that cross the partition, grown by up to
+    /// three rings at the boundary) to 1e-8 of their largest — a process
+    /// that let go of an element a patch of its piece reads would write a
+    /// value off by that element's share (its stress taken as zero).
+    /// Without recovered fields (the GAMG run of the frictionless test)
+    /// each holds its own elements and the ghost layer only.
+    #[test]
+    fn each_process_holds_the_elements_it_reads_and_writes_the_serial_output() {
+        let dir = tempfile::tempdir().unwrap();
+        let case = block_case(dir.path(), false, "", "predictor = \"none\"");
+        let mesh = box_mesh(ElementKind::Hex8, [16, 4, 2], [2.0, 1.0, 0.5]);
+        std::fs::write(dir.path().join("block.msh"), common::msh22(&mesh)).unwrap();
+        let text = std::fs::read_to_string(&case).unwrap();
+        let fields = "fields = [\"displacement\", \"recovered_von_mises\", \
+                      \"recovered_cauchy_stress\"]\n";
+        std::fs::write(&case, format!("{text}{fields}")).unwrap();
+        let faer = serial(&case, &dir.path().join("serial"));
+        let out = dir.path().join("mpi");
+        let mumps = run_distributed(&case, &out, &[]);
+        assert_same(
+            &faer,
+            &mumps,
+            1e-8,
+            true,
+            "recovered fields, MUMPS on 2 processes",
+        );
+        let last = &faer.summary.increments.last().unwrap().file;
+        for name in ["recovered_von_mises", "recovered_cauchy_stress"] {
+            let whole = read_point_field(&dir.path().join("serial").join(last), name).unwrap();
+            let pieces = merged_point_field(&out, &mumps.summary, name);
+            assert_eq!(pieces.len(), whole.len(), "{name}");
+            let scale = whole.iter().fold(0.0f64, |m, v| m.max(v.abs()));
+            let worst = whole.iter().zip(&pieces).fold(0.0f64, |m, (a, b)| {
+                if b.is_nan() {
+                    f64::INFINITY
+                } else {
+                    m.max((a - b).abs())
+                }
+            });
+            println!("{name}: largest difference {worst:.2e} of {scale:.3e}");
+            assert!(
+                scale > 0.0 && worst <= 1e-8 * scale,
+                "{name}: {worst} of {scale}"
+            );
+        }
+        let (held, owned) = (elements_held(&mumps.log), elements_owned(&mumps.log));
+        println!("elements held {held:?}, owned {owned:?}");
+        assert_eq!(held.len(), 2, "{}", mumps.log);
+        for ((held, whole), own) in held.into_iter().zip(owned) {
+            assert_eq!(whole, 128);
+            assert!(own < held && held < whole, "{held} of {whole}, {own} own");
+        }
     }
 
     /// The largest penetration of interface `base` over the increments

@@ -643,11 +643,16 @@ impl Model {
         Ok(())
     }
 
-    /// Volume-averaged Cauchy stress of every element.
+    /// Volume-averaged Cauchy stress of every element (zero for an
+    /// element whose connectivity this process does not hold,
+    /// [`Model::hold_elements`]).
     pub fn cauchy_stresses(&self, u: &[f64]) -> Vec<Mat3> {
         (0..self.mesh.elements.len())
             .into_par_iter()
             .map(|e| {
+                if !self.mesh.holds_element(e) {
+                    return Mat3::zeros();
+                }
                 self.with_element_displacements(e, u, |d| {
                     kernel::element_cauchy_stress(
                         &self.geometry_of(e),
@@ -661,11 +666,15 @@ impl Model {
 
     /// The volume average over every element of a tensor function `g` of
     /// the deformation gradient `F = I + ∂u/∂X` at its quadrature points,
-    /// `Σ_q g(F_q) dV_q / Σ_q dV_q` (for output: strains).
+    /// `Σ_q g(F_q) dV_q / Σ_q dV_q` (for output: strains; zero for an
+    /// element whose connectivity this process does not hold).
     pub fn element_averages(&self, u: &[f64], g: impl Fn(&Mat3) -> Mat3 + Sync) -> Vec<Mat3> {
         (0..self.mesh.elements.len())
             .into_par_iter()
             .map(|e| {
+                if !self.mesh.holds_element(e) {
+                    return Mat3::zeros();
+                }
                 self.with_element_displacements(e, u, |displacements| {
                     let (mut sum, mut volume) = (Mat3::zeros(), 0.0);
                     for p in self.geometry_of(e).iter() {

@@ -2,7 +2,10 @@
 //! elements it owns, and the communicator that completes what the
 //! processes assemble apart.
 //!
-//! Every process holds the whole mesh and the unknowns; it evaluates only
+//! Every process holds the whole unknowns and the mesh's nodes, but the
+//! connectivity only of the elements it reads ([`Model::hold_elements`]:
+//! its own, the ghost layer of its rows, its output's recovery patches);
+//! it evaluates only
 //! its own elements, keeps the reference geometry of those only, and none
 //! when the stiffness is constant (a cached `K`, built once per pattern)
 //! ([`Model::geometry_of`] makes the others' again where output asks),
@@ -116,6 +119,24 @@ impl Model {
             }
         }
         self.set_share(share);
+    }
+
+    /// Let go of the connectivity of every element not in `keep` (a mask
+    /// over the elements: this process's own, the ghost layer of its rows
+    /// and what its output reads; [`Mesh::release_elements`]): the mesh is
+    /// no longer whole on this process. The colouring is made first, on
+    /// the whole mesh, so that this process's elements keep the colours,
+    /// and so the order of summation, that they have in a whole mesh
+    /// (bit for bit the same sums). Where something else holds the mesh
+    /// too (a `Case` kept by a library caller) it stays whole: a thinned
+    /// copy beside it would only add memory.
+    ///
+    /// [`Mesh::release_elements`]: crate::mesh::Mesh::release_elements
+    pub fn hold_elements(&mut self, keep: &[bool]) {
+        self.colouring();
+        if let Some(mesh) = Arc::get_mut(&mut self.mesh) {
+            mesh.release_elements(keep);
+        }
     }
 
     /// The reference geometry of element `e` (its quadrature points'

@@ -286,6 +286,30 @@ impl Mesh {
     pub fn surface_names(&self) -> Vec<String> {
         self.surfaces.iter().map(|s| s.name.clone()).collect()
     }
+    /// Empty the node list of every element not in `keep` (a mask over
+    /// the elements): a process of a distributed run holds the
+    /// connectivity of the elements it reads and no other
+    /// (`Model::hold_elements`). Indices, kinds, ids, regions, surface
+    /// sets and nodes stay, so every element keeps its index; an element
+    /// without nodes is one this process does not hold
+    /// ([`Mesh::holds_element`]).
+    pub fn release_elements(&mut self, keep: &[bool]) {
+        for (element, _) in self.elements.iter_mut().zip(keep).filter(|(_, &k)| !k) {
+            element.nodes = Vec::new();
+        }
+    }
+
+    /// Whether this mesh holds element `e`'s connectivity (all of them,
+    /// unless [`Mesh::release_elements`] emptied some).
+    pub fn holds_element(&self, e: usize) -> bool {
+        !self.elements[e].nodes.is_empty()
+    }
+
+    /// The number of elements whose connectivity this mesh holds.
+    pub fn held_elements(&self) -> usize {
+        self.elements.iter().filter(|e| !e.nodes.is_empty()).count()
+    }
+
     /// Sorted, deduplicated node indices of a surface set.
     pub fn surface_nodes(&self, surface: &SurfaceSet) -> Vec<usize> {
         let mut nodes: Vec<usize> = surface

@@ -9,6 +9,7 @@
 use std::borrow::Cow;
 use std::fmt::Write as _;
 use std::path::{Path, PathBuf};
+use std::sync::Arc;
 
 use super::fields::{CellField, ConvergedIncrement, NodalField};
 use super::observer::StepObserver;
@@ -19,13 +20,17 @@ use crate::mesh::{Element, Mesh};
 use crate::Result;
 
 /// This process's piece of every `.pvtu`.
-#[derive(Clone, Debug, PartialEq, Eq)]
+#[derive(Clone, Debug)]
 pub struct Pieces {
     pub rank: usize,
     /// The number of processes (and of pieces).
     pub parts: usize,
     /// The elements this process owns (indices into the mesh).
     pub elements: Vec<usize>,
+    /// The patch recovery of the piece's nodes, made on the whole mesh
+    /// ([`PatchRecovery::of_nodes`]: the process may hold only the
+    /// elements it reads); `None` when no recovered field is written.
+    pub recovery: Option<Arc<PatchRecovery>>,
 }
 
 impl Pieces {
@@ -332,7 +337,8 @@ impl StepObserver for PieceWriter {
         if file.is_empty() {
             return Ok(());
         }
-        let arrays = IncrementArrays::new(increment, &self.nodal, &self.cells, None);
+        let recovery = self.pieces.recovery.as_deref();
+        let arrays = IncrementArrays::new(increment, &self.nodal, &self.cells, recovery);
         self.pieces.write_piece(
             &self.dir,
             &file,
@@ -366,6 +372,7 @@ mod tests {
                 rank,
                 parts: 2,
                 elements: vec![rank],
+                recovery: None,
             };
             pieces
                 .write_piece(
@@ -391,6 +398,7 @@ mod tests {
             rank: 0,
             parts: 2,
             elements: vec![0],
+            recovery: None,
         }
         .write_pvtu(dir.path(), "r_0001.pvtu", &fields, &[])
         .unwrap();

@@ -61,6 +61,16 @@ pub struct PatchRecovery {
 impl PatchRecovery {
     /// The weights of every node of `mesh`.
     pub fn new(mesh: &Mesh) -> Self {
+        Self::of_nodes(mesh, &vec![true; mesh.num_nodes()])
+    }
+
+    /// The weights of the nodes in `nodes` (a mask over the nodes of
+    /// `mesh`), the same as [`Self::new`]'s for them; the other nodes have
+    /// none (their recovered value is zero). A process of a distributed
+    /// run makes those of its piece's nodes on the whole mesh, before it
+    /// lets go of the elements its output does not read
+    /// ([`Self::elements`]).
+    pub fn of_nodes(mesh: &Mesh, nodes: &[bool]) -> Self {
         let node_elements = node_elements(mesh);
         let centroids: Vec<[f64; 3]> = mesh
             .elements
@@ -89,6 +99,9 @@ impl PatchRecovery {
         let per_node: Vec<Vec<(usize, f64)>> = (0..mesh.num_nodes())
             .into_par_iter()
             .map(|a| {
+                if !nodes[a] {
+                    return Vec::new();
+                }
                 let interior: Vec<usize> = if on_boundary[a] {
                     patches.interior_near(a, &on_boundary)
                 } else {
@@ -116,6 +129,12 @@ impl PatchRecovery {
             elements,
             weights,
         }
+    }
+
+    /// The elements whose values the recovered nodal values read (with
+    /// repeats): the patches of the nodes that have weights.
+    pub fn elements(&self) -> &[usize] {
+        &self.elements
     }
 
     /// The recovered nodal values of the element values `values` (one per
@@ -330,6 +349,45 @@ mod tests {
                 let range = recovery.offsets[a]..recovery.offsets[a + 1];
                 let sum: f64 = recovery.weights[range].iter().sum();
                 assert!((sum - 1.0).abs() < 1e-12);
+            }
+        }
+    }
+
+    /// The weights of some nodes only (a process's piece): bit for bit
+    /// the whole mesh's at those nodes and zero elsewhere, and reading
+    /// only [`PatchRecovery::elements`] (every other element's value NaN,
+    /// which would show in any value that read one).
+    #[test]
+    fn the_weights_of_some_nodes_read_only_their_patches() {
+        let mut mesh = box_mesh(ElementKind::Hex8, [6, 4, 3], [3.0, 2.0, 1.5]);
+        perturb_interior(&mut mesh, [6, 4, 3], [3.0, 2.0, 1.5], 0.2, 3);
+        let values: Vec<Mat3> = (0..mesh.elements.len())
+            .map(|e| Mat3::from_fn(|i, j| (e * 3 + i * j + 1) as f64))
+            .collect();
+        let whole = PatchRecovery::new(&mesh).recover(&values);
+        // the nodes of the first elements: a corner of the block
+        let mut piece = vec![false; mesh.num_nodes()];
+        for el in &mesh.elements[..10] {
+            el.nodes.iter().for_each(|&n| piece[n] = true);
+        }
+        let some = PatchRecovery::of_nodes(&mesh, &piece);
+        let mut read = vec![false; mesh.elements.len()];
+        some.elements().iter().for_each(|&e| read[e] = true);
+        let count = read.iter().filter(|&&r| r).count();
+        assert!(count < mesh.elements.len(), "{count}");
+        let only: Vec<Mat3> = (0..values.len())
+            .map(|e| {
+                if read[e] {
+                    values[e]
+                } else {
+                    Mat3::from_element(f64::NAN)
+                }
+            })
+            .collect();
+        for (a, value) in some.recover(&only).iter().enumerate() {
+            match piece[a] {
+                true => assert_eq!(*value, whole[a], "node {a}"),
+                false => assert_eq!(*value, Mat3::zeros(), "node {a}"),
             }
         }
     }

@@ -315,7 +315,12 @@ impl ResultWriter {
     /// The VTU file of an increment, with the chosen fields (or, in a
     /// distributed run, the `.pvtu` and this process's piece).
     fn write_vtu(&mut self, increment: &ConvergedIncrement, file: &str) -> Result<()> {
-        let recovery = self.recovery_of(&increment.problem.model.mesh);
+        // a piece's recovery was made on the whole mesh, which this
+        // process may no longer hold
+        let recovery = match &self.pieces {
+            Some(pieces) => pieces.recovery.clone(),
+            None => self.recovery_of(&increment.problem.model.mesh),
+        };
         let arrays = IncrementArrays::new(increment, &self.nodal, &self.cells, recovery.as_deref());
         let (point_data, cell_data) = (arrays.points(), arrays.cells());
         self.manifest.claim(file)?;

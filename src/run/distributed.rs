@@ -5,8 +5,9 @@
 //! A distributed run reads the case and mesh on every process and cuts
 //! the elements into N parts in parallel by PETSc's partitioner, or
 //! serial METIS where it has none ([`MeshPartition`],
-//! `crate::solve::petsc::partitioning`); each process
-//! assembles its own elements ([`Share`]) on a pattern of their rows
+//! `crate::solve::petsc::partitioning`), after which each process lets
+//! go of the elements it does not read ([`Distribution::hold`]); each
+//! process assembles its own elements ([`Share`]) on a pattern of their rows
 //! ([`Problem::set_share`]), the internal force is summed
 //! over the processes, and the contact surfaces, contact states, Newton
 //! and the stepping are replicated: every process computes them alike
@@ -22,6 +23,8 @@
 use super::{RunOptions, RunOutcome};
 use crate::case::schema::FrictionMultiplierSpec;
 use crate::case::Case;
+use crate::output::pvtu::Pieces;
+use crate::output::recovery::PatchRecovery;
 use crate::problem::condensed::{Choice, Path as SolvePath};
 use crate::problem::{LinearMethod, Problem};
 use crate::solve::partition::MeshPartition;
@@ -103,6 +106,10 @@ pub fn launched_rank() -> Option<usize> {
 pub(super) struct Distribution {
     pub rank: usize,
     pub partition: MeshPartition,
+    /// The patch recovery of this process's piece's nodes, made before it
+    /// let go of the elements it does not read ([`Distribution::hold`]);
+    /// `None` when no recovered field is written.
+    recovery: Option<Arc<PatchRecovery>>,
     #[cfg(feature = "petsc")]
     world: std::sync::Arc<crate::solve::petsc::distributed::MpiWorld>,
     /// The run's `summary.json`, which a fault marks failed.
@@ -113,7 +120,9 @@ pub(super) struct Distribution {
 
 impl Distribution {
     /// Under `mpirun`: join MPI's world (through PETSc), partition the
-    /// mesh and give the model this process's elements; a fault of any
+    /// mesh, give the model this process's elements and let go of the
+    /// others it does not read ([`Distribution::hold`]; `recovered`: the
+    /// output writes recovered nodal fields); a fault of any
     /// process marks `summary.json` in `options.output` failed, and a
     /// signal ([`Distribution::watch`]) ends this process. `None` without
     /// `mpirun`.
@@ -121,6 +130,7 @@ impl Distribution {
         problem: &mut Problem,
         case_label: &str,
         options: &RunOptions,
+        recovered: bool,
     ) -> Result<Option<Self>> {
         let Some(processes) = launched_processes() else {
             return Ok(None);
@@ -128,6 +138,7 @@ impl Distribution {
         let Some(mut distribution) = Self::join(problem, case_label, processes)? else {
             return Ok(None);
         };
+        distribution.hold(problem, recovered);
         distribution.summary = options.output.as_ref().map(|d| d.join("summary.json"));
         distribution.watch(options.cancel.clone());
         #[cfg(feature = "petsc")]
@@ -222,6 +233,16 @@ impl Distribution {
     fn join(problem: &mut Problem, case_label: &str, _: usize) -> Result<Option<Self>> {
         use crate::assembly::share::{Communicator, Share};
         use crate::solve::petsc::distributed::MpiWorld;
+        if problem.model.is_shared() {
+            // its mesh holds this process's elements only
+            return Err(Error::Case {
+                path: case_label.into(),
+                message: "a simulation runs once under mpirun: its model holds only this \
+                          process's part of the mesh after its first run; build the \
+                          simulation again for another run"
+                    .into(),
+            });
+        }
         let world = std::sync::Arc::new(MpiWorld::new()?);
         let (rank, size) = (world.rank(), world.size());
         let mesh = &problem.model.mesh;
@@ -237,14 +258,54 @@ impl Distribution {
             own_nodes: partition.node_part.iter().map(|&p| p == rank).collect(),
             communicator: world.clone(),
         });
-        crate::solve::petsc::distributed::release_freed_memory();
         Ok(Some(Distribution {
             rank,
             partition,
+            recovery: None,
             world,
             summary: None,
             ended: Arc::new(AtomicBool::new(false)),
         }))
+    }
+
+    /// Let go of the connectivity of the elements this process does not
+    /// read (issue 29 item 3, first part): it keeps its own elements, the
+    /// ghost layer of its rows (the others' elements at its nodes,
+    /// [`MeshPartition::row_elements`]) and, when `recovered`, the patches
+    /// of its piece's nodes, whose recovery it makes here on the whole
+    /// mesh ([`PatchRecovery::of_nodes`]). Nodes, regions and surface sets
+    /// stay whole (the whole vectors are indexed by node; the reaction
+    /// forces of `summary.json` sum every surface set's nodes; the contact
+    /// surfaces are replicated by design), and every element its index.
+    /// Then the pages freed at the set-up go back to the system.
+    fn hold(&mut self, problem: &mut Problem, recovered: bool) {
+        let mesh = &problem.model.mesh;
+        let mut keep = self.partition.row_elements(mesh, self.rank);
+        if recovered {
+            let mut piece = vec![false; mesh.num_nodes()];
+            for (el, &own) in mesh.elements.iter().zip(&self.partition.element_part) {
+                if own == self.rank {
+                    el.nodes.iter().for_each(|&n| piece[n] = true);
+                }
+            }
+            let recovery = PatchRecovery::of_nodes(mesh, &piece);
+            recovery.elements().iter().for_each(|&e| keep[e] = true);
+            self.recovery = Some(Arc::new(recovery));
+        }
+        problem.model.hold_elements(&keep);
+        #[cfg(feature = "petsc")]
+        crate::solve::petsc::distributed::release_freed_memory();
+    }
+
+    /// This process's piece of every `.pvtu`: its elements, and the
+    /// recovery of their nodes.
+    pub fn pieces(&self) -> Pieces {
+        Pieces {
+            rank: self.rank,
+            parts: self.partition.parts,
+            elements: self.owned_elements(),
+            recovery: self.recovery.clone(),
+        }
     }
 
     /// Rank 0 writes the run's files and its log.
@@ -347,22 +408,46 @@ impl Distribution {
     /// ([`MeshPartition::local_sizes`], issue 29 item 1), for the log.
     fn rows_held(&self, problem: &Problem) -> Vec<String> {
         let mesh = &problem.model.mesh;
-        let mut held = vec![0.0; self.partition.parts];
-        held[self.rank] = problem.model.pattern.nnz() as f64;
+        // per rank: tangent entries, own and ghost rows' entries and
+        // nodes, elements held; each process counts its own
+        const COUNTS: usize = 6;
+        let mut held = vec![0.0; COUNTS * self.partition.parts];
+        let s = self.partition.local_sizes(mesh, self.rank);
+        let mine = [
+            problem.model.pattern.nnz(),
+            s.own_entries,
+            s.own_nodes,
+            s.ghost_entries,
+            s.ghost_nodes,
+            mesh.held_elements(),
+        ];
+        for (k, count) in mine.into_iter().enumerate() {
+            held[COUNTS * self.rank + k] = count as f64;
+        }
         if let Some(share) = problem.model.share() {
             share.communicator.sum(&mut held);
         }
         let dofs = problem.model.pattern.dimension();
-        (0..self.partition.parts)
-            .map(|p| {
-                let s = self.partition.local_sizes(mesh, p);
-                format!(
-                    "rows: rank {p}: holds {} tangent entries and {dofs} residual values; \
-                     its own rows {} entries ({} nodes), ghost rows {} entries ({} nodes)",
-                    held[p] as usize, s.own_entries, s.own_nodes, s.ghost_entries, s.ghost_nodes
-                )
-            })
-            .collect()
+        let elements = mesh.elements.len();
+        let rows = (0..self.partition.parts).map(|p| {
+            let c: Vec<usize> = held[COUNTS * p..COUNTS * (p + 1)]
+                .iter()
+                .map(|&v| v as usize)
+                .collect();
+            format!(
+                "rows: rank {p}: holds {} tangent entries and {dofs} residual values; \
+                 its own rows {} entries ({} nodes), ghost rows {} entries ({} nodes)",
+                c[0], c[1], c[2], c[3], c[4]
+            )
+        });
+        let meshes = (0..self.partition.parts).map(|p| {
+            format!(
+                "mesh: rank {p}: holds the connectivity of {} of {elements} elements \
+                 (its own, the ghost layer of its rows and the patches its recovered fields read)",
+                held[COUNTS * p + 5] as usize
+            )
+        });
+        rows.chain(meshes).collect()
     }
 }
 

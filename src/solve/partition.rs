@@ -204,6 +204,17 @@ impl MeshPartition {
         sizes
     }
 
+    /// The elements `part`'s rows read, as a mask over every element: its
+    /// own, and the ghost layer of its rows (the other parts' elements at
+    /// one of its nodes, which complete its rows: [`Self::local_sizes`]).
+    pub fn row_elements(&self, mesh: &Mesh, part: usize) -> Vec<bool> {
+        mesh.elements
+            .iter()
+            .zip(&self.element_part)
+            .map(|(el, &p)| p == part || el.nodes.iter().any(|&n| self.node_part[n] == part))
+            .collect()
+    }
+
     /// The elements of `part`, as a mask over every element.
     pub fn owned_elements(&self, part: usize) -> Vec<bool> {
         self.element_part.iter().map(|&p| p == part).collect()
@@ -413,6 +424,19 @@ mod tests {
             zero.own_entries + one.own_entries,
             row(8 + 12 + 12 + 12 + 8)
         );
+        // the elements each part's rows read: its own, and element 2 for
+        // part 0 (at its nodes x = 2); a mesh holding only those gives
+        // the same sizes
+        let rows = [p.row_elements(&mesh, 0), p.row_elements(&mesh, 1)];
+        assert_eq!(rows[0], [true, true, true, false]);
+        assert_eq!(rows[1], [false, false, true, true]);
+        for (part, sizes) in [(0, zero), (1, one)] {
+            let mut held = mesh.clone();
+            held.release_elements(&rows[part]);
+            assert_eq!(held.held_elements(), if part == 0 { 3 } else { 2 });
+            assert!(held.holds_element(2) && !held.holds_element(3 * (1 - part)));
+            assert_eq!(p.local_sizes(&held, part), sizes, "part {part}");
+        }
     }
 
     #[test]

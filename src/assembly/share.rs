@@ -149,6 +149,9 @@ impl Model {
         if !kept.is_empty() {
             return Cow::Borrowed(kept);
         }
+        // an element let go of ([`Model::hold_elements`]) has no nodes:
+        // its geometry would be empty, a zero volume
+        debug_assert!(self.mesh.holds_element(e), "element {e} is not held");
         let element = &self.mesh.elements[e];
         let coordinates: Vec<[f64; 3]> =
             element.nodes.iter().map(|&n| self.mesh.nodes[n]).collect();

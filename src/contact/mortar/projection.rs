@@ -329,4 +329,55 @@ mod tests {
         }
         assert!(checked > 2000);
     }
+
+    /// One [`Projector`] kept over many points (a cell's integration
+    /// points) gives, to the bit, the projections of a new one per point
+    /// ([`project_along`]): on every face shape, curved and tilted, away
+    /// from the origin, along oblique directions.
+    #[test]
+    fn a_kept_projector_projects_as_a_new_one_to_the_bit() {
+        use super::super::face::{FaceShape, MortarFace};
+        let mut rng = rand::rngs::StdRng::seed_from_u64(7);
+        let mut checked = 0;
+        for shape in [
+            FaceShape::Tri3,
+            FaceShape::Quad4,
+            FaceShape::Tri6,
+            FaceShape::Quad8,
+        ] {
+            for _ in 0..200 {
+                let coords: Vec<Vector3<f64>> = shape
+                    .reference_nodes()
+                    .iter()
+                    .map(|x| {
+                        Vector3::new(
+                            x[0] * 1.3 + rng.gen_range(-0.05..0.05) + 5.0,
+                            x[1] * 0.9 + rng.gen_range(-0.05..0.05) - 3.0,
+                            rng.gen_range(-0.1..0.1) + 0.3 * x[0],
+                        )
+                    })
+                    .collect();
+                let face = MortarFace::new(shape, coords).unwrap();
+                let d = Vector3::new(rng.gen_range(-0.2..0.2), rng.gen_range(-0.2..0.2), 1.0)
+                    .normalize();
+                let mut shared = Projector::new(&face, &d);
+                for _ in 0..20 {
+                    let xi = [rng.gen_range(0.0..0.3), rng.gen_range(0.0..0.3)];
+                    let p = face.point(xi) + d * rng.gen_range(-0.2..0.2);
+                    let a = Projector::new(&face, &d).project(&p);
+                    let b = shared.project(&p);
+                    match (a, b) {
+                        (Ok(a), Ok(b)) => {
+                            assert_eq!(a.xi.map(f64::to_bits), b.xi.map(f64::to_bits));
+                            assert_eq!(a.distance.to_bits(), b.distance.to_bits());
+                            checked += 1;
+                        }
+                        (Err(_), Err(_)) => {}
+                        (a, b) => panic!("{shape:?}: {:?} against {:?}", a.is_ok(), b.is_ok()),
+                    }
+                }
+            }
+        }
+        assert!(checked > 15000, "{checked}");
+    }
 }

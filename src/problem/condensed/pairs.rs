@@ -251,8 +251,8 @@ fn column_change(old: &[Column], new: &[Column], forces: &[f64]) -> f64 {
 /// residual the force residual of the monolithic equations at `u`,
 /// `r = K̃u − b − E(u)λ = (E(û) − E(u))λ` (the round solved
 /// `K̃u = b + E(û)λ`; an f32 factor's round-off aside, which the defect
-/// correction takes up), on the free unknowns (`constrained` false),
-/// relative to the contact force `‖E(u)λ‖`; as its correction
+/// correction takes up), relative to the contact force `‖E(u)λ‖`, both
+/// on the free unknowns (`constrained` false); as its correction
 /// `‖u − û‖ / ‖u − start‖`. The old columns `E(û)`, the new `E(u)`.
 fn round_record(
     old: &[Column],
@@ -282,7 +282,7 @@ fn round_record(
     let step = norm(&mut u.iter().zip(at).map(|(x, y)| x - y));
     let total = norm(&mut u.iter().zip(start).map(|(x, y)| x - y));
     IterationRecord {
-        residual: free_norm(&residual) / norm(&mut force.iter().copied()).max(f64::MIN_POSITIVE),
+        residual: free_norm(&residual) / free_norm(&force).max(f64::MIN_POSITIVE),
         correction: step / total.max(f64::MIN_POSITIVE),
         step_length: 1.0,
         switched: 0,
@@ -420,12 +420,8 @@ impl PairCondensation {
                 flexibility.update_columns(columns.clone())?;
             }
             let linear = |u: &[f64]| linearised_gaps(&columns, &gaps_at, &at, u);
-            let flexibility = &mut self.base.flexibility;
-            let mut steps = Vec::new();
-            let (u, forces) = match &free {
-                Some(u_b) => flexibility.solve_on_block(u_b, &linear, tolerance, &mut steps)?,
-                None => flexibility.solve_increment(&b, &linear, tolerance, &mut steps)?,
-            };
+            let (u, forces, steps) =
+                self.solve_round(free.as_deref(), &b, &linear, tolerance, history)?;
             // the first round's answer is the increment's to the rounds'
             // change of the projections: where it leaves the pairs, the
             // rounds would end on an answer the stepper cuts
@@ -436,12 +432,8 @@ impl PairCondensation {
             }
             let (next, exact) = columns_and_gaps_at(problem, t, &u, kept, &self.open, &mut full);
             let change = column_change(&columns, &next, &forces);
-            // the active-set steps, the last (the complementarity problem
-            // solved: no residual) told as the round's own record
-            steps.pop();
-            history.extend(steps);
-            let points = (at.as_slice(), u.as_slice(), start);
-            history.push(round_record(&columns, &next, &forces, &constrained, points));
+            let record = round_record(&columns, &next, &forces, &constrained, (&at, &u, start));
+            tell_round(history, steps, record);
             let settled =
                 change <= COLUMN_TOLERANCE && consistent(&exact, &linear(&u), &forces, tolerance);
             if settled && free.is_none() {
@@ -483,6 +475,48 @@ impl PairCondensation {
              time {t}; run with [solver] strategy = \"monolithic\""
         )))
     }
+}
+
+impl PairCondensation {
+    /// One round's complementarity problem on the gaps `linear`: on the
+    /// block from the free solution `free`, else with the factor from the
+    /// load `b`; its displacements, forces and active-set steps (on an
+    /// error the steps so far told in `history` first).
+    fn solve_round(
+        &mut self,
+        free: Option<&[f64]>,
+        b: &[f64],
+        linear: &dyn Fn(&[f64]) -> Vec<f64>,
+        tolerance: f64,
+        history: &mut Vec<IterationRecord>,
+    ) -> Result<(Vec<f64>, Vec<f64>, Vec<IterationRecord>)> {
+        let flexibility = &mut self.base.flexibility;
+        let mut steps = Vec::new();
+        let solved = match free {
+            Some(u_b) => flexibility.solve_on_block(u_b, linear, tolerance, &mut steps),
+            None => flexibility.solve_increment(b, linear, tolerance, &mut steps),
+        };
+        match solved {
+            Ok((u, forces)) => Ok((u, forces, steps)),
+            Err(e) => {
+                history.extend(steps);
+                Err(e)
+            }
+        }
+    }
+}
+
+/// A round's active-set `steps` told in `history`, the last (the
+/// complementarity problem solved: no violation) replaced by the round's
+/// own `record` ([`round_record`]).
+fn tell_round(
+    history: &mut Vec<IterationRecord>,
+    mut steps: Vec<IterationRecord>,
+    record: IterationRecord,
+) {
+    steps.pop();
+    history.extend(steps);
+    history.push(record);
 }
 
 /// The defect corrections of an f32 factor's block in an increment: the

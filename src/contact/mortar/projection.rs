@@ -276,17 +276,18 @@ fn newton_step(
     r: &Vector3<f64>,
     factored: &mut Option<(Matrix3<f64>, Lu3)>,
 ) -> Result<Vector3<f64>, MortarError> {
-    let matrix = || {
-        let [t1, t2] = face.tangents(xi);
-        Matrix3::from_columns(&[t1, t2, -direction])
-    };
-    if !(face.shape.is_affine() && factored.is_some()) {
-        let jacobian = matrix();
-        if factored.as_ref().is_none_or(|(last, _)| *last != jacobian) {
-            *factored = Some((jacobian, Lu3::new(&jacobian)));
+    let (jacobian, lu) = match factored.take() {
+        Some(kept) if face.shape.is_affine() => kept,
+        kept => {
+            let [t1, t2] = face.tangents(xi);
+            let jacobian = Matrix3::from_columns(&[t1, t2, -direction]);
+            match kept {
+                Some(kept) if kept.0 == jacobian => kept,
+                _ => (jacobian, Lu3::new(&jacobian)),
+            }
         }
-    }
-    let (_, lu) = factored.get_or_insert_with(|| (matrix(), Lu3::new(&matrix())));
+    };
+    *factored = Some((jacobian, lu));
     lu.solve(&-r).ok_or_else(|| MortarError::Projection {
         what: format!("the face is parallel to the direction {direction:?}"),
     })

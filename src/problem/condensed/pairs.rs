@@ -37,6 +37,7 @@ use super::{set_multipliers, zero_per_node};
 use super::{Condensation, ContactNode, ContactState, IncrementSolver, Problem};
 use crate::contact::interface::{ConstraintRow, Primary};
 use crate::contact::mortar::Derivatives;
+use crate::problem::norm;
 use crate::solve::condensed::anderson::Anderson;
 use crate::solve::condensed::flexibility::{take_trailing, Column, MAX_TRAILING};
 use crate::solve::failure::IncrementFailure;
@@ -263,27 +264,19 @@ fn round_record(
 ) -> IterationRecord {
     let (mut residual, mut force) = (vec![0.0; u.len()], vec![0.0; u.len()]);
     for ((a, b), &lambda) in old.iter().zip(new).zip(forces) {
-        for &(i, e) in &a.entries {
+        let free = |&&(i, _): &&(usize, f64)| !constrained[i];
+        for &(i, e) in a.entries.iter().filter(free) {
             residual[i] += lambda * e;
         }
-        for &(i, e) in &b.entries {
+        for &(i, e) in b.entries.iter().filter(free) {
             residual[i] -= lambda * e;
             force[i] += lambda * e;
         }
     }
-    let free_norm = |v: &[f64]| {
-        (v.iter().zip(constrained))
-            .filter(|(_, &c)| !c)
-            .map(|(x, _)| x * x)
-            .sum::<f64>()
-            .sqrt()
-    };
-    let norm = |v: &mut dyn Iterator<Item = f64>| v.map(|x| x * x).sum::<f64>().sqrt();
-    let step = norm(&mut u.iter().zip(at).map(|(x, y)| x - y));
-    let total = norm(&mut u.iter().zip(start).map(|(x, y)| x - y));
+    let from = |v: &[f64]| -> Vec<f64> { u.iter().zip(v).map(|(x, y)| x - y).collect() };
     IterationRecord {
-        residual: free_norm(&residual) / free_norm(&force).max(f64::MIN_POSITIVE),
-        correction: step / total.max(f64::MIN_POSITIVE),
+        residual: norm(&residual) / norm(&force).max(f64::MIN_POSITIVE),
+        correction: norm(&from(at)) / norm(&from(start)).max(f64::MIN_POSITIVE),
         step_length: 1.0,
         switched: 0,
         linear: Default::default(),
@@ -477,35 +470,6 @@ impl PairCondensation {
     }
 }
 
-impl PairCondensation {
-    /// One round's complementarity problem on the gaps `linear`: on the
-    /// block from the free solution `free`, else with the factor from the
-    /// load `b`; its displacements, forces and active-set steps (on an
-    /// error the steps so far told in `history` first).
-    fn solve_round(
-        &mut self,
-        free: Option<&[f64]>,
-        b: &[f64],
-        linear: &dyn Fn(&[f64]) -> Vec<f64>,
-        tolerance: f64,
-        history: &mut Vec<IterationRecord>,
-    ) -> Result<(Vec<f64>, Vec<f64>, Vec<IterationRecord>)> {
-        let flexibility = &mut self.base.flexibility;
-        let mut steps = Vec::new();
-        let solved = match free {
-            Some(u_b) => flexibility.solve_on_block(u_b, linear, tolerance, &mut steps),
-            None => flexibility.solve_increment(b, linear, tolerance, &mut steps),
-        };
-        match solved {
-            Ok((u, forces)) => Ok((u, forces, steps)),
-            Err(e) => {
-                history.extend(steps);
-                Err(e)
-            }
-        }
-    }
-}
-
 /// A round's active-set `steps` told in `history`, the last (the
 /// complementarity problem solved: no violation) replaced by the round's
 /// own `record` ([`round_record`]).
@@ -544,6 +508,33 @@ enum RoundEnd {
 }
 
 impl PairCondensation {
+    /// One round's complementarity problem on the gaps `linear`: on the
+    /// block from the free solution `free`, else with the factor from the
+    /// load `b`; its displacements, forces and active-set steps (on an
+    /// error the steps so far told in `history` first).
+    fn solve_round(
+        &mut self,
+        free: Option<&[f64]>,
+        b: &[f64],
+        linear: &dyn Fn(&[f64]) -> Vec<f64>,
+        tolerance: f64,
+        history: &mut Vec<IterationRecord>,
+    ) -> Result<(Vec<f64>, Vec<f64>, Vec<IterationRecord>)> {
+        let flexibility = &mut self.base.flexibility;
+        let mut steps = Vec::new();
+        let solved = match free {
+            Some(u_b) => flexibility.solve_on_block(u_b, linear, tolerance, &mut steps),
+            None => flexibility.solve_increment(b, linear, tolerance, &mut steps),
+        };
+        match solved {
+            Ok((u, forces)) => Ok((u, forces, steps)),
+            Err(e) => {
+                history.extend(steps);
+                Err(e)
+            }
+        }
+    }
+
     /// The end of a round on the block, its `(forces, u)` in `round`,
     /// `(settled, change)` its test: where the rounds settled, the
     /// displacements off the surfaces (one solve, [`Self::corrected`]),
